@@ -1,0 +1,91 @@
+#include "quadrature.h"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace cracklip::quadrature
+{
+
+Rule gauss_legendre(int n)
+{
+  if (n < 1)
+    throw std::invalid_argument("gauss_legendre: n must be >= 1, got "
+                                + std::to_string(n));
+  Rule rule;
+  rule.dim = 1;
+  rule.points.resize(n);
+  rule.weights.resize(n);
+  // Newton iteration on P_n from Chebyshev initial guesses, on [-1, 1].
+  for (int i = 0; i < n; ++i)
+  {
+    double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5));
+    double dp = 1.0;
+    for (int it = 0; it < 100; ++it)
+    {
+      double p0 = 1.0, p1 = x;
+      for (int k = 2; k <= n; ++k)
+      {
+        const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      const double pn = (n == 1) ? x : p1;
+      const double pnm1 = (n == 1) ? 1.0 : p0;
+      dp = n * (x * pn - pnm1) / (x * x - 1.0);
+      const double dx = pn / dp;
+      x -= dx;
+      if (std::abs(dx) < 1e-16)
+        break;
+    }
+    // Recompute derivative at the converged point.
+    double p0 = 1.0, p1 = x;
+    for (int k = 2; k <= n; ++k)
+    {
+      const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+      p0 = p1;
+      p1 = p2;
+    }
+    const double pn = (n == 1) ? x : p1;
+    const double pnm1 = (n == 1) ? 1.0 : p0;
+    dp = n * (x * pn - pnm1) / (x * x - 1.0);
+    rule.points[i] = 0.5 * (1.0 - x);
+    rule.weights[i] = 1.0 / ((1.0 - x * x) * dp * dp);
+  }
+  return rule;
+}
+
+Rule triangle(int degree)
+{
+  if (degree < 0)
+    throw std::invalid_argument("triangle quadrature: degree must be >= 0, got "
+                                + std::to_string(degree));
+  Rule rule;
+  rule.dim = 2;
+  if (degree <= 1)
+  {
+    rule.points = {1.0 / 3.0, 1.0 / 3.0};
+    rule.weights = {0.5};
+    return rule;
+  }
+  // Collapsed (Duffy) map of the unit square: xi = u, eta = (1 - u) v,
+  // Jacobian (1 - u): degree + 1 in u, degree in v.
+  const int nu = (degree + 3) / 2;
+  const int nv = (degree + 2) / 2;
+  const Rule gu = gauss_legendre(nu);
+  const Rule gv = gauss_legendre(nv);
+  rule.points.reserve(2 * nu * nv);
+  rule.weights.reserve(nu * nv);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j)
+    {
+      const double u = gu.points[i], v = gv.points[j];
+      rule.points.push_back(u);
+      rule.points.push_back((1.0 - u) * v);
+      rule.weights.push_back(gu.weights[i] * gv.weights[j] * (1.0 - u));
+    }
+  return rule;
+}
+
+} // namespace cracklip::quadrature

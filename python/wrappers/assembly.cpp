@@ -1,0 +1,88 @@
+// Bindings: sparsity, enriched stiffness (into PETSc or COO), facet basis.
+#include "array.h"
+
+#include <dolfinx_glue.h>
+#include <heaviside_kernels.h>
+#include <pybind11/stl.h>
+#include <sparsity.h>
+
+namespace cracklip_wrappers
+{
+using namespace cracklip;
+using Cracks = std::vector<const CrackGeometry*>;
+
+void declare_assembly(py::module& m)
+{
+  m.def(
+      "create_sparsity",
+      [](const carray<std::int32_t>& cells, const EnrichmentLayout& layout)
+      {
+        CSR s = expand_blocks(create_block_sparsity(as_span(cells), layout), 2);
+        return py::make_tuple(as_pyarray(std::move(s.offsets)), as_pyarray(std::move(s.indices)));
+      },
+      py::arg("cells"), py::arg("layout"),
+      "Scalar CSR (indptr, indices) of the enriched stiffness, block size 2.");
+
+  m.def(
+      "assemble_enriched_stiffness_petsc",
+      [](std::uintptr_t mat_handle, const carray<double>& x, const carray<std::int32_t>& cells,
+         const EnrichmentLayout& layout, const Cracks& cracks, double E, double nu, int degree)
+      {
+        const MatrixSink sink = petsc_add_sink(reinterpret_cast<Mat>(mat_handle));
+        return assemble_enriched_stiffness(sink, as_span(x), as_span(cells), layout, cracks, E, nu, degree);
+      },
+      py::arg("mat_handle"), py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"),
+      py::arg("E"), py::arg("nu"), py::arg("degree"),
+      "Add the enriched blocks into a PETSc Mat (petsc4py Mat.handle). Returns the number "
+      "of cells integrated.");
+
+  m.def(
+      "assemble_enriched_stiffness_coo",
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
+         const Cracks& cracks, double E, double nu, int degree)
+      {
+        std::vector<std::int32_t> ri, ci;
+        std::vector<double> v;
+        const MatrixSink sink = [&](std::span<const std::int32_t> rows,
+                                    std::span<const std::int32_t> cols, std::span<const double> vals)
+        {
+          for (std::size_t i = 0; i < rows.size(); ++i)
+            for (std::size_t j = 0; j < cols.size(); ++j)
+              if (const double a = vals[i * cols.size() + j]; a != 0.0)
+              {
+                ri.push_back(rows[i]);
+                ci.push_back(cols[j]);
+                v.push_back(a);
+              }
+        };
+        const auto n = assemble_enriched_stiffness(sink, as_span(x), as_span(cells), layout, cracks, E, nu, degree);
+        return py::make_tuple(as_pyarray(std::move(ri)), as_pyarray(std::move(ci)),
+                              as_pyarray(std::move(v)), n);
+      },
+      py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("E"),
+      py::arg("nu"), py::arg("degree"),
+      "Enriched blocks as COO (rows, cols, values, num_cells); for tests.");
+
+  m.def(
+      "compute_facet_basis",
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
+         const Cracks& cracks, const carray<std::int32_t>& facet_cells,
+         const carray<std::int32_t>& facet_local, int degree)
+      {
+        FacetBasis fb = compute_facet_basis(as_span(x), as_span(cells), layout, cracks,
+                                            as_span(facet_cells), as_span(facet_local), degree);
+        const py::ssize_t n = fb.weights.size();
+        py::dict d;
+        d["points"] = as_pyarray(std::move(fb.points), {n, 2});
+        d["weights"] = as_pyarray(std::move(fb.weights));
+        d["entry_point"] = as_pyarray(std::move(fb.entry_point));
+        d["entry_node"] = as_pyarray(std::move(fb.entry_node));
+        d["entry_value"] = as_pyarray(std::move(fb.entry_value));
+        return d;
+      },
+      py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("facet_cells"),
+      py::arg("facet_local"), py::arg("degree"),
+      "Quadrature points on boundary facets and the basis values there (COO by point).");
+}
+
+} // namespace cracklip_wrappers

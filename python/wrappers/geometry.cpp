@@ -1,0 +1,147 @@
+// Bindings: crack geometry, node mesh extraction, enrichment layout.
+#include "array.h"
+
+#include <crack_geometry.h>
+#include <dolfinx/fem/FunctionSpace.h>
+#include <dolfinx_glue.h>
+#include <enrichment.h>
+#include <pybind11/stl.h>
+
+namespace cracklip_wrappers
+{
+using namespace cracklip;
+
+void declare_geometry(py::module& m)
+{
+  m.def(
+      "extract_node_mesh",
+      [](const dolfinx::fem::FunctionSpace& V)
+      {
+        NodeMesh nm = extract_node_mesh(V);
+        const auto n = static_cast<py::ssize_t>(nm.x.size() / 2);
+        const auto nc = static_cast<py::ssize_t>(nm.cells.size() / 3);
+        return py::make_tuple(as_pyarray(std::move(nm.x), {n, 2}),
+                              as_pyarray(std::move(nm.cells), {nc, 3}));
+      },
+      py::arg("V"), "Node coordinates (n, 2) and cells (m, 3) of a P1 vector space.");
+
+  py::class_<CrackGeometry>(m, "CrackGeometry", "Geometry of one crack on the mesh")
+      .def_property_readonly("phi", [](const CrackGeometry& g) { return carray<double>(g.phi.size(), g.phi.data()); })
+      .def_property_readonly("psi",
+                             [](const CrackGeometry& g)
+                             {
+                               const py::ssize_t nt = g.tips.size() / 2;
+                               const py::ssize_t n = g.phi.size();
+                               return carray<double>({nt, n}, g.psi.data());
+                             })
+      .def_property_readonly("tips", [](const CrackGeometry& g)
+                             { return carray<double>({py::ssize_t(g.tips.size() / 2), py::ssize_t(2)}, g.tips.data()); })
+      .def_property_readonly("tip_tangents", [](const CrackGeometry& g)
+                             { return carray<double>({py::ssize_t(g.tips.size() / 2), py::ssize_t(2)}, g.tip_tangents.data()); })
+      .def_property_readonly("cell_class", [](const CrackGeometry& g)
+                             { return carray<std::int8_t>(g.cell_class.size(), g.cell_class.data()); })
+      .def_property_readonly("cell_side", [](const CrackGeometry& g)
+                             { return carray<std::int8_t>(g.cell_side.size(), g.cell_side.data()); })
+      .def_property_readonly("num_snapped", [](const CrackGeometry& g) { return g.num_snapped; })
+      .def_property_readonly(
+          "crack_cells",
+          [](const CrackGeometry& g)
+          {
+            // cell (n), class (n), segment (n, 2, 2) reference coordinates,
+            // owns_segment (n), num_sub (n), sub (n, 3, 3, 2), side (n, 3)
+            const py::ssize_t n = g.crack_cells.size();
+            std::vector<std::int32_t> cell(n), num_sub(n);
+            std::vector<std::int8_t> cls(n), owns(n), side(3 * n);
+            std::vector<double> seg(4 * n), sub(18 * n);
+            for (py::ssize_t i = 0; i < n; ++i)
+            {
+              const CrackCell& c = g.crack_cells[i];
+              cell[i] = c.cell;
+              cls[i] = static_cast<std::int8_t>(c.cls);
+              owns[i] = c.owns_segment;
+              num_sub[i] = c.num_sub;
+              std::copy(c.segment.begin(), c.segment.end(), seg.begin() + 4 * i);
+              std::copy(c.sub.begin(), c.sub.end(), sub.begin() + 18 * i);
+              std::copy(c.side.begin(), c.side.end(), side.begin() + 3 * i);
+            }
+            py::dict d;
+            d["cell"] = as_pyarray(std::move(cell));
+            d["cls"] = as_pyarray(std::move(cls));
+            d["segment"] = as_pyarray(std::move(seg), {n, 2, 2});
+            d["owns_segment"] = as_pyarray(std::move(owns));
+            d["num_sub"] = as_pyarray(std::move(num_sub));
+            d["sub"] = as_pyarray(std::move(sub), {n, 3, 3, 2});
+            d["side"] = as_pyarray(std::move(side), {n, 3});
+            return d;
+          },
+          "Cut and edge cells: dict of arrays (cell, cls, segment (n,2,2), owns_segment, "
+          "num_sub, sub (n,3,3,2), side (n,3)).")
+      .def_property_readonly(
+          "tip_cells",
+          [](const CrackGeometry& g)
+          {
+            const py::ssize_t n = g.tip_cells.size();
+            std::vector<std::int32_t> cell(n), tip(n);
+            std::vector<double> seg(4 * n);
+            for (py::ssize_t i = 0; i < n; ++i)
+            {
+              cell[i] = g.tip_cells[i].cell;
+              tip[i] = g.tip_cells[i].tip;
+              std::copy(g.tip_cells[i].segment.begin(), g.tip_cells[i].segment.end(), seg.begin() + 4 * i);
+            }
+            py::dict d;
+            d["cell"] = as_pyarray(std::move(cell));
+            d["tip"] = as_pyarray(std::move(tip));
+            d["segment"] = as_pyarray(std::move(seg), {n, 2, 2});
+            return d;
+          },
+          "Tip cells: dict (cell, tip, segment (n,2,2) entry point -> tip, reference coordinates).");
+
+  m.def(
+      "compute_crack_geometry",
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const carray<double>& points,
+         std::array<bool, 2> tips, double snap_tol)
+      {
+        CrackPath path;
+        path.points.assign(points.data(), points.data() + points.size());
+        path.tip = tips;
+        return compute_crack_geometry(as_span(x), as_span(cells), path, snap_tol);
+      },
+      py::arg("x"), py::arg("cells"), py::arg("points"), py::arg("tips"), py::arg("snap_tol"),
+      "Level sets, cell classes and cut-cell data of one polyline crack.");
+
+  m.def(
+      "signed_distance",
+      [](const carray<double>& points, const carray<double>& p)
+      {
+        CrackPath path;
+        path.points.assign(points.data(), points.data() + points.size());
+        const py::ssize_t n = p.size() / 2;
+        std::vector<double> out(n);
+        for (py::ssize_t i = 0; i < n; ++i)
+          out[i] = signed_distance(path, {p.data()[2 * i], p.data()[2 * i + 1]});
+        return as_pyarray(std::move(out));
+      },
+      py::arg("crack_points"), py::arg("points"));
+
+  py::class_<EnrichmentLayout>(m, "EnrichmentLayout", "Enriched pseudo-nodes and enriched cells")
+      .def_property_readonly("num_std_nodes", [](const EnrichmentLayout& l) { return l.num_std_nodes; })
+      .def_property_readonly("num_enriched", &EnrichmentLayout::num_enriched)
+      .def_property_readonly("num_nodes_total", &EnrichmentLayout::num_nodes_total)
+      .def_property_readonly("node", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.node.size(), l.node.data()); })
+      .def_property_readonly("crack", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.crack.size(), l.crack.data()); })
+      .def_property_readonly("kind", [](const EnrichmentLayout& l) { return carray<std::int8_t>(l.kind.size(), l.kind.data()); })
+      .def_property_readonly("node_sign", [](const EnrichmentLayout& l) { return carray<double>(l.node_sign.size(), l.node_sign.data()); })
+      .def_property_readonly("cells", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.cells.size(), l.cells.data()); })
+      .def_property_readonly("cell_offsets", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.cell_offsets.size(), l.cell_offsets.data()); })
+      .def_property_readonly("cell_enr", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.cell_enr.size(), l.cell_enr.data()); });
+
+  m.def(
+      "create_heaviside_layout",
+      [](const carray<std::int32_t>& cells, std::int32_t num_nodes,
+         const std::vector<const CrackGeometry*>& cracks)
+      { return create_heaviside_layout(as_span(cells), num_nodes, cracks); },
+      py::arg("cells"), py::arg("num_nodes"), py::arg("cracks"));
+}
+
+} // namespace cracklip_wrappers

@@ -1,0 +1,17 @@
+// The pybind11 module cracklip._cracklip: one declare_* per area.
+#include <pybind11/pybind11.h>
+
+namespace cracklip_wrappers
+{
+void declare_geometry(pybind11::module& m);
+void declare_assembly(pybind11::module& m);
+void declare_fields(pybind11::module& m);
+} // namespace cracklip_wrappers
+
+PYBIND11_MODULE(_cracklip, m)
+{
+  m.doc() = "cracklip C++ kernels: crack geometry, enrichment, enriched assembly, fields";
+  cracklip_wrappers::declare_geometry(m);
+  cracklip_wrappers::declare_assembly(m);
+  cracklip_wrappers::declare_fields(m);
+}
