@@ -1,0 +1,198 @@
+"""Triangle meshes from gmsh: the paper's domains at a given size, or a .msh file.
+
+Every mesh comes with named boundary tags (``MeshData.tags``): the square has
+``left``, ``right``, ``bottom``, ``top``; the half annulus of the hole problem
+has ``hole``, ``outer``, ``symmetry``.
+"""
+from __future__ import annotations
+
+import dataclasses
+import logging
+import pathlib
+import typing
+
+import numpy as np
+from mpi4py import MPI
+
+import dolfinx.mesh
+from dolfinx.io import gmshio
+
+from .errors import MeshError
+
+logger = logging.getLogger(__name__)
+
+
+@dataclasses.dataclass
+class MeshData:
+    """A DOLFINx triangle mesh with its boundary facet tags.
+
+    Attributes:
+        mesh: the DOLFINx mesh (serial, triangles, geometric dimension 2).
+        facet_tags: DOLFINx MeshTags on boundary facets.
+        tags: boundary name -> tag value.
+        h: nominal mesh size used to generate it (None for a file).
+    """
+    mesh: dolfinx.mesh.Mesh
+    facet_tags: typing.Any
+    tags: dict[str, int]
+    h: float | None = None
+
+    def facets(self, where: str | int) -> np.ndarray:
+        """Facet indices of a named (or numbered) boundary tag."""
+        tag = self.tag_value(where)
+        return self.facet_tags.indices[self.facet_tags.values == tag]
+
+    def tag_value(self, where: str | int) -> int:
+        if isinstance(where, str):
+            if where not in self.tags:
+                raise MeshError(f"unknown boundary tag {where!r}; this mesh has "
+                                f"{sorted(self.tags)}")
+            return self.tags[where]
+        values = set(np.unique(self.facet_tags.values).tolist())
+        if int(where) not in values:
+            raise MeshError(f"no boundary facets carry tag {where}; tags present: {sorted(values)}")
+        return int(where)
+
+
+_GMSH_READY = False
+
+
+def _gmsh():
+    global _GMSH_READY
+    import gmsh
+    if not _GMSH_READY:
+        gmsh.initialize(readConfigFiles=False)
+        _GMSH_READY = True
+    gmsh.option.setNumber("General.Terminal", 0)
+    return gmsh
+
+
+def _to_dolfinx(gmsh, h: float | None) -> MeshData:
+    names = {}
+    for dim, tag in gmsh.model.getPhysicalGroups(1):
+        names[gmsh.model.getPhysicalName(dim, tag) or str(tag)] = tag
+    msh, _, facet_tags = gmshio.model_to_mesh(gmsh.model, MPI.COMM_WORLD, 0, gdim=2)
+    gmsh.model.remove()
+    check_mesh(msh)
+    return MeshData(msh, facet_tags, names, h)
+
+
+def check_mesh(msh: dolfinx.mesh.Mesh) -> None:
+    """Raise MeshError unless msh is a serial 2D triangle mesh."""
+    if msh.topology.cell_type != dolfinx.mesh.CellType.triangle:
+        raise MeshError(f"cracklip needs triangles, the mesh has {msh.topology.cell_type.name} "
+                        "cells; mesh with gmsh without recombination")
+    if msh.geometry.dim != 2 and not np.allclose(msh.geometry.x[:, 2], 0.0):
+        raise MeshError("cracklip needs a planar mesh (z = 0)")
+    if msh.geometry.cmap.degree != 1:
+        raise MeshError("cracklip needs straight (first-order) triangles")
+    if msh.comm.size != 1:
+        raise MeshError("cracklip runs in serial; start it without mpirun")
+
+
+def create_rectangle(x0: float, y0: float, x1: float, y1: float, h: float,
+                     refine: typing.Sequence[tuple[float, float, float, float]] = ()) -> MeshData:
+    """Unstructured triangles of [x0, x1] x [y0, y1] with size h.
+
+    refine: optional (x, y, h_near, radius) local refinements around points
+    (e.g. crack tips): size h_near within radius, growing linearly to h.
+    Tags: left, right, bottom, top.
+    """
+    if not (x1 > x0 and y1 > y0):
+        raise MeshError(f"empty rectangle [{x0}, {x1}] x [{y0}, {y1}]")
+    if not (0.0 < h <= max(x1 - x0, y1 - y0)):
+        raise MeshError(f"mesh size h = {h} must be positive and at most the domain size")
+    gmsh = _gmsh()
+    gmsh.model.add("rectangle")
+    occ = gmsh.model.occ
+    occ.addRectangle(x0, y0, 0.0, x1 - x0, y1 - y0)
+    occ.synchronize()
+    gmsh.model.addPhysicalGroup(2, [1], 1)
+    eps = 1e-9 * max(x1 - x0, y1 - y0)
+    sides = {"left": (x0, None), "right": (x1, None), "bottom": (None, y0), "top": (None, y1)}
+    for tag, (name, (xs, ys)) in enumerate(sides.items(), start=1):
+        found = []
+        for _, c in gmsh.model.getEntities(1):
+            cx, cy, _ = gmsh.model.occ.getCenterOfMass(1, c)
+            if (xs is not None and abs(cx - xs) < eps) or (ys is not None and abs(cy - ys) < eps):
+                found.append(c)
+        gmsh.model.addPhysicalGroup(1, found, tag)
+        gmsh.model.setPhysicalName(1, tag, name)
+    _mesh_2d(gmsh, h, refine)
+    return _to_dolfinx(gmsh, h)
+
+
+def create_square(h: float, half_width: float = 1.0, **kwargs) -> MeshData:
+    """The paper's square [-1, 1]^2 (tags left, right, bottom, top)."""
+    return create_rectangle(-half_width, -half_width, half_width, half_width, h, **kwargs)
+
+
+def create_half_annulus(h: float, radius: float = 1.0, outer_radius: float = 3.0,
+                        refine: typing.Sequence[tuple[float, float, float, float]] = ()) -> MeshData:
+    """Half annulus radius <= r <= outer_radius, y >= 0 (paper section 5.2).
+
+    Tags: hole (r = radius), outer (r = outer_radius), symmetry (y = 0).
+    """
+    if not (0.0 < radius < outer_radius):
+        raise MeshError(f"need 0 < radius < outer_radius, got {radius}, {outer_radius}")
+    gmsh = _gmsh()
+    gmsh.model.add("half_annulus")
+    occ = gmsh.model.occ
+    outer = occ.addDisk(0, 0, 0, outer_radius, outer_radius)
+    inner = occ.addDisk(0, 0, 0, radius, radius)
+    box = occ.addRectangle(-2 * outer_radius, 0, 0, 4 * outer_radius, 2 * outer_radius)
+    ring, _ = occ.cut([(2, outer)], [(2, inner)])
+    half, _ = occ.intersect(ring, [(2, box)])
+    occ.synchronize()
+    gmsh.model.addPhysicalGroup(2, [s for _, s in half], 1)
+    groups: dict[str, list[int]] = {"hole": [], "outer": [], "symmetry": []}
+    for _, c in gmsh.model.getEntities(1):
+        cx, cy, _ = occ.getCenterOfMass(1, c)
+        if abs(cy) < 1e-9 * outer_radius:
+            groups["symmetry"].append(c)
+        elif np.hypot(cx, cy) < 0.5 * (radius + outer_radius):
+            groups["hole"].append(c)
+        else:
+            groups["outer"].append(c)
+    for tag, (name, curves) in enumerate(groups.items(), start=1):
+        gmsh.model.addPhysicalGroup(1, curves, tag)
+        gmsh.model.setPhysicalName(1, tag, name)
+    _mesh_2d(gmsh, h, refine)
+    return _to_dolfinx(gmsh, h)
+
+
+def _mesh_2d(gmsh, h: float, refine) -> None:
+    gmsh.option.setNumber("Mesh.MeshSizeMax", h)
+    gmsh.option.setNumber("Mesh.MeshSizeMin", min([h] + [r[2] for r in refine]))
+    gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+    if refine:
+        fields = []
+        for (x, y, h_near, radius) in refine:
+            f = gmsh.model.mesh.field.add("MathEval")
+            gmsh.model.mesh.field.setString(
+                f, "F", f"{h_near} + ({h} - {h_near}) * Min(1, Sqrt((x-{x})^2 + (y-{y})^2) / {radius})")
+            fields.append(f)
+        fmin = gmsh.model.mesh.field.add("Min")
+        gmsh.model.mesh.field.setNumbers(fmin, "FieldsList", fields)
+        gmsh.model.mesh.field.setAsBackgroundMesh(fmin)
+    gmsh.model.mesh.generate(2)
+
+
+def read_msh(path: str | pathlib.Path) -> MeshData:
+    """Read a gmsh .msh file with named physical curves as boundary tags."""
+    path = pathlib.Path(path)
+    if not path.is_file():
+        raise MeshError(f"mesh file {path} does not exist")
+    gmsh = _gmsh()
+    gmsh.open(str(path))
+    if gmsh.model.getDimension() != 2:
+        dim = gmsh.model.getDimension()
+        gmsh.model.remove()
+        raise MeshError(f"{path}: cracklip needs a 2D mesh, this one has dimension {dim}")
+    types = gmsh.model.mesh.getElementTypes(2)
+    if any(t != 2 for t in types):
+        gmsh.model.remove()
+        raise MeshError(f"{path}: only 3-node triangles are supported (gmsh element types {list(types)})")
+    return _to_dolfinx(gmsh, None)

@@ -1,0 +1,236 @@
+"""The discrete X-FEM model of a scene: spaces, crack geometry, enrichment, constraints.
+
+Nothing here loops over the mesh in Python: level sets, cell classes and the
+enrichment layout come from the C++ kernels; Python only handles per-crack
+and per-boundary arrays.
+"""
+from __future__ import annotations
+
+import dataclasses
+import logging
+import time
+import typing
+
+import numpy as np
+
+import dolfinx.fem
+import dolfinx.geometry
+import dolfinx.mesh
+
+from . import _cracklip
+from .errors import BoundaryConditionError, CrackGeometryError, MeshError
+from .mesh import check_mesh
+from .scene import Crack, Scene
+
+logger = logging.getLogger(__name__)
+
+#: Cell classes of CrackGeometry.cell_class (see cpp/crack_geometry.h).
+CELL_CLASSES = {"plain": 0, "cut": 1, "edge": 2, "tip": 3, "extension": 4}
+
+
+@dataclasses.dataclass
+class CrackModel:
+    """One crack on the mesh: its polyline, which ends are tips, its geometry."""
+    crack: Crack
+    tips: tuple[bool, bool]
+    geometry: typing.Any  # _cracklip.CrackGeometry
+
+
+@dataclasses.dataclass
+class XfemModel:
+    """Discrete model of a scene.
+
+    Attributes:
+        scene: the input scene.
+        V: DOLFINx P1 vector space (standard dofs, block size 2).
+        x: (num_nodes, 2) node (dof block) coordinates.
+        cells: (num_cells, 3) node indices per cell.
+        cracks: per-crack geometry.
+        layout: enriched pseudo-nodes and cells (_cracklip.EnrichmentLayout).
+        bc_dofs: constrained scalar dofs (standard dofs only), sorted.
+        bc_values: prescribed values at bc_dofs.
+        timings: seconds per phase.
+    """
+    scene: Scene
+    V: dolfinx.fem.FunctionSpace
+    x: np.ndarray
+    cells: np.ndarray
+    cracks: list[CrackModel]
+    layout: typing.Any
+    bc_dofs: np.ndarray
+    bc_values: np.ndarray
+    timings: dict[str, float]
+
+    @property
+    def num_dofs(self) -> int:
+        return 2 * self.layout.num_nodes_total
+
+    @property
+    def geometries(self) -> list:
+        return [c.geometry for c in self.cracks]
+
+    @property
+    def h(self) -> float:
+        """Mean edge length of the mesh."""
+        e = self.x[self.cells[:, [1, 2, 0]]] - self.x[self.cells]
+        return float(np.linalg.norm(e, axis=2).mean())
+
+
+def create_model(scene: Scene) -> XfemModel:
+    """Build the discrete model: P1 space, crack geometry, enrichment, constraints."""
+    timings: dict[str, float] = {}
+    msh = scene.mesh.mesh
+    check_mesh(msh)
+    t0 = time.perf_counter()
+    V = dolfinx.fem.VectorFunctionSpace(msh, ("Lagrange", 1))
+    x, cells = _cracklip.extract_node_mesh(V._cpp_object)
+    timings["space"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    cracks = [_crack_model(scene, crack, x, cells) for crack in scene.cracks]
+    try:
+        layout = _cracklip.create_heaviside_layout(cells, x.shape[0], [c.geometry for c in cracks])
+    except RuntimeError as e:
+        raise CrackGeometryError(str(e)) from None
+    timings["geometry"] = time.perf_counter() - t0
+    logger.info("%d cracks, %d enriched nodes on %d enriched cells", len(cracks),
+                layout.num_enriched, layout.cells.size)
+
+    t0 = time.perf_counter()
+    bc_dofs, bc_values = _dirichlet(scene, V, x, layout)
+    check_rigid_motion(x, bc_dofs[bc_dofs < 2 * x.shape[0]])
+    timings["constraints"] = time.perf_counter() - t0
+    return XfemModel(scene, V, x, cells, cracks, layout, bc_dofs, bc_values, timings)
+
+
+def _crack_model(scene: Scene, crack: Crack, x: np.ndarray, cells: np.ndarray) -> CrackModel:
+    tips = _tip_flags(scene, crack)
+    try:
+        geometry = _cracklip.compute_crack_geometry(x, cells, crack.points, tips, scene.options.snap_tol)
+    except (RuntimeError, ValueError) as e:
+        raise CrackGeometryError(f"{crack.name}: {e}") from None
+    classes = geometry.cell_class
+    crossed = np.count_nonzero((classes == CELL_CLASSES["cut"]) | (classes == CELL_CLASSES["edge"])
+                               | (classes == CELL_CLASSES["tip"]))
+    if crossed == 0:
+        lo, hi = x.min(axis=0), x.max(axis=0)
+        raise CrackGeometryError(
+            f"{crack.name} (points {crack.points.tolist()}) does not cross any cell of the mesh "
+            f"(mesh bounding box [{lo[0]:g}, {hi[0]:g}] x [{lo[1]:g}, {hi[1]:g}]); "
+            "check its coordinates")
+    if geometry.num_snapped:
+        logger.info("%s: %d nodes snapped onto the crack (snap_tol=%g)", crack.name,
+                    geometry.num_snapped, scene.options.snap_tol)
+    return CrackModel(crack, tips, geometry)
+
+
+def _tip_flags(scene: Scene, crack: Crack) -> tuple[bool, bool]:
+    """An end point is a tip when it lies inside the domain, off the boundary."""
+    msh = scene.mesh.mesh
+    ends = np.zeros((2, 3))
+    ends[:, :2] = crack.points[[0, -1]]
+    tree = dolfinx.geometry.BoundingBoxTree(msh, msh.topology.dim)
+    candidates = dolfinx.geometry.compute_collisions(tree, ends)
+    colliding = dolfinx.geometry.compute_colliding_cells(msh, candidates, ends)
+    inside = [len(colliding.links(i)) > 0 for i in range(2)]
+    # Distance of the end points to the boundary facets.
+    tdim = msh.topology.dim
+    msh.topology.create_connectivity(tdim - 1, tdim)
+    facets = dolfinx.mesh.exterior_facet_indices(msh.topology)
+    verts = dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, tdim - 1, facets, False)
+    a, b = msh.geometry.x[verts[:, 0], :2], msh.geometry.x[verts[:, 1], :2]
+    scale = float(np.ptp(msh.geometry.x[:, :2], axis=0).max())
+    flags = []
+    for i, p in enumerate(crack.points[[0, -1]]):
+        d = b - a
+        t = np.clip(np.einsum("ij,ij->i", p - a, d) / np.einsum("ij,ij->i", d, d), 0.0, 1.0)
+        dist = np.linalg.norm(a + t[:, None] * d - p, axis=1).min()
+        flags.append(bool(inside[i] and dist > 1e-9 * scale))
+    return flags[0], flags[1]
+
+
+def _component_dofs(nodes: np.ndarray, component: int | None) -> np.ndarray:
+    comps = [0, 1] if component is None else [component]
+    return np.sort(np.concatenate([2 * nodes + c for c in comps])).astype(np.int32)
+
+
+def _dirichlet(scene: Scene, V, x: np.ndarray, layout) -> tuple[np.ndarray, np.ndarray]:
+    """Constrained scalar dofs and their values (later conditions win).
+
+    On a tagged boundary the prescribed displacement is continuous, so the
+    Heaviside dofs of the boundary's nodes are fixed to 0 in the constrained
+    components as well: their functions do not vanish between the nodes of a
+    boundary facet that the crack crosses. A point condition fixes only the
+    node's standard dofs.
+    """
+    msh = scene.mesh.mesh
+    tdim = msh.topology.dim
+    msh.topology.create_connectivity(tdim - 1, tdim)
+    values: dict[int, float] = {}
+    for bc in scene.dirichlet:
+        is_point = isinstance(bc.where, (tuple, list, np.ndarray))
+        if is_point:
+            p = np.asarray(bc.where, dtype=float)
+            d = np.linalg.norm(x - p, axis=1)
+            node = int(np.argmin(d))
+            scale = float(np.ptp(x, axis=0).max())
+            if d[node] > 1e-8 * scale:
+                raise BoundaryConditionError(
+                    f"Dirichlet point {p.tolist()} is not a mesh node (nearest node "
+                    f"{x[node].tolist()} at distance {d[node]:.3g}); use a node or a boundary tag")
+            nodes = np.array([node], dtype=np.int32)
+        else:
+            facets = scene.mesh.facets(bc.where)
+            if facets.size == 0:
+                raise BoundaryConditionError(f"Dirichlet boundary {bc.where!r} has no facets")
+            nodes = dolfinx.fem.locate_dofs_topological(V, tdim - 1, facets)
+        comps = [0, 1] if bc.component is None else [bc.component]
+        if callable(bc.value):
+            v = np.asarray(bc.value(x[nodes]), dtype=float)
+            if bc.component is None:
+                v = v.reshape(len(nodes), 2)
+            else:
+                v = v.reshape(len(nodes), 1)
+        else:
+            v = np.full((len(nodes), len(comps)), float(bc.value))
+        if not np.all(np.isfinite(v)):
+            raise BoundaryConditionError(f"Dirichlet values on {bc.where!r} contain NaN or infinity")
+        for j, c in enumerate(comps):
+            values.update(zip((2 * nodes + c).tolist(), v[:, j].tolist()))
+        if not is_point:
+            pseudo = np.flatnonzero(np.isin(layout.node, nodes))
+            for c in comps:
+                values.update(dict.fromkeys((2 * (layout.num_std_nodes + pseudo) + c).tolist(), 0.0))
+    dofs = np.array(sorted(values), dtype=np.int32)
+    return dofs, np.array([values[d] for d in dofs.tolist()], dtype=np.float64)
+
+
+def check_rigid_motion(x: np.ndarray, bc_dofs: np.ndarray) -> None:
+    """Raise unless the constraints remove the three rigid motions of the plane.
+
+    (A crack that splits the domain needs constraints on each piece: that is
+    detected by the solver, which reports a singular matrix.)
+    """
+    nodes, comp = bc_dofs // 2, bc_dofs % 2
+    R = np.zeros((bc_dofs.size, 3))
+    R[comp == 0, 0] = 1.0
+    R[comp == 1, 1] = 1.0
+    # rotation about the centroid: u = (-(y - yc), x - xc)
+    c = x.mean(axis=0)
+    R[comp == 0, 2] = -(x[nodes[comp == 0], 1] - c[1])
+    R[comp == 1, 2] = x[nodes[comp == 1], 0] - c[0]
+    scale = float(np.ptp(x, axis=0).max()) or 1.0
+    R[:, 2] /= scale
+    s = np.linalg.svd(R, compute_uv=False) if R.shape[0] else np.zeros(0)
+    rank = int(np.sum(s > 1e-10 * (s.max() if s.size else 1.0)))
+    if rank < 3:
+        free = []
+        if not np.any(comp == 0):
+            free.append("translation in x")
+        if not np.any(comp == 1):
+            free.append("translation in y")
+        if not free:
+            free.append("rotation")
+        raise BoundaryConditionError(
+            f"the Dirichlet conditions leave rigid motion free ({', '.join(free)}); "
+            f"{bc_dofs.size} constrained dofs fix only {rank} of the 3 rigid motions")

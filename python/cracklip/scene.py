@@ -1,0 +1,149 @@
+"""Scene input: mesh, material, cracks, boundary conditions, loads, options."""
+from __future__ import annotations
+
+import dataclasses
+import math
+import typing
+
+import numpy as np
+
+from .errors import BoundaryConditionError, CrackGeometryError, MaterialError
+from .mesh import MeshData
+
+Value = typing.Union[float, typing.Callable[[np.ndarray], np.ndarray]]
+VectorValue = typing.Union[typing.Sequence[float], typing.Callable[[np.ndarray], np.ndarray]]
+
+
+@dataclasses.dataclass(frozen=True)
+class Material:
+    """Linear elastic, isotropic, plane strain.
+
+    Attributes:
+        E: Young's modulus (> 0).
+        nu: Poisson's ratio (-1 < nu < 0.5).
+    """
+    E: float
+    nu: float
+
+    def __post_init__(self):
+        if not (math.isfinite(self.E) and self.E > 0.0):
+            raise MaterialError(f"Young's modulus E must be positive, got {self.E}")
+        if not (math.isfinite(self.nu) and -1.0 < self.nu < 0.5):
+            raise MaterialError(f"Poisson's ratio nu must lie in (-1, 0.5) for plane strain, "
+                                f"got {self.nu} (nu = 0.5 is incompressible: not supported)")
+
+    @property
+    def mu(self) -> float:
+        return self.E / (2.0 * (1.0 + self.nu))
+
+    @property
+    def kappa(self) -> float:
+        return 3.0 - 4.0 * self.nu
+
+    @property
+    def E_star(self) -> float:
+        return self.E / (1.0 - self.nu ** 2)
+
+
+@dataclasses.dataclass
+class Crack:
+    """A crack as a polyline.
+
+    An end point inside the domain is a crack tip; an end point on or outside
+    the boundary makes an edge crack (the polyline must then cross the
+    boundary). Tips are found by the model from the mesh.
+
+    Attributes:
+        points: (k, 2) polyline vertices, k >= 2.
+        name: label used in messages and outputs.
+    """
+    points: np.ndarray
+    name: str = ""
+
+    def __post_init__(self):
+        pts = np.asarray(self.points, dtype=np.float64)
+        label = self.name or "crack"
+        if pts.ndim != 2 or pts.shape[1] != 2 or pts.shape[0] < 2:
+            raise CrackGeometryError(f"{label}: points must be an array of shape (k, 2), k >= 2; "
+                                     f"got shape {pts.shape}")
+        if not np.all(np.isfinite(pts)):
+            raise CrackGeometryError(f"{label}: points contain NaN or infinity")
+        lengths = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+        scale = max(np.ptp(pts, axis=0).max(), 1e-300)
+        bad = np.flatnonzero(lengths <= 1e-12 * scale)
+        if bad.size:
+            k = int(bad[0])
+            raise CrackGeometryError(f"{label}: segment {k} from {pts[k].tolist()} to "
+                                     f"{pts[k + 1].tolist()} has zero length; remove the repeated point")
+        self.points = pts
+
+
+@dataclasses.dataclass
+class Dirichlet:
+    """Prescribed displacement.
+
+    Attributes:
+        where: a boundary tag name or number, or a point (x, y) that is a mesh node.
+        component: 0 (x), 1 (y) or None (both).
+        value: a number, or a callable f(x) with x of shape (n, 2) returning
+            (n,) for one component or (n, 2) for both.
+    """
+    where: typing.Union[str, int, tuple[float, float]]
+    component: typing.Optional[int] = None
+    value: Value = 0.0
+
+    def __post_init__(self):
+        if self.component not in (None, 0, 1):
+            raise BoundaryConditionError(f"Dirichlet component must be 0 (x), 1 (y) or None (both), "
+                                         f"got {self.component!r}")
+
+
+@dataclasses.dataclass
+class Traction:
+    """Surface traction (force per length) on a tagged boundary.
+
+    Attributes:
+        where: boundary tag name or number.
+        value: (t_x, t_y), or a callable f(x) with x (n, 2) returning (n, 2).
+    """
+    where: typing.Union[str, int]
+    value: VectorValue
+
+
+@dataclasses.dataclass
+class Options:
+    """Numerical options.
+
+    Attributes:
+        snap_tol: a node closer to a crack (or tip line) than snap_tol times
+            its shortest edge is moved onto it (level set set to 0).
+        quadrature_degree: degree of the sub-triangle rule in cut cells.
+        facet_degree: degree of the rule for tractions on boundary facets.
+        residual_tol: largest accepted relative residual of the linear solve.
+    """
+    snap_tol: float = 1e-6
+    quadrature_degree: int = 1
+    facet_degree: int = 4
+    residual_tol: float = 1e-8
+
+
+@dataclasses.dataclass
+class Scene:
+    """Everything a solve needs."""
+    mesh: MeshData
+    material: Material
+    cracks: list[Crack] = dataclasses.field(default_factory=list)
+    dirichlet: list[Dirichlet] = dataclasses.field(default_factory=list)
+    tractions: list[Traction] = dataclasses.field(default_factory=list)
+    options: Options = dataclasses.field(default_factory=Options)
+
+    def __post_init__(self):
+        for i, c in enumerate(self.cracks):
+            if not isinstance(c, Crack):
+                self.cracks[i] = Crack(np.asarray(c), name=f"crack {i}")
+            elif not c.name:
+                c.name = f"crack {i}"
+        if not self.dirichlet:
+            raise BoundaryConditionError("the scene has no Dirichlet condition: rigid body motion "
+                                         "is free; fix at least u_x and u_y somewhere and one more "
+                                         "component elsewhere")

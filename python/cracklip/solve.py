@@ -1,0 +1,91 @@
+"""Solve a scene: the X-FEM system, or a plain DOLFINx P1 baseline on the same mesh."""
+from __future__ import annotations
+
+import logging
+import time
+
+import numpy as np
+import ufl
+from petsc4py import PETSc
+
+import dolfinx.fem
+import dolfinx.fem.petsc
+
+from .assembly import assemble_system, elasticity_form
+from .errors import InputError
+from .linear_solver import solve_checked
+from .model import create_model
+from .post import Solution
+from .scene import Scene
+
+logger = logging.getLogger(__name__)
+
+
+def solve(scene: Scene) -> Solution:
+    """Build, assemble and solve the X-FEM model of a scene."""
+    t_start = time.perf_counter()
+    model = create_model(scene)
+    A, b, timings = assemble_system(model)
+    t0 = time.perf_counter()
+    x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system")
+    timings["solve"] = time.perf_counter() - t0
+    u = x.array.copy()
+    A.destroy()
+    b.destroy()
+    x.destroy()
+    timings = {**model.timings, **timings}
+    timings["total"] = time.perf_counter() - t_start
+    logger.info("solved %d dofs (%d enriched) in %.3f s", model.num_dofs,
+                2 * model.layout.num_enriched, timings["total"])
+    return Solution(model, u, timings)
+
+
+def solve_plain(scene: Scene) -> tuple[np.ndarray, dict[str, float]]:
+    """Plain DOLFINx P1 elasticity solve of the scene without its cracks.
+
+    The baseline for benchmarks: DOLFINx creates, assembles (with its
+    Dirichlet conditions) and the same checked MUMPS solve runs. Only
+    constant tractions and Dirichlet values are supported here.
+    Returns (dofs (2 num_nodes,), timings).
+    """
+    t_start = time.perf_counter()
+    timings: dict[str, float] = {}
+    msh = scene.mesh.mesh
+    tdim = msh.topology.dim
+    V = dolfinx.fem.VectorFunctionSpace(msh, ("Lagrange", 1))
+    msh.topology.create_connectivity(tdim - 1, tdim)
+    bcs = []
+    for bc in scene.dirichlet:
+        if callable(bc.value) or not isinstance(bc.where, (str, int)):
+            raise InputError("solve_plain supports constant Dirichlet values on tagged boundaries")
+        facets = scene.mesh.facets(bc.where)
+        comps = [0, 1] if bc.component is None else [bc.component]
+        for c in comps:
+            dofs = dolfinx.fem.locate_dofs_topological(V.sub(c), tdim - 1, facets)
+            bcs.append(dolfinx.fem.dirichletbc(PETSc.ScalarType(bc.value), dofs, V.sub(c)))
+    v = ufl.TestFunction(V)
+    ds = ufl.Measure("ds", domain=msh, subdomain_data=scene.mesh.facet_tags)
+    L = ufl.inner(dolfinx.fem.Constant(msh, PETSc.ScalarType((0.0, 0.0))), v) * ufl.dx
+    for tr in scene.tractions:
+        if callable(tr.value):
+            raise InputError("solve_plain supports constant tractions only")
+        t = dolfinx.fem.Constant(msh, PETSc.ScalarType(tuple(tr.value)))
+        L += ufl.inner(t, v) * ds(scene.mesh.tag_value(tr.where))
+    a = elasticity_form(V, scene.material.E, scene.material.nu)
+    L = dolfinx.fem.form(L)
+    timings["setup"] = time.perf_counter() - t_start
+
+    t0 = time.perf_counter()
+    A = dolfinx.fem.petsc.assemble_matrix(a, bcs=bcs)
+    A.assemble()
+    b = dolfinx.fem.petsc.assemble_vector(L)
+    dolfinx.fem.petsc.apply_lifting(b, [a], bcs=[bcs])
+    b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+    dolfinx.fem.petsc.set_bc(b, bcs)
+    timings["assemble"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    x = solve_checked(A, b, scene.options.residual_tol, what="plain P1 system")
+    timings["solve"] = time.perf_counter() - t0
+    timings["total"] = time.perf_counter() - t_start
+    return x.array.copy(), timings
