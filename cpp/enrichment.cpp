@@ -46,12 +46,17 @@ EnrichmentLayout create_heaviside_layout(std::span<const std::int32_t> cells,
     for (std::size_t c = 0; c < num_cells; ++c)
     {
       const auto cls = static_cast<CellClass>(g.cell_class[c]);
-      if (cls == CellClass::cut or cls == CellClass::edge)
-        for (int i = 0; i < 3; ++i)
-          split[cells[3 * c + i]] = 1;
-      else if (cls == CellClass::tip or cls == CellClass::extension)
-        for (int i = 0; i < 3; ++i)
-          forbidden[cells[3 * c + i]] = 1;
+      // A node's Heaviside function N_i (H - H_i) is non-zero on a cut cell,
+      // and on an edge cell only if the node lies on the crack edge (a node
+      // off the edge is on the cell's own side, where the function is 0).
+      for (int i = 0; i < 3; ++i)
+      {
+        const std::int32_t v = cells[3 * c + i];
+        if (cls == CellClass::cut or (cls == CellClass::edge and g.phi[v] == 0.0))
+          split[v] = 1;
+        else if (cls == CellClass::tip or cls == CellClass::extension)
+          forbidden[v] = 1;
+      }
     }
     enr_id[ic].assign(num_nodes, -1);
     for (std::int32_t i = 0; i < num_nodes; ++i)

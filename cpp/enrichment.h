@@ -46,9 +46,11 @@ struct EnrichmentLayout
 };
 
 /// Heaviside enrichment of every crack. A node is enriched for a crack when
-/// its support contains a cut or edge cell of that crack and no tip or
-/// extension cell (where a Heaviside function would open a crack that is not
-/// there). Throws if one cell is crossed by two cracks.
+/// its support contains a cut cell of that crack, or an edge cell whose crack
+/// edge the node lies on, and no tip or extension cell (where a Heaviside
+/// function would open a crack that is not there): exactly the nodes whose
+/// function N_i (H - H_i) is not zero. Throws if one cell is crossed by two
+/// cracks.
 ///
 /// cells: (num_cells, 3) node indices; num_nodes: number of mesh nodes.
 EnrichmentLayout create_heaviside_layout(std::span<const std::int32_t> cells,

@@ -91,11 +91,15 @@ def check_mesh(msh: dolfinx.mesh.Mesh) -> None:
 
 
 def create_rectangle(x0: float, y0: float, x1: float, y1: float, h: float,
-                     refine: typing.Sequence[tuple[float, float, float, float]] = ()) -> MeshData:
+                     refine: typing.Sequence[tuple[float, float, float, float]] = (),
+                     embed_lines: typing.Sequence[tuple[tuple[float, float], tuple[float, float]]] = (),
+                     embed_points: typing.Sequence[tuple[float, float]] = ()) -> MeshData:
     """Unstructured triangles of [x0, x1] x [y0, y1] with size h.
 
     refine: optional (x, y, h_near, radius) local refinements around points
     (e.g. crack tips): size h_near within radius, growing linearly to h.
+    embed_lines / embed_points: segments and points the mesh must conform to
+    (mesh edges along the segments, nodes at the points), inside the domain.
     Tags: left, right, bottom, top.
     """
     if not (x1 > x0 and y1 > y0):
@@ -105,9 +109,14 @@ def create_rectangle(x0: float, y0: float, x1: float, y1: float, h: float,
     gmsh = _gmsh()
     gmsh.model.add("rectangle")
     occ = gmsh.model.occ
-    occ.addRectangle(x0, y0, 0.0, x1 - x0, y1 - y0)
+    rect = occ.addRectangle(x0, y0, 0.0, x1 - x0, y1 - y0)
+    tools = [(1, occ.addLine(occ.addPoint(a[0], a[1], 0.0), occ.addPoint(b[0], b[1], 0.0)))
+             for (a, b) in embed_lines]
+    tools += [(0, occ.addPoint(p[0], p[1], 0.0)) for p in embed_points]
+    if tools:
+        occ.fragment([(2, rect)], tools)
     occ.synchronize()
-    gmsh.model.addPhysicalGroup(2, [1], 1)
+    gmsh.model.addPhysicalGroup(2, [s for _, s in gmsh.model.getEntities(2)], 1)
     eps = 1e-9 * max(x1 - x0, y1 - y0)
     sides = {"left": (x0, None), "right": (x1, None), "bottom": (None, y0), "top": (None, y1)}
     for tag, (name, (xs, ys)) in enumerate(sides.items(), start=1):
