@@ -14,11 +14,10 @@ import typing
 import numpy as np
 
 import dolfinx.fem
-import dolfinx.geometry
 import dolfinx.mesh
 
 from . import _cracklip
-from .errors import BoundaryConditionError, CrackGeometryError, MeshError
+from .errors import BoundaryConditionError, CrackGeometryError
 from .mesh import check_mesh
 from .scene import Crack, Scene
 
@@ -125,28 +124,35 @@ def _crack_model(scene: Scene, crack: Crack, x: np.ndarray, cells: np.ndarray) -
 
 
 def _tip_flags(scene: Scene, crack: Crack) -> tuple[bool, bool]:
-    """An end point is a tip when it lies inside the domain, off the boundary."""
+    """An end point is a tip when it lies inside the domain, off the boundary.
+
+    Inside-ness is decided by ray casting against the boundary facets, so the
+    cost is proportional to the boundary, not to the mesh.
+    """
+    a, b = _boundary_segments(scene)
+    scale = float(max(np.ptp(a, axis=0).max(), np.ptp(b, axis=0).max()))
+    d = b - a
+    flags = []
+    for p in crack.points[[0, -1]]:
+        t = np.clip(np.einsum("ij,ij->i", p - a, d) / np.einsum("ij,ij->i", d, d), 0.0, 1.0)
+        dist = np.linalg.norm(a + t[:, None] * d - p, axis=1).min()
+        # Horizontal ray to +x: count facets straddling y = p_y right of p.
+        straddle = (a[:, 1] > p[1]) != (b[:, 1] > p[1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xc = a[:, 0] + (p[1] - a[:, 1]) * d[:, 0] / d[:, 1]
+        inside = np.count_nonzero(straddle & (xc > p[0])) % 2 == 1
+        flags.append(bool(inside and dist > 1e-9 * scale))
+    return flags[0], flags[1]
+
+
+def _boundary_segments(scene: Scene) -> tuple[np.ndarray, np.ndarray]:
+    """End points (n, 2), (n, 2) of the boundary facets of the scene's mesh."""
     msh = scene.mesh.mesh
-    ends = np.zeros((2, 3))
-    ends[:, :2] = crack.points[[0, -1]]
-    tree = dolfinx.geometry.BoundingBoxTree(msh, msh.topology.dim)
-    candidates = dolfinx.geometry.compute_collisions(tree, ends)
-    colliding = dolfinx.geometry.compute_colliding_cells(msh, candidates, ends)
-    inside = [len(colliding.links(i)) > 0 for i in range(2)]
-    # Distance of the end points to the boundary facets.
     tdim = msh.topology.dim
     msh.topology.create_connectivity(tdim - 1, tdim)
     facets = dolfinx.mesh.exterior_facet_indices(msh.topology)
     verts = dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, tdim - 1, facets, False)
-    a, b = msh.geometry.x[verts[:, 0], :2], msh.geometry.x[verts[:, 1], :2]
-    scale = float(np.ptp(msh.geometry.x[:, :2], axis=0).max())
-    flags = []
-    for i, p in enumerate(crack.points[[0, -1]]):
-        d = b - a
-        t = np.clip(np.einsum("ij,ij->i", p - a, d) / np.einsum("ij,ij->i", d, d), 0.0, 1.0)
-        dist = np.linalg.norm(a + t[:, None] * d - p, axis=1).min()
-        flags.append(bool(inside[i] and dist > 1e-9 * scale))
-    return flags[0], flags[1]
+    return msh.geometry.x[verts[:, 0], :2], msh.geometry.x[verts[:, 1], :2]
 
 
 def _component_dofs(nodes: np.ndarray, component: int | None) -> np.ndarray:

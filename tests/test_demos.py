@@ -1,0 +1,40 @@
+"""Every demo runs at a small size and writes what it promises."""
+import json
+import pathlib
+import subprocess
+import sys
+
+import meshio
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+def run_demo(name, *args):
+    env = {"PYTHONPATH": str(ROOT / "python"), "MPLBACKEND": "Agg", "PATH": "/usr/bin:/bin"}
+    subprocess.run([sys.executable, str(ROOT / "demos" / name), *args], check=True, env=env,
+                   cwd=ROOT, capture_output=True, timeout=600)
+
+
+def test_patch_test_demo(tmp_path):
+    run_demo("patch_test.py", "--h", "0.2", "--out", str(tmp_path))
+    res = json.loads((tmp_path / "patch_test.json").read_text())
+    assert res["opening_rel_error"] < 1e-10
+    assert (tmp_path / "patch_test_deformed.png").stat().st_size > 10000
+    m = meshio.read(tmp_path / "patch_test.vtu")
+    assert m.point_data["displacement"].shape == (m.points.shape[0], 3)
+    assert m.cells[0].data.shape[0] == len(m.cell_data["stress_xx"][0])
+
+
+def test_bench_core_demo(tmp_path):
+    out = tmp_path / "b.json"
+    run_demo("bench_core.py", "--sizes", "2e3", "--repeats", "1", "--json", str(out), "--quiet")
+    res = json.loads(out.read_text())["sizes"][0]
+    for key in ("ndofs", "t_xfem", "t_plain", "ratio", "phases_xfem"):
+        assert key in res
+    assert res["ndofs"] > res["ndofs_plain"]
+
+
+def test_main_job_quick(tmp_path):
+    run_demo("paper_figures.py", "--quick", "--out", str(tmp_path))
+    assert "patch test" in (tmp_path / "results.md").read_text()
+    assert json.loads((tmp_path / "results.json").read_text())["patch_test"]["opening_rel_error"] < 1e-10
