@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 namespace cracklip
 {
@@ -228,6 +229,46 @@ CrackGeometry compute_crack_geometry(std::span<const double> x,
         std::swap(P, Q);
     };
 
+    // Orient the zero-line segment PQ of phi_h (+ side on its left) and find
+    // where on it the crack is present: [lo, hi] in its parameter, and
+    // whether a crack piece longer than round-off is there. The distance
+    // check guards against far-field sign flips of phi.
+    auto presence = [&](P2& P, P2& Q)
+    {
+      orient(P, Q);
+      psi_at(P, psiP);
+      psi_at(Q, psiQ);
+      const auto [lo, hi] = present_interval(psiP, psiQ);
+      const double len = hi - lo;
+      const P2 M = phys(lerp(P, Q, 0.5 * (lo + hi)));
+      const bool present = len > 1e-12 and closest(crack, M, false).dist <= 0.5 * h_cell[c];
+      return std::tuple<double, double, bool>{lo, hi, present};
+    };
+    // Record a tip cell: the crack is present on [lo, hi] of segment PQ and
+    // ends inside the cell at one end of that interval.
+    auto add_tip_cell = [&](P2 P, P2 Q, double lo, double hi)
+    {
+      TipCell tc;
+      tc.cell = static_cast<std::int32_t>(c);
+      const bool tip_at_hi = hi < 1.0 - 1e-12;
+      if (tip_at_hi and lo > 1e-12)
+        throw std::runtime_error("compute_crack_geometry: both tips of the crack lie in cell "
+                                 + std::to_string(c) + "; refine the mesh (crack shorter than h)");
+      const P2 T = lerp(P, Q, tip_at_hi ? hi : lo);
+      const P2 E = tip_at_hi ? P : Q;
+      tc.segment = {E[0], E[1], T[0], T[1]};
+      // Which tip: the nearest to T.
+      const P2 Tp = phys(T);
+      double dmin = std::numeric_limits<double>::max();
+      for (int j = 0; j < num_tips; ++j)
+      {
+        const double d = std::hypot(Tp[0] - g.tips[2 * j], Tp[1] - g.tips[2 * j + 1]);
+        if (d < dmin)
+          dmin = d, tc.tip = j;
+      }
+      g.tip_cells.push_back(tc);
+    };
+
     if (npos > 0 and nneg > 0)
     {
       // Straddled: the zero line of phi_h crosses the interior.
@@ -261,15 +302,9 @@ CrackGeometry compute_crack_geometry(std::span<const double> x,
         cc.side = {static_cast<std::int8_t>(s[k]), static_cast<std::int8_t>(s[a]),
                    static_cast<std::int8_t>(s[a])};
       }
-      orient(P, Q);
-      psi_at(P, psiP);
-      psi_at(Q, psiQ);
-      const auto [lo, hi] = present_interval(psiP, psiQ);
+      const auto [lo, hi, present] = presence(P, Q);
       const double len = hi - lo;
-      // Guard against far-field sign flips of phi: the crack must be near.
-      const P2 M = phys(lerp(P, Q, 0.5 * (lo + hi)));
-      const bool near = len > 0.0 and closest(crack, M, false).dist <= 0.5 * h_cell[c];
-      if (!near or len <= 1e-12)
+      if (!present)
         g.cell_class[c] = static_cast<std::int8_t>(CellClass::extension);
       else if (len >= 1.0 - 1e-12)
       {
@@ -283,26 +318,7 @@ CrackGeometry compute_crack_geometry(std::span<const double> x,
       else
       {
         g.cell_class[c] = static_cast<std::int8_t>(CellClass::tip);
-        TipCell tc;
-        tc.cell = static_cast<std::int32_t>(c);
-        // The tip is the end of the present interval that lies inside.
-        const bool tip_at_hi = hi < 1.0 - 1e-12;
-        if (tip_at_hi and lo > 1e-12)
-          throw std::runtime_error("compute_crack_geometry: both tips of the crack lie in cell "
-                                   + std::to_string(c) + "; refine the mesh (crack shorter than h)");
-        const P2 T = lerp(P, Q, tip_at_hi ? hi : lo);
-        const P2 E = tip_at_hi ? P : Q;
-        tc.segment = {E[0], E[1], T[0], T[1]};
-        // Which tip: the one whose psi vanishes at T.
-        const P2 Tp = phys(T);
-        double dmin = std::numeric_limits<double>::max();
-        for (int j = 0; j < num_tips; ++j)
-        {
-          const double d = std::hypot(Tp[0] - g.tips[2 * j], Tp[1] - g.tips[2 * j + 1]);
-          if (d < dmin)
-            dmin = d, tc.tip = j;
-        }
-        g.tip_cells.push_back(tc);
+        add_tip_cell(P, Q, lo, hi);
       }
       continue;
     }
@@ -315,14 +331,9 @@ CrackGeometry compute_crack_geometry(std::span<const double> x,
       // The zero line runs along the edge between the two zero vertices.
       const int k = (s[0] != 0) ? 0 : ((s[1] != 0) ? 1 : 2);
       P2 P = ref_vertex[(k + 1) % 3], Q = ref_vertex[(k + 2) % 3];
-      orient(P, Q);
-      psi_at(P, psiP);
-      psi_at(Q, psiQ);
-      const auto [lo, hi] = present_interval(psiP, psiQ);
+      const auto [lo, hi, present] = presence(P, Q);
       const double len = hi - lo;
-      const P2 M = phys(lerp(P, Q, 0.5 * (lo + hi)));
-      const bool near = len > 0.0 and closest(crack, M, false).dist <= 0.5 * h_cell[c];
-      if (!near or len <= 1e-12)
+      if (!present)
         continue; // crack absent along this edge: a plain cell
       if (len >= 1.0 - 1e-12)
       {
@@ -343,21 +354,7 @@ CrackGeometry compute_crack_geometry(std::span<const double> x,
       {
         g.cell_class[c] = static_cast<std::int8_t>(CellClass::tip);
         g.cell_side[c] = 0;
-        TipCell tc;
-        tc.cell = static_cast<std::int32_t>(c);
-        const bool tip_at_hi = hi < 1.0 - 1e-12;
-        const P2 T = lerp(P, Q, tip_at_hi ? hi : lo);
-        const P2 E = tip_at_hi ? P : Q;
-        tc.segment = {E[0], E[1], T[0], T[1]};
-        const P2 Tp = phys(T);
-        double dmin = std::numeric_limits<double>::max();
-        for (int j = 0; j < num_tips; ++j)
-        {
-          const double d = std::hypot(Tp[0] - g.tips[2 * j], Tp[1] - g.tips[2 * j + 1]);
-          if (d < dmin)
-            dmin = d, tc.tip = j;
-        }
-        g.tip_cells.push_back(tc);
+        add_tip_cell(P, Q, lo, hi);
       }
     }
   }

@@ -44,24 +44,28 @@ def run_size(target: float, repeats: int, log) -> dict:
     t0 = time.perf_counter()
     md = cl.create_square(h)
     t_mesh = time.perf_counter() - t0
-    t_x, t_p, phases = [], [], []
+    t_x, t_p, phases, phases_plain = [], [], [], []
     for r in range(repeats):
         t0 = time.perf_counter()
         sol = cl.solve(scene_for(md, True))
         t_x.append(time.perf_counter() - t0)
         phases.append(sol.timings)
         t0 = time.perf_counter()
-        u_plain, _ = cl.solve_plain(scene_for(md, False))
+        u_plain, timings_plain = cl.solve_plain(scene_for(md, False))
         t_p.append(time.perf_counter() - t0)
+        phases_plain.append(timings_plain)
         log(f"  run {r + 1}/{repeats}: x-fem {t_x[-1]:.3f} s, plain {t_p[-1]:.3f} s")
     t_xfem, t_plain = statistics.median(t_x), statistics.median(t_p)
     phase = {k: statistics.median(p[k] for p in phases) for k in phases[0] if k != "total"}
+    phase_plain = {k: statistics.median(p[k] for p in phases_plain) for k in phases_plain[0]
+                   if k != "total"}
     layout = sol.model.layout
     return {"target_dofs": target, "h": h, "ndofs": sol.model.num_dofs,
             "ndofs_plain": int(u_plain.size), "enriched_dofs": 2 * layout.num_enriched,
             "enriched_cells": int(layout.cells.size), "cells": int(sol.model.cells.shape[0]),
             "t_mesh": t_mesh, "t_xfem": t_xfem, "t_plain": t_plain, "ratio": t_xfem / t_plain,
-            "t_xfem_runs": t_x, "t_plain_runs": t_p, "phases_xfem": phase}
+            "t_xfem_runs": t_x, "t_plain_runs": t_p, "phases_xfem": phase,
+            "phases_plain": phase_plain}
 
 
 def main(argv=None) -> int:

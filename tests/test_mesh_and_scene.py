@@ -1,0 +1,95 @@
+"""Scene input: gmsh meshes with named tags, .msh files, several and kinked cracks."""
+import numpy as np
+import pytest
+
+import cracklip as cl
+
+
+def _area(md):
+    x = md.mesh.geometry.x[:, :2]
+    c = md.mesh.geometry.dofmap.array.reshape(-1, 3)
+    e1, e2 = x[c[:, 1]] - x[c[:, 0]], x[c[:, 2]] - x[c[:, 0]]
+    return 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]).sum()
+
+
+def test_half_annulus_tags_and_area():
+    md = cl.create_half_annulus(0.2)
+    assert set(md.tags) == {"hole", "outer", "symmetry"}
+    assert _area(md) == pytest.approx(0.5 * np.pi * (9 - 1), rel=2e-2)  # polygonal arcs
+    x = md.mesh.geometry.x[:, :2]
+    r = np.linalg.norm(x, axis=1)
+    assert r.min() == pytest.approx(1.0, abs=1e-9) and r.max() == pytest.approx(3.0, abs=1e-9)
+    assert x[:, 1].min() == pytest.approx(0.0, abs=1e-12)
+    for name in md.tags:
+        assert md.facets(name).size > 0
+
+
+def test_read_msh_round_trip(tmp_path):
+    import gmsh
+    from cracklip.mesh import _gmsh
+    g = _gmsh()
+    g.model.add("file")
+    g.model.occ.addRectangle(0, 0, 0, 2, 1)
+    g.model.occ.synchronize()
+    g.model.addPhysicalGroup(2, [1], 1)
+    for i, (_, c) in enumerate(g.model.getEntities(1), start=1):
+        g.model.addPhysicalGroup(1, [c], i)
+        g.model.setPhysicalName(1, i, f"side{i}")
+    g.option.setNumber("Mesh.MeshSizeMax", 0.2)
+    g.model.mesh.generate(2)
+    path = tmp_path / "rect.msh"
+    gmsh.write(str(path))
+    g.model.remove()
+    md = cl.read_msh(path)
+    assert set(md.tags) == {"side1", "side2", "side3", "side4"}
+    assert _area(md) == pytest.approx(2.0, rel=1e-12)
+    with pytest.raises(cl.MeshError, match="does not exist"):
+        cl.read_msh(tmp_path / "missing.msh")
+
+
+def test_kinked_through_crack_pieces_translate_rigidly():
+    """A kinked polyline cutting the square; no load, each piece held at two
+    nodes with its own translation: the pieces translate, the opening along
+    the kinked crack is the difference of translations."""
+    md = cl.create_square(0.1)
+    crack = cl.Crack([[-1.5, -0.2], [-0.1, 0.07], [0.4, -0.05], [1.5, 0.31]])
+    x = md.mesh.geometry.x[:, :2]
+    from cracklip import _cracklip
+    d = _cracklip.signed_distance(crack.points, x)
+    shift = {1: np.array([0.01, -0.02]), -1: np.array([-0.005, 0.003])}
+    bcs = []
+    for side in (1, -1):
+        nodes = np.flatnonzero(d * side > 0.3)
+        for k, node in enumerate([nodes[np.argmin(x[nodes, 0])], nodes[np.argmax(x[nodes, 0])]]):
+            value = (lambda q, v=shift[side]: np.tile(v, (len(q), 1))) if k == 0 else shift[side][1]
+            bcs.append(cl.Dirichlet(tuple(x[node]), None if k == 0 else 1, value))
+    sol = cl.solve(cl.Scene(md, cl.Material(1.0, 0.3), cracks=[crack], dirichlet=bcs))
+    op = sol.crack_opening(0)
+    assert np.abs(op["jump"] - (shift[1] - shift[-1])).max() <= 1e-12
+    rng = np.random.default_rng(3)
+    p = rng.uniform(-0.95, 0.95, (300, 2))
+    side = np.where(_cracklip.signed_distance(crack.points, p) >= 0, 1, -1)
+    expected = np.where(side[:, None] > 0, shift[1], shift[-1])
+    far = np.abs(_cracklip.signed_distance(crack.points, p)) > 0.1  # P1 crack = polyline away from kinks
+    assert np.abs(sol.displacement(p[far]) - expected[far]).max() <= 1e-12
+
+
+def test_two_parallel_interior_cracks_in_uniform_stress():
+    from conftest import side_tractions, uniform_strain
+    md = cl.create_square(0.08)
+    mat = cl.Material(1.0, 0.2)
+    sigma = np.array([[0.2, 0.0], [0.0, 0.0]])
+    eps = uniform_strain(mat, sigma)
+    x = md.mesh.geometry.x[:, :2]
+    n0 = x[int(np.argmin(np.linalg.norm(x - [-1, -1], axis=1)))]
+    n1 = x[int(np.argmin(np.linalg.norm(x - [1, -1], axis=1)))]
+    exact = lambda p: p @ eps.T  # noqa: E731
+    cracks = [cl.Crack([[-0.6, 0.31], [0.2, 0.31]]), cl.Crack([[-0.1, -0.27], [0.7, -0.27]])]
+    sol = cl.solve(cl.Scene(md, mat, cracks=cracks,
+                            dirichlet=[cl.Dirichlet(tuple(n0), None, exact),
+                                       cl.Dirichlet(tuple(n1), 1, lambda p: exact(p)[:, 1])],
+                            tractions=[cl.Traction(k, v) for k, v in side_tractions(sigma).items()]))
+    assert [c.tips for c in sol.model.cracks] == [(True, True), (True, True)]
+    assert set(sol.model.layout.crack.tolist()) == {0, 1}
+    for i in range(2):
+        assert np.abs(sol.crack_opening(i)["jump"]).max() <= 1e-12
