@@ -25,6 +25,25 @@ def side_tractions(sigma):
     return {k: tuple(s @ np.array(n, dtype=float)) for k, n in normals.items()}
 
 
+def uniform_stress_scene(md, material, sigma, cracks):
+    """Scene of a uniform stress on the square: tractions sigma.n on its sides,
+    the exact field eps.x held at the corner nodes (-1,-1) (both components)
+    and (1,-1) (y). Returns (scene, exact displacement function)."""
+    import cracklip as cl
+    eps = uniform_strain(material, sigma)
+    x = md.mesh.geometry.x[:, :2]
+    n0 = x[int(np.argmin(np.linalg.norm(x - [-1, -1], axis=1)))]
+    n1 = x[int(np.argmin(np.linalg.norm(x - [1, -1], axis=1)))]
+
+    def exact(p):
+        return p @ eps.T
+    scene = cl.Scene(md, material, cracks=list(cracks),
+                     dirichlet=[cl.Dirichlet(tuple(n0), None, exact),
+                                cl.Dirichlet(tuple(n1), 1, lambda p: exact(p)[:, 1])],
+                     tractions=[cl.Traction(k, v) for k, v in side_tractions(sigma).items()])
+    return scene, exact
+
+
 @pytest.fixture(scope="session")
 def square_h01():
     import cracklip as cl

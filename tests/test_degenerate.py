@@ -9,7 +9,7 @@ tip on a node or an edge makes no tip cell (the crack ends at that node).
 import numpy as np
 
 import cracklip as cl
-from conftest import side_tractions, uniform_strain
+from conftest import side_tractions, uniform_strain, uniform_stress_scene
 from test_patch import check_through_crack, through_crack_scene
 
 
@@ -106,17 +106,9 @@ def test_tips_on_vertices_and_crack_along_edges():
     in uniform stress parallel to it: displacement continuous and exact."""
     a, b = (-0.5, 0.1), (0.45, 0.1)
     md = cl.create_square(0.1, embed_lines=[(a, b)])
-    mat = cl.Material(1.0, 0.3)
     sigma = np.array([[0.3, 0.0], [0.0, 0.0]])
-    eps = uniform_strain(mat, sigma)
+    scene, exact = uniform_stress_scene(md, cl.Material(1.0, 0.3), sigma, [cl.Crack([a, b])])
     x = md.mesh.geometry.x[:, :2]
-    n0 = x[int(np.argmin(np.linalg.norm(x - [-1, -1], axis=1)))]
-    n1 = x[int(np.argmin(np.linalg.norm(x - [1, -1], axis=1)))]
-    exact = lambda p: p @ eps.T  # noqa: E731
-    scene = cl.Scene(md, mat, cracks=[cl.Crack([a, b])],
-                     dirichlet=[cl.Dirichlet(tuple(n0), None, exact),
-                                cl.Dirichlet(tuple(n1), 1, lambda p: exact(p)[:, 1])],
-                     tractions=[cl.Traction(k, v) for k, v in side_tractions(sigma).items()])
     sol = cl.solve(scene)
     g = sol.model.geometries[0]
     assert sol.model.cracks[0].tips == (True, True)

@@ -75,20 +75,11 @@ def test_kinked_through_crack_pieces_translate_rigidly():
 
 
 def test_two_parallel_interior_cracks_in_uniform_stress():
-    from conftest import side_tractions, uniform_strain
+    from conftest import uniform_stress_scene
     md = cl.create_square(0.08)
-    mat = cl.Material(1.0, 0.2)
-    sigma = np.array([[0.2, 0.0], [0.0, 0.0]])
-    eps = uniform_strain(mat, sigma)
-    x = md.mesh.geometry.x[:, :2]
-    n0 = x[int(np.argmin(np.linalg.norm(x - [-1, -1], axis=1)))]
-    n1 = x[int(np.argmin(np.linalg.norm(x - [1, -1], axis=1)))]
-    exact = lambda p: p @ eps.T  # noqa: E731
     cracks = [cl.Crack([[-0.6, 0.31], [0.2, 0.31]]), cl.Crack([[-0.1, -0.27], [0.7, -0.27]])]
-    sol = cl.solve(cl.Scene(md, mat, cracks=cracks,
-                            dirichlet=[cl.Dirichlet(tuple(n0), None, exact),
-                                       cl.Dirichlet(tuple(n1), 1, lambda p: exact(p)[:, 1])],
-                            tractions=[cl.Traction(k, v) for k, v in side_tractions(sigma).items()]))
+    scene, _ = uniform_stress_scene(md, cl.Material(1.0, 0.2), np.array([[0.2, 0.0], [0.0, 0.0]]), cracks)
+    sol = cl.solve(scene)
     assert [c.tips for c in sol.model.cracks] == [(True, True), (True, True)]
     assert set(sol.model.layout.crack.tolist()) == {0, 1}
     for i in range(2):

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import cracklip as cl
-from conftest import side_tractions, uniform_strain
+from conftest import uniform_strain, uniform_stress_scene
 
 YC = 0.013
 
@@ -64,15 +64,8 @@ def test_uniform_stress_parallel_to_interior_crack():
     a, b = np.array([-0.43, -0.11]), np.array([0.38, 0.27])
     t = (b - a) / np.linalg.norm(b - a)
     sigma = 0.5 * np.outer(t, t)
-    eps = uniform_strain(mat, sigma)
+    scene, exact = uniform_stress_scene(md, mat, sigma, [cl.Crack([a, b])])
     x = md.mesh.geometry.x[:, :2]
-    n0 = int(np.argmin(np.linalg.norm(x - [-1, -1], axis=1)))
-    n1 = int(np.argmin(np.linalg.norm(x - [1, -1], axis=1)))
-    exact = lambda p: p @ eps.T  # noqa: E731
-    scene = cl.Scene(md, mat, cracks=[cl.Crack([a, b])],
-                     dirichlet=[cl.Dirichlet(tuple(x[n0]), None, lambda p: exact(p)),
-                                cl.Dirichlet(tuple(x[n1]), 1, lambda p: exact(p)[:, 1])],
-                     tractions=[cl.Traction(k, v) for k, v in side_tractions(sigma).items()])
     sol = cl.solve(scene)
     assert sol.model.cracks[0].tips == (True, True)
     assert sol.model.layout.num_enriched > 0
