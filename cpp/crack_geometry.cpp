@@ -164,6 +164,7 @@ CrackGeometry compute_crack_geometry(std::span<const double> x,
     t = {t[0] / len, t[1] / len};
     g.tips.insert(g.tips.end(), T.begin(), T.end());
     g.tip_tangents.insert(g.tip_tangents.end(), t.begin(), t.end());
+    g.tip_orientation.push_back(e == 0 ? -1 : 1);
     for (std::size_t i = 0; i < num_nodes; ++i)
     {
       double v = (x[2 * i] - T[0]) * t[0] + (x[2 * i + 1] - T[1]) * t[1];
@@ -182,6 +183,7 @@ CrackGeometry compute_crack_geometry(std::span<const double> x,
   g.cell_class.assign(num_cells, static_cast<std::int8_t>(CellClass::plain));
   g.cell_side.assign(num_cells, 0);
   g.crack_cell_index.assign(num_cells, -1);
+  g.tip_cell_index.assign(num_cells, -1);
 
   std::vector<double> psiP(num_tips), psiQ(num_tips);
   for (std::size_t c = 0; c < num_cells; ++c)
@@ -266,6 +268,7 @@ CrackGeometry compute_crack_geometry(std::span<const double> x,
         if (d < dmin)
           dmin = d, tc.tip = j;
       }
+      g.tip_cell_index[c] = static_cast<std::int32_t>(g.tip_cells.size());
       g.tip_cells.push_back(tc);
     };
 

@@ -76,6 +76,9 @@ struct CrackGeometry
   /// Tip coordinates (num_tips, 2) and unit tangents (num_tips, 2), the
   /// tangent pointing out of the crack (direction of propagation).
   std::vector<double> tips, tip_tangents;
+  /// Per tip (num_tips): +1 if e2 = e1 rotated by +90 degrees points to the
+  /// phi > 0 side (the last point of the polyline), -1 otherwise (the first).
+  std::vector<int> tip_orientation;
   /// Class of each cell, (num_cells), values of CellClass.
   std::vector<std::int8_t> cell_class;
   /// Side of each cell, (num_cells): +1/-1 for plain and edge cells, 0 for
@@ -87,6 +90,8 @@ struct CrackGeometry
   std::vector<std::int32_t> crack_cell_index;
   /// Cells holding a tip.
   std::vector<TipCell> tip_cells;
+  /// Position of each cell in tip_cells or -1, (num_cells).
+  std::vector<std::int32_t> tip_cell_index;
   /// Number of nodes whose phi or psi was snapped to zero.
   std::int32_t num_snapped = 0;
 };

@@ -1,7 +1,7 @@
 // DOLFINx and PETSc glue (layer b).
 #pragma once
 
-#include "heaviside_kernels.h"
+#include "enriched_kernels.h"
 
 #include <cstdint>
 #include <petscmat.h>

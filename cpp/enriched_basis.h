@@ -3,6 +3,7 @@
 
 #include "crack_geometry.h"
 #include "enrichment.h"
+#include "tip_functions.h"
 
 #include <array>
 #include <cmath>
@@ -49,6 +50,12 @@ struct P1Cell
     return {xv[0][0] + r[0] * (xv[1][0] - xv[0][0]) + r[1] * (xv[2][0] - xv[0][0]),
             xv[0][1] + r[0] * (xv[1][1] - xv[0][1]) + r[1] * (xv[2][1] - xv[0][1])};
   }
+  /// Reference coordinates of a physical point (affine inverse).
+  std::array<double, 2> reference(std::array<double, 2> p) const
+  {
+    const double dx = p[0] - xv[0][0], dy = p[1] - xv[0][1];
+    return {grad[1][0] * dx + grad[1][1] * dy, grad[2][0] * dx + grad[2][1] * dy};
+  }
   static std::array<double, 3> shape(std::array<double, 2> r)
   {
     return {1.0 - r[0] - r[1], r[0], r[1]};
@@ -64,7 +71,7 @@ struct P1Cell
 };
 
 /// The basis functions of an enriched cell: 3 standard nodes then the cell's
-/// pseudo-nodes, each with two dofs (x, y). `dofs` holds global scalar dof
+/// pseudo-nodes, each with two scalar dofs. `dofs` holds global scalar dof
 /// indices in that order, `enr` the pseudo-node ids and `enr_local` the
 /// local index of each pseudo-node's base node.
 struct CellBasis
@@ -72,13 +79,14 @@ struct CellBasis
   std::vector<std::int32_t> enr;
   std::vector<int> enr_local;
   std::vector<std::int32_t> dofs;
+  bool has_tip = false;
 
   CellBasis(const P1Cell& cell, const EnrichmentLayout& layout, std::int32_t c)
   {
     for (int a = 0; a < 3; ++a)
       for (int d = 0; d < 2; ++d)
         dofs.push_back(2 * cell.nodes[a] + d);
-    const std::int32_t ie = layout.cell_index[c];
+    const std::int32_t ie = layout.cell_index.empty() ? -1 : layout.cell_index[c];
     if (ie < 0)
       return;
     for (std::int32_t j = layout.cell_offsets[ie]; j < layout.cell_offsets[ie + 1]; ++j)
@@ -86,45 +94,93 @@ struct CellBasis
       const std::int32_t k = layout.cell_enr[j];
       enr.push_back(k);
       enr_local.push_back(cell.local(layout.node[k]));
+      has_tip = has_tip or layout.kind[k] != static_cast<std::int8_t>(EnrichmentKind::heaviside);
       for (int d = 0; d < 2; ++d)
         dofs.push_back(2 * (layout.num_std_nodes + k) + d);
     }
   }
-  int num_functions() const { return 3 + static_cast<int>(enr.size()); }
+  int num_dofs() const { return static_cast<int>(dofs.size()); }
 };
 
-/// Value and gradient of every scalar basis function of the cell at a point
-/// with reference coordinates r, where the Heaviside of crack ic equals
-/// side[ic]. Fills val (num_functions) and grad (num_functions, 2).
+/// Vector value and gradient of every scalar dof's basis function at a point
+/// with reference coordinates r, where the Heaviside of crack ic (and the
+/// lip branch of its tip functions) is side[ic]. Fills val (ndof, 2) and
+/// grad (ndof, 2, 2) with grad[(i * 2 + a) * 2 + b] = d val_a / d x_b.
 inline void evaluate_basis(const P1Cell& cell, const CellBasis& basis,
                            const EnrichmentLayout& layout, std::span<const int> side,
                            std::array<double, 2> r, std::vector<double>& val,
                            std::vector<double>& grad)
 {
-  const int n = basis.num_functions();
-  val.resize(n);
-  grad.resize(2 * n);
+  const int nd = basis.num_dofs();
+  val.assign(2 * nd, 0.0);
+  grad.assign(4 * nd, 0.0);
   const auto N = P1Cell::shape(r);
-  for (int a = 0; a < 3; ++a)
+  // Scalar function phi times e_d for dofs 2f + d.
+  auto scalar = [&](int f, double phi, double gx, double gy)
   {
-    val[a] = N[a];
-    grad[2 * a] = cell.grad[a][0];
-    grad[2 * a + 1] = cell.grad[a][1];
-  }
+    for (int d = 0; d < 2; ++d)
+    {
+      const int i = 2 * f + d;
+      val[2 * i + d] = phi;
+      grad[(2 * i + d) * 2 + 0] = gx;
+      grad[(2 * i + d) * 2 + 1] = gy;
+    }
+  };
+  for (int a = 0; a < 3; ++a)
+    scalar(a, N[a], cell.grad[a][0], cell.grad[a][1]);
+  if (basis.enr.empty())
+    return;
+  const std::array<double, 2> x = cell.physical(r);
+  std::array<double, 4> F;
+  std::array<std::array<double, 2>, 4> dF;
+  std::array<std::array<double, 2>, 2> U;
+  std::array<std::array<std::array<double, 2>, 2>, 2> dU;
+  std::int32_t cached_tip = -1;
   for (std::size_t j = 0; j < basis.enr.size(); ++j)
   {
     const std::int32_t k = basis.enr[j];
     const int a = basis.enr_local[j];
-    const double jump = side[layout.crack[k]] - layout.node_sign[k];
-    val[3 + j] = N[a] * jump;
-    grad[2 * (3 + j)] = cell.grad[a][0] * jump;
-    grad[2 * (3 + j) + 1] = cell.grad[a][1] * jump;
+    const int f = 3 + static_cast<int>(j);
+    const double* sh = &layout.shift[4 * k];
+    const auto kind = static_cast<EnrichmentKind>(layout.kind[k]);
+    const int sd = side[layout.crack[k]];
+    if (kind == EnrichmentKind::heaviside)
+    {
+      const double jump = sd - sh[0];
+      scalar(f, N[a] * jump, cell.grad[a][0] * jump, cell.grad[a][1] * jump);
+      continue;
+    }
+    const std::int32_t t = layout.tip[k];
+    if (kind == EnrichmentKind::tip_scalar)
+    {
+      if (t != cached_tip)
+        branch_functions(layout.tip_frames[t], x, sd, F, dF), cached_tip = t;
+      const int l = layout.function[k];
+      const double v = F[l] - sh[0];
+      scalar(f, N[a] * v, cell.grad[a][0] * v + N[a] * dF[l][0],
+             cell.grad[a][1] * v + N[a] * dF[l][1]);
+      continue;
+    }
+    // tip_vector: dof 2f + m is mode m, a vector-valued function.
+    williams_displacement(layout.tip_frames[t], x, sd, layout.kappa, U, dU);
+    cached_tip = -1;
+    for (int m = 0; m < 2; ++m)
+    {
+      const int i = 2 * f + m;
+      for (int comp = 0; comp < 2; ++comp)
+      {
+        const double v = U[m][comp] - sh[2 * m + comp];
+        val[2 * i + comp] = N[a] * v;
+        for (int b = 0; b < 2; ++b)
+          grad[(2 * i + comp) * 2 + b] = cell.grad[a][b] * v + N[a] * dU[m][comp][b];
+      }
+    }
   }
 }
 
-/// Heaviside side of every crack in a region of cell c. For the crack that
-/// crosses the cell (if any) the side is `crossing_side`; every other crack
-/// has a constant side on the cell.
+/// Side of every crack at a point of cell c. For the crack that crosses the
+/// cell or ends in it (if any) the side is `crossing_side`; every other crack
+/// has a constant side on the cell (0 on its extension cells).
 inline void region_sides(std::span<const CrackGeometry* const> cracks, std::int32_t c,
                          int crossing_side, std::vector<int>& side)
 {
@@ -132,11 +188,12 @@ inline void region_sides(std::span<const CrackGeometry* const> cracks, std::int3
   for (std::size_t ic = 0; ic < cracks.size(); ++ic)
   {
     const CrackGeometry& g = *cracks[ic];
-    side[ic] = g.crack_cell_index[c] >= 0 ? crossing_side : g.cell_side[c];
+    const bool crossing = g.crack_cell_index[c] >= 0 or g.tip_cell_index[c] >= 0;
+    side[ic] = crossing ? crossing_side : g.cell_side[c];
   }
 }
 
-/// The crack (index) whose crack cell c is, or -1.
+/// The crack (index) whose crack cell (cut or edge) c is, or -1.
 inline int crossing_crack(std::span<const CrackGeometry* const> cracks, std::int32_t c)
 {
   for (std::size_t ic = 0; ic < cracks.size(); ++ic)

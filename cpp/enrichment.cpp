@@ -1,18 +1,38 @@
 #include "enrichment.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace cracklip
 {
+namespace
+{
+bool in_closure(std::span<const double> x, const std::int32_t* v, std::array<double, 2> p)
+{
+  const double x0 = x[2 * v[0]], y0 = x[2 * v[0] + 1];
+  const double a = x[2 * v[1]] - x0, b = x[2 * v[2]] - x0;
+  const double c = x[2 * v[1] + 1] - y0, d = x[2 * v[2] + 1] - y0;
+  const double det = a * d - b * c;
+  const double px = p[0] - x0, py = p[1] - y0;
+  const double l1 = (d * px - b * py) / det, l2 = (-c * px + a * py) / det;
+  constexpr double tol = 1e-12;
+  return l1 >= -tol and l2 >= -tol and l1 + l2 <= 1.0 + tol;
+}
+} // namespace
 
-EnrichmentLayout create_heaviside_layout(std::span<const std::int32_t> cells,
-                                         std::int32_t num_nodes,
-                                         std::span<const CrackGeometry* const> cracks)
+EnrichmentLayout create_enrichment_layout(std::span<const double> x,
+                                          std::span<const std::int32_t> cells,
+                                          std::span<const CrackGeometry* const> cracks,
+                                          const EnrichmentOptions& options)
 {
   const std::size_t num_cells = cells.size() / 3;
+  const auto num_nodes = static_cast<std::int32_t>(x.size() / 2);
+  if (options.tip != TipEnrichment::none and !(options.radius >= 0.0))
+    throw std::invalid_argument("tip enrichment radius must be >= 0");
   EnrichmentLayout layout;
   layout.num_std_nodes = num_nodes;
+  layout.kappa = options.kappa;
 
   // One cell may be crossed by one crack only.
   std::vector<std::int32_t> crossed_by(num_cells, -1);
@@ -20,28 +40,82 @@ EnrichmentLayout create_heaviside_layout(std::span<const std::int32_t> cells,
   {
     const CrackGeometry& g = *cracks[ic];
     if (g.cell_class.size() != num_cells or g.phi.size() != static_cast<std::size_t>(num_nodes))
-      throw std::invalid_argument("create_heaviside_layout: crack geometry of crack "
+      throw std::invalid_argument("create_enrichment_layout: crack geometry of crack "
                                   + std::to_string(ic) + " does not match the mesh");
     for (std::size_t c = 0; c < num_cells; ++c)
     {
       const auto cls = static_cast<CellClass>(g.cell_class[c]);
-      if (cls == CellClass::plain)
+      if (cls == CellClass::plain or cls == CellClass::extension)
         continue;
-      if (cls != CellClass::extension and crossed_by[c] >= 0)
+      if (crossed_by[c] >= 0)
         throw std::runtime_error("cell " + std::to_string(c) + " is crossed by cracks "
                                  + std::to_string(crossed_by[c]) + " and " + std::to_string(ic)
                                  + ": cracks closer than the mesh size are not supported; "
                                    "refine the mesh near them");
-      if (cls != CellClass::extension)
-        crossed_by[c] = static_cast<std::int32_t>(ic);
+      crossed_by[c] = static_cast<std::int32_t>(ic);
     }
   }
 
-  // pseudo-node id per (crack, node), -1 if none.
-  std::vector<std::vector<std::int32_t>> enr_id(cracks.size());
+  auto add = [&](std::int32_t i, std::int32_t ic, EnrichmentKind kind, int function,
+                 std::int32_t tip)
+  {
+    const CrackGeometry& g = *cracks[ic];
+    const int side = g.phi[i] >= 0.0 ? 1 : -1;
+    layout.node.push_back(i);
+    layout.crack.push_back(ic);
+    layout.kind.push_back(static_cast<std::int8_t>(kind));
+    layout.function.push_back(static_cast<std::int8_t>(function));
+    layout.tip.push_back(tip);
+    layout.node_side.push_back(static_cast<std::int8_t>(side));
+    std::array<double, 4> sh = {0.0, 0.0, 0.0, 0.0};
+    const std::array<double, 2> xi = {x[2 * i], x[2 * i + 1]};
+    if (kind == EnrichmentKind::heaviside)
+      sh[0] = side;
+    else if (kind == EnrichmentKind::tip_scalar)
+    {
+      std::array<double, 4> F;
+      std::array<std::array<double, 2>, 4> dF;
+      branch_functions(layout.tip_frames[tip], xi, side, F, dF);
+      sh[0] = F[function];
+    }
+    else
+    {
+      std::array<std::array<double, 2>, 2> U;
+      std::array<std::array<std::array<double, 2>, 2>, 2> dU;
+      williams_displacement(layout.tip_frames[tip], xi, side, options.kappa, U, dU);
+      sh = {U[0][0], U[0][1], U[1][0], U[1][1]};
+    }
+    layout.shift.insert(layout.shift.end(), sh.begin(), sh.end());
+  };
+
+  std::vector<std::vector<std::int32_t>> node_enr(num_nodes);
   for (std::size_t ic = 0; ic < cracks.size(); ++ic)
   {
     const CrackGeometry& g = *cracks[ic];
+    // Tip enrichment.
+    std::vector<std::int32_t> tip_of(num_nodes, -1);
+    if (options.tip != TipEnrichment::none)
+    {
+      const int num_tips = static_cast<int>(g.tips.size() / 2);
+      for (int j = 0; j < num_tips; ++j)
+      {
+        const auto tid = static_cast<std::int32_t>(layout.tip_frames.size());
+        const TipFrame frame{{g.tips[2 * j], g.tips[2 * j + 1]},
+                             {g.tip_tangents[2 * j], g.tip_tangents[2 * j + 1]},
+                             g.tip_orientation[j]};
+        layout.tip_frames.push_back(frame);
+        layout.tip_crack.push_back(static_cast<std::int32_t>(ic));
+        layout.tip_local.push_back(j);
+        for (std::int32_t i = 0; i < num_nodes; ++i)
+          if (std::hypot(x[2 * i] - frame.tip[0], x[2 * i + 1] - frame.tip[1]) <= options.radius)
+            tip_of[i] = tid;
+        for (std::size_t c = 0; c < num_cells; ++c)
+          if (in_closure(x, &cells[3 * c], frame.tip))
+            for (int a = 0; a < 3; ++a)
+              tip_of[cells[3 * c + a]] = tid;
+      }
+    }
+    // Heaviside candidates.
     std::vector<std::int8_t> split(num_nodes, 0), forbidden(num_nodes, 0);
     for (std::size_t c = 0; c < num_cells; ++c)
     {
@@ -49,25 +123,35 @@ EnrichmentLayout create_heaviside_layout(std::span<const std::int32_t> cells,
       // A node's Heaviside function N_i (H - H_i) is non-zero on a cut cell,
       // and on an edge cell only if the node lies on the crack edge (a node
       // off the edge is on the cell's own side, where the function is 0).
-      for (int i = 0; i < 3; ++i)
+      for (int a = 0; a < 3; ++a)
       {
-        const std::int32_t v = cells[3 * c + i];
+        const std::int32_t v = cells[3 * c + a];
         if (cls == CellClass::cut or (cls == CellClass::edge and g.phi[v] == 0.0))
           split[v] = 1;
         else if (cls == CellClass::tip or cls == CellClass::extension)
           forbidden[v] = 1;
       }
     }
-    enr_id[ic].assign(num_nodes, -1);
     for (std::int32_t i = 0; i < num_nodes; ++i)
     {
-      if (split[i] and !forbidden[i])
+      if (tip_of[i] >= 0)
       {
-        enr_id[ic][i] = layout.num_enriched();
-        layout.node.push_back(i);
-        layout.crack.push_back(static_cast<std::int32_t>(ic));
-        layout.kind.push_back(static_cast<std::int8_t>(EnrichmentKind::heaviside));
-        layout.node_sign.push_back(g.phi[i] >= 0.0 ? 1.0 : -1.0);
+        if (options.tip == TipEnrichment::scalar)
+          for (int l = 0; l < 4; ++l)
+          {
+            node_enr[i].push_back(layout.num_enriched());
+            add(i, static_cast<std::int32_t>(ic), EnrichmentKind::tip_scalar, l, tip_of[i]);
+          }
+        else
+        {
+          node_enr[i].push_back(layout.num_enriched());
+          add(i, static_cast<std::int32_t>(ic), EnrichmentKind::tip_vector, 0, tip_of[i]);
+        }
+      }
+      else if (split[i] and !forbidden[i])
+      {
+        node_enr[i].push_back(layout.num_enriched());
+        add(i, static_cast<std::int32_t>(ic), EnrichmentKind::heaviside, 0, -1);
       }
     }
   }
@@ -78,10 +162,9 @@ EnrichmentLayout create_heaviside_layout(std::span<const std::int32_t> cells,
   for (std::size_t c = 0; c < num_cells; ++c)
   {
     const std::size_t before = layout.cell_enr.size();
-    for (std::size_t ic = 0; ic < cracks.size(); ++ic)
-      for (int i = 0; i < 3; ++i)
-        if (const std::int32_t k = enr_id[ic][cells[3 * c + i]]; k >= 0)
-          layout.cell_enr.push_back(k);
+    for (int a = 0; a < 3; ++a)
+      for (const std::int32_t k : node_enr[cells[3 * c + a]])
+        layout.cell_enr.push_back(k);
     if (layout.cell_enr.size() > before)
     {
       layout.cell_index[c] = static_cast<std::int32_t>(layout.cells.size());

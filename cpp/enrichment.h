@@ -1,12 +1,16 @@
 // Which nodes carry enriched dofs, and their numbering (layer a).
 //
-// Every enriched function lives on a "pseudo-node" with two dofs (x, y),
-// numbered after the standard nodes: pseudo-node k has global node index
+// Every enriched function lives on a "pseudo-node" with two dofs, numbered
+// after the standard nodes: pseudo-node k has global node index
 // num_std_nodes + k and scalar dofs 2 (num_std_nodes + k) + {0, 1}. All
 // blocks therefore have block size 2, like DOLFINx's P1 vector space.
+//   heaviside  : N_i (H - H_i) e_d,                 d = x, y
+//   tip_scalar : N_i (F_l - F_l(x_i)) e_d,          l = 0..3 (one pseudo-node each)
+//   tip_vector : N_i (U_m - U_m(x_i)),              m = mode I, mode II (the two dofs)
 #pragma once
 
 #include "crack_geometry.h"
+#include "tip_functions.h"
 
 #include <cstdint>
 #include <span>
@@ -18,20 +22,49 @@ namespace cracklip
 /// Kind of enrichment function of a pseudo-node.
 enum class EnrichmentKind : std::int8_t
 {
-  heaviside = 0 ///< shifted Heaviside N_i (H(x) - H(x_i))
+  heaviside = 0,
+  tip_scalar = 1,
+  tip_vector = 2
+};
+
+/// Tip enrichment of the scene.
+enum class TipEnrichment : std::int8_t
+{
+  none = 0,
+  scalar = 1,
+  vector = 2
+};
+
+struct EnrichmentOptions
+{
+  TipEnrichment tip = TipEnrichment::none;
+  /// Geometric enrichment radius: nodes within it of a tip get tip dofs
+  /// (besides the nodes of the cell holding the tip).
+  double radius = 0.0;
+  /// kappa = 3 - 4 nu, for the vector (Williams) functions.
+  double kappa = 1.8;
 };
 
 /// Enriched pseudo-nodes and the cells on which they live.
 struct EnrichmentLayout
 {
   std::int32_t num_std_nodes = 0;
-  /// Per pseudo-node (num_enriched): base mesh node, crack index, kind, and
-  /// for Heaviside the value H(x_i) at the base node (+1 or -1; +1 for a
-  /// node on the crack).
+  /// Per pseudo-node (num_enriched): base mesh node, crack index, kind,
+  /// function index (l for tip_scalar, else 0), tip (index into tip_frames,
+  /// -1 for heaviside), side of the base node (+1 / -1, sign of phi; +1 on
+  /// the crack) and the shift values at the base node (num_enriched, 4):
+  /// heaviside: H_i; tip_scalar: F_l(x_i); tip_vector: U_I(x_i), U_II(x_i).
   std::vector<std::int32_t> node;
   std::vector<std::int32_t> crack;
   std::vector<std::int8_t> kind;
-  std::vector<double> node_sign;
+  std::vector<std::int8_t> function;
+  std::vector<std::int32_t> tip;
+  std::vector<std::int8_t> node_side;
+  std::vector<double> shift;
+  /// Tips of all cracks: frames and (crack, tip index in that crack).
+  std::vector<TipFrame> tip_frames;
+  std::vector<std::int32_t> tip_crack, tip_local;
+  double kappa = 1.8;
   /// Cells with at least one enriched node (sorted), (num_enriched_cells).
   std::vector<std::int32_t> cells;
   /// CSR of pseudo-nodes per enriched cell: pseudo-nodes of cells[i] are
@@ -45,16 +78,21 @@ struct EnrichmentLayout
   std::int32_t num_nodes_total() const { return num_std_nodes + num_enriched(); }
 };
 
-/// Heaviside enrichment of every crack. A node is enriched for a crack when
+/// Enrichment of every crack.
+///
+/// Tip: with options.tip != none, every node within options.radius of a tip
+/// and every node of a cell whose closure holds the tip gets tip functions.
+/// Heaviside: a node that is not tip-enriched for a crack is enriched when
 /// its support contains a cut cell of that crack, or an edge cell whose crack
 /// edge the node lies on, and no tip or extension cell (where a Heaviside
 /// function would open a crack that is not there): exactly the nodes whose
 /// function N_i (H - H_i) is not zero. Throws if one cell is crossed by two
 /// cracks.
 ///
-/// cells: (num_cells, 3) node indices; num_nodes: number of mesh nodes.
-EnrichmentLayout create_heaviside_layout(std::span<const std::int32_t> cells,
-                                         std::int32_t num_nodes,
-                                         std::span<const CrackGeometry* const> cracks);
+/// x: (num_nodes, 2); cells: (num_cells, 3).
+EnrichmentLayout create_enrichment_layout(std::span<const double> x,
+                                          std::span<const std::int32_t> cells,
+                                          std::span<const CrackGeometry* const> cracks,
+                                          const EnrichmentOptions& options);
 
 } // namespace cracklip

@@ -88,4 +88,41 @@ Rule triangle(int degree)
   return rule;
 }
 
+Rule triangle_product(int n)
+{
+  if (n < 1)
+    throw std::invalid_argument("triangle_product: n must be >= 1");
+  const Rule g = gauss_legendre(n);
+  Rule rule;
+  rule.dim = 2;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+    {
+      const double u = g.points[i], v = g.points[j];
+      rule.points.push_back(u);
+      rule.points.push_back((1.0 - u) * v);
+      rule.weights.push_back(g.weights[i] * g.weights[j] * (1.0 - u));
+    }
+  return rule;
+}
+
+Rule tip_fan(int n_t, int n_eta)
+{
+  if (n_t < 1 or n_eta < 1)
+    throw std::invalid_argument("tip_fan: numbers of points must be >= 1");
+  const Rule gt = gauss_legendre(n_t), ge = gauss_legendre(n_eta);
+  Rule rule;
+  rule.dim = 2;
+  for (int i = 0; i < n_t; ++i)
+    for (int j = 0; j < n_eta; ++j)
+    {
+      const double t = gt.points[i], eta = ge.points[j];
+      const double rho = t * t;
+      rule.points.push_back(rho * (1.0 - eta));
+      rule.points.push_back(rho * eta);
+      rule.weights.push_back(2.0 * t * t * t * gt.weights[i] * ge.weights[j]);
+    }
+  return rule;
+}
+
 } // namespace cracklip::quadrature

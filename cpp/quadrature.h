@@ -24,4 +24,17 @@ Rule gauss_legendre(int n);
 /// sum to 1/2). Degree 1 returns the one-point centroid rule.
 Rule triangle(int degree);
 
+/// Conical product rule with n x n points on the reference triangle (the
+/// paper's plain rule uses n = (p + 3) / 2 for degree p); exact to degree
+/// 2n - 2.
+Rule triangle_product(int n);
+
+/// Quasi-polar rule for integrands with a 1/r (and sqrt(r)) singularity at
+/// vertex 0 of the reference triangle: x = rho ((1 - eta), eta) with
+/// rho = t^2, n_t x n_eta Gauss-Legendre points in (t, eta), weight
+/// 2 t^3 w_t w_eta. The rho factor of the polar Jacobian cancels 1/r, and
+/// t^2 turns sqrt(r) into a polynomial; the eta direction stays analytic,
+/// and converges fast when the triangle's angle at vertex 0 is small.
+Rule tip_fan(int n_t, int n_eta);
+
 } // namespace cracklip::quadrature

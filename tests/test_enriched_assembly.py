@@ -61,7 +61,7 @@ def test_kernel_matches_numpy_reference():
     model = cl.create_model(_plain_scene(md, [cl.Crack([[-2, yc], [2, yc]])]))
     L = model.layout
     rows, cols, vals, ncells = _cracklip.assemble_enriched_stiffness_coo(
-        model.x, model.cells, L, model.geometries, E, nu, 1)
+        model.x, model.cells, L, model.geometries, E, nu, cl.Options().quadrature_options())
     n = model.num_dofs
     K = sp.coo_matrix((vals, (rows, cols)), shape=(n, n)).tocsr()
 
@@ -78,7 +78,7 @@ def test_kernel_matches_numpy_reference():
         funcs = [(2 * v[a], G[a], None) for a in range(3)]
         for k in L.cell_enr[L.cell_offsets[ie]:L.cell_offsets[ie + 1]]:
             a = int(np.flatnonzero(v == L.node[k])[0])
-            funcs.append((2 * (ns + k), G[a], L.node_sign[k]))
+            funcs.append((2 * (ns + k), G[a], L.node_side[k]))
         for side, above in ((1.0, True), (-1.0, False)):
             area = _clip_area(list(xv), yc, above)
             if area == 0.0:

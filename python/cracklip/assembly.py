@@ -77,10 +77,8 @@ def assemble_load(model: XfemModel) -> np.ndarray:
             t = np.broadcast_to(np.asarray(tr.value, dtype=float).reshape(1, 2), (len(pts), 2))
         if not np.all(np.isfinite(t)):
             raise InputError(f"traction on {tr.where!r} evaluates to NaN or infinity")
-        q, node, val = fb["entry_point"], fb["entry_node"], fb["entry_value"]
-        w = fb["weights"][q] * val
-        for c in range(2):
-            np.add.at(b, 2 * node + c, w * t[q, c])
+        q, dof, val = fb["entry_point"], fb["entry_dof"], fb["entry_value"]
+        np.add.at(b, dof, fb["weights"][q] * np.einsum("ij,ij->i", val, t[q]))
     return b
 
 
@@ -104,7 +102,7 @@ def assemble_system(model: XfemModel) -> tuple[PETSc.Mat, PETSc.Vec, dict[str, f
     t0 = time.perf_counter()
     model.num_enriched_cells_integrated = _cracklip.assemble_enriched_stiffness_petsc(
         A.handle, model.x, model.cells, model.layout, model.geometries, mat.E, mat.nu,
-        model.scene.options.quadrature_degree)
+        model.scene.options.quadrature_options())
     A.assemble()
     timings["assemble_enriched"] = time.perf_counter() - t0
 

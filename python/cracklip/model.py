@@ -87,8 +87,11 @@ def create_model(scene: Scene) -> XfemModel:
 
     t0 = time.perf_counter()
     cracks = [_crack_model(scene, crack, x, cells) for crack in scene.cracks]
+    opts = scene.options
     try:
-        layout = _cracklip.create_heaviside_layout(cells, x.shape[0], [c.geometry for c in cracks])
+        layout = _cracklip.create_enrichment_layout(
+            x, cells, [c.geometry for c in cracks], tip=opts.enrichment, radius=opts.radius,
+            kappa=scene.material.kappa)
     except RuntimeError as e:
         raise CrackGeometryError(str(e)) from None
     timings["geometry"] = time.perf_counter() - t0
@@ -166,8 +169,9 @@ def _dirichlet(scene: Scene, V, x: np.ndarray, layout) -> tuple[np.ndarray, np.n
     On a tagged boundary the prescribed displacement is continuous, so the
     Heaviside dofs of the boundary's nodes are fixed to 0 in the constrained
     components as well: their functions do not vanish between the nodes of a
-    boundary facet that the crack crosses. A point condition fixes only the
-    node's standard dofs.
+    boundary facet that the crack crosses. Tip dofs stay free (the tip
+    functions are continuous). A point condition fixes only the node's
+    standard dofs.
     """
     msh = scene.mesh.mesh
     tdim = msh.topology.dim
@@ -204,7 +208,7 @@ def _dirichlet(scene: Scene, V, x: np.ndarray, layout) -> tuple[np.ndarray, np.n
         for j, c in enumerate(comps):
             values.update(zip((2 * nodes + c).tolist(), v[:, j].tolist()))
         if not is_point:
-            pseudo = np.flatnonzero(np.isin(layout.node, nodes))
+            pseudo = np.flatnonzero(np.isin(layout.node, nodes) & (layout.kind == 0))
             for c in comps:
                 values.update(dict.fromkeys((2 * (layout.num_std_nodes + pseudo) + c).tolist(), 0.0))
     dofs = np.array(sorted(values), dtype=np.int32)

@@ -68,10 +68,17 @@ class Solution:
         sides = np.full(len(cells), side, dtype=np.int8)
         return self._evaluate(cells, ref, sides)
 
-    def _evaluate(self, cells, ref, sides) -> np.ndarray:
+    def displacement_gradient(self, points: np.ndarray, side: int = 0) -> np.ndarray:
+        """Displacement gradient (n, 2, 2), [p, i, j] = d u_i / d x_j, at points."""
+        cells, ref = self.locate(points)
+        sides = np.full(len(cells), side, dtype=np.int8)
+        return self._evaluate(cells, ref, sides, gradient=True)[1]
+
+    def _evaluate(self, cells, ref, sides, gradient: bool = False):
         m = self.model
-        return _cracklip.evaluate_displacement(m.x, m.cells, m.layout, m.geometries, self.u,
-                                               cells, ref, sides)
+        u, grad = _cracklip.evaluate_displacement(m.x, m.cells, m.layout, m.geometries, self.u,
+                                                  cells, ref, sides)
+        return (u, grad) if gradient else u
 
     # -- along the crack ----------------------------------------------------
     def crack_opening(self, crack: int = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
@@ -119,15 +126,84 @@ class Solution:
         return _cracklip.compute_subcell_fields(m.x, m.cells, m.layout, m.geometries, self.u,
                                                 mat.E, mat.nu)
 
+    def field_points(self, cells: np.ndarray | None = None) -> dict[str, np.ndarray]:
+        """Quadrature points of the stiffness rules on `cells` (all cells by
+        default) with grad u there: cell, x (n, 2), weight, side, grad_u (n, 2, 2)."""
+        m = self.model
+        cell_list = np.zeros(0, dtype=np.int32) if cells is None else np.asarray(cells, dtype=np.int32)
+        return _cracklip.compute_field_points(m.x, m.cells, m.layout, m.geometries, self.u, cell_list,
+                                              m.scene.options.quadrature_options())
+
     def strain_energy(self) -> float:
-        """1/2 int sigma : eps over the domain (sub-cell exact for P1 + Heaviside)."""
-        return float(self.subcell_fields()["strain_energy"])
+        """1/2 int sigma : eps over the domain (the stiffness quadrature)."""
+        f = self.field_points()
+        eps = strain(f["grad_u"])
+        return float(0.5 * np.sum(f["weight"] * np.einsum("nij,nij->n", stress(eps, self.model.scene.material), eps)))
+
+    def energy_error(self, exact_gradient: typing.Callable[[np.ndarray, np.ndarray], np.ndarray]
+                     ) -> tuple[float, float]:
+        """Energy norm of u - u_exact, absolute and relative to the exact field's.
+
+        exact_gradient(x (n, 2), side (n,)) returns grad u_exact (n, 2, 2);
+        side is +1 / -1 on a crack's lips region (0 elsewhere), for fields
+        that jump across the crack.
+        """
+        f = self.field_points()
+        mat = self.model.scene.material
+        g_ex = np.asarray(exact_gradient(f["x"], f["side"]), dtype=float)
+        e = strain(f["grad_u"] - g_ex)
+        eex = strain(g_ex)
+        err2 = np.sum(f["weight"] * np.einsum("nij,nij->n", stress(e, mat), e))
+        ref2 = np.sum(f["weight"] * np.einsum("nij,nij->n", stress(eex, mat), eex))
+        return float(np.sqrt(err2)), float(np.sqrt(err2 / ref2))
+
+    def stress_intensity_factors(self, crack: int = 0, radius: float | None = None
+                                 ) -> list[dict[str, typing.Any]]:
+        """K_I, K_II at every tip of a crack by the domain interaction integral.
+
+        radius: of the plateau q-function (default 4 mean edge lengths); it
+        must stay inside the domain and away from other cracks.
+        """
+        m = self.model
+        if radius is None:
+            radius = 4.0 * m.h
+        g = m.geometries[crack]
+        mat = m.scene.material
+        out = []
+        for j in range(g.tips.shape[0]):
+            tip, e1 = g.tips[j], g.tip_tangents[j]
+            d = _cracklip.compute_domain_points(m.x, m.cells, m.layout, m.geometries, tip, e1,
+                                                radius, m.scene.options.quadrature_options())
+            if d["weight"].size == 0:
+                raise InputError(f"no cell crosses the SIF domain circle of radius {radius} "
+                                 f"around tip {tip.tolist()}")
+            _, grad = _cracklip.evaluate_displacement(m.x, m.cells, m.layout, m.geometries, self.u,
+                                                      d["cell"], d["ref"], d["side"])
+            I = _cracklip.interaction_integral(tip, e1, mat.E, mat.nu, d["x"], d["weight"],
+                                               d["grad_q"], grad, d["side"],
+                                               int(g.tip_orientation[j]))
+            K = 0.5 * mat.E_star * np.asarray(I)
+            out.append({"tip": tip.tolist(), "direction": e1.tolist(), "K_I": float(K[0]),
+                        "K_II": float(K[1]), "radius": float(radius)})
+        return out
 
     @property
     def standard_displacement(self) -> np.ndarray:
         """(num_nodes, 2) standard dofs = displacement at the nodes (shifted enrichment)."""
         n = self.model.layout.num_std_nodes
         return self.u[: 2 * n].reshape(n, 2)
+
+
+def strain(grad: np.ndarray) -> np.ndarray:
+    """Symmetric part of gradients (n, 2, 2)."""
+    return 0.5 * (grad + np.swapaxes(grad, 1, 2))
+
+
+def stress(eps: np.ndarray, material) -> np.ndarray:
+    """Plane-strain stress (n, 2, 2) of strains (n, 2, 2)."""
+    lmbda = material.E * material.nu / ((1 + material.nu) * (1 - 2 * material.nu))
+    tr = eps[:, 0, 0] + eps[:, 1, 1]
+    return 2 * material.mu * eps + lmbda * tr[:, None, None] * np.eye(2)[None]
 
 
 def _phys(model: XfemModel, cells: np.ndarray, ref: np.ndarray) -> np.ndarray:

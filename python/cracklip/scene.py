@@ -7,7 +7,7 @@ import typing
 
 import numpy as np
 
-from .errors import BoundaryConditionError, CrackGeometryError, MaterialError
+from .errors import BoundaryConditionError, CrackGeometryError, InputError, MaterialError
 from .mesh import MeshData
 
 Value = typing.Union[float, typing.Callable[[np.ndarray], np.ndarray]]
@@ -110,21 +110,70 @@ class Traction:
     value: VectorValue
 
 
+ENRICHMENTS = ("none", "scalar", "vector")
+TIP_QUADRATURES = ("collapsed", "gauss")
+
+
 @dataclasses.dataclass
 class Options:
     """Numerical options.
 
     Attributes:
+        enrichment: crack-tip enrichment: "vector" (the two Williams fields,
+            2 dofs per node), "scalar" (4 branch functions x 2 components, 8
+            dofs per node) or "none" (Heaviside only; the crack then ends at
+            the edge of the tip cell).
+        radius: geometric enrichment radius: nodes within it of a tip get tip
+            dofs. 0 enriches only the nodes of the cell holding the tip.
+        quadrature: rule where tip functions live: "collapsed" (quasi-polar
+            fan from the tip, exact for the 1/r singularity) or "gauss" (the
+            paper's plain ((p + 3) / 2)^2-point rule on sub-triangles).
+        quadrature_degree: p of the "gauss" rule.
+        tip_radial, tip_angular, tip_max_angle: the collapsed rule's points
+            along and across each fan triangle, and its largest apex angle.
+        degree: Gauss degree in cells without tip functions (1 is exact for
+            P1 x Heaviside).
         snap_tol: a node closer to a crack (or tip line) than snap_tol times
             its shortest edge is moved onto it (level set set to 0).
-        quadrature_degree: degree of the sub-triangle rule in cut cells.
         facet_degree: degree of the rule for tractions on boundary facets.
         residual_tol: largest accepted relative residual of the linear solve.
     """
+    enrichment: str = "vector"
+    radius: float = 0.0
+    quadrature: str = "collapsed"
+    quadrature_degree: int = 5
+    tip_radial: int = 4
+    tip_angular: int = 6
+    tip_max_angle: float = 0.6
+    degree: int = 1
     snap_tol: float = 1e-6
-    quadrature_degree: int = 1
     facet_degree: int = 4
     residual_tol: float = 1e-8
+
+    def __post_init__(self):
+        if self.enrichment not in ENRICHMENTS:
+            raise InputError(f"enrichment must be one of {ENRICHMENTS}, got {self.enrichment!r}")
+        if self.quadrature not in TIP_QUADRATURES:
+            raise InputError(f"quadrature must be one of {TIP_QUADRATURES}, got {self.quadrature!r}")
+        if not (self.radius >= 0.0):
+            raise InputError(f"enrichment radius must be >= 0, got {self.radius}")
+        for name in ("quadrature_degree", "tip_radial", "tip_angular", "degree", "facet_degree"):
+            if int(getattr(self, name)) < 1:
+                raise InputError(f"{name} must be >= 1, got {getattr(self, name)}")
+        if not (0.05 <= self.tip_max_angle <= 3.2):
+            raise InputError(f"tip_max_angle must lie in [0.05, 3.2] radians, got {self.tip_max_angle}")
+
+    def quadrature_options(self):
+        """The C++ QuadratureOptions of these options."""
+        from . import _cracklip
+        q = _cracklip.QuadratureOptions()
+        q.degree = int(self.degree)
+        q.tip_rule = getattr(_cracklip.TipQuadrature, self.quadrature)
+        q.tip_radial = int(self.tip_radial)
+        q.tip_angular = int(self.tip_angular)
+        q.tip_max_angle = float(self.tip_max_angle)
+        q.tip_degree = int(self.quadrature_degree)
+        return q
 
 
 @dataclasses.dataclass

@@ -2,7 +2,7 @@
 #include "array.h"
 
 #include <dolfinx_glue.h>
-#include <heaviside_kernels.h>
+#include <enriched_kernels.h>
 #include <pybind11/stl.h>
 #include <sparsity.h>
 
@@ -13,6 +13,18 @@ using Cracks = std::vector<const CrackGeometry*>;
 
 void declare_assembly(py::module& m)
 {
+  py::enum_<TipQuadrature>(m, "TipQuadrature")
+      .value("collapsed", TipQuadrature::collapsed)
+      .value("gauss", TipQuadrature::gauss);
+  py::class_<QuadratureOptions>(m, "QuadratureOptions", "Quadrature rules of the enriched kernels")
+      .def(py::init<>())
+      .def_readwrite("degree", &QuadratureOptions::degree)
+      .def_readwrite("tip_rule", &QuadratureOptions::tip_rule)
+      .def_readwrite("tip_radial", &QuadratureOptions::tip_radial)
+      .def_readwrite("tip_angular", &QuadratureOptions::tip_angular)
+      .def_readwrite("tip_max_angle", &QuadratureOptions::tip_max_angle)
+      .def_readwrite("tip_degree", &QuadratureOptions::tip_degree);
+
   m.def(
       "create_sparsity",
       [](const carray<std::int32_t>& cells, const EnrichmentLayout& layout)
@@ -26,20 +38,21 @@ void declare_assembly(py::module& m)
   m.def(
       "assemble_enriched_stiffness_petsc",
       [](std::uintptr_t mat_handle, const carray<double>& x, const carray<std::int32_t>& cells,
-         const EnrichmentLayout& layout, const Cracks& cracks, double E, double nu, int degree)
+         const EnrichmentLayout& layout, const Cracks& cracks, double E, double nu,
+         const QuadratureOptions& options)
       {
         const MatrixSink sink = petsc_add_sink(reinterpret_cast<Mat>(mat_handle));
-        return assemble_enriched_stiffness(sink, as_span(x), as_span(cells), layout, cracks, E, nu, degree);
+        return assemble_enriched_stiffness(sink, as_span(x), as_span(cells), layout, cracks, E, nu, options);
       },
       py::arg("mat_handle"), py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"),
-      py::arg("E"), py::arg("nu"), py::arg("degree"),
+      py::arg("E"), py::arg("nu"), py::arg("options"),
       "Add the enriched blocks into a PETSc Mat (petsc4py Mat.handle). Returns the number "
       "of cells integrated.");
 
   m.def(
       "assemble_enriched_stiffness_coo",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
-         const Cracks& cracks, double E, double nu, int degree)
+         const Cracks& cracks, double E, double nu, const QuadratureOptions& options)
       {
         std::vector<std::int32_t> ri, ci;
         std::vector<double> v;
@@ -55,12 +68,12 @@ void declare_assembly(py::module& m)
                 v.push_back(a);
               }
         };
-        const auto n = assemble_enriched_stiffness(sink, as_span(x), as_span(cells), layout, cracks, E, nu, degree);
+        const auto n = assemble_enriched_stiffness(sink, as_span(x), as_span(cells), layout, cracks, E, nu, options);
         return py::make_tuple(as_pyarray(std::move(ri)), as_pyarray(std::move(ci)),
                               as_pyarray(std::move(v)), n);
       },
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("E"),
-      py::arg("nu"), py::arg("degree"),
+      py::arg("nu"), py::arg("options"),
       "Enriched blocks as COO (rows, cols, values, num_cells); for tests.");
 
   m.def(
@@ -76,8 +89,9 @@ void declare_assembly(py::module& m)
         d["points"] = as_pyarray(std::move(fb.points), {n, 2});
         d["weights"] = as_pyarray(std::move(fb.weights));
         d["entry_point"] = as_pyarray(std::move(fb.entry_point));
-        d["entry_node"] = as_pyarray(std::move(fb.entry_node));
-        d["entry_value"] = as_pyarray(std::move(fb.entry_value));
+        const py::ssize_t ne = fb.entry_dof.size();
+        d["entry_dof"] = as_pyarray(std::move(fb.entry_dof));
+        d["entry_value"] = as_pyarray(std::move(fb.entry_value), {ne, 2});
         return d;
       },
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("facet_cells"),

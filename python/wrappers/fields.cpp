@@ -1,4 +1,4 @@
-// Bindings: point evaluation and sub-cell fields.
+// Bindings: point evaluation, sub-cell fields, quadrature-point fields.
 #include "array.h"
 
 #include <fields.h>
@@ -17,13 +17,17 @@ void declare_fields(py::module& m)
          const Cracks& cracks, const carray<double>& u, const carray<std::int32_t>& point_cells,
          const carray<double>& ref_points, const carray<std::int8_t>& sides)
       {
+        std::vector<double> grad;
         auto out = evaluate_displacement(as_span(x), as_span(cells), layout, cracks, as_span(u),
-                                         as_span(point_cells), as_span(ref_points), as_span(sides));
+                                         as_span(point_cells), as_span(ref_points), as_span(sides),
+                                         &grad);
         const py::ssize_t n = out.size() / 2;
-        return as_pyarray(std::move(out), {n, 2});
+        return py::make_tuple(as_pyarray(std::move(out), {n, 2}),
+                              as_pyarray(std::move(grad), {n, 2, 2}));
       },
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("u"),
-      py::arg("point_cells"), py::arg("ref_points"), py::arg("sides"));
+      py::arg("point_cells"), py::arg("ref_points"), py::arg("sides"),
+      "Displacement (n, 2) and its gradient (n, 2, 2) at (cell, reference point, side).");
 
   m.def(
       "compute_subcell_fields",
@@ -39,11 +43,31 @@ void declare_fields(py::module& m)
         d["stress"] = as_pyarray(std::move(f.stress), {ns, 3});
         d["parent"] = as_pyarray(std::move(f.parent));
         d["side"] = as_pyarray(std::move(f.side));
-        d["strain_energy"] = f.strain_energy;
         return d;
       },
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("u"),
       py::arg("E"), py::arg("nu"));
+
+  m.def(
+      "compute_field_points",
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
+         const Cracks& cracks, const carray<double>& u, const carray<std::int32_t>& cell_list,
+         const QuadratureOptions& options)
+      {
+        FieldPoints f = compute_field_points(as_span(x), as_span(cells), layout, cracks, as_span(u),
+                                             as_span(cell_list), options);
+        const py::ssize_t n = f.weight.size();
+        py::dict d;
+        d["cell"] = as_pyarray(std::move(f.cell));
+        d["x"] = as_pyarray(std::move(f.x), {n, 2});
+        d["weight"] = as_pyarray(std::move(f.weight));
+        d["side"] = as_pyarray(std::move(f.side));
+        d["grad_u"] = as_pyarray(std::move(f.grad_u), {n, 2, 2});
+        return d;
+      },
+      py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("u"),
+      py::arg("cell_list"), py::arg("options"),
+      "Quadrature points of cells (all if cell_list is empty) with grad u there.");
 }
 
 } // namespace cracklip_wrappers

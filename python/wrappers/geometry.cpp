@@ -42,6 +42,8 @@ void declare_geometry(py::module& m)
                              { return carray<std::int8_t>(g.cell_class.size(), g.cell_class.data()); })
       .def_property_readonly("cell_side", [](const CrackGeometry& g)
                              { return carray<std::int8_t>(g.cell_side.size(), g.cell_side.data()); })
+      .def_property_readonly("tip_orientation", [](const CrackGeometry& g)
+                             { return carray<int>(g.tip_orientation.size(), g.tip_orientation.data()); })
       .def_property_readonly("num_snapped", [](const CrackGeometry& g) { return g.num_snapped; })
       .def_property_readonly(
           "crack_cells",
@@ -131,17 +133,36 @@ void declare_geometry(py::module& m)
       .def_property_readonly("node", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.node.size(), l.node.data()); })
       .def_property_readonly("crack", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.crack.size(), l.crack.data()); })
       .def_property_readonly("kind", [](const EnrichmentLayout& l) { return carray<std::int8_t>(l.kind.size(), l.kind.data()); })
-      .def_property_readonly("node_sign", [](const EnrichmentLayout& l) { return carray<double>(l.node_sign.size(), l.node_sign.data()); })
+      .def_property_readonly("function", [](const EnrichmentLayout& l) { return carray<std::int8_t>(l.function.size(), l.function.data()); })
+      .def_property_readonly("tip", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.tip.size(), l.tip.data()); })
+      .def_property_readonly("node_side", [](const EnrichmentLayout& l) { return carray<std::int8_t>(l.node_side.size(), l.node_side.data()); })
+      .def_property_readonly("tip_crack", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.tip_crack.size(), l.tip_crack.data()); })
+      .def_property_readonly("tip_local", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.tip_local.size(), l.tip_local.data()); })
       .def_property_readonly("cells", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.cells.size(), l.cells.data()); })
       .def_property_readonly("cell_offsets", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.cell_offsets.size(), l.cell_offsets.data()); })
       .def_property_readonly("cell_enr", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.cell_enr.size(), l.cell_enr.data()); });
 
   m.def(
-      "create_heaviside_layout",
-      [](const carray<std::int32_t>& cells, std::int32_t num_nodes,
-         const std::vector<const CrackGeometry*>& cracks)
-      { return create_heaviside_layout(as_span(cells), num_nodes, cracks); },
-      py::arg("cells"), py::arg("num_nodes"), py::arg("cracks"));
+      "create_enrichment_layout",
+      [](const carray<double>& x, const carray<std::int32_t>& cells,
+         const std::vector<const CrackGeometry*>& cracks, const std::string& tip, double radius,
+         double kappa)
+      {
+        EnrichmentOptions opt;
+        if (tip == "none")
+          opt.tip = TipEnrichment::none;
+        else if (tip == "scalar")
+          opt.tip = TipEnrichment::scalar;
+        else if (tip == "vector")
+          opt.tip = TipEnrichment::vector;
+        else
+          throw std::invalid_argument("tip enrichment must be 'none', 'scalar' or 'vector', got '" + tip + "'");
+        opt.radius = radius;
+        opt.kappa = kappa;
+        return create_enrichment_layout(as_span(x), as_span(cells), cracks, opt);
+      },
+      py::arg("x"), py::arg("cells"), py::arg("cracks"), py::arg("tip") = "none",
+      py::arg("radius") = 0.0, py::arg("kappa") = 1.8);
 }
 
 } // namespace cracklip_wrappers

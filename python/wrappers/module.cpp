@@ -6,12 +6,14 @@ namespace cracklip_wrappers
 void declare_geometry(pybind11::module& m);
 void declare_assembly(pybind11::module& m);
 void declare_fields(pybind11::module& m);
+void declare_fracture(pybind11::module& m);
 } // namespace cracklip_wrappers
 
 PYBIND11_MODULE(_cracklip, m)
 {
-  m.doc() = "cracklip C++ kernels: crack geometry, enrichment, enriched assembly, fields";
+  m.doc() = "cracklip C++ kernels: crack geometry, enrichment, enriched assembly, fields, tip functions, SIFs";
   cracklip_wrappers::declare_geometry(m);
   cracklip_wrappers::declare_assembly(m);
   cracklip_wrappers::declare_fields(m);
+  cracklip_wrappers::declare_fracture(m);
 }

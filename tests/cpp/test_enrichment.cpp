@@ -29,10 +29,10 @@ TEST(HeavisideLayout, ThroughCrackEnrichesTwoRowsOfNodes)
   CrackPath c{{-1.0, 0.55, 2.0, 0.55}, {false, false}};
   const CrackGeometry g = compute_crack_geometry(x, cells, c, 1e-8);
   const CrackGeometry* gs[] = {&g};
-  const EnrichmentLayout l = create_heaviside_layout(cells, 121, gs);
+  const EnrichmentLayout l = create_enrichment_layout(x, cells, gs, {});
   EXPECT_EQ(l.num_enriched(), 22); // rows y = 0.5 and y = 0.6
   for (int k = 0; k < l.num_enriched(); ++k)
-    EXPECT_EQ(l.node_sign[k], x[2 * l.node[k] + 1] > 0.55 ? 1.0 : -1.0);
+    EXPECT_EQ(l.shift[4 * k], x[2 * l.node[k] + 1] > 0.55 ? 1.0 : -1.0);
   // Enriched cells: the 20 cut cells and their neighbours in rows 4 and 6.
   EXPECT_EQ(l.cells.size(), 60u);
 }
@@ -46,7 +46,7 @@ TEST(HeavisideLayout, NodesAroundTheTipAreNotHeavisideEnriched)
   const CrackGeometry g = compute_crack_geometry(x, cells, c, 1e-8);
   ASSERT_EQ(g.tip_cells.size(), 1u);
   const CrackGeometry* gs[] = {&g};
-  const EnrichmentLayout l = create_heaviside_layout(cells, 121, gs);
+  const EnrichmentLayout l = create_enrichment_layout(x, cells, gs, {});
   const int tc = g.tip_cells[0].cell;
   for (int k = 0; k < l.num_enriched(); ++k)
     for (int a = 0; a < 3; ++a)
@@ -63,5 +63,5 @@ TEST(HeavisideLayout, TwoCracksInOneCellThrow)
   const CrackGeometry ga = compute_crack_geometry(x, cells, a, 1e-8);
   const CrackGeometry gb = compute_crack_geometry(x, cells, b, 1e-8);
   const CrackGeometry* gs[] = {&ga, &gb};
-  EXPECT_THROW(create_heaviside_layout(cells, 25, gs), std::runtime_error);
+  EXPECT_THROW(create_enrichment_layout(x, cells, gs, {}), std::runtime_error);
 }

@@ -1,6 +1,7 @@
 // Enriched element kernels on cells with an enriched node (layer a).
 #pragma once
 
+#include "cell_quadrature.h"
 #include "crack_geometry.h"
 #include "enrichment.h"
 
@@ -18,31 +19,31 @@ using MatrixSink = std::function<void(std::span<const std::int32_t> rows,
                                       std::span<const std::int32_t> cols,
                                       std::span<const double> values)>;
 
-/// Stiffness of every enriched cell, sub-cell quadrature in cells crossed by
-/// a crack. Writes each cell's element matrix over (standard dofs, enriched
-/// dofs) with its standard-standard block set to zero (DOLFINx assembles
-/// that block on the whole mesh), through `sink`.
+/// Stiffness of every enriched cell (cell_quadrature: sub-cells in crossed
+/// cells, quasi-polar rule where tip functions live). Writes each cell's
+/// element matrix over (standard dofs, enriched dofs) with its
+/// standard-standard block set to zero (DOLFINx assembles that block on the
+/// whole mesh), through `sink`.
 ///
-/// x: (num_nodes, 2); cells: (num_cells, 3); E, nu: plane-strain material;
-/// degree: quadrature degree per sub-triangle (1 is exact for P1 x
-/// Heaviside). Returns the number of cells integrated (= layout.cells.size()).
+/// x: (num_nodes, 2); cells: (num_cells, 3); E, nu: plane-strain material.
+/// Returns the number of cells integrated (= layout.cells.size()).
 std::int32_t assemble_enriched_stiffness(const MatrixSink& sink, std::span<const double> x,
                                          std::span<const std::int32_t> cells,
                                          const EnrichmentLayout& layout,
                                          std::span<const CrackGeometry* const> cracks,
-                                         double E, double nu, int degree);
+                                         double E, double nu, const QuadratureOptions& options);
 
 /// Basis functions on boundary facets, for Neumann loads of any form:
 /// quadrature points of the facets (split at a crack crossing them), and for
-/// each point the value of every (standard or enriched) basis function that
-/// is non-zero there.
+/// each point the vector value of every scalar dof's basis function that is
+/// non-zero there.
 struct FacetBasis
 {
-  std::vector<double> points;      ///< (num_points, 2)
-  std::vector<double> weights;     ///< (num_points), physical length measure
+  std::vector<double> points;            ///< (num_points, 2)
+  std::vector<double> weights;           ///< (num_points), physical length measure
   std::vector<std::int32_t> entry_point; ///< (num_entries) point index
-  std::vector<std::int32_t> entry_node;  ///< (num_entries) global node or pseudo-node id
-  std::vector<double> entry_value;       ///< (num_entries) basis value
+  std::vector<std::int32_t> entry_dof;   ///< (num_entries) global scalar dof
+  std::vector<double> entry_value;       ///< (num_entries, 2) basis function value
 };
 
 /// facet_cells, facet_local: (num_facets) cell and local facet index (facet

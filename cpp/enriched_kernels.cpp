@@ -1,4 +1,4 @@
-#include "heaviside_kernels.h"
+#include "enriched_kernels.h"
 
 #include "enriched_basis.h"
 #include "quadrature.h"
@@ -12,51 +12,42 @@ std::int32_t assemble_enriched_stiffness(const MatrixSink& sink, std::span<const
                                          std::span<const std::int32_t> cells,
                                          const EnrichmentLayout& layout,
                                          std::span<const CrackGeometry* const> cracks,
-                                         double E, double nu, int degree)
+                                         double E, double nu, const QuadratureOptions& options)
 {
   const auto D = plane_strain_matrix(E, nu);
-  const quadrature::Rule rule = quadrature::triangle(degree);
   std::vector<double> val, grad, Ke, B;
   std::vector<int> side;
+  CellQuadrature qp;
   for (const std::int32_t c : layout.cells)
   {
     const P1Cell cell(x, cells, c);
     const CellBasis basis(cell, layout, c);
-    const int nf = basis.num_functions();
-    const int ndof = 2 * nf;
+    const int ndof = basis.num_dofs();
     Ke.assign(ndof * ndof, 0.0);
     B.assign(3 * ndof, 0.0);
-
-    const CellRegions regions(cracks, c);
-    for (int s = 0; s < regions.size(); ++s)
+    compute_cell_quadrature(cell, c, cracks, cell_tip(cell, basis, layout), options, qp);
+    for (int q = 0; q < qp.size(); ++q)
     {
-      const auto tri = regions.triangle(s);
-      region_sides(cracks, c, regions.side(s), side);
-      const double area_ref = 2.0 * regions.area(s);
-      for (int q = 0; q < rule.size(); ++q)
+      region_sides(cracks, c, qp.side[q], side);
+      evaluate_basis(cell, basis, layout, side, {qp.ref[2 * q], qp.ref[2 * q + 1]}, val, grad);
+      // B (3, ndof): strain (xx, yy, 2xy) of each basis function.
+      for (int i = 0; i < ndof; ++i)
       {
-        const double u = rule.points[2 * q], v = rule.points[2 * q + 1];
-        const std::array<double, 2> r = {tri[0][0] + u * (tri[1][0] - tri[0][0]) + v * (tri[2][0] - tri[0][0]),
-                                          tri[0][1] + u * (tri[1][1] - tri[0][1]) + v * (tri[2][1] - tri[0][1])};
-        const double w = rule.weights[q] * area_ref * cell.detJ;
-        evaluate_basis(cell, basis, layout, side, r, val, grad);
-        // B (3, ndof): strain (xx, yy, 2xy) of each vector basis function.
-        for (int f = 0; f < nf; ++f)
-        {
-          const double gx = grad[2 * f], gy = grad[2 * f + 1];
-          B[0 * ndof + 2 * f] = gx;
-          B[1 * ndof + 2 * f + 1] = gy;
-          B[2 * ndof + 2 * f] = gy;
-          B[2 * ndof + 2 * f + 1] = gx;
-        }
-        for (int i = 0; i < ndof; ++i)
-        {
-          double DB[3];
-          for (int a = 0; a < 3; ++a)
-            DB[a] = D[3 * a] * B[i] + D[3 * a + 1] * B[ndof + i] + D[3 * a + 2] * B[2 * ndof + i];
-          for (int j = 0; j < ndof; ++j)
-            Ke[i * ndof + j] += w * (DB[0] * B[j] + DB[1] * B[ndof + j] + DB[2] * B[2 * ndof + j]);
-        }
+        const double* g = &grad[4 * i];
+        B[i] = g[0];
+        B[ndof + i] = g[3];
+        B[2 * ndof + i] = g[1] + g[2];
+      }
+      const double w = qp.weight[q];
+      for (int i = 0; i < ndof; ++i)
+      {
+        double DB[3];
+        for (int a = 0; a < 3; ++a)
+          DB[a] = w * (D[3 * a] * B[i] + D[3 * a + 1] * B[ndof + i] + D[3 * a + 2] * B[2 * ndof + i]);
+        if (DB[0] == 0.0 and DB[1] == 0.0 and DB[2] == 0.0)
+          continue;
+        for (int j = 0; j < ndof; ++j)
+          Ke[i * ndof + j] += DB[0] * B[j] + DB[1] * B[ndof + j] + DB[2] * B[2 * ndof + j];
       }
     }
     // DOLFINx owns the standard-standard block.
@@ -92,9 +83,12 @@ FacetBasis compute_facet_basis(std::span<const double> x, std::span<const std::i
     const int a = (lf + 1) % 3, b = (lf + 2) % 3;
     const double len = std::hypot(cell.xv[b][0] - cell.xv[a][0], cell.xv[b][1] - cell.xv[a][1]);
     // Pieces of the facet in parameter t in [0, 1], split where a crack
-    // crossing the cell crosses the facet.
+    // crossing (or ending in) the cell crosses the facet.
     std::vector<double> cuts = {0.0, 1.0};
-    const int ic = crossing_crack(cracks, c);
+    int ic = -1;
+    for (std::size_t k = 0; k < cracks.size(); ++k)
+      if (cracks[k]->crack_cell_index[c] >= 0 or cracks[k]->tip_cell_index[c] >= 0)
+        ic = static_cast<int>(k);
     if (ic >= 0)
     {
       const double fa = cracks[ic]->phi[cell.nodes[a]], fb = cracks[ic]->phi[cell.nodes[b]];
@@ -120,16 +114,17 @@ FacetBasis compute_facet_basis(std::span<const double> x, std::span<const std::i
                                           ref[a][1] + t * (ref[b][1] - ref[a][1])};
         evaluate_basis(cell, basis, layout, side, r, val, grad);
         const auto xp = cell.physical(r);
-        const std::int32_t ip = static_cast<std::int32_t>(out.weights.size());
+        const auto ip = static_cast<std::int32_t>(out.weights.size());
         out.points.insert(out.points.end(), xp.begin(), xp.end());
         out.weights.push_back(g.weights[q] * (t1 - t0) * len);
-        for (int fn = 0; fn < basis.num_functions(); ++fn)
+        for (int i = 0; i < basis.num_dofs(); ++i)
         {
-          if (val[fn] == 0.0)
+          if (val[2 * i] == 0.0 and val[2 * i + 1] == 0.0)
             continue;
           out.entry_point.push_back(ip);
-          out.entry_node.push_back(basis.dofs[2 * fn] / 2);
-          out.entry_value.push_back(val[fn]);
+          out.entry_dof.push_back(basis.dofs[i]);
+          out.entry_value.push_back(val[2 * i]);
+          out.entry_value.push_back(val[2 * i + 1]);
         }
       }
     }

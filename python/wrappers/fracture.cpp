@@ -1,0 +1,131 @@
+// Bindings: tip enrichment functions, interaction integral.
+#include "array.h"
+
+#include <cell_quadrature.h>
+#include <interaction_integral.h>
+#include <pybind11/stl.h>
+#include <tip_functions.h>
+
+namespace cracklip_wrappers
+{
+using namespace cracklip;
+using Cracks = std::vector<const CrackGeometry*>;
+
+namespace
+{
+TipFrame frame(std::array<double, 2> tip, std::array<double, 2> e1, int orientation)
+{
+  if (orientation != 1 and orientation != -1)
+    throw std::invalid_argument("tip orientation must be +1 or -1");
+  return TipFrame{tip, e1, orientation};
+}
+} // namespace
+
+void declare_fracture(py::module& m)
+{
+  m.def(
+      "tip_cell_rule",
+      [](const carray<double>& polygon, std::array<double, 2> apex, const QuadratureOptions& options)
+      {
+        std::vector<Point2> poly(polygon.size() / 2);
+        for (std::size_t k = 0; k < poly.size(); ++k)
+          poly[k] = {polygon.data()[2 * k], polygon.data()[2 * k + 1]};
+        const auto fans = fan_triangles(apex, poly, options.tip_max_angle);
+        std::vector<double> pts, w;
+        fan_rule(fans, options, pts, w);
+        const py::ssize_t n = w.size();
+        return py::make_tuple(as_pyarray(std::move(pts), {n, 2}), as_pyarray(std::move(w)));
+      },
+      py::arg("polygon"), py::arg("apex"), py::arg("options"),
+      "Collapsed (quasi-polar) rule over a polygon fanned from a tip inside it: points (n, 2), weights.");
+
+  m.def(
+      "branch_functions",
+      [](std::array<double, 2> tip, std::array<double, 2> e1, const carray<double>& points,
+         const carray<std::int8_t>& sides, int orientation)
+      {
+        const py::ssize_t n = points.size() / 2;
+        std::vector<double> F(4 * n), dF(8 * n);
+        std::array<double, 4> f;
+        std::array<std::array<double, 2>, 4> df;
+        for (py::ssize_t p = 0; p < n; ++p)
+        {
+          branch_functions(frame(tip, e1, orientation), {points.data()[2 * p], points.data()[2 * p + 1]},
+                           sides.data()[p], f, df);
+          for (int l = 0; l < 4; ++l)
+          {
+            F[4 * p + l] = f[l];
+            dF[8 * p + 2 * l] = df[l][0];
+            dF[8 * p + 2 * l + 1] = df[l][1];
+          }
+        }
+        return py::make_tuple(as_pyarray(std::move(F), {n, 4}), as_pyarray(std::move(dF), {n, 4, 2}));
+      },
+      py::arg("tip"), py::arg("e1"), py::arg("points"), py::arg("sides"), py::arg("orientation") = 1,
+      "Scalar branch functions (n, 4) and global gradients (n, 4, 2).");
+
+  m.def(
+      "williams_displacement",
+      [](std::array<double, 2> tip, std::array<double, 2> e1, double kappa,
+         const carray<double>& points, const carray<std::int8_t>& sides, int orientation)
+      {
+        const py::ssize_t n = points.size() / 2;
+        std::vector<double> U(4 * n), dU(8 * n);
+        std::array<std::array<double, 2>, 2> u;
+        std::array<std::array<std::array<double, 2>, 2>, 2> du;
+        for (py::ssize_t p = 0; p < n; ++p)
+        {
+          williams_displacement(frame(tip, e1, orientation), {points.data()[2 * p], points.data()[2 * p + 1]},
+                                sides.data()[p], kappa, u, du);
+          for (int mo = 0; mo < 2; ++mo)
+            for (int i = 0; i < 2; ++i)
+            {
+              U[4 * p + 2 * mo + i] = u[mo][i];
+              for (int j = 0; j < 2; ++j)
+                dU[8 * p + 4 * mo + 2 * i + j] = du[mo][i][j];
+            }
+        }
+        return py::make_tuple(as_pyarray(std::move(U), {n, 2, 2}), as_pyarray(std::move(dU), {n, 2, 2, 2}));
+      },
+      py::arg("tip"), py::arg("e1"), py::arg("kappa"), py::arg("points"), py::arg("sides"),
+      py::arg("orientation") = 1,
+      "Williams vector functions without K/(2 mu sqrt(2 pi)): U (n, mode, comp), dU (n, mode, comp, d/dx_j).");
+
+  m.def(
+      "interaction_integral",
+      [](std::array<double, 2> tip, std::array<double, 2> e1, double E, double nu,
+         const carray<double>& points, const carray<double>& weights, const carray<double>& grad_q,
+         const carray<double>& grad_u, const carray<std::int8_t>& sides, int orientation)
+      {
+        return interaction_integral(frame(tip, e1, orientation), E, nu, as_span(points), as_span(weights),
+                                    as_span(grad_q), as_span(grad_u), as_span(sides));
+      },
+      py::arg("tip"), py::arg("e1"), py::arg("E"), py::arg("nu"), py::arg("points"),
+      py::arg("weights"), py::arg("grad_q"), py::arg("grad_u"), py::arg("sides"),
+      py::arg("orientation") = 1,
+      "Interaction integrals (I_mode_I, I_mode_II) from values at points; K = E* I / 2.");
+
+  m.def(
+      "compute_domain_points",
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
+         const Cracks& cracks, std::array<double, 2> tip, std::array<double, 2> e1, double radius,
+         const QuadratureOptions& options)
+      {
+        DomainPoints d = compute_domain_points(as_span(x), as_span(cells), layout, cracks,
+                                               frame(tip, e1, 1), radius, options);
+        const py::ssize_t n = d.weight.size();
+        py::dict out;
+        out["cell"] = as_pyarray(std::move(d.cell));
+        out["ref"] = as_pyarray(std::move(d.ref), {n, 2});
+        out["x"] = as_pyarray(std::move(d.x), {n, 2});
+        out["weight"] = as_pyarray(std::move(d.weight));
+        out["side"] = as_pyarray(std::move(d.side));
+        out["grad_q"] = as_pyarray(std::move(d.grad_q), {n, 2});
+        return out;
+      },
+      py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("tip"),
+      py::arg("e1"), py::arg("radius"), py::arg("options"),
+      "Quadrature points of the ring where the plateau q of `radius` has a gradient.");
+}
+
+} // namespace cracklip_wrappers
