@@ -35,7 +35,7 @@ struct QuadratureOptions
 {
   int degree = 2; ///< Gauss degree where no tip function lives
   TipQuadrature tip_rule = TipQuadrature::collapsed;
-  int tip_radial = 4;           ///< collapsed: points along each ray (t)
+  int tip_radial = 6;           ///< collapsed: points along each ray (t)
   int tip_angular = 6;          ///< collapsed: points across each fan triangle (eta)
   double tip_max_angle = 0.6;   ///< collapsed: largest apex angle of a fan triangle (radians)
   int tip_degree = 5;           ///< gauss: degree p, n = (p + 3) / 2

@@ -136,6 +136,26 @@ inline void evaluate_basis(const P1Cell& cell, const CellBasis& basis,
   std::array<std::array<double, 2>, 2> U;
   std::array<std::array<std::array<double, 2>, 2>, 2> dU;
   std::int32_t cached_tip = -1;
+  // Ramp R = sum of N_a over the core tip nodes of a crack (corrected X-FEM):
+  // 1 in cells whose nodes are all core nodes, 0 in cells without one. Tip
+  // functions are multiplied by R and Heaviside functions by 1 - R, so that
+  // in blending cells the two share the jump and both stay P1 x enrichment.
+  std::int32_t ramp_crack = -1;
+  double R = 1.0, dR[2] = {0.0, 0.0};
+  auto ramp = [&](std::int32_t crack)
+  {
+    if (crack == ramp_crack)
+      return;
+    ramp_crack = crack;
+    bool core[3] = {false, false, false};
+    for (std::size_t j = 0; j < basis.enr.size(); ++j)
+      if (layout.crack[basis.enr[j]] == crack and layout.core[basis.enr[j]])
+        core[basis.enr_local[j]] = true;
+    R = 0.0, dR[0] = 0.0, dR[1] = 0.0;
+    for (int a = 0; a < 3; ++a)
+      if (core[a])
+        R += N[a], dR[0] += cell.grad[a][0], dR[1] += cell.grad[a][1];
+  };
   for (std::size_t j = 0; j < basis.enr.size(); ++j)
   {
     const std::int32_t k = basis.enr[j];
@@ -144,10 +164,18 @@ inline void evaluate_basis(const P1Cell& cell, const CellBasis& basis,
     const double* sh = &layout.shift[4 * k];
     const auto kind = static_cast<EnrichmentKind>(layout.kind[k]);
     const int sd = side[layout.crack[k]];
+    if (layout.corrected)
+      ramp(layout.crack[k]);
+    else
+      R = 1.0, dR[0] = dR[1] = 0.0;
     if (kind == EnrichmentKind::heaviside)
     {
       const double jump = sd - sh[0];
-      scalar(f, N[a] * jump, cell.grad[a][0] * jump, cell.grad[a][1] * jump);
+      if (!layout.corrected)
+        scalar(f, N[a] * jump, cell.grad[a][0] * jump, cell.grad[a][1] * jump);
+      else // phi = N_a jump (1 - R)
+        scalar(f, N[a] * jump * (1.0 - R), (cell.grad[a][0] * (1.0 - R) - N[a] * dR[0]) * jump,
+               (cell.grad[a][1] * (1.0 - R) - N[a] * dR[1]) * jump);
       continue;
     }
     const std::int32_t t = layout.tip[k];
@@ -157,8 +185,10 @@ inline void evaluate_basis(const P1Cell& cell, const CellBasis& basis,
         branch_functions(layout.tip_frames[t], x, sd, F, dF), cached_tip = t;
       const int l = layout.function[k];
       const double v = F[l] - sh[0];
-      scalar(f, N[a] * v, cell.grad[a][0] * v + N[a] * dF[l][0],
-             cell.grad[a][1] * v + N[a] * dF[l][1]);
+      // phi = N_a v R
+      scalar(f, N[a] * v * R,
+             (cell.grad[a][0] * v + N[a] * dF[l][0]) * R + N[a] * v * dR[0],
+             (cell.grad[a][1] * v + N[a] * dF[l][1]) * R + N[a] * v * dR[1]);
       continue;
     }
     // tip_vector: dof 2f + m is mode m, a vector-valued function.
@@ -170,9 +200,9 @@ inline void evaluate_basis(const P1Cell& cell, const CellBasis& basis,
       for (int comp = 0; comp < 2; ++comp)
       {
         const double v = U[m][comp] - sh[2 * m + comp];
-        val[2 * i + comp] = N[a] * v;
+        val[2 * i + comp] = N[a] * v * R;
         for (int b = 0; b < 2; ++b)
-          grad[(2 * i + comp) * 2 + b] = cell.grad[a][b] * v + N[a] * dU[m][comp][b];
+          grad[(2 * i + comp) * 2 + b] = (cell.grad[a][b] * v + N[a] * dU[m][comp][b]) * R + N[a] * v * dR[b];
       }
     }
   }

@@ -33,6 +33,7 @@ EnrichmentLayout create_enrichment_layout(std::span<const double> x,
   EnrichmentLayout layout;
   layout.num_std_nodes = num_nodes;
   layout.kappa = options.kappa;
+  layout.corrected = options.corrected;
 
   // One cell may be crossed by one crack only.
   std::vector<std::int32_t> crossed_by(num_cells, -1);
@@ -57,8 +58,9 @@ EnrichmentLayout create_enrichment_layout(std::span<const double> x,
   }
 
   auto add = [&](std::int32_t i, std::int32_t ic, EnrichmentKind kind, int function,
-                 std::int32_t tip)
+                 std::int32_t tip, bool core)
   {
+    layout.core.push_back(core ? 1 : 0);
     const CrackGeometry& g = *cracks[ic];
     const int side = g.phi[i] >= 0.0 ? 1 : -1;
     layout.node.push_back(i);
@@ -94,6 +96,7 @@ EnrichmentLayout create_enrichment_layout(std::span<const double> x,
     const CrackGeometry& g = *cracks[ic];
     // Tip enrichment.
     std::vector<std::int32_t> tip_of(num_nodes, -1);
+    std::vector<std::int8_t> is_core(num_nodes, 0);
     if (options.tip != TipEnrichment::none)
     {
       const int num_tips = static_cast<int>(g.tips.size() / 2);
@@ -114,6 +117,19 @@ EnrichmentLayout create_enrichment_layout(std::span<const double> x,
             for (int a = 0; a < 3; ++a)
               tip_of[cells[3 * c + a]] = tid;
       }
+      for (std::int32_t i = 0; i < num_nodes; ++i)
+        is_core[i] = tip_of[i] >= 0;
+      if (options.corrected)
+        // Blending nodes: the other nodes of cells that hold a core node.
+        for (std::size_t c = 0; c < num_cells; ++c)
+        {
+          const std::int32_t* v = &cells[3 * c];
+          const int a = is_core[v[0]] ? 0 : (is_core[v[1]] ? 1 : (is_core[v[2]] ? 2 : -1));
+          if (a >= 0)
+            for (int b = 0; b < 3; ++b)
+              if (tip_of[v[b]] < 0)
+                tip_of[v[b]] = tip_of[v[a]];
+        }
     }
     // Heaviside candidates.
     std::vector<std::int8_t> split(num_nodes, 0), forbidden(num_nodes, 0);
@@ -132,26 +148,41 @@ EnrichmentLayout create_enrichment_layout(std::span<const double> x,
           forbidden[v] = 1;
       }
     }
+    // Core nodes of cells that also hold a non-core node.
+    std::vector<std::int8_t> blending_core(num_nodes, 0);
+    for (std::size_t c = 0; c < num_cells; ++c)
+    {
+      const std::int32_t* v = &cells[3 * c];
+      if (!(is_core[v[0]] and is_core[v[1]] and is_core[v[2]]))
+        for (int a = 0; a < 3; ++a)
+          blending_core[v[a]] = is_core[v[a]];
+    }
     for (std::int32_t i = 0; i < num_nodes; ++i)
     {
+      const auto icr = static_cast<std::int32_t>(ic);
       if (tip_of[i] >= 0)
       {
         if (options.tip == TipEnrichment::scalar)
           for (int l = 0; l < 4; ++l)
           {
             node_enr[i].push_back(layout.num_enriched());
-            add(i, static_cast<std::int32_t>(ic), EnrichmentKind::tip_scalar, l, tip_of[i]);
+            add(i, icr, EnrichmentKind::tip_scalar, l, tip_of[i], is_core[i]);
           }
         else
         {
           node_enr[i].push_back(layout.num_enriched());
-          add(i, static_cast<std::int32_t>(ic), EnrichmentKind::tip_vector, 0, tip_of[i]);
+          add(i, icr, EnrichmentKind::tip_vector, 0, tip_of[i], is_core[i]);
         }
       }
-      else if (split[i] and !forbidden[i])
+      // Heaviside on split nodes outside the core. With the corrected scheme
+      // the Heaviside functions carry the factor 1 - R: blending nodes keep
+      // them, and so do core nodes of blending cells, since the ramped tip
+      // functions carry only the fraction R of the jump there.
+      const bool heaviside_ok = !is_core[i] or (options.corrected and blending_core[i]);
+      if (heaviside_ok and split[i] and !forbidden[i])
       {
         node_enr[i].push_back(layout.num_enriched());
-        add(i, static_cast<std::int32_t>(ic), EnrichmentKind::heaviside, 0, -1);
+        add(i, icr, EnrichmentKind::heaviside, 0, -1, false);
       }
     }
   }

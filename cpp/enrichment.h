@@ -43,6 +43,12 @@ struct EnrichmentOptions
   double radius = 0.0;
   /// kappa = 3 - 4 nu, for the vector (Williams) functions.
   double kappa = 1.8;
+  /// Corrected X-FEM (Fries 2008): tip functions are multiplied by the ramp
+  /// R = sum of N_i over the "core" tip nodes, and every node of a cell with a
+  /// core node carries them. In blending cells the enrichment then reproduces
+  /// R (F - I_h F), which removes the O(sqrt(h)) blending error of the
+  /// standard scheme; inside the core R = 1 and nothing changes.
+  bool corrected = true;
 };
 
 /// Enriched pseudo-nodes and the cells on which they live.
@@ -61,10 +67,16 @@ struct EnrichmentLayout
   std::vector<std::int32_t> tip;
   std::vector<std::int8_t> node_side;
   std::vector<double> shift;
+  /// Per pseudo-node: 1 if its base node is a core tip node (within the
+  /// radius or on the tip cell), 0 for blending nodes of the corrected
+  /// scheme and for Heaviside pseudo-nodes.
+  std::vector<std::int8_t> core;
   /// Tips of all cracks: frames and (crack, tip index in that crack).
   std::vector<TipFrame> tip_frames;
   std::vector<std::int32_t> tip_crack, tip_local;
   double kappa = 1.8;
+  /// Tip functions carry the core ramp (corrected X-FEM).
+  bool corrected = false;
   /// Cells with at least one enriched node (sorted), (num_enriched_cells).
   std::vector<std::int32_t> cells;
   /// CSR of pseudo-nodes per enriched cell: pseudo-nodes of cells[i] are
@@ -81,7 +93,9 @@ struct EnrichmentLayout
 /// Enrichment of every crack.
 ///
 /// Tip: with options.tip != none, every node within options.radius of a tip
-/// and every node of a cell whose closure holds the tip gets tip functions.
+/// and every node of a cell whose closure holds the tip (the core) gets tip
+/// functions; with options.corrected, so does every node of a cell with a
+/// core node, and all tip functions are multiplied by the core's ramp.
 /// Heaviside: a node that is not tip-enriched for a crack is enriched when
 /// its support contains a cut cell of that crack, or an edge cell whose crack
 /// edge the node lies on, and no tip or extension cell (where a Heaviside

@@ -7,6 +7,7 @@ and per-boundary arrays.
 from __future__ import annotations
 
 import dataclasses
+import inspect
 import logging
 import time
 import typing
@@ -91,7 +92,7 @@ def create_model(scene: Scene) -> XfemModel:
     try:
         layout = _cracklip.create_enrichment_layout(
             x, cells, [c.geometry for c in cracks], tip=opts.enrichment, radius=opts.radius,
-            kappa=scene.material.kappa)
+            kappa=scene.material.kappa, corrected=opts.blending == "corrected")
     except RuntimeError as e:
         raise CrackGeometryError(str(e)) from None
     timings["geometry"] = time.perf_counter() - t0
@@ -99,7 +100,7 @@ def create_model(scene: Scene) -> XfemModel:
                 layout.num_enriched, layout.cells.size)
 
     t0 = time.perf_counter()
-    bc_dofs, bc_values = _dirichlet(scene, V, x, layout)
+    bc_dofs, bc_values = _dirichlet(scene, V, x, layout, [c.geometry for c in cracks])
     check_rigid_motion(x, bc_dofs[bc_dofs < 2 * x.shape[0]])
     timings["constraints"] = time.perf_counter() - t0
     return XfemModel(scene, V, x, cells, cracks, layout, bc_dofs, bc_values, timings)
@@ -163,19 +164,35 @@ def _component_dofs(nodes: np.ndarray, component: int | None) -> np.ndarray:
     return np.sort(np.concatenate([2 * nodes + c for c in comps])).astype(np.int32)
 
 
-def _dirichlet(scene: Scene, V, x: np.ndarray, layout) -> tuple[np.ndarray, np.ndarray]:
+def _accepts_side(f) -> bool:
+    try:
+        params = inspect.signature(f).parameters.values()
+    except (TypeError, ValueError):
+        return False
+    positional = [p for p in params if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+    return len(positional) >= 2 or any(p.kind == p.VAR_POSITIONAL for p in params)
+
+
+def _dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tuple[np.ndarray, np.ndarray]:
     """Constrained scalar dofs and their values (later conditions win).
 
-    On a tagged boundary the prescribed displacement is continuous, so the
-    Heaviside dofs of the boundary's nodes are fixed to 0 in the constrained
-    components as well: their functions do not vanish between the nodes of a
-    boundary facet that the crack crosses. Tip dofs stay free (the tip
-    functions are continuous). A point condition fixes only the node's
-    standard dofs.
+    A value callable f(x) is continuous; f(x, side) may jump across a crack
+    (side (n,) = +1 / -1, the side of the crack nearest to each point). On a
+    tagged boundary the Heaviside dofs of the boundary's nodes are fixed too,
+    because their functions do not vanish between the nodes of a boundary
+    facet that the crack crosses: to 0 for a continuous value, to the jump
+    (f(x_i, -H_i) - f(x_i, H_i)) / (-2 H_i) otherwise. Tip dofs stay free.
+    A point condition fixes only the node's standard dofs.
     """
     msh = scene.mesh.mesh
     tdim = msh.topology.dim
     msh.topology.create_connectivity(tdim - 1, tdim)
+    # Side of every node with respect to its nearest crack (+1 without cracks).
+    node_side = np.ones(x.shape[0], dtype=np.int8)
+    if geometries:
+        phis = np.stack([g.phi for g in geometries])
+        nearest = phis[np.argmin(np.abs(phis), axis=0), np.arange(x.shape[0])]
+        node_side = np.where(nearest >= 0.0, 1, -1).astype(np.int8)
     values: dict[int, float] = {}
     for bc in scene.dirichlet:
         is_point = isinstance(bc.where, (tuple, list, np.ndarray))
@@ -195,22 +212,27 @@ def _dirichlet(scene: Scene, V, x: np.ndarray, layout) -> tuple[np.ndarray, np.n
                 raise BoundaryConditionError(f"Dirichlet boundary {bc.where!r} has no facets")
             nodes = dolfinx.fem.locate_dofs_topological(V, tdim - 1, facets)
         comps = [0, 1] if bc.component is None else [bc.component]
-        if callable(bc.value):
-            v = np.asarray(bc.value(x[nodes]), dtype=float)
-            if bc.component is None:
-                v = v.reshape(len(nodes), 2)
-            else:
-                v = v.reshape(len(nodes), 1)
-        else:
-            v = np.full((len(nodes), len(comps)), float(bc.value))
+        with_side = callable(bc.value) and _accepts_side(bc.value)
+
+        def evaluate(points, sides):
+            if not callable(bc.value):
+                return np.full((len(points), len(comps)), float(bc.value))
+            out = bc.value(points, sides) if with_side else bc.value(points)
+            return np.asarray(out, dtype=float).reshape(len(points), len(comps))
+        v = evaluate(x[nodes], node_side[nodes])
         if not np.all(np.isfinite(v)):
             raise BoundaryConditionError(f"Dirichlet values on {bc.where!r} contain NaN or infinity")
         for j, c in enumerate(comps):
             values.update(zip((2 * nodes + c).tolist(), v[:, j].tolist()))
         if not is_point:
             pseudo = np.flatnonzero(np.isin(layout.node, nodes) & (layout.kind == 0))
-            for c in comps:
-                values.update(dict.fromkeys((2 * (layout.num_std_nodes + pseudo) + c).tolist(), 0.0))
+            jump = np.zeros((len(pseudo), len(comps)))
+            if with_side and len(pseudo):
+                H = layout.node_side[pseudo].astype(float)
+                xp = x[layout.node[pseudo]]
+                jump = (evaluate(xp, -H.astype(np.int8)) - evaluate(xp, H.astype(np.int8))) / (-2.0 * H[:, None])
+            for j, c in enumerate(comps):
+                values.update(zip((2 * (layout.num_std_nodes + pseudo) + c).tolist(), jump[:, j].tolist()))
     dofs = np.array(sorted(values), dtype=np.int32)
     return dofs, np.array([values[d] for d in dofs.tolist()], dtype=np.float64)
 

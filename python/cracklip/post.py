@@ -13,6 +13,12 @@ from .errors import InputError
 from .model import XfemModel
 
 
+#: Gauss degree of the interaction integral in cells without tip functions:
+#: the integrand (smooth, non-polynomial auxiliary fields) needs more than the
+#: stiffness's rule.
+SIF_DEGREE = 8
+
+
 @dataclasses.dataclass
 class Solution:
     """Displacement dofs of a model and what can be derived from them.
@@ -126,13 +132,22 @@ class Solution:
         return _cracklip.compute_subcell_fields(m.x, m.cells, m.layout, m.geometries, self.u,
                                                 mat.E, mat.nu)
 
-    def field_points(self, cells: np.ndarray | None = None) -> dict[str, np.ndarray]:
+    def field_points(self, cells: np.ndarray | None = None, degree: int | None = None
+                     ) -> dict[str, np.ndarray]:
         """Quadrature points of the stiffness rules on `cells` (all cells by
-        default) with grad u there: cell, x (n, 2), weight, side, grad_u (n, 2, 2)."""
+        default) with grad u there: cell, x (n, 2), weight, side, grad_u (n, 2, 2).
+        degree: Gauss degree in cells without tip functions (default: the
+        stiffness's)."""
         m = self.model
         cell_list = np.zeros(0, dtype=np.int32) if cells is None else np.asarray(cells, dtype=np.int32)
         return _cracklip.compute_field_points(m.x, m.cells, m.layout, m.geometries, self.u, cell_list,
-                                              m.scene.options.quadrature_options())
+                                              self._quadrature(degree))
+
+    def _quadrature(self, degree: int | None):
+        q = self.model.scene.options.quadrature_options()
+        if degree is not None:
+            q.degree = max(q.degree, int(degree))
+        return q
 
     def strain_energy(self) -> float:
         """1/2 int sigma : eps over the domain (the stiffness quadrature)."""
@@ -148,7 +163,7 @@ class Solution:
         side is +1 / -1 on a crack's lips region (0 elsewhere), for fields
         that jump across the crack.
         """
-        f = self.field_points()
+        f = self.field_points(degree=6)
         mat = self.model.scene.material
         g_ex = np.asarray(exact_gradient(f["x"], f["side"]), dtype=float)
         e = strain(f["grad_u"] - g_ex)
@@ -173,7 +188,7 @@ class Solution:
         for j in range(g.tips.shape[0]):
             tip, e1 = g.tips[j], g.tip_tangents[j]
             d = _cracklip.compute_domain_points(m.x, m.cells, m.layout, m.geometries, tip, e1,
-                                                radius, m.scene.options.quadrature_options())
+                                                radius, self._quadrature(SIF_DEGREE))
             if d["weight"].size == 0:
                 raise InputError(f"no cell crosses the SIF domain circle of radius {radius} "
                                  f"around tip {tip.tolist()}")

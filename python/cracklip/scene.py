@@ -86,7 +86,9 @@ class Dirichlet:
         where: a boundary tag name or number, or a point (x, y) that is a mesh node.
         component: 0 (x), 1 (y) or None (both).
         value: a number, or a callable f(x) with x of shape (n, 2) returning
-            (n,) for one component or (n, 2) for both.
+            (n,) for one component or (n, 2) for both; a callable f(x, side)
+            also receives the crack side (n,) of each point (+1 / -1) and may
+            jump across a crack (an exact crack field on a cut boundary).
     """
     where: typing.Union[str, int, tuple[float, float]]
     component: typing.Optional[int] = None
@@ -125,6 +127,9 @@ class Options:
             the edge of the tip cell).
         radius: geometric enrichment radius: nodes within it of a tip get tip
             dofs. 0 enriches only the nodes of the cell holding the tip.
+        blending: "corrected" (tip functions times the ramp of the enriched
+            nodes' partition of unity, also on the blending cells' nodes:
+            Fries' corrected X-FEM, optimal convergence) or "standard".
         quadrature: rule where tip functions live: "collapsed" (quasi-polar
             fan from the tip, exact for the 1/r singularity) or "gauss" (the
             paper's plain ((p + 3) / 2)^2-point rule on sub-triangles).
@@ -140,9 +145,10 @@ class Options:
     """
     enrichment: str = "vector"
     radius: float = 0.0
+    blending: str = "corrected"
     quadrature: str = "collapsed"
     quadrature_degree: int = 5
-    tip_radial: int = 4
+    tip_radial: int = 6
     tip_angular: int = 6
     tip_max_angle: float = 0.6
     degree: int = 1
@@ -153,6 +159,8 @@ class Options:
     def __post_init__(self):
         if self.enrichment not in ENRICHMENTS:
             raise InputError(f"enrichment must be one of {ENRICHMENTS}, got {self.enrichment!r}")
+        if self.blending not in ("corrected", "standard"):
+            raise InputError(f"blending must be 'corrected' or 'standard', got {self.blending!r}")
         if self.quadrature not in TIP_QUADRATURES:
             raise InputError(f"quadrature must be one of {TIP_QUADRATURES}, got {self.quadrature!r}")
         if not (self.radius >= 0.0):

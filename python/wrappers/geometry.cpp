@@ -135,6 +135,7 @@ void declare_geometry(py::module& m)
       .def_property_readonly("kind", [](const EnrichmentLayout& l) { return carray<std::int8_t>(l.kind.size(), l.kind.data()); })
       .def_property_readonly("function", [](const EnrichmentLayout& l) { return carray<std::int8_t>(l.function.size(), l.function.data()); })
       .def_property_readonly("tip", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.tip.size(), l.tip.data()); })
+      .def_property_readonly("core", [](const EnrichmentLayout& l) { return carray<std::int8_t>(l.core.size(), l.core.data()); })
       .def_property_readonly("node_side", [](const EnrichmentLayout& l) { return carray<std::int8_t>(l.node_side.size(), l.node_side.data()); })
       .def_property_readonly("tip_crack", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.tip_crack.size(), l.tip_crack.data()); })
       .def_property_readonly("tip_local", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.tip_local.size(), l.tip_local.data()); })
@@ -146,9 +147,10 @@ void declare_geometry(py::module& m)
       "create_enrichment_layout",
       [](const carray<double>& x, const carray<std::int32_t>& cells,
          const std::vector<const CrackGeometry*>& cracks, const std::string& tip, double radius,
-         double kappa)
+         double kappa, bool corrected)
       {
         EnrichmentOptions opt;
+        opt.corrected = corrected;
         if (tip == "none")
           opt.tip = TipEnrichment::none;
         else if (tip == "scalar")
@@ -162,7 +164,7 @@ void declare_geometry(py::module& m)
         return create_enrichment_layout(as_span(x), as_span(cells), cracks, opt);
       },
       py::arg("x"), py::arg("cells"), py::arg("cracks"), py::arg("tip") = "none",
-      py::arg("radius") = 0.0, py::arg("kappa") = 1.8);
+      py::arg("radius") = 0.0, py::arg("kappa") = 1.8, py::arg("corrected") = true);
 }
 
 } // namespace cracklip_wrappers
