@@ -11,9 +11,10 @@ from cracklip import _cracklip
 from cracklip.assembly import assemble_system, create_matrix, elasticity_form
 
 
-def _plain_scene(md, cracks=()):
+def _plain_scene(md, cracks=(), enrichment="none"):
     return cl.Scene(md, cl.Material(1.0, 0.3), cracks=list(cracks),
-                    dirichlet=[cl.Dirichlet("left")], tractions=[cl.Traction("right", (1.0, 0.0))])
+                    dirichlet=[cl.Dirichlet("left")], tractions=[cl.Traction("right", (1.0, 0.0))],
+                    options=cl.Options(enrichment=enrichment))
 
 
 def _to_scipy(A):
@@ -115,3 +116,7 @@ def test_enriched_cells_scale_with_crack_length(h):
     assert 2.0 <= per_length <= 8.0, per_length
     assert count <= 40 * crack_length / h
     assert count < 0.25 * model.cells.shape[0] * (h / 0.1)
+    # Tip enrichment (radius 0) adds a fixed number of cells per tip, not ~1/h.
+    tip_model = cl.create_model(_plain_scene(md, [cl.Crack([[-0.6, 0.011], [0.6, 0.011]])], "vector"))
+    extra = tip_model.layout.cells.size - count
+    assert 0 < extra <= 2 * 40, extra

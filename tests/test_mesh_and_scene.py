@@ -82,5 +82,6 @@ def test_two_parallel_interior_cracks_in_uniform_stress():
     sol = cl.solve(scene)
     assert [c.tips for c in sol.model.cracks] == [(True, True), (True, True)]
     assert set(sol.model.layout.crack.tolist()) == {0, 1}
+    scale = np.abs(sol.standard_displacement).max()
     for i in range(2):
-        assert np.abs(sol.crack_opening(i)["jump"]).max() <= 1e-12
+        assert np.abs(sol.crack_opening(i)["jump"]).max() <= 1e-10 * scale
