@@ -147,6 +147,28 @@ void fan_rule(std::span<const Triangle2> fans, const QuadratureOptions& options,
   }
 }
 
+void tip_polygon_rule(Point2 apex, std::span<const Point2> polygon, const QuadratureOptions& options,
+                      std::vector<double>& points, std::vector<double>& weights)
+{
+  if (options.tip_rule == TipQuadrature::collapsed)
+  {
+    fan_rule(fan_triangles(apex, polygon, options.tip_max_angle), options, points, weights);
+    return;
+  }
+  const quadrature::Rule rule = quadrature::triangle_product((options.tip_degree + 3) / 2);
+  for (const Triangle2& t : fan_triangles(apex, polygon, 2 * std::numbers::pi))
+  {
+    const double scale = area2(t);
+    for (int q = 0; q < rule.size(); ++q)
+    {
+      const double u = rule.points[2 * q], v = rule.points[2 * q + 1];
+      points.push_back(t[0][0] + u * (t[1][0] - t[0][0]) + v * (t[2][0] - t[0][0]));
+      points.push_back(t[0][1] + u * (t[1][1] - t[0][1]) + v * (t[2][1] - t[0][1]));
+      weights.push_back(rule.weights[q] * scale);
+    }
+  }
+}
+
 const TipFrame* cell_tip(const P1Cell& cell, const CellBasis& basis, const EnrichmentLayout& layout)
 {
   if (!basis.has_tip)

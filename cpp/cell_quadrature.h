@@ -72,6 +72,12 @@ std::vector<std::pair<Triangle2, double>> signed_fans(Point2 apex, const Triangl
 void fan_rule(std::span<const Triangle2> fans, const QuadratureOptions& options,
               std::vector<double>& points, std::vector<double>& weights);
 
+/// A rule over a polygon (physical coordinates, e.g. a tip cell) fanned from
+/// the tip inside it: the collapsed rule, or with options.tip_rule == gauss
+/// the paper's plain ((p + 3) / 2)^2-point rule on each fan triangle.
+void tip_polygon_rule(Point2 apex, std::span<const Point2> polygon, const QuadratureOptions& options,
+                      std::vector<double>& points, std::vector<double>& weights);
+
 /// Fill `out` for cell c. `tip` is the tip frame the cell's tip functions
 /// belong to, or nullptr if the cell carries none.
 void compute_cell_quadrature(const P1Cell& cell, std::int32_t c,

@@ -27,10 +27,12 @@ class Solution:
         model: the discrete model.
         u: (num_dofs,) standard dofs then enriched dofs (see assembly).
         timings: seconds per phase of the solve.
+        condition: 1-norm condition numbers if asked (cond_1norm, cond_1norm_jacobi).
     """
     model: XfemModel
     u: np.ndarray
     timings: dict[str, float]
+    condition: dict[str, float] = dataclasses.field(default_factory=dict)
 
     # -- point values -------------------------------------------------------
     def locate(self, points: np.ndarray, prefer_crossed: bool = True) -> tuple[np.ndarray, np.ndarray]:

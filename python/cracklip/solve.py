@@ -13,7 +13,7 @@ import dolfinx.fem.petsc
 
 from .assembly import assemble_system, elasticity_form
 from .errors import InputError
-from .linear_solver import solve_checked
+from .linear_solver import condition_number_1norm, solve_checked
 from .model import create_model
 from .post import Solution
 from .scene import Scene
@@ -21,14 +21,23 @@ from .scene import Scene
 logger = logging.getLogger(__name__)
 
 
-def solve(scene: Scene) -> Solution:
-    """Build, assemble and solve the X-FEM model of a scene."""
+def solve(scene: Scene, condition_number: bool = False) -> Solution:
+    """Build, assemble and solve the X-FEM model of a scene.
+
+    condition_number: also estimate the 1-norm condition number of the
+    stiffness with constraints applied, raw and Jacobi-scaled (Solution.condition).
+    """
     t_start = time.perf_counter()
     model = create_model(scene)
     A, b, timings = assemble_system(model)
     t0 = time.perf_counter()
     x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system")
     timings["solve"] = time.perf_counter() - t0
+    condition = {}
+    if condition_number:
+        t0 = time.perf_counter()
+        condition = condition_number_1norm(A)
+        timings["condition_number"] = time.perf_counter() - t0
     u = x.array.copy()
     A.destroy()
     b.destroy()
@@ -37,7 +46,7 @@ def solve(scene: Scene) -> Solution:
     timings["total"] = time.perf_counter() - t_start
     logger.info("solved %d dofs (%d enriched) in %.3f s", model.num_dofs,
                 2 * model.layout.num_enriched, timings["total"])
-    return Solution(model, u, timings)
+    return Solution(model, u, timings, condition)
 
 
 def solve_plain(scene: Scene) -> tuple[np.ndarray, dict[str, float]]:

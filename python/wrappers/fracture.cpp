@@ -30,14 +30,14 @@ void declare_fracture(py::module& m)
         std::vector<Point2> poly(polygon.size() / 2);
         for (std::size_t k = 0; k < poly.size(); ++k)
           poly[k] = {polygon.data()[2 * k], polygon.data()[2 * k + 1]};
-        const auto fans = fan_triangles(apex, poly, options.tip_max_angle);
         std::vector<double> pts, w;
-        fan_rule(fans, options, pts, w);
+        tip_polygon_rule(apex, poly, options, pts, w);
         const py::ssize_t n = w.size();
         return py::make_tuple(as_pyarray(std::move(pts), {n, 2}), as_pyarray(std::move(w)));
       },
       py::arg("polygon"), py::arg("apex"), py::arg("options"),
-      "Collapsed (quasi-polar) rule over a polygon fanned from a tip inside it: points (n, 2), weights.");
+      "Rule over a polygon fanned from a tip inside it (collapsed, or the paper's plain Gauss "
+      "per options.tip_rule): points (n, 2), weights.");
 
   m.def(
       "branch_functions",
