@@ -36,5 +36,6 @@ def test_bench_core_demo(tmp_path):
 
 def test_main_job_quick(tmp_path):
     run_demo("paper_figures.py", "--quick", "--out", str(tmp_path))
-    assert "patch test" in (tmp_path / "results.md").read_text()
+    text = (tmp_path / "results.md").read_text()
+    assert "patch test" in text and "Westergaard" in text and "quadrature" in text
     assert json.loads((tmp_path / "results.json").read_text())["patch_test"]["opening_rel_error"] < 1e-10
