@@ -28,11 +28,14 @@ class Solution:
         u: (num_dofs,) standard dofs then enriched dofs (see assembly).
         timings: seconds per phase of the solve.
         condition: 1-norm condition numbers if asked (cond_1norm, cond_1norm_jacobi).
+        contact: with contact, the ContactSystem ("system"), reduced
+            multipliers ("lambda"), active set, iterations and history.
     """
     model: XfemModel
     u: np.ndarray
     timings: dict[str, float]
     condition: dict[str, float] = dataclasses.field(default_factory=dict)
+    contact: dict[str, typing.Any] = dataclasses.field(default_factory=dict)
 
     # -- point values -------------------------------------------------------
     def locate(self, points: np.ndarray, prefer_crossed: bool = True) -> tuple[np.ndarray, np.ndarray]:
@@ -199,10 +202,46 @@ class Solution:
             I = _cracklip.interaction_integral(tip, e1, mat.E, mat.nu, d["x"], d["weight"],
                                                d["grad_q"], grad, d["side"],
                                                int(g.tip_orientation[j]))
-            K = 0.5 * mat.E_star * np.asarray(I)
+            I = np.asarray(I)
+            if self.contact:
+                I = I + np.asarray(self._lip_term(crack, j, radius))
+            K = 0.5 * mat.E_star * I
             out.append({"tip": tip.tolist(), "direction": e1.tolist(), "K_I": float(K[0]),
                         "K_II": float(K[1]), "radius": float(radius)})
         return out
+
+    def _lip_term(self, crack: int, tip: int, radius: float):
+        m = self.model
+        g = m.geometries[crack]
+        cs = self.contact["system"]
+        lam_full = cs.R @ self.contact["lambda"]
+        return _cracklip.lip_interaction_integral(
+            m.x, m.cells, m.geometries, cs.space, lam_full, g.tips[tip], g.tip_tangents[tip],
+            int(g.tip_orientation[tip]), crack, radius, m.scene.material.E, m.scene.material.nu,
+            max(m.scene.options.contact_points, 8))
+
+    def contact_pressure(self, crack: int = 0) -> dict[str, np.ndarray]:
+        """Contact pressure p = -lambda (>= 0 in compression) and normal gap
+        [[u]].n at the quadrature points of the crack segments, sorted along
+        the crack: x (n, 2), s (n,), pressure (n,), gap (n,)."""
+        if not self.contact:
+            raise InputError("this solution has no contact (Options.contact is 'none')")
+        m = self.model
+        cs = self.contact["system"]
+        sp_ = _cracklip.compute_segment_points(m.x, m.cells, m.geometries, cs.space, 3)
+        lam_full = cs.R @ self.contact["lambda"]
+        p = np.zeros(len(sp_["weight"]))
+        np.add.at(p, sp_["entry_point"], -sp_["entry_value"] * lam_full[sp_["entry_mult"]])
+        keep = cs.space.segment_crack[sp_["segment"]] == crack
+        up = self._evaluate(sp_["cell"], sp_["ref"], np.ones(len(p), dtype=np.int8))
+        um = self._evaluate(sp_["cell"], sp_["ref"], -np.ones(len(p), dtype=np.int8))
+        gap = np.einsum("ij,ij->i", up - um, sp_["normal"])
+        start = m.cracks[crack].crack.points[0]
+        direction = m.cracks[crack].crack.points[-1] - start
+        s = (sp_["x"] - start) @ (direction / np.linalg.norm(direction))
+        order = np.argsort(s[keep], kind="stable")
+        return {"x": sp_["x"][keep][order], "s": s[keep][order], "pressure": p[keep][order],
+                "gap": gap[keep][order]}
 
     @property
     def standard_displacement(self) -> np.ndarray:

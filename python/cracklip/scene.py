@@ -138,6 +138,14 @@ class Options:
             along and across each fan triangle, and its largest apex angle.
         degree: Gauss degree in cells without tip functions (1 is exact for
             P1 x Heaviside).
+        contact: crack-lip contact: "none" (traction-free lips), "bilateral"
+            (normal gap held at 0, lips slide freely) or "unilateral" (gap >= 0,
+            pressure >= 0, complementarity; primal-dual active set).
+        multipliers: "stable" (P1-, Bechet-Moes-Wohlmuth, P0 in the tip
+            cell) or "naive" (P1 on every node of the cut cells).
+        contact_points: Gauss points per crack segment (tau^2 toward a tip).
+        active_set_start: "closed" or "open" initial active set.
+        max_active_set_iterations: active-set iterations before giving up.
         snap_tol: a node closer to a crack (or tip line) than snap_tol times
             its shortest edge is moved onto it (level set set to 0).
         facet_degree: degree of the rule for tractions on boundary facets.
@@ -152,6 +160,11 @@ class Options:
     tip_angular: int = 6
     tip_max_angle: float = 0.6
     degree: int = 1
+    contact: str = "none"
+    multipliers: str = "stable"
+    contact_points: int = 6
+    active_set_start: str = "closed"
+    max_active_set_iterations: int = 20
     snap_tol: float = 1e-6
     facet_degree: int = 4
     residual_tol: float = 1e-8
@@ -161,11 +174,18 @@ class Options:
             raise InputError(f"enrichment must be one of {ENRICHMENTS}, got {self.enrichment!r}")
         if self.blending not in ("corrected", "standard"):
             raise InputError(f"blending must be 'corrected' or 'standard', got {self.blending!r}")
+        if self.contact not in ("none", "bilateral", "unilateral"):
+            raise InputError(f"contact must be 'none', 'bilateral' or 'unilateral', got {self.contact!r}")
+        if self.multipliers not in ("stable", "naive"):
+            raise InputError(f"multipliers must be 'stable' or 'naive', got {self.multipliers!r}")
+        if self.active_set_start not in ("closed", "open"):
+            raise InputError(f"active_set_start must be 'closed' or 'open', got {self.active_set_start!r}")
         if self.quadrature not in TIP_QUADRATURES:
             raise InputError(f"quadrature must be one of {TIP_QUADRATURES}, got {self.quadrature!r}")
         if not (self.radius >= 0.0):
             raise InputError(f"enrichment radius must be >= 0, got {self.radius}")
-        for name in ("quadrature_degree", "tip_radial", "tip_angular", "degree", "facet_degree"):
+        for name in ("quadrature_degree", "tip_radial", "tip_angular", "degree", "facet_degree",
+                     "contact_points", "max_active_set_iterations"):
             if int(getattr(self, name)) < 1:
                 raise InputError(f"{name} must be >= 1, got {getattr(self, name)}")
         if not (0.05 <= self.tip_max_angle <= 3.2):

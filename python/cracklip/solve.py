@@ -13,6 +13,7 @@ import dolfinx.fem.petsc
 
 from .assembly import assemble_system, elasticity_form
 from .errors import InputError
+from .contact import solve_contact
 from .linear_solver import condition_number_1norm, solve_checked
 from .model import create_model
 from .post import Solution
@@ -31,8 +32,15 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     model = create_model(scene)
     A, b, timings = assemble_system(model)
     t0 = time.perf_counter()
-    x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system")
-    timings["solve"] = time.perf_counter() - t0
+    contact = {}
+    if scene.options.contact != "none" and model.cracks:
+        u, contact = solve_contact(model, A, b)
+        x = A.createVecRight()
+        x.array[:] = u
+        timings["contact_solve"] = time.perf_counter() - t0
+    else:
+        x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system")
+        timings["solve"] = time.perf_counter() - t0
     condition = {}
     if condition_number:
         t0 = time.perf_counter()
@@ -46,7 +54,7 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     timings["total"] = time.perf_counter() - t_start
     logger.info("solved %d dofs (%d enriched) in %.3f s", model.num_dofs,
                 2 * model.layout.num_enriched, timings["total"])
-    return Solution(model, u, timings, condition)
+    return Solution(model, u, timings, condition, contact)
 
 
 def solve_plain(scene: Scene) -> tuple[np.ndarray, dict[str, float]]:

@@ -7,6 +7,7 @@ void declare_geometry(pybind11::module& m);
 void declare_assembly(pybind11::module& m);
 void declare_fields(pybind11::module& m);
 void declare_fracture(pybind11::module& m);
+void declare_contact(pybind11::module& m);
 } // namespace cracklip_wrappers
 
 PYBIND11_MODULE(_cracklip, m)
@@ -16,4 +17,5 @@ PYBIND11_MODULE(_cracklip, m)
   cracklip_wrappers::declare_assembly(m);
   cracklip_wrappers::declare_fields(m);
   cracklip_wrappers::declare_fracture(m);
+  cracklip_wrappers::declare_contact(m);
 }

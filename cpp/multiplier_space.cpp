@@ -1,0 +1,203 @@
+#include "multiplier_space.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+
+namespace cracklip
+{
+namespace
+{
+struct UnionFind
+{
+  std::vector<std::int32_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  std::int32_t find(std::int32_t i)
+  {
+    while (parent[i] != i)
+      i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void unite(std::int32_t a, std::int32_t b) { parent[find(a)] = find(b); }
+};
+} // namespace
+
+MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<const std::int32_t> cells,
+                                        std::span<const CrackGeometry* const> cracks,
+                                        MultiplierKind kind, bool with_tip_segments)
+{
+  MultiplierSpace space;
+  space.kind = kind;
+  std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> nodal; // (crack, node) -> full
+  auto nodal_mult = [&](std::int32_t ic, std::int32_t node)
+  {
+    auto [it, inserted] = nodal.try_emplace({ic, node}, space.num_full());
+    if (inserted)
+    {
+      space.full_node.push_back(node);
+      space.full_crack.push_back(ic);
+      space.full_cell.push_back(-1);
+    }
+    return it->second;
+  };
+
+  // Cut edges of each crack, for the stable space: (crack, a, b) with a < b.
+  std::vector<std::array<std::int32_t, 3>> cut_edges;
+  std::vector<std::array<double, 2>> cut_points;
+
+  for (std::size_t icr = 0; icr < cracks.size(); ++icr)
+  {
+    const auto ic = static_cast<std::int32_t>(icr);
+    const CrackGeometry& g = *cracks[icr];
+    for (const CrackCell& cc : g.crack_cells)
+    {
+      if (!cc.owns_segment)
+        continue;
+      CrackSegment seg;
+      seg.crack = ic;
+      seg.cell = cc.cell;
+      seg.ref = cc.segment;
+      const std::int32_t* v = &cells[3 * cc.cell];
+      for (int a = 0; a < 3; ++a)
+      {
+        // On an edge cell only the nodes on the crack edge have a trace.
+        if (cc.cls == CellClass::edge and g.phi[v[a]] != 0.0)
+          continue;
+        seg.mult.push_back(nodal_mult(ic, v[a]));
+        seg.local.push_back(a);
+      }
+      space.segments.push_back(seg);
+      if (cc.cls == CellClass::cut)
+        for (int a = 0; a < 3; ++a)
+        {
+          std::int32_t p = v[a], q = v[(a + 1) % 3];
+          const double fp = g.phi[p], fq = g.phi[q];
+          if (fp * fq < 0.0)
+          {
+            if (p > q)
+              std::swap(p, q);
+            cut_edges.push_back({ic, p, q});
+            const double t = g.phi[p] / (g.phi[p] - g.phi[q]);
+            cut_points.push_back({x[2 * p] + t * (x[2 * q] - x[2 * p]), x[2 * p + 1] + t * (x[2 * q + 1] - x[2 * p + 1])});
+          }
+        }
+    }
+    if (!with_tip_segments)
+      continue;
+    for (const TipCell& tc : g.tip_cells)
+    {
+      CrackSegment seg;
+      seg.crack = ic;
+      seg.cell = tc.cell;
+      seg.ref = tc.segment; // entry point E, then the tip T
+      seg.tip = true;
+      seg.tip_end = 1;
+      seg.tip_index = tc.tip;
+      const std::int32_t* v = &cells[3 * tc.cell];
+      if (kind == MultiplierKind::naive)
+        for (int a = 0; a < 3; ++a)
+        {
+          seg.mult.push_back(nodal_mult(ic, v[a]));
+          seg.local.push_back(a);
+        }
+      else
+      {
+        seg.mult.push_back(space.num_full());
+        seg.local.push_back(-1);
+        space.full_node.push_back(-1);
+        space.full_crack.push_back(ic);
+        space.full_cell.push_back(tc.cell);
+      }
+      space.segments.push_back(seg);
+    }
+  }
+
+  const std::int32_t nfull = space.num_full();
+  space.full_to_reduced.assign(nfull, -1);
+  if (kind == MultiplierKind::naive)
+  {
+    std::iota(space.full_to_reduced.begin(), space.full_to_reduced.end(), 0);
+    space.num_reduced = nfull;
+    return space;
+  }
+
+  // Stable (P1-): drop cut edges by score until every score is <= 1.
+  std::vector<std::size_t> order(cut_edges.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return cut_edges[i] < cut_edges[j]; });
+  std::vector<std::array<std::int32_t, 3>> edges;
+  std::vector<std::array<double, 2>> points;
+  for (std::size_t k = 0; k < order.size(); ++k)
+    if (k == 0 or cut_edges[order[k]] != cut_edges[order[k - 1]])
+    {
+      edges.push_back(cut_edges[order[k]]);
+      points.push_back(cut_points[order[k]]);
+    }
+  std::map<std::pair<std::int32_t, std::int32_t>, int> deg;
+  for (const auto& e : edges)
+    ++deg[{e[0], e[1]}], ++deg[{e[0], e[2]}];
+  std::vector<char> alive(edges.size(), 1);
+  // Tie-break: an edge whose cut point is far from its neighbours' cut points
+  // is dropped first.
+  auto spacing = [&](std::size_t i)
+  {
+    double d = std::numeric_limits<double>::max();
+    for (std::size_t j = 0; j < edges.size(); ++j)
+      if (j != i and alive[j] and edges[j][0] == edges[i][0]
+          and (edges[j][1] == edges[i][1] or edges[j][1] == edges[i][2] or edges[j][2] == edges[i][1]
+               or edges[j][2] == edges[i][2]))
+        d = std::min(d, std::hypot(points[j][0] - points[i][0], points[j][1] - points[i][1]));
+    return d;
+  };
+  while (true)
+  {
+    int best_score = 1;
+    std::size_t best = edges.size();
+    double best_spacing = -1.0;
+    for (std::size_t i = 0; i < edges.size(); ++i)
+    {
+      if (!alive[i])
+        continue;
+      const int s = std::min(deg[{edges[i][0], edges[i][1]}], deg[{edges[i][0], edges[i][2]}]);
+      if (s < best_score)
+        continue;
+      if (s == 1)
+        continue;
+      const double sp = spacing(i);
+      if (s > best_score or sp > best_spacing)
+        best_score = s, best = i, best_spacing = sp;
+    }
+    if (best == edges.size())
+      break;
+    alive[best] = 0;
+    --deg[{edges[best][0], edges[best][1]}];
+    --deg[{edges[best][0], edges[best][2]}];
+  }
+  UnionFind uf(nfull);
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    if (alive[i])
+    {
+      const std::int32_t ic = edges[i][0];
+      const auto a = nodal.find({ic, edges[i][1]}), b = nodal.find({ic, edges[i][2]});
+      if (a == nodal.end() or b == nodal.end())
+        throw std::logic_error("multiplier space: cut edge node without a multiplier");
+      uf.unite(a->second, b->second);
+      space.vital_edges.push_back(edges[i][1]);
+      space.vital_edges.push_back(edges[i][2]);
+    }
+  std::map<std::int32_t, std::int32_t> root_to_reduced;
+  for (std::int32_t f = 0; f < nfull; ++f)
+  {
+    const std::int32_t r = uf.find(f);
+    auto [it, inserted] = root_to_reduced.try_emplace(r, space.num_reduced);
+    if (inserted)
+      ++space.num_reduced;
+    space.full_to_reduced[f] = it->second;
+  }
+  return space;
+}
+
+} // namespace cracklip

@@ -1,0 +1,149 @@
+"""Frictionless crack-lip contact with Lagrange multipliers.
+
+The multiplier space (C++) gives the full multipliers and the 0/1
+prolongation R (reduced -> full); B_red = R^T B, M_red = R^T M R. The
+saddle-point system
+
+    [ K      B^T ] [ u      ]   [ f ]
+    [ B      0   ] [ lambda ] = [ g ]
+
+is solved by MUMPS; the contact pressure is p = -lambda (>= 0 in
+compression), the weighted normal gap is B u (>= 0 when open). Unilateral
+contact: primal-dual active set on the reduced multipliers, a multiplier
+active when p_k - c g_k / m_k > 0 (m_k the lumped multiplier mass, c = E / h).
+"""
+from __future__ import annotations
+
+import dataclasses
+import logging
+import typing
+
+import numpy as np
+import scipy.sparse as sp
+from petsc4py import PETSc
+
+from . import _cracklip
+from .errors import CracklipError, SolverError
+from .linear_solver import solve_checked
+from .model import XfemModel
+
+logger = logging.getLogger(__name__)
+
+
+class ContactError(CracklipError, RuntimeError):
+    """The active set did not settle."""
+
+
+@dataclasses.dataclass
+class ContactSystem:
+    """Multiplier space and constraint operators of a model.
+
+    Attributes:
+        space: the C++ MultiplierSpace.
+        R: (num_full, num_reduced) 0/1 prolongation.
+        B: (num_reduced, num_dofs) coupling, Dirichlet columns removed.
+        M: (num_reduced, num_reduced) multiplier mass.
+        g: (num_reduced,) right-hand side of B u = g (prescribed enriched dofs).
+    """
+    space: typing.Any
+    R: sp.csr_matrix
+    B: sp.csr_matrix
+    M: sp.csr_matrix
+    g: np.ndarray
+
+    @property
+    def num_multipliers(self) -> int:
+        return self.R.shape[1]
+
+
+def create_contact_system(model: XfemModel) -> ContactSystem:
+    """Multiplier space and B, M for the model's cracks (options.multipliers)."""
+    opts = model.scene.options
+    space = _cracklip.create_multiplier_space(model.x, model.cells, model.geometries, opts.multipliers,
+                                              opts.enrichment != "none")
+    nf, nr = space.num_full, space.num_reduced
+    R = sp.csr_matrix((np.ones(nf), (np.arange(nf), space.full_to_reduced)), shape=(nf, nr))
+    br, bc, bv, mr, mc, mv = _cracklip.assemble_coupling(model.x, model.cells, model.layout,
+                                                          model.geometries, space, opts.contact_points)
+    Bf = sp.csr_matrix((bv, (br, bc)), shape=(nf, model.num_dofs))
+    Mf = sp.csr_matrix((mv, (mr, mc)), shape=(nf, nf))
+    B = (R.T @ Bf).tocsr()
+    M = (R.T @ Mf @ R).tocsr()
+    # Dirichlet dofs: move their known values to the right-hand side.
+    fixed = np.zeros(model.num_dofs, dtype=bool)
+    fixed[model.bc_dofs] = True
+    ufix = np.zeros(model.num_dofs)
+    ufix[model.bc_dofs] = model.bc_values
+    g = -(B @ ufix)
+    B = B @ sp.diags((~fixed).astype(float))
+    B.eliminate_zeros()
+    rownorm = np.sqrt(np.asarray(B.multiply(B).sum(axis=1))).ravel()
+    dead = np.flatnonzero(rownorm <= 1e-14 * max(rownorm.max(initial=0.0), 1e-300))
+    if dead.size:
+        raise SolverError(f"{dead.size} contact multiplier(s) see no jump of the displacement (e.g. "
+                          f"reduced multiplier {int(dead[0])}): the crack there has no enriched dofs "
+                          "(check the enrichment and the Dirichlet conditions near the crack)")
+    return ContactSystem(space, R, B.tocsr(), M, g)
+
+
+def _petsc_from_scipy(A: sp.csr_matrix) -> PETSc.Mat:
+    A = A.tocsr()
+    A.sort_indices()
+    return PETSc.Mat().createAIJ(A.shape, csr=(A.indptr.astype(PETSc.IntType), A.indices.astype(PETSc.IntType),
+                                               A.data), comm=PETSc.COMM_SELF)
+
+
+def _scipy_from_petsc(A: PETSc.Mat) -> sp.csr_matrix:
+    indptr, indices, data = A.getValuesCSR()
+    return sp.csr_matrix((data, indices, indptr), shape=A.getSize())
+
+
+def solve_saddle(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, active: np.ndarray,
+                 residual_tol: float) -> tuple[np.ndarray, np.ndarray]:
+    """Solve with the constraints of the active multipliers; inactive ones are 0."""
+    m = cs.num_multipliers
+    Ba = sp.diags(active.astype(float)) @ cs.B
+    inactive = sp.diags((~active).astype(float))
+    S = sp.bmat([[K, Ba.T], [Ba, inactive]], format="csr")
+    rhs = np.concatenate([f, np.where(active, cs.g, 0.0)])
+    A = _petsc_from_scipy(S)
+    b = A.createVecRight()
+    b.array[:] = rhs
+    x = solve_checked(A, b, residual_tol, what="contact saddle-point system")
+    sol = x.array.copy()
+    A.destroy()
+    return sol[:-m] if m else sol, sol[-m:] if m else np.zeros(0)
+
+
+def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec) -> tuple[np.ndarray, dict]:
+    """Solve the contact problem on the assembled stiffness A (constraints
+    applied) and load b. Returns (u, info) with info: system, lambda (reduced),
+    active, iterations, history."""
+    opts = model.scene.options
+    cs = create_contact_system(model)
+    K = _scipy_from_petsc(A)
+    f = b.array.copy()
+    m = cs.num_multipliers
+    if opts.contact == "bilateral":
+        active = np.ones(m, dtype=bool)
+        u, lam = solve_saddle(K, f, cs, active, opts.residual_tol)
+        return u, {"system": cs, "lambda": lam, "active": active, "iterations": 1, "history": [m]}
+    # Unilateral: primal-dual active set.
+    active = np.full(m, opts.active_set_start == "closed")
+    lumped = np.asarray(cs.M.sum(axis=1)).ravel()
+    c = model.scene.material.E / model.h
+    history = []
+    for it in range(1, opts.max_active_set_iterations + 1):
+        u, lam = solve_saddle(K, f, cs, active, opts.residual_tol)
+        gap = cs.B @ u - cs.g                  # weighted normal gap (>= 0 open)
+        pressure = -lam                        # >= 0 in compression
+        new_active = pressure - c * gap / lumped > 0.0
+        history.append(int(new_active.sum()))
+        logger.info("active set iteration %d: %d of %d multipliers active", it, new_active.sum(), m)
+        if np.array_equal(new_active, active):
+            return u, {"system": cs, "lambda": lam, "active": active, "iterations": it,
+                       "history": history}
+        active = new_active
+    raise ContactError(f"the active set did not settle in {opts.max_active_set_iterations} iterations "
+                       f"(active counts per iteration: {history}); raise max_active_set_iterations "
+                       "or check that the load keeps the crack partly closed")

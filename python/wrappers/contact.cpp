@@ -1,0 +1,104 @@
+// Bindings: multiplier spaces, contact coupling, lip term of the interaction integral.
+#include "array.h"
+
+#include <contact_kernels.h>
+#include <multiplier_space.h>
+#include <pybind11/stl.h>
+
+namespace cracklip_wrappers
+{
+using namespace cracklip;
+using Cracks = std::vector<const CrackGeometry*>;
+
+void declare_contact(py::module& m)
+{
+  py::class_<MultiplierSpace>(m, "MultiplierSpace", "Lagrange multipliers on the crack")
+      .def_property_readonly("kind", [](const MultiplierSpace& s) { return s.kind == MultiplierKind::naive ? "naive" : "stable"; })
+      .def_property_readonly("num_full", &MultiplierSpace::num_full)
+      .def_property_readonly("num_reduced", [](const MultiplierSpace& s) { return s.num_reduced; })
+      .def_property_readonly("num_segments", [](const MultiplierSpace& s) { return s.segments.size(); })
+      .def_property_readonly("full_to_reduced", [](const MultiplierSpace& s)
+                             { return carray<std::int32_t>(s.full_to_reduced.size(), s.full_to_reduced.data()); })
+      .def_property_readonly("full_node", [](const MultiplierSpace& s)
+                             { return carray<std::int32_t>(s.full_node.size(), s.full_node.data()); })
+      .def_property_readonly("full_cell", [](const MultiplierSpace& s)
+                             { return carray<std::int32_t>(s.full_cell.size(), s.full_cell.data()); })
+      .def_property_readonly("full_crack", [](const MultiplierSpace& s)
+                             { return carray<std::int32_t>(s.full_crack.size(), s.full_crack.data()); })
+      .def_property_readonly("segment_crack", [](const MultiplierSpace& s)
+                             {
+                               std::vector<std::int32_t> c;
+                               for (const auto& seg : s.segments)
+                                 c.push_back(seg.crack);
+                               return as_pyarray(std::move(c));
+                             })
+      .def_property_readonly("vital_edges", [](const MultiplierSpace& s)
+                             {
+                               return carray<std::int32_t>({py::ssize_t(s.vital_edges.size() / 2), py::ssize_t(2)},
+                                                           s.vital_edges.data());
+                             });
+
+  m.def(
+      "create_multiplier_space",
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const Cracks& cracks,
+         const std::string& kind, bool with_tip_segments)
+      {
+        if (kind != "naive" and kind != "stable")
+          throw std::invalid_argument("multiplier space must be 'stable' or 'naive', got '" + kind + "'");
+        return create_multiplier_space(as_span(x), as_span(cells), cracks,
+                                       kind == "naive" ? MultiplierKind::naive : MultiplierKind::stable,
+                                       with_tip_segments);
+      },
+      py::arg("x"), py::arg("cells"), py::arg("cracks"), py::arg("kind"), py::arg("with_tip_segments"));
+
+  m.def(
+      "assemble_coupling",
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
+         const Cracks& cracks, const MultiplierSpace& space, int n)
+      {
+        Triplets B, M;
+        assemble_coupling(as_span(x), as_span(cells), layout, cracks, space, n, B, M);
+        return py::make_tuple(as_pyarray(std::move(B.row)), as_pyarray(std::move(B.col)),
+                              as_pyarray(std::move(B.value)), as_pyarray(std::move(M.row)),
+                              as_pyarray(std::move(M.col)), as_pyarray(std::move(M.value)));
+      },
+      py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("space"), py::arg("n"),
+      "Coupling B (full multipliers x dofs) and multiplier mass M as COO triplets.");
+
+  m.def(
+      "compute_segment_points",
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const Cracks& cracks,
+         const MultiplierSpace& space, int n)
+      {
+        SegmentPoints s = compute_segment_points(as_span(x), as_span(cells), cracks, space, n);
+        const py::ssize_t np_ = s.weight.size();
+        py::dict d;
+        d["segment"] = as_pyarray(std::move(s.segment));
+        d["cell"] = as_pyarray(std::move(s.cell));
+        d["ref"] = as_pyarray(std::move(s.ref), {np_, 2});
+        d["x"] = as_pyarray(std::move(s.x), {np_, 2});
+        d["weight"] = as_pyarray(std::move(s.weight));
+        d["normal"] = as_pyarray(std::move(s.normal), {np_, 2});
+        d["entry_point"] = as_pyarray(std::move(s.entry_point));
+        d["entry_mult"] = as_pyarray(std::move(s.entry_mult));
+        d["entry_value"] = as_pyarray(std::move(s.entry_value));
+        return d;
+      },
+      py::arg("x"), py::arg("cells"), py::arg("cracks"), py::arg("space"), py::arg("n"));
+
+  m.def(
+      "lip_interaction_integral",
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const Cracks& cracks,
+         const MultiplierSpace& space, const carray<double>& lambda_full, std::array<double, 2> tip,
+         std::array<double, 2> e1, int orientation, std::int32_t crack, double radius, double E,
+         double nu, int n)
+      {
+        return lip_interaction_integral(as_span(x), as_span(cells), cracks, space, as_span(lambda_full),
+                                        TipFrame{tip, e1, orientation}, crack, radius, E, nu, n);
+      },
+      py::arg("x"), py::arg("cells"), py::arg("cracks"), py::arg("space"), py::arg("lambda_full"),
+      py::arg("tip"), py::arg("e1"), py::arg("orientation"), py::arg("crack"), py::arg("radius"),
+      py::arg("E"), py::arg("nu"), py::arg("n"));
+}
+
+} // namespace cracklip_wrappers
