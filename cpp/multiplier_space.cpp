@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <set>
 #include <stdexcept>
 
 namespace cracklip
@@ -27,7 +28,8 @@ struct UnionFind
 
 MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<const std::int32_t> cells,
                                         std::span<const CrackGeometry* const> cracks,
-                                        MultiplierKind kind, bool with_tip_segments)
+                                        const EnrichmentLayout& layout, MultiplierKind kind,
+                                        bool with_tip_segments)
 {
   MultiplierSpace space;
   space.kind = kind;
@@ -188,6 +190,34 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
       space.vital_edges.push_back(edges[i][1]);
       space.vital_edges.push_back(edges[i][2]);
     }
+  // Tie stars without enriched nodes to a neighbouring star.
+  std::set<std::pair<std::int32_t, std::int32_t>> enriched; // (crack, node)
+  for (std::int32_t k = 0; k < layout.num_enriched(); ++k)
+    enriched.insert({layout.crack[k], layout.node[k]});
+  for (bool changed = true; changed;)
+  {
+    changed = false;
+    std::map<std::int32_t, bool> has_jump; // root -> any enriched node (or P0)
+    for (std::int32_t f = 0; f < nfull; ++f)
+    {
+      const bool j = space.full_node[f] < 0 or enriched.count({space.full_crack[f], space.full_node[f]});
+      has_jump[uf.find(f)] = has_jump[uf.find(f)] or j;
+    }
+    for (const CrackSegment& seg : space.segments)
+      for (std::size_t a = 0; a < seg.mult.size() and !changed; ++a)
+      {
+        const std::int32_t ra = uf.find(seg.mult[a]);
+        if (has_jump[ra])
+          continue;
+        for (std::size_t b = 0; b < seg.mult.size(); ++b)
+          if (const std::int32_t rb = uf.find(seg.mult[b]); rb != ra and has_jump[rb])
+          {
+            uf.unite(ra, rb);
+            changed = true;
+            break;
+          }
+      }
+  }
   std::map<std::int32_t, std::int32_t> root_to_reduced;
   for (std::int32_t f = 0; f < nfull; ++f)
   {

@@ -13,6 +13,7 @@
 #pragma once
 
 #include "crack_geometry.h"
+#include "enrichment.h"
 
 #include <array>
 #include <cstdint>
@@ -59,8 +60,13 @@ struct MultiplierSpace
 
 /// x: (num_nodes, 2); cells: (num_cells, 3). with_tip_segments: integrate
 /// the segment in the tip cell (it carries a jump only with tip enrichment).
+/// In the stable space a star none of whose nodes carries enriched dofs of
+/// its crack (e.g. the nodes of an unenriched tip cell) sees a jump that
+/// fades to zero and would be controlled by nothing: it is tied to a
+/// neighbouring star (the star functions still sum to one).
 MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<const std::int32_t> cells,
                                         std::span<const CrackGeometry* const> cracks,
-                                        MultiplierKind kind, bool with_tip_segments);
+                                        const EnrichmentLayout& layout, MultiplierKind kind,
+                                        bool with_tip_segments);
 
 } // namespace cracklip

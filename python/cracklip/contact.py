@@ -59,8 +59,8 @@ class ContactSystem:
 def create_contact_system(model: XfemModel) -> ContactSystem:
     """Multiplier space and B, M for the model's cracks (options.multipliers)."""
     opts = model.scene.options
-    space = _cracklip.create_multiplier_space(model.x, model.cells, model.geometries, opts.multipliers,
-                                              opts.enrichment != "none")
+    space = _cracklip.create_multiplier_space(model.x, model.cells, model.geometries, model.layout,
+                                              opts.multipliers, opts.enrichment != "none")
     nf, nr = space.num_full, space.num_reduced
     R = sp.csr_matrix((np.ones(nf), (np.arange(nf), space.full_to_reduced)), shape=(nf, nr))
     br, bc, bv, mr, mc, mv = _cracklip.assemble_coupling(model.x, model.cells, model.layout,

@@ -41,15 +41,16 @@ void declare_contact(py::module& m)
   m.def(
       "create_multiplier_space",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const Cracks& cracks,
-         const std::string& kind, bool with_tip_segments)
+         const EnrichmentLayout& layout, const std::string& kind, bool with_tip_segments)
       {
         if (kind != "naive" and kind != "stable")
           throw std::invalid_argument("multiplier space must be 'stable' or 'naive', got '" + kind + "'");
-        return create_multiplier_space(as_span(x), as_span(cells), cracks,
+        return create_multiplier_space(as_span(x), as_span(cells), cracks, layout,
                                        kind == "naive" ? MultiplierKind::naive : MultiplierKind::stable,
                                        with_tip_segments);
       },
-      py::arg("x"), py::arg("cells"), py::arg("cracks"), py::arg("kind"), py::arg("with_tip_segments"));
+      py::arg("x"), py::arg("cells"), py::arg("cracks"), py::arg("layout"), py::arg("kind"),
+      py::arg("with_tip_segments"));
 
   m.def(
       "assemble_coupling",
