@@ -218,6 +218,81 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
           }
       }
   }
+  // The multiplier at a crack end sees a jump that fades (like sqrt(r) at a
+  // tip, linearly at the end of a Heaviside-only crack): over a short end
+  // segment it is barely controlled and the inf-sup constant drops with the
+  // length of that segment. Tie the end segment's multipliers to those of the
+  // segment next to it.
+  for (std::size_t icr = 0; icr < cracks.size(); ++icr)
+  {
+    const CrackGeometry& g = *cracks[icr];
+    for (std::size_t j = 0; j < g.tips.size() / 2; ++j)
+    {
+      const std::array<double, 2> T = {g.tips[2 * j], g.tips[2 * j + 1]};
+      // Physical end points of every segment of this crack.
+      std::size_t end_seg = space.segments.size();
+      double dmin = std::numeric_limits<double>::max();
+      std::vector<std::array<double, 4>> ends(space.segments.size());
+      for (std::size_t s = 0; s < space.segments.size(); ++s)
+      {
+        const CrackSegment& seg = space.segments[s];
+        if (seg.crack != static_cast<std::int32_t>(icr))
+          continue;
+        const std::int32_t* v = &cells[3 * seg.cell];
+        for (int e = 0; e < 2; ++e)
+        {
+          const double r0 = seg.ref[2 * e], r1 = seg.ref[2 * e + 1];
+          for (int d = 0; d < 2; ++d)
+            ends[s][2 * e + d] = x[2 * v[0] + d] + r0 * (x[2 * v[1] + d] - x[2 * v[0] + d])
+                                 + r1 * (x[2 * v[2] + d] - x[2 * v[0] + d]);
+          const double dist = std::hypot(ends[s][2 * e] - T[0], ends[s][2 * e + 1] - T[1]);
+          if (dist < dmin)
+            dmin = dist, end_seg = s;
+        }
+      }
+      if (end_seg == space.segments.size())
+        continue;
+      // Only a short end segment (below the crack's mean segment length)
+      // needs the tie; neighbouring segments share an end point with it.
+      const auto& E = ends[end_seg];
+      const double len = std::hypot(E[2] - E[0], E[3] - E[1]);
+      double mean_len = 0.0;
+      int count = 0;
+      for (std::size_t s = 0; s < space.segments.size(); ++s)
+        if (space.segments[s].crack == static_cast<std::int32_t>(icr))
+          mean_len += std::hypot(ends[s][2] - ends[s][0], ends[s][3] - ends[s][1]), ++count;
+      mean_len /= count;
+      if (len >= mean_len)
+        continue;
+      const std::int32_t r_end = uf.find(space.segments[end_seg].mult.front());
+      for (std::int32_t f : space.segments[end_seg].mult)
+        uf.unite(f, r_end);
+      for (std::size_t s = 0; s < space.segments.size(); ++s)
+      {
+        if (s == end_seg or space.segments[s].crack != static_cast<std::int32_t>(icr))
+          continue;
+        bool touches = false;
+        for (int a = 0; a < 2; ++a)
+          for (int b = 0; b < 2; ++b)
+            touches = touches or std::hypot(ends[s][2 * a] - E[2 * b], ends[s][2 * a + 1] - E[2 * b + 1]) <= 1e-9 * len;
+        if (!touches)
+          continue;
+        // Tie the end multiplier to a multiplier of the neighbour that does
+        // not live on the end segment.
+        for (std::int32_t f : space.segments[s].mult)
+        {
+          bool on_end = false;
+          for (std::int32_t fe : space.segments[end_seg].mult)
+            on_end = on_end or uf.find(fe) == uf.find(f);
+          if (!on_end)
+          {
+            uf.unite(r_end, f);
+            break;
+          }
+        }
+      }
+    }
+  }
   std::map<std::int32_t, std::int32_t> root_to_reduced;
   for (std::int32_t f = 0; f < nfull; ++f)
   {

@@ -1,0 +1,50 @@
+"""Numerical inf-sup test (paper eqs. 16-17).
+
+beta_min is the smallest eigenvalue of (1/h) B A^-1 B^T w = beta M w on the
+reduced multipliers: the generalized eigenproblem of the Schur complement
+against the multiplier mass, equivalent to the paper's
+(1/h) B^T M^-1 B V = beta A V on its non-zero spectrum. A is the stiffness with
+its constraints; its inverse acts through one MUMPS factorisation (one solve
+per multiplier), the small dense eigenproblem is solved by LAPACK.
+"""
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg
+
+from .assembly import assemble_system
+from .contact import create_contact_system
+from .linear_solver import create_lu_solver
+from .model import XfemModel
+
+
+def inf_sup_constant(model: XfemModel, h: float | None = None, max_multipliers: int = 4000) -> float:
+    """sqrt(beta_min) of the model's multiplier space (Options.multipliers)."""
+    cs = create_contact_system(model)
+    m = cs.num_multipliers
+    if m > max_multipliers:
+        raise ValueError(f"{m} multipliers: the dense inf-sup test is limited to {max_multipliers}")
+    A, _, _ = assemble_system(model)
+    ksp = create_lu_solver(A, detect_null_pivots=False)
+    ksp.setUp()
+    Bt = cs.B.T.tocsc()
+    x, y = A.createVecRight(), A.createVecRight()
+    S = np.zeros((m, m))
+    for k in range(m):
+        x.set(0.0)
+        col = Bt[:, k]
+        x.array[col.indices] = col.data
+        ksp.solve(x, y)
+        S[:, k] = cs.B @ y.array
+    ksp.destroy()
+    A.destroy()
+    h = model.h if h is None else h
+    S = 0.5 * (S + S.T)
+    # The naive space's traces can be linearly dependent on the crack (M
+    # singular): work on the range of M, and take the smallest non-zero beta.
+    Mm = cs.M.toarray()
+    mu, Z = np.linalg.eigh(0.5 * (Mm + Mm.T))
+    Z = Z[:, mu > 1e-12 * mu.max()]
+    beta = scipy.linalg.eigh(Z.T @ S @ Z / h, Z.T @ Mm @ Z, eigvals_only=True)
+    positive = beta[beta > 1e-10 * beta.max()]
+    return float(np.sqrt(positive.min()))
