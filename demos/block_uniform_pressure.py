@@ -54,11 +54,10 @@ def run(**kw) -> dict:
     t_mesh = time.perf_counter() - t0
     sol = cl.solve(scene)
     cp = sol.contact_pressure(0)
-    K = sol.stress_intensity_factors(0)[0] if scene.options.enrichment != "none" else \
-        sol.stress_intensity_factors(0)[0]
+    K = sol.stress_intensity_factors(0)[0]
     return {**{k: v for k, v in kw.items()}, "ndofs": sol.model.num_dofs,
             "n_multipliers": sol.contact["system"].num_multipliers,
-            "pressure": np.c_[cp["s"], cp["pressure"]].tolist(),
+            "pressure": np.c_[cp["x"][:, 0], cp["pressure"]].tolist(),
             "gap_max": float(np.abs(cp["gap"]).max()),
             "pressure_max_rel_dev": float(np.abs(cp["pressure"] - PRESSURE).max() / PRESSURE),
             "K_I": K["K_I"], "K_II": K["K_II"], "K_ref": PRESSURE * np.sqrt(np.pi * 0.4),

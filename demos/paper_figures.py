@@ -1,10 +1,12 @@
 """Main job: run cracklip's demos and write figures, results.json and results.md.
 
-What runs today (issues 2 and 3; the paper's sections 5.1 and 5.2 join with
-the contact issue): the through-crack patch test, the Westergaard sweep (mode
-I, both tip enrichments, n = 10..80) with its convergence, SIF and conditioning
-figures, the tip-cell quadrature table (collapsed rule vs the paper's plain
-Gauss rule), and the core speed benchmark at 2e4 and 2e5 dofs.
+What runs today (issues 2-4; section 5.2 of the paper joins with issue 5): the
+through-crack patch test, the Westergaard sweep (mode I, both tip
+enrichments, n = 10..80) with its convergence, SIF and conditioning figures,
+the tip-cell quadrature table (collapsed rule vs the paper's plain Gauss
+rule), the paper's section 5.1 block under uniform pressure (contact pressure
+naive vs stable and per tip rule, K_I with the crack-lip term, inf-sup), the
+frictionless sliding crack, and the core speed benchmark at 2e4 and 2e5 dofs.
 
     /usr/bin/python3 demos/paper_figures.py --out results
 """
@@ -21,7 +23,9 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "python"))
 
 import bench_core  # noqa: E402
+import block_uniform_pressure  # noqa: E402
 import patch_test  # noqa: E402
+import sliding_crack  # noqa: E402
 import tip_quadrature  # noqa: E402
 import westergaard  # noqa: E402
 
@@ -40,13 +44,13 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     summary: dict = {}
 
-    log("[1/4] through-crack patch test")
+    log("[1/6] through-crack patch test")
     pt = patch_test.main(["--h", "0.2" if args.quick else "0.05", "--out", str(out / "patch_test")])
     summary["patch_test"] = {k: pt[k] for k in ("h", "ndofs", "enriched_dofs", "displacement_rel_error_top",
                                                  "displacement_rel_error_bottom", "opening_rel_error",
                                                  "strain_energy", "strain_energy_exact")}
 
-    log("[2/4] Westergaard mode I sweep (vector and scalar tip enrichment)")
+    log("[2/6] Westergaard mode I sweep (vector and scalar tip enrichment)")
     if args.quick:
         wg = {"runs": [westergaard.run(10, e) for e in ("vector", "scalar")], "summary": {}}
     else:
@@ -56,11 +60,27 @@ def main(argv=None) -> int:
                                                           "K_II", "cond_1norm", "cond_1norm_jacobi")}
                                        for r in wg["runs"]]}
 
-    log("[3/4] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
+    log("[3/6] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
     tq = tip_quadrature.main(["--json", str(out / "tip_quadrature.json")])
     summary["tip_quadrature"] = tq["rows"]
 
-    log("[4/4] core benchmark (X-FEM vs plain DOLFINx P1, MUMPS)")
+    log("[4/6] paper section 5.1: block under uniform pressure (contact)")
+    blk = {}
+    for n in ((21,) if args.quick else (21, 42, 84)):
+        for enr in ("none", "scalar", "vector"):
+            r = block_uniform_pressure.run(n=n, enrichment=enr)
+            blk[f"{enr} n={n}"] = {k: r[k] for k in ("n_multipliers", "pressure_max_rel_dev", "K_I", "K_II")}
+    if not args.quick:
+        fig = block_uniform_pressure.main(["--figures", "--out", str(out / "block")])["figures"]
+        summary["block_rules"] = {k: v for k, v in fig.items() if k != "inf_sup"}
+        summary["inf_sup"] = fig["inf_sup"]
+    summary["block"] = blk
+
+    log("[5/6] closed inclined crack, frictionless sliding")
+    summary["sliding"] = sliding_crack.main(["--ns", *(["20"] if args.quick else ["20", "40", "80"]),
+                                             "--json", str(out / "sliding_crack.json")])
+
+    log("[6/6] core benchmark (X-FEM vs plain DOLFINx P1, MUMPS)")
     sizes = ["2e3"] if args.quick else ["2e4", "2e5"]
     bench_core.main(["--sizes", *sizes, "--repeats", "1" if args.quick else "3",
                      "--json", str(out / "bench_core.json"), "--quiet"])
@@ -104,6 +124,27 @@ def markdown(s: dict) -> str:
     lines += ["", "## Tip-cell quadrature: integral of grad F_l . grad F_l over a tip cell", "",
               "| rule | points | max rel. error |", "|---|---|---|"]
     lines += [f"| {r['rule']} | {r['points']} | {r['max_rel_error']:.2e} |" for r in s["tip_quadrature"]]
+    lines += ["", "## Paper section 5.1: block under uniform pressure (exact pressure 0.01, K_I = 0)", "",
+              "Stable multipliers, collapsed tip rule, bilateral contact; K_ref = 0.01 sqrt(pi 0.4) = "
+              f"{0.01 * (3.141592653589793 * 0.4) ** 0.5:.4f}.", "",
+              "| enrichment, mesh | multipliers | max pressure deviation (rel.) | K_I | K_II |", "|---|---|---|---|---|"]
+    lines += [f"| {k} | {v['n_multipliers']} | {v['pressure_max_rel_dev']:.2e} | {v['K_I']:.2e} | {v['K_II']:.2e} |"
+              for k, v in s["block"].items()]
+    if "block_rules" in s:
+        lines += ["", "Pressure deviation at n = 42 by multiplier space and tip rule (paper: ~1e-2 at degree 5):", "",
+                  "| variant | max pressure deviation | K_I |", "|---|---|---|"]
+        lines += [f"| {k} | {v['pressure_max_rel_dev']:.2e} | {v['K_I']:.2e} |" for k, v in s["block_rules"].items()]
+        lines += ["", "Inf-sup sqrt(beta_min) for h = 0.2, 0.1, 0.05, 0.025 (paper: naive decays, stable bounded):", "",
+                  "| space | values |", "|---|---|"]
+        lines += [f"| {k} | {', '.join(f'{b:.3f}' for _, b in v)} |" for k, v in s["inf_sup"].items()]
+        lines += ["", "Figures: `block/block_pressure.png`, `block/block_inf_sup.png`. The Heaviside-only space "
+                  "has a single multiplier at h = 0.2 (two cut cells), hence its large first value."]
+    sl = s["sliding"]
+    lines += ["", "## Closed inclined crack sliding without friction (30 degrees, a = 0.3)", "",
+              f"Infinite-plate K_II = {sl['K_II_infinite_plate']:.6f} (the square is finite).", "",
+              "| n | K_I (tip 1) | K_II (tip 1) | K_I (tip 2) | K_II (tip 2) |", "|---|---|---|---|---|"]
+    lines += [f"| {r['n']} | {r['tips'][0]['K_I']:.2e} | {r['tips'][0]['K_II']:.6f} | {r['tips'][1]['K_I']:.2e} | "
+              f"{r['tips'][1]['K_II']:.6f} |" for r in sl["rows"]]
     lines += ["", "## Speed: whole X-FEM solve vs plain DOLFINx P1 solve (same mesh, same MUMPS)", "",
               "| dofs | X-FEM (s) | plain (s) | ratio |", "|---|---|---|---|"]
     lines += [f"| {b['ndofs']} | {b['t_xfem']:.3f} | {b['t_plain']:.3f} | {b['ratio']:.3f} |"
