@@ -8,6 +8,13 @@
 namespace cracklip::quadrature
 {
 
+namespace
+{
+/// Conical product rule on the reference triangle: nu x nv Gauss points of
+/// the unit square mapped by xi = u, eta = (1 - u) v (Jacobian 1 - u).
+Rule conical_product(int nu, int nv);
+} // namespace
+
 Rule gauss_legendre(int n)
 {
   if (n < 1)
@@ -56,6 +63,27 @@ Rule gauss_legendre(int n)
   return rule;
 }
 
+namespace
+{
+Rule conical_product(int nu, int nv)
+{
+  const Rule gu = gauss_legendre(nu), gv = gauss_legendre(nv);
+  Rule rule;
+  rule.dim = 2;
+  rule.points.reserve(2 * nu * nv);
+  rule.weights.reserve(nu * nv);
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j)
+    {
+      const double u = gu.points[i], v = gv.points[j];
+      rule.points.push_back(u);
+      rule.points.push_back((1.0 - u) * v);
+      rule.weights.push_back(gu.weights[i] * gv.weights[j] * (1.0 - u));
+    }
+  return rule;
+}
+} // namespace
+
 Rule triangle(int degree)
 {
   if (degree < 0)
@@ -71,39 +99,14 @@ Rule triangle(int degree)
   }
   // Collapsed (Duffy) map of the unit square: xi = u, eta = (1 - u) v,
   // Jacobian (1 - u): degree + 1 in u, degree in v.
-  const int nu = (degree + 3) / 2;
-  const int nv = (degree + 2) / 2;
-  const Rule gu = gauss_legendre(nu);
-  const Rule gv = gauss_legendre(nv);
-  rule.points.reserve(2 * nu * nv);
-  rule.weights.reserve(nu * nv);
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j)
-    {
-      const double u = gu.points[i], v = gv.points[j];
-      rule.points.push_back(u);
-      rule.points.push_back((1.0 - u) * v);
-      rule.weights.push_back(gu.weights[i] * gv.weights[j] * (1.0 - u));
-    }
-  return rule;
+  return conical_product((degree + 3) / 2, (degree + 2) / 2);
 }
 
 Rule triangle_product(int n)
 {
   if (n < 1)
     throw std::invalid_argument("triangle_product: n must be >= 1");
-  const Rule g = gauss_legendre(n);
-  Rule rule;
-  rule.dim = 2;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-    {
-      const double u = g.points[i], v = g.points[j];
-      rule.points.push_back(u);
-      rule.points.push_back((1.0 - u) * v);
-      rule.weights.push_back(g.weights[i] * g.weights[j] * (1.0 - u));
-    }
-  return rule;
+  return conical_product(n, n);
 }
 
 Rule tip_fan(int n_t, int n_eta)
