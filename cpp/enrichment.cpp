@@ -148,14 +148,18 @@ EnrichmentLayout create_enrichment_layout(std::span<const double> x,
           forbidden[v] = 1;
       }
     }
-    // Core nodes of cells that also hold a non-core node.
+    // Core nodes of crossed cells that also hold a non-core node: there
+    // (1 - R) N_i (H - H_i) is not zero (elsewhere it vanishes identically).
     std::vector<std::int8_t> blending_core(num_nodes, 0);
     for (std::size_t c = 0; c < num_cells; ++c)
     {
       const std::int32_t* v = &cells[3 * c];
-      if (!(is_core[v[0]] and is_core[v[1]] and is_core[v[2]]))
-        for (int a = 0; a < 3; ++a)
-          blending_core[v[a]] = is_core[v[a]];
+      const auto cls = static_cast<CellClass>(g.cell_class[c]);
+      if (is_core[v[0]] and is_core[v[1]] and is_core[v[2]])
+        continue;
+      for (int a = 0; a < 3; ++a)
+        if (is_core[v[a]] and (cls == CellClass::cut or (cls == CellClass::edge and g.phi[v[a]] == 0.0)))
+          blending_core[v[a]] = 1;
     }
     for (std::int32_t i = 0; i < num_nodes; ++i)
     {

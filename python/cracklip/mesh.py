@@ -140,7 +140,8 @@ def create_half_annulus(h: float, radius: float = 1.0, outer_radius: float = 3.0
                         refine: typing.Sequence[tuple[float, float, float, float]] = ()) -> MeshData:
     """Half annulus radius <= r <= outer_radius, y >= 0 (paper section 5.2).
 
-    Tags: hole (r = radius), outer (r = outer_radius), symmetry (y = 0).
+    Tags: hole (r = radius), outer (r = outer_radius), symmetry (y = 0). The
+    points (0, radius) and (0, outer_radius) are mesh nodes.
     """
     if not (0.0 < radius < outer_radius):
         raise MeshError(f"need 0 < radius < outer_radius, got {radius}, {outer_radius}")
@@ -152,6 +153,10 @@ def create_half_annulus(h: float, radius: float = 1.0, outer_radius: float = 3.0
     box = occ.addRectangle(-2 * outer_radius, 0, 0, 4 * outer_radius, 2 * outer_radius)
     ring, _ = occ.cut([(2, outer)], [(2, inner)])
     half, _ = occ.intersect(ring, [(2, box)])
+    # Nodes at the top of both arcs (on the symmetry line x = 0).
+    tops = [(0, occ.addPoint(0.0, outer_radius, 0.0)), (0, occ.addPoint(0.0, radius, 0.0))]
+    half, _ = occ.fragment(half, tops)
+    half = [e for e in half if e[0] == 2]
     occ.synchronize()
     gmsh.model.addPhysicalGroup(2, [s for _, s in half], 1)
     groups: dict[str, list[int]] = {"hole": [], "outer": [], "symmetry": []}

@@ -223,7 +223,8 @@ class Solution:
     def contact_pressure(self, crack: int = 0) -> dict[str, np.ndarray]:
         """Contact pressure p = -lambda (>= 0 in compression) and normal gap
         [[u]].n at the quadrature points of the crack segments, sorted along
-        the crack: x (n, 2), s (n,), pressure (n,), gap (n,)."""
+        the crack: x (n, 2), s (n,), pressure (n,), gap (n,), weight (n,) (the
+        quadrature weights, for integrals along the crack)."""
         if not self.contact:
             raise InputError("this solution has no contact (Options.contact is 'none')")
         m = self.model
@@ -241,7 +242,7 @@ class Solution:
         s = (sp_["x"] - start) @ (direction / np.linalg.norm(direction))
         order = np.argsort(s[keep], kind="stable")
         return {"x": sp_["x"][keep][order], "s": s[keep][order], "pressure": p[keep][order],
-                "gap": gap[keep][order]}
+                "gap": gap[keep][order], "weight": sp_["weight"][keep][order]}
 
     @property
     def standard_displacement(self) -> np.ndarray:
