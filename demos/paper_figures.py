@@ -1,12 +1,14 @@
 """Main job: run cracklip's demos and write figures, results.json and results.md.
 
-What runs today (issues 2-4; section 5.2 of the paper joins with issue 5): the
+What runs: the
 through-crack patch test, the Westergaard sweep (mode I, both tip
 enrichments, n = 10..80) with its convergence, SIF and conditioning figures,
 the tip-cell quadrature table (collapsed rule vs the paper's plain Gauss
 rule), the paper's section 5.1 block under uniform pressure (contact pressure
-naive vs stable and per tip rule, K_I with the crack-lip term, inf-sup), the
-frictionless sliding crack, and the core speed benchmark at 2e4 and 2e5 dofs.
+naive vs stable and per tip rule, K_I with the crack-lip term, inf-sup), its
+section 5.2 crack from a hole (energy, pressure and K_I convergence,
+conditioning, both enrichments), the frictionless sliding crack, and the core
+speed benchmark at 2e4 and 2e5 dofs.
 
     /usr/bin/python3 demos/paper_figures.py --out results
 """
@@ -24,6 +26,7 @@ sys.path.insert(0, str(HERE.parent / "python"))
 
 import bench_core  # noqa: E402
 import block_uniform_pressure  # noqa: E402
+import hole_crack  # noqa: E402
 import patch_test  # noqa: E402
 import sliding_crack  # noqa: E402
 import tip_quadrature  # noqa: E402
@@ -44,13 +47,13 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     summary: dict = {}
 
-    log("[1/6] through-crack patch test")
+    log("[1/7] through-crack patch test")
     pt = patch_test.main(["--h", "0.2" if args.quick else "0.05", "--out", str(out / "patch_test")])
     summary["patch_test"] = {k: pt[k] for k in ("h", "ndofs", "enriched_dofs", "displacement_rel_error_top",
                                                  "displacement_rel_error_bottom", "opening_rel_error",
                                                  "strain_energy", "strain_energy_exact")}
 
-    log("[2/6] Westergaard mode I sweep (vector and scalar tip enrichment)")
+    log("[2/7] Westergaard mode I sweep (vector and scalar tip enrichment)")
     if args.quick:
         wg = {"runs": [westergaard.run(10, e) for e in ("vector", "scalar")], "summary": {}}
     else:
@@ -60,11 +63,11 @@ def main(argv=None) -> int:
                                                           "K_II", "cond_1norm", "cond_1norm_jacobi")}
                                        for r in wg["runs"]]}
 
-    log("[3/6] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
+    log("[3/7] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
     tq = tip_quadrature.main(["--json", str(out / "tip_quadrature.json")])
     summary["tip_quadrature"] = tq["rows"]
 
-    log("[4/6] paper section 5.1: block under uniform pressure (contact)")
+    log("[4/7] paper section 5.1: block under uniform pressure (contact)")
     blk = {}
     for n in ((21,) if args.quick else (21, 42, 84)):
         for enr in ("none", "scalar", "vector"):
@@ -76,11 +79,20 @@ def main(argv=None) -> int:
         summary["inf_sup"] = fig["inf_sup"]
     summary["block"] = blk
 
-    log("[5/6] closed inclined crack, frictionless sliding")
+    log("[5/7] paper section 5.2: crack from a hole")
+    if args.quick:
+        hole = {"runs": [hole_crack.run(0.2, enrichment="vector")[0]], "summary": {}}
+    else:
+        hole = hole_crack.main(["--sweep", "--out", str(out / "hole")])
+    summary["hole"] = {"summary": hole["summary"],
+                       "runs": [{k: r[k] for k in ("enrichment", "h", "ndofs", "energy_error", "pressure_l2_error",
+                                                   "K_I_normalised", "cond_1norm")} for r in hole["runs"]]}
+
+    log("[6/7] closed inclined crack, frictionless sliding")
     summary["sliding"] = sliding_crack.main(["--ns", *(["20"] if args.quick else ["20", "40", "80"]),
                                              "--json", str(out / "sliding_crack.json")])
 
-    log("[6/6] core benchmark (X-FEM vs plain DOLFINx P1, MUMPS)")
+    log("[7/7] core benchmark (X-FEM vs plain DOLFINx P1, MUMPS)")
     sizes = ["2e3"] if args.quick else ["2e4", "2e5"]
     bench_core.main(["--sizes", *sizes, "--repeats", "1" if args.quick else "3",
                      "--json", str(out / "bench_core.json"), "--quiet"])
@@ -139,6 +151,19 @@ def markdown(s: dict) -> str:
         lines += [f"| {k} | {', '.join(f'{b:.3f}' for _, b in v)} |" for k, v in s["inf_sup"].items()]
         lines += ["", "Figures: `block/block_pressure.png`, `block/block_inf_sup.png`. The Heaviside-only space "
                   "has a single multiplier at h = 0.2 (two cut cells), hence its large first value."]
+    hole = s["hole"]
+    lines += ["", "## Paper section 5.2: crack from a hole (sigma_inf = 0.01, a = 1, r_e = 0.3)", "",
+              "| enrichment | h | dofs | energy error | pressure L2 error | abs(K_I) / (sigma sqrt(pi a)) | cond_1 |",
+              "|---|---|---|---|---|---|---|"]
+    lines += [f"| {r['enrichment']} | {r['h']} | {r['ndofs']} | {r['energy_error']:.3e} | {r['pressure_l2_error']:.3e} | "
+              f"{r['K_I_normalised']:.2e} | {r['cond_1norm'] if r['cond_1norm'] is None else format(r['cond_1norm'], '.2e')} |"
+              for r in hole["runs"]]
+    if hole["summary"]:
+        lines += ["", "| enrichment | energy rate | pressure rate | K_I rate | paper |", "|---|---|---|---|---|"]
+        lines += [f"| {k} | {v['energy_error_rate']:.2f} | {v['pressure_l2_error_rate']:.2f} | "
+                  f"{v['K_I_normalised_rate']:.2f} | 1, 1, ~0.5 |" for k, v in hole["summary"].items()]
+        lines += ["", "Figures: `hole/hole_displacement.png`, `hole_energy_error.png`, `hole_pressure_profile.png`, "
+                  "`hole_pressure_l2_error.png`, `hole_K_I_normalised.png`, `hole_cond_1norm.png`."]
     sl = s["sliding"]
     lines += ["", "## Closed inclined crack sliding without friction (30 degrees, a = 0.3)", "",
               f"Infinite-plate K_II = {sl['K_II_infinite_plate']:.6f} (the square is finite).", "",
