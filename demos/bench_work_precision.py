@@ -123,10 +123,17 @@ def main(argv=None) -> dict:
                 log(f"{problem} {size} [{row['config']}] dofs={row['ndofs']} t={t_x:.3f}s plain={t_plain:.3f}s "
                     f"ratio={row['ratio']:.2f} energy={row['energy_error']:.2e} sif={row['sif_error']:.2e}")
                 rows.append(row)
+                save(args, rows)  # after every row: a long run keeps what it measured
+            del scene, errors, plain
+    res = save(args, rows)
+    plot(res, args.json.with_suffix(".png"))
+    return res
+
+
+def save(args, rows: list) -> dict:
     res = {"benchmark": "work_precision", "repeats": args.repeats, "rows": rows}
     args.json.parent.mkdir(parents=True, exist_ok=True)
     args.json.write_text(json.dumps(res, indent=2))
-    plot(res, args.json.with_suffix(".png"))
     return res
 
 

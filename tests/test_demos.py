@@ -39,3 +39,23 @@ def test_main_job_quick(tmp_path):
     text = (tmp_path / "results.md").read_text()
     assert "patch test" in text and "Westergaard" in text and "quadrature" in text
     assert json.loads((tmp_path / "results.json").read_text())["patch_test"]["opening_rel_error"] < 1e-10
+
+
+def test_hole_demo_cli(tmp_path):
+    out = tmp_path / "h.json"
+    run_demo("hole_crack.py", "--h", "0.2", "--cond", "--json", str(out), "--out", str(tmp_path))
+    res = json.loads(out.read_text())
+    for key in ("h", "ndofs", "energy_error", "pressure_l2_error", "K_I", "cond_1norm", "timings"):
+        assert key in res
+    assert res["all_closed"]
+
+
+def test_work_precision_demo(tmp_path):
+    out = tmp_path / "wp.json"
+    run_demo("bench_work_precision.py", "--westergaard-n", "10", "--hole-h", "0.2", "--repeats", "1",
+             "--json", str(out), "--quiet")
+    res = json.loads(out.read_text())
+    assert {r["problem"] for r in res["rows"]} == {"westergaard", "hole"}
+    for r in res["rows"]:
+        assert r["t_xfem"] > 0 and r["t_plain"] > 0 and r["energy_error"] > 0
+    assert out.with_suffix(".png").stat().st_size > 10000
