@@ -259,6 +259,23 @@ void compute_cell_quadrature(const P1Cell& cell, std::int32_t c,
       append(rule, regions[r], cell, sides[r], out);
     return;
   }
+  // Far from the tip the tip functions are smooth on the cell: Gauss rule.
+  if (!fanned_from_tip)
+  {
+    const double diam = std::max({std::hypot(whole[1][0] - whole[0][0], whole[1][1] - whole[0][1]),
+                                  std::hypot(whole[2][0] - whole[1][0], whole[2][1] - whole[1][1]),
+                                  std::hypot(whole[0][0] - whole[2][0], whole[0][1] - whole[2][1])});
+    double dist = std::numeric_limits<double>::max();
+    for (int i = 0; i < 3; ++i)
+      dist = std::min(dist, std::hypot(whole[i][0] - tip->tip[0], whole[i][1] - tip->tip[1]));
+    if (dist - diam > options.far_factor * diam)
+    {
+      const quadrature::Rule rule = quadrature::triangle(options.far_degree);
+      for (std::size_t r = 0; r < regions.size(); ++r)
+        append(rule, regions[r], cell, sides[r], out);
+      return;
+    }
+  }
   // Collapsed rule, fanned from the tip: the tip cell's regions are fan
   // triangles already; any other region is a signed sum of fans from the
   // tip (outside it), so the near-singular integrand next to the tip is

@@ -39,6 +39,10 @@ struct QuadratureOptions
   int tip_angular = 6;          ///< collapsed: points across each fan triangle (eta)
   double tip_max_angle = 0.6;   ///< collapsed: largest apex angle of a fan triangle (radians)
   int tip_degree = 5;           ///< gauss: degree p, n = (p + 3) / 2
+  /// collapsed: cells farther from the tip than far_factor times their
+  /// diameter carry a smooth integrand and get the Gauss rule of far_degree.
+  double far_factor = 3.0;
+  int far_degree = 10;
 };
 
 /// Quadrature points of a cell: reference coordinates (n, 2), physical

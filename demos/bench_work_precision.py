@@ -103,6 +103,9 @@ def main(argv=None) -> dict:
                     help="divisions per side (700: about 1.1e6 dofs)")
     ap.add_argument("--hole-h", type=float, nargs="+", default=[0.1, 0.05, 0.025, 0.0125])
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--scalar-max-dofs", type=float, default=3e5,
+                    help="skip the scalar enrichment above this size: its nearly dependent branch-function "
+                         "dofs make MUMPS slow and memory-hungry (default 3e5)")
     ap.add_argument("--json", type=pathlib.Path, default=pathlib.Path("results/work_precision.json"))
     ap.add_argument("--quiet", action="store_true")
     args = ap.parse_args(argv)
@@ -115,6 +118,9 @@ def main(argv=None) -> dict:
             scene, errors, plain = case(size)
             t_plain, runs_plain, (u_plain, ph_plain) = timed(lambda: cl.solve_plain(plain), args.repeats)
             for cfg in CONFIGS[problem]:
+                if cfg["enrichment"] == "scalar" and 2 * u_plain.size > 2 * args.scalar_max_dofs:
+                    log(f"{problem} {size} [{label(cfg)}] skipped (above --scalar-max-dofs)")
+                    continue
                 t_x, runs_x, sol = timed(lambda: cl.solve(scene(cfg)), args.repeats)
                 row = {"problem": problem, "size": size, "config": label(cfg), "ndofs": sol.model.num_dofs,
                        "ndofs_plain": int(u_plain.size), "t_xfem": t_x, "t_plain": t_plain,

@@ -31,16 +31,40 @@ def create_lu_solver(A: PETSc.Mat, detect_null_pivots: bool = True) -> PETSc.KSP
 
 
 def solve_checked(A: PETSc.Mat, b: PETSc.Vec, residual_tol: float = 1e-8,
-                  what: str = "system") -> PETSc.Vec:
-    """Solve A x = b by MUMPS LU; raise SolverError on any sign of failure."""
-    ksp = create_lu_solver(A)
+                  what: str = "system", scale: bool = True) -> PETSc.Vec:
+    """Solve A x = b by MUMPS LU; raise SolverError on any sign of failure.
+
+    scale: solve the symmetrically Jacobi-scaled system D A D y = D b, x = D y
+    (D = |diag A|^-1/2): enriched dofs with small supports make the raw matrix
+    badly scaled, which costs MUMPS delayed pivots, time and memory. If MUMPS
+    runs out of workspace (INFOG(1) = -8, -9) the factorisation is retried
+    with more (ICNTL(14)). The residual is checked on the unscaled system.
+    """
+    M, rhs, d = A, b, None
+    if scale:
+        d = A.getDiagonal()
+        arr = np.abs(d.array)
+        arr[arr == 0.0] = 1.0
+        d.array[:] = 1.0 / np.sqrt(arr)
+        M = A.duplicate(copy=True)
+        M.diagonalScale(d, d)
+        rhs = b.duplicate()
+        rhs.pointwiseMult(b, d)
     x = b.duplicate()
-    try:
-        ksp.setUp()
-    except PETSc.Error as e:
-        raise SolverError(f"MUMPS factorisation of the {what} failed ({e}); the matrix is "
-                          "probably singular: check that every piece of the domain (a crack may "
-                          "cut it in two) has Dirichlet conditions fixing its rigid motion") from None
+    for relax in (20, 100, 400):
+        ksp = create_lu_solver(M)
+        ksp.getPC().getFactorMatrix().setMumpsIcntl(14, relax)
+        try:
+            ksp.setUp()
+        except PETSc.Error as e:
+            F = ksp.getPC().getFactorMatrix()
+            if F.getMumpsInfog(1) in (-8, -9) and relax < 400:
+                ksp.destroy()
+                continue
+            raise SolverError(f"MUMPS factorisation of the {what} failed ({e}); the matrix is "
+                              "probably singular: check that every piece of the domain (a crack may "
+                              "cut it in two) has Dirichlet conditions fixing its rigid motion") from None
+        break
     F = ksp.getPC().getFactorMatrix()
     info = F.getMumpsInfog(1)
     if info < 0:
@@ -52,7 +76,12 @@ def solve_checked(A: PETSc.Mat, b: PETSc.Vec, residual_tol: float = 1e-8,
             f"the {what} is singular: MUMPS found {null_pivots} null pivot(s). Likely cause: a "
             "piece of the domain separated by a crack has no Dirichlet condition fixing its rigid "
             "motion, or an enriched dof sees no stiffness")
-    ksp.solve(b, x)
+    ksp.solve(rhs, x)
+    if scale:
+        x.pointwiseMult(x, d)
+        M.destroy()
+        rhs.destroy()
+        d.destroy()
     r = b.duplicate()
     A.mult(x, r)
     r.axpy(-1.0, b)
