@@ -54,14 +54,16 @@ def solve_checked(A: PETSc.Mat, b: PETSc.Vec, residual_tol: float = 1e-8,
     for relax in (20, 100, 400):
         ksp = create_lu_solver(M)
         ksp.getPC().getFactorMatrix().setMumpsIcntl(14, relax)
+        error = None
         try:
             ksp.setUp()
         except PETSc.Error as e:
-            F = ksp.getPC().getFactorMatrix()
-            if F.getMumpsInfog(1) in (-8, -9) and relax < 400:
-                ksp.destroy()
-                continue
-            raise SolverError(f"MUMPS factorisation of the {what} failed ({e}); the matrix is "
+            error = e
+        if ksp.getPC().getFactorMatrix().getMumpsInfog(1) in (-8, -9) and relax < 400:
+            ksp.destroy()  # workspace too small: retry with more
+            continue
+        if error is not None:
+            raise SolverError(f"MUMPS factorisation of the {what} failed ({error}); the matrix is "
                               "probably singular: check that every piece of the domain (a crack may "
                               "cut it in two) has Dirichlet conditions fixing its rigid motion") from None
         break
