@@ -130,7 +130,6 @@ def main(argv=None) -> dict:
                     f"ratio={row['ratio']:.2f} energy={row['energy_error']:.2e} sif={row['sif_error']:.2e}")
                 rows.append(row)
                 save(args, rows)  # after every row: a long run keeps what it measured
-            del scene, errors, plain
     res = save(args, rows)
     plot(res, args.json.with_suffix(".png"))
     return res

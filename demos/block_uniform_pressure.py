@@ -33,13 +33,12 @@ def scene_for(n: int = 42, enrichment: str = "vector", radius: float = 0.2, mult
               quadrature: str = "collapsed", degree: int = 5, contact: str = "bilateral",
               supports: str = "rollers") -> cl.Scene:
     mesh = cl.create_square(2.0 / n)
-    x = mesh.mesh.geometry.x[:, :2]
     if supports == "rollers":
-        pin = x[int(np.argmin(np.linalg.norm(x - [1.0, -1.0], axis=1)))]
+        pin = np.array(mesh.nearest_node([1.0, -1.0]))
         dirichlet = [cl.Dirichlet("bottom", 1, 0.0), cl.Dirichlet(tuple(pin), 0, 0.0)]
     else:
-        c0 = x[int(np.argmin(np.linalg.norm(x - [-1.0, -1.0], axis=1)))]
-        c1 = x[int(np.argmin(np.linalg.norm(x - [1.0, -1.0], axis=1)))]
+        c0 = np.array(mesh.nearest_node([-1.0, -1.0]))
+        c1 = np.array(mesh.nearest_node([1.0, -1.0]))
         dirichlet = [cl.Dirichlet(tuple(c0), None, 0.0), cl.Dirichlet(tuple(c1), None, 0.0)]
     return cl.Scene(mesh, cl.Material(1.0, 0.3),
                     cracks=[cl.Crack([[-1.5, 0.0], [TIP_X, 0.0]], name="edge crack")],

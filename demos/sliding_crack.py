@@ -36,9 +36,8 @@ def shear_on_crack() -> float:
 def run(n: int, sif_radius: float = 0.1) -> dict:
     t = direction()
     mesh = cl.create_square(2.0 / n)
-    x = mesh.mesh.geometry.x[:, :2]
-    c0 = x[int(np.argmin(np.linalg.norm(x - [-1, -1], axis=1)))]
-    c1 = x[int(np.argmin(np.linalg.norm(x - [1, -1], axis=1)))]
+    c0 = np.array(mesh.nearest_node([-1, -1]))
+    c1 = np.array(mesh.nearest_node([1, -1]))
     normals = {"left": (-1, 0), "right": (1, 0), "bottom": (0, -1), "top": (0, 1)}
     scene = cl.Scene(mesh, cl.Material(1.0, 0.3), cracks=[cl.Crack([-HALF_LENGTH * t, HALF_LENGTH * t])],
                      dirichlet=[cl.Dirichlet(tuple(c0), None, 0.0), cl.Dirichlet(tuple(c1), 1, 0.0)],

@@ -31,9 +31,8 @@ def uniform_stress_scene(md, material, sigma, cracks):
     and (1,-1) (y). Returns (scene, exact displacement function)."""
     import cracklip as cl
     eps = uniform_strain(material, sigma)
-    x = md.mesh.geometry.x[:, :2]
-    n0 = x[int(np.argmin(np.linalg.norm(x - [-1, -1], axis=1)))]
-    n1 = x[int(np.argmin(np.linalg.norm(x - [1, -1], axis=1)))]
+    n0 = np.array(md.nearest_node([-1, -1]))
+    n1 = np.array(md.nearest_node([1, -1]))
 
     def exact(p):
         return p @ eps.T

@@ -73,9 +73,8 @@ def test_inf_sup_stable_bounded(enrichment):
 
 def _bending_scene(start, n=40):
     md = cl.create_square(2.0 / n)
-    x = md.mesh.geometry.x[:, :2]
-    c0 = x[int(np.argmin(np.linalg.norm(x - [-1, -1], axis=1)))]
-    c1 = x[int(np.argmin(np.linalg.norm(x - [1, -1], axis=1)))]
+    c0 = np.array(md.nearest_node([-1, -1]))
+    c1 = np.array(md.nearest_node([1, -1]))
 
     def syy(p):
         return -0.01 + 0.03 * p[:, 0]  # compression on the left, tension on the right

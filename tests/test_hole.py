@@ -5,7 +5,6 @@ import sys
 import numpy as np
 import pytest
 
-import cracklip as cl
 from cracklip.kirsch import crack_pressure, kirsch_stress
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))

@@ -42,6 +42,12 @@ class MeshData:
         tag = self.tag_value(where)
         return self.facet_tags.indices[self.facet_tags.values == tag]
 
+    def nearest_node(self, point) -> tuple[float, float]:
+        """Coordinates of the mesh node nearest to a point (for point conditions)."""
+        x = self.mesh.geometry.x[:, :2]
+        i = int(np.argmin(np.linalg.norm(x - np.asarray(point, dtype=float), axis=1)))
+        return float(x[i, 0]), float(x[i, 1])
+
     def tag_value(self, where: str | int) -> int:
         if isinstance(where, str):
             if where not in self.tags:
