@@ -232,23 +232,17 @@ void compute_cell_quadrature(const P1Cell& cell, std::int32_t c,
       fanned_from_tip = true;
       break;
     }
-    if (const std::int32_t ic = g->crack_cell_index[c]; ic >= 0)
-    {
-      const CrackCell& cc = g->crack_cells[ic];
-      for (int s = 0; s < cc.num_sub; ++s)
-      {
-        regions.push_back({cell.physical({cc.sub[6 * s], cc.sub[6 * s + 1]}),
-                           cell.physical({cc.sub[6 * s + 2], cc.sub[6 * s + 3]}),
-                           cell.physical({cc.sub[6 * s + 4], cc.sub[6 * s + 5]})});
-        sides.push_back(cc.side[s]);
-      }
-      break;
-    }
   }
-  if (regions.empty())
+  if (!fanned_from_tip)
   {
-    regions.push_back(whole);
-    sides.push_back(0);
+    // The sub-triangles of a crossed cell, else the cell itself (side 0).
+    const CellRegions crossed(cracks, c);
+    for (int s = 0; s < crossed.size(); ++s)
+    {
+      const auto t = crossed.triangle(s);
+      regions.push_back({cell.physical(t[0]), cell.physical(t[1]), cell.physical(t[2])});
+      sides.push_back(crossed.side(s));
+    }
   }
 
   if (!tip or options.tip_rule == TipQuadrature::gauss)

@@ -121,13 +121,17 @@ class Solution:
         normal = np.stack([-tang[:, 1], tang[:, 0]], axis=1)
         jump = up - um
         # Normal points into the + side; the jump u(+) - u(-) along it is an opening.
-        start = self.model.cracks[crack].crack.points[0]
-        direction = self.model.cracks[crack].crack.points[-1] - start
-        s = (x - start) @ (direction / np.linalg.norm(direction))
+        s = self._along_crack(crack, x)
         order = np.argsort(s, kind="stable")
         return {"x": x[order], "s": s[order], "jump": jump[order],
                 "normal": np.einsum("ij,ij->i", jump, normal)[order],
                 "tangential": np.einsum("ij,ij->i", jump, tang)[order]}
+
+    def _along_crack(self, crack: int, x: np.ndarray) -> np.ndarray:
+        """Coordinate of points along a crack's chord, from its first point."""
+        pts = self.model.cracks[crack].crack.points
+        direction = pts[-1] - pts[0]
+        return (x - pts[0]) @ (direction / np.linalg.norm(direction))
 
     # -- whole-field quantities --------------------------------------------
     def subcell_fields(self) -> dict[str, typing.Any]:
@@ -241,9 +245,7 @@ class Solution:
         up = self._evaluate(sp_["cell"], sp_["ref"], np.ones(len(p), dtype=np.int8))
         um = self._evaluate(sp_["cell"], sp_["ref"], -np.ones(len(p), dtype=np.int8))
         gap = np.einsum("ij,ij->i", up - um, sp_["normal"])
-        start = m.cracks[crack].crack.points[0]
-        direction = m.cracks[crack].crack.points[-1] - start
-        s = (sp_["x"] - start) @ (direction / np.linalg.norm(direction))
+        s = self._along_crack(crack, sp_["x"])
         order = np.argsort(s[keep], kind="stable")
         return {"x": sp_["x"][keep][order], "s": s[keep][order], "pressure": p[keep][order],
                 "gap": gap[keep][order], "weight": sp_["weight"][keep][order]}
