@@ -1,5 +1,6 @@
 #include "enrichment.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -136,16 +137,25 @@ EnrichmentLayout create_enrichment_layout(std::span<const double> x,
     for (std::size_t c = 0; c < num_cells; ++c)
     {
       const auto cls = static_cast<CellClass>(g.cell_class[c]);
+      const std::int32_t* v = &cells[3 * c];
+      // With the corrected scheme the Heaviside functions carry 1 - R, which
+      // vanishes on a cell whose nodes are all core tip nodes (always the
+      // tip cell): there they cannot open a crack that is not present, so
+      // such a tip or extension cell forbids nothing. (Forbidding its nodes
+      // would strip the Heaviside from a core node of a neighbouring cut
+      // blending cell, where the jump is then missing: a tip close to the
+      // tip cell's far edge.)
+      const bool ramp_one = options.tip != TipEnrichment::none and options.corrected
+                            and is_core[v[0]] and is_core[v[1]] and is_core[v[2]];
       // A node's Heaviside function N_i (H - H_i) is non-zero on a cut cell,
       // and on an edge cell only if the node lies on the crack edge (a node
       // off the edge is on the cell's own side, where the function is 0).
       for (int a = 0; a < 3; ++a)
       {
-        const std::int32_t v = cells[3 * c + a];
-        if (cls == CellClass::cut or (cls == CellClass::edge and g.phi[v] == 0.0))
-          split[v] = 1;
-        else if (cls == CellClass::tip or cls == CellClass::extension)
-          forbidden[v] = 1;
+        if (cls == CellClass::cut or (cls == CellClass::edge and g.phi[v[a]] == 0.0))
+          split[v[a]] = 1;
+        else if ((cls == CellClass::tip or cls == CellClass::extension) and !ramp_one)
+          forbidden[v[a]] = 1;
       }
     }
     // Core nodes of crossed cells that also hold a non-core node: there
@@ -161,6 +171,47 @@ EnrichmentLayout create_enrichment_layout(std::span<const double> x,
         if (is_core[v[a]] and (cls == CellClass::cut or (cls == CellClass::edge and g.phi[v[a]] == 0.0)))
           blending_core[v[a]] = 1;
     }
+    // Scalar branch functions under the corrected scheme: in the tip frame
+    // (x1, x2) the identities  x2 F1 + x1 F3 - x2 F4 = 0  and
+    // x2 F2 - x2 F3 - x1 F4 = 0  hold everywhere, and where every node of the
+    // cell carries the functions sum_i N_i R x_i = R x. So for each component
+    // sum_i N_i R (x2_i F1 + x1_i F3 - x2_i F4) = 0 (and likewise for the
+    // second identity, also with the shifted functions): two exact
+    // dependencies per component and tip. Dropping F1 and F2 at the node
+    // farthest from the crack line (x2_p != 0) removes them without changing
+    // the span. Only when the tip's functions cover the whole support of its
+    // ramp (no overlap with another tip's nodes), else nothing is dropped.
+    std::vector<std::int32_t> dropped_node; // per tip of this crack's tips: node or -1
+    if (options.tip == TipEnrichment::scalar and options.corrected)
+    {
+      const auto first_tip = static_cast<std::int32_t>(layout.tip_frames.size() - g.tips.size() / 2);
+      for (auto t = first_tip; t < static_cast<std::int32_t>(layout.tip_frames.size()); ++t)
+      {
+        const TipFrame& f = layout.tip_frames[t];
+        bool complete = true;
+        for (std::size_t c = 0; c < num_cells and complete; ++c)
+        {
+          const std::int32_t* v = &cells[3 * c];
+          bool has_core = false;
+          for (int a = 0; a < 3; ++a)
+            has_core = has_core or (is_core[v[a]] and tip_of[v[a]] == t);
+          for (int a = 0; a < 3 and has_core; ++a)
+            complete = complete and tip_of[v[a]] == t;
+        }
+        std::int32_t best = -1;
+        double best_d = 0.0;
+        for (std::int32_t i = 0; i < num_nodes and complete; ++i)
+          if (tip_of[i] == t)
+          {
+            const double d = std::abs(-f.e1[1] * (x[2 * i] - f.tip[0]) + f.e1[0] * (x[2 * i + 1] - f.tip[1]));
+            if (d > best_d)
+              best_d = d, best = i;
+          }
+        dropped_node.push_back(best);
+      }
+    }
+    auto dropped = [&](std::int32_t i, int l)
+    { return l < 2 and std::find(dropped_node.begin(), dropped_node.end(), i) != dropped_node.end(); };
     for (std::int32_t i = 0; i < num_nodes; ++i)
     {
       const auto icr = static_cast<std::int32_t>(ic);
@@ -169,6 +220,8 @@ EnrichmentLayout create_enrichment_layout(std::span<const double> x,
         if (options.tip == TipEnrichment::scalar)
           for (int l = 0; l < 4; ++l)
           {
+            if (dropped(i, l))
+              continue;
             node_enr[i].push_back(layout.num_enriched());
             add(i, icr, EnrichmentKind::tip_scalar, l, tip_of[i], is_core[i]);
           }

@@ -6,6 +6,9 @@
 // blocks therefore have block size 2, like DOLFINx's P1 vector space.
 //   heaviside  : N_i (H - H_i) e_d,                 d = x, y
 //   tip_scalar : N_i (F_l - F_l(x_i)) e_d,          l = 0..3 (one pseudo-node each)
+//                (corrected scheme: F_1, F_2 are left out at one node per
+//                tip, which removes the functions' two exact linear
+//                dependencies per component, see enrichment.cpp)
 //   tip_vector : N_i (U_m - U_m(x_i)),              m = mode I, mode II (the two dofs)
 #pragma once
 

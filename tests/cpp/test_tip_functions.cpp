@@ -79,6 +79,26 @@ TEST(TipFunctions, GradientsMatchFiniteDifferences)
   }
 }
 
+// The two linear identities that make P1 x {F1..F4} linearly dependent under
+// a partition of unity (the reason the corrected scheme drops F1, F2 at one
+// node per tip): x2 F1 + x1 F3 - x2 F4 = 0 and x2 F2 - x2 F3 - x1 F4 = 0,
+// (x1, x2) in the tip frame, on both lips too.
+TEST(TipFunctions, BranchFunctionIdentities)
+{
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> rr(1e-3, 2.0), tt(-std::numbers::pi, std::numbers::pi);
+  for (int k = 0; k < 200; ++k)
+  {
+    const double r = rr(gen), t = k < 2 ? (k == 0 ? std::numbers::pi : -std::numbers::pi) : tt(gen);
+    const double x1 = r * std::cos(t), x2 = r * std::sin(t);
+    std::array<double, 4> F;
+    std::array<std::array<double, 2>, 4> dF;
+    branch_functions(frame, at(r, t), t >= 0.0 ? 1 : -1, F, dF);
+    EXPECT_NEAR(x2 * F[0] + x1 * F[2] - x2 * F[3], 0.0, 1e-14 * std::pow(r, 1.5));
+    EXPECT_NEAR(x2 * F[1] - x2 * F[2] - x1 * F[3], 0.0, 1e-14 * std::pow(r, 1.5));
+  }
+}
+
 TEST(TipFunctions, WilliamsFieldsAreTractionFreeOnTheLips)
 {
   // Lip normal e2 = e1 rotated by +90 degrees; traction sigma . e2.
