@@ -115,19 +115,25 @@ def solve_saddle(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, active: np.
     return sol[:-m] if m else sol, sol[-m:] if m else np.zeros(0)
 
 
-def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec) -> tuple[np.ndarray, dict]:
+def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
+                  transform: sp.spmatrix | None = None) -> tuple[np.ndarray, dict]:
     """Solve the contact problem on the assembled stiffness A (constraints
     applied) and load b. Returns (u, info) with info: system, lambda (reduced),
-    active, iterations, history."""
+    active, iterations, history.
+
+    transform: if A and b are rescaled (T^T K T, T^T f), the T: the
+    constraints act on u = T y, the returned u is y, info["system"] keeps
+    the unscaled B."""
     opts = model.scene.options
-    cs = create_contact_system(model)
+    physical = create_contact_system(model)
+    cs = physical if transform is None else dataclasses.replace(physical, B=(physical.B @ transform).tocsr())
     K = _scipy_from_petsc(A)
     f = b.array.copy()
     m = cs.num_multipliers
     if opts.contact == "bilateral":
         active = np.ones(m, dtype=bool)
         u, lam = solve_saddle(K, f, cs, active, opts.residual_tol)
-        return u, {"system": cs, "lambda": lam, "active": active, "iterations": 1, "history": [m]}
+        return u, {"system": physical, "lambda": lam, "active": active, "iterations": 1, "history": [m]}
     # Unilateral: primal-dual active set.
     active = np.full(m, opts.active_set_start == "closed")
     lumped = np.asarray(cs.M.sum(axis=1)).ravel()
@@ -141,7 +147,7 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec) -> tuple[np.ndar
         history.append(int(new_active.sum()))
         logger.info("active set iteration %d: %d of %d multipliers active", it, new_active.sum(), m)
         if np.array_equal(new_active, active):
-            return u, {"system": cs, "lambda": lam, "active": active, "iterations": it,
+            return u, {"system": physical, "lambda": lam, "active": active, "iterations": it,
                        "history": history}
         active = new_active
     raise ContactError(f"the active set did not settle in {opts.max_active_set_iterations} iterations "

@@ -30,12 +30,16 @@ class Solution:
         condition: 1-norm condition numbers if asked (cond_1norm, cond_1norm_jacobi).
         contact: with contact, the ContactSystem ("system"), reduced
             multipliers ("lambda"), active set, iterations and history.
+        solver: "relative_residual" ||A x - b|| / ||b|| of the final linear
+            solve, and "solves": one record per MUMPS solve (what, size,
+            relative_residual).
     """
     model: XfemModel
     u: np.ndarray
     timings: dict[str, float]
     condition: dict[str, float] = dataclasses.field(default_factory=dict)
     contact: dict[str, typing.Any] = dataclasses.field(default_factory=dict)
+    solver: dict[str, typing.Any] = dataclasses.field(default_factory=dict)
 
     # -- point values -------------------------------------------------------
     def locate(self, points: np.ndarray, prefer_crossed: bool = True) -> tuple[np.ndarray, np.ndarray]:
@@ -195,6 +199,9 @@ class Solution:
         m = self.model
         if radius is None:
             radius = 4.0 * m.h
+        if not (isinstance(radius, (int, float, np.floating)) and np.isfinite(radius) and radius > 0.0):
+            raise InputError(f"the SIF domain radius must be a finite number > 0 (default: 4 mean edge "
+                             f"lengths, {4.0 * m.h:.3g} here), got {radius!r}")
         g = m.geometries[crack]
         mat = m.scene.material
         out = []
@@ -203,8 +210,12 @@ class Solution:
             d = _cracklip.compute_domain_points(m.x, m.cells, m.layout, m.geometries, tip, e1,
                                                 radius, self._quadrature(SIF_DEGREE))
             if d["weight"].size == 0:
+                dist = np.linalg.norm(m.x - tip, axis=1)
                 raise InputError(f"no cell crosses the SIF domain circle of radius {radius} "
-                                 f"around tip {tip.tolist()}")
+                                 f"around tip {tip.tolist()}: the q-function is constant (nodes within "
+                                 f"the radius: {int(np.count_nonzero(dist < radius))} of {len(dist)}); use "
+                                 f"a radius above the nearest node's distance {dist.min():.3g} that keeps "
+                                 "the circle inside the domain")
             _, grad = _cracklip.evaluate_displacement(m.x, m.cells, m.layout, m.geometries, self.u,
                                                       d["cell"], d["ref"], d["side"])
             I = _cracklip.interaction_integral(tip, e1, mat.E, mat.nu, d["x"], d["weight"],

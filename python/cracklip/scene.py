@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 import typing
 
 import numpy as np
@@ -67,7 +68,9 @@ class Crack:
             raise CrackGeometryError(f"{label}: points must be an array of shape (k, 2), k >= 2; "
                                      f"got shape {pts.shape}")
         if not np.all(np.isfinite(pts)):
-            raise CrackGeometryError(f"{label}: points contain NaN or infinity")
+            k = int(np.flatnonzero(~np.all(np.isfinite(pts), axis=1))[0])
+            raise CrackGeometryError(f"{label}: point {k} is {pts[k].tolist()}; crack points must be "
+                                     "finite numbers (no NaN or infinity)")
         lengths = np.linalg.norm(np.diff(pts, axis=0), axis=1)
         scale = max(np.ptp(pts, axis=0).max(), 1e-300)
         bad = np.flatnonzero(lengths <= 1e-12 * scale)
@@ -75,7 +78,61 @@ class Crack:
             k = int(bad[0])
             raise CrackGeometryError(f"{label}: segment {k} from {pts[k].tolist()} to "
                                      f"{pts[k + 1].tolist()} has zero length; remove the repeated point")
+        hit = self_intersection(pts)
+        if hit is not None:
+            i, j, q = hit
+            how = "folds back onto" if j == i + 1 else "meets"
+            raise CrackGeometryError(
+                f"{label}: segment {i} ({pts[i].tolist()} to {pts[i + 1].tolist()}) {how} segment {j} "
+                f"({pts[j].tolist()} to {pts[j + 1].tolist()}) at {np.round(q, 12).tolist()}; a crack must "
+                "be a simple polyline (no self-intersection, no point visited twice)")
         self.points = pts
+
+
+def self_intersection(pts: np.ndarray) -> typing.Optional[tuple[int, int, np.ndarray]]:
+    """First pair of segments (i < j) of a polyline that meet other than at
+    the point shared by consecutive segments (or that overlap there: the
+    polyline folds back), with a point they share; None for a simple polyline."""
+    a, b = pts[:-1], pts[1:]
+    d = b - a
+    m = len(a)
+    scale = max(float(np.ptp(pts, axis=0).max()), 1e-300)
+    tol = 1e-12 * scale * scale
+
+    def cross(u, v):
+        return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+    # Consecutive segments: only a fold back (collinear, opposite directions).
+    if m >= 2:
+        fold = (np.abs(cross(d[:-1], d[1:])) <= tol) & (np.einsum("ij,ij->i", d[:-1], d[1:]) < 0.0)
+        if fold.any():
+            i = int(np.flatnonzero(fold)[0])
+            return i, i + 1, b[i]
+    for i0 in range(0, max(m - 2, 0), 512):
+        i = np.arange(i0, min(i0 + 512, m - 2))[:, None]
+        j = np.arange(m)[None, :]
+        ai, di, aj, dj = a[i], d[i], a[j], d[j]
+        o1, o2 = cross(di, aj - ai), cross(di, aj + dj - ai)
+        o3, o4 = cross(dj, ai - aj), cross(dj, ai + di - aj)
+        o1, o2, o3, o4 = (np.where(np.abs(o) <= tol, 0.0, o) for o in (o1, o2, o3, o4))
+        meet = (o1 * o2 <= 0.0) & (o3 * o4 <= 0.0) & (j >= i + 2)
+        collinear = (o1 == 0.0) & (o2 == 0.0)
+        # Collinear pairs meet only if their projections on segment i overlap.
+        dd = np.einsum("...k,...k->...", di, di)
+        s0 = np.einsum("...k,...k->...", aj - ai, di) / dd
+        s1 = np.einsum("...k,...k->...", aj + dj - ai, di) / dd
+        overlap = (np.maximum(s0, s1) >= -1e-12) & (np.minimum(s0, s1) <= 1.0 + 1e-12)
+        meet &= ~collinear | overlap
+        if meet.any():
+            r, c = np.argwhere(meet)[0]
+            ii, jj = int(i[r, 0]), int(c)
+            den = cross(d[ii], d[jj])
+            if abs(den) > tol:
+                t = cross(a[jj] - a[ii], d[jj]) / den
+                q = a[ii] + np.clip(t, 0.0, 1.0) * d[ii]
+            else:
+                q = a[jj] if 0.0 <= s0[r, c] <= 1.0 else a[ii]
+            return ii, jj, q
+    return None
 
 
 @dataclasses.dataclass
@@ -111,8 +168,19 @@ class Traction:
     where: typing.Union[str, int]
     value: VectorValue
 
+    def __post_init__(self):
+        if not callable(self.value):
+            v = np.asarray(self.value, dtype=float)
+            if v.shape != (2,) or not np.all(np.isfinite(v)):
+                raise InputError(f"traction on {self.where!r}: a constant value must be two finite numbers "
+                                 f"(t_x, t_y), got {self.value!r}")
+
 
 ENRICHMENTS = ("none", "scalar", "vector")
+#: Integer options and their largest accepted value (quadrature degrees and
+#: point counts beyond these cost time without adding accuracy).
+INTEGER_OPTIONS = {"quadrature_degree": 60, "degree": 60, "facet_degree": 60, "tip_radial": 60,
+                   "tip_angular": 60, "contact_points": 60, "max_active_set_iterations": 10000}
 TIP_QUADRATURES = ("collapsed", "gauss")
 
 
@@ -150,6 +218,11 @@ class Options:
             its shortest edge is moved onto it (level set set to 0).
         facet_degree: degree of the rule for tractions on boundary facets.
         residual_tol: largest accepted relative residual of the linear solve.
+        rescale: "none" (the solver still Jacobi-scales internally) or
+            "nodal": every node with enriched dofs has its block of standard
+            and enriched dofs orthonormalised in the energy (Cholesky), other
+            dofs Jacobi-scaled; same answer, a better conditioned matrix
+            (Solution.condition then reports the rescaled matrix).
     """
     enrichment: str = "vector"
     radius: float = 0.0
@@ -168,6 +241,7 @@ class Options:
     snap_tol: float = 1e-6
     facet_degree: int = 4
     residual_tol: float = 1e-8
+    rescale: str = "none"
 
     def __post_init__(self):
         if self.enrichment not in ENRICHMENTS:
@@ -176,18 +250,26 @@ class Options:
             raise InputError(f"blending must be 'corrected' or 'standard', got {self.blending!r}")
         if self.contact not in ("none", "bilateral", "unilateral"):
             raise InputError(f"contact must be 'none', 'bilateral' or 'unilateral', got {self.contact!r}")
+        if self.rescale not in ("none", "nodal"):
+            raise InputError(f"rescale must be 'none' or 'nodal', got {self.rescale!r}")
         if self.multipliers not in ("stable", "naive"):
             raise InputError(f"multipliers must be 'stable' or 'naive', got {self.multipliers!r}")
         if self.active_set_start not in ("closed", "open"):
             raise InputError(f"active_set_start must be 'closed' or 'open', got {self.active_set_start!r}")
         if self.quadrature not in TIP_QUADRATURES:
             raise InputError(f"quadrature must be one of {TIP_QUADRATURES}, got {self.quadrature!r}")
-        if not (self.radius >= 0.0):
-            raise InputError(f"enrichment radius must be >= 0, got {self.radius}")
-        for name in ("quadrature_degree", "tip_radial", "tip_angular", "degree", "facet_degree",
-                     "contact_points", "max_active_set_iterations"):
-            if int(getattr(self, name)) < 1:
-                raise InputError(f"{name} must be >= 1, got {getattr(self, name)}")
+        if not (isinstance(self.radius, numbers.Real) and math.isfinite(self.radius) and self.radius >= 0.0):
+            raise InputError(f"enrichment radius must be a finite number >= 0 (0: the tip cell's nodes "
+                             f"only), got {self.radius!r}")
+        for name, top in INTEGER_OPTIONS.items():
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, numbers.Integral) or not 1 <= v <= top:
+                raise InputError(f"{name} must be an integer in [1, {top}], got {v!r}")
+        if not (isinstance(self.snap_tol, numbers.Real) and 0.0 <= self.snap_tol < 0.5):
+            raise InputError(f"snap_tol must lie in [0, 0.5) (a fraction of the shortest edge at a "
+                             f"node), got {self.snap_tol!r}")
+        if not (isinstance(self.residual_tol, numbers.Real) and 0.0 < self.residual_tol < 1.0):
+            raise InputError(f"residual_tol must lie in (0, 1), got {self.residual_tol!r}")
         if not (0.05 <= self.tip_max_angle <= 3.2):
             raise InputError(f"tip_max_angle must lie in [0.05, 3.2] radians, got {self.tip_max_angle}")
 
@@ -213,6 +295,8 @@ class Scene:
     dirichlet: list[Dirichlet] = dataclasses.field(default_factory=list)
     tractions: list[Traction] = dataclasses.field(default_factory=list)
     options: Options = dataclasses.field(default_factory=Options)
+    #: Constant body force (f_x, f_y), force per unit area, or None.
+    body_force: typing.Optional[typing.Sequence[float]] = None
 
     def __post_init__(self):
         for i, c in enumerate(self.cracks):

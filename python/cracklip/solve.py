@@ -1,6 +1,7 @@
 """Solve a scene: the X-FEM system, or a plain DOLFINx P1 baseline on the same mesh."""
 from __future__ import annotations
 
+import dataclasses
 import logging
 import time
 
@@ -12,12 +13,13 @@ import dolfinx.fem
 import dolfinx.fem.petsc
 
 from .assembly import assemble_system, elasticity_form
-from .errors import InputError
+from .errors import InputError, SolverError
 from .contact import solve_contact
-from .linear_solver import condition_number_1norm, solve_checked
+from .linear_solver import condition_number_1norm, record_solves, solve_checked
 from .model import create_model
 from .post import Solution
-from .scene import Scene
+from .rescaling import nodal_transform, rescale_system
+from .scene import Material, Scene
 
 logger = logging.getLogger(__name__)
 
@@ -30,23 +32,49 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     """
     t_start = time.perf_counter()
     model = create_model(scene)
-    A, b, timings = assemble_system(model)
+    # Solve the problem in units of E (E = 1, prescribed displacements times
+    # E, u = u_1 / E): the matrix is then the same bit for bit whatever E, so
+    # every output scales exactly with E and the loads (an E-scaled matrix
+    # differs by round-off that the conditioning amplifies to ~1e-11), and
+    # the constraint rows (1 on the diagonal) match the stiffness rows.
+    E = scene.material.E
+    unit = dataclasses.replace(model, scene=dataclasses.replace(scene, material=Material(1.0, scene.material.nu)),
+                               bc_values=model.bc_values * E)
+    A, b, timings = assemble_system(unit)
+    T = None
+    if scene.options.rescale == "nodal":
+        t0 = time.perf_counter()
+        T = nodal_transform(unit, A)
+        A_s, b_s = rescale_system(A, b, T)
+        A.destroy()
+        b.destroy()
+        A, b = A_s, b_s
+        timings["rescale"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     contact = {}
-    if scene.options.contact != "none" and model.cracks:
-        u, contact = solve_contact(model, A, b)
-        x = A.createVecRight()
-        x.array[:] = u
-        timings["contact_solve"] = time.perf_counter() - t0
-    else:
-        x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system")
-        timings["solve"] = time.perf_counter() - t0
+    with record_solves() as solves:
+        if scene.options.contact != "none" and model.cracks:
+            try:
+                u, contact = solve_contact(unit, A, b, transform=T)
+            except SolverError as e:
+                raise _contact_singularity(scene, A, b, e) from None
+            contact["system"].g = contact["system"].g / E  # B u = g in the scene's units
+            x = A.createVecRight()
+            x.array[:] = u
+            timings["contact_solve"] = time.perf_counter() - t0
+        else:
+            x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system")
+            timings["solve"] = time.perf_counter() - t0
+    # Relative residual ||A x - b|| / ||b|| of the last solve (the final
+    # active set's saddle system with contact) and of every solve.
+    solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None,
+              "solves": solves}
     condition = {}
     if condition_number:
         t0 = time.perf_counter()
         condition = condition_number_1norm(A)
         timings["condition_number"] = time.perf_counter() - t0
-    u = x.array.copy()
+    u = (x.array if T is None else T @ x.array) / E
     A.destroy()
     b.destroy()
     x.destroy()
@@ -54,7 +82,27 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     timings["total"] = time.perf_counter() - t_start
     logger.info("solved %d dofs (%d enriched) in %.3f s", model.num_dofs,
                 2 * model.layout.num_enriched, timings["total"])
-    return Solution(model, u, timings, condition, contact)
+    return Solution(model, u, timings, condition, contact, solver)
+
+
+def _contact_singularity(scene: Scene, A, b, error: SolverError) -> SolverError:
+    """The error to raise for a failed contact solve: if the saddle-point
+    system is singular but the stiffness alone is not, the multiplier space
+    is at fault (B without full row rank), which the message then says."""
+    if "singular" not in str(error):
+        return error
+    try:
+        solve_checked(A, b, scene.options.residual_tol, what="stiffness").destroy()
+    except SolverError:
+        return error  # the stiffness is singular itself: the original cause stands
+    if scene.options.multipliers == "naive":
+        hint = ("multipliers='naive' puts one P1 multiplier on every node of the cut cells, whose traces "
+                "on the crack are linearly dependent; use multipliers='stable'")
+    else:
+        hint = "the stable space should not be rank-deficient: please report this scene"
+    return SolverError(f"{error}. The stiffness alone is regular, so the contact multiplier space "
+                       f"({scene.options.multipliers!r}) is singular: its constraints B are not "
+                       f"independent ({hint})")
 
 
 def solve_plain(scene: Scene) -> tuple[np.ndarray, dict[str, float]]:
@@ -104,5 +152,8 @@ def solve_plain(scene: Scene) -> tuple[np.ndarray, dict[str, float]]:
     t0 = time.perf_counter()
     x = solve_checked(A, b, scene.options.residual_tol, what="plain P1 system")
     timings["solve"] = time.perf_counter() - t0
+    u = x.array.copy()
+    for obj in (A, b, x):
+        obj.destroy()
     timings["total"] = time.perf_counter() - t_start
-    return x.array.copy(), timings
+    return u, timings

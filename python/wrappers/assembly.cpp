@@ -3,6 +3,7 @@
 
 #include <dolfinx_glue.h>
 #include <enriched_kernels.h>
+#include <rescaling.h>
 #include <pybind11/stl.h>
 #include <sparsity.h>
 
@@ -97,6 +98,20 @@ void declare_assembly(py::module& m)
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("facet_cells"),
       py::arg("facet_local"), py::arg("degree"),
       "Quadrature points on boundary facets and the basis values there (COO by point).");
+
+  m.def(
+      "nodal_block_transform",
+      [](const carray<std::int32_t>& indptr, const carray<std::int32_t>& indices, const carray<double>& data,
+         const carray<std::int32_t>& group_offsets, const carray<std::int32_t>& group_dofs)
+      {
+        BlockTransform T = nodal_block_transform(as_span(indptr), as_span(indices), as_span(data),
+                                                 as_span(group_offsets), as_span(group_dofs));
+        return py::make_tuple(as_pyarray(std::move(T.rows)), as_pyarray(std::move(T.cols)),
+                              as_pyarray(std::move(T.values)));
+      },
+      py::arg("indptr"), py::arg("indices"), py::arg("data"), py::arg("group_offsets"), py::arg("group_dofs"),
+      "COO (rows, cols, values) of the block rescaling T: T^T K T has identity blocks on the groups "
+      "and a unit diagonal elsewhere.");
 }
 
 } // namespace cracklip_wrappers

@@ -1,0 +1,119 @@
+"""Condition number against mesh size, with and without the nodal rescaling
+(issue 6): Westergaard mode I (exact field on the whole boundary, r_e = 0.2),
+scalar and vector tip enrichment, corrected and standard blending.
+
+For each configuration the 1-norm condition number (Hager/Higham estimate
+from MUMPS solves) of: the raw stiffness, its Jacobi scaling (what the solver
+factorises by default) and the nodally rescaled matrix (Options.rescale =
+"nodal"); the growth exponent is the least-squares slope of log cond against
+log(1/h) over n >= 20. Writes JSON, Markdown and a PNG.
+
+    /usr/bin/python3 demos/conditioning.py --out results/conditioning
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import pathlib
+import sys
+
+import numpy as np
+
+HERE = pathlib.Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent / "python"))
+
+import cracklip as cl  # noqa: E402
+from cracklip.williams import WilliamsField  # noqa: E402
+
+CONFIGS = [("vector", "corrected"), ("scalar", "corrected"), ("vector", "standard"), ("scalar", "standard")]
+
+
+def condition(n: int, enrichment: str, blending: str, rescale: str) -> dict:
+    mat = cl.Material(1.0, 0.3)
+    exact = WilliamsField(mat, K_I=1.0)
+    scene = cl.Scene(cl.create_square(2.0 / n), mat, cracks=[cl.Crack([[-3.0, 0.0], [0.0, 0.0]])],
+                     dirichlet=[cl.Dirichlet(s, None, lambda p, sd: exact.displacement(p, sd))
+                                for s in ("left", "right", "bottom", "top")],
+                     options=cl.Options(enrichment=enrichment, radius=0.2, blending=blending, rescale=rescale))
+    sol = cl.solve(scene, condition_number=True)
+    return {"n": n, "h": 2.0 / n, "ndofs": sol.model.num_dofs, **sol.condition,
+            "energy_error": sol.energy_error(lambda p, s: exact.gradient(p, s))[1]}
+
+
+def exponent(rows: list[dict], key: str, n_min: int = 20) -> float:
+    rs = [r for r in rows if r["n"] >= n_min]
+    return float(np.polyfit(np.log([1.0 / r["h"] for r in rs]), np.log([r[key] for r in rs]), 1)[0])
+
+
+def run(ns, log=lambda m: None) -> dict:
+    res = {"ns": list(ns), "configs": []}
+    for enrichment, blending in CONFIGS:
+        rows = []
+        for n in ns:
+            none = condition(n, enrichment, blending, "none")
+            nodal = condition(n, enrichment, blending, "nodal")
+            rows.append({"n": n, "h": none["h"], "ndofs": none["ndofs"], "cond_raw": none["cond_1norm"],
+                         "cond_jacobi": none["cond_1norm_jacobi"], "cond_nodal": nodal["cond_1norm"],
+                         "energy_error": none["energy_error"], "energy_error_nodal": nodal["energy_error"]})
+            log(f"{enrichment}/{blending} n={n}: raw {rows[-1]['cond_raw']:.3g}, jacobi "
+                f"{rows[-1]['cond_jacobi']:.3g}, nodal {rows[-1]['cond_nodal']:.3g}")
+        res["configs"].append({"enrichment": enrichment, "blending": blending, "rows": rows,
+                               "exponent_raw": exponent(rows, "cond_raw"),
+                               "exponent_jacobi": exponent(rows, "cond_jacobi"),
+                               "exponent_nodal": exponent(rows, "cond_nodal")})
+    return res
+
+
+def write(res: dict, out: pathlib.Path) -> None:
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "conditioning.json").write_text(json.dumps(res, indent=2))
+    lines = ["# Condition number vs mesh size (Westergaard, r_e = 0.2)", "",
+             "Growth exponent p in cond ~ (1/h)^p, least squares over n >= 20 (standard P1 FE: 2).", "",
+             "| enrichment | blending | raw | Jacobi | nodal rescaling | cond at finest n (raw / Jacobi / nodal) |",
+             "|---|---|---|---|---|---|"]
+    for c in res["configs"]:
+        last = c["rows"][-1]
+        lines.append(f"| {c['enrichment']} | {c['blending']} | {c['exponent_raw']:.2f} | {c['exponent_jacobi']:.2f} | "
+                     f"{c['exponent_nodal']:.2f} | {last['cond_raw']:.2e} / {last['cond_jacobi']:.2e} / "
+                     f"{last['cond_nodal']:.2e} (n = {last['n']}) |")
+    (out / "conditioning.md").write_text("\n".join(lines) + "\n")
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharey=True)
+    for ax, blending in zip(axes, ("corrected", "standard")):
+        for c in res["configs"]:
+            if c["blending"] != blending:
+                continue
+            inv_h = [1.0 / r["h"] for r in c["rows"]]
+            for key, ls in (("cond_raw", ":"), ("cond_jacobi", "--"), ("cond_nodal", "-")):
+                ax.loglog(inv_h, [r[key] for r in c["rows"]], ls, marker="o", ms=3,
+                          label=f"{c['enrichment']}, {key[5:]} (p = {c['exponent_' + key[5:]]:.2f})")
+        x = np.array([1.0 / r["h"] for r in res["configs"][0]["rows"]])
+        ax.loglog(x, 50.0 * x ** 2, "k-", lw=0.6, label="slope 2 (standard FE)")
+        ax.set_xlabel("1/h (1/length)")
+        ax.set_title(f"{blending} blending")
+        ax.legend(fontsize=7)
+    axes[0].set_ylabel("1-norm condition number (-)")
+    fig.tight_layout()
+    fig.savefig(out / "conditioning.png", dpi=140)
+    plt.close(fig)
+
+
+def main(argv=None) -> dict:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--n", type=int, nargs="+", default=[10, 20, 40, 80, 160], help="divisions per side")
+    ap.add_argument("--out", type=pathlib.Path, default=pathlib.Path("results/conditioning"))
+    ap.add_argument("--quiet", action="store_true")
+    args = ap.parse_args(argv)
+    log = (lambda m: None) if args.quiet else (lambda m: print(m, file=sys.stderr, flush=True))
+    res = run(args.n, log)
+    write(res, args.out)
+    for c in res["configs"]:
+        log(f"{c['enrichment']}/{c['blending']}: exponent raw {c['exponent_raw']:.2f}, jacobi "
+            f"{c['exponent_jacobi']:.2f}, nodal {c['exponent_nodal']:.2f}")
+    return res
+
+
+if __name__ == "__main__":
+    main()
