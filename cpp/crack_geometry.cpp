@@ -106,23 +106,35 @@ CrackGeometry compute_crack_geometry(std::span<const double> x,
     throw std::invalid_argument("compute_crack_geometry: x must be (n, 2) and cells (m, 3)");
   const std::size_t npts = crack.points.size() / 2;
   if (npts < 2 or crack.points.size() % 2 != 0)
-    throw std::invalid_argument("compute_crack_geometry: a crack needs at least two points");
+    throw std::invalid_argument("compute_crack_geometry: a crack needs at least two points (x, y), got "
+                                + std::to_string(crack.points.size()) + " coordinates");
+  for (std::size_t k = 0; k < npts; ++k)
+    if (!std::isfinite(crack.points[2 * k]) or !std::isfinite(crack.points[2 * k + 1]))
+      throw std::invalid_argument("compute_crack_geometry: crack point " + std::to_string(k)
+                                  + " is not finite; crack points must be finite numbers");
   for (std::size_t k = 0; k + 1 < npts; ++k)
   {
     const double len = std::hypot(crack.points[2 * k + 2] - crack.points[2 * k],
                                   crack.points[2 * k + 3] - crack.points[2 * k + 1]);
     if (!(len > 0.0))
-      throw std::invalid_argument("compute_crack_geometry: crack segment "
-                                  + std::to_string(k) + " has zero length");
+      throw std::invalid_argument("compute_crack_geometry: crack segment " + std::to_string(k)
+                                  + " has zero length; remove the repeated point");
   }
   if (!(snap_tol >= 0.0 and snap_tol < 0.5))
-    throw std::invalid_argument("compute_crack_geometry: snap_tol must be in [0, 0.5)");
+    throw std::invalid_argument("compute_crack_geometry: snap_tol must be in [0, 0.5), got "
+                                + std::to_string(snap_tol));
 
   const std::size_t num_nodes = x.size() / 2;
   const std::size_t num_cells = cells.size() / 3;
-  for (std::int32_t v : cells)
-    if (v < 0 or static_cast<std::size_t>(v) >= num_nodes)
-      throw std::invalid_argument("compute_crack_geometry: cell node index out of range");
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (!std::isfinite(x[i]))
+      throw std::invalid_argument("compute_crack_geometry: mesh node " + std::to_string(i / 2)
+                                  + " has a non-finite coordinate; node coordinates must be finite");
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    if (cells[i] < 0 or static_cast<std::size_t>(cells[i]) >= num_nodes)
+      throw std::invalid_argument("compute_crack_geometry: cell " + std::to_string(i / 3) + " refers to node "
+                                  + std::to_string(cells[i]) + "; node indices must lie in [0, "
+                                  + std::to_string(num_nodes) + ")");
 
   CrackGeometry g;
 

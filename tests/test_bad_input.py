@@ -78,3 +78,309 @@ def test_two_cracks_in_one_cell(square_h01):
     cracks = [cl.Crack([[-2, 0.013], [2, 0.013]]), cl.Crack([[-2, 0.02], [2, 0.02]])]
     with pytest.raises(cl.CrackGeometryError, match="crossed by cracks 0 and 1"):
         cl.solve(_scene(square_h01, cracks))
+
+
+# -- issue 6: the bad-input suite ------------------------------------------------
+# Every case asserts the exception type and the part of the message that names
+# the offending item and what is allowed.
+
+import pathlib  # noqa: E402
+import sys  # noqa: E402
+
+from cracklip import _cracklip  # noqa: E402
+from cracklip.contact import ContactError  # noqa: E402
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+
+
+@pytest.mark.parametrize("points, match", [
+    ([[0, 0], [2, 0], [1, 1], [1, -1]], r"segment 0 \(.*\) meets segment 2 .* at \[1.0, 0.0\]"),
+    ([[0, 0], [1, 0], [1, 1], [0, 0]], r"segment 0 .* meets segment 2 .* at \[0.0, 0.0\]"),        # closed loop
+    ([[0, 0], [1, 0], [0.5, 0]], r"segment 0 .* folds back onto segment 1"),
+    ([[0, 0], [1, 0], [1, 1], [0.5, 0], [0.2, -1]], r"segment 0 .* meets segment 2 .* at \[0.5, 0.0\]"),
+])
+def test_self_intersecting_polyline(points, match):
+    with pytest.raises(cl.CrackGeometryError, match=match + r".*simple polyline"):
+        cl.Crack(points)
+
+
+def test_repeated_point_not_consecutive():
+    """A point visited twice (not next to each other) is a self-touching polyline."""
+    with pytest.raises(cl.CrackGeometryError, match=r"segment 0 .* meets segment 3 .* at \[0.0, 0.5\].*no point visited twice"):
+        cl.Crack([[0.0, 0.0], [0.0, 0.5], [0.5, 1.0], [0.5, 0.5], [0.0, 0.5], [-0.5, 0.8]])
+
+
+@pytest.mark.parametrize("bad", [float("nan"), float("inf")])
+def test_non_finite_crack_point(bad):
+    with pytest.raises(cl.CrackGeometryError, match=r"crack 7: point 1 is \[.*\]; crack points must be finite"):
+        cl.Crack([[0.0, 0.0], [bad, 0.2], [0.5, 0.5]], name="crack 7")
+
+
+def test_crack_points_of_wrong_shape():
+    with pytest.raises(cl.CrackGeometryError, match=r"shape \(k, 2\), k >= 2; got shape \(2, 3\)"):
+        cl.Crack([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+    with pytest.raises(cl.CrackGeometryError, match=r"got shape \(1, 2\)"):
+        cl.Crack([[0.0, 0.0]])
+
+
+def test_crack_along_the_boundary(square_h01):
+    """A crack lying on the bottom edge (grazing the domain along a side)."""
+    with pytest.raises(cl.CrackGeometryError, match=r"crack 0 runs along the domain boundary from .* inside the domain"):
+        cl.solve(_scene(square_h01, [cl.Crack([[-1.5, -1.0], [1.5, -1.0]])]))
+
+
+def test_crack_grazing_a_corner(square_h01):
+    """The line y = x + 2 touches the square only at its corner (-1, 1)."""
+    with pytest.raises(cl.CrackGeometryError, match=r"does not cross any cell .* check its coordinates"):
+        cl.solve(_scene(square_h01, [cl.Crack([[-2.0, 0.0], [0.0, 2.0]])]))
+
+
+def test_crack_shorter_than_a_cell(square_h01):
+    with pytest.raises(cl.CrackGeometryError, match=r"both tips of the crack lie in cell \d+; refine the mesh"):
+        cl.solve(_scene(square_h01, [cl.Crack([[0.013, 0.021], [0.018, 0.024]])]))
+
+
+@pytest.mark.parametrize("E, nu, match", [(float("inf"), 0.3, "Young's modulus E must be positive"),
+                                          (1.0, -1.0, r"Poisson's ratio nu must lie in \(-1, 0.5\)"),
+                                          (1.0, float("nan"), r"must lie in \(-1, 0.5\)")])
+def test_bad_material_more(E, nu, match):
+    with pytest.raises(cl.MaterialError, match=match):
+        cl.Material(E, nu)
+
+
+@pytest.mark.parametrize("radius", [-0.1, float("nan"), float("inf")])
+def test_bad_enrichment_radius(radius):
+    with pytest.raises(cl.InputError, match=r"enrichment radius must be a finite number >= 0"):
+        cl.Options(radius=radius)
+
+
+@pytest.mark.parametrize("radius", [0.0, -0.2, float("nan")])
+def test_bad_sif_radius(radius):
+    md = cl.create_square(0.25)
+    sol = cl.solve(_scene(md, [cl.Crack([[-2.0, 0.01], [0.0, 0.01]])]))
+    with pytest.raises(cl.InputError, match=r"SIF domain radius must be a finite number > 0"):
+        sol.stress_intensity_factors(0, radius=radius)
+    # A radius holding no node: q is constant, nothing to integrate.
+    with pytest.raises(cl.InputError, match=r"no cell crosses the SIF domain .* nearest node's distance"):
+        sol.stress_intensity_factors(0, radius=1e-4)
+
+
+@pytest.mark.parametrize("name, value", [("quadrature_degree", 0), ("quadrature_degree", 1000),
+                                         ("quadrature_degree", 2.5), ("degree", 0), ("tip_radial", 0),
+                                         ("tip_angular", 61), ("facet_degree", -3), ("contact_points", 100)])
+def test_quadrature_degree_out_of_range(name, value):
+    with pytest.raises(cl.InputError, match=rf"{name} must be an integer in \[1, 60\], got {value}"):
+        cl.Options(**{name: value})
+
+
+@pytest.mark.parametrize("kw, match", [(dict(snap_tol=0.7), r"snap_tol must lie in \[0, 0.5\)"),
+                                       (dict(enrichment="cubic"), "enrichment must be one of"),
+                                       (dict(contact="friction"), "contact must be 'none', 'bilateral' or 'unilateral'"),
+                                       (dict(multipliers="p2"), "multipliers must be 'stable' or 'naive'"),
+                                       (dict(residual_tol=0.0), r"residual_tol must lie in \(0, 1\)")])
+def test_bad_options(kw, match):
+    with pytest.raises(cl.InputError, match=match):
+        cl.Options(**kw)
+
+
+def _write_msh(path, nodes, elements, dim2_name="domain"):
+    """A gmsh MSH 2.2 file: elements (type, physical tag, node list)."""
+    lines = ["$MeshFormat", "2.2 0 8", "$EndMeshFormat", "$PhysicalNames", "2", '1 1 "left"',
+             f'2 10 "{dim2_name}"', "$EndPhysicalNames", "$Nodes", str(len(nodes))]
+    lines += [f"{i} {x} {y} {z}" for i, (x, y, z) in enumerate(nodes, start=1)]
+    lines += ["$EndNodes", "$Elements", str(len(elements))]
+    lines += [f"{k} {t} 2 {phys} 1 " + " ".join(map(str, ns)) for k, (t, phys, ns) in enumerate(elements, start=1)]
+    lines += ["$EndElements"]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+SQUARE = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)]
+TWO_TRIANGLES = [(1, 1, [1, 3]), (2, 10, [1, 2, 3]), (2, 10, [2, 4, 3])]
+
+
+def test_mesh_file_round_trip_is_accepted(tmp_path):
+    md = cl.read_msh(_write_msh(tmp_path / "ok.msh", SQUARE, TWO_TRIANGLES))
+    assert md.mesh.geometry.x.shape[0] == 4 and "left" in md.tags
+
+
+def test_mixed_mesh_file(tmp_path):
+    path = _write_msh(tmp_path / "mixed.msh", SQUARE + [(2, 0, 0), (2, 1, 0)],
+                      TWO_TRIANGLES + [(3, 10, [2, 5, 6, 4])])
+    with pytest.raises(cl.MeshError, match=r"only 3-node triangles .* \['Triangle 3', 'Quadrilateral 4'\].*without recombination"):
+        cl.read_msh(path)
+
+
+def test_second_order_mesh_file(tmp_path):
+    nodes = SQUARE + [(0.5, 0, 0), (0.5, 0.5, 0), (0, 0.5, 0)]
+    path = _write_msh(tmp_path / "p2.msh", nodes, [(1, 1, [1, 3]), (9, 10, [1, 2, 3, 5, 6, 7])])
+    with pytest.raises(cl.MeshError, match=r"\['Triangle 6'\]; mesh with Mesh.ElementOrder = 1"):
+        cl.read_msh(path)
+
+
+def test_three_dimensional_mesh_file(tmp_path):
+    path = _write_msh(tmp_path / "tet.msh", SQUARE[:3] + [(0, 0, 1)], [(1, 1, [1, 3]), (4, 10, [1, 2, 3, 4])])
+    with pytest.raises(cl.MeshError, match="needs a 2D mesh, this one has dimension 3"):
+        cl.read_msh(path)
+
+
+def test_mesh_file_with_unused_vertex(tmp_path):
+    """MSH 4.1 keeps a node that no element uses (MSH 2 files drop it on reading)."""
+    path = tmp_path / "unused.msh"
+    path.write_text("\n".join([
+        "$MeshFormat", "4.1 0 8", "$EndMeshFormat", "$PhysicalNames", "1", '1 1 "left"', "$EndPhysicalNames",
+        "$Entities", "0 1 1 0", "1 0 0 0 0 1 0 1 1 0", "1 0 0 0 1 1 0 1 10 0", "$EndEntities",
+        "$Nodes", "2 5 1 5", "1 1 0 0", "2 1 0 5", "1", "2", "3", "4", "5",
+        "0 0 0", "1 0 0", "0 1 0", "1 1 0", "5 5 0", "$EndNodes",
+        "$Elements", "2 3 1 3", "1 1 1 1", "3 1 3", "2 1 2 2", "1 1 2 3", "2 2 4 3", "$EndElements", ""]))
+    with pytest.raises(cl.MeshError, match=r"1 node\(s\) belong to no triangle \(e.g. node 5 at \[5.0, 5.0\]\)"):
+        cl.read_msh(path)
+
+
+def test_mesh_file_with_duplicated_vertices(tmp_path):
+    """Node 5 repeats node 2: the two triangles are not connected (a hidden slit)."""
+    path = _write_msh(tmp_path / "dup.msh", SQUARE + [(1, 0, 0)],
+                      [(1, 1, [1, 3]), (2, 10, [1, 2, 3]), (2, 10, [5, 4, 3])])
+    with pytest.raises(cl.MeshError, match=r"mesh nodes \d+ and \d+ both lie at \[1.0, 0.0\].*every node must be unique"):
+        cl.read_msh(path)
+
+
+def _dolfinx_mesh(x, cells):
+    import ufl
+    domain = ufl.Mesh(ufl.VectorElement("Lagrange", ufl.triangle, 1))
+    msh = dolfinx.mesh.create_mesh(MPI.COMM_WORLD, np.asarray(cells, dtype=np.int64),
+                                   np.asarray(x, dtype=float), domain)
+    return cl.MeshData(msh, None, {})
+
+
+def test_dolfinx_mesh_with_duplicated_vertices():
+    md = _dolfinx_mesh([[0, 0], [1, 0], [0, 1], [1, 1], [1, 0]], [[0, 1, 2], [4, 3, 2]])
+    with pytest.raises(cl.MeshError, match=r"both lie at \[1.0, 0.0\]"):
+        cl.create_model(cl.Scene(md, cl.Material(1.0, 0.3), dirichlet=[cl.Dirichlet((0.0, 0.0))]))
+
+
+def test_mesh_with_zero_area_cell():
+    md = _dolfinx_mesh([[0, 0], [1, 0], [2, 0], [0, 1]], [[0, 1, 2], [0, 2, 3]])
+    with pytest.raises(cl.MeshError, match=r"mesh cell \d+ with vertices .* has zero area"):
+        cl.create_model(cl.Scene(md, cl.Material(1.0, 0.3), dirichlet=[cl.Dirichlet((0.0, 0.0))]))
+
+
+def test_unreadable_mesh_file(tmp_path):
+    path = tmp_path / "garbage.msh"
+    path.write_text("this is not a mesh\n")
+    with pytest.raises(cl.MeshError, match=r"garbage.msh: gmsh cannot read this file .* reads gmsh .msh files"):
+        cl.read_msh(path)
+    with pytest.raises(cl.MeshError, match="does not exist"):
+        cl.read_msh(tmp_path / "missing.msh")
+
+
+def test_contradictory_dirichlet(square_h01):
+    """u_x = 0 on the left and u_x = 0.5 on the bottom clash at the corner (-1, -1)."""
+    with pytest.raises(cl.BoundaryConditionError,
+                       match=r"conditions 0 \('left'\) and 1 \('bottom'\) prescribe different values to u_x "
+                             r"at node \[-1.0, -1.0\]: 0 and 0.5; .* must prescribe the same value"):
+        cl.solve(_scene(square_h01, dirichlet=[cl.Dirichlet("left"), cl.Dirichlet("bottom", 0, 0.5)]))
+    # Agreeing conditions on a shared node are fine.
+    sol = cl.solve(_scene(square_h01, dirichlet=[cl.Dirichlet("left"), cl.Dirichlet("bottom", 0, 0.0)]))
+    assert np.all(np.isfinite(sol.u))
+
+
+def test_contradictory_jump_on_a_cut_boundary(square_h01):
+    """Two side-aware conditions on the left edge that disagree about the jump
+    across the crack (Heaviside dof of a node of the cut boundary facet)."""
+    crack = cl.Crack([[-2.0, 0.013], [0.3, 0.013]])
+    bcs = [cl.Dirichlet("left", None, lambda p, s: np.where(s[:, None] > 0, 0.01, 0.0) * np.ones((1, 2))),
+           cl.Dirichlet("left", None, lambda p, s: np.where(s[:, None] > 0, 0.02, 0.0) * np.ones((1, 2)))]
+    with pytest.raises(cl.BoundaryConditionError, match=r"prescribe different values to (u_x|u_y|the jump)"):
+        cl.solve(_scene(square_h01, [crack], dirichlet=bcs))
+
+
+@pytest.mark.parametrize("value, match", [
+    (lambda p: p[:, :1], r"condition 0 \('left'\): its value function returned shape \(\d+, 1\) for \d+ points; "
+                         r"it must return \(\d+,\) for one component or \(\d+, 2\) for both"),
+    (lambda p: np.full((len(p), 2), np.nan), r"Dirichlet values on 'left' contain NaN or infinity")])
+def test_bad_dirichlet_values(square_h01, value, match):
+    with pytest.raises(cl.BoundaryConditionError, match=match):
+        cl.solve(_scene(square_h01, dirichlet=[cl.Dirichlet("left", None, value)]))
+
+
+def test_bad_dirichlet_component():
+    with pytest.raises(cl.BoundaryConditionError, match=r"component must be 0 \(x\), 1 \(y\) or None \(both\), got 2"):
+        cl.Dirichlet("left", 2)
+
+
+def test_nan_traction(square_h01):
+    scene = _scene(square_h01)
+    scene.tractions = [cl.Traction("right", lambda p: np.full((len(p), 2), np.nan))]
+    with pytest.raises(cl.InputError, match=r"traction on 'right' evaluates to NaN or infinity"):
+        cl.solve(scene)
+
+
+def test_singular_multiplier_space():
+    """Naive P1 multipliers on every node of the cut cells: their traces on a
+    straight crack are dependent, B loses rank, the saddle-point system is
+    singular while the stiffness is not."""
+    import block_uniform_pressure as block
+    scene = block.scene_for(10, enrichment="vector", multipliers="naive")
+    with pytest.raises(cl.SolverError, match=r"null pivot.*stiffness alone is regular, so the contact multiplier "
+                                             r"space \('naive'\) is singular.*use multipliers='stable'"):
+        cl.solve(scene)
+
+
+def test_active_set_that_does_not_settle():
+    """The open-closed-open crack needs 3 active-set iterations; allowing 2
+    reports the history and the option to change (a cycling active set ends
+    the same way)."""
+    import hard_cases as hc
+    scene = hc.open_closed_open_scene(10)
+    scene.options.max_active_set_iterations = 2
+    with pytest.raises(ContactError, match=r"did not settle in 2 iterations \(active counts per iteration: "
+                                           r"\[\d+, \d+\]\); raise max_active_set_iterations"):
+        cl.solve(scene)
+
+
+X3 = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
+CELL = np.array([[0, 1, 2]], dtype=np.int32)
+LINE = np.array([[-0.5, 0.3], [2.0, 0.3]])
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda: _cracklip.compute_crack_geometry(np.c_[X3, X3[:, :1]], CELL, LINE, (False, False), 1e-6),
+     r"x \(node coordinates\) must be an array of shape \(n, 2\), got shape \(3, 3\)"),
+    (lambda: _cracklip.compute_crack_geometry(X3, np.array([[0, 1]], dtype=np.int32), LINE, (False, False), 1e-6),
+     r"cells \(node indices per triangle\) must be an array of shape \(n, 3\), got shape \(1, 2\)"),
+    (lambda: _cracklip.compute_crack_geometry(X3, np.array([[0, 1, 7]], dtype=np.int32), LINE, (False, False), 1e-6),
+     r"cell 0 refers to node 7; node indices must lie in \[0, 3\)"),
+    (lambda: _cracklip.compute_crack_geometry(X3, CELL, np.array([[0.0, np.nan], [2.0, 0.3]]), (False, False), 1e-6),
+     r"crack point 0 is not finite; crack points must be finite numbers"),
+    (lambda: _cracklip.compute_crack_geometry(X3, CELL, np.array([[0.0, 0.3], [0.0, 0.3]]), (False, False), 1e-6),
+     r"crack segment 0 has zero length; remove the repeated point"),
+    (lambda: _cracklip.compute_crack_geometry(X3, CELL, LINE, (False, False), 0.7),
+     r"snap_tol must be in \[0, 0.5\), got 0.7"),
+    (lambda: _cracklip.compute_crack_geometry(np.where(X3 > 0.5, np.inf, X3), CELL, LINE, (False, False), 1e-6),
+     r"mesh node 1 has a non-finite coordinate"),
+    (lambda: _cracklip.create_enrichment_layout(X3, CELL, [], tip="cubic"),
+     r"tip enrichment must be 'none', 'scalar' or 'vector', got 'cubic'"),
+    (lambda: _cracklip.create_enrichment_layout(X3, CELL, [], tip="vector", radius=-1.0),
+     r"tip enrichment radius must be >= 0 \(0: the tip cell's nodes only\), got -1"),
+])
+def test_cpp_boundary_rejects_bad_arrays(call, match):
+    """The C++ module's entry points raise ValueError (std::invalid_argument)
+    naming the array or index and what is allowed, never crash."""
+    with pytest.raises(ValueError, match=match):
+        call()
+
+
+def test_cpp_boundary_geometry_of_another_mesh():
+    g = _cracklip.compute_crack_geometry(X3, CELL, LINE, (False, False), 1e-6)
+    x4 = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]])
+    cells4 = np.array([[0, 1, 2], [1, 3, 2]], dtype=np.int32)
+    with pytest.raises(ValueError, match=r"crack geometry of crack 0 has 3 nodes and 1 cells, the mesh 4 and 2; "
+                                         r"compute the geometry on this mesh"):
+        _cracklip.create_enrichment_layout(x4, cells4, [g], tip="vector", radius=0.1)
+
+
+@pytest.mark.parametrize("value", [(1.0, 2.0, 3.0), (1.0,), (0.0, float("inf"))])
+def test_bad_constant_traction(value):
+    with pytest.raises(cl.InputError, match=r"traction on 'right': a constant value must be two finite numbers"):
+        cl.Traction("right", value)

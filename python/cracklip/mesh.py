@@ -94,6 +94,30 @@ def check_mesh(msh: dolfinx.mesh.Mesh) -> None:
         raise MeshError("cracklip needs straight (first-order) triangles")
     if msh.comm.size != 1:
         raise MeshError("cracklip runs in serial; start it without mpirun")
+    x = msh.geometry.x[:, :2]
+    cells = msh.geometry.dofmap.array.reshape(-1, 3)
+    if not np.all(np.isfinite(x)):
+        i = int(np.flatnonzero(~np.all(np.isfinite(x), axis=1))[0])
+        raise MeshError(f"mesh node {i} has coordinates {x[i].tolist()}; node coordinates must be finite")
+    scale = float(np.ptp(x, axis=0).max()) if len(x) else 1.0
+    # Duplicated vertices: two nodes at one place leave the cells on either
+    # side unconnected (a hidden slit).
+    order = np.lexsort((x[:, 1], x[:, 0]))
+    same = np.all(np.abs(np.diff(x[order], axis=0)) <= 1e-12 * scale, axis=1)
+    if same.any():
+        k = int(np.flatnonzero(same)[0])
+        i, j = sorted((int(order[k]), int(order[k + 1])))
+        raise MeshError(f"mesh nodes {i} and {j} both lie at {x[i].tolist()} ({int(same.sum())} duplicated "
+                        "node(s)): the cells on either side are not connected; every node must be unique "
+                        "(merge duplicates, e.g. gmsh's Coherence Mesh / removeDuplicateNodes)")
+    e1, e2 = x[cells[:, 1]] - x[cells[:, 0]], x[cells[:, 2]] - x[cells[:, 0]]
+    det = np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+    longest = np.max(np.linalg.norm(x[cells[:, [1, 2, 0]]] - x[cells], axis=2), axis=1)
+    flat = np.flatnonzero(det <= 1e-12 * longest ** 2)
+    if flat.size:
+        c = int(flat[0])
+        raise MeshError(f"mesh cell {c} with vertices {x[cells[c]].tolist()} has zero area ({flat.size} such "
+                        "cell(s)); every triangle must have three distinct, non-collinear vertices")
 
 
 def create_rectangle(x0: float, y0: float, x1: float, y1: float, h: float,
@@ -191,8 +215,11 @@ def _mesh_2d(gmsh, h: float, refine) -> None:
         fields = []
         for (x, y, h_near, radius) in refine:
             f = gmsh.model.mesh.field.add("MathEval")
+            # Every number in parentheses: "x--0.5" (a negative centre) makes
+            # gmsh's expression parser abort the process.
             gmsh.model.mesh.field.setString(
-                f, "F", f"{h_near} + ({h} - {h_near}) * Min(1, Sqrt((x-{x})^2 + (y-{y})^2) / {radius})")
+                f, "F", "({0!r}) + (({1!r}) - ({0!r})) * Min(1, Sqrt((x - ({2!r}))^2 + (y - ({3!r}))^2) / ({4!r}))"
+                .format(*(float(v) for v in (h_near, h, x, y, radius))))
             fields.append(f)
         fmin = gmsh.model.mesh.field.add("Min")
         gmsh.model.mesh.field.setNumbers(fmin, "FieldsList", fields)
@@ -206,13 +233,77 @@ def read_msh(path: str | pathlib.Path) -> MeshData:
     if not path.is_file():
         raise MeshError(f"mesh file {path} does not exist")
     gmsh = _gmsh()
-    gmsh.open(str(path))
+    try:
+        gmsh.open(str(path))
+    except Exception as e:  # gmsh raises a bare Exception for an unreadable file
+        # A failed parse leaves gmsh unable to mesh the next model: restart it.
+        global _GMSH_READY
+        gmsh.finalize()
+        _GMSH_READY = False
+        raise MeshError(f"{path}: gmsh cannot read this file ({e}); cracklip reads gmsh .msh files "
+                        "(format 2 or 4) with a 2D triangle mesh") from None
     if gmsh.model.getDimension() != 2:
         dim = gmsh.model.getDimension()
         gmsh.model.remove()
         raise MeshError(f"{path}: cracklip needs a 2D mesh, this one has dimension {dim}")
     types = gmsh.model.mesh.getElementTypes(2)
-    if any(t != 2 for t in types):
+    if any(t != 2 for t in types) or len(types) == 0:
+        names = [gmsh.model.mesh.getElementProperties(t)[0] for t in types]
         gmsh.model.remove()
-        raise MeshError(f"{path}: only 3-node triangles are supported (gmsh element types {list(types)})")
+        raise MeshError(f"{path}: only 3-node triangles are supported, the file has "
+                        f"{names or 'no 2D elements'}; mesh with Mesh.ElementOrder = 1 and without "
+                        "recombination")
+    tags = gmsh.model.mesh.getNodes()[0]
+    unused = np.setdiff1d(tags, gmsh.model.mesh.getElementsByType(2)[1])
+    if unused.size:
+        coord = gmsh.model.mesh.getNode(int(unused[0]))[0][:2].tolist()
+        gmsh.model.remove()
+        raise MeshError(f"{path}: {unused.size} node(s) belong to no triangle (e.g. node {int(unused[0])} at "
+                        f"{coord}); every node must be a vertex of a triangle: remove unused nodes")
     return _to_dolfinx(gmsh, None)
+
+
+def create_plate_with_hole(x0: float, y0: float, x1: float, y1: float, h: float,
+                           center: tuple[float, float], radius: float,
+                           refine: typing.Sequence[tuple[float, float, float, float]] = ()) -> MeshData:
+    """Rectangle [x0, x1] x [y0, y1] with a circular hole, triangles of size h.
+
+    The hole (centre, radius) must lie strictly inside the rectangle.
+    refine: optional (x, y, h_near, radius) local refinements (see
+    create_rectangle). Tags: left, right, bottom, top, hole.
+    """
+    if not (x1 > x0 and y1 > y0):
+        raise MeshError(f"empty rectangle [{x0}, {x1}] x [{y0}, {y1}]")
+    cx, cy = float(center[0]), float(center[1])
+    if not (radius > 0.0 and x0 < cx - radius and cx + radius < x1 and y0 < cy - radius and cy + radius < y1):
+        raise MeshError(f"the hole (centre ({cx:g}, {cy:g}), radius {radius:g}) must lie strictly inside "
+                        f"the plate [{x0:g}, {x1:g}] x [{y0:g}, {y1:g}]")
+    if not (0.0 < h <= max(x1 - x0, y1 - y0)):
+        raise MeshError(f"mesh size h = {h} must be positive and at most the domain size")
+    gmsh = _gmsh()
+    gmsh.model.add("plate_with_hole")
+    occ = gmsh.model.occ
+    plate = occ.addRectangle(x0, y0, 0.0, x1 - x0, y1 - y0)
+    disk = occ.addDisk(cx, cy, 0.0, radius, radius)
+    body, _ = occ.cut([(2, plate)], [(2, disk)])
+    occ.synchronize()
+    gmsh.model.addPhysicalGroup(2, [s for _, s in body], 1)
+    eps = 1e-7 * max(x1 - x0, y1 - y0)
+    groups: dict[str, list[int]] = {"left": [], "right": [], "bottom": [], "top": [], "hole": []}
+    for _, c in gmsh.model.getEntities(1):
+        px, py, _ = gmsh.model.occ.getCenterOfMass(1, c)
+        if abs(px - x0) < eps:
+            groups["left"].append(c)
+        elif abs(px - x1) < eps:
+            groups["right"].append(c)
+        elif abs(py - y0) < eps:
+            groups["bottom"].append(c)
+        elif abs(py - y1) < eps:
+            groups["top"].append(c)
+        else:
+            groups["hole"].append(c)
+    for tag, (name, curves) in enumerate(groups.items(), start=1):
+        gmsh.model.addPhysicalGroup(1, curves, tag)
+        gmsh.model.setPhysicalName(1, tag, name)
+    _mesh_2d(gmsh, h, refine)
+    return _to_dolfinx(gmsh, h)

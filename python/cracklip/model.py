@@ -121,10 +121,32 @@ def _crack_model(scene: Scene, crack: Crack, x: np.ndarray, cells: np.ndarray) -
             f"{crack.name} (points {crack.points.tolist()}) does not cross any cell of the mesh "
             f"(mesh bounding box [{lo[0]:g}, {hi[0]:g}] x [{lo[1]:g}, {hi[1]:g}]); "
             "check its coordinates")
+    _check_off_boundary(crack, geometry, x, cells)
     if geometry.num_snapped:
         logger.info("%s: %d nodes snapped onto the crack (snap_tol=%g)", crack.name,
                     geometry.num_snapped, scene.options.snap_tol)
     return CrackModel(crack, tips, geometry)
+
+
+def _check_off_boundary(crack: Crack, geometry, x: np.ndarray, cells: np.ndarray) -> None:
+    """Raise if the crack runs along a boundary facet: its crack edge (the
+    two nodes on the crack of an 'edge' cell) then belongs to one cell only."""
+    edge_cells = np.flatnonzero(geometry.cell_class == CELL_CLASSES["edge"])
+    if edge_cells.size == 0:
+        return
+    cc = cells[edge_cells]
+    on = geometry.phi[cc] == 0.0
+    pairs = np.sort(np.where(on, cc, -1), axis=1)[:, 1:]  # the two nodes with phi = 0
+    near = cells[np.count_nonzero(np.isin(cells, np.unique(pairs)), axis=1) >= 2]
+    count: dict[tuple[int, int], int] = {}
+    for e in np.sort(near[:, [[0, 1], [1, 2], [2, 0]]], axis=2).reshape(-1, 2).tolist():
+        count[tuple(e)] = count.get(tuple(e), 0) + 1
+    for a, b in pairs.tolist():
+        if count.get((a, b), 0) == 1:
+            raise CrackGeometryError(
+                f"{crack.name} runs along the domain boundary from {x[a].tolist()} to {x[b].tolist()} "
+                "(a boundary facet); a crack must lie inside the domain: move it off the boundary or "
+                "shorten it")
 
 
 def _tip_flags(scene: Scene, crack: Crack) -> tuple[bool, bool]:
@@ -175,7 +197,7 @@ def _accepts_side(f) -> bool:
 
 
 def _dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tuple[np.ndarray, np.ndarray]:
-    """Constrained scalar dofs and their values (later conditions win).
+    """Constrained scalar dofs and their values.
 
     A value callable f(x) is continuous; f(x, side) may jump across a crack
     (side (n,) = +1 / -1, the side of the crack nearest to each point). On a
@@ -183,7 +205,8 @@ def _dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tuple[np.n
     because their functions do not vanish between the nodes of a boundary
     facet that the crack crosses: to 0 for a continuous value, to the jump
     (f(x_i, -H_i) - f(x_i, H_i)) / (-2 H_i) otherwise. Tip dofs stay free.
-    A point condition fixes only the node's standard dofs.
+    A point condition fixes only the node's standard dofs. Conditions that
+    constrain the same dof (two sides sharing a corner node) must agree.
     """
     msh = scene.mesh.mesh
     tdim = msh.topology.dim
@@ -195,7 +218,17 @@ def _dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tuple[np.n
         nearest = phis[np.argmin(np.abs(phis), axis=0), np.arange(x.shape[0])]
         node_side = np.where(nearest >= 0.0, 1, -1).astype(np.int8)
     values: dict[int, float] = {}
-    for bc in scene.dirichlet:
+    owner: dict[int, int] = {}
+    clashes: list[tuple[int, int, int, float, float]] = []
+
+    def prescribe(dofs: np.ndarray, vals: np.ndarray, k: int) -> None:
+        for dof, val in zip(dofs.tolist(), vals.tolist()):
+            old = values.get(dof)
+            if old is not None and old != val:
+                clashes.append((dof, owner[dof], k, old, val))
+            values[dof] = val
+            owner[dof] = k
+    for k_bc, bc in enumerate(scene.dirichlet):
         is_point = isinstance(bc.where, (tuple, list, np.ndarray))
         if is_point:
             p = np.asarray(bc.where, dtype=float)
@@ -218,13 +251,18 @@ def _dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tuple[np.n
         def evaluate(points, sides):
             if not callable(bc.value):
                 return np.full((len(points), len(comps)), float(bc.value))
-            out = bc.value(points, sides) if with_side else bc.value(points)
-            return np.asarray(out, dtype=float).reshape(len(points), len(comps))
+            out = np.asarray(bc.value(points, sides) if with_side else bc.value(points), dtype=float)
+            if out.size != len(points) * len(comps):
+                raise BoundaryConditionError(
+                    f"Dirichlet condition {k_bc} ({bc.where!r}): its value function returned shape "
+                    f"{out.shape} for {len(points)} points; it must return ({len(points)},) for one "
+                    f"component or ({len(points)}, 2) for both")
+            return out.reshape(len(points), len(comps))
         v = evaluate(x[nodes], node_side[nodes])
         if not np.all(np.isfinite(v)):
             raise BoundaryConditionError(f"Dirichlet values on {bc.where!r} contain NaN or infinity")
         for j, c in enumerate(comps):
-            values.update(zip((2 * nodes + c).tolist(), v[:, j].tolist()))
+            prescribe(2 * nodes + c, v[:, j], k_bc)
         if not is_point:
             pseudo = np.flatnonzero(np.isin(layout.node, nodes) & (layout.kind == 0))
             jump = np.zeros((len(pseudo), len(comps)))
@@ -233,9 +271,31 @@ def _dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tuple[np.n
                 xp = x[layout.node[pseudo]]
                 jump = (evaluate(xp, -H.astype(np.int8)) - evaluate(xp, H.astype(np.int8))) / (-2.0 * H[:, None])
             for j, c in enumerate(comps):
-                values.update(zip((2 * (layout.num_std_nodes + pseudo) + c).tolist(), jump[:, j].tolist()))
+                prescribe(2 * (layout.num_std_nodes + pseudo) + c, jump[:, j], k_bc)
+    _check_clashes(scene, x, layout, values, clashes)
     dofs = np.array(sorted(values), dtype=np.int32)
     return dofs, np.array([values[d] for d in dofs.tolist()], dtype=np.float64)
+
+
+def _check_clashes(scene: Scene, x: np.ndarray, layout, values: dict, clashes: list) -> None:
+    """Raise if two Dirichlet conditions prescribe different values to a dof
+    (beyond round-off: 1e-10 relative and 1e-12 of the largest value)."""
+    if not clashes:
+        return
+    vmax = max(abs(v) for v in values.values())
+    for dof, k0, k1, a, b in clashes:
+        if abs(a - b) <= 1e-10 * max(abs(a), abs(b)) or abs(a - b) <= 1e-12 * vmax:
+            continue
+        node, comp = divmod(dof, 2)
+        what = f"u_{'xy'[comp]}"
+        if node >= layout.num_std_nodes:
+            node = int(layout.node[node - layout.num_std_nodes])
+            what = f"the jump (Heaviside dof) of u_{'xy'[comp]}"
+        w0, w1 = scene.dirichlet[k0].where, scene.dirichlet[k1].where
+        raise BoundaryConditionError(
+            f"Dirichlet conditions {k0} ({w0!r}) and {k1} ({w1!r}) prescribe different values to {what} "
+            f"at node {x[node].tolist()}: {a:.6g} and {b:.6g}; conditions that share a node (two sides "
+            "meeting at a corner, a point on a tagged side) must prescribe the same value there")
 
 
 def check_rigid_motion(x: np.ndarray, bc_dofs: np.ndarray) -> None:

@@ -11,6 +11,23 @@ namespace cracklip_wrappers
 {
 using namespace cracklip;
 
+namespace
+{
+/// Raise ValueError unless `a` has shape (n, cols).
+template <typename T>
+void require_columns(const carray<T>& a, py::ssize_t cols, const std::string& name)
+{
+  if (a.ndim() != 2 or a.shape(1) != cols)
+  {
+    std::string shape;
+    for (py::ssize_t d = 0; d < a.ndim(); ++d)
+      shape += (d ? ", " : "") + std::to_string(a.shape(d));
+    throw std::invalid_argument(name + " must be an array of shape (n, " + std::to_string(cols)
+                                + "), got shape (" + shape + ")");
+  }
+}
+} // namespace
+
 void declare_geometry(py::module& m)
 {
   m.def(
@@ -104,6 +121,9 @@ void declare_geometry(py::module& m)
       [](const carray<double>& x, const carray<std::int32_t>& cells, const carray<double>& points,
          std::array<bool, 2> tips, double snap_tol)
       {
+        require_columns(x, 2, "x (node coordinates)");
+        require_columns(cells, 3, "cells (node indices per triangle)");
+        require_columns(points, 2, "points (crack polyline)");
         CrackPath path;
         path.points.assign(points.data(), points.data() + points.size());
         path.tip = tips;
@@ -149,6 +169,8 @@ void declare_geometry(py::module& m)
          const std::vector<const CrackGeometry*>& cracks, const std::string& tip, double radius,
          double kappa, bool corrected)
       {
+        require_columns(x, 2, "x (node coordinates)");
+        require_columns(cells, 3, "cells (node indices per triangle)");
         EnrichmentOptions opt;
         opt.corrected = corrected;
         if (tip == "none")

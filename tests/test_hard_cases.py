@@ -1,0 +1,146 @@
+"""Hard cases (issue 6) at small sizes: every case finite, every solve's
+relative residual <= 1e-10, the error against the exact answer (or the 4x
+finer mesh) falling by >= 2x from the base mesh to the 4x finer one, and what
+makes each case hard actually present in the discrete model. The full-size
+table is demos/hard_cases.py."""
+import pathlib
+import sys
+
+import numpy as np
+import pytest
+
+import cracklip as cl
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+import hard_cases as hc  # noqa: E402
+
+RESIDUAL = 1e-10
+
+# Relative energy-norm error allowed on the 4x finer mesh (n = 4 n0_small):
+# rate-1 cases land at 2.5e-2 .. 4.3e-2; nu = 0.499 locks (P1), case 14's
+# finer mesh has h = 0.25, case 15a (radius below a cell) converges at rate 1/2.
+FINE_ERROR = {"1": 0.05, "2": 0.05, "3": 0.05, "4": 0.05, "5": 0.05, "6": 0.05, "9": 0.05, "10": 0.35,
+              "13a": 0.05, "13b": 0.05, "14": 0.15, "15a": 0.1, "15b": 0.05}
+
+
+@pytest.fixture(scope="module")
+def rows():
+    """Each exact-reference case at n0_small and 4 n0_small (computed once)."""
+    return {c.key: hc.run_case(c, c.n0_small) for c in hc.CASES if c.reference == "exact"}
+
+
+def _base(row):
+    return row["levels"][0]
+
+
+@pytest.mark.parametrize("key", sorted(FINE_ERROR))
+def test_exact_reference_cases_converge(rows, key):
+    r = rows[key]
+    assert r["finite"]
+    assert r["relative_residual"] <= RESIDUAL, r["relative_residual"]
+    assert r["error_ratio"] >= 2.0, (r["error"], r["error_fine"])
+    assert r["error_fine"] <= FINE_ERROR[key], r["error_fine"]
+    if r["K_error"] is not None:  # Williams cases: SIFs (radius 0.3; 0.5 for case 14) converge too
+        assert r["K_error_fine"] < r["K_error"] or r["K_error_fine"] <= 1e-3, (r["K_error"], r["K_error_fine"])
+    assert r["cond_1norm"] > 0 and r["cond_1norm_jacobi"] > 0
+
+
+def test_geometry_of_the_degenerate_cases(rows):
+    """What makes each case hard is really in the model."""
+    assert _base(rows["1"])["nodes_on_crack"] >= 3                 # crack through nodes
+    assert _base(rows["2"])["edge_cells"] > 0 and _base(rows["2"])["cut_cells"] == 0  # along edges only
+    assert _base(rows["3"])["tip_cells"] == 0 and _base(rows["3"])["tip_node_distance"] < 1e-14
+    assert _base(rows["4"])["tip_cells"] == 0                      # tip on an edge: no tip cell
+    s = _base(rows["5"])
+    assert 0.5e-9 <= s["min_subcell_fraction"] <= 2e-9 and s["snapped"] == 0
+    assert _base(rows["6"])["mouth_node_phi"] == 0.0 and _base(rows["6"])["tips"] == [[False, True]]
+    assert _base(rows["9"])["edge_ratio"] >= 1000.0
+    for key in ("13a", "13b"):
+        assert _base(rows[key])["tip_cells"] == 1
+    assert _base(rows["14"])["crossed_cells"] == 2 and _base(rows["14"])["cells"] == 8
+    assert _base(rows["15a"])["radius"] < _base(rows["15a"])["h"]
+    assert _base(rows["15b"])["radius"] > 0.5
+
+
+def test_tip_near_an_edge_is_continuous():
+    """The answer is continuous as the tip approaches the edge x = 0 of its
+    cell from inside (n = 20, radius 0.2 = 2 h, so the enriched node set does
+    not change). Before the enrichment fix a tip within ~1e-3 h of that edge
+    stripped the Heaviside dof from a core node of the neighbouring cut
+    blending cells: energy error 0.28 instead of 0.087."""
+    md = hc.structured_square(20)
+    err = {}
+    for d in (0.0, 1e-8, 1e-4, 1e-2):
+        b = hc.williams_scene(md, (-d, 0.1 / 3.0), 20.0)
+        err[d] = cl.solve(b.scene).energy_error(lambda p, s: b.exact.gradient(p, s))[1]
+    assert abs(err[1e-8] - err[0.0]) <= 1e-6 * err[0.0], err
+    assert abs(err[1e-4] - err[0.0]) <= 1e-3 * err[0.0], err
+    assert abs(err[1e-2] - err[0.0]) <= 5e-2 * err[0.0], err
+    assert err[0.0] <= 0.09, err
+
+
+@pytest.mark.parametrize("key", ["7", "8"])
+def test_finer_mesh_reference_cases_converge(key):
+    """Two cracks (4 tips, overlapping enrichment disks) and a 40-segment
+    arc: n = 10, 40, 160; |Q(n) - Q(4n)| falls by >= 2x."""
+    case = hc.CASE_BY_KEY[key]
+    r = hc.run_case(case, case.n0_small)
+    assert r["finite"]
+    assert r["relative_residual"] <= RESIDUAL
+    assert r["error_ratio"] >= 2.0, (r["error"], r["error_fine"])
+    assert r["error_fine"] <= 0.05, r["error_fine"]
+    lv = r["levels"][0]
+    if key == "7":
+        assert lv["tip_distance"] < 2 * 0.2 and lv["nodes_with_both_cracks_tip_functions"] > 0
+        q = np.asarray(r["levels"][-1]["quantities"])
+        assert np.all(q[0::2] > 0)  # tension: K_I > 0 at all four tips
+
+
+def test_scaling_is_exact():
+    """Case 11: loads x 1e6, E x 1e9 (unilateral contact, tip enrichment):
+    every output scales by its exact factor to 1e-12, same active set."""
+    s = hc.run_scaling(10)
+    assert s["finite"] and s["same_active_set"]
+    assert s["relative_residual"] <= RESIDUAL
+    assert s["max_deviation"] <= 1e-12, s["deviation"]
+    assert set(s["deviation"]) == {"u", "stress", "K", "pressure", "gap", "energy", "opening"}
+
+
+def test_open_closed_open_contact_both_starts():
+    """Case 12: both starts reach the same active set and pressure (1e-10),
+    closed in the middle, open toward both tips; at n = 20 the SIFs and the
+    contact force are within 5 % of the 4x finer mesh (at n = 10, h = 0.2,
+    they are 10 % off; the 3-level convergence is in the demo)."""
+    r = hc.run_case(hc.CASE_BY_KEY["12"], 20, levels=2)
+    assert r["finite"] and r["relative_residual"] <= RESIDUAL
+    assert r["starts_agree"], r["pressure_difference_between_starts"]
+    assert r["pressure_difference_between_starts"] <= 1e-10
+    assert r["error"] <= 0.05
+    sol = hc.solve_level(hc.Built(hc.open_closed_open_scene(40)), condition=False)["_solution"]
+    cp = sol.contact_pressure(0)
+    x, p, gap = cp["x"][:, 0], cp["pressure"], cp["gap"]
+    closed = p > 1e-12
+    assert closed[np.abs(x) < 0.1].all()                      # closed in the middle
+    assert (gap[np.abs(x) > 0.5] > 0).all() and not closed[np.abs(x) > 0.5].any()  # open at both ends
+    assert 0 < sol.contact["active"].sum() < sol.contact["active"].size
+    # The constraint is weak: the weighted gaps B u - g of the active multipliers vanish.
+    cs, active = sol.contact["system"], sol.contact["active"]
+    weighted_gap = cs.B @ sol.u - cs.g
+    assert np.abs(weighted_gap[active]).max() <= 1e-10 * np.abs(weighted_gap).max()
+    assert weighted_gap[~active].min() >= 0.0 and (-sol.contact["lambda"]).min() >= 0.0
+    K = hc.sif_vector(sol, 0.15)
+    assert K[0] > 0 and K[2] > 0                              # both tips open
+
+
+def test_demo_quick_writes_table(tmp_path):
+    """The demo's JSON and Markdown for a few cases."""
+    out = tmp_path / "hc.json"
+    res = hc.main(["--quick", "--json", str(out), "--cases", "5", "11", "14"])
+    assert out.exists() and out.with_suffix(".md").exists()
+    md = out.with_suffix(".md").read_text()
+    assert "| case |" in md and "5 1e-9 sliver" in md
+    assert res["all_finite"] and res["max_relative_residual"] <= RESIDUAL and res["all_converge"]
+    for row in res["rows"]:
+        for key in ("case", "hard", "finite", "relative_residual", "cond_1norm", "cond_1norm_jacobi",
+                    "error", "wall_time"):
+            assert key in row
