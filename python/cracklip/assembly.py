@@ -56,6 +56,9 @@ def assemble_load(model: XfemModel) -> np.ndarray:
     msh = scene.mesh.mesh
     tdim = msh.topology.dim
     b = np.zeros(model.num_dofs)
+    if scene.body_force is not None:
+        from .loads import assemble_body_force
+        b += assemble_body_force(model, scene.body_force)
     if not scene.tractions:
         return b
     msh.topology.create_connectivity(tdim - 1, tdim)

@@ -1,7 +1,11 @@
-"""Output files: ParaView VTU on the sub-cell mesh (crack opening visible)."""
+"""Output files: ParaView VTU on the sub-cell mesh (crack opening visible), the
+crack lips as a line mesh, and atomic writes (no half-written file)."""
 from __future__ import annotations
 
+import contextlib
+import os
 import pathlib
+import typing
 
 import meshio
 import numpy as np
@@ -9,12 +13,32 @@ import numpy as np
 from .post import Solution
 
 
-def write_vtu(solution: Solution, path: str | pathlib.Path) -> pathlib.Path:
-    """Write displacement (point data, 3 components for ParaView's Warp By
-    Vector) and stress, side, parent cell (cell data) on the sub-cell mesh,
-    whose vertices are not shared across the crack."""
+@contextlib.contextmanager
+def atomic_path(path: str | pathlib.Path) -> typing.Iterator[pathlib.Path]:
+    """A temporary path in the same folder, renamed to `path` when the block
+    ends without error (removed otherwise). The temporary name keeps the
+    suffix, so writers that infer the format from it still work."""
     path = pathlib.Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.stem}.tmp{os.getpid()}{path.suffix}")
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            tmp.unlink()
+
+
+def von_mises(stress: np.ndarray, nu: float) -> np.ndarray:
+    """Plane-strain von Mises stress of (n, 3) xx, yy, xy stresses (sigma_zz = nu (xx + yy))."""
+    sxx, syy, sxy = stress[:, 0], stress[:, 1], stress[:, 2]
+    szz = nu * (sxx + syy)
+    return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxy ** 2)
+
+
+def subcell_mesh(solution: Solution) -> meshio.Mesh:
+    """The solution on the sub-cell mesh (vertices not shared across a crack):
+    displacement (point data, 3 components for ParaView's Warp By Vector),
+    stress components, von Mises stress, crack side and parent cell (cell data)."""
     f = solution.subcell_fields()
     npts = f["points"].shape[0]
     points = np.zeros((npts, 3))
@@ -23,10 +47,57 @@ def write_vtu(solution: Solution, path: str | pathlib.Path) -> pathlib.Path:
     disp[:, :2] = f["displacement"]
     conn = np.arange(npts, dtype=np.int64).reshape(-1, 3)
     s = f["stress"]
-    mesh = meshio.Mesh(
+    return meshio.Mesh(
         points, [("triangle", conn)],
         point_data={"displacement": disp},
         cell_data={"stress_xx": [s[:, 0]], "stress_yy": [s[:, 1]], "stress_xy": [s[:, 2]],
+                   "stress_von_mises": [von_mises(s, solution.model.scene.material.nu)],
                    "side": [f["side"].astype(np.int32)], "parent_cell": [f["parent"]]})
-    mesh.write(path)
+
+
+def crack_lips_mesh(samples: typing.Sequence[dict]) -> meshio.Mesh:
+    """The lips of every crack as two polylines (+ and - lip) through the
+    crack sample points (see outputs.crack_samples), each point carrying
+    the displacement of its lip, pressure, normal gap and tangential slip;
+    cell data: crack index and lip (+1 / -1)."""
+    pts, disp, data, conn, crack_id, lip = [], [], {"pressure": [], "gap": [], "slip": [], "s": []}, [], [], []
+    offset = 0
+    for c, smp in enumerate(samples):
+        n = len(smp["s"])
+        if n < 2:
+            continue
+        for sign, key in ((1, "u_plus"), (-1, "u_minus")):
+            pts.append(smp["x"])
+            disp.append(smp[key])
+            for name in data:
+                data[name].append(smp[name])
+            idx = offset + np.arange(n)
+            conn.append(np.stack([idx[:-1], idx[1:]], axis=1))
+            crack_id.append(np.full(n - 1, c, dtype=np.int32))
+            lip.append(np.full(n - 1, sign, dtype=np.int32))
+            offset += n
+    if not pts:
+        return meshio.Mesh(np.zeros((0, 3)), [("line", np.zeros((0, 2), dtype=np.int64))])
+    x = np.concatenate(pts)
+    points = np.zeros((len(x), 3))
+    points[:, :2] = x
+    u = np.zeros((len(x), 3))
+    u[:, :2] = np.concatenate(disp)
+    point_data = {"displacement": u, **{k: np.concatenate(v) for k, v in data.items()}}
+    return meshio.Mesh(points, [("line", np.concatenate(conn).astype(np.int64))], point_data=point_data,
+                       cell_data={"crack": [np.concatenate(crack_id)], "lip": [np.concatenate(lip)]})
+
+
+def write_mesh(mesh: meshio.Mesh, path: str | pathlib.Path) -> pathlib.Path:
+    """Write a meshio mesh as VTU through a temporary file."""
+    path = pathlib.Path(path)
+    with atomic_path(path) as tmp:
+        meshio.write(tmp, mesh, file_format="vtu")
     return path
+
+
+def write_vtu(solution: Solution, path: str | pathlib.Path) -> pathlib.Path:
+    """Write the sub-cell mesh with displacement and stress (see subcell_mesh)."""
+    path = pathlib.Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    return write_mesh(subcell_mesh(solution), path)

@@ -1,0 +1,871 @@
+"""Scene files: a TOML description of a cracked part, read into a ``cracklip.Scene``.
+
+One table, ``SCHEMA``, lists every key with its type, default and meaning;
+the parser accepts exactly these keys and the README's scene reference is
+generated from it (``reference_markdown()``, or ``python3 -m cracklip
+reference``). An unknown key is an ``InputError`` naming the nearest valid
+key. Typical use::
+
+    from cracklip.scene_file import load_scene_file
+    sf = load_scene_file("demos/scenes/block_uniform_pressure.toml", overrides=["mesh.h=0.1"])
+    solution = cracklip.solve(sf.scene)
+
+Paths in the schema: ``mesh.h`` is key ``h`` of table ``[mesh]``;
+``cracks[].points`` is key ``points`` of every ``[[cracks]]`` entry;
+``loads.tractions[].kirsch.remote_stress`` is a key of the inline table
+``kirsch = {...}`` of a ``[[loads.tractions]]`` entry.
+"""
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import math
+import pathlib
+import re
+import time
+import tomllib
+import typing
+
+import numpy as np
+
+from .errors import BoundaryConditionError, InputError, MeshError
+from .mesh import (MeshData, create_half_annulus, create_plate_with_hole, create_rectangle, read_msh)
+from .scene import ENRICHMENTS, TIP_QUADRATURES, Crack, Dirichlet, Material, Options, Scene, Traction
+
+MESH_KINDS = ("rectangle", "plate_with_hole", "half_annulus", "file")
+GENERATED = ("rectangle", "plate_with_hole", "half_annulus")
+STRESS_COMPONENTS = ("xx", "yy", "xy", "von_mises")
+
+
+class _Required:
+    """Marker of a key without a default (it must be given where it applies)."""
+
+    def __repr__(self) -> str:
+        return "required"
+
+
+class _Unset:
+    """Marker of an optional key without a default (one of several alternatives)."""
+
+    def __repr__(self) -> str:
+        return "unset"
+
+
+REQUIRED = _Required()
+UNSET = _Unset()
+
+
+# -- value parsers: (value, path) -> converted value, or InputError naming the path ----------------
+
+def _type_error(path: str, expected: str, value) -> InputError:
+    return InputError(f"{path} must be {expected}, got {value!r}")
+
+
+def _number(value, path: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise _type_error(path, "a number", value)
+    v = float(value)
+    if not math.isfinite(v):
+        raise _type_error(path, "a finite number", value)
+    return v
+
+
+def p_float(minimum: float | None = None, positive: bool = False):
+    def parse(value, path):
+        v = _number(value, path)
+        if positive and not v > 0.0:
+            raise _type_error(path, "a positive number", value)
+        if minimum is not None and v < minimum:
+            raise _type_error(path, f"a number >= {minimum:g}", value)
+        return v
+    return parse
+
+
+def p_int(minimum: int = 1):
+    def parse(value, path):
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise _type_error(path, "an integer", value)
+        if value < minimum:
+            raise _type_error(path, f"an integer >= {minimum}", value)
+        return int(value)
+    return parse
+
+
+def p_bool(value, path):
+    if not isinstance(value, bool):
+        raise _type_error(path, "true or false", value)
+    return value
+
+
+def p_str(value, path):
+    if not isinstance(value, str):
+        raise _type_error(path, "a string", value)
+    return value
+
+
+def p_choice(*choices: str):
+    def parse(value, path):
+        if value not in choices:
+            close = difflib.get_close_matches(str(value), choices, n=1, cutoff=0.0)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise InputError(f"{path} must be one of {', '.join(repr(c) for c in choices)}, "
+                             f"got {value!r}{hint}")
+        return value
+    return parse
+
+
+def p_numbers(n: int, what: str):
+    def parse(value, path):
+        if not isinstance(value, list) or len(value) != n:
+            raise _type_error(path, what, value)
+        return [_number(v, f"{path}[{i}]") for i, v in enumerate(value)]
+    return parse
+
+
+p_point = p_numbers(2, "a point [x, y]")
+p_vector = p_numbers(2, "a vector [x, y]")
+p_stress = p_numbers(3, "a stress [sigma_xx, sigma_yy, sigma_xy]")
+p_angles = p_numbers(2, "two angles [start, end] in degrees")
+
+
+def p_box(value, path):
+    x0, y0, x1, y1 = p_numbers(4, "a box [x0, y0, x1, y1]")(value, path)
+    if not (x1 > x0 and y1 > y0):
+        raise InputError(f"{path} = {value} is empty: need x0 < x1 and y0 < y1")
+    return [x0, y0, x1, y1]
+
+
+def p_region(value, path):
+    """A box that may be flat (x0 = x1 or y0 = y1: the nodes on a line)."""
+    x0, y0, x1, y1 = p_numbers(4, "a box [x0, y0, x1, y1]")(value, path)
+    if not (x1 >= x0 and y1 >= y0):
+        raise InputError(f"{path} = {value}: need x0 <= x1 and y0 <= y1")
+    return [x0, y0, x1, y1]
+
+
+def p_polyline(value, path):
+    if not isinstance(value, list) or len(value) < 2:
+        raise _type_error(path, "a list of at least two points [[x, y], ...]", value)
+    return [p_point(v, f"{path}[{i}]") for i, v in enumerate(value)]
+
+
+def p_tag(value, path):
+    if isinstance(value, bool) or not isinstance(value, (str, int)):
+        raise _type_error(path, "a boundary tag name (string) or number (integer)", value)
+    return value
+
+
+def p_value(value, path):
+    if isinstance(value, list):
+        return p_vector(value, path)
+    return _number(value, path)
+
+
+# -- the schema ----------------------------------------------------------------------------------
+
+@dataclasses.dataclass(frozen=True)
+class Key:
+    """One scene-file key.
+
+    Attributes:
+        path: dotted path; ``[]`` marks an array of tables (``cracks[].points``).
+        type: the type as documented.
+        default: the value when absent; REQUIRED (must be given where it
+            applies) or UNSET (optional, no value: one of alternatives).
+        meaning: what it does (README's scene reference).
+        parse: converts and checks a value: (value, path) -> value.
+        kinds: for mesh keys, the mesh kinds the key applies to (empty: all).
+    """
+    path: str
+    type: str
+    default: typing.Any
+    meaning: str
+    parse: typing.Callable[[typing.Any, str], typing.Any]
+    kinds: tuple[str, ...] = ()
+
+    @property
+    def parent(self) -> str:
+        return self.path.rpartition(".")[0]
+
+    @property
+    def name(self) -> str:
+        return self.path.rpartition(".")[2]
+
+
+_OPTION_MEANINGS = {
+    "enrichment": "crack-tip enrichment: `vector` (the two Williams fields, 2 dofs per node), "
+                  "`scalar` (4 branch functions, 8 dofs per node) or `none` (Heaviside only)",
+    "radius": "geometric enrichment radius: nodes within it of a tip get tip dofs; 0 enriches "
+              "the tip cell's nodes only",
+    "blending": "`corrected` (Fries' corrected X-FEM, optimal rate) or `standard` blending",
+    "quadrature": "rule where tip functions live: `collapsed` (quasi-polar fan from the tip) "
+                  "or `gauss` (the paper's plain rule)",
+    "quadrature_degree": "degree p of the `gauss` tip rule ((p + 3) / 2)^2 points per sub-triangle",
+    "tip_radial": "`collapsed` rule: points along each ray of a fan triangle",
+    "tip_angular": "`collapsed` rule: points across each fan triangle",
+    "tip_max_angle": "`collapsed` rule: largest apex angle of a fan triangle (radians)",
+    "degree": "Gauss degree in enriched cells without tip functions (1 is exact for P1 x Heaviside)",
+    "contact": "crack-lip contact: `none` (traction-free lips), `bilateral` (lips held together, "
+               "free to slide) or `unilateral` (gap >= 0, pressure >= 0; active set)",
+    "multipliers": "multiplier space: `stable` (P1-, P0 in the tip cell) or `naive` (P1 on every "
+                   "node of the cut cells; violates inf-sup)",
+    "contact_points": "Gauss points per crack segment for the contact terms",
+    "active_set_start": "initial active set of unilateral contact: `closed` or `open`",
+    "max_active_set_iterations": "active-set iterations before giving up",
+    "snap_tol": "a node closer to a crack than snap_tol times its shortest edge is moved onto it",
+    "facet_degree": "quadrature degree of boundary tractions",
+    "residual_tol": "largest accepted relative residual of a linear solve",
+    "rescale": "`none`, or `nodal`: each enriched node's block of standard and enriched dofs "
+               "orthonormalised (Cholesky), others Jacobi-scaled; same answer, better conditioned matrix",
+}
+_OPTION_CHOICES = {
+    "enrichment": ENRICHMENTS, "blending": ("corrected", "standard"), "quadrature": TIP_QUADRATURES,
+    "contact": ("none", "bilateral", "unilateral"), "multipliers": ("stable", "naive"),
+    "active_set_start": ("closed", "open"), "rescale": ("none", "nodal"),
+}
+
+
+def _docstring_attributes(cls) -> dict[str, str]:
+    """'name: text' entries of the Attributes section of a class docstring."""
+    out: dict[str, str] = {}
+    doc = (cls.__doc__ or "").split("Attributes:", 1)[-1]
+    name = None
+    for line in doc.splitlines():
+        m = re.match(r"^\s{8}([a-z_, ]+): (.*)$", line)
+        if m:
+            name = m.group(1)
+            out[name] = m.group(2).strip()
+        elif name and line.strip():
+            out[name] += " " + line.strip()
+    for names in [n for n in out if "," in n]:  # "a, b, c: text" documents three fields
+        for n in names.split(","):
+            out.setdefault(n.strip(), out[names])
+    return out
+
+
+def _option_keys() -> list[Key]:
+    """The [options] keys: every field of cracklip.Options (defaults from the
+    dataclass itself; the meaning from _OPTION_MEANINGS, else from Options'
+    docstring), then the SIF domain radius."""
+    keys = []
+    documented = _docstring_attributes(Options)
+    for f in dataclasses.fields(Options):
+        default = f.default
+        meaning = _OPTION_MEANINGS.get(f.name) or documented.get(f.name, f.name.replace("_", " "))
+        if f.name in _OPTION_CHOICES:
+            keys.append(Key(f"options.{f.name}", "string", default, meaning, p_choice(*_OPTION_CHOICES[f.name])))
+        elif isinstance(default, bool):
+            keys.append(Key(f"options.{f.name}", "boolean", default, meaning, p_bool))
+        elif isinstance(default, int):
+            keys.append(Key(f"options.{f.name}", "integer", default, meaning, p_int(1)))
+        elif isinstance(default, str):
+            keys.append(Key(f"options.{f.name}", "string", default, meaning, p_str))
+        else:
+            keys.append(Key(f"options.{f.name}", "float", default, meaning, p_float(0.0)))
+    keys.append(Key("options.sif_radius", "float", 0.0,
+                    "radius of the SIF interaction-integral domain around each tip; 0: 4 mean "
+                    "edge lengths (keep it inside the part and away from other cracks)", p_float(0.0)))
+    return keys
+
+
+_WILLIAMS = [
+    ("K_I", "float", 0.0, "mode I stress intensity factor of the exact Williams field", p_float()),
+    ("K_II", "float", 0.0, "mode II stress intensity factor of the exact Williams field", p_float()),
+    ("tip", "[x, y]", REQUIRED, "crack tip of the Williams field (an end of one of the cracks)", p_point),
+    ("angle", "float", 0.0, "crack direction at the tip, degrees from the x axis", p_float()),
+]
+
+SCHEMA: tuple[Key, ...] = tuple([
+    Key("title", "string", "", "name shown in outputs (default: the file name)", p_str),
+    # mesh
+    Key("mesh.kind", "string", "rectangle",
+        "`rectangle`, `plate_with_hole`, `half_annulus` (r between hole_radius and outer_radius, "
+        "y >= 0, centre at the origin) or `file` (a gmsh .msh file)", p_choice(*MESH_KINDS)),
+    Key("mesh.h", "float", REQUIRED, "element size", p_float(positive=True), GENERATED),
+    Key("mesh.domain", "[x0, y0, x1, y1]", [-1.0, -1.0, 1.0, 1.0],
+        "the rectangle; tags `left`, `right`, `bottom`, `top`", p_box, ("rectangle", "plate_with_hole")),
+    Key("mesh.hole_center", "[x, y]", [0.0, 0.0], "centre of the hole (tag `hole`)", p_point,
+        ("plate_with_hole",)),
+    Key("mesh.hole_radius", "float", REQUIRED, "radius of the hole (tag `hole`)", p_float(positive=True),
+        ("plate_with_hole", "half_annulus")),
+    Key("mesh.outer_radius", "float", REQUIRED,
+        "outer radius of the half annulus (tag `outer`; `symmetry` on y = 0)", p_float(positive=True),
+        ("half_annulus",)),
+    Key("mesh.path", "string", REQUIRED,
+        "gmsh .msh file (relative to the scene file) with named physical curves as boundary tags",
+        p_str, ("file",)),
+    Key("mesh.tip_h", "float", 0.0,
+        "element size at crack tips inside the part; 0: no tip refinement", p_float(0.0), GENERATED),
+    Key("mesh.tip_radius", "float", 0.0,
+        "distance over which the size grows from tip_h to h; 0: 4 h", p_float(0.0), GENERATED),
+    Key("mesh.refine[].point", "[x, y]", REQUIRED, "centre of a local refinement", p_point, GENERATED),
+    Key("mesh.refine[].h", "float", REQUIRED, "element size at the point", p_float(positive=True), GENERATED),
+    Key("mesh.refine[].radius", "float", REQUIRED, "distance over which the size grows back to h",
+        p_float(positive=True), GENERATED),
+    # material
+    Key("material.E", "float", REQUIRED, "Young's modulus (plane strain)", p_float(positive=True)),
+    Key("material.nu", "float", REQUIRED, "Poisson's ratio, -1 < nu < 0.5", p_float()),
+    # cracks
+    Key("cracks[].name", "string", "", "label in messages and outputs (default: crack i)", p_str),
+    Key("cracks[].points", "[[x, y], ...]", UNSET,
+        "polyline; an end inside the part is a tip, an end on or outside the boundary makes an "
+        "edge crack", p_polyline),
+    Key("cracks[].arc.center", "[x, y]", REQUIRED, "circular-arc crack: centre", p_point),
+    Key("cracks[].arc.radius", "float", REQUIRED, "circular-arc crack: radius", p_float(positive=True)),
+    Key("cracks[].arc.angles", "[start, end]", REQUIRED,
+        "circular-arc crack: polar angles of its ends, degrees (counter-clockwise if end > start)",
+        p_angles),
+    Key("cracks[].arc.segments", "integer", 24, "circular-arc crack: polyline segments", p_int(1)),
+    # Dirichlet conditions
+    Key("dirichlet[].tag", "string or integer", UNSET,
+        "boundary tag the displacement is prescribed on (one of tag, box, point)", p_tag),
+    Key("dirichlet[].box", "[x0, y0, x1, y1]", UNSET,
+        "every mesh node inside the box, edges included; it may be flat (x0 = x1: the nodes on a "
+        "line); standard dofs only, like a point", p_region),
+    Key("dirichlet[].point", "[x, y]", UNSET,
+        "the mesh node nearest to the point (within one mean edge length)", p_point),
+    Key("dirichlet[].component", "string", "both", "`x`, `y` or `both`", p_choice("x", "y", "both")),
+    Key("dirichlet[].value", "float or [x, y]", 0.0,
+        "prescribed displacement ([x, y] with component = both)", p_value),
+] + [Key(f"dirichlet[].williams.{n}", t, d, m + " (displacement prescribed; replaces value)", p)
+     for n, t, d, m, p in _WILLIAMS] + [
+    # loads
+    Key("loads.body_force", "[x, y]", [0.0, 0.0], "constant body force, force per unit area", p_vector),
+    Key("loads.tractions[].tag", "string or integer", REQUIRED, "boundary tag loaded", p_tag),
+    Key("loads.tractions[].value", "[x, y]", UNSET, "constant traction, force per unit length "
+        "(one of value, stress, williams, kirsch)", p_vector),
+    Key("loads.tractions[].stress", "[sxx, syy, sxy]", UNSET,
+        "uniform stress: the traction is sigma n on the tag (n the outward facet normal)", p_stress),
+] + [Key(f"loads.tractions[].williams.{n}", t, d, m + " (traction sigma n)", p) for n, t, d, m, p in _WILLIAMS] + [
+    Key("loads.tractions[].kirsch.remote_stress", "float", REQUIRED,
+        "Kirsch field of a hole under remote stress along x (< 0: compression); traction sigma n",
+        p_float()),
+    Key("loads.tractions[].kirsch.hole_radius", "float", REQUIRED, "Kirsch field: hole radius",
+        p_float(positive=True)),
+    Key("loads.tractions[].kirsch.center", "[x, y]", [0.0, 0.0], "Kirsch field: hole centre", p_point),
+    Key("loads.pressures[].tag", "string or integer", REQUIRED, "boundary tag under pressure", p_tag),
+    Key("loads.pressures[].value", "float", REQUIRED,
+        "pressure (> 0 pushes on the part): traction -p n", p_float()),
+] + _option_keys() + [
+    # outputs
+    Key("outputs.vtu", "boolean", True, "write ParaView files solution.vtu and crack_lips.vtu", p_bool),
+    Key("outputs.png", "boolean", True, "write deformed.png, crack_pressure.png and stress.png", p_bool),
+    Key("outputs.magnification", "float", 0.0,
+        "displacement scale of deformed.png; 0: largest displacement = 5 % of the part", p_float(0.0)),
+    Key("outputs.stress_component", "string", "yy", "stress shown in stress.png: `xx`, `yy`, `xy` "
+        "or `von_mises`", p_choice(*STRESS_COMPONENTS)),
+    Key("outputs.condition_number", "boolean", False,
+        "estimate the 1-norm condition number of the stiffness (results.json)", p_bool),
+    Key("outputs.crack_points", "integer", 3, "sample points per crack segment in crack.csv",
+        p_int(1)),
+])
+
+KEYS: dict[str, Key] = {k.path: k for k in SCHEMA}
+
+
+def _tables() -> set[str]:
+    """Paths of all (arrays of) tables: parents of keys and their ancestors."""
+    out = {""}
+    for k in SCHEMA:
+        p = k.parent
+        while p:
+            out.add(p)
+            p = p.rpartition(".")[0]
+    return out
+
+
+TABLES = _tables()
+
+
+def _children(table: str) -> dict[str, str]:
+    """Valid names in a table (path with [] for arrays): name -> 'key' | 'table' | 'array'."""
+    out = {}
+    for k in SCHEMA:
+        if k.parent == table:
+            out[k.name] = "key"
+    for t in TABLES:
+        if t and t.rpartition(".")[0] == table:
+            name = t.rpartition(".")[2]
+            out[name.removesuffix("[]")] = "array" if name.endswith("[]") else "table"
+    return out
+
+
+def _display(path: str) -> str:
+    return path.replace("[]", "")
+
+
+def _unknown_key(where: str, table: str, name: str) -> InputError:
+    """'unknown key ...; did you mean ...': a close key of the same table, else
+    the place where a key of that name belongs, else the table's nearest key."""
+    children = list(_children(table))
+    full = f"{where}.{name}" if where else name
+    close = difflib.get_close_matches(name, children, n=1, cutoff=0.6)
+    elsewhere = sorted(_display(k.path) for k in SCHEMA if k.name == name)
+    if not close and elsewhere:
+        place = f"[{where}]" if where else "the top level"
+        return InputError(f"unknown key {full}; did you mean {elsewhere[0]}? ({name} is not a key of {place})")
+    near = close or difflib.get_close_matches(name, children, n=1, cutoff=0.0) or children[:1]
+    return InputError(f"unknown key {full}; did you mean {where + '.' if where else ''}{near[0]}?")
+
+
+# -- reading -------------------------------------------------------------------------------------
+
+def check_keys(doc: dict, table: str = "", where: str = "") -> None:
+    """Raise InputError for the first key of doc that the schema does not have
+    (or a table where a value is expected and vice versa)."""
+    children = _children(table)
+    for name, value in doc.items():
+        path = f"{where}.{name}" if where else name
+        kind = children.get(name)
+        if kind is None:
+            raise _unknown_key(where, table, name)
+        sub = f"{table}.{name}" if table else name
+        if kind == "table":
+            if not isinstance(value, dict):
+                raise InputError(f"{path} must be a table ([{path}] or {name} = {{ ... }}), got {value!r}")
+            check_keys(value, sub, path)
+        elif kind == "array":
+            if isinstance(value, dict):
+                value = [value]
+            if not isinstance(value, list) or not all(isinstance(v, dict) for v in value):
+                raise InputError(f"{path} must be an array of tables ([[{path}]]), got {value!r}")
+            for i, item in enumerate(value):
+                check_keys(item, sub + "[]", f"{path}[{i}]")
+        elif isinstance(value, dict):
+            raise InputError(f"{path} must be a value, not a table")
+
+
+def _section(doc: dict, table: str, where: str, kind: str | None = None) -> dict:
+    """Parsed values of one table: every key of the schema at that table,
+    given or default; REQUIRED keys that apply must be given."""
+    out = {}
+    for k in SCHEMA:
+        if k.parent != table:
+            continue
+        path = f"{where}.{k.name}" if where else k.name
+        applies = not k.kinds or kind is None or kind in k.kinds
+        if k.name in doc:
+            if not applies:
+                raise InputError(f"{path} applies to mesh kind {' or '.join(repr(x) for x in k.kinds)} "
+                                 f"only; this mesh is {kind!r}")
+            out[k.name] = k.parse(doc[k.name], path)
+        elif k.default is REQUIRED:
+            if applies:
+                extra = f" for mesh kind {kind!r}" if k.kinds else ""
+                raise InputError(f"{path} is required{extra}: {k.meaning}")
+        elif k.default is not UNSET and applies:
+            out[k.name] = k.default
+    return out
+
+
+def _items(doc: dict, name: str) -> list[dict]:
+    v = doc.get(name, [])
+    return [v] if isinstance(v, dict) else v
+
+
+def parse_settings(doc: dict) -> dict:
+    """Validate a scene document (from tomllib) and fill in defaults.
+
+    Returns a nested dict with the same layout as the file: every key of the
+    schema that applies, with its parsed value. Raises InputError naming
+    the first bad key.
+    """
+    check_keys(doc)
+    s: dict[str, typing.Any] = _section(doc, "", "")
+    mesh_doc = doc.get("mesh", {})
+    kind = p_choice(*MESH_KINDS)(mesh_doc.get("kind", "rectangle"), "mesh.kind")
+    s["mesh"] = _section(mesh_doc, "mesh", "mesh", kind)
+    refine = _items(mesh_doc, "refine")
+    if refine and kind not in GENERATED:
+        raise InputError(f"mesh.refine applies to generated meshes only; this mesh is {kind!r}")
+    s["mesh"]["refine"] = [_section(r, "mesh.refine[]", f"mesh.refine[{i}]", kind) for i, r in enumerate(refine)]
+    if "material" not in doc:
+        raise InputError("the scene has no [material] table: give material.E and material.nu")
+    s["material"] = _section(doc["material"], "material", "material")
+    s["cracks"] = []
+    for i, c in enumerate(_items(doc, "cracks")):
+        where = f"cracks[{i}]"
+        crack = _section(c, "cracks[]", where)
+        if ("points" in c) == ("arc" in c):
+            raise InputError(f"{where} needs exactly one of points (a polyline) or arc (a circular arc)")
+        if "arc" in c:
+            crack["arc"] = _section(c["arc"], "cracks[].arc", f"{where}.arc")
+        s["cracks"].append(crack)
+    s["dirichlet"] = []
+    for i, d in enumerate(_items(doc, "dirichlet")):
+        where = f"dirichlet[{i}]"
+        bc = _section(d, "dirichlet[]", where)
+        given = [k for k in ("tag", "box", "point") if k in d]
+        if len(given) != 1:
+            raise InputError(f"{where} needs exactly one of tag, box or point, got "
+                             f"{', '.join(given) if given else 'none'}")
+        if "williams" in d:
+            if "value" in d:
+                raise InputError(f"{where}: give value or williams, not both")
+            bc["williams"] = _section(d["williams"], "dirichlet[].williams", f"{where}.williams")
+        elif isinstance(bc["value"], list) and bc["component"] != "both":
+            raise InputError(f"{where}.value is a vector but component is {bc['component']!r}: "
+                             "give one number for one component")
+        s["dirichlet"].append(bc)
+    if not s["dirichlet"]:
+        raise BoundaryConditionError("the scene has no [[dirichlet]] condition: rigid body motion is free; "
+                                     "fix at least u_x and u_y somewhere and one more component elsewhere")
+    loads_doc = doc.get("loads", {})
+    s["loads"] = _section(loads_doc, "loads", "loads")
+    s["loads"]["tractions"] = []
+    for i, t in enumerate(_items(loads_doc, "tractions")):
+        where = f"loads.tractions[{i}]"
+        tr = _section(t, "loads.tractions[]", where)
+        given = [k for k in ("value", "stress", "williams", "kirsch") if k in t]
+        if len(given) != 1:
+            raise InputError(f"{where} needs exactly one of value, stress, williams or kirsch, got "
+                             f"{', '.join(given) if given else 'none'}")
+        for sub in ("williams", "kirsch"):
+            if sub in t:
+                tr[sub] = _section(t[sub], f"loads.tractions[].{sub}", f"{where}.{sub}")
+        s["loads"]["tractions"].append(tr)
+    s["loads"]["pressures"] = [_section(p, "loads.pressures[]", f"loads.pressures[{i}]")
+                               for i, p in enumerate(_items(loads_doc, "pressures"))]
+    s["options"] = _section(doc.get("options", {}), "options", "options")
+    s["outputs"] = _section(doc.get("outputs", {}), "outputs", "outputs")
+    return s
+
+
+_INDEX = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?$")
+
+
+def apply_override(doc: dict, text: str) -> None:
+    """Apply one ``KEY=VALUE`` override to a scene document in place.
+
+    KEY is a dotted path with indices for arrays of tables
+    (``mesh.h``, ``options.radius``, ``cracks[0].points``); VALUE is a TOML
+    value (``0.1``, ``[1, 2]``, ``"x"``; a bare word is taken as a string).
+    """
+    key, sep, raw = text.partition("=")
+    key, raw = key.strip(), raw.strip()
+    if not sep or not key:
+        raise InputError(f"override {text!r} must look like KEY=VALUE, e.g. mesh.h=0.1")
+    try:
+        value = tomllib.loads(f"v = {raw}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = raw
+    parts = key.split(".")
+    node = doc
+    for j, part in enumerate(parts):
+        m = _INDEX.match(part)
+        if not m:
+            raise InputError(f"override key {key!r}: bad part {part!r} (use names and [i] indices)")
+        name, index = m.group(1), m.group(2)
+        last = j == len(parts) - 1
+        if index is not None:
+            items = node.get(name)
+            if isinstance(items, dict):
+                items = node[name] = [items]
+            if not isinstance(items, list) or int(index) >= len(items):
+                n = len(items) if isinstance(items, list) else 0
+                raise InputError(f"override key {key!r}: {name} has {n} entries, no [{index}]")
+            if last:
+                items[int(index)] = value
+            else:
+                node = items[int(index)]
+        elif last:
+            node[name] = value
+        else:
+            node = node.setdefault(name, {})
+            if not isinstance(node, dict):
+                raise InputError(f"override key {key!r}: {name} is not a table")
+
+
+def read_document(path: str | pathlib.Path) -> dict:
+    """The TOML document of a scene file (InputError on bad TOML, OSError if unreadable)."""
+    path = pathlib.Path(path)
+    try:
+        with path.open("rb") as f:
+            return tomllib.load(f)
+    except tomllib.TOMLDecodeError as e:
+        raise InputError(f"{path}: not valid TOML: {e}") from None
+
+
+# -- building the scene --------------------------------------------------------------------------
+
+@dataclasses.dataclass
+class SceneFile:
+    """A scene file read and built.
+
+    Attributes:
+        path: the file (None for a document given directly).
+        title: the title (or the file's stem).
+        settings: every key with its value (parse_settings).
+        scene: the cracklip Scene.
+        sif_radius: SIF domain radius or None (4 mean edge lengths).
+        outputs: the [outputs] settings.
+        notes: one line per boundary condition and load, saying what it became.
+        timings: seconds spent meshing ("mesh").
+    """
+    path: pathlib.Path | None
+    title: str
+    settings: dict
+    scene: Scene
+    sif_radius: float | None
+    outputs: dict
+    notes: list[str]
+    timings: dict[str, float]
+
+
+def load_scene_file(path: str | pathlib.Path, overrides: typing.Sequence[str] = ()) -> SceneFile:
+    """Read, validate and build a scene file; overrides are ``KEY=VALUE`` strings."""
+    path = pathlib.Path(path)
+    doc = read_document(path)
+    for o in overrides:
+        apply_override(doc, o)
+    return build_scene(doc, base_dir=path.parent, path=path)
+
+
+def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Path | None = None) -> SceneFile:
+    """Validate a scene document and build its mesh and Scene."""
+    s = parse_settings(doc)
+    material = Material(s["material"]["E"], s["material"]["nu"])
+    cracks = [_crack(c, i) for i, c in enumerate(s["cracks"])]
+    t0 = time.perf_counter()
+    mesh = _mesh(s["mesh"], cracks, pathlib.Path(base_dir))
+    t_mesh = time.perf_counter() - t0
+    notes: list[str] = []
+    dirichlet = []
+    for i, bc in enumerate(s["dirichlet"]):
+        dirichlet += _dirichlet(bc, i, mesh, material, cracks, notes)
+    tractions = []
+    for i, tr in enumerate(s["loads"]["tractions"]):
+        tractions.append(_traction(tr, i, mesh, material, cracks, notes))
+    for i, p in enumerate(s["loads"]["pressures"]):
+        tractions.append(_pressure(p, i, mesh, notes))
+    body_force = s["loads"]["body_force"]
+    if any(body_force):
+        notes.append(f"loads.body_force: {body_force} per unit area")
+    else:
+        body_force = None
+    opts = {k: v for k, v in s["options"].items() if k != "sif_radius"}
+    try:
+        options = Options(**opts)
+    except InputError as e:
+        raise InputError(f"options: {e}") from None
+    scene = Scene(mesh, material, cracks=cracks, dirichlet=dirichlet, tractions=tractions,
+                  options=options, body_force=body_force)
+    title = s["title"] or (path.stem if path is not None else "scene")
+    sif = s["options"]["sif_radius"]
+    return SceneFile(path, title, s, scene, sif if sif > 0.0 else None, s["outputs"], notes,
+                     {"mesh": t_mesh})
+
+
+def _crack(c: dict, i: int) -> Crack:
+    name = c["name"] or f"crack {i}"
+    if "arc" in c:
+        a = c["arc"]
+        t0, t1 = np.radians(a["angles"])
+        if abs(t1 - t0) < 1e-12:
+            raise InputError(f"cracks[{i}].arc.angles: the start and end angles are equal")
+        t = np.linspace(t0, t1, a["segments"] + 1)
+        pts = np.asarray(a["center"]) + a["radius"] * np.stack([np.cos(t), np.sin(t)], axis=1)
+        return Crack(pts, name=name)
+    return Crack(np.asarray(c["points"], dtype=float), name=name)
+
+
+def _inside(m: dict, p: np.ndarray) -> bool:
+    """Whether p lies strictly inside a generated mesh's domain."""
+    kind = m["kind"]
+    if kind in ("rectangle", "plate_with_hole"):
+        x0, y0, x1, y1 = m["domain"]
+        inside = x0 < p[0] < x1 and y0 < p[1] < y1
+        if kind == "plate_with_hole":
+            inside = inside and np.hypot(*(p - np.asarray(m["hole_center"]))) > m["hole_radius"]
+        return bool(inside)
+    r = float(np.hypot(*p))
+    return bool(m["hole_radius"] < r < m["outer_radius"] and p[1] > 0.0)
+
+
+def _mesh(m: dict, cracks: list[Crack], base_dir: pathlib.Path) -> MeshData:
+    kind = m["kind"]
+    if kind == "file":
+        f = pathlib.Path(m["path"])
+        return read_msh(f if f.is_absolute() else base_dir / f)
+    h = m["h"]
+    refine = [(r["point"][0], r["point"][1], r["h"], r["radius"]) for r in m["refine"]]
+    if m["tip_h"] > 0.0:
+        radius = m["tip_radius"] or 4.0 * h
+        for c in cracks:
+            for p in c.points[[0, -1]]:
+                if _inside(m, p):
+                    refine.append((float(p[0]), float(p[1]), m["tip_h"], radius))
+    if kind == "rectangle":
+        return create_rectangle(*m["domain"], h, refine=refine)
+    if kind == "plate_with_hole":
+        return create_plate_with_hole(*m["domain"], h, center=tuple(m["hole_center"]),
+                                      radius=m["hole_radius"], refine=refine)
+    if not m["hole_radius"] < m["outer_radius"]:
+        raise MeshError(f"mesh.hole_radius ({m['hole_radius']}) must be smaller than mesh.outer_radius "
+                        f"({m['outer_radius']})")
+    return create_half_annulus(h, m["hole_radius"], m["outer_radius"], refine=refine)
+
+
+def _check_tag(mesh: MeshData, tag, where: str) -> None:
+    try:
+        facets = mesh.facets(tag)
+    except MeshError as e:
+        raise MeshError(f"{where}: {e}") from None
+    if facets.size == 0:
+        raise MeshError(f"{where}: boundary tag {tag!r} has no facets")
+
+
+def _williams(w: dict, material: Material, cracks: list[Crack], where: str):
+    from .williams import WilliamsField
+    tip = np.asarray(w["tip"], dtype=float)
+    a = math.radians(w["angle"])
+    # Orientation: theta -> +pi on the crack's + side (left of the polyline's
+    # direction) when the tip is the polyline's last point, else on its - side.
+    orientation, best = 1, math.inf
+    for c in cracks:
+        for end, sign in ((c.points[-1], 1), (c.points[0], -1)):
+            d = float(np.linalg.norm(end - tip))
+            if d < best:
+                best, orientation = d, sign
+    scale = max((float(np.ptp(c.points, axis=0).max()) for c in cracks), default=1.0)
+    if best > 1e-6 * scale:
+        raise InputError(f"{where}.tip {tip.tolist()} is not an end point of any crack")
+    return WilliamsField(material, K_I=w["K_I"], K_II=w["K_II"], tip=tuple(tip),
+                         e1=(math.cos(a), math.sin(a)), orientation=orientation)
+
+
+_COMPONENT = {"x": 0, "y": 1, "both": None}
+
+
+def _dirichlet(bc: dict, i: int, mesh: MeshData, material: Material, cracks: list[Crack],
+               notes: list[str]) -> list[Dirichlet]:
+    where = f"dirichlet[{i}]"
+    comp = _COMPONENT[bc["component"]]
+    if "williams" in bc:
+        field = _williams(bc["williams"], material, cracks, f"{where}.williams")
+
+        def value(p, side):
+            u = field.displacement(p, side)
+            return u if comp is None else u[:, comp]
+        entries = [(comp, value)]
+        what = f"Williams field K_I = {field.K_I:g}, K_II = {field.K_II:g}"
+    elif isinstance(bc["value"], list):
+        entries = [(0, bc["value"][0]), (1, bc["value"][1])]
+        what = f"u = {bc['value']}"
+    else:
+        entries = [(comp, bc["value"])]
+        what = f"u_{bc['component']} = {bc['value']:g}" if comp is not None else f"u = {bc['value']:g}"
+    x = mesh.mesh.geometry.x[:, :2]
+    out: list[Dirichlet] = []
+    if "tag" in bc:
+        _check_tag(mesh, bc["tag"], where)
+        targets = [bc["tag"]]
+        notes.append(f"{where}: tag {bc['tag']!r} ({mesh.facets(bc['tag']).size} facets), {what}")
+    elif "point" in bc:
+        p = np.asarray(bc["point"])
+        d = np.linalg.norm(x - p, axis=1)
+        node = int(np.argmin(d))
+        edge = _mean_edge(mesh)
+        if d[node] > edge:
+            raise BoundaryConditionError(
+                f"{where}.point {p.tolist()}: the nearest mesh node {x[node].tolist()} is {d[node]:.3g} "
+                f"away, more than the mean edge length {edge:.3g}; put the point on the part")
+        targets = [(float(x[node, 0]), float(x[node, 1]))]
+        notes.append(f"{where}: point {p.tolist()} -> node ({x[node, 0]:.6g}, {x[node, 1]:.6g}), {what}")
+    else:
+        x0, y0, x1, y1 = bc["box"]
+        tol = 1e-9 * float(np.ptp(x, axis=0).max())
+        inside = np.flatnonzero((x[:, 0] >= x0 - tol) & (x[:, 0] <= x1 + tol)
+                                & (x[:, 1] >= y0 - tol) & (x[:, 1] <= y1 + tol))
+        if inside.size == 0:
+            raise BoundaryConditionError(f"{where}.box {bc['box']} holds no mesh node")
+        targets = [(float(x[n, 0]), float(x[n, 1])) for n in inside]
+        notes.append(f"{where}: box {bc['box']} ({inside.size} nodes), {what}")
+    for target in targets:
+        out += [Dirichlet(target, c, v) for c, v in entries]
+    return out
+
+
+def _mean_edge(mesh: MeshData) -> float:
+    msh = mesh.mesh
+    x = msh.geometry.x[:, :2]
+    cells = msh.geometry.dofmap.array.reshape(-1, 3)
+    e = x[cells[:, [1, 2, 0]]] - x[cells]
+    return float(np.linalg.norm(e, axis=2).mean())
+
+
+def _traction(tr: dict, i: int, mesh: MeshData, material: Material, cracks: list[Crack],
+              notes: list[str]) -> Traction:
+    from .loads import boundary_normals
+    where = f"loads.tractions[{i}]"
+    _check_tag(mesh, tr["tag"], where)
+    tag = tr["tag"]
+    nf = mesh.facets(tag).size
+    if "value" in tr:
+        notes.append(f"{where}: tag {tag!r} ({nf} facets), traction {tr['value']}")
+        return Traction(tag, tuple(tr["value"]))
+    normals = boundary_normals(mesh, tag)
+    if "stress" in tr:
+        sxx, syy, sxy = tr["stress"]
+        sigma = np.array([[sxx, sxy], [sxy, syy]])
+        notes.append(f"{where}: tag {tag!r} ({nf} facets), traction sigma n, sigma = {tr['stress']}")
+        return Traction(tag, lambda p: normals(p) @ sigma.T)
+    if "williams" in tr:
+        field = _williams(tr["williams"], material, cracks, f"{where}.williams")
+        notes.append(f"{where}: tag {tag!r} ({nf} facets), traction of the Williams field "
+                     f"K_I = {field.K_I:g}, K_II = {field.K_II:g}")
+        return Traction(tag, lambda p: np.einsum("nij,nj->ni", field.stress(p), normals(p)))
+    from .kirsch import kirsch_stress
+    k = tr["kirsch"]
+    center = np.asarray(k["center"], dtype=float)
+    notes.append(f"{where}: tag {tag!r} ({nf} facets), traction of the Kirsch field, remote stress "
+                 f"{k['remote_stress']:g}, hole radius {k['hole_radius']:g}")
+    return Traction(tag, lambda p: np.einsum("nij,nj->ni", kirsch_stress(p - center, k["remote_stress"],
+                                                                         k["hole_radius"]), normals(p)))
+
+
+def _pressure(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
+    from .loads import boundary_normals
+    where = f"loads.pressures[{i}]"
+    _check_tag(mesh, pr["tag"], where)
+    normals = boundary_normals(mesh, pr["tag"])
+    p = pr["value"]
+    notes.append(f"{where}: tag {pr['tag']!r} ({mesh.facets(pr['tag']).size} facets), pressure {p:g}")
+    return Traction(pr["tag"], lambda x: -p * normals(x))
+
+
+# -- the reference table -------------------------------------------------------------------------
+
+def _default_text(k: Key) -> str:
+    if k.default is REQUIRED:
+        return "required"
+    if k.default is UNSET:
+        return "—"
+    if isinstance(k.default, bool):
+        return "`true`" if k.default else "`false`"
+    if isinstance(k.default, str):
+        return f'`"{k.default}"`'
+    if isinstance(k.default, list):
+        return "`[" + ", ".join(f"{v:g}" if isinstance(v, float) else str(v) for v in k.default) + "]`"
+    if isinstance(k.default, float):
+        return f"`{k.default:g}`" if k.default != 0.0 else "`0.0`"
+    return f"`{k.default}`"
+
+
+def reference_rows() -> list[tuple[str, str, str, str]]:
+    """(key, type, default, meaning) of every key, in schema order."""
+    rows = []
+    for k in SCHEMA:
+        meaning = k.meaning
+        if k.kinds and len(k.kinds) < len(MESH_KINDS):
+            meaning += f" (mesh kind {', '.join(k.kinds)})"
+        rows.append((k.path, k.type, _default_text(k), meaning))
+    return rows
+
+
+def reference_markdown() -> str:
+    """The scene reference as a Markdown table (the README's)."""
+    lines = ["| key | type | default | meaning |", "|---|---|---|---|"]
+    for key, typ, default, meaning in reference_rows():
+        lines.append(f"| `{key}` | {typ} | {default} | {meaning.replace('|', '/')} |")
+    return "\n".join(lines) + "\n"

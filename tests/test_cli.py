@@ -1,0 +1,253 @@
+"""The command line: check reports what the solver uses, exit codes and
+one-line errors, progress on stderr, atomic outputs, and the README's quick
+start run as written."""
+import json
+import os
+import pathlib
+import re
+import shlex
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import cracklip as cl
+from cracklip import cli
+from cracklip.scene_file import load_scene_file, reference_markdown
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+BLOCK = ROOT / "demos" / "scenes" / "block_uniform_pressure.toml"
+ENV = {"PYTHONPATH": str(ROOT / "python"), "PATH": "/usr/bin:/bin", "MPLBACKEND": "Agg"}
+
+
+def run_cli(*args):
+    """python3 -m cracklip as a user runs it: (exit status, stdout, stderr)."""
+    p = subprocess.run([sys.executable, "-m", "cracklip", *args], cwd=ROOT, env=ENV, capture_output=True,
+                       text=True, timeout=300)
+    return p.returncode, p.stdout, p.stderr
+
+
+def numbers(pattern, text):
+    m = re.search(pattern, text, re.MULTILINE)
+    assert m, f"{pattern!r} not in:\n{text}"
+    return [int(g) for g in m.groups()]
+
+
+def test_check_reports_the_counts_the_solver_uses(tmp_path):
+    """Acceptance 3: `check` on the paper's block scene prints the enrichment
+    and multiplier counts; the solve of the same scene uses exactly these."""
+    status, out, err = run_cli("check", str(BLOCK), "--set", "mesh.h=0.1")
+    assert status == 0, err
+    total, std, enr, enr_nodes, pseudo, enr_cells = numbers(
+        r"^dofs: (\d+) = (\d+) standard \+ (\d+) enriched \((\d+) enriched nodes, (\d+) enriched "
+        r"pseudo-nodes on (\d+) cells\)", out)
+    heav_nodes, heav_dofs = numbers(r"^  Heaviside: (\d+) nodes, (\d+) dofs", out)
+    tip_nodes, core, blending, tip_dofs = numbers(
+        r"^  tip: (\d+) nodes \((\d+) core, (\d+) blending\), (\d+) dofs", out)
+    mult, full, p0 = numbers(r"^contact: bilateral, stable space: (\d+) multipliers \((\d+) full, (\d+) P0", out)
+    assert mult > 0 and tip_nodes > 0 and heav_nodes > 0
+
+    sol = cl.solve(load_scene_file(BLOCK, overrides=["mesh.h=0.1"]).scene)
+    m, layout, cs = sol.model, sol.model.layout, sol.contact["system"]
+    kind, node = np.asarray(layout.kind), np.asarray(layout.node)
+    assert (total, std, enr) == (m.num_dofs, 2 * layout.num_std_nodes, 2 * layout.num_enriched)
+    assert len(sol.u) == total
+    assert (enr_nodes, pseudo) == (np.unique(node).size, layout.num_enriched)
+    assert enr_cells == np.asarray(layout.cells).size  # cells the enriched kernels integrate
+    assert heav_nodes == np.unique(node[kind == 0]).size and heav_dofs == 2 * np.count_nonzero(kind == 0)
+    assert tip_nodes == np.unique(node[kind != 0]).size and tip_dofs == 2 * np.count_nonzero(kind != 0)
+    assert core + blending == tip_nodes
+    assert mult == cs.num_multipliers == cs.B.shape[0] == len(sol.contact["lambda"])
+    assert full == cs.space.num_full and p0 == np.count_nonzero(np.asarray(cs.space.full_node) < 0)
+
+    # `run` records the same counts in results.json.
+    assert cli.main(["run", str(BLOCK), "--set", "mesh.h=0.1", "--out", str(tmp_path), "--quiet"]) == 0
+    model = json.loads((tmp_path / "results.json").read_text())["model"]
+    assert model["dofs"] == {"total": total, "standard": std, "enriched": enr}
+    assert model["contact"]["multipliers"] == mult
+    assert model["cracks"][0]["tip_nodes"] == tip_nodes and model["cracks"][0]["heaviside_nodes"] == heav_nodes
+
+
+def test_check_json(capsys):
+    assert cli.main(["check", str(BLOCK), "--set", "mesh.h=0.2", "--json", "--quiet"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["model"]["contact"]["multipliers"] > 0
+    assert {q["cells"] for q in out["model"]["quadrature"]} >= {"tip cells", "plain cells (standard block only)"}
+    assert any("pressure 0.01" in n for n in out["notes"])
+
+
+def one_error_line(capsys, argv):
+    status = cli.main(argv)
+    captured = capsys.readouterr()
+    lines = captured.err.splitlines()
+    assert status == 2
+    assert len(lines) == 1 and lines[0].startswith("cracklip: error: "), captured.err
+    return lines[0]
+
+
+def test_bad_input_exits_2_with_one_line(tmp_path, capsys):
+    bad_key = tmp_path / "bad_key.toml"
+    bad_key.write_text(BLOCK.read_text().replace("radius = 0.2", "raduis = 0.2"))
+    line = one_error_line(capsys, ["check", str(bad_key), "--quiet"])
+    assert "unknown key options.raduis; did you mean options.radius?" in line
+
+    bad_toml = tmp_path / "bad.toml"
+    bad_toml.write_text("[mesh\n")
+    assert "not valid TOML" in one_error_line(capsys, ["run", str(bad_toml), "--out", str(tmp_path / "o")])
+    assert not (tmp_path / "o").exists()  # nothing created for a bad scene
+
+    line = one_error_line(capsys, ["check", str(tmp_path / "missing.toml")])
+    assert "missing.toml: No such file or directory" in line
+
+    line = one_error_line(capsys, ["check", str(BLOCK), "--set", "mesh.h=-1", "--quiet"])
+    assert "mesh.h must be a positive number" in line
+
+    line = one_error_line(capsys, ["check", str(BLOCK), "--set", "oops"])
+    assert "KEY=VALUE" in line
+
+    line = one_error_line(capsys, ["check", str(BLOCK), "--set", "dirichlet[1].point=[3.0, 3.0]", "--quiet"])
+    assert "dirichlet[1].point [3.0, 3.0]" in line
+
+
+def test_usage_errors_exit_2_with_one_line(capsys):
+    with pytest.raises(SystemExit) as e:
+        cli.main(["run", str(BLOCK)])
+    assert e.value.code == 2
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and "the following arguments are required: --out" in err[0]
+    with pytest.raises(SystemExit) as e:
+        cli.main(["solve", str(BLOCK)])
+    assert e.value.code == 2
+    assert cli.main([]) == 2
+
+
+def test_unwritable_output_folder(tmp_path, capsys):
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder")
+    out = blocker / "results"
+    line = one_error_line(capsys, ["run", str(BLOCK), "--set", "mesh.h=0.2", "--out", str(out), "--quiet"])
+    assert f"cannot write to the output folder {out}" in line
+    with pytest.raises(cl.OutputError, match="output folder"):
+        from cracklip.outputs import ensure_output_dir
+        ensure_output_dir(out)
+
+
+def test_solver_failure_exits_2_with_one_line(tmp_path, capsys):
+    """A crack across the whole part leaves a piece free: reported, not solved silently."""
+    split = tmp_path / "split.toml"
+    split.write_text('[mesh]\nh = 0.25\n[material]\nE = 1.0\nnu = 0.3\n'
+                     '[[cracks]]\npoints = [[-2.0, 0.0], [2.0, 0.0]]\n'
+                     '[[dirichlet]]\ntag = "bottom"\n[[loads.tractions]]\ntag = "top"\nvalue = [0.0, 0.01]\n')
+    line = one_error_line(capsys, ["run", str(split), "--out", str(tmp_path / "o"), "--quiet"])
+    assert "singular" in line or "residual" in line or "pivot" in line
+    assert not (tmp_path / "o" / "results.json").exists()
+
+
+def test_progress_on_stderr_and_quiet(tmp_path, capsys):
+    scene = ROOT / "demos" / "scenes" / "partly_open_crack.toml"
+    args = ["run", str(scene), "--set", "mesh.h=0.125", "--set", "mesh.tip_h=0.05", "--set", "outputs.png=false"]
+    assert cli.main(args + ["--out", str(tmp_path / "a")]) == 0
+    captured = capsys.readouterr()
+    for text in ("mesh: ", "active set iteration 1", "solve phases: ", "contact: ", "writing outputs",
+                 "outputs written"):
+        assert text in captured.err
+    assert all(re.match(r"cracklip \[ *\d+\.\d\d s\] ", line) for line in captured.err.splitlines())
+    assert "K_I" in captured.out and "results in" in captured.out
+    assert cli.main(args + ["--out", str(tmp_path / "b"), "--quiet"]) == 0
+    captured = capsys.readouterr()
+    assert captured.err == "" and captured.out == ""
+    names = {p.name for p in (tmp_path / "b").iterdir()}
+    assert names == {"results.json", "crack.csv", "sif.csv", "solution.vtu", "crack_lips.vtu"}
+
+
+def test_condition_number_and_vtu_off(tmp_path):
+    assert cli.main(["run", str(BLOCK), "--set", "mesh.h=0.2", "--set", "outputs.vtu=false",
+                     "--set", "outputs.png=false", "--condition-number", "--out", str(tmp_path), "-q"]) == 0
+    res = json.loads((tmp_path / "results.json").read_text())
+    assert res["condition_number"]["cond_1norm"] > 1.0
+    assert "solve.condition_number" in res["timings"]
+    assert {p.name for p in tmp_path.iterdir()} == {"results.json", "crack.csv", "sif.csv"}
+
+
+def test_outputs_are_never_half_written(tmp_path, monkeypatch):
+    """A writer that fails leaves neither its file nor a temporary one, and no
+    results.json (written last)."""
+    import meshio
+    from cracklip.outputs import write_outputs
+    sf = load_scene_file(BLOCK, overrides=["mesh.h=0.2", "outputs.png=false"])
+    sol = cl.solve(sf.scene)
+
+    def broken(path, *args, **kwargs):
+        pathlib.Path(path).write_bytes(b"partial")
+        raise OSError(28, "No space left on device")
+    monkeypatch.setattr(meshio, "write", broken)
+    with pytest.raises(OSError, match="No space left"):
+        write_outputs(sf, sol, tmp_path)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["crack.csv", "sif.csv"]
+
+
+def test_reference_command(capsys):
+    assert cli.main(["reference"]) == 0
+    assert capsys.readouterr().out == reference_markdown()
+
+
+def test_entry_point_exit_status():
+    status, out, err = run_cli("check", "nowhere.toml")
+    assert status == 2 and err == "cracklip: error: nowhere.toml: No such file or directory\n"
+
+
+def quick_start():
+    """The shell commands and the quoted check output of the README's quick start."""
+    text = (ROOT / "README.md").read_text()
+    section = text.split("## Quick start", 1)[1].split("\n## ", 1)[0]
+    block = section.split("```sh\n", 1)[1].split("```", 1)[0]
+    commands = [line for line in block.splitlines() if line.strip() and not line.startswith("#")]
+    quoted = re.findall(r"`((?:dofs|Heaviside|tip|contact): [^`]+)`", section.replace("\n", " "))
+    return commands, quoted
+
+
+def fresh_checkout(dest: pathlib.Path) -> None:
+    """The repository's files (tracked and new, not ignored) copied to dest,
+    plus the C++ module that `bash scripts/setup.sh` builds."""
+    listing = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard", "-z"],
+                             cwd=ROOT, capture_output=True, check=True).stdout.decode()
+    for name in filter(None, listing.split("\0")):
+        src = ROOT / name
+        if src.is_file():
+            (dest / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(src, dest / name)
+    for so in (ROOT / "python" / "cracklip").glob("_cracklip*.so"):
+        shutil.copy2(so, dest / "python" / "cracklip" / so.name)
+
+
+def test_readme_quick_start_works_as_written(tmp_path):
+    """Acceptance 4: the quick start's commands, run as written in a fresh
+    copy of the repository, succeed and give what the README quotes. The
+    set-up line (apt + CMake build) is stood in for by copying the module it
+    builds; everything else runs verbatim."""
+    commands, quoted = quick_start()
+    assert commands[0] == "bash scripts/setup.sh" and len(commands) == 3
+    assert len(quoted) == 4
+    fresh_checkout(tmp_path)
+    assert not (tmp_path / "out").exists()
+    outputs = []
+    for command in commands[1:]:
+        words = shlex.split(command)
+        env = {"PATH": "/usr/bin:/bin", "HOME": os.environ.get("HOME", "/tmp"), "MPLBACKEND": "Agg"}
+        while "=" in words[0]:
+            key, value = words.pop(0).split("=", 1)
+            env[key] = value
+        p = subprocess.run(words, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=300)
+        assert p.returncode == 0, f"{command}\n{p.stderr}"
+        outputs.append(p.stdout)
+    for q in quoted:  # what the README says check prints
+        assert q in outputs[0], q
+    out = tmp_path / "out" / "block"
+    res = json.loads((out / "results.json").read_text())
+    assert abs(res["cracks"][0]["pressure"]["max"] - 0.01) < 1e-8
+    assert abs(res["sifs"][0]["K_I"]) < 1e-8
+    for name in ("crack.csv", "sif.csv", "solution.vtu", "crack_lips.vtu", "deformed.png",
+                 "crack_pressure.png", "stress.png"):
+        assert (out / name).stat().st_size > 0
