@@ -30,7 +30,8 @@ EnrichmentLayout create_enrichment_layout(std::span<const double> x,
   const std::size_t num_cells = cells.size() / 3;
   const auto num_nodes = static_cast<std::int32_t>(x.size() / 2);
   if (options.tip != TipEnrichment::none and !(options.radius >= 0.0))
-    throw std::invalid_argument("tip enrichment radius must be >= 0");
+    throw std::invalid_argument("tip enrichment radius must be >= 0 (0: the tip cell's nodes only), got "
+                                + std::to_string(options.radius));
   EnrichmentLayout layout;
   layout.num_std_nodes = num_nodes;
   layout.kappa = options.kappa;
@@ -42,8 +43,11 @@ EnrichmentLayout create_enrichment_layout(std::span<const double> x,
   {
     const CrackGeometry& g = *cracks[ic];
     if (g.cell_class.size() != num_cells or g.phi.size() != static_cast<std::size_t>(num_nodes))
-      throw std::invalid_argument("create_enrichment_layout: crack geometry of crack "
-                                  + std::to_string(ic) + " does not match the mesh");
+      throw std::invalid_argument("create_enrichment_layout: crack geometry of crack " + std::to_string(ic)
+                                  + " has " + std::to_string(g.phi.size()) + " nodes and "
+                                  + std::to_string(g.cell_class.size()) + " cells, the mesh "
+                                  + std::to_string(num_nodes) + " and " + std::to_string(num_cells)
+                                  + "; compute the geometry on this mesh");
     for (std::size_t c = 0; c < num_cells; ++c)
     {
       const auto cls = static_cast<CellClass>(g.cell_class[c]);
