@@ -7,8 +7,9 @@ the tip-cell quadrature table (collapsed rule vs the paper's plain Gauss
 rule), the paper's section 5.1 block under uniform pressure (contact pressure
 naive vs stable and per tip rule, K_I with the crack-lip term, inf-sup), its
 section 5.2 crack from a hole (energy, pressure and K_I convergence,
-conditioning, both enrichments), the frictionless sliding crack, and the core
-speed benchmark at 2e4 and 2e5 dofs.
+conditioning, both enrichments), the frictionless sliding crack, the core
+speed benchmark at 2e4 and 2e5 dofs, the condition-number study with and
+without the nodal rescaling, and the hard-case suite (not with --quick).
 
     /usr/bin/python3 demos/paper_figures.py --out results
 """
@@ -26,6 +27,7 @@ sys.path.insert(0, str(HERE.parent / "python"))
 
 import bench_core  # noqa: E402
 import conditioning  # noqa: E402
+import hard_cases  # noqa: E402
 import block_uniform_pressure  # noqa: E402
 import hole_crack  # noqa: E402
 import patch_test  # noqa: E402
@@ -48,13 +50,13 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     summary: dict = {}
 
-    log("[1/8] through-crack patch test")
+    log("[1/9] through-crack patch test")
     pt = patch_test.main(["--h", "0.2" if args.quick else "0.05", "--out", str(out / "patch_test")])
     summary["patch_test"] = {k: pt[k] for k in ("h", "ndofs", "enriched_dofs", "displacement_rel_error_top",
                                                  "displacement_rel_error_bottom", "opening_rel_error",
                                                  "strain_energy", "strain_energy_exact")}
 
-    log("[2/8] Westergaard mode I sweep (vector and scalar tip enrichment)")
+    log("[2/9] Westergaard mode I sweep (vector and scalar tip enrichment)")
     if args.quick:
         wg = {"runs": [westergaard.run(10, e) for e in ("vector", "scalar")], "summary": {}}
     else:
@@ -64,17 +66,17 @@ def main(argv=None) -> int:
                                                           "K_II", "cond_1norm", "cond_1norm_jacobi")}
                                        for r in wg["runs"]]}
 
-    log("[3/8] condition number vs h, with and without the nodal rescaling")
+    log("[3/9] condition number vs h, with and without the nodal rescaling")
     cond = conditioning.main(["--n", *(["10", "20", "40"] if args.quick else ["10", "20", "40", "80"]),
                               "--out", str(out / "conditioning"), "--quiet"])
     summary["conditioning"] = [{k: c[k] for k in ("enrichment", "blending", "exponent_raw", "exponent_jacobi",
                                                   "exponent_nodal")} for c in cond["configs"]]
 
-    log("[4/8] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
+    log("[4/9] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
     tq = tip_quadrature.main(["--json", str(out / "tip_quadrature.json")])
     summary["tip_quadrature"] = tq["rows"]
 
-    log("[5/8] paper section 5.1: block under uniform pressure (contact)")
+    log("[5/9] paper section 5.1: block under uniform pressure (contact)")
     blk = {}
     for n in ((21,) if args.quick else (21, 42, 84)):
         for enr in ("none", "scalar", "vector"):
@@ -86,7 +88,7 @@ def main(argv=None) -> int:
         summary["inf_sup"] = fig["inf_sup"]
     summary["block"] = blk
 
-    log("[6/8] paper section 5.2: crack from a hole")
+    log("[6/9] paper section 5.2: crack from a hole")
     if args.quick:
         hole = {"runs": [hole_crack.run(0.2, enrichment="vector")[0]], "summary": {}}
     else:
@@ -95,16 +97,21 @@ def main(argv=None) -> int:
                        "runs": [{k: r[k] for k in ("enrichment", "h", "ndofs", "energy_error", "pressure_l2_error",
                                                    "K_I_normalised", "cond_1norm")} for r in hole["runs"]]}
 
-    log("[7/8] closed inclined crack, frictionless sliding")
+    log("[7/9] closed inclined crack, frictionless sliding")
     summary["sliding"] = sliding_crack.main(["--ns", *(["20"] if args.quick else ["20", "40", "80"]),
                                              "--json", str(out / "sliding_crack.json")])
 
-    log("[8/8] core benchmark (X-FEM vs plain DOLFINx P1, MUMPS)")
+    log("[8/9] core benchmark (X-FEM vs plain DOLFINx P1, MUMPS)")
     sizes = ["2e3"] if args.quick else ["2e4", "2e5"]
     bench_core.main(["--sizes", *sizes, "--repeats", "1" if args.quick else "3",
                      "--json", str(out / "bench_core.json"), "--quiet"])
     bench = json.loads((out / "bench_core.json").read_text())
     summary["bench_core"] = [{k: s[k] for k in ("ndofs", "t_xfem", "t_plain", "ratio")} for s in bench["sizes"]]
+
+    if not args.quick:
+        log("[9/9] hard cases (degenerate geometry, extreme parameters, contact sign changes)")
+        hc = hard_cases.main(["--json", str(out / "hard_cases.json")])
+        summary["hard_cases"] = {k: hc[k] for k in ("all_finite", "max_relative_residual", "all_converge")}
     summary["wall_time"] = time.perf_counter() - t0
 
     (out / "results.json").write_text(json.dumps(summary, indent=2))
@@ -189,7 +196,13 @@ def markdown(s: dict) -> str:
               "| dofs | X-FEM (s) | plain (s) | ratio |", "|---|---|---|---|"]
     lines += [f"| {b['ndofs']} | {b['t_xfem']:.3f} | {b['t_plain']:.3f} | {b['ratio']:.3f} |"
               for b in s["bench_core"]]
-    lines += ["", "Medians of 3 runs; `demos/bench_core.py` runs the 1e6-dof size too.", "",
+    lines += ["", "Medians of 3 runs; `demos/bench_core.py` runs the 1e6-dof size too.", ""]
+    if "hard_cases" in s:
+        h = s["hard_cases"]
+        lines += ["## Hard cases", "", f"All finite: {h['all_finite']}; largest relative residual "
+                  f"{h['max_relative_residual']:.1e}; every case with a reference converges: {h['all_converge']}. "
+                  "Table: `hard_cases.md`.", ""]
+    lines += [
               f"Total wall time of this job: {s['wall_time']:.0f} s."]
     return "\n".join(lines)
 
