@@ -384,3 +384,15 @@ def test_cpp_boundary_geometry_of_another_mesh():
 def test_bad_constant_traction(value):
     with pytest.raises(cl.InputError, match=r"traction on 'right': a constant value must be two finite numbers"):
         cl.Traction("right", value)
+
+
+def test_traction_function_with_wrong_shape(square_h01):
+    scene = cl.Scene(square_h01, cl.Material(1.0, 0.3), dirichlet=[cl.Dirichlet("left")],
+                     tractions=[cl.Traction("right", lambda x: np.ones(len(x)))])
+    with pytest.raises(cl.InputError, match="traction on 'right'.*must return \\(n, 2\\)"):
+        cl.solve(scene)
+
+
+def test_contact_error_is_exported():
+    from cracklip.contact import ContactError
+    assert cl.ContactError is ContactError and issubclass(cl.ContactError, cl.CracklipError)

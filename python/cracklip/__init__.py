@@ -26,6 +26,7 @@ from .post import Solution
 from .scene import Crack, Dirichlet, Material, Options, Scene, Traction
 from .solve import solve, solve_plain
 from .io import write_vtu
+from .contact import ContactError
 from .mesh import create_plate_with_hole
 from .outputs import OutputError
 from .scene_file import SceneFile, load_scene_file
@@ -37,5 +38,5 @@ __all__ = [
     "InputError", "Material", "MaterialError", "MeshData", "MeshError", "Options", "Scene",
     "Solution", "SolverError", "Traction", "XfemModel", "create_half_annulus", "create_model",
     "create_rectangle", "create_square", "read_msh", "solve", "solve_plain", "write_vtu",
-    "OutputError", "SceneFile", "create_plate_with_hole", "load_scene_file",
+    "ContactError", "OutputError", "SceneFile", "create_plate_with_hole", "load_scene_file",
 ]

@@ -75,7 +75,10 @@ def assemble_load(model: XfemModel) -> np.ndarray:
                                            fcells, flocal, scene.options.facet_degree)
         pts = fb["points"]
         if callable(tr.value):
-            t = np.asarray(tr.value(pts), dtype=float).reshape(len(pts), 2)
+            t = np.asarray(tr.value(pts), dtype=float)
+            if t.shape != (len(pts), 2):
+                raise InputError(f"traction on {tr.where!r}: its value function returned shape {t.shape} "
+                                 f"for points of shape {pts.shape}; it must return (n, 2) (t_x, t_y)")
         else:
             t = np.broadcast_to(np.asarray(tr.value, dtype=float).reshape(1, 2), (len(pts), 2))
         if not np.all(np.isfinite(t)):
