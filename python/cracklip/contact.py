@@ -24,7 +24,7 @@ from petsc4py import PETSc
 
 from . import _cracklip
 from .errors import CracklipError, SolverError
-from .linear_solver import solve_checked
+from .linear_solver import petsc_from_scipy, scipy_from_petsc, solve_checked
 from .model import XfemModel
 
 logger = logging.getLogger(__name__)
@@ -86,18 +86,6 @@ def create_contact_system(model: XfemModel) -> ContactSystem:
     return ContactSystem(space, R, B.tocsr(), M, g)
 
 
-def _petsc_from_scipy(A: sp.csr_matrix) -> PETSc.Mat:
-    A = A.tocsr()
-    A.sort_indices()
-    return PETSc.Mat().createAIJ(A.shape, csr=(A.indptr.astype(PETSc.IntType), A.indices.astype(PETSc.IntType),
-                                               A.data), comm=PETSc.COMM_SELF)
-
-
-def _scipy_from_petsc(A: PETSc.Mat) -> sp.csr_matrix:
-    indptr, indices, data = A.getValuesCSR()
-    return sp.csr_matrix((data, indices, indptr), shape=A.getSize())
-
-
 def solve_saddle(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, active: np.ndarray,
                  residual_tol: float) -> tuple[np.ndarray, np.ndarray]:
     """Solve with the constraints of the active multipliers; inactive ones are 0."""
@@ -106,7 +94,7 @@ def solve_saddle(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, active: np.
     inactive = sp.diags((~active).astype(float))
     S = sp.bmat([[K, Ba.T], [Ba, inactive]], format="csr")
     rhs = np.concatenate([f, np.where(active, cs.g, 0.0)])
-    A = _petsc_from_scipy(S)
+    A = petsc_from_scipy(S)
     b = A.createVecRight()
     b.array[:] = rhs
     x = solve_checked(A, b, residual_tol, what="contact saddle-point system")
@@ -127,7 +115,7 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
     opts = model.scene.options
     physical = create_contact_system(model)
     cs = physical if transform is None else dataclasses.replace(physical, B=(physical.B @ transform).tocsr())
-    K = _scipy_from_petsc(A)
+    K = scipy_from_petsc(A)
     f = b.array.copy()
     m = cs.num_multipliers
     if opts.contact == "bilateral":

@@ -11,6 +11,7 @@ from __future__ import annotations
 import contextlib
 
 import numpy as np
+import scipy.sparse as sp
 from petsc4py import PETSc
 
 from .errors import SolverError
@@ -32,6 +33,20 @@ def record_solves():
         _SOLVE_RECORDS = outer
 
 
+def petsc_from_scipy(A: sp.spmatrix) -> PETSc.Mat:
+    """A sequential PETSc AIJ copy of a scipy sparse matrix."""
+    A = A.tocsr()
+    A.sort_indices()
+    return PETSc.Mat().createAIJ(A.shape, csr=(A.indptr.astype(PETSc.IntType), A.indices.astype(PETSc.IntType),
+                                               A.data), comm=PETSc.COMM_SELF)
+
+
+def scipy_from_petsc(A: PETSc.Mat) -> sp.csr_matrix:
+    """A scipy CSR copy of an assembled sequential PETSc AIJ matrix."""
+    indptr, indices, data = A.getValuesCSR()
+    return sp.csr_matrix((data, indices, indptr), shape=A.getSize())
+
+
 def create_lu_solver(A: PETSc.Mat, detect_null_pivots: bool = True) -> PETSc.KSP:
     """KSP preonly + LU (MUMPS) on A."""
     ksp = PETSc.KSP().create(PETSc.COMM_SELF)
@@ -45,7 +60,7 @@ def create_lu_solver(A: PETSc.Mat, detect_null_pivots: bool = True) -> PETSc.KSP
     if detect_null_pivots:
         F.setMumpsIcntl(24, 1)  # null pivot detection
     F.setMumpsIcntl(4, 0)  # silent
-    F.destroy()  # our handle only (see _factor_info); the PC keeps its own
+    F.destroy()  # our handle only (see _factor_call); the PC keeps its own
     return ksp
 
 

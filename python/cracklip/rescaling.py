@@ -17,6 +17,7 @@ from petsc4py import PETSc
 
 from . import _cracklip
 from .errors import SolverError
+from .linear_solver import petsc_from_scipy
 from .model import XfemModel
 
 
@@ -71,16 +72,9 @@ def nodal_transform(model: XfemModel, A: PETSc.Mat) -> sp.csr_matrix:
     return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n))
 
 
-def petsc_matrix(T: sp.csr_matrix) -> PETSc.Mat:
-    T = T.tocsr()
-    T.sort_indices()
-    return PETSc.Mat().createAIJ(T.shape, csr=(T.indptr.astype(PETSc.IntType), T.indices.astype(PETSc.IntType),
-                                               T.data), comm=PETSc.COMM_SELF)
-
-
 def rescale_system(A: PETSc.Mat, b: PETSc.Vec, T: sp.csr_matrix) -> tuple[PETSc.Mat, PETSc.Vec]:
     """(T^T A T, T^T b) as new PETSc objects."""
-    Tp = petsc_matrix(T)
+    Tp = petsc_from_scipy(T)
     As = A.PtAP(Tp)
     bs = b.duplicate()
     Tp.multTranspose(b, bs)
