@@ -20,29 +20,24 @@ import sys
 import numpy as np
 
 HERE = pathlib.Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "python"))
 
-import cracklip as cl  # noqa: E402
-from cracklip.williams import WilliamsField  # noqa: E402
+import westergaard  # noqa: E402
 
 CONFIGS = [("vector", "corrected"), ("scalar", "corrected"), ("vector", "standard"), ("scalar", "standard")]
 
 
 def condition(n: int, enrichment: str, blending: str, rescale: str) -> dict:
-    mat = cl.Material(1.0, 0.3)
-    exact = WilliamsField(mat, K_I=1.0)
-    scene = cl.Scene(cl.create_square(2.0 / n), mat, cracks=[cl.Crack([[-3.0, 0.0], [0.0, 0.0]])],
-                     dirichlet=[cl.Dirichlet(s, None, lambda p, sd: exact.displacement(p, sd))
-                                for s in ("left", "right", "bottom", "top")],
-                     options=cl.Options(enrichment=enrichment, radius=0.2, blending=blending, rescale=rescale))
-    sol = cl.solve(scene, condition_number=True)
-    return {"n": n, "h": 2.0 / n, "ndofs": sol.model.num_dofs, **sol.condition,
-            "energy_error": sol.energy_error(lambda p, s: exact.gradient(p, s))[1]}
+    r = westergaard.run(n, enrichment, blending=blending, rescale=rescale)
+    return {"n": n, "h": r["h"], "ndofs": r["ndofs"], "cond_1norm": r["cond_1norm"],
+            "cond_1norm_jacobi": r["cond_1norm_jacobi"], "energy_error": r["energy_error_rel"]}
 
 
 def exponent(rows: list[dict], key: str, n_min: int = 20) -> float:
+    """p in cond ~ (1/h)^p over n >= n_min."""
     rs = [r for r in rows if r["n"] >= n_min]
-    return float(np.polyfit(np.log([1.0 / r["h"] for r in rs]), np.log([r[key] for r in rs]), 1)[0])
+    return -westergaard.slope([r["h"] for r in rs], [r[key] for r in rs])
 
 
 def run(ns, log=lambda m: None) -> dict:

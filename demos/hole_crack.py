@@ -25,6 +25,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
 from cracklip.kirsch import crack_pressure, kirsch_strain, kirsch_stress  # noqa: E402
+from westergaard import slope  # noqa: E402  (least-squares log-log rate)
 
 SIGMA_INF = 0.01
 R_HOLE, R_OUT, A = 1.0, 3.0, 1.0
@@ -72,10 +73,6 @@ def run(h: float = 0.1, condition: bool = False, **kw) -> tuple[dict, cl.Solutio
            "pressure": np.c_[cp["x"][:, 1], cp["pressure"], exact_p].tolist(),
            "timings": {"mesh": t_mesh, **sol.timings, "post": t_post}}
     return res, sol
-
-
-def slope(h, y) -> float:
-    return float(np.polyfit(np.log(h), np.log(y), 1)[0])
 
 
 def sweep(args) -> dict:

@@ -27,7 +27,8 @@ MODES = {"I": (1.0, 0.0), "II": (0.0, 1.0), "mixed": (1.0, 1.0)}
 
 def run(n: int = 20, enrichment: str = "vector", radius: float = 0.2, quadrature: str = "collapsed",
         degree: int = 5, mode: str = "I", angle: float | None = None, blending: str = "corrected",
-        sif_radius: float | None = None, condition: bool = True, E: float = 1.0, nu: float = 0.3) -> dict:
+        sif_radius: float | None = None, condition: bool = True, E: float = 1.0, nu: float = 0.3,
+        rescale: str = "none") -> dict:
     """One Westergaard solve; angle in degrees (default 0, or 30 for mixed)."""
     if angle is None:
         angle = 30.0 if mode == "mixed" else 0.0
@@ -44,7 +45,7 @@ def run(n: int = 20, enrichment: str = "vector", radius: float = 0.2, quadrature
         dirichlet=[cl.Dirichlet(side, None, lambda p, s: exact.displacement(p, s))
                    for side in ("left", "right", "bottom", "top")],
         options=cl.Options(enrichment=enrichment, radius=radius, quadrature=quadrature,
-                           quadrature_degree=degree, blending=blending))
+                           quadrature_degree=degree, blending=blending, rescale=rescale))
     sol = cl.solve(scene, condition_number=condition)
     t0 = time.perf_counter()
     err_abs, err_rel = sol.energy_error(lambda p, s: exact.gradient(p, s))
