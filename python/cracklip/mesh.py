@@ -120,6 +120,34 @@ def check_mesh(msh: dolfinx.mesh.Mesh) -> None:
                         "cell(s)); every triangle must have three distinct, non-collinear vertices")
 
 
+def _check_box(x0: float, y0: float, x1: float, y1: float, h: float) -> None:
+    if not (x1 > x0 and y1 > y0):
+        raise MeshError(f"empty rectangle [{x0}, {x1}] x [{y0}, {y1}]")
+    if not (0.0 < h <= max(x1 - x0, y1 - y0)):
+        raise MeshError(f"mesh size h = {h} must be positive and at most the domain size")
+
+
+def _box_sides(gmsh, x0: float, y0: float, x1: float, y1: float, eps: float) -> dict[str, list[int]]:
+    """Curves on the sides of the box [x0, x1] x [y0, y1] by their centre of
+    mass (left, right, bottom, top), and the remaining ones ("other")."""
+    groups: dict[str, list[int]] = {"left": [], "right": [], "bottom": [], "top": [], "other": []}
+    for _, c in gmsh.model.getEntities(1):
+        px, py, _ = gmsh.model.occ.getCenterOfMass(1, c)
+        side = ("left" if abs(px - x0) < eps else "right" if abs(px - x1) < eps else
+                "bottom" if abs(py - y0) < eps else "top" if abs(py - y1) < eps else "other")
+        groups[side].append(c)
+    return groups
+
+
+def _finish(gmsh, curve_groups: dict[str, list[int]], h: float, refine) -> MeshData:
+    """Name the curve groups as physical tags 1, 2, ... (in order), mesh, convert."""
+    for tag, (name, curves) in enumerate(curve_groups.items(), start=1):
+        gmsh.model.addPhysicalGroup(1, curves, tag)
+        gmsh.model.setPhysicalName(1, tag, name)
+    _mesh_2d(gmsh, h, refine)
+    return _to_dolfinx(gmsh, h)
+
+
 def create_rectangle(x0: float, y0: float, x1: float, y1: float, h: float,
                      refine: typing.Sequence[tuple[float, float, float, float]] = (),
                      embed_lines: typing.Sequence[tuple[tuple[float, float], tuple[float, float]]] = (),
@@ -132,10 +160,7 @@ def create_rectangle(x0: float, y0: float, x1: float, y1: float, h: float,
     (mesh edges along the segments, nodes at the points), inside the domain.
     Tags: left, right, bottom, top.
     """
-    if not (x1 > x0 and y1 > y0):
-        raise MeshError(f"empty rectangle [{x0}, {x1}] x [{y0}, {y1}]")
-    if not (0.0 < h <= max(x1 - x0, y1 - y0)):
-        raise MeshError(f"mesh size h = {h} must be positive and at most the domain size")
+    _check_box(x0, y0, x1, y1, h)
     gmsh = _gmsh()
     gmsh.model.add("rectangle")
     occ = gmsh.model.occ
@@ -147,18 +172,9 @@ def create_rectangle(x0: float, y0: float, x1: float, y1: float, h: float,
         occ.fragment([(2, rect)], tools)
     occ.synchronize()
     gmsh.model.addPhysicalGroup(2, [s for _, s in gmsh.model.getEntities(2)], 1)
-    eps = 1e-9 * max(x1 - x0, y1 - y0)
-    sides = {"left": (x0, None), "right": (x1, None), "bottom": (None, y0), "top": (None, y1)}
-    for tag, (name, (xs, ys)) in enumerate(sides.items(), start=1):
-        found = []
-        for _, c in gmsh.model.getEntities(1):
-            cx, cy, _ = gmsh.model.occ.getCenterOfMass(1, c)
-            if (xs is not None and abs(cx - xs) < eps) or (ys is not None and abs(cy - ys) < eps):
-                found.append(c)
-        gmsh.model.addPhysicalGroup(1, found, tag)
-        gmsh.model.setPhysicalName(1, tag, name)
-    _mesh_2d(gmsh, h, refine)
-    return _to_dolfinx(gmsh, h)
+    groups = _box_sides(gmsh, x0, y0, x1, y1, 1e-9 * max(x1 - x0, y1 - y0))
+    del groups["other"]  # embedded lines
+    return _finish(gmsh, groups, h, refine)
 
 
 def create_square(h: float, half_width: float = 1.0, **kwargs) -> MeshData:
@@ -198,11 +214,7 @@ def create_half_annulus(h: float, radius: float = 1.0, outer_radius: float = 3.0
             groups["hole"].append(c)
         else:
             groups["outer"].append(c)
-    for tag, (name, curves) in enumerate(groups.items(), start=1):
-        gmsh.model.addPhysicalGroup(1, curves, tag)
-        gmsh.model.setPhysicalName(1, tag, name)
-    _mesh_2d(gmsh, h, refine)
-    return _to_dolfinx(gmsh, h)
+    return _finish(gmsh, groups, h, refine)
 
 
 def _mesh_2d(gmsh, h: float, refine) -> None:
@@ -272,14 +284,11 @@ def create_plate_with_hole(x0: float, y0: float, x1: float, y1: float, h: float,
     refine: optional (x, y, h_near, radius) local refinements (see
     create_rectangle). Tags: left, right, bottom, top, hole.
     """
-    if not (x1 > x0 and y1 > y0):
-        raise MeshError(f"empty rectangle [{x0}, {x1}] x [{y0}, {y1}]")
+    _check_box(x0, y0, x1, y1, h)
     cx, cy = float(center[0]), float(center[1])
     if not (radius > 0.0 and x0 < cx - radius and cx + radius < x1 and y0 < cy - radius and cy + radius < y1):
         raise MeshError(f"the hole (centre ({cx:g}, {cy:g}), radius {radius:g}) must lie strictly inside "
                         f"the plate [{x0:g}, {x1:g}] x [{y0:g}, {y1:g}]")
-    if not (0.0 < h <= max(x1 - x0, y1 - y0)):
-        raise MeshError(f"mesh size h = {h} must be positive and at most the domain size")
     gmsh = _gmsh()
     gmsh.model.add("plate_with_hole")
     occ = gmsh.model.occ
@@ -288,22 +297,6 @@ def create_plate_with_hole(x0: float, y0: float, x1: float, y1: float, h: float,
     body, _ = occ.cut([(2, plate)], [(2, disk)])
     occ.synchronize()
     gmsh.model.addPhysicalGroup(2, [s for _, s in body], 1)
-    eps = 1e-7 * max(x1 - x0, y1 - y0)
-    groups: dict[str, list[int]] = {"left": [], "right": [], "bottom": [], "top": [], "hole": []}
-    for _, c in gmsh.model.getEntities(1):
-        px, py, _ = gmsh.model.occ.getCenterOfMass(1, c)
-        if abs(px - x0) < eps:
-            groups["left"].append(c)
-        elif abs(px - x1) < eps:
-            groups["right"].append(c)
-        elif abs(py - y0) < eps:
-            groups["bottom"].append(c)
-        elif abs(py - y1) < eps:
-            groups["top"].append(c)
-        else:
-            groups["hole"].append(c)
-    for tag, (name, curves) in enumerate(groups.items(), start=1):
-        gmsh.model.addPhysicalGroup(1, curves, tag)
-        gmsh.model.setPhysicalName(1, tag, name)
-    _mesh_2d(gmsh, h, refine)
-    return _to_dolfinx(gmsh, h)
+    groups = _box_sides(gmsh, x0, y0, x1, y1, 1e-7 * max(x1 - x0, y1 - y0))
+    groups["hole"] = groups.pop("other")
+    return _finish(gmsh, groups, h, refine)
