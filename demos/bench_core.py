@@ -13,7 +13,6 @@ conditions, load and the same solve. Mesh generation is excluded from both.
 from __future__ import annotations
 
 import argparse
-import json
 import pathlib
 import platform
 import statistics
@@ -23,6 +22,7 @@ import time
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
+from cracklip.io import write_json  # noqa: E402
 
 #: nodes per unit area of the gmsh square at size h: ~1.17 / h^2
 NODES_PER_AREA_H2 = 1.17
@@ -95,8 +95,7 @@ def main(argv=None) -> int:
            "machine": {"python": platform.python_version(), "processor": platform.processor(),
                        "cores_used": 1},
            "sizes": results}
-    args.json.parent.mkdir(parents=True, exist_ok=True)
-    args.json.write_text(json.dumps(out, indent=2))
+    write_json(args.json, out)
     log(f"wrote {args.json}")
     return 0
 

@@ -14,7 +14,6 @@ symmetry line and a constant traction on the half annulus).
 from __future__ import annotations
 
 import argparse
-import json
 import pathlib
 import statistics
 import sys
@@ -27,6 +26,7 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "python"))
 
 import cracklip as cl  # noqa: E402
+from cracklip.io import write_json  # noqa: E402
 import hole_crack  # noqa: E402
 from cracklip.kirsch import crack_pressure, kirsch_strain  # noqa: E402
 from cracklip.williams import WilliamsField  # noqa: E402
@@ -137,8 +137,7 @@ def main(argv=None) -> dict:
 
 def save(args, rows: list) -> dict:
     res = {"benchmark": "work_precision", "repeats": args.repeats, "rows": rows}
-    args.json.parent.mkdir(parents=True, exist_ok=True)
-    args.json.write_text(json.dumps(res, indent=2))
+    write_json(args.json, res)
     return res
 
 

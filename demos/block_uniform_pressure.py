@@ -13,7 +13,6 @@ along it and K_I = K_II = 0. `--supports corners` is the paper's support
 from __future__ import annotations
 
 import argparse
-import json
 import pathlib
 import sys
 import time
@@ -23,6 +22,7 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
+from cracklip.io import write_json  # noqa: E402
 from cracklip.infsup import inf_sup_constant  # noqa: E402
 
 PRESSURE = 0.01
@@ -142,8 +142,7 @@ def main(argv=None) -> dict:
           f"{res['pressure_max_rel_dev']:.2e}, K_I {res['K_I']:.3e}, K_II {res['K_II']:.3e}, "
           f"{res['n_multipliers']} multipliers", file=sys.stderr)
     path = args.json or args.out / "block.json"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(res, indent=2))
+    write_json(path, res)
     return res
 
 

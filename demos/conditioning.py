@@ -13,7 +13,6 @@ log(1/h) over n >= 20. Writes JSON, Markdown and a PNG.
 from __future__ import annotations
 
 import argparse
-import json
 import pathlib
 import sys
 
@@ -24,6 +23,7 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "python"))
 
 import westergaard  # noqa: E402
+from cracklip.io import write_json  # noqa: E402
 
 CONFIGS = [("vector", "corrected"), ("scalar", "corrected"), ("vector", "standard"), ("scalar", "standard")]
 
@@ -61,7 +61,7 @@ def run(ns, log=lambda m: None) -> dict:
 
 def write(res: dict, out: pathlib.Path) -> None:
     out.mkdir(parents=True, exist_ok=True)
-    (out / "conditioning.json").write_text(json.dumps(res, indent=2))
+    write_json(out / "conditioning.json", res)
     lines = ["# Condition number vs mesh size (Westergaard, r_e = 0.2)", "",
              "Growth exponent p in cond ~ (1/h)^p, least squares over n >= 20 (standard P1 FE: 2).", "",
              "| enrichment | blending | raw | Jacobi | nodal rescaling | cond at finest n (raw / Jacobi / nodal) |",

@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
 import math
 import pathlib
 import sys
@@ -34,6 +33,7 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
+from cracklip.io import write_json  # noqa: E402
 from cracklip.williams import WilliamsField  # noqa: E402
 
 MAT = cl.Material(1.0, 0.3)
@@ -719,8 +719,7 @@ def main(argv=None) -> dict:
            "all_finite": all(r["finite"] for r in rows),
            "max_relative_residual": max(r["relative_residual"] for r in rows),
            "all_converge": all(r["converges"] for r in rows if r["converges"] is not None)}
-    args.json.parent.mkdir(parents=True, exist_ok=True)
-    args.json.write_text(json.dumps(res, indent=2))
+    write_json(args.json, res)
     md = args.md or args.json.with_suffix(".md")
     md.write_text(markdown(rows, args.quick))
     log(f"wrote {args.json} and {md} ({res['total_time']:.0f} s)")

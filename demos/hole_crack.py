@@ -14,7 +14,6 @@ sigma_inf (1 + 1/(2 y^2) + 3/(2 y^4)) and K_I = K_II = 0.
 from __future__ import annotations
 
 import argparse
-import json
 import pathlib
 import sys
 import time
@@ -24,6 +23,7 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
+from cracklip.io import write_json  # noqa: E402
 from cracklip.kirsch import crack_pressure, kirsch_strain, kirsch_stress  # noqa: E402
 from westergaard import slope  # noqa: E402  (least-squares log-log rate)
 
@@ -187,8 +187,7 @@ def main(argv=None) -> dict:
         print(f"h={args.h} {args.enrichment}: energy error {res['energy_error']:.3e}, pressure L2 error "
               f"{res['pressure_l2_error']:.3e}, K_I {res['K_I']:.3e}", file=sys.stderr)
         path = args.json or args.out / "hole.json"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(res, indent=2))
+    write_json(path, res)
     return res
 
 

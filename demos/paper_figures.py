@@ -34,6 +34,7 @@ import patch_test  # noqa: E402
 import sliding_crack  # noqa: E402
 import tip_quadrature  # noqa: E402
 import westergaard  # noqa: E402
+from cracklip.io import write_json  # noqa: E402
 
 
 def log(msg: str) -> None:
@@ -114,7 +115,7 @@ def main(argv=None) -> int:
         summary["hard_cases"] = {k: hc[k] for k in ("all_finite", "max_relative_residual", "all_converge")}
     summary["wall_time"] = time.perf_counter() - t0
 
-    (out / "results.json").write_text(json.dumps(summary, indent=2))
+    write_json(out / "results.json", summary)
     (out / "results.md").write_text(markdown(summary) + "\n")
     log(f"wrote {out / 'results.md'} and {out / 'results.json'} in {summary['wall_time']:.0f} s")
     return 0

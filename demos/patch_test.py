@@ -9,7 +9,6 @@ opening, and draws the deformed sub-cell mesh (magnified) and the opening.
 from __future__ import annotations
 
 import argparse
-import json
 import pathlib
 import sys
 
@@ -18,6 +17,7 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
+from cracklip.io import write_json  # noqa: E402
 
 
 def run(h: float = 0.1, yc: float = 0.013, tension: float = 0.01, E: float = 1.0,
@@ -106,8 +106,7 @@ def main(argv=None) -> dict:
     args.out.mkdir(parents=True, exist_ok=True)
     result, sol = run(args.h)
     path = args.json or args.out / "patch_test.json"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(result, indent=2))
+    write_json(path, result)
     cl.write_vtu(sol, args.out / "patch_test.vtu")
     result["files"] = [str(path), str(args.out / "patch_test.vtu")]
     if not args.no_plots:

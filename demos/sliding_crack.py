@@ -9,7 +9,6 @@ slide: K_I ~ 0 and K_II != 0 (infinite-plate value tau_nt sqrt(pi a)).
 from __future__ import annotations
 
 import argparse
-import json
 import pathlib
 import sys
 
@@ -18,6 +17,7 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
+from cracklip.io import write_json  # noqa: E402
 
 HALF_LENGTH = 0.3
 ANGLE = np.radians(30.0)
@@ -57,8 +57,7 @@ def main(argv=None) -> dict:
     args = ap.parse_args(argv)
     rows = [run(n) for n in args.ns]
     res = {"K_II_infinite_plate": shear_on_crack() * np.sqrt(np.pi * HALF_LENGTH), "rows": rows}
-    args.json.parent.mkdir(parents=True, exist_ok=True)
-    args.json.write_text(json.dumps(res, indent=2))
+    write_json(args.json, res)
     for r in rows:
         print(f"n={r['n']}: " + ", ".join(f"K_I={s['K_I']:.2e} K_II={s['K_II']:.6f}" for s in r["tips"]),
               file=sys.stderr)

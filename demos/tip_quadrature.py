@@ -9,7 +9,6 @@ integral, |grad F_l|^2 = g_l(theta) / r).
 from __future__ import annotations
 
 import argparse
-import json
 import pathlib
 import sys
 
@@ -19,6 +18,7 @@ from scipy import integrate
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 from cracklip import _cracklip  # noqa: E402
+from cracklip.io import write_json  # noqa: E402
 
 #: A tip cell (not symmetric about the crack) and the tip inside it.
 TRIANGLE = np.array([[-0.13, -0.07], [0.11, -0.05], [0.02, 0.12]])
@@ -89,8 +89,7 @@ def main(argv=None) -> dict:
     ap.add_argument("--json", type=pathlib.Path, default=pathlib.Path("results/tip_quadrature.json"))
     args = ap.parse_args(argv)
     res = run()
-    args.json.parent.mkdir(parents=True, exist_ok=True)
-    args.json.write_text(json.dumps(res, indent=2))
+    write_json(args.json, res)
     lines = ["| rule | points | max rel. error over F_1..F_4 |", "|---|---|---|"]
     lines += [f"| {r['rule']} | {r['points']} | {r['max_rel_error']:.2e} |" for r in res["rows"]]
     args.json.with_suffix(".md").write_text("\n".join(lines) + "\n")

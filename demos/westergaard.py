@@ -10,7 +10,6 @@ exact values, the 1-norm condition number (raw and Jacobi-scaled) and timings.
 from __future__ import annotations
 
 import argparse
-import json
 import pathlib
 import sys
 import time
@@ -20,6 +19,7 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
+from cracklip.io import write_json  # noqa: E402
 from cracklip.williams import WilliamsField  # noqa: E402
 
 MODES = {"I": (1.0, 0.0), "II": (0.0, 1.0), "mixed": (1.0, 1.0)}
@@ -183,8 +183,7 @@ def main(argv=None) -> dict:
               f"K_I {res['K_I']:.6f} (exact {res['K_I_exact']}), K_II {res['K_II']:.6f} "
               f"(exact {res['K_II_exact']}), cond {res['cond_1norm']:.2e}", file=sys.stderr)
         path = args.json or args.out / "westergaard.json"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(res, indent=2))
+    write_json(path, res)
     return res
 
 

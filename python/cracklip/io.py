@@ -3,6 +3,7 @@ crack lips as a line mesh, and atomic writes (no half-written file)."""
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 import pathlib
 import typing
@@ -26,6 +27,16 @@ def atomic_path(path: str | pathlib.Path) -> typing.Iterator[pathlib.Path]:
     finally:
         with contextlib.suppress(FileNotFoundError):
             tmp.unlink()
+
+
+def write_json(path: str | pathlib.Path, data: typing.Any) -> pathlib.Path:
+    """Write data as JSON (indent 2), creating parent folders; the file
+    appears complete or not at all (atomic_path)."""
+    path = pathlib.Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with atomic_path(path) as tmp:
+        tmp.write_text(json.dumps(data, indent=2))
+    return path
 
 
 def von_mises(stress: np.ndarray, nu: float) -> np.ndarray:
