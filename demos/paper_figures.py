@@ -203,8 +203,7 @@ def markdown(s: dict) -> str:
         lines += ["## Hard cases", "", f"All finite: {h['all_finite']}; largest relative residual "
                   f"{h['max_relative_residual']:.1e}; every case with a reference converges: {h['all_converge']}. "
                   "Table: `hard_cases.md`.", ""]
-    lines += [
-              f"Total wall time of this job: {s['wall_time']:.0f} s."]
+    lines += [f"Total wall time of this job: {s['wall_time']:.0f} s."]
     return "\n".join(lines)
 
 
