@@ -271,25 +271,38 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
       {
         if (s == end_seg or space.segments[s].crack != static_cast<std::int32_t>(icr))
           continue;
-        bool touches = false;
+        // The end point shared with the end segment, in this segment's
+        // reference coordinates.
+        int shared = -1;
         for (int a = 0; a < 2; ++a)
           for (int b = 0; b < 2; ++b)
-            touches = touches or std::hypot(ends[s][2 * a] - E[2 * b], ends[s][2 * a + 1] - E[2 * b + 1]) <= 1e-9 * len;
-        if (!touches)
+            if (std::hypot(ends[s][2 * a] - E[2 * b], ends[s][2 * a + 1] - E[2 * b + 1]) <= 1e-9 * len)
+              shared = a;
+        if (shared < 0)
           continue;
-        // Tie the end multiplier to a multiplier of the neighbour that does
-        // not live on the end segment.
-        for (std::int32_t f : space.segments[s].mult)
+        // Tie the end multiplier to the neighbour's multiplier that is
+        // largest at the shared point (the one continuous across it) among
+        // those not already on the end segment; if all of these vanish
+        // there, to the first of them.
+        const CrackSegment& nb = space.segments[s];
+        const double r0 = nb.ref[2 * shared], r1 = nb.ref[2 * shared + 1];
+        std::int32_t pick = -1;
+        double best_w = -1.0;
+        for (std::size_t k = 0; k < nb.mult.size(); ++k)
         {
+          const std::int32_t f = nb.mult[k];
           bool on_end = false;
           for (std::int32_t fe : space.segments[end_seg].mult)
             on_end = on_end or uf.find(fe) == uf.find(f);
-          if (!on_end)
-          {
-            uf.unite(r_end, f);
-            break;
-          }
+          if (on_end)
+            continue;
+          const int l = nb.local[k];
+          const double w = l < 0 ? 1.0 : (l == 0 ? 1.0 - r0 - r1 : (l == 1 ? r0 : r1));
+          if (w > best_w + 1e-12)
+            best_w = w, pick = f;
         }
+        if (pick >= 0)
+          uf.unite(r_end, pick);
       }
     }
   }
