@@ -252,8 +252,11 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
       }
       if (end_seg == space.segments.size())
         continue;
-      // Only a short end segment (below the crack's mean segment length)
-      // needs the tie; neighbouring segments share an end point with it.
+      // The tip cell's P0 multiplier (tip enrichment) sees a jump fading
+      // like sqrt(r) over its whole segment and is always tied. The end of a
+      // Heaviside-only crack (its last cut cell) is tied only when shorter
+      // than the crack's mean segment: a longer one controls its star.
+      // Neighbouring segments share an end point with it.
       const auto& E = ends[end_seg];
       const double len = std::hypot(E[2] - E[0], E[3] - E[1]);
       double mean_len = 0.0;
@@ -262,7 +265,7 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
         if (space.segments[s].crack == static_cast<std::int32_t>(icr))
           mean_len += std::hypot(ends[s][2] - ends[s][0], ends[s][3] - ends[s][1]), ++count;
       mean_len /= count;
-      if (len >= mean_len)
+      if (!space.segments[end_seg].tip and len >= mean_len)
         continue;
       const std::int32_t r_end = uf.find(space.segments[end_seg].mult.front());
       for (std::int32_t f : space.segments[end_seg].mult)

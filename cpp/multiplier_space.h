@@ -10,9 +10,10 @@
 //           score min(deg a, deg b) while it exceeds 1; the remaining
 //           ("vital") edges tie their end nodes' multipliers, forming stars,
 //           one unknown each; the tip cell carries a P0 multiplier.
-//           A crack's end segment shorter than its mean segment sees a
-//           fading jump: its multipliers are tied to the neighbouring
-//           segment's multiplier that is largest at the shared point.
+//           The end segment sees a fading jump: the tip cell's P0
+//           multiplier, and the last cut cell of a Heaviside-only crack if
+//           shorter than the crack's mean segment, are tied to the
+//           neighbouring segment's multiplier largest at the shared point.
 #pragma once
 
 #include "crack_geometry.h"
