@@ -329,14 +329,32 @@ def test_singular_multiplier_space():
 
 def test_active_set_that_does_not_settle():
     """The open-closed-open crack needs 3 active-set iterations; allowing 2
-    reports the history and the option to change (a cycling active set ends
-    the same way)."""
+    reports the history and the option to change (a cycling active set is
+    reported as such, see the next test)."""
     import hard_cases as hc
     scene = hc.open_closed_open_scene(10)
     scene.options.max_active_set_iterations = 2
     with pytest.raises(ContactError, match=r"did not settle in 2 iterations \(active counts per iteration: "
                                            r"\[\d+, \d+\]\); raise max_active_set_iterations"):
         cl.solve(scene)
+
+
+def test_active_set_that_cycles():
+    """The iteration is deterministic in its active set: meeting a set again
+    is a cycle, reported at once with its period (here the start comes back
+    after two iterations)."""
+    from cracklip.contact import _VisitedSets
+    a, b = np.array([True, False]), np.array([False, True])
+    seen = _VisitedSets(a)
+    seen.visit(b, 1, [1])
+    with pytest.raises(ContactError, match=r"the active set cycles: iteration 2 gives the set of the start again "
+                                           r"\(period 2; active counts per iteration: \[1, 1\]\)"):
+        seen.visit(a, 2, [1, 1])
+    seen = _VisitedSets(a)
+    seen.visit(b, 1, [1])
+    seen.visit(np.array([True, True]), 2, [1, 2])
+    with pytest.raises(ContactError, match=r"iteration 3 gives the set of iteration 1 again \(period 2"):
+        seen.visit(b, 3, [1, 2, 1])
 
 
 X3 = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])

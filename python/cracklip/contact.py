@@ -103,6 +103,26 @@ def solve_saddle(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, active: np.
     return sol[:-m] if m else sol, sol[-m:] if m else np.zeros(0)
 
 
+class _VisitedSets:
+    """Active sets met so far. Each iteration depends only on its active set,
+    so meeting one again means the iteration cycles for ever: stop at once
+    instead of running into the iteration limit."""
+
+    def __init__(self, start: np.ndarray):
+        self._first = {start.tobytes(): 0}
+
+    def visit(self, active: np.ndarray, it: int, history: list[int]) -> None:
+        key = active.tobytes()
+        if key in self._first:
+            k = self._first[key]
+            raise ContactError(f"the active set cycles: iteration {it} gives the set of "
+                               f"{'the start' if k == 0 else f'iteration {k}'} again (period {it - k}; active "
+                               f"counts per iteration: {history}); the primal-dual active set method cannot "
+                               "settle here: refine the mesh near the crack, or use contact='bilateral' if "
+                               "the crack stays closed")
+        self._first[key] = it
+
+
 def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
                   transform: sp.spmatrix | None = None) -> tuple[np.ndarray, dict]:
     """Solve the contact problem on the assembled stiffness A (constraints
@@ -127,6 +147,7 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
     lumped = np.asarray(cs.M.sum(axis=1)).ravel()
     c = model.scene.material.E / model.h
     history = []
+    seen = _VisitedSets(active)
     for it in range(1, opts.max_active_set_iterations + 1):
         u, lam = solve_saddle(K, f, cs, active, opts.residual_tol)
         gap = cs.B @ u - cs.g                  # weighted normal gap (>= 0 open)
@@ -137,6 +158,7 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
         if np.array_equal(new_active, active):
             return u, {"system": physical, "lambda": lam, "active": active, "iterations": it,
                        "history": history}
+        seen.visit(new_active, it, history)
         active = new_active
     raise ContactError(f"the active set did not settle in {opts.max_active_set_iterations} iterations "
                        f"(active counts per iteration: {history}); raise max_active_set_iterations "
