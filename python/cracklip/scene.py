@@ -213,7 +213,8 @@ class Options:
             cell) or "naive" (P1 on every node of the cut cells).
         contact_points: Gauss points per crack segment (tau^2 toward a tip).
         active_set_start: "closed" or "open" initial active set.
-        max_active_set_iterations: active-set iterations before giving up.
+        max_active_set_iterations: active-set iterations before giving up (a set
+            that comes back stops at once as a cycle).
         snap_tol: a node closer to a crack (or tip line) than snap_tol times
             its shortest edge is moved onto it (level set set to 0).
         facet_degree: degree of the rule for tractions on boundary facets.

@@ -211,7 +211,7 @@ _OPTION_MEANINGS = {
                    "node of the cut cells; violates inf-sup)",
     "contact_points": "Gauss points per crack segment for the contact terms",
     "active_set_start": "initial active set of unilateral contact: `closed` or `open`",
-    "max_active_set_iterations": "active-set iterations before giving up",
+    "max_active_set_iterations": "active-set iterations before giving up (a set that comes back stops at once as a cycle)",
     "snap_tol": "a node closer to a crack than snap_tol times its shortest edge is moved onto it",
     "facet_degree": "quadrature degree of boundary tractions",
     "residual_tol": "largest accepted relative residual of a linear solve",
