@@ -1,4 +1,5 @@
 #include "multiplier_space.h"
+#include "enriched_basis.h"
 
 #include <algorithm>
 #include <cmath>
@@ -226,60 +227,53 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
   for (std::size_t icr = 0; icr < cracks.size(); ++icr)
   {
     const CrackGeometry& g = *cracks[icr];
+    const auto ic = static_cast<std::int32_t>(icr);
+    // Physical end points of this crack's segments, and their mean length.
+    std::vector<std::size_t> own;
+    std::vector<std::array<std::array<double, 2>, 2>> ends;
+    double mean_len = 0.0;
+    for (std::size_t s = 0; s < space.segments.size(); ++s)
+      if (const CrackSegment& seg = space.segments[s]; seg.crack == ic)
+      {
+        const P1Cell cell(x, cells, seg.cell);
+        own.push_back(s);
+        ends.push_back({cell.physical({seg.ref[0], seg.ref[1]}), cell.physical({seg.ref[2], seg.ref[3]})});
+        mean_len += std::hypot(ends.back()[1][0] - ends.back()[0][0], ends.back()[1][1] - ends.back()[0][1]);
+      }
+    if (own.empty())
+      continue;
+    mean_len /= static_cast<double>(own.size());
     for (std::size_t j = 0; j < g.tips.size() / 2; ++j)
     {
       const std::array<double, 2> T = {g.tips[2 * j], g.tips[2 * j + 1]};
-      // Physical end points of every segment of this crack.
-      std::size_t end_seg = space.segments.size();
+      std::size_t end = 0; // index into own / ends
       double dmin = std::numeric_limits<double>::max();
-      std::vector<std::array<double, 4>> ends(space.segments.size());
-      for (std::size_t s = 0; s < space.segments.size(); ++s)
-      {
-        const CrackSegment& seg = space.segments[s];
-        if (seg.crack != static_cast<std::int32_t>(icr))
-          continue;
-        const std::int32_t* v = &cells[3 * seg.cell];
-        for (int e = 0; e < 2; ++e)
-        {
-          const double r0 = seg.ref[2 * e], r1 = seg.ref[2 * e + 1];
-          for (int d = 0; d < 2; ++d)
-            ends[s][2 * e + d] = x[2 * v[0] + d] + r0 * (x[2 * v[1] + d] - x[2 * v[0] + d])
-                                 + r1 * (x[2 * v[2] + d] - x[2 * v[0] + d]);
-          const double dist = std::hypot(ends[s][2 * e] - T[0], ends[s][2 * e + 1] - T[1]);
-          if (dist < dmin)
-            dmin = dist, end_seg = s;
-        }
-      }
-      if (end_seg == space.segments.size())
-        continue;
+      for (std::size_t i = 0; i < own.size(); ++i)
+        for (const auto& P : ends[i])
+          if (const double dist = std::hypot(P[0] - T[0], P[1] - T[1]); dist < dmin)
+            dmin = dist, end = i;
+      const CrackSegment& end_seg = space.segments[own[end]];
       // The tip cell's P0 multiplier (tip enrichment) sees a jump fading
       // like sqrt(r) over its whole segment and is always tied. The end of a
       // Heaviside-only crack (its last cut cell) is tied only when shorter
       // than the crack's mean segment: a longer one controls its star.
       // Neighbouring segments share an end point with it.
-      const auto& E = ends[end_seg];
-      const double len = std::hypot(E[2] - E[0], E[3] - E[1]);
-      double mean_len = 0.0;
-      int count = 0;
-      for (std::size_t s = 0; s < space.segments.size(); ++s)
-        if (space.segments[s].crack == static_cast<std::int32_t>(icr))
-          mean_len += std::hypot(ends[s][2] - ends[s][0], ends[s][3] - ends[s][1]), ++count;
-      mean_len /= count;
-      if (!space.segments[end_seg].tip and len >= mean_len)
+      const auto& E = ends[end];
+      const double len = std::hypot(E[1][0] - E[0][0], E[1][1] - E[0][1]);
+      if (!end_seg.tip and len >= mean_len)
         continue;
-      const std::int32_t r_end = uf.find(space.segments[end_seg].mult.front());
-      for (std::int32_t f : space.segments[end_seg].mult)
+      const std::int32_t r_end = uf.find(end_seg.mult.front());
+      for (std::int32_t f : end_seg.mult)
         uf.unite(f, r_end);
-      for (std::size_t s = 0; s < space.segments.size(); ++s)
+      for (std::size_t i = 0; i < own.size(); ++i)
       {
-        if (s == end_seg or space.segments[s].crack != static_cast<std::int32_t>(icr))
+        if (i == end)
           continue;
-        // The end point shared with the end segment, in this segment's
-        // reference coordinates.
+        // The end point shared with the end segment (0 or 1 of this one).
         int shared = -1;
         for (int a = 0; a < 2; ++a)
-          for (int b = 0; b < 2; ++b)
-            if (std::hypot(ends[s][2 * a] - E[2 * b], ends[s][2 * a + 1] - E[2 * b + 1]) <= 1e-9 * len)
+          for (const auto& P : E)
+            if (std::hypot(ends[i][a][0] - P[0], ends[i][a][1] - P[1]) <= 1e-9 * len)
               shared = a;
         if (shared < 0)
           continue;
@@ -287,20 +281,19 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
         // largest at the shared point (the one continuous across it) among
         // those not already on the end segment; if all of these vanish
         // there, to the first of them.
-        const CrackSegment& nb = space.segments[s];
-        const double r0 = nb.ref[2 * shared], r1 = nb.ref[2 * shared + 1];
+        const CrackSegment& nb = space.segments[own[i]];
+        const auto N = P1Cell::shape({nb.ref[2 * shared], nb.ref[2 * shared + 1]});
         std::int32_t pick = -1;
         double best_w = -1.0;
         for (std::size_t k = 0; k < nb.mult.size(); ++k)
         {
           const std::int32_t f = nb.mult[k];
           bool on_end = false;
-          for (std::int32_t fe : space.segments[end_seg].mult)
+          for (std::int32_t fe : end_seg.mult)
             on_end = on_end or uf.find(fe) == uf.find(f);
           if (on_end)
             continue;
-          const int l = nb.local[k];
-          const double w = l < 0 ? 1.0 : (l == 0 ? 1.0 - r0 - r1 : (l == 1 ? r0 : r1));
+          const double w = nb.local[k] < 0 ? 1.0 : N[nb.local[k]]; // P0 is 1 everywhere
           if (w > best_w + 1e-12)
             best_w = w, pick = f;
         }
