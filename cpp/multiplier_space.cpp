@@ -193,8 +193,13 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
     }
   // Tie stars without enriched nodes to a neighbouring star.
   std::set<std::pair<std::int32_t, std::int32_t>> enriched; // (crack, node)
+  std::set<std::pair<std::int32_t, std::int32_t>> heaviside; // (crack, node)
   for (std::int32_t k = 0; k < layout.num_enriched(); ++k)
+  {
     enriched.insert({layout.crack[k], layout.node[k]});
+    if (layout.kind[k] == static_cast<std::int8_t>(EnrichmentKind::heaviside))
+      heaviside.insert({layout.crack[k], layout.node[k]});
+  }
   for (bool changed = true; changed;)
   {
     changed = false;
@@ -219,30 +224,56 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
           }
       }
   }
-  // The multiplier at a crack end sees a jump that fades (like sqrt(r) at a
-  // tip, linearly at the end of a Heaviside-only crack): over a short end
-  // segment it is barely controlled and the inf-sup constant drops with the
-  // length of that segment. Tie the end segment's multipliers to those of the
-  // segment next to it.
+  // The multiplier at a crack end sees a jump that fades (like sqrt(r) in a
+  // tip cell, linearly over the last cut cell of a Heaviside-only crack)
+  // and is barely controlled: left alone it makes the inf-sup constant drop.
+  // Such an end is tied to the multiplier of the segment next to it.
   for (std::size_t icr = 0; icr < cracks.size(); ++icr)
   {
     const CrackGeometry& g = *cracks[icr];
     const auto ic = static_cast<std::int32_t>(icr);
-    // Physical end points of this crack's segments, and their mean length.
+    // Physical end points of this crack's segments.
     std::vector<std::size_t> own;
     std::vector<std::array<std::array<double, 2>, 2>> ends;
-    double mean_len = 0.0;
     for (std::size_t s = 0; s < space.segments.size(); ++s)
       if (const CrackSegment& seg = space.segments[s]; seg.crack == ic)
       {
         const P1Cell cell(x, cells, seg.cell);
         own.push_back(s);
         ends.push_back({cell.physical({seg.ref[0], seg.ref[1]}), cell.physical({seg.ref[2], seg.ref[3]})});
-        mean_len += std::hypot(ends.back()[1][0] - ends.back()[0][0], ends.back()[1][1] - ends.back()[0][1]);
       }
     if (own.empty())
       continue;
-    mean_len /= static_cast<double>(own.size());
+    auto length = [&](std::size_t i) { return std::hypot(ends[i][1][0] - ends[i][0][0], ends[i][1][1] - ends[i][0][1]); };
+    // Share of the weight of the multiplier groups `groups` that sees the
+    // full Heaviside jump: int(mu w) / int(mu) over the crack, mu the sum of
+    // the groups' multiplier functions, w the sum of the shape functions of
+    // the crack's Heaviside-enriched nodes (1 where the crack opens fully,
+    // fading to 0 over its last cut cell). mu and w are linear on each
+    // segment: two Gauss points are exact.
+    auto full_jump_share = [&](const std::set<std::int32_t>& groups)
+    {
+      double mu_w = 0.0, mu_1 = 0.0;
+      for (std::size_t i = 0; i < own.size(); ++i)
+      {
+        const CrackSegment& seg = space.segments[own[i]];
+        const std::int32_t* v = &cells[3 * seg.cell];
+        for (const double t : {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)})
+        {
+          const auto N = P1Cell::shape({(1 - t) * seg.ref[0] + t * seg.ref[2], (1 - t) * seg.ref[1] + t * seg.ref[3]});
+          double mu = 0.0, w = 0.0;
+          for (std::size_t k = 0; k < seg.mult.size(); ++k)
+            if (groups.count(uf.find(seg.mult[k])))
+              mu += seg.local[k] < 0 ? 1.0 : N[seg.local[k]];
+          for (int a = 0; a < 3; ++a)
+            if (heaviside.count({ic, v[a]}))
+              w += N[a];
+          mu_w += 0.5 * length(i) * mu * w;
+          mu_1 += 0.5 * length(i) * mu;
+        }
+      }
+      return mu_1 > 0.0 ? mu_w / mu_1 : 0.0;
+    };
     for (std::size_t j = 0; j < g.tips.size() / 2; ++j)
     {
       const std::array<double, 2> T = {g.tips[2 * j], g.tips[2 * j + 1]};
@@ -253,15 +284,21 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
           if (const double dist = std::hypot(P[0] - T[0], P[1] - T[1]); dist < dmin)
             dmin = dist, end = i;
       const CrackSegment& end_seg = space.segments[own[end]];
-      // The tip cell's P0 multiplier (tip enrichment) sees a jump fading
-      // like sqrt(r) over its whole segment and is always tied. The end of a
-      // Heaviside-only crack (its last cut cell) is tied only when shorter
-      // than the crack's mean segment: a longer one controls its star.
-      // Neighbouring segments share an end point with it.
+      // The tip cell's P0 multiplier sees a jump fading like sqrt(r) over
+      // its whole segment and is always tied. Any other end segment is tied
+      // when less than half of its multipliers' weight sees the full jump
+      // (a constant multiplier over a linear fade is the borderline, 1/2):
+      // a star reaching back along the crack controls itself.
+      if (!end_seg.tip)
+      {
+        std::set<std::int32_t> groups;
+        for (std::int32_t f : end_seg.mult)
+          groups.insert(uf.find(f));
+        if (full_jump_share(groups) >= 0.5)
+          continue;
+      }
       const auto& E = ends[end];
-      const double len = std::hypot(E[1][0] - E[0][0], E[1][1] - E[0][1]);
-      if (!end_seg.tip and len >= mean_len)
-        continue;
+      const double len = length(end);
       const std::int32_t r_end = uf.find(end_seg.mult.front());
       for (std::int32_t f : end_seg.mult)
         uf.unite(f, r_end);

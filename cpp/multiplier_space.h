@@ -12,8 +12,9 @@
 //           one unknown each; the tip cell carries a P0 multiplier.
 //           The end segment sees a fading jump: the tip cell's P0
 //           multiplier, and the last cut cell of a Heaviside-only crack if
-//           shorter than the crack's mean segment, are tied to the
-//           neighbouring segment's multiplier largest at the shared point.
+//           less than half of its multipliers' weight sees the full jump,
+//           are tied to the neighbouring segment's multiplier largest at
+//           the shared point.
 #pragma once
 
 #include "crack_geometry.h"

@@ -62,22 +62,16 @@ def test_inf_sup_naive_decays():
     assert v[-1] <= 0.5 * v[0], v
 
 
-@pytest.mark.parametrize("enrichment", ["scalar", "vector"])
+@pytest.mark.parametrize("enrichment", ["none", "scalar", "vector"])
 def test_inf_sup_stable_bounded(enrichment):
-    """Issue 4, acceptance 3: a tip-enriched stable space stays within 1.5x of
-    its n = 10 value over n = 10..80 and never falls below 0.4."""
+    """Issue 4, acceptance 3: every stable variant (Heaviside only, scalar,
+    vector) stays within 1.5x of its n = 10 value over n = 10..80 and never
+    falls below 0.4. Heaviside only at n = 10 is the case that tying every
+    Heaviside end shorter than the mean segment got wrong: it merged the
+    crack's two stars into one multiplier (sqrt(beta) = 2.16 against
+    0.65..0.69 on the finer meshes)."""
     v = _inf_sup(enrichment, "stable")
     assert np.all(v >= v[0] / 1.5) and np.all(v <= 1.5 * v[0]), v
-    assert v.min() >= 0.4, v
-
-
-def test_inf_sup_stable_heaviside_only_bounded():
-    """Heaviside only: bounded over n = 20..80 (within 1.5x of n = 20, never
-    below 0.4). At n = 10 the 0.4-long crack crosses two cells and the space
-    holds a single multiplier (sqrt(beta) = 2.16, reported in the closing
-    note), so the n = 10 value is not a reference."""
-    v = _inf_sup("none", "stable")
-    assert np.all(v[1:] >= v[1] / 1.5) and np.all(v[1:] <= 1.5 * v[1]), v
     assert v.min() >= 0.4, v
 
 
