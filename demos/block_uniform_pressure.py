@@ -24,6 +24,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 import cracklip as cl  # noqa: E402
 from cracklip.io import write_json  # noqa: E402
 from cracklip.infsup import inf_sup_constant  # noqa: E402
+from cracklip.scene_file import add_option_arguments  # noqa: E402
 
 PRESSURE = 0.01
 TIP_X = -0.6
@@ -122,12 +123,8 @@ def figures(out: pathlib.Path, n: int) -> dict:
 def main(argv=None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--n", type=int, default=42, help="divisions per edge (default 42)")
-    ap.add_argument("--enrichment", choices=["none", "scalar", "vector"], default="vector")
-    ap.add_argument("--radius", type=float, default=0.2)
-    ap.add_argument("--multipliers", choices=["stable", "naive"], default="stable")
-    ap.add_argument("--quadrature", choices=["collapsed", "gauss"], default="collapsed")
-    ap.add_argument("--degree", type=int, default=5)
-    ap.add_argument("--contact", choices=["bilateral", "unilateral"], default="bilateral")
+    add_option_arguments(ap, {"contact": ("bilateral", "unilateral")}, enrichment="vector", radius=0.2,
+                         multipliers="stable", quadrature="collapsed", quadrature_degree=5, contact="bilateral")
     ap.add_argument("--supports", choices=["rollers", "corners"], default="rollers")
     ap.add_argument("--inf-sup", action="store_true", help="add inf_sup for n = 10..80")
     ap.add_argument("--figures", action="store_true", help="pressure and inf-sup PNGs")

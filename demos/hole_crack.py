@@ -25,6 +25,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 import cracklip as cl  # noqa: E402
 from cracklip.io import write_json  # noqa: E402
 from cracklip.kirsch import crack_pressure, kirsch_strain, kirsch_stress  # noqa: E402
+from cracklip.scene_file import add_option_arguments  # noqa: E402
 from westergaard import slope  # noqa: E402  (least-squares log-log rate)
 
 SIGMA_INF = 0.01
@@ -163,12 +164,8 @@ def plot_sweep(res: dict, out: pathlib.Path, sol: cl.Solution) -> list[str]:
 def main(argv=None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--h", type=float, default=0.1, help="mesh size (default 0.1)")
-    ap.add_argument("--enrichment", choices=["none", "scalar", "vector"], default="vector")
-    ap.add_argument("--radius", type=float, default=0.3)
-    ap.add_argument("--multipliers", choices=["stable", "naive"], default="stable")
-    ap.add_argument("--quadrature", choices=["collapsed", "gauss"], default="collapsed")
-    ap.add_argument("--degree", type=int, default=20)
-    ap.add_argument("--contact", choices=["bilateral", "unilateral"], default="unilateral")
+    add_option_arguments(ap, {"contact": ("bilateral", "unilateral")}, enrichment="vector", radius=0.3,
+                         multipliers="stable", quadrature="collapsed", quadrature_degree=20, contact="unilateral")
     ap.add_argument("--cond", action="store_true", help="estimate the 1-norm condition number")
     ap.add_argument("--sweep", action="store_true", help=f"h = {SWEEP_H}, both enrichments, PNGs")
     ap.add_argument("--out", type=pathlib.Path, default=pathlib.Path("results/hole"))

@@ -20,6 +20,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
 from cracklip.io import write_json  # noqa: E402
+from cracklip.scene_file import add_option_arguments  # noqa: E402
 from cracklip.williams import WilliamsField  # noqa: E402
 
 MODES = {"I": (1.0, 0.0), "II": (0.0, 1.0), "mixed": (1.0, 1.0)}
@@ -159,11 +160,8 @@ def plot_sweep(res: dict, out: pathlib.Path) -> list[pathlib.Path]:
 def main(argv=None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--n", type=int, default=20, help="divisions per side (default 20)")
-    ap.add_argument("--enrichment", choices=["vector", "scalar", "none"], default="vector")
-    ap.add_argument("--radius", type=float, default=0.2, help="tip enrichment radius (default 0.2)")
-    ap.add_argument("--blending", choices=["corrected", "standard"], default="corrected")
-    ap.add_argument("--quadrature", choices=["collapsed", "gauss"], default="collapsed")
-    ap.add_argument("--degree", type=int, default=5, help="degree of the gauss tip rule (default 5)")
+    add_option_arguments(ap, enrichment="vector", radius=0.2, blending="corrected", quadrature="collapsed",
+                         quadrature_degree=5)
     ap.add_argument("--mode", choices=list(MODES), default="I")
     ap.add_argument("--angle", type=float, default=None, help="crack angle in degrees (mixed: 30)")
     ap.add_argument("--sif-radius", type=float, default=None, help="interaction-integral radius")

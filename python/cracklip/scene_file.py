@@ -363,6 +363,27 @@ SCHEMA: tuple[Key, ...] = tuple([
 KEYS: dict[str, Key] = {k.path: k for k in SCHEMA}
 
 
+# Demo flags named differently from their Options field (the issues' names).
+_FLAGS = {"quadrature_degree": "degree"}
+
+
+def add_option_arguments(parser, choices: dict[str, tuple[str, ...]] | None = None, **defaults) -> None:
+    """Add one command-line flag per given Options field to an argparse
+    parser, with the scene file's choices and meaning and the caller's
+    default: add_option_arguments(ap, enrichment="vector", radius=0.2).
+    choices narrows a field's choices (e.g. contact without `none`).
+    quadrature_degree is the flag --degree (args.degree)."""
+    for name, default in defaults.items():
+        key = KEYS[f"options.{name}"]
+        kw: dict[str, typing.Any] = {"default": default,
+                                     "help": f"{key.meaning} (default {default})".replace("%", "%%")}
+        if name in _OPTION_CHOICES:
+            kw["choices"] = (choices or {}).get(name, _OPTION_CHOICES[name])
+        else:
+            kw["type"] = type(key.default)
+        parser.add_argument("--" + _FLAGS.get(name, name).replace("_", "-"), **kw)
+
+
 def _tables() -> set[str]:
     """Paths of all (arrays of) tables: parents of keys and their ancestors."""
     out = {""}
