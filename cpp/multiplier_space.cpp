@@ -245,33 +245,50 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
     if (own.empty())
       continue;
     auto length = [&](std::size_t i) { return std::hypot(ends[i][1][0] - ends[i][0][0], ends[i][1][1] - ends[i][0][1]); };
-    // Share of the weight of the multiplier groups `groups` that sees the
-    // full Heaviside jump: int(mu w) / int(mu) over the crack, mu the sum of
-    // the groups' multiplier functions, w the sum of the shape functions of
-    // the crack's Heaviside-enriched nodes (1 where the crack opens fully,
-    // fading to 0 over its last cut cell). mu and w are linear on each
-    // segment: two Gauss points are exact.
-    auto full_jump_share = [&](const std::set<std::int32_t>& groups)
+    // Calls fn(segment, shape values, weight) at two Gauss points of every
+    // segment of this crack: exact for a product of two functions linear on
+    // each segment.
+    auto for_each_point = [&](auto&& fn)
     {
-      double mu_w = 0.0, mu_1 = 0.0;
       for (std::size_t i = 0; i < own.size(); ++i)
       {
         const CrackSegment& seg = space.segments[own[i]];
-        const std::int32_t* v = &cells[3 * seg.cell];
         for (const double t : {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)})
-        {
-          const auto N = P1Cell::shape({(1 - t) * seg.ref[0] + t * seg.ref[2], (1 - t) * seg.ref[1] + t * seg.ref[3]});
-          double mu = 0.0, w = 0.0;
-          for (std::size_t k = 0; k < seg.mult.size(); ++k)
-            if (groups.count(uf.find(seg.mult[k])))
-              mu += seg.local[k] < 0 ? 1.0 : N[seg.local[k]];
-          for (int a = 0; a < 3; ++a)
-            if (heaviside.count({ic, v[a]}))
-              w += N[a];
-          mu_w += 0.5 * length(i) * mu * w;
-          mu_1 += 0.5 * length(i) * mu;
-        }
+          fn(seg, P1Cell::shape({(1 - t) * seg.ref[0] + t * seg.ref[2], (1 - t) * seg.ref[1] + t * seg.ref[3]}),
+             0.5 * length(i));
       }
+    };
+    // Shape value of a segment's k-th multiplier (P0: 1).
+    auto value = [](const CrackSegment& seg, const std::array<double, 3>& N, std::size_t k)
+    { return seg.local[k] < 0 ? 1.0 : N[seg.local[k]]; };
+    // Sum of the multiplier functions of the groups G at a point.
+    auto mu = [&](const CrackSegment& seg, const std::array<double, 3>& N, const std::set<std::int32_t>& G)
+    {
+      double m = 0.0;
+      for (std::size_t k = 0; k < seg.mult.size(); ++k)
+        if (G.count(uf.find(seg.mult[k])))
+          m += value(seg, N, k);
+      return m;
+    };
+    // Share of the weight of the groups G that sees the full Heaviside jump:
+    // int(mu w) / int(mu), w the sum of the shape functions of the crack's
+    // Heaviside-enriched nodes (1 where the crack opens fully, fading to 0
+    // over the last cut cell of a Heaviside-only crack).
+    auto full_jump_share = [&](const std::set<std::int32_t>& G)
+    {
+      double mu_w = 0.0, mu_1 = 0.0;
+      for_each_point(
+          [&](const CrackSegment& seg, const std::array<double, 3>& N, double wq)
+          {
+            const std::int32_t* v = &cells[3 * seg.cell];
+            double w = 0.0;
+            for (int a = 0; a < 3; ++a)
+              if (heaviside.count({ic, v[a]}))
+                w += N[a];
+            const double m = mu(seg, N, G);
+            mu_w += wq * m * w;
+            mu_1 += wq * m;
+          });
       return mu_1 > 0.0 ? mu_w / mu_1 : 0.0;
     };
     for (std::size_t j = 0; j < g.tips.size() / 2; ++j)
@@ -284,19 +301,43 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
           if (const double dist = std::hypot(P[0] - T[0], P[1] - T[1]); dist < dmin)
             dmin = dist, end = i;
       const CrackSegment& end_seg = space.segments[own[end]];
-      // The tip cell's P0 multiplier sees a jump fading like sqrt(r) over
-      // its whole segment and is always tied. Any other end segment is tied
-      // when less than half of its multipliers' weight sees the full jump
-      // (a constant multiplier over a linear fade is the borderline, 1/2):
-      // a star reaching back along the crack controls itself.
+      // The end of a Heaviside-only crack (its last cut cell): its group G
+      // is controlled when it sees the full jump over as large a share of
+      // its weight as the hat of the last fully enriched node, which fades
+      // with the jump (2/3; a constant over the fade has 1/2 and gave
+      // sqrt(beta) = 0.44 on inclined cracks). Otherwise G absorbs the group
+      // it overlaps most (int mu_G mu_c) until it is.
       if (!end_seg.tip)
       {
-        std::set<std::int32_t> groups;
+        std::set<std::int32_t> G;
         for (std::int32_t f : end_seg.mult)
-          groups.insert(uf.find(f));
-        if (full_jump_share(groups) >= 0.5)
-          continue;
+          G.insert(uf.find(f));
+        while (full_jump_share(G) < 2.0 / 3.0 - 1e-9) // 2/3 itself is common: keep it
+        {
+          std::map<std::int32_t, double> overlap;
+          for_each_point(
+              [&](const CrackSegment& seg, const std::array<double, 3>& N, double wq)
+              {
+                if (const double m = mu(seg, N, G); m > 0.0)
+                  for (std::size_t k = 0; k < seg.mult.size(); ++k)
+                    if (const std::int32_t r = uf.find(seg.mult[k]); !G.count(r))
+                      overlap[r] += wq * m * value(seg, N, k);
+              });
+          std::int32_t pick = -1;
+          double best = 0.0;
+          for (const auto& [r, o] : overlap)
+            if (o > best)
+              best = o, pick = r;
+          if (pick < 0)
+            break;
+          for (std::int32_t r : G)
+            uf.unite(r, pick);
+          G = {uf.find(pick)};
+        }
+        continue;
       }
+      // The tip cell's P0 multiplier sees a jump fading like sqrt(r) over
+      // its whole segment and is always tied.
       const auto& E = ends[end];
       const double len = length(end);
       const std::int32_t r_end = uf.find(end_seg.mult.front());

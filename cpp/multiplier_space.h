@@ -11,10 +11,10 @@
 //           ("vital") edges tie their end nodes' multipliers, forming stars,
 //           one unknown each; the tip cell carries a P0 multiplier.
 //           The end segment sees a fading jump: the tip cell's P0
-//           multiplier, and the last cut cell of a Heaviside-only crack if
-//           less than half of its multipliers' weight sees the full jump,
-//           are tied to the neighbouring segment's multiplier largest at
-//           the shared point.
+//           multiplier is tied to the neighbouring segment's multiplier
+//           largest at the shared point; the group of the last cut cell of
+//           a Heaviside-only crack absorbs its most overlapping neighbour
+//           group until at least 2/3 of its weight sees the full jump.
 #pragma once
 
 #include "crack_geometry.h"
