@@ -307,7 +307,19 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
       // with the jump (2/3; a constant over the fade has 1/2 and gave
       // sqrt(beta) = 0.44 on inclined cracks). Otherwise G absorbs the group
       // it overlaps most (int mu_G mu_c) until it is.
-      if (!end_seg.tip)
+      if (!end_seg.tip and with_tip_segments)
+      {
+        // A tip-enriched crack whose tip sits on an edge or a vertex (no tip
+        // cell): tip dofs, not Heaviside ones, open its last segments. Tie
+        // that segment like a tip cell when it is shorter than the crack's
+        // mean segment.
+        double mean_len = 0.0;
+        for (std::size_t i = 0; i < own.size(); ++i)
+          mean_len += length(i) / static_cast<double>(own.size());
+        if (length(end) >= mean_len)
+          continue;
+      }
+      else if (!end_seg.tip)
       {
         std::set<std::int32_t> G;
         for (std::int32_t f : end_seg.mult)
