@@ -14,7 +14,9 @@
 //           multiplier is tied to the neighbouring segment's multiplier
 //           largest at the shared point; the group of the last cut cell of
 //           a Heaviside-only crack absorbs its most overlapping neighbour
-//           group until at least 2/3 of its weight sees the full jump.
+//           group until at least 2/3 of its weight sees the full jump; a
+//           tip-enriched crack whose tip sits on an edge or vertex ties its
+//           end segment when shorter than the crack's mean segment.
 #pragma once
 
 #include "crack_geometry.h"
