@@ -301,12 +301,6 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
           if (const double dist = std::hypot(P[0] - T[0], P[1] - T[1]); dist < dmin)
             dmin = dist, end = i;
       const CrackSegment& end_seg = space.segments[own[end]];
-      // The end of a Heaviside-only crack (its last cut cell): its group G
-      // is controlled when it sees the full jump over as large a share of
-      // its weight as the hat of the last fully enriched node, which fades
-      // with the jump (2/3; a constant over the fade has 1/2 and gave
-      // sqrt(beta) = 0.44 on inclined cracks). Otherwise G absorbs the group
-      // it overlaps most (int mu_G mu_c) until it is.
       if (!end_seg.tip and with_tip_segments)
       {
         // A tip-enriched crack whose tip sits on an edge or a vertex (no tip
@@ -321,6 +315,12 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
       }
       else if (!end_seg.tip)
       {
+        // The end of a Heaviside-only crack (its last cut cell): its group G
+        // is controlled when it sees the full jump over as large a share of
+        // its weight as the hat of the last fully enriched node, which fades
+        // with the jump (2/3; a constant over the fade has 1/2 and gave
+        // sqrt(beta) = 0.44 on inclined cracks). Otherwise G absorbs the
+        // group it overlaps most (int mu_G mu_c) until it is.
         std::set<std::int32_t> G;
         for (std::int32_t f : end_seg.mult)
           G.insert(uf.find(f));
@@ -349,7 +349,8 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
         continue;
       }
       // The tip cell's P0 multiplier sees a jump fading like sqrt(r) over
-      // its whole segment and is always tied.
+      // its whole segment and is always tied (so is a short end segment of
+      // a tip-enriched crack without a tip cell, above).
       const auto& E = ends[end];
       const double len = length(end);
       const std::int32_t r_end = uf.find(end_seg.mult.front());
@@ -383,8 +384,7 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
             on_end = on_end or uf.find(fe) == uf.find(f);
           if (on_end)
             continue;
-          const double w = nb.local[k] < 0 ? 1.0 : N[nb.local[k]]; // P0 is 1 everywhere
-          if (w > best_w + 1e-12)
+          if (const double w = value(nb, N, k); w > best_w + 1e-12)
             best_w = w, pick = f;
         }
         if (pick >= 0)
