@@ -69,9 +69,11 @@ def main(argv=None) -> int:
 
     log("[3/9] condition number vs h, with and without the nodal rescaling")
     cond = conditioning.main(["--n", *(["10", "20", "40"] if args.quick else ["10", "20", "40", "80"]),
+                              "--spectrum-n", *(["20", "40"] if args.quick else ["20", "40", "80"]),
                               "--out", str(out / "conditioning"), "--quiet"])
     summary["conditioning"] = [{k: c[k] for k in ("enrichment", "blending", "exponent_raw", "exponent_jacobi",
                                                   "exponent_nodal")} for c in cond["configs"]]
+    summary["conditioning_spectrum"] = cond["spectrum"]["rows"]
 
     log("[4/9] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
     tq = tip_quadrature.main(["--json", str(out / "tip_quadrature.json")])
@@ -156,6 +158,15 @@ def markdown(s: dict) -> str:
     lines += [f"| {c['enrichment']} | {c['blending']} | {c['exponent_raw']:.2f} | {c['exponent_jacobi']:.2f} | "
               f"{c['exponent_nodal']:.2f} |" for c in s["conditioning"]]
     lines += ["", "Standard P1 FE: 2. Figure: `conditioning/conditioning.png`."]
+    if s.get("conditioning_spectrum"):
+        lines += ["", "Smallest eigenvalues of the nodally rescaled stiffness, corrected blending: the whole "
+                  "matrix, and without the tip dofs of the blending ring's nodes (Galerkin submatrix):", "",
+                  "| enrichment | n | lambda_1 | lambda_5 | lambda_1 without ring tip dofs | without any tip dof |",
+                  "|---|---|---|---|---|---|"]
+        lines += [f"| {r['enrichment']} | {r['n']} | {r['all'][0]:.2e} | {r['all'][4]:.2e} | "
+                  f"{r['without_ring_tip_dofs'][0]:.2e} | {r['without_tip_dofs'][0]:.2e} |"
+                  for r in s["conditioning_spectrum"]]
+        lines += ["", "Figure: `conditioning/spectrum.png`."]
     lines += ["", "## Tip-cell quadrature: integral of grad F_l . grad F_l over a tip cell", "",
               "| rule | points | max rel. error |", "|---|---|---|"]
     lines += [f"| {r['rule']} | {r['points']} | {r['max_rel_error']:.2e} |" for r in s["tip_quadrature"]]

@@ -26,6 +26,25 @@ from cracklip.williams import WilliamsField  # noqa: E402
 MODES = {"I": (1.0, 0.0), "II": (0.0, 1.0), "mixed": (1.0, 1.0)}
 
 
+def scene_for(n: int, enrichment: str = "vector", radius: float = 0.2, quadrature: str = "collapsed",
+              degree: int = 5, mode: str = "I", angle: float = 0.0, blending: str = "corrected",
+              E: float = 1.0, nu: float = 0.3, rescale: str = "none") -> tuple[cl.Scene, WilliamsField]:
+    """The Westergaard scene on [-1, 1]^2 with n divisions per side (crack
+    tip at the origin, inclined by angle degrees) and its exact field."""
+    K_I, K_II = MODES[mode]
+    mat = cl.Material(E, nu)
+    a = np.radians(angle)
+    e1 = np.array([np.cos(a), np.sin(a)])
+    exact = WilliamsField(mat, K_I=K_I, K_II=K_II, tip=(0.0, 0.0), e1=tuple(e1))
+    scene = cl.Scene(
+        cl.create_square(2.0 / n), mat, cracks=[cl.Crack([-3.0 * e1, [0.0, 0.0]], name="edge crack")],
+        dirichlet=[cl.Dirichlet(side, None, lambda p, s: exact.displacement(p, s))
+                   for side in ("left", "right", "bottom", "top")],
+        options=cl.Options(enrichment=enrichment, radius=radius, quadrature=quadrature,
+                           quadrature_degree=degree, blending=blending, rescale=rescale))
+    return scene, exact
+
+
 def run(n: int = 20, enrichment: str = "vector", radius: float = 0.2, quadrature: str = "collapsed",
         degree: int = 5, mode: str = "I", angle: float | None = None, blending: str = "corrected",
         sif_radius: float | None = None, condition: bool = True, E: float = 1.0, nu: float = 0.3,
@@ -34,19 +53,9 @@ def run(n: int = 20, enrichment: str = "vector", radius: float = 0.2, quadrature
     if angle is None:
         angle = 30.0 if mode == "mixed" else 0.0
     K_I, K_II = MODES[mode]
-    mat = cl.Material(E, nu)
-    a = np.radians(angle)
-    e1 = np.array([np.cos(a), np.sin(a)])
-    exact = WilliamsField(mat, K_I=K_I, K_II=K_II, tip=(0.0, 0.0), e1=tuple(e1))
     t0 = time.perf_counter()
-    mesh = cl.create_square(2.0 / n)
+    scene, exact = scene_for(n, enrichment, radius, quadrature, degree, mode, angle, blending, E, nu, rescale)
     t_mesh = time.perf_counter() - t0
-    scene = cl.Scene(
-        mesh, mat, cracks=[cl.Crack([-3.0 * e1, [0.0, 0.0]], name="edge crack")],
-        dirichlet=[cl.Dirichlet(side, None, lambda p, s: exact.displacement(p, s))
-                   for side in ("left", "right", "bottom", "top")],
-        options=cl.Options(enrichment=enrichment, radius=radius, quadrature=quadrature,
-                           quadrature_degree=degree, blending=blending, rescale=rescale))
     sol = cl.solve(scene, condition_number=condition)
     t0 = time.perf_counter()
     err_abs, err_rel = sol.energy_error(lambda p, s: exact.gradient(p, s))
