@@ -23,7 +23,6 @@ import pathlib
 import sys
 
 import numpy as np
-import scipy.sparse as sp
 import scipy.sparse.linalg as sla
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -33,6 +32,7 @@ sys.path.insert(0, str(HERE.parent / "python"))
 import westergaard  # noqa: E402
 from cracklip.assembly import assemble_system  # noqa: E402
 from cracklip.io import write_json  # noqa: E402
+from cracklip.linear_solver import scipy_from_petsc  # noqa: E402
 from cracklip.model import create_model  # noqa: E402
 from cracklip.rescaling import nodal_transform, rescale_system  # noqa: E402
 
@@ -61,8 +61,7 @@ def smallest_eigenvalues(n: int, enrichment: str, blending: str = "corrected", k
     model = create_model(scene)
     A, b, _ = assemble_system(model)
     As, bs = rescale_system(A, b, nodal_transform(model, A))
-    indptr, indices, data = As.getValuesCSR()
-    M = sp.csr_matrix((data, indices, indptr), shape=As.getSize())
+    M = scipy_from_petsc(As)
     for obj in (A, b, As, bs):
         obj.destroy()
     M = 0.5 * (M + M.T)
@@ -96,17 +95,20 @@ def spectrum(ns, log=lambda m: None) -> dict:
     return {"ns": list(ns), "rows": rows}
 
 
+def spectrum_table(rows: list[dict]) -> list[str]:
+    """Markdown table of smallest_eigenvalues rows (spectrum.md and results.md)."""
+    return ["| enrichment | n | lambda_max | lambda_1 | lambda_5 | lambda_1 without ring tip dofs | "
+            "lambda_1 without tip dofs |", "|---|---|---|---|---|---|---|",
+            *(f"| {r['enrichment']} | {r['n']} | {r['lambda_max']:.2f} | {r['all'][0]:.2e} | {r['all'][4]:.2e} | "
+              f"{r['without_ring_tip_dofs'][0]:.2e} | {r['without_tip_dofs'][0]:.2e} |" for r in rows)]
+
+
 def write_spectrum(res: dict, out: pathlib.Path) -> None:
     out.mkdir(parents=True, exist_ok=True)
     write_json(out / "spectrum.json", res)
     lines = ["# Smallest eigenvalues of the nodally rescaled stiffness (Westergaard, corrected blending)", "",
              "lambda_1 and lambda_5 of the whole matrix; lambda_1 without the ring nodes' tip dofs and "
-             "without any tip dof (Galerkin submatrices).", "",
-             "| enrichment | n | lambda_max | lambda_1 | lambda_5 | lambda_1 without ring tip dofs | "
-             "lambda_1 without tip dofs |", "|---|---|---|---|---|---|---|"]
-    for r in res["rows"]:
-        lines.append(f"| {r['enrichment']} | {r['n']} | {r['lambda_max']:.2f} | {r['all'][0]:.2e} | {r['all'][4]:.2e} | "
-                     f"{r['without_ring_tip_dofs'][0]:.2e} | {r['without_tip_dofs'][0]:.2e} |")
+             "without any tip dof (Galerkin submatrices).", "", *spectrum_table(res["rows"])]
     (out / "spectrum.md").write_text("\n".join(lines) + "\n")
     import matplotlib
     matplotlib.use("Agg")
