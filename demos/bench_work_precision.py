@@ -14,6 +14,7 @@ symmetry line and a constant traction on the half annulus).
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import pathlib
 import statistics
 import sys
@@ -28,8 +29,8 @@ sys.path.insert(0, str(HERE.parent / "python"))
 import cracklip as cl  # noqa: E402
 from cracklip.io import write_json  # noqa: E402
 import hole_crack  # noqa: E402
+import westergaard  # noqa: E402
 from cracklip.kirsch import crack_pressure, kirsch_strain  # noqa: E402
-from cracklip.williams import WilliamsField  # noqa: E402
 
 CONFIGS = {
     "westergaard": [dict(enrichment="vector", quadrature="collapsed"),
@@ -47,15 +48,11 @@ def label(cfg: dict) -> str:
 
 
 def westergaard_case(n: int):
-    mat = cl.Material(1.0, 0.3)
-    exact = WilliamsField(mat, K_I=1.0)
-    mesh = cl.create_square(2.0 / n)
+    base, exact = westergaard.scene_for(n)
+    mesh, mat = base.mesh, base.material
 
     def scene(cfg):
-        return cl.Scene(mesh, mat, cracks=[cl.Crack([[-3.0, 0.0], [0.0, 0.0]])],
-                        dirichlet=[cl.Dirichlet(s, None, lambda p, sd: exact.displacement(p, sd))
-                                   for s in ("left", "right", "bottom", "top")],
-                        options=cl.Options(radius=0.2, **cfg))
+        return dataclasses.replace(base, options=cl.Options(radius=0.2, **cfg))
 
     def errors(sol):
         k = sol.stress_intensity_factors(0)[0]
