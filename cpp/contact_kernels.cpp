@@ -1,34 +1,20 @@
 #include "contact_kernels.h"
 
+#include "crack_points.h"
 #include "enriched_basis.h"
 #include "quadrature.h"
 
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace cracklip
 {
-namespace
-{
-/// Unit normal of the crack in cell c pointing to phi > 0.
-std::array<double, 2> crack_normal(const P1Cell& cell, const CrackGeometry& g)
-{
-  double gx = 0.0, gy = 0.0;
-  for (int a = 0; a < 3; ++a)
-    gx += g.phi[cell.nodes[a]] * cell.grad[a][0], gy += g.phi[cell.nodes[a]] * cell.grad[a][1];
-  const double n = std::hypot(gx, gy);
-  if (!(n > 0.0))
-    throw std::runtime_error("crack normal undefined in cell (phi constant)");
-  return {gx / n, gy / n};
-}
-} // namespace
-
 SegmentPoints compute_segment_points(std::span<const double> x, std::span<const std::int32_t> cells,
                                      std::span<const CrackGeometry* const> cracks,
                                      const MultiplierSpace& space, int n)
 {
-  const quadrature::Rule g = quadrature::gauss_legendre(n);
   SegmentPoints out;
   for (std::size_t s = 0; s < space.segments.size(); ++s)
   {
@@ -38,27 +24,12 @@ SegmentPoints compute_segment_points(std::span<const double> x, std::span<const 
     const std::array<double, 2> P = {seg.ref[0], seg.ref[1]}, Q = {seg.ref[2], seg.ref[3]};
     const auto Pp = cell.physical(P), Qp = cell.physical(Q);
     const double L = std::hypot(Qp[0] - Pp[0], Qp[1] - Pp[1]);
-    // Which end (if any) is a crack tip of this crack.
-    int tip_end = seg.tip ? seg.tip_end : -1;
-    for (std::size_t j = 0; tip_end < 0 and j < geo.tips.size() / 2; ++j)
-    {
-      if (std::hypot(Pp[0] - geo.tips[2 * j], Pp[1] - geo.tips[2 * j + 1]) <= 1e-12 * L)
-        tip_end = 0;
-      else if (std::hypot(Qp[0] - geo.tips[2 * j], Qp[1] - geo.tips[2 * j + 1]) <= 1e-12 * L)
-        tip_end = 1;
-    }
+    const int tip_end = seg.tip ? seg.tip_end : tip_end_of(geo, Pp, Qp);
+    const quadrature::Rule g = quadrature::line_with_root_end(n, tip_end);
     const auto normal = crack_normal(cell, geo);
     for (int q = 0; q < g.size(); ++q)
     {
-      double t = g.points[q], w = g.weights[q];
-      if (tip_end >= 0)
-      {
-        // tau^2 from the tip end: t_tip = tau^2, dt = 2 tau dtau.
-        const double tau = g.points[q];
-        const double from_tip = tau * tau;
-        w = g.weights[q] * 2.0 * tau;
-        t = tip_end == 0 ? from_tip : 1.0 - from_tip;
-      }
+      const double t = g.points[q], w = g.weights[q];
       const std::array<double, 2> r = {P[0] + t * (Q[0] - P[0]), P[1] + t * (Q[1] - P[1])};
       const auto xp = cell.physical(r);
       const auto ip = static_cast<std::int32_t>(out.weight.size());
@@ -131,56 +102,32 @@ void assemble_coupling(std::span<const double> x, std::span<const std::int32_t> 
   }
 }
 
-std::array<double, 2> lip_interaction_integral(std::span<const double> x,
-                                               std::span<const std::int32_t> cells,
-                                               std::span<const CrackGeometry* const> cracks,
-                                               const MultiplierSpace& space,
-                                               std::span<const double> lambda_full,
-                                               const TipFrame& tip, std::int32_t crack, double radius,
-                                               double E, double nu, int n)
+std::vector<double> evaluate_multipliers(const MultiplierSpace& space, std::int32_t crack,
+                                         std::span<const std::int32_t> point_cells,
+                                         std::span<const double> ref,
+                                         std::span<const double> lambda_full)
 {
+  const std::size_t n = point_cells.size();
+  if (ref.size() != 2 * n)
+    throw std::invalid_argument("evaluate_multipliers: expected ref (n, 2)");
   if (lambda_full.size() != static_cast<std::size_t>(space.num_full()))
-    throw std::invalid_argument("lip_interaction_integral: lambda_full has the wrong size");
-  const SegmentPoints sp = compute_segment_points(x, cells, cracks, space, n);
-  const double mu = E / (2.0 * (1.0 + nu));
-  const double kappa = 3.0 - 4.0 * nu;
-  const double scale = 1.0 / (2.0 * mu * std::sqrt(2.0 * std::numbers::pi));
-  std::array<double, 2> I = {0.0, 0.0};
-  std::array<std::array<double, 2>, 2> U;
-  std::array<std::array<std::array<double, 2>, 2>, 2> dUp, dUm;
-  std::vector<double> p_at(sp.weight.size(), 0.0);
-  for (std::size_t k = 0; k < sp.entry_point.size(); ++k)
-    p_at[sp.entry_point[k]] -= sp.entry_value[k] * lambda_full[sp.entry_mult[k]];
-  for (std::size_t p = 0; p < sp.weight.size(); ++p)
+    throw std::invalid_argument("evaluate_multipliers: lambda_full has the wrong size");
+  std::unordered_map<std::int32_t, std::size_t> segment_of;
+  for (std::size_t s = 0; s < space.segments.size(); ++s)
+    if (space.segments[s].crack == crack)
+      segment_of[space.segments[s].cell] = s;
+  std::vector<double> out(n, 0.0);
+  for (std::size_t p = 0; p < n; ++p)
   {
-    const CrackSegment& seg = space.segments[sp.segment[p]];
-    if (seg.crack != crack or p_at[p] == 0.0)
+    const auto it = segment_of.find(point_cells[p]);
+    if (it == segment_of.end())
       continue;
-    const P1Cell cell(x, cells, sp.cell[p]);
-    const auto N = P1Cell::shape({sp.ref[2 * p], sp.ref[2 * p + 1]});
-    double q = 0.0;
-    for (int a = 0; a < 3; ++a)
-      q += N[a] * (std::hypot(cell.xv[a][0] - tip.tip[0], cell.xv[a][1] - tip.tip[1]) < radius ? 1.0 : 0.0);
-    if (q == 0.0)
-      continue;
-    const std::array<double, 2> xp = {sp.x[2 * p], sp.x[2 * p + 1]};
-    williams_displacement(tip, xp, 1, kappa, U, dUp);
-    williams_displacement(tip, xp, -1, kappa, U, dUm);
-    const double nx = sp.normal[2 * p], ny = sp.normal[2 * p + 1];
-    for (int m = 0; m < 2; ++m)
-    {
-      // [[ d u_aux / d x_1 ]] . n, x_1 along e1.
-      double jump = 0.0;
-      for (int i = 0; i < 2; ++i)
-      {
-        const double dp = dUp[m][i][0] * tip.e1[0] + dUp[m][i][1] * tip.e1[1];
-        const double dm = dUm[m][i][0] * tip.e1[0] + dUm[m][i][1] * tip.e1[1];
-        jump += (dp - dm) * (i == 0 ? nx : ny);
-      }
-      I[m] -= sp.weight[p] * p_at[p] * q * scale * jump;
-    }
+    const CrackSegment& seg = space.segments[it->second];
+    const auto N = P1Cell::shape({ref[2 * p], ref[2 * p + 1]});
+    for (std::size_t k = 0; k < seg.mult.size(); ++k)
+      out[p] += (seg.local[k] >= 0 ? N[seg.local[k]] : 1.0) * lambda_full[seg.mult[k]];
   }
-  return I;
+  return out;
 }
 
 } // namespace cracklip

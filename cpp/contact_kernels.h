@@ -1,6 +1,5 @@
 // Crack-lip contact integrals (layer a): coupling B = int lambda [[v]].n,
-// multiplier mass M = int lambda mu, pressure sampling, and the crack-lip
-// term of the interaction integral.
+// multiplier mass M = int lambda mu, and multiplier values at crack points.
 #pragma once
 
 #include "crack_geometry.h"
@@ -49,19 +48,13 @@ void assemble_coupling(std::span<const double> x, std::span<const std::int32_t> 
                        const EnrichmentLayout& layout, std::span<const CrackGeometry* const> cracks,
                        const MultiplierSpace& space, int n, Triplets& B, Triplets& M);
 
-/// Crack-lip term of the interaction integral for a frictionless pressure
-/// p = -lambda on both lips (lambda_full: full multiplier values):
-///   I_lip,m = - int_crack p q n . [[ d u_aux,m / d x_1 ]] ds   (m = I, II)
-/// (n towards the + side): the lip tractions p n (+ lip) and -p n (- lip)
-/// times d u_aux / d x_1, with the sign of the domain form. Without it a
-/// pressed crack shows K_I < 0 (the paper's block test).
-/// with the plateau q of `radius` around the tip.
-std::array<double, 2> lip_interaction_integral(std::span<const double> x,
-                                               std::span<const std::int32_t> cells,
-                                               std::span<const CrackGeometry* const> cracks,
-                                               const MultiplierSpace& space,
-                                               std::span<const double> lambda_full,
-                                               const TipFrame& tip, std::int32_t crack, double radius,
-                                               double E, double nu, int n);
+/// Values of a full multiplier field (lambda_full, (num_full)) at points of
+/// crack `crack` given by cell (n) and reference coordinates (n, 2): the
+/// multipliers active on the crack's segment in that cell (P1 or the tip
+/// cell's P0); 0 in a cell without a segment of the space.
+std::vector<double> evaluate_multipliers(const MultiplierSpace& space, std::int32_t crack,
+                                         std::span<const std::int32_t> point_cells,
+                                         std::span<const double> ref,
+                                         std::span<const double> lambda_full);
 
 } // namespace cracklip

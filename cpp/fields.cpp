@@ -160,6 +160,7 @@ FieldPoints compute_field_points(std::span<const double> x, std::span<const std:
       contract(basis, u, val, grad, nullptr, g);
       const auto xp = cell.physical(r);
       out.cell.push_back(c);
+      out.ref.insert(out.ref.end(), r.begin(), r.end());
       out.x.insert(out.x.end(), xp.begin(), xp.end());
       out.weight.push_back(qp.weight[q]);
       out.side.push_back(qp.side[q]);

@@ -50,6 +50,7 @@ SubcellFields compute_subcell_fields(std::span<const double> x, std::span<const 
 struct FieldPoints
 {
   std::vector<std::int32_t> cell; ///< (n)
+  std::vector<double> ref;        ///< (n, 2) reference coordinates in the cell
   std::vector<double> x;          ///< (n, 2) physical points
   std::vector<double> weight;     ///< (n)
   std::vector<std::int8_t> side;  ///< (n) side of the crack crossing the cell, 0 if none

@@ -73,7 +73,7 @@ DomainPoints compute_domain_points(std::span<const double> x, std::span<const st
                                    const EnrichmentLayout& layout,
                                    std::span<const CrackGeometry* const> cracks,
                                    const TipFrame& tip, double radius,
-                                   const QuadratureOptions& options)
+                                   const QuadratureOptions& options, bool interior)
 {
   if (!(radius > 0.0))
     throw std::invalid_argument("interaction integral: the domain radius must be positive");
@@ -87,7 +87,7 @@ DomainPoints compute_domain_points(std::span<const double> x, std::span<const st
     double q[3];
     for (int a = 0; a < 3; ++a)
       q[a] = std::hypot(x[2 * v[a]] - tip.tip[0], x[2 * v[a] + 1] - tip.tip[1]) < radius ? 1.0 : 0.0;
-    if (q[0] == q[1] and q[1] == q[2])
+    if (q[0] == q[1] and q[1] == q[2] and (!interior or q[0] == 0.0))
       continue;
     const auto ci = static_cast<std::int32_t>(c);
     const P1Cell cell(x, cells, ci);
@@ -106,6 +106,8 @@ DomainPoints compute_domain_points(std::span<const double> x, std::span<const st
       out.x.insert(out.x.end(), xp.begin(), xp.end());
       out.weight.push_back(qp.weight[k]);
       out.side.push_back(qp.side[k]);
+      const auto N = P1Cell::shape(r);
+      out.q.push_back(N[0] * q[0] + N[1] * q[1] + N[2] * q[2]);
       out.grad_q.insert(out.grad_q.end(), gq, gq + 2);
     }
   }

@@ -9,7 +9,8 @@
 //   - (sigma : eps_aux) (e1 . grad q).
 // q is the plateau function: 1 at the nodes within the domain radius, 0
 // outside, interpolated by P1, so grad q lives on the ring of cells the
-// circle crosses. (Crack-lip tractions add a lip term: not yet.)
+// circle crosses. Lip tractions and body forces add terms that the caller
+// integrates (python/cracklip/sif.py).
 #pragma once
 
 #include "cell_quadrature.h"
@@ -36,18 +37,20 @@ std::array<double, 2> interaction_integral(const TipFrame& tip, double E, double
                                            std::span<const std::int8_t> sides);
 
 /// Quadrature points of the ring of cells where grad q != 0, for the
-/// plateau q of radius `radius` around the tip: cell (n), physical points
-/// (n, 2), weights (n), sides (n), grad_q (n, 2).
+/// plateau q of radius `radius` around the tip (with `interior`, of every
+/// cell where q != 0, for domain terms weighted by q such as body forces):
+/// cell (n), reference (n, 2) and physical points (n, 2), weights (n),
+/// sides (n), q (n), grad_q (n, 2).
 struct DomainPoints
 {
   std::vector<std::int32_t> cell;
-  std::vector<double> ref, x, weight, grad_q;
+  std::vector<double> ref, x, weight, q, grad_q;
   std::vector<std::int8_t> side;
 };
 DomainPoints compute_domain_points(std::span<const double> x, std::span<const std::int32_t> cells,
                                    const EnrichmentLayout& layout,
                                    std::span<const CrackGeometry* const> cracks,
                                    const TipFrame& tip, double radius,
-                                   const QuadratureOptions& options);
+                                   const QuadratureOptions& options, bool interior = false);
 
 } // namespace cracklip

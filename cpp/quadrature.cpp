@@ -84,6 +84,23 @@ Rule conical_product(int nu, int nv)
 }
 } // namespace
 
+Rule line_with_root_end(int n, int singular_end)
+{
+  Rule g = gauss_legendre(n);
+  if (singular_end < 0)
+    return g;
+  if (singular_end > 1)
+    throw std::invalid_argument("line_with_root_end: singular_end must be -1, 0 or 1");
+  for (int q = 0; q < n; ++q)
+  {
+    // t_end = tau^2 from the singular end, dt = 2 tau dtau.
+    const double tau = g.points[q];
+    g.weights[q] *= 2.0 * tau;
+    g.points[q] = singular_end == 0 ? tau * tau : 1.0 - tau * tau;
+  }
+  return g;
+}
+
 Rule triangle(int degree)
 {
   if (degree < 0)

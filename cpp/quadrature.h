@@ -19,6 +19,13 @@ struct Rule
 /// Gauss-Legendre rule with n points on [0, 1] (exact to degree 2n - 1).
 Rule gauss_legendre(int n);
 
+/// Gauss-Legendre rule with n points on [0, 1] in the variable t = tau^2
+/// measured from the end `singular_end` (0: t = 0, 1: t = 1; -1: plain
+/// Gauss-Legendre): exact for f(t) t^(-1/2) and f(t) t^(1/2) with f a
+/// polynomial of degree up to n - 1 near that end (the 1/sqrt(r) of crack-tip
+/// gradients and the sqrt(r) of tip functions along a crack).
+Rule line_with_root_end(int n, int singular_end);
+
 /// Rule on the reference triangle (0,0), (1,0), (0,1), exact for polynomials
 /// of total degree `degree` (collapsed Gauss-Legendre product rule; weights
 /// sum to 1/2). Degree 1 returns the one-point centroid rule.

@@ -135,14 +135,19 @@ def test_unwritable_output_folder(tmp_path, capsys):
 
 
 def test_solver_failure_exits_2_with_one_line(tmp_path, capsys):
-    """A crack across the whole part leaves a piece free: reported, not solved silently."""
+    """A crack across the whole part leaves a piece free: reported by run and
+    by check (issue 14, reproduction 6: check used to call it valid), naming
+    the piece, not solved silently."""
     split = tmp_path / "split.toml"
     split.write_text('[mesh]\nh = 0.25\n[material]\nE = 1.0\nnu = 0.3\n'
                      '[[cracks]]\npoints = [[-2.0, 0.0], [2.0, 0.0]]\n'
                      '[[dirichlet]]\ntag = "bottom"\n[[loads.tractions]]\ntag = "top"\nvalue = [0.0, 0.01]\n')
+    expected = ("cut the part into 2 pieces; the piece of 53 nodes in [-1, 1] x [0, 1] has no Dirichlet condition "
+                "fixing its translation in x, translation in y")
     line = one_error_line(capsys, ["run", str(split), "--out", str(tmp_path / "o"), "--quiet"])
-    assert "singular" in line or "residual" in line or "pivot" in line
+    assert expected in line, line
     assert not (tmp_path / "o" / "results.json").exists()
+    assert expected in one_error_line(capsys, ["check", str(split), "--quiet"])
 
 
 def test_progress_on_stderr_and_quiet(tmp_path, capsys):

@@ -339,7 +339,7 @@ def test_scene_building_blocks(tmp_path):
     hole, right = scene.tractions[1], scene.tractions[0]
     q = np.array([[0.3, 0.0], [0.0, -0.3]])  # on the hole: the pressure pushes into the plate
     assert np.allclose(hole.value(q), [[0.02, 0.0], [0.0, -0.02]], atol=5e-3)
-    assert np.allclose(right.value(np.array([[2.0, 0.1]])), [[0.05, 0.0]])
+    assert right.value is None and np.allclose(right.stress(np.array([[2.0, 0.1]]))[0] @ [1.0, 0.0], [0.05, 0.0])
     sol = cl.solve(scene)
     assert sol.model.cracks[0].tips == (True, True)
     # Force balance: the box reactions carry the pressure-free x load, so just check finiteness
@@ -385,8 +385,10 @@ def test_body_force_column_under_gravity():
         u = np.abs(sol.standard_displacement).max()
         assert u == pytest.approx(0.01 * 2.0 ** 2 / 2, rel=1e-3)
         return np.abs(sol.crack_opening(0)["normal"]).max() / u
-    coarse, fine = opening(0.2), opening(0.1)
-    assert coarse < 2e-3 and fine < 0.8 * coarse
+    # (Sampled on every cell the crack crosses, the tip cells included:
+    # 2.95e-3 at h = 0.2, where the tip cell is 1/4 of the crack.)
+    coarse, fine = opening(0.1), opening(0.05)
+    assert coarse < 1e-3 and fine < 0.5 * coarse
 
 
 def test_file_mesh(tmp_path):

@@ -19,12 +19,13 @@ import dolfinx.fem
 import dolfinx.fem.petsc
 
 from . import _cracklip
-from .errors import InputError
+from .loads import assemble_load
 from .model import XfemModel
 
 
 def elasticity_form(V, E: float, nu: float):
-    """Plane-strain stiffness form a(u, v) = int sigma(u) : eps(v)."""
+    """Plane-strain stiffness form a(u, v) = int sigma(u) : eps(v) (plane
+    stress: pass Material.E_strain, Material.nu_strain)."""
     u, v = ufl.TrialFunction(V), ufl.TestFunction(V)
     mu = E / (2.0 * (1.0 + nu))
     lmbda = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))
@@ -50,44 +51,6 @@ def create_matrix(model: XfemModel) -> PETSc.Mat:
     return A
 
 
-def assemble_load(model: XfemModel) -> np.ndarray:
-    """Traction load on standard and enriched dofs (one facet quadrature for both)."""
-    scene = model.scene
-    msh = scene.mesh.mesh
-    tdim = msh.topology.dim
-    b = np.zeros(model.num_dofs)
-    if scene.body_force is not None:
-        from .loads import assemble_body_force
-        b += assemble_body_force(model, scene.body_force)
-    if not scene.tractions:
-        return b
-    msh.topology.create_connectivity(tdim - 1, tdim)
-    msh.topology.create_connectivity(tdim, tdim - 1)
-    f2c = msh.topology.connectivity(tdim - 1, tdim)
-    c2f = msh.topology.connectivity(tdim, tdim - 1).array.reshape(-1, 3)
-    for tr in scene.tractions:
-        facets = scene.mesh.facets(tr.where)
-        if facets.size == 0:
-            raise InputError(f"traction boundary {tr.where!r} has no facets")
-        fcells = f2c.array[f2c.offsets[facets]].astype(np.int32)
-        flocal = np.argmax(c2f[fcells] == facets[:, None], axis=1).astype(np.int32)
-        fb = _cracklip.compute_facet_basis(model.x, model.cells, model.layout, model.geometries,
-                                           fcells, flocal, scene.options.facet_degree)
-        pts = fb["points"]
-        if callable(tr.value):
-            t = np.asarray(tr.value(pts), dtype=float)
-            if t.shape != (len(pts), 2):
-                raise InputError(f"traction on {tr.where!r}: its value function returned shape {t.shape} "
-                                 f"for points of shape {pts.shape}; it must return (n, 2) (t_x, t_y)")
-        else:
-            t = np.broadcast_to(np.asarray(tr.value, dtype=float).reshape(1, 2), (len(pts), 2))
-        if not np.all(np.isfinite(t)):
-            raise InputError(f"traction on {tr.where!r} evaluates to NaN or infinity")
-        q, dof, val = fb["entry_point"], fb["entry_dof"], fb["entry_value"]
-        np.add.at(b, dof, fb["weights"][q] * np.einsum("ij,ij->i", val, t[q]))
-    return b
-
-
 def assemble_system(model: XfemModel) -> tuple[PETSc.Mat, PETSc.Vec, dict[str, float]]:
     """Assemble the full X-FEM system with Dirichlet conditions applied.
 
@@ -101,13 +64,13 @@ def assemble_system(model: XfemModel) -> tuple[PETSc.Mat, PETSc.Vec, dict[str, f
     timings["sparsity"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
-    a = elasticity_form(model.V, mat.E, mat.nu)
+    a = elasticity_form(model.V, mat.E_strain, mat.nu_strain)
     dolfinx.fem.petsc.assemble_matrix(A, a)
     timings["assemble_standard"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
     model.num_enriched_cells_integrated = _cracklip.assemble_enriched_stiffness_petsc(
-        A.handle, model.x, model.cells, model.layout, model.geometries, mat.E, mat.nu,
+        A.handle, model.x, model.cells, model.layout, model.geometries, mat.E_strain, mat.nu_strain,
         model.scene.options.quadrature_options())
     A.assemble()
     timings["assemble_enriched"] = time.perf_counter() - t0

@@ -40,6 +40,8 @@ class _Progress(logging.Handler):
         self.start = start
 
     def emit(self, record: logging.LogRecord) -> None:
+        if record.levelno >= logging.WARNING:
+            return  # warnings are printed once, as "cracklip: warning: ..." (print_warnings)
         try:
             sys.stderr.write(f"cracklip [{time.perf_counter() - self.start:7.2f} s] {record.getMessage()}\n")
             sys.stderr.flush()
@@ -48,6 +50,13 @@ class _Progress(logging.Handler):
 
 
 logger = logging.getLogger("cracklip.cli")
+
+
+def print_warnings(warnings) -> None:
+    """Each model or SIF warning as one 'cracklip: warning: ...' line on stderr."""
+    for w in warnings:
+        sys.stderr.write(f"cracklip: warning: {' '.join(str(w).split())}\n")
+    sys.stderr.flush()
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -60,7 +69,8 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
                        help="override a scene key, e.g. --set mesh.h=0.1 (repeatable; VALUE in TOML "
                             "syntax, a bare word is a string)")
-        p.add_argument("--quiet", "-q", action="store_true", help="no progress on stderr, no summary on stdout")
+        p.add_argument("--quiet", "-q", action="store_true",
+                       help="no progress on stderr, no summary on stdout (warnings are still printed on stderr)")
 
     run = sub.add_parser("run", help="solve a scene and write its results into a folder",
                          description="Solve a scene and write results.json, crack.csv, sif.csv, "
@@ -128,6 +138,7 @@ def cmd_run(args) -> int:
     logger.info("writing outputs into %s", out)
     t0 = time.perf_counter()
     results = write_outputs(sf, sol, out, timings={"mesh": sf.timings["mesh"], "build_scene": t_build})
+    print_warnings(w["message"] for w in results["warnings"])
     logger.info("outputs written (%.2f s); total %.2f s", time.perf_counter() - t0,
                 time.perf_counter() - t_start)
     if not args.quiet:
@@ -135,8 +146,9 @@ def cmd_run(args) -> int:
               f"{results['solution']['strain_energy']:.6g}")
         for r in results["sifs"]:
             mix = "n/a (K negligible)" if r["mode_mix_deg"] is None else f"{r['mode_mix_deg']:.1f} deg"
-            print(f"  {r['crack_name']} tip ({r['x']:.6g}, {r['y']:.6g}): K_I = {r['K_I']:.6g}, "
-                  f"K_II = {r['K_II']:.6g}, mode mix {mix}")
+            print(f"  {r['crack_name']} tip ({r['x']:.6g}, {r['y']:.6g}): K_I = {r['K_I']:.6g} "
+                  f"(+- {r['K_I_spread']:.2g}), K_II = {r['K_II']:.6g} (+- {r['K_II_spread']:.2g}), "
+                  f"mode mix {mix}")
         for c in results["cracks"]:
             line = f"  {c['name']}: closed {c['closed_fraction'] * 100:.0f} % of {c['length_in_part']:.4g}"
             if results["contact"] and "pressure" in c:
@@ -153,24 +165,27 @@ def cmd_check(args) -> int:
     doc = _load(args)
     sf = _build(args, doc)
     scene = sf.scene
-    model = create_model(scene)
+    model = create_model(scene)  # runs the model checks of a run (diagnostics)
     cs = create_contact_system(model) if scene.options.contact != "none" and model.cracks else None
     summary = describe_model(model, cs)
     nodes = enriched_nodes(model) if args.nodes else None
+    print_warnings(model.warnings)
     if args.json:
-        doc = {"title": sf.title, "notes": sf.notes, "model": summary}
+        doc = {"title": sf.title, "notes": sf.notes, "model": summary,
+               "warnings": [w.as_dict() for w in model.warnings]}
         if nodes is not None:
             doc["enriched_nodes"] = nodes
         print(json.dumps(doc, indent=2))
         return 0
+    if args.quiet:
+        return 0
     mat = scene.material
     o = sf.outputs
-    lines = [f"scene {args.scene} ({sf.title!r}): valid",
-             f"material: E = {mat.E:g}, nu = {mat.nu:g} (plane strain)"]
+    lines = [f"scene {args.scene} ({sf.title!r}): valid" + (f", {len(model.warnings)} warning(s) on stderr"
+                                                            if model.warnings else ""),
+             f"material: E = {mat.E:g}, nu = {mat.nu:g} (plane {mat.plane})"]
     lines += sf.notes
     lines += format_model(summary)
-    sif = f"{sf.sif_radius:g}" if sf.sif_radius else f"{4.0 * model.h:.4g} (4 mean edge lengths)"
-    lines.append(f"SIF domain radius: {sif}")
     files = ["results.json", "crack.csv", "sif.csv"] + (["solution.vtu", "crack_lips.vtu"] if o["vtu"] else []) \
         + (["deformed.png", "crack_pressure.png", "stress.png"] if o["png"] else [])
     lines.append(f"run writes: {', '.join(files)}")
@@ -205,13 +220,13 @@ def main(argv: typing.Sequence[str] | None = None) -> int:
         parser.print_help(sys.stderr)
         return 2
     root = logging.getLogger("cracklip")
-    handler = None
     old_level, old_propagate = root.level, root.propagate
-    if not getattr(args, "quiet", False):
-        handler = _Progress(time.perf_counter())
-        root.addHandler(handler)
-        root.setLevel(logging.INFO)
-        root.propagate = False  # progress once, not again through the root logger's handlers
+    # Progress on stderr unless --quiet; warnings are printed by the commands
+    # themselves (print_warnings), not again through logging.
+    handler = logging.NullHandler() if getattr(args, "quiet", False) else _Progress(time.perf_counter())
+    root.addHandler(handler)
+    root.setLevel(logging.INFO)
+    root.propagate = False
     try:
         return args.func(args)
     except (CracklipError, OSError) as e:
@@ -221,7 +236,6 @@ def main(argv: typing.Sequence[str] | None = None) -> int:
         sys.stderr.write("cracklip: error: interrupted\n")
         return 130
     finally:
-        if handler is not None:
-            root.removeHandler(handler)
-            root.setLevel(old_level)
-            root.propagate = old_propagate
+        root.removeHandler(handler)
+        root.setLevel(old_level)
+        root.propagate = old_propagate

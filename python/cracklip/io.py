@@ -39,10 +39,11 @@ def write_json(path: str | pathlib.Path, data: typing.Any) -> pathlib.Path:
     return path
 
 
-def von_mises(stress: np.ndarray, nu: float) -> np.ndarray:
-    """Plane-strain von Mises stress of (n, 3) xx, yy, xy stresses (sigma_zz = nu (xx + yy))."""
+def von_mises(stress: np.ndarray, zz_ratio: float) -> np.ndarray:
+    """von Mises stress of (n, 3) xx, yy, xy stresses with sigma_zz = zz_ratio
+    (xx + yy) (Material.sigma_zz_ratio: nu in plane strain, 0 in plane stress)."""
     sxx, syy, sxy = stress[:, 0], stress[:, 1], stress[:, 2]
-    szz = nu * (sxx + syy)
+    szz = zz_ratio * (sxx + syy)
     return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxy ** 2)
 
 
@@ -62,7 +63,7 @@ def subcell_mesh(solution: Solution) -> meshio.Mesh:
         points, [("triangle", conn)],
         point_data={"displacement": disp},
         cell_data={"stress_xx": [s[:, 0]], "stress_yy": [s[:, 1]], "stress_xy": [s[:, 2]],
-                   "stress_von_mises": [von_mises(s, solution.model.scene.material.nu)],
+                   "stress_von_mises": [von_mises(s, solution.model.scene.material.sigma_zz_ratio)],
                    "side": [f["side"].astype(np.int32)], "parent_cell": [f["parent"]]})
 
 

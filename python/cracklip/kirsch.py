@@ -34,9 +34,9 @@ def kirsch_stress(x: np.ndarray, S: float, R: float = 1.0) -> np.ndarray:
 
 
 def kirsch_strain(x: np.ndarray, S: float, R: float, material: Material) -> np.ndarray:
-    """Plane-strain strain (n, 2, 2) of the Kirsch stress."""
+    """In-plane strain (n, 2, 2) of the Kirsch stress (plane strain or stress)."""
     sig = kirsch_stress(x, S, R)
-    E, nu = material.E, material.nu
+    E, nu = material.E_strain, material.nu_strain
     tr = sig[:, 0, 0] + sig[:, 1, 1]
     return (1 + nu) / E * (sig - nu * tr[:, None, None] * np.eye(2)[None])
 

@@ -1,12 +1,21 @@
-"""Loads beyond constant tractions: boundary normals (pressure, t = sigma n) and body forces.
+"""The load vector of a model: every load of a scene against every basis function.
 
+- ``assemble_load(model)``: boundary tractions (constant, f(x), or sigma n
+  of a stress field), point forces, a body force, an initial stress and
+  pressures on the crack lips, on standard and enriched dofs.
 - ``boundary_normals(mesh, where)`` gives the outward unit normal of a tagged
   boundary at any point on it (the normal of the nearest boundary facet), so
   that a pressure p becomes the traction -p n and a stress field sigma(x)
   the traction sigma(x) n.
-- ``assemble_body_force(model, force)`` integrates a constant body force
-  (force per unit area) against every basis function, standard and
-  enriched, with the stiffness's quadrature in the enriched cells.
+- ``assemble_body_force(model, force)`` and ``assemble_initial_stress(model,
+  field)``: int f . phi_j and -int sigma_0 : eps(phi_j) over the cracked
+  part. Standard dofs: per cell, exactly for a linear sigma_0 (a 6-point
+  degree-4 rule for a callable); enriched dofs: the stiffness's quadrature
+  in the enriched cells (C++ assemble_cell_load). The lips need no term of
+  their own: the enriched functions jump there, so -int sigma_0 : eps(phi_j)
+  already holds the lip traction sigma_0 n.
+- ``lip_pressure(crack, x)`` and ``assemble_lip_pressure(model, crack)``: a
+  pressure p on both lips, the load int p [[phi_j]] . n ds.
 """
 from __future__ import annotations
 
@@ -63,77 +72,190 @@ def boundary_normals(mesh: MeshData, where: str | int) -> typing.Callable[[np.nd
     return normals
 
 
-def _greedy_colours(layout) -> np.ndarray:
-    """Colour the pseudo-nodes so that no two of one colour share an enriched cell."""
-    offsets = np.asarray(layout.cell_offsets)
-    members = np.asarray(layout.cell_enr)
-    n = layout.num_enriched
-    neighbours: list[set[int]] = [set() for _ in range(n)]
-    for i in range(len(offsets) - 1):
-        group = members[offsets[i]:offsets[i + 1]].tolist()
-        for k in group:
-            neighbours[k].update(group)
-    colour = np.full(n, -1, dtype=np.int64)
-    for k in range(n):
-        used = {colour[j] for j in neighbours[k] if j != k}
-        c = 0
-        while c in used:
-            c += 1
-        colour[k] = c
-    return colour
+def _traction_values(model, tr, points: np.ndarray) -> np.ndarray:
+    """t (n, 2) of a Traction at boundary points."""
+    if tr.stress is not None:
+        from .stress_field import evaluate_stress
+        sig = evaluate_stress(tr.stress, points, f"traction on {tr.where!r}")
+        normals = _normals(model, tr.where)
+        t = np.einsum("nij,nj->ni", sig, normals(points))
+    elif callable(tr.value):
+        t = np.asarray(tr.value(points), dtype=float)
+        if t.shape != (len(points), 2):
+            raise InputError(f"traction on {tr.where!r}: its value function returned shape {t.shape} "
+                             f"for points of shape {points.shape}; it must return (n, 2) (t_x, t_y)")
+    else:
+        t = np.broadcast_to(np.asarray(tr.value, dtype=float).reshape(1, 2), (len(points), 2))
+    if not np.all(np.isfinite(t)):
+        raise InputError(f"traction on {tr.where!r} evaluates to NaN or infinity")
+    return t
+
+
+def _normals(model, where):
+    cache = model.__dict__.setdefault("_normals_cache", {})
+    if where not in cache:
+        cache[where] = boundary_normals(model.scene.mesh, where)
+    return cache[where]
+
+
+def assemble_tractions(model) -> np.ndarray:
+    """int t . phi_j ds over the loaded boundaries (one facet quadrature for
+    standard and enriched dofs, split where a crack crosses a facet)."""
+    scene = model.scene
+    b = np.zeros(model.num_dofs)
+    if not scene.tractions:
+        return b
+    msh = scene.mesh.mesh
+    tdim = msh.topology.dim
+    msh.topology.create_connectivity(tdim - 1, tdim)
+    msh.topology.create_connectivity(tdim, tdim - 1)
+    f2c = msh.topology.connectivity(tdim - 1, tdim)
+    c2f = msh.topology.connectivity(tdim, tdim - 1).array.reshape(-1, 3)
+    for tr in scene.tractions:
+        facets = scene.mesh.facets(tr.where)
+        if facets.size == 0:
+            raise InputError(f"traction boundary {tr.where!r} has no facets")
+        fcells = f2c.array[f2c.offsets[facets]].astype(np.int32)
+        flocal = np.argmax(c2f[fcells] == facets[:, None], axis=1).astype(np.int32)
+        fb = _cracklip.compute_facet_basis(model.x, model.cells, model.layout, model.geometries,
+                                           fcells, flocal, scene.options.facet_degree)
+        t = _traction_values(model, tr, fb["points"])
+        q, dof, val = fb["entry_point"], fb["entry_dof"], fb["entry_value"]
+        np.add.at(b, dof, fb["weights"][q] * np.einsum("ij,ij->i", val, t[q]))
+    return b
+
+
+def assemble_point_forces(model) -> np.ndarray:
+    """Each force on the standard dofs of the node nearest to its point (every
+    enriched function vanishes at the nodes: the enrichment is shifted)."""
+    b = np.zeros(model.num_dofs)
+    if not model.scene.point_forces:
+        return b
+    scale = float(np.ptp(model.x, axis=0).max())
+    for k, pf in enumerate(model.scene.point_forces):
+        d = np.linalg.norm(model.x - np.asarray(pf.point), axis=1)
+        node = int(np.argmin(d))
+        cells = model.cells[np.any(model.cells == node, axis=1)]
+        edge = float(np.linalg.norm(model.x[cells[:, [1, 2, 0]]] - model.x[cells], axis=2).max())
+        if d[node] > max(edge, 1e-12 * scale):
+            raise InputError(f"point force {k} at {list(pf.point)}: the nearest mesh node {model.x[node].tolist()} "
+                             f"is {d[node]:.3g} away, more than an element ({edge:.3g}); put the point on the part")
+        b[2 * node:2 * node + 2] += pf.value
+    return b
+
+
+def _cell_rule(degree: int) -> tuple[np.ndarray, np.ndarray]:
+    """Barycentric points (k, 3) and weights (k,) summing to 1 on a triangle."""
+    if degree <= 1:
+        return np.full((1, 3), 1.0 / 3.0), np.ones(1)
+    # Strang-Fix / Dunavant 6-point rule, degree 4.
+    a, b = 0.445948490915965, 0.091576213509771
+    wa, wb = 0.223381589678011, 0.109951743655322
+    pts = np.array([[a, a, 1 - 2 * a], [a, 1 - 2 * a, a], [1 - 2 * a, a, a],
+                    [b, b, 1 - 2 * b], [b, 1 - 2 * b, b], [1 - 2 * b, b, b]])
+    return pts, np.array([wa, wa, wa, wb, wb, wb])
+
+
+def _enriched_points(model) -> dict:
+    """The stiffness's quadrature points of the enriched cells (cell, ref, x, weight, side)."""
+    cache = model.__dict__.get("_enriched_points_cache")
+    if cache is None:
+        cache = _cracklip.compute_field_points(model.x, model.cells, model.layout, model.geometries,
+                                               np.zeros(model.num_dofs), np.asarray(model.layout.cells, dtype=np.int32),
+                                               model.scene.options.quadrature_options())
+        model._enriched_points_cache = cache
+    return cache
+
+
+def _cell_loads(model, force: np.ndarray | None, stress_field) -> np.ndarray:
+    """int f . phi_j - int sigma_0 : eps(phi_j) for every dof (standard:
+    per cell in numpy; enriched: C++ on the enriched cells' quadrature)."""
+    b = np.zeros(model.num_dofs)
+    xv = model.x[model.cells]
+    e1, e2 = xv[:, 1] - xv[:, 0], xv[:, 2] - xv[:, 0]
+    det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+    area = 0.5 * np.abs(det)
+    if force is not None:
+        for d in (0, 1):
+            np.add.at(b, 2 * model.cells.ravel() + d, np.repeat(force[d] * area / 3.0, 3))
+    if stress_field is not None:
+        from .stress_field import LinearStress, evaluate_stress, tensor_to_voigt
+        bary, w = _cell_rule(1 if isinstance(stress_field, LinearStress) else 4)
+        mean = np.zeros((len(area), 3))
+        for k in range(len(w)):
+            pts = np.einsum("a,cai->ci", bary[k], xv)
+            mean += w[k] * tensor_to_voigt(evaluate_stress(stress_field, pts, "initial stress"))
+        # grad N_a per cell: rows of J^-T.
+        inv = np.stack([np.stack([e2[:, 1], -e2[:, 0]], axis=1), np.stack([-e1[:, 1], e1[:, 0]], axis=1)],
+                       axis=1) / det[:, None, None]  # (c, 2 (xi, eta), 2 (x, y))
+        grads = np.stack([-inv[:, 0] - inv[:, 1], inv[:, 0], inv[:, 1]], axis=1)  # (c, 3, 2)
+        # -int sigma : eps(N_a e_d) = -area (sigma_dx dN_a/dx + sigma_dy dN_a/dy)
+        sxx, syy, sxy = mean[:, 0], mean[:, 1], mean[:, 2]
+        fx = -(sxx[:, None] * grads[:, :, 0] + sxy[:, None] * grads[:, :, 1]) * area[:, None]
+        fy = -(sxy[:, None] * grads[:, :, 0] + syy[:, None] * grads[:, :, 1]) * area[:, None]
+        np.add.at(b, 2 * model.cells.ravel(), fx.ravel())
+        np.add.at(b, 2 * model.cells.ravel() + 1, fy.ravel())
+    if model.layout.num_enriched == 0:
+        return b
+    fp = _enriched_points(model)
+    n = len(fp["weight"])
+    f_at = np.zeros((n, 2)) if force is None else np.broadcast_to(force, (n, 2)).copy()
+    s_at = np.zeros((n, 3))
+    if stress_field is not None:
+        from .stress_field import evaluate_stress, tensor_to_voigt
+        s_at = tensor_to_voigt(evaluate_stress(stress_field, fp["x"], "initial stress"))
+    b += _cracklip.assemble_cell_load(model.x, model.cells, model.layout, model.geometries, fp["cell"],
+                                      fp["ref"], fp["side"], fp["weight"], f_at, s_at)
+    return b
 
 
 def assemble_body_force(model, force: typing.Sequence[float]) -> np.ndarray:
-    """Load vector (num_dofs,) of a constant body force f: int f . phi_j dx for every dof j.
-
-    Standard dofs: each node gets f times a third of the area of its cells
-    (exact for P1). Enriched dofs: the stiffness's quadrature of the enriched
-    cells (sub-triangles, tip rules); the enriched basis functions are
-    evaluated by colours of pseudo-nodes that share no cell, two
-    evaluations per colour.
-    """
+    """Load vector (num_dofs,) of a constant body force f: int f . phi_j dx for every dof j."""
     f = np.asarray(force, dtype=float).reshape(2)
     if not np.all(np.isfinite(f)):
         raise InputError(f"body force {f.tolist()} contains NaN or infinity")
-    b = np.zeros(model.num_dofs)
     if not np.any(f):
-        return b
-    xv = model.x[model.cells]
-    e1, e2 = xv[:, 1] - xv[:, 0], xv[:, 2] - xv[:, 0]
-    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
-    for d in (0, 1):
-        np.add.at(b, 2 * model.cells.ravel() + d, np.repeat(f[d] * area / 3.0, 3))
-    layout = model.layout
-    if layout.num_enriched == 0:
-        return b
-    opts = model.scene.options
-    geometries = model.geometries
-    fp = _cracklip.compute_field_points(model.x, model.cells, layout, geometries, np.zeros(model.num_dofs),
-                                        np.asarray(layout.cells, dtype=np.int32), opts.quadrature_options())
-    pcell = fp["cell"]
-    xc = model.x[model.cells[pcell]]
-    J = np.stack([xc[:, 1] - xc[:, 0], xc[:, 2] - xc[:, 0]], axis=2)
-    ref = np.linalg.solve(J, (fp["x"] - xc[:, 0])[:, :, None])[:, :, 0]
-    side = fp["side"].astype(np.int8)
-    weight = fp["weight"]
-    colour = _greedy_colours(layout)
-    offsets = np.asarray(layout.cell_offsets)
-    members = np.asarray(layout.cell_enr)
-    enr_cells = np.asarray(layout.cells)
-    cell_of_member = np.repeat(enr_cells, np.diff(offsets))
-    nstd = layout.num_std_nodes
-    for c in range(int(colour.max()) + 1):
-        owner = np.full(model.cells.shape[0], -1, dtype=np.int64)
-        pick = colour[members] == c
-        owner[cell_of_member[pick]] = members[pick]
-        at = np.flatnonzero(owner[pcell] >= 0)
-        if at.size == 0:
-            continue
-        k = owner[pcell[at]]
-        for d in (0, 1):
-            u = np.zeros(model.num_dofs)
-            u[2 * (nstd + np.flatnonzero(colour == c)) + d] = 1.0
-            val, _ = _cracklip.evaluate_displacement(model.x, model.cells, layout, geometries, u,
-                                                     pcell[at], ref[at], side[at])
-            np.add.at(b, 2 * (nstd + k) + d, weight[at] * (val @ f))
+        return np.zeros(model.num_dofs)
+    return _cell_loads(model, f, None)
+
+
+def assemble_initial_stress(model, field) -> np.ndarray:
+    """Load vector (num_dofs,) of an initial stress: -int sigma_0 : eps(phi_j) dx."""
+    return _cell_loads(model, None, field)
+
+
+def lip_pressure(crack, x: np.ndarray) -> np.ndarray:
+    """The crack's lip pressure (n,) at points (n, 2) (> 0 pushes the lips apart)."""
+    p = crack.pressure
+    if callable(p):
+        v = np.asarray(p(np.asarray(x, dtype=float).reshape(-1, 2)), dtype=float).reshape(-1)
+        if v.shape != (len(x),) or not np.all(np.isfinite(v)):
+            raise InputError(f"{crack.name}: the lip pressure function must return ({len(x)},) finite "
+                             f"values for points ({len(x)}, 2), got shape {v.shape}")
+        return v
+    return np.full(len(x), float(p))
+
+
+def assemble_lip_pressure(model, crack: int) -> np.ndarray:
+    """int p [[phi_j]] . n ds over a crack's segments: the pressure p pushes
+    the + lip along n (into the + side) and the - lip along -n."""
+    from .sif import LIP_POINTS
+    pts = _cracklip.compute_crack_points(model.x, model.cells, model.geometries[crack], LIP_POINTS)
+    t = lip_pressure(model.cracks[crack].crack, pts["x"])[:, None] * pts["normal"]
+    return _cracklip.assemble_lip_load(model.x, model.cells, model.layout, model.geometries, crack,
+                                       pts["cell"], pts["ref"], pts["weight"], t)
+
+
+def assemble_load(model) -> np.ndarray:
+    """The load vector (num_dofs,) of every load of the model's scene."""
+    scene = model.scene
+    b = assemble_tractions(model) + assemble_point_forces(model)
+    force = None if scene.body_force is None else np.asarray(scene.body_force, dtype=float).reshape(2)
+    if force is not None and not np.all(np.isfinite(force)):
+        raise InputError(f"body force {force.tolist()} contains NaN or infinity")
+    if (force is not None and np.any(force)) or scene.initial_stress is not None:
+        b += _cell_loads(model, force if force is not None and np.any(force) else None, scene.initial_stress)
+    for ci, cm in enumerate(model.cracks):
+        if callable(cm.crack.pressure) or cm.crack.pressure != 0.0:
+            b += assemble_lip_pressure(model, ci)
     return b

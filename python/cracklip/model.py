@@ -50,6 +50,7 @@ class XfemModel:
         bc_dofs: constrained scalar dofs (standard dofs only), sorted.
         bc_values: prescribed values at bc_dofs.
         timings: seconds per phase.
+        warnings: the model checks' findings (diagnostics.ModelWarning).
     """
     scene: Scene
     V: dolfinx.fem.FunctionSpace
@@ -60,6 +61,7 @@ class XfemModel:
     bc_dofs: np.ndarray
     bc_values: np.ndarray
     timings: dict[str, float]
+    warnings: list = dataclasses.field(default_factory=list)
 
     @property
     def num_dofs(self) -> int:
@@ -103,7 +105,15 @@ def create_model(scene: Scene) -> XfemModel:
     bc_dofs, bc_values = _dirichlet(scene, V, x, layout, [c.geometry for c in cracks])
     check_rigid_motion(x, bc_dofs[bc_dofs < 2 * x.shape[0]])
     timings["constraints"] = time.perf_counter() - t0
-    return XfemModel(scene, V, x, cells, cracks, layout, bc_dofs, bc_values, timings)
+    model = XfemModel(scene, V, x, cells, cracks, layout, bc_dofs, bc_values, timings)
+    t0 = time.perf_counter()
+    from .diagnostics import check_model, check_pieces
+    check_pieces(model)
+    model.warnings = check_model(model)
+    for w in model.warnings:
+        logger.warning("%s", w.message)
+    timings["checks"] = time.perf_counter() - t0
+    return model
 
 
 def _crack_model(scene: Scene, crack: Crack, x: np.ndarray, cells: np.ndarray) -> CrackModel:
@@ -155,7 +165,7 @@ def _tip_flags(scene: Scene, crack: Crack) -> tuple[bool, bool]:
     Inside-ness is decided by ray casting against the boundary facets, so the
     cost is proportional to the boundary, not to the mesh.
     """
-    a, b = _boundary_segments(scene)
+    a, b = boundary_segments(scene.mesh)
     scale = float(max(np.ptp(a, axis=0).max(), np.ptp(b, axis=0).max()))
     d = b - a
     flags = []
@@ -171,9 +181,9 @@ def _tip_flags(scene: Scene, crack: Crack) -> tuple[bool, bool]:
     return flags[0], flags[1]
 
 
-def _boundary_segments(scene: Scene) -> tuple[np.ndarray, np.ndarray]:
-    """End points (n, 2), (n, 2) of the boundary facets of the scene's mesh."""
-    msh = scene.mesh.mesh
+def boundary_segments(mesh) -> tuple[np.ndarray, np.ndarray]:
+    """End points (n, 2), (n, 2) of the boundary facets (holes included) of a MeshData."""
+    msh = mesh.mesh
     tdim = msh.topology.dim
     msh.topology.create_connectivity(tdim - 1, tdim)
     facets = dolfinx.mesh.exterior_facet_indices(msh.topology)
@@ -298,32 +308,39 @@ def _check_clashes(scene: Scene, x: np.ndarray, layout, values: dict, clashes: l
             "meeting at a corner, a point on a tagged side) must prescribe the same value there")
 
 
-def check_rigid_motion(x: np.ndarray, bc_dofs: np.ndarray) -> None:
-    """Raise unless the constraints remove the three rigid motions of the plane.
-
-    (A crack that splits the domain needs constraints on each piece: that is
-    detected by the solver, which reports a singular matrix.)
-    """
-    nodes, comp = bc_dofs // 2, bc_dofs % 2
-    R = np.zeros((bc_dofs.size, 3))
-    R[comp == 0, 0] = 1.0
-    R[comp == 1, 1] = 1.0
+def rigid_motion_rank(x: np.ndarray, nodes: np.ndarray, comps: np.ndarray) -> tuple[int, list[str]]:
+    """How many of the three rigid motions of the plane the constraints of
+    components `comps` (0 x, 1 y) at nodes fix, and the names of those left free."""
+    R = np.zeros((nodes.size, 3))
+    R[comps == 0, 0] = 1.0
+    R[comps == 1, 1] = 1.0
     # rotation about the centroid: u = (-(y - yc), x - xc)
     c = x.mean(axis=0)
-    R[comp == 0, 2] = -(x[nodes[comp == 0], 1] - c[1])
-    R[comp == 1, 2] = x[nodes[comp == 1], 0] - c[0]
+    R[comps == 0, 2] = -(x[nodes[comps == 0], 1] - c[1])
+    R[comps == 1, 2] = x[nodes[comps == 1], 0] - c[0]
     scale = float(np.ptp(x, axis=0).max()) or 1.0
     R[:, 2] /= scale
     s = np.linalg.svd(R, compute_uv=False) if R.shape[0] else np.zeros(0)
     rank = int(np.sum(s > 1e-10 * (s.max() if s.size else 1.0)))
+    free = []
     if rank < 3:
-        free = []
-        if not np.any(comp == 0):
+        if not np.any(comps == 0):
             free.append("translation in x")
-        if not np.any(comp == 1):
+        if not np.any(comps == 1):
             free.append("translation in y")
         if not free:
             free.append("rotation")
+    return rank, free
+
+
+def check_rigid_motion(x: np.ndarray, bc_dofs: np.ndarray) -> None:
+    """Raise unless the constraints remove the three rigid motions of the plane.
+
+    (A crack that cuts the part into pieces is checked piece by piece:
+    diagnostics.check_pieces.)
+    """
+    rank, free = rigid_motion_rank(x, bc_dofs // 2, bc_dofs % 2)
+    if rank < 3:
         raise BoundaryConditionError(
             f"the Dirichlet conditions leave rigid motion free ({', '.join(free)}); "
             f"{bc_dofs.size} constrained dofs fix only {rank} of the 3 rigid motions")

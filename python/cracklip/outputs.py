@@ -63,12 +63,18 @@ def describe_model(model: XfemModel, contact_system=None) -> dict[str, typing.An
         tip_nodes = np.unique(node[tip])
         core_nodes = np.unique(node[tip & (core == 1)])
         pts = cm.crack.points
+        from .sif import tip_domains
+        domains = tip_domains(model, ci)
         cracks.append({
             "name": cm.crack.name,
             "polyline_points": int(len(pts)),
             "length": float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum()),
             "kind": {0: "through (no tip inside)", 1: "edge (one tip)", 2: "interior (two tips)"}[sum(cm.tips)],
             "tips": np.asarray(g.tips).tolist(),
+            "tip_element_size": [d.element_size for d in domains],
+            "sif_radius": [d.radius for d in domains],
+            "sif_limited_by": [d.obstacle if d.limited or not d.clear else None for d in domains],
+            "lip_pressure": "function" if callable(cm.crack.pressure) else float(cm.crack.pressure),
             "cells": {name: int(cls[v]) for name, v in CELL_CLASSES.items() if name != "plain"},
             "heaviside_nodes": int(np.unique(node[heav]).size),
             "heaviside_dofs": int(2 * np.count_nonzero(heav)),
@@ -189,6 +195,11 @@ def format_model(summary: dict[str, typing.Any]) -> list[str]:
                   f"  tip: {c['tip_nodes']} nodes ({c['tip_core_nodes']} core, {c['tip_blending_nodes']} "
                   f"blending), {c['tip_dofs']} dofs"
                   + (f"; {c['snapped_nodes']} node(s) snapped onto the crack" if c["snapped_nodes"] else "")]
+        for t, h, r, lim in zip(c["tips"], c["tip_element_size"], c["sif_radius"], c["sif_limited_by"]):
+            lines.append(f"  tip ({t[0]:.6g}, {t[1]:.6g}): element size {h:.4g}, SIF domains of radius "
+                         f"{0.5 * r:.4g}, {0.75 * r:.4g}, {r:.4g}" + (f" (limited by {lim})" if lim else ""))
+        if c["lip_pressure"] != 0.0:
+            lines.append(f"  lip pressure: {c['lip_pressure']}")
     lines.append("quadrature:")
     for q in summary["quadrature"]:
         pts = "" if q["points"] is None else (f", {q['points']} points "
@@ -206,75 +217,10 @@ def format_model(summary: dict[str, typing.Any]) -> list[str]:
 
 # -- along the cracks ------------------------------------------------------------------------------
 
-def arc_length(points: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """Arc length along a polyline (k, 2), from its first point, of the
-    projections of points x (n, 2) onto it."""
-    d = np.diff(points, axis=0)
-    L = np.linalg.norm(d, axis=1)
-    cum = np.concatenate([[0.0], np.cumsum(L)])
-    rel = x[:, None, :] - points[None, :-1, :]
-    t = np.clip(np.einsum("nki,ki->nk", rel, d) / (L ** 2)[None], 0.0, 1.0)
-    dist = np.linalg.norm(rel - t[..., None] * d[None], axis=2)
-    k = np.argmin(dist, axis=1)
-    return cum[k] + t[np.arange(len(x)), k] * L[k]
-
-
 def crack_samples(solution: Solution, crack: int, points_per_segment: int = 3) -> dict[str, np.ndarray]:
-    """Points along a crack (Gauss points of its segments in each cell) with
-    s (arc length from the crack's first point), x (n, 2), weight (length
-    each point stands for), normal (n, 2, into the + side), u_plus, u_minus
-    (n, 2: displacement of each lip), gap = [[u]].n (> 0 open), slip =
-    [[u]].t (t = n turned by -90 degrees), pressure (>= 0 in compression,
-    0 without contact). Sorted by s."""
-    m = solution.model
-    g = m.geometries[crack]
-    crack_points = m.cracks[crack].crack.points
-    if solution.contact:
-        cs = solution.contact["system"]
-        sp_ = _cracklip.compute_segment_points(m.x, m.cells, m.geometries, cs.space, points_per_segment)
-        lam_full = cs.R @ solution.contact["lambda"]
-        p = np.zeros(len(sp_["weight"]))
-        np.add.at(p, sp_["entry_point"], -sp_["entry_value"] * lam_full[sp_["entry_mult"]])
-        keep = np.asarray(cs.space.segment_crack)[sp_["segment"]] == crack
-        cells, ref, x = sp_["cell"][keep], sp_["ref"][keep], sp_["x"][keep]
-        weight, normal, pressure = sp_["weight"][keep], sp_["normal"][keep], p[keep]
-    else:
-        cc = g.crack_cells
-        own = np.asarray(cc["owns_segment"]).astype(bool)
-        tc = g.tip_cells
-        seg_cells = np.concatenate([cc["cell"][own], tc["cell"]]).astype(np.int32)
-        seg = np.concatenate([cc["segment"][own], tc["segment"]])
-        t, w = np.polynomial.legendre.leggauss(points_per_segment)
-        t, w = 0.5 * (t + 1.0), 0.5 * w
-        ref = (seg[:, None, 0, :] * (1 - t)[None, :, None] + seg[:, None, 1, :] * t[None, :, None]).reshape(-1, 2)
-        cells = np.repeat(seg_cells, points_per_segment)
-        xv = m.x[m.cells[cells]]
-        x = xv[:, 0] + ref[:, :1] * (xv[:, 1] - xv[:, 0]) + ref[:, 1:] * (xv[:, 2] - xv[:, 0])
-        xs = m.x[m.cells[seg_cells]]
-        P = xs[:, 0] + seg[:, 0, :1] * (xs[:, 1] - xs[:, 0]) + seg[:, 0, 1:] * (xs[:, 2] - xs[:, 0])
-        Q = xs[:, 0] + seg[:, 1, :1] * (xs[:, 1] - xs[:, 0]) + seg[:, 1, 1:] * (xs[:, 2] - xs[:, 0])
-        length = np.linalg.norm(Q - P, axis=1)
-        weight = (length[:, None] * w[None]).ravel()
-        tangent = np.repeat((Q - P) / np.maximum(length, 1e-300)[:, None], points_per_segment, axis=0)
-        normal = np.stack([-tangent[:, 1], tangent[:, 0]], axis=1)
-        # Point the normal into the + side (phi > 0).
-        probe = x + 1e-6 * max(m.h, 1e-300) * normal
-        sign = np.where(np.asarray(_cracklip.signed_distance(crack_points, probe)) >= 0.0, 1.0, -1.0)
-        normal *= sign[:, None]
-        pressure = np.zeros(len(x))
-    cells = np.asarray(cells, dtype=np.int32)
-    up, _ = _cracklip.evaluate_displacement(m.x, m.cells, m.layout, m.geometries, solution.u, cells, ref,
-                                            np.ones(len(cells), dtype=np.int8))
-    um, _ = _cracklip.evaluate_displacement(m.x, m.cells, m.layout, m.geometries, solution.u, cells, ref,
-                                            -np.ones(len(cells), dtype=np.int8))
-    jump = up - um
-    tangent = np.stack([normal[:, 1], -normal[:, 0]], axis=1)
-    s = arc_length(crack_points, x) if len(x) else np.zeros(0)
-    order = np.argsort(s, kind="stable")
-    return {"s": s[order], "x": x[order], "weight": weight[order], "normal": normal[order],
-            "u_plus": up[order], "u_minus": um[order], "pressure": pressure[order],
-            "gap": np.einsum("ij,ij->i", jump, normal)[order],
-            "slip": np.einsum("ij,ij->i", jump, tangent)[order]}
+    """Points along a crack with the lips' displacements, gap, slip and
+    contact pressure: Solution.lip_samples."""
+    return solution.lip_samples(crack, points_per_segment)
 
 
 def closed_points(samples: dict[str, np.ndarray], contact: str, gap_tol: float) -> np.ndarray:
@@ -338,27 +284,11 @@ def versions() -> dict[str, str]:
             "python": platform.python_version()}
 
 
-def sif_rows(solution: Solution, radius: float | None) -> list[dict[str, typing.Any]]:
-    """K_I, K_II, mode mix (degrees, atan2(K_II, K_I)) and energy release
-    rate G = (K_I^2 + K_II^2) / E* at every tip of every crack.
-
-    The mode mix is None where K is negligible: below 1e-6 of the scale
-    E* max|u| / sqrt(L) of the solution (L the part's size)."""
-    rows = []
-    m = solution.model
-    E_star = m.scene.material.E_star
-    size = float(np.ptp(m.x, axis=0).max())
-    k_scale = E_star * float(np.abs(solution.standard_displacement).max()) / math.sqrt(size)
-    for ci, cm in enumerate(solution.model.cracks):
-        if np.asarray(cm.geometry.tips).size == 0:
-            continue
-        for j, k in enumerate(solution.stress_intensity_factors(ci, radius=radius)):
-            rows.append({"crack": ci, "crack_name": cm.crack.name, "tip": j, "x": k["tip"][0], "y": k["tip"][1],
-                         "direction": k["direction"], "K_I": k["K_I"], "K_II": k["K_II"],
-                         "mode_mix_deg": (math.degrees(math.atan2(k["K_II"], k["K_I"]))
-                                          if math.hypot(k["K_I"], k["K_II"]) > 1e-6 * k_scale else None),
-                         "G": (k["K_I"] ** 2 + k["K_II"] ** 2) / E_star, "radius": k["radius"]})
-    return rows
+def sif_rows(solution: Solution) -> list[dict[str, typing.Any]]:
+    """K_I, K_II with their domain spread, mode mix (degrees, atan2(K_II,
+    K_I); None where K is negligible) and energy release rate G = (K_I^2 +
+    K_II^2) / E* at every tip of every crack (Solution.stress_intensity_factors)."""
+    return solution.stress_intensity_factors(None)
 
 
 def ensure_output_dir(path: str | pathlib.Path) -> pathlib.Path:
@@ -391,7 +321,8 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
     files: list[str] = []
 
     t0 = time.perf_counter()
-    sifs = sif_rows(solution, scene_file.sif_radius)
+    sifs = sif_rows(solution)
+    warnings = [w.as_dict() for w in solution.warnings]
     timings["sif"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     samples = [crack_samples(solution, i, cfg["crack_points"]) for i in range(len(m.cracks))]
@@ -413,9 +344,11 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
                  smp["slip"][k], int(closed[i][k])]
                 for i, smp in enumerate(samples) for k in range(len(smp["s"]))])
     _write_csv(out / "sif.csv", ["crack", "tip", "x", "y", "direction_x", "direction_y", "K_I", "K_II",
-                                 "mode_mix_deg", "G", "radius"],
+                                 "K_I_spread", "K_II_spread", "mode_mix_deg", "G", "radius", "element_size",
+                                 "limited_by", "domain_clear"],
                [[r["crack"], r["tip"], r["x"], r["y"], r["direction"][0], r["direction"][1], r["K_I"],
-                 r["K_II"], r["mode_mix_deg"], r["G"], r["radius"]] for r in sifs])
+                 r["K_II"], r["K_I_spread"], r["K_II_spread"], r["mode_mix_deg"], r["G"], r["radius"],
+                 r["element_size"], r["limited_by"], int(r["domain_clear"])] for r in sifs])
     files += ["crack.csv", "sif.csv"]
     timings["write_csv"] = time.perf_counter() - t0
     if cfg["vtu"]:
@@ -447,6 +380,7 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
         "boundary_conditions_and_loads": scene_file.notes,
         "solution": {"dofs": int(m.num_dofs), "strain_energy": energy, "max_displacement": u_scale,
                      "relative_residual": solver.get("relative_residual")},
+        "warnings": warnings,
         "sifs": sifs,
         "cracks": crack_stats,
         "contact": contact,
@@ -513,11 +447,42 @@ def magnification(solution: Solution, fields: dict, requested: float) -> float:
     return float(round(raw / 10 ** exp) * 10 ** exp) or raw
 
 
+#: deformed.png adds a zoomed panel when the cracks' box is below this fraction of the part.
+ZOOM_FRACTION = 0.25
+#: stress.png's colour scale ends at this area-weighted percentile of |stress|,
+#: so that a tip singularity does not wash out the far field.
+STRESS_PERCENTILE = 99.0
+
+
+def crack_window(solution: Solution) -> tuple[np.ndarray, np.ndarray] | None:
+    """(lower, upper) corners of a window around the cracks for a zoomed
+    view, or None when the cracks are not much smaller than the part."""
+    m = solution.model
+    if not m.cracks:
+        return None
+    lo_part, hi_part = m.x.min(axis=0), m.x.max(axis=0)
+    pts = np.concatenate([np.clip(cm.crack.points, lo_part, hi_part) for cm in m.cracks])
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    span = float(max(np.ptp(pts, axis=0).max(), 1e-300))
+    if span > ZOOM_FRACTION * float(np.ptp(m.x, axis=0).max()):
+        return None
+    centre, half = 0.5 * (lo + hi), 0.5 * (hi - lo) + 0.35 * span
+    return np.maximum(centre - half, lo_part), np.minimum(centre + half, hi_part)
+
+
+def _weighted_percentile(values: np.ndarray, weights: np.ndarray, q: float) -> float:
+    order = np.argsort(values)
+    c = np.cumsum(weights[order])
+    return float(values[order][min(np.searchsorted(c, q / 100.0 * c[-1]), len(c) - 1)])
+
+
 def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale: float,
                component: str, title: str) -> list[str]:
-    """deformed.png (sub-cells displaced, magnified), crack_pressure.png
-    (pressure and gap, or opening and slip, along each crack) and
-    stress.png (a stress component on the sub-cells)."""
+    """deformed.png (sub-cells displaced, magnified; with a zoom on the
+    cracks when they are small in the part), crack_pressure.png (pressure
+    and gap, or opening and slip, along each crack) and stress.png (a
+    stress component on the sub-cells, colour scale clipped at the
+    STRESS_PERCENTILE area-weighted percentile)."""
     from matplotlib.collections import PolyCollection
     f = solution.subcell_fields()
     tris = f["points"].reshape(-1, 3, 2)
@@ -525,23 +490,39 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
     mag = magnification(solution, f, scale)
     names = []
     extent = np.ptp(solution.model.x, axis=0)
-    size = (8.0, float(np.clip(8.0 * extent[1] / max(extent[0], 1e-300), 3.0, 8.0)))
-
-    fig = _figure(size)
-    ax = fig.add_subplot()
+    height = float(np.clip(8.0 * extent[1] / max(extent[0], 1e-300), 3.0, 8.0))
+    window = crack_window(solution)
     umag = np.linalg.norm(disp, axis=2).mean(axis=1)
-    coll = PolyCollection(tris + mag * disp, array=umag, cmap="viridis", edgecolors="k", linewidths=0.1)
-    ax.add_collection(coll)
-    for smp in samples:
-        for key in ("u_plus", "u_minus"):
-            xy = smp["x"] + mag * smp[key]
-            ax.plot(xy[:, 0], xy[:, 1], "r-", lw=0.8)
-    ax.autoscale()
-    ax.set_aspect("equal")
-    fig.colorbar(coll, ax=ax, label="|u| (length units)")
-    ax.set_title(f"{title}\ndeformed mesh, displacement x{mag:g}", fontsize=10)
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
+
+    fig = _figure((15.0, height) if window is not None else (8.0, height))
+    panels = [fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)] if window is not None else [fig.add_subplot()]
+    for k, ax in enumerate(panels):
+        zoom = k == 1
+        sel = slice(None)
+        if zoom:
+            c = tris.mean(axis=1)
+            sel = np.all((c >= window[0] - 0.1 * np.ptp(window, axis=0)) &
+                         (c <= window[1] + 0.1 * np.ptp(window, axis=0)), axis=1)
+        coll = PolyCollection((tris + mag * disp)[sel], array=umag[sel], cmap="viridis", edgecolors="k",
+                              linewidths=0.1)
+        coll.set_clim(float(umag.min(initial=0.0)), float(umag.max(initial=1.0)))
+        ax.add_collection(coll)
+        for smp in samples:
+            for key in ("u_plus", "u_minus"):
+                xy = smp["x"] + mag * smp[key]
+                ax.plot(xy[:, 0], xy[:, 1], "r-", lw=0.8)
+        ax.autoscale()
+        if zoom:
+            ax.set_xlim(window[0][0], window[1][0])
+            ax.set_ylim(window[0][1], window[1][1])
+            ax.set_title("around the cracks", fontsize=9)
+        elif window is not None:
+            ax.add_patch(_rectangle(window))
+        ax.set_aspect("equal")
+        ax.set_xlabel("x")
+        ax.set_ylabel("y")
+    fig.colorbar(coll, ax=panels, label="|u| (length units)")
+    fig.suptitle(f"{title}\ndeformed mesh, displacement x{mag:g}", fontsize=10)
     _save(fig, out / "deformed.png")
     names.append("deformed.png")
 
@@ -569,30 +550,40 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
     _save(fig, out / "crack_pressure.png")
     names.append("crack_pressure.png")
 
-    fig = _figure(size)
+    fig = _figure((8.0, height))
     ax = fig.add_subplot()
     s = f["stress"]
     values = {"xx": s[:, 0], "yy": s[:, 1], "xy": s[:, 2]}.get(component)
     if values is None:
-        values = von_mises(s, solution.model.scene.material.nu)
+        values = von_mises(s, solution.model.scene.material.sigma_zz_ratio)
     cmap = "viridis" if component == "von_mises" else "coolwarm"
     coll = PolyCollection(tris, array=values, cmap=cmap, edgecolors="none")
-    if component != "von_mises" and len(values):
-        lim = float(np.abs(values).max()) or 1.0
-        coll.set_clim(-lim, lim)
+    if len(values):
+        e1, e2 = tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]
+        area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+        lim = _weighted_percentile(np.abs(values), area, STRESS_PERCENTILE) or float(np.abs(values).max()) or 1.0
+        coll.set_clim(0.0 if component == "von_mises" else -lim, lim)
     ax.add_collection(coll)
     for smp in samples:
         ax.plot(smp["x"][:, 0], smp["x"][:, 1], "k-", lw=0.8)
     ax.autoscale()
     ax.set_aspect("equal")
     label = "von Mises stress" if component == "von_mises" else f"stress {component}"
-    fig.colorbar(coll, ax=ax, label=f"{label} (units of E)")
+    fig.colorbar(coll, ax=ax, extend="max" if component == "von_mises" else "both",
+                 label=f"{label} (the input's stress units; scale clipped at the "
+                       f"{STRESS_PERCENTILE:g}th percentile)")
     ax.set_title(f"{title}\n{label}", fontsize=10)
     ax.set_xlabel("x")
     ax.set_ylabel("y")
     _save(fig, out / "stress.png")
     names.append("stress.png")
     return names
+
+
+def _rectangle(window):
+    from matplotlib.patches import Rectangle
+    (x0, y0), (x1, y1) = window
+    return Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, ec="r", lw=0.8, ls="--")
 
 
 __all__ = ["OutputError", "describe_model", "format_model", "crack_samples", "crack_statistics",

@@ -13,12 +13,6 @@ from .errors import InputError
 from .model import XfemModel
 
 
-#: Gauss degree of the interaction integral in cells without tip functions:
-#: the integrand (smooth, non-polynomial auxiliary fields) needs more than the
-#: stiffness's rule.
-SIF_DEGREE = 8
-
-
 @dataclasses.dataclass
 class Solution:
     """Displacement dofs of a model and what can be derived from them.
@@ -40,6 +34,7 @@ class Solution:
     condition: dict[str, float] = dataclasses.field(default_factory=dict)
     contact: dict[str, typing.Any] = dataclasses.field(default_factory=dict)
     solver: dict[str, typing.Any] = dataclasses.field(default_factory=dict)
+    _sif_cache: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
 
     # -- point values -------------------------------------------------------
     def locate(self, points: np.ndarray, prefer_crossed: bool = True) -> tuple[np.ndarray, np.ndarray]:
@@ -96,54 +91,66 @@ class Solution:
         return (u, grad) if gradient else u
 
     # -- along the crack ----------------------------------------------------
-    def crack_opening(self, crack: int = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
-        """Jump [[u]] = u(+) - u(-) along a crack, sampled on each cut cell.
+    def lip_samples(self, crack: int = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
+        """Points along a crack (points_per_segment Gauss points on its segment
+        in every cell it crosses, tau^2-graded toward a tip), sorted by s:
 
-        Returns dict with x (n, 2) points, s (n,) arc-length-like coordinate
-        along the crack direction, jump (n, 2), normal (n,) = [[u]].n (n the
-        + side normal, positive = opening), tangential (n,) = [[u]].t.
+        s (n,) arc length from the crack's first point, x (n, 2), weight (n,)
+        (the length each point stands for), normal (n, 2) into the + side,
+        u_plus, u_minus (n, 2) the displacement of each lip, jump (n, 2) =
+        u_plus - u_minus, gap (n,) = [[u]].n (> 0 open), slip (n,) = [[u]].t
+        (t = n turned by -90 degrees), pressure (n,) the contact pressure
+        (>= 0 in compression; 0 without contact), cell (n,), ref (n, 2).
+        Without tip enrichment the tip cell holds no crack (the discrete
+        crack ends at its edge) and is left out.
         """
-        g = self.model.geometries[crack]
-        cc = g.crack_cells
-        own = cc["owns_segment"].astype(bool)
-        cells = cc["cell"][own]
-        seg = cc["segment"][own]  # (k, 2, 2) reference P, Q
-        t = np.linspace(0.0, 1.0, points_per_segment)
-        ref = (seg[:, None, 0, :] * (1 - t)[None, :, None] + seg[:, None, 1, :] * t[None, :, None])
-        ref = ref.reshape(-1, 2)
-        cell_rep = np.repeat(cells, points_per_segment).astype(np.int32)
-        up = self._evaluate(cell_rep, ref, np.ones(len(cell_rep), dtype=np.int8))
-        um = self._evaluate(cell_rep, ref, -np.ones(len(cell_rep), dtype=np.int8))
-        xv = self.model.x[self.model.cells[cell_rep]]
-        x = xv[:, 0] + ref[:, :1] * (xv[:, 1] - xv[:, 0]) + ref[:, 1:] * (xv[:, 2] - xv[:, 0])
-        # + side normal: segment direction rotated by -90 degrees (+ side on its left).
-        xP = _phys(self.model, cells, seg[:, 0])
-        xQ = _phys(self.model, cells, seg[:, 1])
-        d = xQ - xP
-        tang = d / np.linalg.norm(d, axis=1)[:, None]
-        tang = np.repeat(tang, points_per_segment, axis=0)
-        normal = np.stack([-tang[:, 1], tang[:, 0]], axis=1)
+        m = self.model
+        if not 0 <= crack < len(m.cracks):
+            raise InputError(f"crack index {crack} out of range: the scene has {len(m.cracks)} cracks")
+        g = m.geometries[crack]
+        pts = _cracklip.compute_crack_points(m.x, m.cells, g, int(points_per_segment))
+        if m.scene.options.enrichment == "none":
+            keep = ~np.isin(pts["cell"], np.asarray(g.tip_cells["cell"]))
+            pts = {k: v[keep] for k, v in pts.items()}
+        cells, ref, normal = pts["cell"], pts["ref"], pts["normal"]
+        pressure = np.zeros(len(cells))
+        if self.contact:
+            cs = self.contact["system"]
+            pressure = -_cracklip.evaluate_multipliers(cs.space, crack, cells, ref, cs.R @ self.contact["lambda"])
+        up = self._evaluate(cells, ref, np.ones(len(cells), dtype=np.int8))
+        um = self._evaluate(cells, ref, -np.ones(len(cells), dtype=np.int8))
         jump = up - um
-        # Normal points into the + side; the jump u(+) - u(-) along it is an opening.
-        s = self._along_crack(crack, x)
-        order = np.argsort(s, kind="stable")
-        return {"x": x[order], "s": s[order], "jump": jump[order],
-                "normal": np.einsum("ij,ij->i", jump, normal)[order],
-                "tangential": np.einsum("ij,ij->i", jump, tang)[order]}
+        tangent = np.stack([normal[:, 1], -normal[:, 0]], axis=1)
+        s = arc_length(m.cracks[crack].crack.points, pts["x"]) if len(cells) else np.zeros(0)
+        o = np.argsort(s, kind="stable")
+        return {"s": s[o], "x": pts["x"][o], "weight": pts["weight"][o], "normal": normal[o],
+                "u_plus": up[o], "u_minus": um[o], "jump": jump[o],
+                "gap": np.einsum("ij,ij->i", jump, normal)[o], "slip": np.einsum("ij,ij->i", jump, tangent)[o],
+                "pressure": pressure[o], "cell": cells[o], "ref": ref[o]}
 
-    def _along_crack(self, crack: int, x: np.ndarray) -> np.ndarray:
-        """Coordinate of points along a crack's chord, from its first point."""
-        pts = self.model.cracks[crack].crack.points
-        direction = pts[-1] - pts[0]
-        return (x - pts[0]) @ (direction / np.linalg.norm(direction))
+    def crack_opening(self, crack: int = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
+        """Jump [[u]] = u(+) - u(-) along a crack (see lip_samples): x (n, 2),
+        s (n,) arc length, jump (n, 2), normal (n,) = [[u]].n (n the + side
+        normal, positive = opening), tangential (n,) = [[u]].t."""
+        smp = self.lip_samples(crack, points_per_segment)
+        return {"x": smp["x"], "s": smp["s"], "jump": smp["jump"], "normal": smp["gap"],
+                "tangential": smp["slip"]}
 
     # -- whole-field quantities --------------------------------------------
     def subcell_fields(self) -> dict[str, typing.Any]:
-        """Displacement and stress on the sub-cell mesh (see io.write_vtu)."""
+        """Displacement and stress (xx, yy, xy at each sub-triangle's centroid;
+        the total stress C eps(u) + sigma_0 with an initial stress) on the
+        sub-cell mesh (see io.write_vtu)."""
         m = self.model
         mat = m.scene.material
-        return _cracklip.compute_subcell_fields(m.x, m.cells, m.layout, m.geometries, self.u,
-                                                mat.E, mat.nu)
+        f = _cracklip.compute_subcell_fields(m.x, m.cells, m.layout, m.geometries, self.u,
+                                             mat.E_strain, mat.nu_strain)
+        if m.scene.initial_stress is not None:
+            from .stress_field import evaluate_stress, tensor_to_voigt
+            centroids = f["points"].reshape(-1, 3, 2).mean(axis=1)
+            f["stress"] = f["stress"] + tensor_to_voigt(evaluate_stress(m.scene.initial_stress, centroids,
+                                                                        "initial stress"))
+        return f
 
     def field_points(self, cells: np.ndarray | None = None, degree: int | None = None
                      ) -> dict[str, np.ndarray]:
@@ -189,77 +196,47 @@ class Solution:
             ref2 += float(np.sum(f["weight"] * np.einsum("nij,nij->n", stress(eex, mat), eex)))
         return float(np.sqrt(err2)), float(np.sqrt(err2 / ref2))
 
-    def stress_intensity_factors(self, crack: int = 0, radius: float | None = None
+    def stress_intensity_factors(self, crack: int | None = 0, radius: float | None = None
                                  ) -> list[dict[str, typing.Any]]:
-        """K_I, K_II at every tip of a crack by the domain interaction integral.
+        """K_I, K_II at every tip of a crack (crack=None: of every crack) by the
+        domain interaction integral on three domains per tip (see sif.py):
+        one dict per tip with the keys of results.json's "sifs" (crack,
+        crack_name, tip, x, y, direction, K_I, K_II, K_I_spread, K_II_spread,
+        mode_mix_deg, G, radius, radii, element_size, limited_by, domain_clear).
 
-        radius: of the plateau q-function (default 4 mean edge lengths); it
-        must stay inside the domain and away from other cracks.
+        radius: the largest domain's radius (default Options.sif_radius, 0:
+        6 element sizes at the tip); clipped to keep the domain inside the
+        part and clear of other tips, cracks, kinks and holes.
         """
-        m = self.model
-        if radius is None:
-            radius = 4.0 * m.h
-        if not (isinstance(radius, (int, float, np.floating)) and np.isfinite(radius) and radius > 0.0):
-            raise InputError(f"the SIF domain radius must be a finite number > 0 (default: 4 mean edge "
-                             f"lengths, {4.0 * m.h:.3g} here), got {radius!r}")
-        g = m.geometries[crack]
-        mat = m.scene.material
-        out = []
-        for j in range(g.tips.shape[0]):
-            tip, e1 = g.tips[j], g.tip_tangents[j]
-            d = _cracklip.compute_domain_points(m.x, m.cells, m.layout, m.geometries, tip, e1,
-                                                radius, self._quadrature(SIF_DEGREE))
-            if d["weight"].size == 0:
-                dist = np.linalg.norm(m.x - tip, axis=1)
-                raise InputError(f"no cell crosses the SIF domain circle of radius {radius} "
-                                 f"around tip {tip.tolist()}: the q-function is constant (nodes within "
-                                 f"the radius: {int(np.count_nonzero(dist < radius))} of {len(dist)}); use "
-                                 f"a radius above the nearest node's distance {dist.min():.3g} that keeps "
-                                 "the circle inside the domain")
-            _, grad = _cracklip.evaluate_displacement(m.x, m.cells, m.layout, m.geometries, self.u,
-                                                      d["cell"], d["ref"], d["side"])
-            I = _cracklip.interaction_integral(tip, e1, mat.E, mat.nu, d["x"], d["weight"],
-                                               d["grad_q"], grad, d["side"],
-                                               int(g.tip_orientation[j]))
-            I = np.asarray(I)
-            if self.contact:
-                I = I + np.asarray(self._lip_term(crack, j, radius))
-            K = 0.5 * mat.E_star * I
-            out.append({"tip": tip.tolist(), "direction": e1.tolist(), "K_I": float(K[0]),
-                        "K_II": float(K[1]), "radius": float(radius)})
-        return out
+        from .sif import compute_sifs
+        key = (crack, radius)
+        if key not in self._sif_cache:
+            cracks = None if crack is None else [crack]
+            if crack is not None and not 0 <= crack < len(self.model.cracks):
+                raise InputError(f"crack index {crack} out of range: the scene has {len(self.model.cracks)} cracks")
+            self._sif_cache[key] = compute_sifs(self, radius, cracks)
+        return [dict(r) for r in self._sif_cache[key][0]]
 
-    def _lip_term(self, crack: int, tip: int, radius: float):
-        m = self.model
-        g = m.geometries[crack]
-        cs = self.contact["system"]
-        lam_full = cs.R @ self.contact["lambda"]
-        return _cracklip.lip_interaction_integral(
-            m.x, m.cells, m.geometries, cs.space, lam_full, g.tips[tip], g.tip_tangents[tip],
-            int(g.tip_orientation[tip]), crack, radius, m.scene.material.E, m.scene.material.nu,
-            max(m.scene.options.contact_points, 8))
+    @property
+    def warnings(self) -> list:
+        """The model checks' warnings and those of the SIFs at every tip
+        (domains clipped, K varying with the domain): diagnostics.ModelWarning."""
+        from .diagnostics import ModelWarning
+        self.stress_intensity_factors(None)
+        model_messages = {w.message for w in self.model.warnings}
+        extra = [ModelWarning("sif_spread", m) for m in self._sif_cache[(None, None)][1]
+                 if m not in model_messages]
+        return list(self.model.warnings) + extra
 
-    def contact_pressure(self, crack: int = 0) -> dict[str, np.ndarray]:
+    def contact_pressure(self, crack: int = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
         """Contact pressure p = -lambda (>= 0 in compression) and normal gap
-        [[u]].n at the quadrature points of the crack segments, sorted along
-        the crack: x (n, 2), s (n,), pressure (n,), gap (n,), weight (n,) (the
-        quadrature weights, for integrals along the crack)."""
+        [[u]].n at points along the crack (see lip_samples), sorted along
+        it: x (n, 2), s (n,), pressure (n,), gap (n,), weight (n,) (for
+        integrals along the crack)."""
         if not self.contact:
             raise InputError("this solution has no contact (Options.contact is 'none')")
-        m = self.model
-        cs = self.contact["system"]
-        sp_ = _cracklip.compute_segment_points(m.x, m.cells, m.geometries, cs.space, 3)
-        lam_full = cs.R @ self.contact["lambda"]
-        p = np.zeros(len(sp_["weight"]))
-        np.add.at(p, sp_["entry_point"], -sp_["entry_value"] * lam_full[sp_["entry_mult"]])
-        keep = cs.space.segment_crack[sp_["segment"]] == crack
-        up = self._evaluate(sp_["cell"], sp_["ref"], np.ones(len(p), dtype=np.int8))
-        um = self._evaluate(sp_["cell"], sp_["ref"], -np.ones(len(p), dtype=np.int8))
-        gap = np.einsum("ij,ij->i", up - um, sp_["normal"])
-        s = self._along_crack(crack, sp_["x"])
-        order = np.argsort(s[keep], kind="stable")
-        return {"x": sp_["x"][keep][order], "s": s[keep][order], "pressure": p[keep][order],
-                "gap": gap[keep][order], "weight": sp_["weight"][keep][order]}
+        smp = self.lip_samples(crack, points_per_segment)
+        return {k: smp[k] for k in ("x", "s", "pressure", "gap", "weight")}
 
     @property
     def standard_displacement(self) -> np.ndarray:
@@ -274,15 +251,11 @@ def strain(grad: np.ndarray) -> np.ndarray:
 
 
 def stress(eps: np.ndarray, material) -> np.ndarray:
-    """Plane-strain stress (n, 2, 2) of strains (n, 2, 2)."""
-    lmbda = material.E * material.nu / ((1 + material.nu) * (1 - 2 * material.nu))
+    """In-plane stress (n, 2, 2) of strains (n, 2, 2) (plane strain or stress)."""
+    E, nu = material.E_strain, material.nu_strain
+    lmbda = E * nu / ((1 + nu) * (1 - 2 * nu))
     tr = eps[:, 0, 0] + eps[:, 1, 1]
     return 2 * material.mu * eps + lmbda * tr[:, None, None] * np.eye(2)[None]
-
-
-def _phys(model: XfemModel, cells: np.ndarray, ref: np.ndarray) -> np.ndarray:
-    xv = model.x[model.cells[cells]]
-    return xv[:, 0] + ref[:, :1] * (xv[:, 1] - xv[:, 0]) + ref[:, 1:] * (xv[:, 2] - xv[:, 0])
 
 
 def _tree(model: XfemModel):
@@ -292,3 +265,16 @@ def _tree(model: XfemModel):
         tree = dolfinx.geometry.BoundingBoxTree(msh, msh.topology.dim)
         model._bb_tree = tree
     return tree
+
+
+def arc_length(points: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Arc length along a polyline (k, 2), from its first point, of the
+    projections of points x (n, 2) onto it."""
+    d = np.diff(points, axis=0)
+    L = np.linalg.norm(d, axis=1)
+    cum = np.concatenate([[0.0], np.cumsum(L)])
+    rel = x[:, None, :] - points[None, :-1, :]
+    t = np.clip(np.einsum("nki,ki->nk", rel, d) / (L ** 2)[None], 0.0, 1.0)
+    dist = np.linalg.norm(rel - t[..., None] * d[None], axis=2)
+    k = np.argmin(dist, axis=1)
+    return cum[k] + t[np.arange(len(x)), k] * L[k]

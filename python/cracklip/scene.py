@@ -15,23 +15,49 @@ Value = typing.Union[float, typing.Callable[[np.ndarray], np.ndarray]]
 VectorValue = typing.Union[typing.Sequence[float], typing.Callable[[np.ndarray], np.ndarray]]
 
 
+PLANES = ("strain", "stress")
+
+
 @dataclasses.dataclass(frozen=True)
 class Material:
-    """Linear elastic, isotropic, plane strain.
+    """Linear elastic, isotropic, in plane strain (default) or plane stress.
 
     Attributes:
         E: Young's modulus (> 0).
-        nu: Poisson's ratio (-1 < nu < 0.5).
+        nu: Poisson's ratio (-1 < nu < 0.5 in plane strain, <= 0.5 in plane stress).
+        plane: "strain" (thick parts: eps_zz = 0) or "stress" (thin plates:
+            sigma_zz = 0).
+
+    Plane stress with (E, nu) has the in-plane response of plane strain with
+    (E_strain, nu_strain) = (E (1 + 2 nu) / (1 + nu)^2, nu / (1 + nu)): the
+    kernels, the Williams fields (kappa = (3 - nu) / (1 + nu)) and K = sqrt(E* G)
+    (E* = E) all follow from that pair, exactly.
     """
     E: float
     nu: float
+    plane: str = "strain"
 
     def __post_init__(self):
-        if not (math.isfinite(self.E) and self.E > 0.0):
+        if self.plane not in PLANES:
+            raise MaterialError(f"plane must be 'strain' or 'stress', got {self.plane!r}")
+        if not (isinstance(self.E, numbers.Real) and math.isfinite(self.E) and self.E > 0.0):
             raise MaterialError(f"Young's modulus E must be positive, got {self.E}")
-        if not (math.isfinite(self.nu) and -1.0 < self.nu < 0.5):
-            raise MaterialError(f"Poisson's ratio nu must lie in (-1, 0.5) for plane strain, "
-                                f"got {self.nu} (nu = 0.5 is incompressible: not supported)")
+        ok = isinstance(self.nu, numbers.Real) and math.isfinite(self.nu) and -1.0 < self.nu <= 0.5
+        if not ok or (self.plane == "strain" and self.nu == 0.5):
+            raise MaterialError(
+                f"Poisson's ratio nu must lie in (-1, 0.5) for plane strain, got {self.nu} (nu = 0.5 is "
+                "incompressible: not supported)" if self.plane == "strain" else
+                f"Poisson's ratio nu must lie in (-1, 0.5] for plane stress, got {self.nu}")
+
+    @property
+    def E_strain(self) -> float:
+        """Young's modulus of the plane-strain material with the same in-plane response."""
+        return self.E if self.plane == "strain" else self.E * (1.0 + 2.0 * self.nu) / (1.0 + self.nu) ** 2
+
+    @property
+    def nu_strain(self) -> float:
+        """Poisson's ratio of the plane-strain material with the same in-plane response."""
+        return self.nu if self.plane == "strain" else self.nu / (1.0 + self.nu)
 
     @property
     def mu(self) -> float:
@@ -39,11 +65,22 @@ class Material:
 
     @property
     def kappa(self) -> float:
-        return 3.0 - 4.0 * self.nu
+        """Kolosov's constant: 3 - 4 nu (plane strain), (3 - nu) / (1 + nu) (plane stress)."""
+        return 3.0 - 4.0 * self.nu_strain
 
     @property
     def E_star(self) -> float:
-        return self.E / (1.0 - self.nu ** 2)
+        """E' of G = K^2 / E': E / (1 - nu^2) (plane strain), E (plane stress)."""
+        return self.E_strain / (1.0 - self.nu_strain ** 2)
+
+    @property
+    def sigma_zz_ratio(self) -> float:
+        """sigma_zz / (sigma_xx + sigma_yy): nu (plane strain), 0 (plane stress)."""
+        return self.nu if self.plane == "strain" else 0.0
+
+    def scaled(self, E: float) -> "Material":
+        """The same material with Young's modulus E."""
+        return Material(E, self.nu, self.plane)
 
 
 @dataclasses.dataclass
@@ -57,13 +94,22 @@ class Crack:
     Attributes:
         points: (k, 2) polyline vertices, k >= 2.
         name: label used in messages and outputs.
+        pressure: pressure on both lips (> 0 pushes them apart: a pressurised
+            crack), a number or a callable p(x) of points (n, 2) returning
+            (n,); 0 for traction-free lips. With contact the lips carry it
+            besides the contact pressure.
     """
     points: np.ndarray
     name: str = ""
+    pressure: Value = 0.0
 
     def __post_init__(self):
         pts = np.asarray(self.points, dtype=np.float64)
         label = self.name or "crack"
+        if not callable(self.pressure) and not (isinstance(self.pressure, numbers.Real)
+                                                and math.isfinite(self.pressure)):
+            raise CrackGeometryError(f"{label}: the lip pressure must be a finite number or a callable "
+                                     f"p(x), got {self.pressure!r}")
         if pts.ndim != 2 or pts.shape[1] != 2 or pts.shape[0] < 2:
             raise CrackGeometryError(f"{label}: points must be an array of shape (k, 2), k >= 2; "
                                      f"got shape {pts.shape}")
@@ -164,16 +210,48 @@ class Traction:
     Attributes:
         where: boundary tag name or number.
         value: (t_x, t_y), or a callable f(x) with x (n, 2) returning (n, 2).
+        stress: instead of value, a stress field whose traction sigma n (n
+            the outward normal) loads the boundary: (sxx, syy, sxy), a
+            stress_field.LinearStress (e.g. bending), or a callable sigma(x)
+            returning (n, 2, 2).
     """
     where: typing.Union[str, int]
-    value: VectorValue
+    value: typing.Optional[VectorValue] = None
+    stress: typing.Any = None
 
     def __post_init__(self):
-        if not callable(self.value):
+        if (self.value is None) == (self.stress is None):
+            raise InputError(f"traction on {self.where!r}: give exactly one of value (a traction) or stress "
+                             "(a stress field whose sigma n is applied)")
+        if self.stress is not None:
+            from .stress_field import as_stress_field
+            self.stress = as_stress_field(self.stress, f"traction on {self.where!r}")
+        elif not callable(self.value):
             v = np.asarray(self.value, dtype=float)
             if v.shape != (2,) or not np.all(np.isfinite(v)):
                 raise InputError(f"traction on {self.where!r}: a constant value must be two finite numbers "
                                  f"(t_x, t_y), got {self.value!r}")
+
+
+@dataclasses.dataclass
+class PointForce:
+    """A concentrated force (force, in 2D per unit thickness) at the mesh node
+    nearest to a point (which must lie within one element of a node).
+
+    Attributes:
+        point: (x, y).
+        value: (F_x, F_y).
+    """
+    point: tuple[float, float]
+    value: tuple[float, float]
+
+    def __post_init__(self):
+        p = np.asarray(self.point, dtype=float)
+        v = np.asarray(self.value, dtype=float)
+        if p.shape != (2,) or v.shape != (2,) or not (np.all(np.isfinite(p)) and np.all(np.isfinite(v))):
+            raise InputError(f"a point force needs a point (x, y) and a value (F_x, F_y) of finite numbers, "
+                             f"got point {self.point!r}, value {self.value!r}")
+        self.point, self.value = tuple(p.tolist()), tuple(v.tolist())
 
 
 ENRICHMENTS = ("none", "scalar", "vector")
@@ -224,6 +302,12 @@ class Options:
             and enriched dofs orthonormalised in the energy (Cholesky), other
             dofs Jacobi-scaled; same answer, a better conditioned matrix
             (Solution.condition then reports the rescaled matrix).
+        sif_radius: radius of the largest SIF interaction-integral domain at
+            every tip; K is also computed on domains of 1/2 and 3/4 of it,
+            whose spread is reported. 0 chooses it per tip: 6 element sizes
+            at that tip. Either way it is clipped to stay inside the part and
+            away from other tips, other cracks, kinks of the crack and holes
+            (a warning says so).
     """
     enrichment: str = "vector"
     radius: float = 0.0
@@ -243,6 +327,7 @@ class Options:
     facet_degree: int = 4
     residual_tol: float = 1e-8
     rescale: str = "none"
+    sif_radius: float = 0.0
 
     def __post_init__(self):
         if self.enrichment not in ENRICHMENTS:
@@ -271,6 +356,10 @@ class Options:
                              f"node), got {self.snap_tol!r}")
         if not (isinstance(self.residual_tol, numbers.Real) and 0.0 < self.residual_tol < 1.0):
             raise InputError(f"residual_tol must lie in (0, 1), got {self.residual_tol!r}")
+        if not (isinstance(self.sif_radius, numbers.Real) and math.isfinite(self.sif_radius)
+                and self.sif_radius >= 0.0):
+            raise InputError(f"sif_radius must be a finite number >= 0 (0: chosen per tip), got "
+                             f"{self.sif_radius!r}")
         if not (0.05 <= self.tip_max_angle <= 3.2):
             raise InputError(f"tip_max_angle must lie in [0.05, 3.2] radians, got {self.tip_max_angle}")
 
@@ -298,8 +387,18 @@ class Scene:
     options: Options = dataclasses.field(default_factory=Options)
     #: Constant body force (f_x, f_y), force per unit area, or None.
     body_force: typing.Optional[typing.Sequence[float]] = None
+    #: Concentrated forces at nodes.
+    point_forces: list[PointForce] = dataclasses.field(default_factory=list)
+    #: Initial (residual) stress sigma_0 of the part, or None: the stress is
+    #: sigma = C eps(u) + sigma_0, so sigma_0 acts through its equivalent
+    #: loads (-div sigma_0 inside, sigma_0 n on the boundary and the lips).
+    #: (sxx, syy, sxy), a stress_field.LinearStress or a callable sigma_0(x).
+    initial_stress: typing.Any = None
 
     def __post_init__(self):
+        if self.initial_stress is not None:
+            from .stress_field import as_stress_field
+            self.initial_stress = as_stress_field(self.initial_stress, "initial stress")
         for i, c in enumerate(self.cracks):
             if not isinstance(c, Crack):
                 self.cracks[i] = Crack(np.asarray(c), name=f"crack {i}")

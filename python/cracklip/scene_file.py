@@ -30,7 +30,8 @@ import numpy as np
 
 from .errors import BoundaryConditionError, InputError, MeshError
 from .mesh import (MeshData, create_half_annulus, create_plate_with_hole, create_rectangle, read_msh)
-from .scene import ENRICHMENTS, TIP_QUADRATURES, Crack, Dirichlet, Material, Options, Scene, Traction
+from .scene import ENRICHMENTS, TIP_QUADRATURES, Crack, Dirichlet, Material, Options, PointForce, Scene, Traction
+from .stress_field import LinearStress
 
 MESH_KINDS = ("rectangle", "plate_with_hole", "half_annulus", "file")
 GENERATED = ("rectangle", "plate_with_hole", "half_annulus")
@@ -128,6 +129,14 @@ p_stress = p_numbers(3, "a stress [sigma_xx, sigma_yy, sigma_xy]")
 p_angles = p_numbers(2, "two angles [start, end] in degrees")
 
 
+def p_gradient(value, path):
+    """[[d sxx/dx, d syy/dx, d sxy/dx], [d sxx/dy, d syy/dy, d sxy/dy]]."""
+    what = "a stress gradient [[dsxx/dx, dsyy/dx, dsxy/dx], [dsxx/dy, dsyy/dy, dsxy/dy]]"
+    if not isinstance(value, list) or len(value) != 2:
+        raise _type_error(path, what, value)
+    return [p_numbers(3, what)(v, f"{path}[{i}]") for i, v in enumerate(value)]
+
+
 def p_box(value, path):
     x0, y0, x1, y1 = p_numbers(4, "a box [x0, y0, x1, y1]")(value, path)
     if not (x1 > x0 and y1 > y0):
@@ -217,6 +226,9 @@ _OPTION_MEANINGS = {
     "residual_tol": "largest accepted relative residual of a linear solve",
     "rescale": "`none`, or `nodal`: each enriched node's block of standard and enriched dofs "
                "orthonormalised (Cholesky), others Jacobi-scaled; same answer, better conditioned matrix",
+    "sif_radius": "radius of the largest SIF domain at every tip (K also on 1/2 and 3/4 of it; their "
+                  "spread is reported); 0: 6 element sizes at that tip; clipped to stay inside the part "
+                  "and away from other tips, cracks, kinks and holes (with a warning)",
 }
 _OPTION_CHOICES = {
     "enrichment": ENRICHMENTS, "blending": ("corrected", "standard"), "quadrature": TIP_QUADRATURES,
@@ -246,7 +258,7 @@ def _docstring_attributes(cls) -> dict[str, str]:
 def _option_keys() -> list[Key]:
     """The [options] keys: every field of cracklip.Options (defaults from the
     dataclass itself; the meaning from _OPTION_MEANINGS, else from Options'
-    docstring), then the SIF domain radius."""
+    docstring)."""
     keys = []
     documented = _docstring_attributes(Options)
     for f in dataclasses.fields(Options):
@@ -262,9 +274,6 @@ def _option_keys() -> list[Key]:
             keys.append(Key(f"options.{f.name}", "string", default, meaning, p_str))
         else:
             keys.append(Key(f"options.{f.name}", "float", default, meaning, p_float(0.0)))
-    keys.append(Key("options.sif_radius", "float", 0.0,
-                    "radius of the SIF interaction-integral domain around each tip; 0: 4 mean "
-                    "edge lengths (keep it inside the part and away from other cracks)", p_float(0.0)))
     return keys
 
 
@@ -297,14 +306,19 @@ SCHEMA: tuple[Key, ...] = tuple([
     Key("mesh.tip_h", "float", 0.0,
         "element size at crack tips inside the part; 0: no tip refinement", p_float(0.0), GENERATED),
     Key("mesh.tip_radius", "float", 0.0,
-        "distance over which the size grows from tip_h to h; 0: 4 h", p_float(0.0), GENERATED),
+        "distance over which the size grows from tip_h to h beyond a plateau of 4 tip_h around the tip; "
+        "never faster than 0.25 per unit length (a shorter radius is lengthened); 0: that fastest growth",
+        p_float(0.0), GENERATED),
     Key("mesh.refine[].point", "[x, y]", REQUIRED, "centre of a local refinement", p_point, GENERATED),
-    Key("mesh.refine[].h", "float", REQUIRED, "element size at the point", p_float(positive=True), GENERATED),
-    Key("mesh.refine[].radius", "float", REQUIRED, "distance over which the size grows back to h",
+    Key("mesh.refine[].h", "float", REQUIRED, "element size at the point (and within 4 times that size of it)",
         p_float(positive=True), GENERATED),
+    Key("mesh.refine[].radius", "float", 0.0, "distance over which the size grows back to h beyond that "
+        "plateau, never faster than 0.25 per unit length; 0: that fastest growth", p_float(0.0), GENERATED),
     # material
-    Key("material.E", "float", REQUIRED, "Young's modulus (plane strain)", p_float(positive=True)),
-    Key("material.nu", "float", REQUIRED, "Poisson's ratio, -1 < nu < 0.5", p_float()),
+    Key("material.E", "float", REQUIRED, "Young's modulus", p_float(positive=True)),
+    Key("material.nu", "float", REQUIRED, "Poisson's ratio, -1 < nu < 0.5 (plane stress: <= 0.5)", p_float()),
+    Key("material.plane", "string", "strain", "`strain` (thick part, eps_zz = 0) or `stress` (thin plate, "
+        "sigma_zz = 0; K from G with E' = E)", p_choice("strain", "stress")),
     # cracks
     Key("cracks[].name", "string", "", "label in messages and outputs (default: crack i)", p_str),
     Key("cracks[].points", "[[x, y], ...]", UNSET,
@@ -316,6 +330,8 @@ SCHEMA: tuple[Key, ...] = tuple([
         "circular-arc crack: polar angles of its ends, degrees (counter-clockwise if end > start)",
         p_angles),
     Key("cracks[].arc.segments", "integer", 24, "circular-arc crack: polyline segments", p_int(1)),
+    Key("cracks[].pressure", "float", 0.0, "pressure on both lips (> 0 pushes them apart: a pressurised "
+        "crack); with contact it acts besides the contact pressure", p_float()),
     # Dirichlet conditions
     Key("dirichlet[].tag", "string or integer", UNSET,
         "boundary tag the displacement is prescribed on (one of tag, box, point)", p_tag),
@@ -335,7 +351,12 @@ SCHEMA: tuple[Key, ...] = tuple([
     Key("loads.tractions[].value", "[x, y]", UNSET, "constant traction, force per unit length "
         "(one of value, stress, williams, kirsch)", p_vector),
     Key("loads.tractions[].stress", "[sxx, syy, sxy]", UNSET,
-        "uniform stress: the traction is sigma n on the tag (n the outward facet normal)", p_stress),
+        "stress at `origin`: the traction is sigma n on the tag (n the outward facet normal)", p_stress),
+    Key("loads.tractions[].stress_gradient", "[[3 numbers], [3 numbers]]", UNSET,
+        "with stress: d(sxx, syy, sxy)/dx and d(sxx, syy, sxy)/dy of a linear stress field "
+        "sigma(x) = stress + (x - origin) gradient (bending: sxx varying with y)", p_gradient),
+    Key("loads.tractions[].origin", "[x, y]", [0.0, 0.0], "with stress_gradient: where sigma = stress",
+        p_point),
 ] + [Key(f"loads.tractions[].williams.{n}", t, d, m + " (traction sigma n)", p) for n, t, d, m, p in _WILLIAMS] + [
     Key("loads.tractions[].kirsch.remote_stress", "float", REQUIRED,
         "Kirsch field of a hole under remote stress along x (< 0: compression); traction sigma n",
@@ -346,6 +367,15 @@ SCHEMA: tuple[Key, ...] = tuple([
     Key("loads.pressures[].tag", "string or integer", REQUIRED, "boundary tag under pressure", p_tag),
     Key("loads.pressures[].value", "float", REQUIRED,
         "pressure (> 0 pushes on the part): traction -p n", p_float()),
+    Key("loads.point_forces[].point", "[x, y]", REQUIRED,
+        "a concentrated force at the mesh node nearest to the point (within one element)", p_point),
+    Key("loads.point_forces[].value", "[x, y]", REQUIRED, "the force (per unit thickness)", p_vector),
+    Key("loads.initial_stress.value", "[sxx, syy, sxy]", REQUIRED,
+        "initial (residual) stress sigma_0 at `origin`: the stress is C eps(u) + sigma_0, its "
+        "equivalent loads open or close the cracks", p_stress),
+    Key("loads.initial_stress.gradient", "[[3 numbers], [3 numbers]]", [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0]],
+        "d sigma_0 / dx and d sigma_0 / dy of a linear initial stress", p_gradient),
+    Key("loads.initial_stress.origin", "[x, y]", [0.0, 0.0], "where sigma_0 = value", p_point),
 ] + _option_keys() + [
     # outputs
     Key("outputs.vtu", "boolean", True, "write ParaView files solution.vtu and crack_lips.vtu", p_bool),
@@ -545,8 +575,15 @@ def parse_settings(doc: dict) -> dict:
             if sub in t:
                 tr[sub] = _section(t[sub], f"loads.tractions[].{sub}", f"{where}.{sub}")
         s["loads"]["tractions"].append(tr)
+        if "stress_gradient" in t and "stress" not in t:
+            raise InputError(f"{where}.stress_gradient needs {where}.stress (the stress at origin)")
     s["loads"]["pressures"] = [_section(p, "loads.pressures[]", f"loads.pressures[{i}]")
                                for i, p in enumerate(_items(loads_doc, "pressures"))]
+    s["loads"]["point_forces"] = [_section(p, "loads.point_forces[]", f"loads.point_forces[{i}]")
+                                  for i, p in enumerate(_items(loads_doc, "point_forces"))]
+    if "initial_stress" in loads_doc:
+        s["loads"]["initial_stress"] = _section(loads_doc["initial_stress"], "loads.initial_stress",
+                                                "loads.initial_stress")
     s["options"] = _section(doc.get("options", {}), "options", "options")
     s["outputs"] = _section(doc.get("outputs", {}), "outputs", "outputs")
     return s
@@ -618,7 +655,6 @@ class SceneFile:
         title: the title (or the file's stem).
         settings: every key with its value (parse_settings).
         scene: the cracklip Scene.
-        sif_radius: SIF domain radius or None (4 mean edge lengths).
         outputs: the [outputs] settings.
         notes: one line per boundary condition and load, saying what it became.
         timings: seconds spent meshing ("mesh").
@@ -627,7 +663,6 @@ class SceneFile:
     title: str
     settings: dict
     scene: Scene
-    sif_radius: float | None
     outputs: dict
     notes: list[str]
     timings: dict[str, float]
@@ -645,7 +680,10 @@ def load_scene_file(path: str | pathlib.Path, overrides: typing.Sequence[str] = 
 def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Path | None = None) -> SceneFile:
     """Validate a scene document and build its mesh and Scene."""
     s = parse_settings(doc)
-    material = Material(s["material"]["E"], s["material"]["nu"])
+    try:
+        material = Material(s["material"]["E"], s["material"]["nu"], s["material"]["plane"])
+    except InputError as e:
+        raise type(e)(f"material: {e}") from None
     cracks = [_crack(c, i) for i, c in enumerate(s["cracks"])]
     t0 = time.perf_counter()
     mesh = _mesh(s["mesh"], cracks, pathlib.Path(base_dir))
@@ -664,17 +702,27 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
         notes.append(f"loads.body_force: {body_force} per unit area")
     else:
         body_force = None
-    opts = {k: v for k, v in s["options"].items() if k != "sif_radius"}
+    point_forces = []
+    for i, pf in enumerate(s["loads"]["point_forces"]):
+        point_forces.append(_point_force(pf, i, mesh, notes))
+    initial_stress = None
+    if "initial_stress" in s["loads"]:
+        st = s["loads"]["initial_stress"]
+        initial_stress = LinearStress(tuple(st["value"]), tuple(map(tuple, st["gradient"])), tuple(st["origin"]))
+        notes.append(f"loads.initial_stress: sigma_0 = {st['value']} at {st['origin']}"
+                     + (f", gradient {st['gradient']}" if not initial_stress.is_uniform else " (uniform)"))
+    for c, cs in zip(cracks, s["cracks"]):
+        if cs["pressure"] != 0.0:
+            notes.append(f"{c.name}: lip pressure {cs['pressure']:g}")
     try:
-        options = Options(**opts)
+        options = Options(**s["options"])
     except InputError as e:
         raise InputError(f"options: {e}") from None
     scene = Scene(mesh, material, cracks=cracks, dirichlet=dirichlet, tractions=tractions,
-                  options=options, body_force=body_force)
+                  options=options, body_force=body_force, point_forces=point_forces,
+                  initial_stress=initial_stress)
     title = s["title"] or (path.stem if path is not None else "scene")
-    sif = s["options"]["sif_radius"]
-    return SceneFile(path, title, s, scene, sif if sif > 0.0 else None, s["outputs"], notes,
-                     {"mesh": t_mesh})
+    return SceneFile(path, title, s, scene, s["outputs"], notes, {"mesh": t_mesh})
 
 
 def _crack(c: dict, i: int) -> Crack:
@@ -686,8 +734,8 @@ def _crack(c: dict, i: int) -> Crack:
             raise InputError(f"cracks[{i}].arc.angles: the start and end angles are equal")
         t = np.linspace(t0, t1, a["segments"] + 1)
         pts = np.asarray(a["center"]) + a["radius"] * np.stack([np.cos(t), np.sin(t)], axis=1)
-        return Crack(pts, name=name)
-    return Crack(np.asarray(c["points"], dtype=float), name=name)
+        return Crack(pts, name=name, pressure=c["pressure"])
+    return Crack(np.asarray(c["points"], dtype=float), name=name, pressure=c["pressure"])
 
 
 def _inside(m: dict, p: np.ndarray) -> bool:
@@ -711,7 +759,7 @@ def _mesh(m: dict, cracks: list[Crack], base_dir: pathlib.Path) -> MeshData:
     h = m["h"]
     refine = [(r["point"][0], r["point"][1], r["h"], r["radius"]) for r in m["refine"]]
     if m["tip_h"] > 0.0:
-        radius = m["tip_radius"] or 4.0 * h
+        radius = m["tip_radius"]
         for c in cracks:
             for p in c.points[[0, -1]]:
                 if _inside(m, p):
@@ -783,16 +831,9 @@ def _dirichlet(bc: dict, i: int, mesh: MeshData, material: Material, cracks: lis
         targets = [bc["tag"]]
         notes.append(f"{where}: tag {bc['tag']!r} ({mesh.facets(bc['tag']).size} facets), {what}")
     elif "point" in bc:
-        p = np.asarray(bc["point"])
-        d = np.linalg.norm(x - p, axis=1)
-        node = int(np.argmin(d))
-        edge = _mean_edge(mesh)
-        if d[node] > edge:
-            raise BoundaryConditionError(
-                f"{where}.point {p.tolist()}: the nearest mesh node {x[node].tolist()} is {d[node]:.3g} "
-                f"away, more than the mean edge length {edge:.3g}; put the point on the part")
-        targets = [(float(x[node, 0]), float(x[node, 1]))]
-        notes.append(f"{where}: point {p.tolist()} -> node ({x[node, 0]:.6g}, {x[node, 1]:.6g}), {what}")
+        node = _nearest_node(mesh, bc["point"], f"{where}.point")
+        targets = [node]
+        notes.append(f"{where}: point {bc['point']} -> node ({node[0]:.6g}, {node[1]:.6g}), {what}")
     else:
         x0, y0, x1, y1 = bc["box"]
         tol = 1e-9 * float(np.ptp(x, axis=0).max())
@@ -825,12 +866,14 @@ def _traction(tr: dict, i: int, mesh: MeshData, material: Material, cracks: list
     if "value" in tr:
         notes.append(f"{where}: tag {tag!r} ({nf} facets), traction {tr['value']}")
         return Traction(tag, tuple(tr["value"]))
-    normals = boundary_normals(mesh, tag)
     if "stress" in tr:
-        sxx, syy, sxy = tr["stress"]
-        sigma = np.array([[sxx, sxy], [sxy, syy]])
-        notes.append(f"{where}: tag {tag!r} ({nf} facets), traction sigma n, sigma = {tr['stress']}")
-        return Traction(tag, lambda p: normals(p) @ sigma.T)
+        field = LinearStress(tuple(tr["stress"]), tuple(map(tuple, tr.get("stress_gradient", [[0.0] * 3] * 2))),
+                             tuple(tr["origin"]))
+        what = (f"sigma = {tr['stress']}" if field.is_uniform else
+                f"linear sigma = {tr['stress']} at {tr['origin']}, gradient {tr['stress_gradient']}")
+        notes.append(f"{where}: tag {tag!r} ({nf} facets), traction sigma n, {what}")
+        return Traction(tag, stress=field)
+    normals = boundary_normals(mesh, tag)
     if "williams" in tr:
         field = _williams(tr["williams"], material, cracks, f"{where}.williams")
         notes.append(f"{where}: tag {tag!r} ({nf} facets), traction of the Williams field "
@@ -843,6 +886,28 @@ def _traction(tr: dict, i: int, mesh: MeshData, material: Material, cracks: list
                  f"{k['remote_stress']:g}, hole radius {k['hole_radius']:g}")
     return Traction(tag, lambda p: np.einsum("nij,nj->ni", kirsch_stress(p - center, k["remote_stress"],
                                                                          k["hole_radius"]), normals(p)))
+
+
+def _nearest_node(mesh: MeshData, point, where: str) -> tuple[float, float]:
+    """The mesh node nearest to a point given in a scene file; an error
+    naming the key if it is more than a mean edge length away."""
+    x = mesh.mesh.geometry.x[:, :2]
+    p = np.asarray(point)
+    d = np.linalg.norm(x - p, axis=1)
+    node = int(np.argmin(d))
+    edge = _mean_edge(mesh)
+    if d[node] > edge:
+        raise BoundaryConditionError(
+            f"{where} {p.tolist()}: the nearest mesh node {x[node].tolist()} is {d[node]:.3g} away, more than "
+            f"the mean edge length {edge:.3g}; put the point on the part")
+    return float(x[node, 0]), float(x[node, 1])
+
+
+def _point_force(pf: dict, i: int, mesh: MeshData, notes: list[str]) -> PointForce:
+    where = f"loads.point_forces[{i}]"
+    node = _nearest_node(mesh, pf["point"], f"{where}.point")
+    notes.append(f"{where}: force {pf['value']} at node ({node[0]:.6g}, {node[1]:.6g})")
+    return PointForce(node, tuple(pf["value"]))
 
 
 def _pressure(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:

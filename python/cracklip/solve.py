@@ -38,7 +38,7 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     # differs by round-off that the conditioning amplifies to ~1e-11), and
     # the constraint rows (1 on the diagonal) match the stiffness rows.
     E = scene.material.E
-    unit = dataclasses.replace(model, scene=dataclasses.replace(scene, material=Material(1.0, scene.material.nu)),
+    unit = dataclasses.replace(model, scene=dataclasses.replace(scene, material=scene.material.scaled(1.0)),
                                bc_values=model.bc_values * E)
     A, b, timings = assemble_system(unit)
     T = None
@@ -136,7 +136,7 @@ def solve_plain(scene: Scene) -> tuple[np.ndarray, dict[str, float]]:
             raise InputError("solve_plain supports constant tractions only")
         t = dolfinx.fem.Constant(msh, PETSc.ScalarType(tuple(tr.value)))
         L += ufl.inner(t, v) * ds(scene.mesh.tag_value(tr.where))
-    a = elasticity_form(V, scene.material.E, scene.material.nu)
+    a = elasticity_form(V, scene.material.E_strain, scene.material.nu_strain)
     L = dolfinx.fem.form(L)
     timings["setup"] = time.perf_counter() - t_start
 

@@ -88,18 +88,15 @@ void declare_contact(py::module& m)
       py::arg("x"), py::arg("cells"), py::arg("cracks"), py::arg("space"), py::arg("n"));
 
   m.def(
-      "lip_interaction_integral",
-      [](const carray<double>& x, const carray<std::int32_t>& cells, const Cracks& cracks,
-         const MultiplierSpace& space, const carray<double>& lambda_full, std::array<double, 2> tip,
-         std::array<double, 2> e1, int orientation, std::int32_t crack, double radius, double E,
-         double nu, int n)
+      "evaluate_multipliers",
+      [](const MultiplierSpace& space, std::int32_t crack, const carray<std::int32_t>& point_cells,
+         const carray<double>& ref, const carray<double>& lambda_full)
       {
-        return lip_interaction_integral(as_span(x), as_span(cells), cracks, space, as_span(lambda_full),
-                                        TipFrame{tip, e1, orientation}, crack, radius, E, nu, n);
+        return as_pyarray(evaluate_multipliers(space, crack, as_span(point_cells), as_span(ref),
+                                               as_span(lambda_full)));
       },
-      py::arg("x"), py::arg("cells"), py::arg("cracks"), py::arg("space"), py::arg("lambda_full"),
-      py::arg("tip"), py::arg("e1"), py::arg("orientation"), py::arg("crack"), py::arg("radius"),
-      py::arg("E"), py::arg("nu"), py::arg("n"));
+      py::arg("space"), py::arg("crack"), py::arg("point_cells"), py::arg("ref"), py::arg("lambda_full"),
+      "Values (n) of a full multiplier field at points (cell, reference) of a crack.");
 }
 
 } // namespace cracklip_wrappers

@@ -59,6 +59,7 @@ void declare_fields(py::module& m)
         const py::ssize_t n = f.weight.size();
         py::dict d;
         d["cell"] = as_pyarray(std::move(f.cell));
+        d["ref"] = as_pyarray(std::move(f.ref), {n, 2});
         d["x"] = as_pyarray(std::move(f.x), {n, 2});
         d["weight"] = as_pyarray(std::move(f.weight));
         d["side"] = as_pyarray(std::move(f.side));

@@ -109,10 +109,10 @@ void declare_fracture(py::module& m)
       "compute_domain_points",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
          const Cracks& cracks, std::array<double, 2> tip, std::array<double, 2> e1, double radius,
-         const QuadratureOptions& options)
+         const QuadratureOptions& options, bool interior)
       {
         DomainPoints d = compute_domain_points(as_span(x), as_span(cells), layout, cracks,
-                                               frame(tip, e1, 1), radius, options);
+                                               frame(tip, e1, 1), radius, options, interior);
         const py::ssize_t n = d.weight.size();
         py::dict out;
         out["cell"] = as_pyarray(std::move(d.cell));
@@ -120,12 +120,14 @@ void declare_fracture(py::module& m)
         out["x"] = as_pyarray(std::move(d.x), {n, 2});
         out["weight"] = as_pyarray(std::move(d.weight));
         out["side"] = as_pyarray(std::move(d.side));
+        out["q"] = as_pyarray(std::move(d.q));
         out["grad_q"] = as_pyarray(std::move(d.grad_q), {n, 2});
         return out;
       },
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("tip"),
-      py::arg("e1"), py::arg("radius"), py::arg("options"),
-      "Quadrature points of the ring where the plateau q of `radius` has a gradient.");
+      py::arg("e1"), py::arg("radius"), py::arg("options"), py::arg("interior") = false,
+      "Quadrature points of the ring where the plateau q of `radius` has a gradient (interior: "
+      "of every cell where q != 0).");
 }
 
 } // namespace cracklip_wrappers

@@ -8,6 +8,7 @@ void declare_assembly(pybind11::module& m);
 void declare_fields(pybind11::module& m);
 void declare_fracture(pybind11::module& m);
 void declare_contact(pybind11::module& m);
+void declare_loads(pybind11::module& m);
 } // namespace cracklip_wrappers
 
 PYBIND11_MODULE(_cracklip, m)
@@ -18,4 +19,5 @@ PYBIND11_MODULE(_cracklip, m)
   cracklip_wrappers::declare_fields(m);
   cracklip_wrappers::declare_fracture(m);
   cracklip_wrappers::declare_contact(m);
+  cracklip_wrappers::declare_loads(m);
 }

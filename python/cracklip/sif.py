@@ -1,0 +1,418 @@
+"""Stress intensity factors: a domain chosen per tip, K on three domains, and their spread.
+
+For every tip this module
+
+- measures the element size at the tip (the mean edge of the cells around
+  the node nearest to it);
+- finds what a domain must stay clear of: the part's boundary (holes
+  included), the other tips, the other cracks, and the crack's own polyline
+  beyond the straight run that ends at the tip (a kink of more than
+  KINK_DEG degrees: the auxiliary fields assume a straight crack);
+- takes the largest radius whose domain (every cell with a node inside the
+  radius) stays clear of all of that, and clips the requested radius
+  (Options.sif_radius, default DEFAULT_ELEMENTS element sizes) to it;
+- computes K_I, K_II by the domain interaction integral on three domains
+  (DOMAIN_FRACTIONS of the radius) with the lip term (tractions on the lips:
+  contact pressure, lip pressure, an initial stress's sigma_0 n) and the
+  body-force term (body force and div sigma_0), and reports K on the largest
+  domain with the spread (max - min) over the three.
+
+Conventions (README "Conventions"): the tip frame has e1 along the crack's
+extension and e2 = e1 turned by +90 degrees; K_I > 0 opens the crack; K_II > 0
+when the material on the e2 side of the crack moves along +e1 relative to the
+other side behind the tip (the Williams mode-II field, cpp/tip_functions.h).
+The interaction integral (q the plateau function, u^aux the auxiliary field
+of unit K):
+
+    I = int_A (sigma_ij u^aux_i,1 + sigma^aux_ij u_i,1 - sigma_kl eps^aux_kl delta_1j) q,_j dA
+        - int_lips t_i u^aux_i,1 q ds - int_A b_i u^aux_i,1 q dA,      K = E* I / 2,
+
+with sigma the stress of the displacement (C eps(u)), t the traction on each
+lip and b the body force (plus div sigma_0).
+"""
+from __future__ import annotations
+
+import dataclasses
+import logging
+import math
+import typing
+
+import numpy as np
+
+from . import _cracklip
+from .errors import InputError
+
+logger = logging.getLogger(__name__)
+
+#: Default radius of the largest domain, in element sizes at the tip.
+DEFAULT_ELEMENTS = 6.0
+#: The domains' radii as fractions of the largest.
+DOMAIN_FRACTIONS = (0.5, 0.75, 1.0)
+#: A turn of the crack polyline by more than this (degrees) is a kink that a
+#: domain must not hold.
+KINK_DEG = 1.0
+#: Spread (max - min over the domains) above this fraction of the K scale is warned about.
+SPREAD_WARNING = 0.01
+#: Gauss degree of the interaction integral in cells without tip functions:
+#: the integrand (smooth, non-polynomial auxiliary fields) needs more than
+#: the stiffness's rule.
+SIF_DEGREE = 8
+#: Gauss points per crack segment for the lip term.
+LIP_POINTS = 8
+
+
+@dataclasses.dataclass
+class TipDomain:
+    """The SIF domains of one tip.
+
+    Attributes:
+        crack, tip: crack index and tip index within the crack.
+        position, direction: the tip and its unit direction e1 (2,).
+        orientation: +1 if e2 points to the crack's + side (see CrackGeometry).
+        element_size: mean edge length of the cells around the node nearest to the tip.
+        clearance: distance from the tip to the nearest thing a domain must avoid.
+        obstacle: what that is (e.g. "the boundary", "tip 1 of crack 'a'").
+        admissible: the largest radius whose domain stays clear of it.
+        radius: the largest domain's radius used.
+        radii: the radii of the domains, increasing.
+        requested: Options.sif_radius (or a caller's radius), None for the default.
+        clear: False when no domain of at least one element fits (K is then
+            computed on the smallest domain around the tip and is not reliable).
+        warnings: messages about this tip's domains.
+    """
+    crack: int
+    tip: int
+    position: np.ndarray
+    direction: np.ndarray
+    orientation: int
+    element_size: float
+    clearance: float
+    obstacle: str
+    admissible: float
+    radius: float
+    radii: tuple[float, ...]
+    requested: float | None
+    clear: bool
+    warnings: list[str] = dataclasses.field(default_factory=list)
+
+    @property
+    def limited(self) -> bool:
+        """Whether the obstacle made the domain smaller than asked."""
+        wanted = self.requested if self.requested else DEFAULT_ELEMENTS * self.element_size
+        return self.radius < wanted * (1.0 - 1e-12)
+
+
+# -- geometry ---------------------------------------------------------------------------------------
+
+def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Distances from p (2,) to segments a-b (m, 2), (m, 2)."""
+    d = b - a
+    dd = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
+    t = np.clip(np.einsum("ij,ij->i", p - a, d) / dd, 0.0, 1.0)
+    return np.linalg.norm(a + t[:, None] * d - p, axis=1)
+
+
+def straight_runs(points: np.ndarray, kink_deg: float = KINK_DEG) -> list[np.ndarray]:
+    """The polyline split at its kinks (turns above kink_deg): a list of
+    vertex-index arrays, each a straight run (consecutive runs share a vertex)."""
+    d = np.diff(points, axis=0)
+    ang = np.arctan2(d[:, 1], d[:, 0])
+    turn = np.abs((np.diff(ang) + np.pi) % (2 * np.pi) - np.pi)
+    kinks = np.flatnonzero(turn > np.radians(kink_deg)) + 1  # vertex indices
+    bounds = [0, *kinks.tolist(), len(points) - 1]
+    return [np.arange(bounds[i], bounds[i + 1] + 1) for i in range(len(bounds) - 1)]
+
+
+def _boundary(model) -> tuple[np.ndarray, np.ndarray]:
+    seg = getattr(model, "_boundary_cache", None)
+    if seg is None:
+        from .model import boundary_segments
+        seg = boundary_segments(model.scene.mesh)
+        model._boundary_cache = seg
+    return seg
+
+
+def _obstacles(model, crack: int, tip: int) -> list[tuple[float, str]]:
+    """(distance, description) of everything a domain at this tip must avoid."""
+    g = model.geometries[crack]
+    p = np.asarray(g.tips)[tip]
+    out: list[tuple[float, str]] = []
+    a, b = _boundary(model)
+    out.append((float(_segment_distance(p, a, b).min()), "the boundary of the part"))
+    names = [cm.crack.name for cm in model.cracks]
+    for ci, cm in enumerate(model.cracks):
+        tips = np.asarray(cm.geometry.tips).reshape(-1, 2)
+        for j, q in enumerate(tips):
+            if ci == crack and j == tip:
+                continue
+            out.append((float(np.linalg.norm(q - p)), f"tip {j} of crack {names[ci]!r} at "
+                                                       f"({q[0]:.6g}, {q[1]:.6g})"))
+        pts = cm.crack.points
+        if ci != crack:
+            out.append((float(_segment_distance(p, pts[:-1], pts[1:]).min()), f"crack {names[ci]!r}"))
+            continue
+        # The crack itself beyond the straight run ending at this tip.
+        end = 0 if np.linalg.norm(pts[0] - p) <= np.linalg.norm(pts[-1] - p) else len(pts) - 1
+        runs = straight_runs(pts)
+        run = runs[0] if end == 0 else runs[-1]
+        rest = np.setdiff1d(np.arange(len(pts) - 1), run[:-1])  # segment indices off the run
+        if rest.size:
+            kink = pts[run[-1]] if end == 0 else pts[run[0]]
+            d = float(_segment_distance(p, pts[rest], pts[rest + 1]).min())
+            out.append((d, f"the kink of crack {names[ci]!r} at ({kink[0]:.6g}, {kink[1]:.6g})"))
+    return out
+
+
+def _node_distances(model, p: np.ndarray) -> np.ndarray:
+    return np.linalg.norm(model.x - p, axis=1)
+
+
+def tip_element_size(model, p: np.ndarray, dist: np.ndarray | None = None) -> float:
+    """Mean edge length of the cells around the node nearest to point p."""
+    dist = _node_distances(model, p) if dist is None else dist
+    node = int(np.argmin(dist))
+    cells = model.cells[np.any(model.cells == node, axis=1)]
+    e = model.x[cells[:, [1, 2, 0]]] - model.x[cells]
+    return float(np.linalg.norm(e, axis=2).mean())
+
+
+def _admissible(model, dist: np.ndarray, clearance: float) -> float:
+    """Largest radius r such that every cell with a node closer than r to the
+    tip has all its nodes closer than `clearance` (the domain's cells stay
+    clear of the obstacle)."""
+    dc = dist[model.cells]
+    dmin, dmax = dc.min(axis=1), dc.max(axis=1)
+    near = dmin < clearance
+    dmin, dmax = dmin[near], dmax[near]
+    order = np.argsort(dmin, kind="stable")
+    reach = np.maximum.accumulate(dmax[order])
+    bad = np.flatnonzero(reach >= clearance)
+    return float(dmin[order][bad[0]]) if bad.size else float(clearance)
+
+
+def tip_domains(model, crack: int, requested: float | None = None) -> list[TipDomain]:
+    """The SIF domains of every tip of a crack. requested: the largest
+    domain's radius (None or 0: Options.sif_radius, else DEFAULT_ELEMENTS
+    element sizes)."""
+    if requested is not None and not (isinstance(requested, (int, float, np.floating))
+                                      and math.isfinite(requested) and requested > 0.0):
+        raise InputError(f"the SIF domain radius must be a finite number > 0, got {requested!r}")
+    if requested is None:
+        requested = model.scene.options.sif_radius or None
+    g = model.geometries[crack]
+    tips = np.asarray(g.tips).reshape(-1, 2)
+    name = model.cracks[crack].crack.name
+    out = []
+    for j, p in enumerate(tips):
+        dist = _node_distances(model, p)
+        h = tip_element_size(model, p, dist)
+        obstacles = _obstacles(model, crack, j)
+        clearance, obstacle = min(obstacles, key=lambda o: o[0])
+        admissible = _admissible(model, dist, clearance)
+        wanted = float(requested) if requested else DEFAULT_ELEMENTS * h
+        where = f"tip {j} of crack {name!r} at ({p[0]:.6g}, {p[1]:.6g})"
+        warnings = []
+        # The smallest usable radius: one element, and the smallest domain
+        # (DOMAIN_FRACTIONS[0] of it) must hold the node nearest to the tip.
+        least = max(h, 1.01 * float(dist.min()) / DOMAIN_FRACTIONS[0])
+        clear = admissible >= least
+        if not clear:
+            radius = least
+            warnings.append(
+                f"{where}: no SIF domain of at least one element ({h:.3g}) fits between the tip and "
+                f"{obstacle} ({clearance:.3g} away); K there is computed on a domain of radius "
+                f"{radius:.3g} that reaches it and is NOT reliable: refine the mesh at the tip "
+                "(mesh.tip_h) or move the crack")
+        elif wanted < least:
+            radius = least
+            warnings.append(f"{where}: sif_radius {wanted:.3g} is below one element ({h:.3g}) there; K uses "
+                            f"domains up to radius {radius:.3g}")
+        else:
+            radius = min(wanted, admissible)
+            if radius < wanted * (1.0 - 1e-12):
+                asked = f"sif_radius {wanted:.4g}" if requested else \
+                    f"the default SIF domain ({DEFAULT_ELEMENTS:g} elements, {wanted:.3g})"
+                warnings.append(
+                    f"{where}: {asked} would reach {obstacle} ({clearance:.3g} away); K uses domains up to "
+                    f"radius {radius:.3g} ({radius / h:.1f} elements of {h:.3g})"
+                    + (": fewer than 3 elements, refine the mesh at the tip (mesh.tip_h)" if radius < 3 * h else ""))
+        radii = tuple(float(f * radius) for f in DOMAIN_FRACTIONS)
+        out.append(TipDomain(crack, j, p.copy(), np.asarray(g.tip_tangents).reshape(-1, 2)[j].copy(),
+                             int(np.asarray(g.tip_orientation)[j]), h, clearance, obstacle, admissible,
+                             float(radius), radii, float(requested) if requested else None, clear,
+                             warnings))
+    return out
+
+
+# -- the integrals ----------------------------------------------------------------------------------
+
+def _aux_derivative(material, domain: TipDomain, x: np.ndarray, sides: np.ndarray) -> np.ndarray:
+    """d u^aux / d x_1 (n, mode, component) of the unit-K auxiliary fields."""
+    _, dU = _cracklip.williams_displacement(domain.position, domain.direction, material.kappa, x,
+                                            np.asarray(sides, dtype=np.int8), domain.orientation)
+    scale = 1.0 / (2.0 * material.mu * math.sqrt(2.0 * math.pi))
+    return scale * np.einsum("nmij,j->nmi", dU, domain.direction)
+
+
+def _q_at(model, dist: np.ndarray, radius: float, cells: np.ndarray, ref: np.ndarray) -> np.ndarray:
+    """The plateau q (1 at nodes closer than radius, P1) at points (cell, ref)."""
+    qn = (dist < radius).astype(float)[model.cells[cells]]
+    N = np.stack([1.0 - ref[:, 0] - ref[:, 1], ref[:, 0], ref[:, 1]], axis=1)
+    return np.einsum("na,na->n", N, qn)
+
+
+def lip_traction(solution, crack: int, points: dict[str, np.ndarray]) -> np.ndarray:
+    """Traction (n, 2) on the + lip of a crack at crack points (cell, ref, x,
+    normal as from _cracklip.compute_crack_points); the - lip carries the
+    opposite. It sums the contact pressure, the crack's lip pressure and an
+    initial stress's sigma_0 n, each pushing on the + lip along n (into the
+    + side) when the lips are pressed or pushed apart."""
+    m = solution.model
+    n = points["normal"]
+    pressure = np.zeros(len(n))
+    if solution.contact:
+        cs = solution.contact["system"]
+        lam_full = cs.R @ solution.contact["lambda"]
+        pressure -= _cracklip.evaluate_multipliers(cs.space, crack, points["cell"], points["ref"], lam_full)
+    from .loads import lip_pressure
+    pressure += lip_pressure(m.cracks[crack].crack, points["x"])
+    t = pressure[:, None] * n
+    if m.scene.initial_stress is not None:
+        from .stress_field import evaluate_stress
+        sig = evaluate_stress(m.scene.initial_stress, points["x"], "initial stress")
+        t += np.einsum("nij,nj->ni", sig, n)
+    return t
+
+
+def _lip_points(model, crack: int):
+    cache = getattr(model, "_lip_points_cache", None)
+    if cache is None:
+        cache = model._lip_points_cache = {}
+    if crack not in cache:
+        cache[crack] = _cracklip.compute_crack_points(model.x, model.cells, model.geometries[crack], LIP_POINTS)
+    return cache[crack]
+
+
+def interaction_integrals(solution, domain: TipDomain, radius: float) -> np.ndarray:
+    """(I_I, I_II) on the domain of one radius: domain, lip and body-force terms."""
+    m = solution.model
+    mat = m.scene.material
+    q_opts = m.scene.options.quadrature_options()
+    q_opts.degree = max(q_opts.degree, SIF_DEGREE)
+    body = _body_force(m)
+    d = _cracklip.compute_domain_points(m.x, m.cells, m.layout, m.geometries, domain.position,
+                                        domain.direction, radius, q_opts, body is not None)
+    if not np.any(d["grad_q"]):
+        raise InputError(f"no cell crosses the SIF domain circle of radius {radius:.4g} around tip "
+                         f"{domain.position.tolist()}: the q-function is constant; use a larger radius")
+    _, grad = _cracklip.evaluate_displacement(m.x, m.cells, m.layout, m.geometries, solution.u,
+                                              d["cell"], d["ref"], d["side"])
+    I = np.asarray(_cracklip.interaction_integral(domain.position, domain.direction, mat.E_strain, mat.nu_strain,
+                                                  d["x"], d["weight"], d["grad_q"], grad, d["side"],
+                                                  domain.orientation))
+    if body is not None:
+        b = body(d["x"])
+        daux = _aux_derivative(mat, domain, d["x"], d["side"])
+        I = I - np.einsum("n,n,nmi,ni->m", d["weight"], d["q"], daux, b)
+    pts = _lip_points(m, domain.crack)
+    dist = _node_distances(m, domain.position)
+    q = _q_at(m, dist, radius, pts["cell"], pts["ref"])
+    on = q > 0.0
+    if np.any(on):
+        sub = {k: v[on] for k, v in pts.items()}
+        t = lip_traction(solution, domain.crack, sub)
+        if np.any(t):
+            jump = (_aux_derivative(mat, domain, sub["x"], np.ones(len(t), dtype=np.int8))
+                    - _aux_derivative(mat, domain, sub["x"], -np.ones(len(t), dtype=np.int8)))
+            I = I - np.einsum("n,n,nmi,ni->m", sub["weight"], q[on], jump, t)
+    return I
+
+
+def _body_force(model) -> typing.Callable[[np.ndarray], np.ndarray] | None:
+    """b(x) (n, 2) = body force + div sigma_0, or None if both vanish."""
+    scene = model.scene
+    f = None if scene.body_force is None else np.asarray(scene.body_force, dtype=float)
+    s0 = scene.initial_stress
+    if (f is None or not np.any(f)) and s0 is None:
+        return None
+    from .stress_field import LinearStress, divergence
+    if isinstance(s0, LinearStress) and s0.is_uniform and (f is None or not np.any(f)):
+        return None
+    size = float(np.ptp(model.x, axis=0).max())
+
+    def b(x):
+        out = np.zeros((len(x), 2)) if f is None else np.broadcast_to(f, (len(x), 2)).copy()
+        if s0 is not None:
+            out += divergence(s0, x, size, "initial stress")
+        return out
+    return b
+
+
+# -- K per tip --------------------------------------------------------------------------------------
+
+def natural_k(solution) -> float:
+    """E* max|u| / sqrt(L) (L the part's size): about the K of a crack as
+    large as the part under the solution's loads."""
+    m = solution.model
+    size = float(np.ptp(m.x, axis=0).max())
+    return m.scene.material.E_star * float(np.abs(solution.standard_displacement).max()) / math.sqrt(size)
+
+
+def k_scale(solution, ks: list[tuple[float, float]]) -> float:
+    """The scale against which a spread of K is judged: the largest |K| of
+    the scene's tips, at least 1e-3 natural_k (a floor for scenes whose
+    cracks are all closed, K = 0)."""
+    return max([math.hypot(*k) for k in ks] + [1e-3 * natural_k(solution), 1e-300])
+
+
+def compute_sifs(solution, radius: float | None = None, cracks: typing.Sequence[int] | None = None
+                 ) -> tuple[list[dict[str, typing.Any]], list[str]]:
+    """K_I, K_II with their spreads at every tip of the given cracks (all by
+    default), and the warnings about them (domains clipped, spreads above
+    SPREAD_WARNING of the K scale). radius: the largest domain's radius,
+    overriding Options.sif_radius. Each row holds the keys of results.json's
+    "sifs": crack, crack_name, tip, x, y, direction, K_I, K_II, K_I_spread,
+    K_II_spread, mode_mix_deg, G, radius, radii, element_size, limited_by,
+    domain_clear."""
+    m = solution.model
+    mat = m.scene.material
+    cracks = range(len(m.cracks)) if cracks is None else cracks
+    rows, warnings, raw = [], [], []
+    for ci in cracks:
+        doms = tip_domains(m, ci, radius)
+        if radius is not None:  # a caller's radius: say what became of it (the model checks did the default)
+            for dom in doms:
+                for w in dom.warnings:
+                    logger.warning("%s", w)
+        for dom in doms:
+            K = np.array([0.5 * mat.E_star * interaction_integrals(solution, dom, r) for r in dom.radii])
+            raw.append((dom, K))
+    scale = k_scale(solution, [tuple(K[-1]) for _, K in raw])
+    negligible = 1e-6 * natural_k(solution)
+    for dom, K in raw:
+        kI, kII = float(K[-1, 0]), float(K[-1, 1])
+        spread = np.ptp(K, axis=0)
+        name = m.cracks[dom.crack].crack.name
+        warnings += dom.warnings
+        if dom.clear and max(spread) > SPREAD_WARNING * scale:
+            warnings.append(
+                f"tip {dom.tip} of crack {name!r} at ({dom.position[0]:.6g}, {dom.position[1]:.6g}): K varies "
+                f"with the SIF domain by {max(spread) / scale * 100:.2g} % of the K scale {scale:.4g} (K_I "
+                f"{', '.join(f'{v:.5g}' for v in K[:, 0])}, K_II {', '.join(f'{v:.5g}' for v in K[:, 1])} on "
+                f"radii {', '.join(f'{r:.3g}' for r in dom.radii)}): the field near the tip is not resolved "
+                f"(element {dom.element_size:.3g}); refine the mesh at the tip (mesh.tip_h) or enlarge the "
+                "enrichment radius")
+        mix = math.degrees(math.atan2(kII, kI)) if math.hypot(kI, kII) > negligible else None
+        rows.append({"crack": dom.crack, "crack_name": name, "tip": dom.tip,
+                     "x": float(dom.position[0]), "y": float(dom.position[1]),
+                     "direction": dom.direction.tolist(), "K_I": kI, "K_II": kII,
+                     "K_I_spread": float(spread[0]), "K_II_spread": float(spread[1]),
+                     "mode_mix_deg": mix, "G": (kI ** 2 + kII ** 2) / mat.E_star,
+                     "radius": dom.radius, "radii": list(dom.radii), "element_size": dom.element_size,
+                     "limited_by": dom.obstacle if dom.limited or not dom.clear else None,
+                     "domain_clear": dom.clear})
+    return rows, warnings
+
+
+__all__ = ["TipDomain", "tip_domains", "compute_sifs", "interaction_integrals", "lip_traction",
+           "tip_element_size", "straight_runs", "k_scale", "natural_k"]
