@@ -6,7 +6,8 @@ or a solve untrustworthy, found before solving.
   its rigid motion (the solve would fail on a singular matrix);
 - ``check_model(model)`` returns warnings: a refinement that the mesh did not
   reach, a tip element coarser than a tenth of the crack length or than the
-  enrichment radius, a tip within an element of the boundary, SIF domains
+  enrichment radius, a tip without tip enrichment (K only to O(sqrt(h))),
+  a tip within an element of the boundary, SIF domains
   clipped by the boundary, other tips, other cracks, kinks or holes.
 
 A warning is a ``ModelWarning`` (code, message, crack, tip); results.json
@@ -32,8 +33,8 @@ class ModelWarning:
     """Something that makes a result less trustworthy, with the fix.
 
     Attributes:
-        code: refinement, tip_resolution, enrichment_radius, tip_near_boundary,
-            sif_domain or sif_spread.
+        code: refinement, tip_resolution, tip_enrichment, enrichment_radius,
+            tip_near_boundary, sif_domain or sif_spread.
         message: what, where, why it matters and what to do.
         crack, tip: the crack and tip concerned (None if not one tip).
     """
@@ -78,7 +79,13 @@ def check_model(model) -> list[ModelWarning]:
                     "tip_resolution", f"{where}: the element there ({h:.3g}) is coarser than a tenth of the "
                     f"crack's length in the part ({length:.3g}): the crack is not resolved and K is not "
                     f"reliable; refine the mesh at the tip (mesh.tip_h <= {0.1 * length:.3g})", ci, j))
-            if enrichment != "none" and radius > 0.0 and h > radius:
+            if enrichment == "none":
+                out.append(ModelWarning(
+                    "tip_enrichment", f"{where}: without tip enrichment (options.enrichment = 'none') the crack "
+                    "ends at the edge of the cell holding the tip and the tip field is not represented: K is "
+                    "off by several per cent on ordinary meshes (5 % with 0.05 elements on a crack 1 long) and "
+                    "converges like sqrt(h); use enrichment = 'vector' for K", ci, j))
+            elif radius > 0.0 and h > radius:
                 out.append(ModelWarning(
                     "enrichment_radius", f"{where}: the enrichment radius {radius:.3g} is smaller than the element "
                     f"there ({h:.3g}), so only the tip cell's nodes are tip-enriched and the rate is that of "

@@ -11,7 +11,7 @@
   field)``: int f . phi_j and -int sigma_0 : eps(phi_j) over the cracked
   part. Standard dofs: per cell, exactly for a linear sigma_0 (a 6-point
   degree-4 rule for a callable); enriched dofs: the stiffness's quadrature
-  in the enriched cells (C++ assemble_cell_load). The lips need no term of
+  in the enriched cells, at least degree 4 (C++ assemble_cell_load). The lips need no term of
   their own: the enriched functions jump there, so -int sigma_0 : eps(phi_j)
   already holds the lip traction sigma_0 n.
 - ``lip_pressure(crack, x)`` and ``assemble_lip_pressure(model, crack)``: a
@@ -156,13 +156,21 @@ def _cell_rule(degree: int) -> tuple[np.ndarray, np.ndarray]:
     return pts, np.array([wa, wa, wa, wb, wb, wb])
 
 
+#: Gauss degree of the cell loads in enriched cells without tip functions:
+#: exact for a body force and an initial stress up to degree 4 (a P1 x
+#: Heaviside gradient is piecewise constant).
+LOAD_DEGREE = 4
+
+
 def _enriched_points(model) -> dict:
-    """The stiffness's quadrature points of the enriched cells (cell, ref, x, weight, side)."""
+    """Quadrature points of the enriched cells (cell, ref, x, weight, side):
+    the stiffness's rules, at least degree LOAD_DEGREE."""
     cache = model.__dict__.get("_enriched_points_cache")
     if cache is None:
+        q = model.scene.options.quadrature_options()
+        q.degree = max(q.degree, LOAD_DEGREE)
         cache = _cracklip.compute_field_points(model.x, model.cells, model.layout, model.geometries,
-                                               np.zeros(model.num_dofs), np.asarray(model.layout.cells, dtype=np.int32),
-                                               model.scene.options.quadrature_options())
+                                               np.zeros(model.num_dofs), np.asarray(model.layout.cells, dtype=np.int32), q)
         model._enriched_points_cache = cache
     return cache
 
