@@ -24,6 +24,10 @@ SMALL = {
     "westergaard": ["mesh.h=0.1"],
     "partly_open_crack": ["mesh.h=0.1", "mesh.tip_h=0.04"],
     "interacting_cracks": ["mesh.h=0.1", "mesh.tip_h=0.03"],
+    "pressurised_crack": ["mesh.h=2.0", "mesh.tip_h=0.05"],
+    "edge_notch_bending": ["mesh.h=0.1", "mesh.tip_h=0.02"],
+    "three_point_bending": ["mesh.h=0.1", "mesh.tip_h=0.02"],
+    "residual_stress": ["mesh.h=0.1", "mesh.tip_h=0.02"],
 }
 
 
@@ -432,3 +436,24 @@ def test_scene_file_module_documents_every_key():
     for k in SCHEMA:
         assert k.meaning and k.type
         assert scene_file.KEYS[k.path] is k
+
+
+def test_loads_scenes(tmp_path):
+    """The scenes of issue 14's loads at their small sizes, against the
+    references in their comments (looser than at the files' own sizes)."""
+    results, crack, sif = run_scene("pressurised_crack", tmp_path / "p")
+    check_common(tmp_path / "p", results, crack, sif)
+    assert results["model"]["cracks"][0]["lip_pressure"] == 1.0
+    assert column(sif, "K_I") == pytest.approx(1.7830, rel=0.02)
+    assert np.all(column(crack, "gap") > 0.0)
+    results, crack, sif = run_scene("edge_notch_bending", tmp_path / "b")
+    assert column(sif, "K_I")[0] == pytest.approx(1.0892, rel=0.03)
+    results, crack, sif = run_scene("three_point_bending", tmp_path / "t")
+    assert column(sif, "K_I")[0] == pytest.approx(10.650, rel=0.03)
+    assert any("force [0.0, -1.0] at node (0, 1)" in n for n in results["boundary_conditions_and_loads"])
+    results, crack, sif = run_scene("residual_stress", tmp_path / "r")
+    c = results["cracks"][0]
+    assert 0.3 < c["closed_fraction"] < 0.8 and c["pressure"]["min"] >= -1e-12
+    closed = column(crack, "closed") == 1
+    assert column(crack, "x")[closed].max() < column(crack, "x")[~closed].min()  # the mouth is closed
+    assert column(sif, "K_I")[0] > 0.0

@@ -312,12 +312,14 @@ def read_msh(path: str | pathlib.Path) -> MeshData:
 
 def create_plate_with_hole(x0: float, y0: float, x1: float, y1: float, h: float,
                            center: tuple[float, float], radius: float,
-                           refine: typing.Sequence[tuple[float, float, float, float]] = ()) -> MeshData:
+                           refine: typing.Sequence[tuple[float, float, float, float]] = (),
+                           embed_points: typing.Sequence[tuple[float, float]] = ()) -> MeshData:
     """Rectangle [x0, x1] x [y0, y1] with a circular hole, triangles of size h.
 
     The hole (centre, radius) must lie strictly inside the rectangle.
     refine: optional (x, y, h_near, radius) local refinements (see
-    create_rectangle). Tags: left, right, bottom, top, hole.
+    create_rectangle); embed_points: points that must be mesh nodes (point
+    supports, point forces). Tags: left, right, bottom, top, hole.
     """
     _check_box(x0, y0, x1, y1, h)
     cx, cy = float(center[0]), float(center[1])
@@ -330,6 +332,9 @@ def create_plate_with_hole(x0: float, y0: float, x1: float, y1: float, h: float,
     plate = occ.addRectangle(x0, y0, 0.0, x1 - x0, y1 - y0)
     disk = occ.addDisk(cx, cy, 0.0, radius, radius)
     body, _ = occ.cut([(2, plate)], [(2, disk)])
+    if embed_points:
+        body, _ = occ.fragment(body, [(0, occ.addPoint(p[0], p[1], 0.0)) for p in embed_points])
+        body = [e for e in body if e[0] == 2]
     occ.synchronize()
     gmsh.model.addPhysicalGroup(2, [s for _, s in body], 1)
     groups = _box_sides(gmsh, x0, y0, x1, y1, 1e-7 * max(x1 - x0, y1 - y0))

@@ -442,7 +442,13 @@ def magnification(solution: Solution, fields: dict, requested: float) -> float:
     umax = float(np.linalg.norm(fields["displacement"], axis=1).max()) if len(fields["displacement"]) else 0.0
     if umax <= 0.0:
         return 1.0
-    raw = 0.05 * size / umax
+    return _round_scale(0.05 * size / umax)
+
+
+def _round_scale(raw: float) -> float:
+    """A scale factor rounded to one significant digit."""
+    if not (raw > 0.0 and math.isfinite(raw)):
+        return 1.0
     exp = math.floor(math.log10(raw))
     return float(round(raw / 10 ** exp) * 10 ** exp) or raw
 
@@ -498,31 +504,34 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
     panels = [fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)] if window is not None else [fig.add_subplot()]
     for k, ax in enumerate(panels):
         zoom = k == 1
-        sel = slice(None)
+        sel, m = slice(None), mag
         if zoom:
             c = tris.mean(axis=1)
-            sel = np.all((c >= window[0] - 0.1 * np.ptp(window, axis=0)) &
-                         (c <= window[1] + 0.1 * np.ptp(window, axis=0)), axis=1)
-        coll = PolyCollection((tris + mag * disp)[sel], array=umag[sel], cmap="viridis", edgecolors="k",
+            span = np.ptp(window, axis=0)
+            sel = np.all((c >= window[0] - 0.1 * span) & (c <= window[1] + 0.1 * span), axis=1)
+            # Its own scale: the largest displacement in the window is 5 % of the window.
+            m = scale if scale > 0.0 else _round_scale(0.05 * float(span.max()) / max(float(umag[sel].max(initial=0.0)), 1e-300))
+        coll = PolyCollection((tris + m * disp)[sel], array=umag[sel], cmap="viridis", edgecolors="k",
                               linewidths=0.1)
         coll.set_clim(float(umag.min(initial=0.0)), float(umag.max(initial=1.0)))
         ax.add_collection(coll)
         for smp in samples:
             for key in ("u_plus", "u_minus"):
-                xy = smp["x"] + mag * smp[key]
+                xy = smp["x"] + m * smp[key]
                 ax.plot(xy[:, 0], xy[:, 1], "r-", lw=0.8)
         ax.autoscale()
         if zoom:
             ax.set_xlim(window[0][0], window[1][0])
             ax.set_ylim(window[0][1], window[1][1])
-            ax.set_title("around the cracks", fontsize=9)
+            ax.set_title(f"around the cracks, displacement x{m:g}", fontsize=9)
         elif window is not None:
             ax.add_patch(_rectangle(window))
+            ax.set_title(f"displacement x{m:g}", fontsize=9)
         ax.set_aspect("equal")
         ax.set_xlabel("x")
         ax.set_ylabel("y")
     fig.colorbar(coll, ax=panels, label="|u| (length units)")
-    fig.suptitle(f"{title}\ndeformed mesh, displacement x{mag:g}", fontsize=10)
+    fig.suptitle(f"{title}\ndeformed mesh" + ("" if window is not None else f", displacement x{mag:g}"), fontsize=10)
     _save(fig, out / "deformed.png")
     names.append("deformed.png")
 

@@ -339,7 +339,8 @@ SCHEMA: tuple[Key, ...] = tuple([
         "every mesh node inside the box, edges included; it may be flat (x0 = x1: the nodes on a "
         "line); standard dofs only, like a point", p_region),
     Key("dirichlet[].point", "[x, y]", UNSET,
-        "the mesh node nearest to the point (within one mean edge length)", p_point),
+        "the mesh node nearest to the point (within one mean edge length); a generated rectangle or "
+        "plate has a node there", p_point),
     Key("dirichlet[].component", "string", "both", "`x`, `y` or `both`", p_choice("x", "y", "both")),
     Key("dirichlet[].value", "float or [x, y]", 0.0,
         "prescribed displacement ([x, y] with component = both)", p_value),
@@ -368,7 +369,8 @@ SCHEMA: tuple[Key, ...] = tuple([
     Key("loads.pressures[].value", "float", REQUIRED,
         "pressure (> 0 pushes on the part): traction -p n", p_float()),
     Key("loads.point_forces[].point", "[x, y]", REQUIRED,
-        "a concentrated force at the mesh node nearest to the point (within one element)", p_point),
+        "a concentrated force at the mesh node nearest to the point (within one element); a generated "
+        "rectangle or plate has a node there", p_point),
     Key("loads.point_forces[].value", "[x, y]", REQUIRED, "the force (per unit thickness)", p_vector),
     Key("loads.initial_stress.value", "[sxx, syy, sxy]", REQUIRED,
         "initial (residual) stress sigma_0 at `origin`: the stress is C eps(u) + sigma_0, its "
@@ -686,7 +688,9 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
         raise type(e)(f"material: {e}") from None
     cracks = [_crack(c, i) for i, c in enumerate(s["cracks"])]
     t0 = time.perf_counter()
-    mesh = _mesh(s["mesh"], cracks, pathlib.Path(base_dir))
+    points = [bc["point"] for bc in s["dirichlet"] if "point" in bc] + \
+        [pf["point"] for pf in s["loads"]["point_forces"]]
+    mesh = _mesh(s["mesh"], cracks, pathlib.Path(base_dir), points)
     t_mesh = time.perf_counter() - t0
     notes: list[str] = []
     dirichlet = []
@@ -751,7 +755,9 @@ def _inside(m: dict, p: np.ndarray) -> bool:
     return bool(m["hole_radius"] < r < m["outer_radius"] and p[1] > 0.0)
 
 
-def _mesh(m: dict, cracks: list[Crack], base_dir: pathlib.Path) -> MeshData:
+def _mesh(m: dict, cracks: list[Crack], base_dir: pathlib.Path, points=()) -> MeshData:
+    """The mesh of the [mesh] settings; `points` (point supports and forces)
+    inside or on a generated rectangle or plate become mesh nodes."""
     kind = m["kind"]
     if kind == "file":
         f = pathlib.Path(m["path"])
@@ -764,11 +770,16 @@ def _mesh(m: dict, cracks: list[Crack], base_dir: pathlib.Path) -> MeshData:
             for p in c.points[[0, -1]]:
                 if _inside(m, p):
                     refine.append((float(p[0]), float(p[1]), m["tip_h"], radius))
-    if kind == "rectangle":
-        return create_rectangle(*m["domain"], h, refine=refine)
-    if kind == "plate_with_hole":
-        return create_plate_with_hole(*m["domain"], h, center=tuple(m["hole_center"]),
-                                      radius=m["hole_radius"], refine=refine)
+    if kind in ("rectangle", "plate_with_hole"):
+        x0, y0, x1, y1 = m["domain"]
+        tol = 1e-12 * max(x1 - x0, y1 - y0)
+        embed = [tuple(p) for p in points if x0 - tol <= p[0] <= x1 + tol and y0 - tol <= p[1] <= y1 + tol]
+        if kind == "plate_with_hole":
+            c, r = np.asarray(m["hole_center"]), m["hole_radius"]
+            embed = [p for p in embed if np.hypot(*(np.asarray(p) - c)) > r * (1 + 1e-9)]
+            return create_plate_with_hole(*m["domain"], h, center=tuple(m["hole_center"]),
+                                          radius=m["hole_radius"], refine=refine, embed_points=embed)
+        return create_rectangle(*m["domain"], h, refine=refine, embed_points=embed)
     if not m["hole_radius"] < m["outer_radius"]:
         raise MeshError(f"mesh.hole_radius ({m['hole_radius']}) must be smaller than mesh.outer_radius "
                         f"({m['outer_radius']})")
