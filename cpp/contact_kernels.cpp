@@ -24,8 +24,7 @@ SegmentPoints compute_segment_points(std::span<const double> x, std::span<const 
     const std::array<double, 2> P = {seg.ref[0], seg.ref[1]}, Q = {seg.ref[2], seg.ref[3]};
     const auto Pp = cell.physical(P), Qp = cell.physical(Q);
     const double L = std::hypot(Qp[0] - Pp[0], Qp[1] - Pp[1]);
-    const int tip_end = seg.tip ? seg.tip_end : tip_end_of(geo, Pp, Qp);
-    const quadrature::Rule g = quadrature::line_with_root_end(n, tip_end);
+    const quadrature::Rule g = segment_rule(geo, Pp, Qp, n);
     const auto normal = crack_normal(cell, geo);
     for (int q = 0; q < g.size(); ++q)
     {

@@ -1,7 +1,6 @@
 #include "crack_points.h"
 
-#include "quadrature.h"
-
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -19,17 +18,25 @@ std::array<double, 2> crack_normal(const P1Cell& cell, const CrackGeometry& g)
   return {gx / n, gy / n};
 }
 
-int tip_end_of(const CrackGeometry& g, std::array<double, 2> P, std::array<double, 2> Q)
+quadrature::Rule segment_rule(const CrackGeometry& g, std::array<double, 2> P, std::array<double, 2> Q, int n)
 {
   const double L = std::hypot(Q[0] - P[0], Q[1] - P[1]);
+  double rp = 0.0, rq = 0.0, best = -1.0;
   for (std::size_t j = 0; j < g.tips.size() / 2; ++j)
   {
-    if (std::hypot(P[0] - g.tips[2 * j], P[1] - g.tips[2 * j + 1]) <= 1e-12 * L)
-      return 0;
-    if (std::hypot(Q[0] - g.tips[2 * j], Q[1] - g.tips[2 * j + 1]) <= 1e-12 * L)
-      return 1;
+    const double dp = std::hypot(P[0] - g.tips[2 * j], P[1] - g.tips[2 * j + 1]);
+    const double dq = std::hypot(Q[0] - g.tips[2 * j], Q[1] - g.tips[2 * j + 1]);
+    if (best < 0.0 or std::min(dp, dq) < best)
+      best = std::min(dp, dq), rp = dp, rq = dq;
   }
-  return -1;
+  if (best < 0.0 or best >= L)
+    return quadrature::gauss_legendre(n);
+  // A tip on an end: exactly 0 there (rounding would leave a near-zero r).
+  if (rp <= 1e-12 * L)
+    rp = 0.0;
+  if (rq <= 1e-12 * L)
+    rq = 0.0;
+  return quadrature::line_toward_tip(n, rp, rq);
 }
 
 CrackPoints compute_crack_points(std::span<const double> x, std::span<const std::int32_t> cells,
@@ -38,7 +45,7 @@ CrackPoints compute_crack_points(std::span<const double> x, std::span<const std:
   if (n < 1)
     throw std::invalid_argument("compute_crack_points: need at least one point per segment");
   CrackPoints out;
-  auto add = [&](std::int32_t c, const std::array<double, 4>& seg, int known_tip_end)
+  auto add = [&](std::int32_t c, const std::array<double, 4>& seg)
   {
     const P1Cell cell(x, cells, c);
     const std::array<double, 2> P = {seg[0], seg[1]}, Q = {seg[2], seg[3]};
@@ -46,8 +53,7 @@ CrackPoints compute_crack_points(std::span<const double> x, std::span<const std:
     const double L = std::hypot(Qp[0] - Pp[0], Qp[1] - Pp[1]);
     if (!(L > 0.0))
       return;
-    const int tip_end = known_tip_end >= 0 ? known_tip_end : tip_end_of(g, Pp, Qp);
-    const quadrature::Rule rule = quadrature::line_with_root_end(n, tip_end);
+    const quadrature::Rule rule = segment_rule(g, Pp, Qp, n);
     const auto normal = crack_normal(cell, g);
     for (int q = 0; q < rule.size(); ++q)
     {
@@ -63,9 +69,9 @@ CrackPoints compute_crack_points(std::span<const double> x, std::span<const std:
   };
   for (const CrackCell& cc : g.crack_cells)
     if (cc.owns_segment)
-      add(cc.cell, cc.segment, -1);
+      add(cc.cell, cc.segment);
   for (const TipCell& tc : g.tip_cells)
-    add(tc.cell, tc.segment, 1); // (P, T): the tip is the second end
+    add(tc.cell, tc.segment); // (P, T): the tip is the second end
   return out;
 }
 

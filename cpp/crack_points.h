@@ -2,15 +2,16 @@
 //
 // Every cell the crack crosses (cut cells, the owner of an edge crack's
 // edge, tip cells) carries one straight segment. Integrals along the lips
-// (lip loads, the lip term of the interaction integral, sampled outputs)
-// use n Gauss points per segment, in the variable t = tau^2 from an end that
-// is a crack tip: the jump of tip functions grows like sqrt(r) and the
-// gradients of the auxiliary SIF fields like 1/sqrt(r) there, both
-// polynomial in tau.
+// (lip loads, contact terms, the lip term of the interaction integral,
+// sampled outputs) use n Gauss points per segment, in the variable
+// rho = sqrt(r) (r the distance to the crack's nearest tip) on the segments
+// near a tip: the jump of tip functions grows like sqrt(r) and the gradients
+// of the auxiliary SIF fields like 1/sqrt(r), both polynomial in rho.
 #pragma once
 
 #include "crack_geometry.h"
 #include "enriched_basis.h"
+#include "quadrature.h"
 
 #include <array>
 #include <cstdint>
@@ -23,9 +24,11 @@ namespace cracklip
 /// Unit normal of the crack in a cell, pointing to the phi > 0 (+) side.
 std::array<double, 2> crack_normal(const P1Cell& cell, const CrackGeometry& g);
 
-/// Which end of the segment P-Q (physical points) is a tip of the crack:
-/// 0 (P), 1 (Q) or -1 (neither).
-int tip_end_of(const CrackGeometry& g, std::array<double, 2> P, std::array<double, 2> Q);
+/// The rule of n points along the segment P-Q (physical points) of crack g:
+/// graded in sqrt(r) toward the crack's nearest tip when that tip is closer
+/// to the segment's nearer end than the segment is long (or is an end),
+/// plain Gauss-Legendre otherwise (quadrature::line_toward_tip).
+quadrature::Rule segment_rule(const CrackGeometry& g, std::array<double, 2> P, std::array<double, 2> Q, int n);
 
 /// Gauss points on the segments of one crack, segment by segment in the
 /// order of crack_cells (owners only) then tip_cells.

@@ -84,19 +84,23 @@ Rule conical_product(int nu, int nv)
 }
 } // namespace
 
-Rule line_with_root_end(int n, int singular_end)
+Rule line_toward_tip(int n, double r0, double r1)
 {
   Rule g = gauss_legendre(n);
-  if (singular_end < 0)
+  if (!(r0 >= 0.0 and r1 >= 0.0))
+    throw std::invalid_argument("line_toward_tip: distances must be >= 0");
+  if (r0 == r1)
     return g;
-  if (singular_end > 1)
-    throw std::invalid_argument("line_with_root_end: singular_end must be -1, 0 or 1");
+  const bool near_p = r0 < r1;
+  const double rn = near_p ? r0 : r1, rf = near_p ? r1 : r0;
+  const double a = std::sqrt(rn), b = std::sqrt(rf);
   for (int q = 0; q < n; ++q)
   {
-    // t_end = tau^2 from the singular end, dt = 2 tau dtau.
-    const double tau = g.points[q];
-    g.weights[q] *= 2.0 * tau;
-    g.points[q] = singular_end == 0 ? tau * tau : 1.0 - tau * tau;
+    // rho in [sqrt(r_near), sqrt(r_far)], r = rho^2, t_near = (r - r_near) / (r_far - r_near).
+    const double rho = a + (b - a) * g.points[q];
+    const double t = (rho * rho - rn) / (rf - rn);
+    g.weights[q] *= (b - a) * 2.0 * rho / (rf - rn);
+    g.points[q] = near_p ? t : 1.0 - t;
   }
   return g;
 }

@@ -19,12 +19,15 @@ struct Rule
 /// Gauss-Legendre rule with n points on [0, 1] (exact to degree 2n - 1).
 Rule gauss_legendre(int n);
 
-/// Gauss-Legendre rule with n points on [0, 1] in the variable t = tau^2
-/// measured from the end `singular_end` (0: t = 0, 1: t = 1; -1: plain
-/// Gauss-Legendre): exact for f(t) t^(-1/2) and f(t) t^(1/2) with f a
-/// polynomial of degree up to n - 1 near that end (the 1/sqrt(r) of crack-tip
-/// gradients and the sqrt(r) of tip functions along a crack).
-Rule line_with_root_end(int n, int singular_end);
+/// Gauss-Legendre rule with n points on [0, 1] (a segment P-Q, t = 0 at P)
+/// in the variable rho = sqrt(r), where r is the distance from a point (a
+/// crack tip) on the segment's line, r0 at P and r1 at Q (r linear in t):
+/// exact for f(r) r^(-1/2) and f(r) r^(1/2) with f a polynomial of degree up
+/// to n - 2 (the 1/sqrt(r) of crack-tip gradients and the sqrt(r) of tip
+/// functions along a crack), also when the tip lies just beyond the segment
+/// (r0 small but not 0), where plain Gauss sees a near-singularity. With
+/// r0 = r1 it is plain Gauss-Legendre.
+Rule line_toward_tip(int n, double r0, double r1);
 
 /// Rule on the reference triangle (0,0), (1,0), (0,1), exact for polynomials
 /// of total degree `degree` (collapsed Gauss-Legendre product rule; weights

@@ -9,7 +9,8 @@ naive vs stable and per tip rule, K_I with the crack-lip term, inf-sup), its
 section 5.2 crack from a hole (energy, pressure and K_I convergence,
 conditioning, both enrichments), the frictionless sliding crack, the core
 speed benchmark at 2e4 and 2e5 dofs, the condition-number study with and
-without the nodal rescaling, and the hard-case suite (not with --quick).
+without the nodal rescaling, K against handbook and exact values (issue
+14), and the hard-case suite (not with --quick).
 
     /usr/bin/python3 demos/paper_figures.py --out results
 """
@@ -27,6 +28,7 @@ sys.path.insert(0, str(HERE.parent / "python"))
 
 import bench_core  # noqa: E402
 import conditioning  # noqa: E402
+import handbook  # noqa: E402
 import hard_cases  # noqa: E402
 import block_uniform_pressure  # noqa: E402
 import hole_crack  # noqa: E402
@@ -51,13 +53,13 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     summary: dict = {}
 
-    log("[1/9] through-crack patch test")
+    log("[1/10] through-crack patch test")
     pt = patch_test.main(["--h", "0.2" if args.quick else "0.05", "--out", str(out / "patch_test")])
     summary["patch_test"] = {k: pt[k] for k in ("h", "ndofs", "enriched_dofs", "displacement_rel_error_top",
                                                  "displacement_rel_error_bottom", "opening_rel_error",
                                                  "strain_energy", "strain_energy_exact")}
 
-    log("[2/9] Westergaard mode I sweep (vector and scalar tip enrichment)")
+    log("[2/10] Westergaard mode I sweep (vector and scalar tip enrichment)")
     if args.quick:
         wg = {"runs": [westergaard.run(10, e) for e in ("vector", "scalar")], "summary": {}}
     else:
@@ -67,7 +69,7 @@ def main(argv=None) -> int:
                                                           "K_II", "cond_1norm", "cond_1norm_jacobi")}
                                        for r in wg["runs"]]}
 
-    log("[3/9] condition number vs h, with and without the nodal rescaling")
+    log("[3/10] condition number vs h, with and without the nodal rescaling")
     cond = conditioning.main(["--n", *(["10", "20", "40"] if args.quick else ["10", "20", "40", "80"]),
                               "--spectrum-n", *(["20", "40"] if args.quick else ["20", "40", "80"]),
                               "--out", str(out / "conditioning"), "--quiet"])
@@ -75,11 +77,11 @@ def main(argv=None) -> int:
                                                   "exponent_nodal")} for c in cond["configs"]]
     summary["conditioning_spectrum"] = cond["spectrum"]["rows"]
 
-    log("[4/9] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
+    log("[4/10] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
     tq = tip_quadrature.main(["--json", str(out / "tip_quadrature.json")])
     summary["tip_quadrature"] = tq["rows"]
 
-    log("[5/9] paper section 5.1: block under uniform pressure (contact)")
+    log("[5/10] paper section 5.1: block under uniform pressure (contact)")
     blk = {}
     for n in ((21,) if args.quick else (21, 42, 84)):
         for enr in ("none", "scalar", "vector"):
@@ -91,7 +93,7 @@ def main(argv=None) -> int:
         summary["inf_sup"] = fig["inf_sup"]
     summary["block"] = blk
 
-    log("[6/9] paper section 5.2: crack from a hole")
+    log("[6/10] paper section 5.2: crack from a hole")
     if args.quick:
         hole = {"runs": [hole_crack.run(0.2, enrichment="vector")[0]], "summary": {}}
     else:
@@ -100,19 +102,27 @@ def main(argv=None) -> int:
                        "runs": [{k: r[k] for k in ("enrichment", "h", "ndofs", "energy_error", "pressure_l2_error",
                                                    "K_I_normalised", "cond_1norm")} for r in hole["runs"]]}
 
-    log("[7/9] closed inclined crack, frictionless sliding")
+    log("[7/10] closed inclined crack, frictionless sliding")
     summary["sliding"] = sliding_crack.main(["--ns", *(["20"] if args.quick else ["20", "40", "80"]),
                                              "--json", str(out / "sliding_crack.json")])
 
-    log("[8/9] core benchmark (X-FEM vs plain DOLFINx P1, MUMPS)")
+    log("[8/10] core benchmark (X-FEM vs plain DOLFINx P1, MUMPS)")
     sizes = ["2e3"] if args.quick else ["2e4", "2e5"]
     bench_core.main(["--sizes", *sizes, "--repeats", "1" if args.quick else "3",
                      "--json", str(out / "bench_core.json"), "--quiet"])
     bench = json.loads((out / "bench_core.json").read_text())
     summary["bench_core"] = [{k: s[k] for k in ("ndofs", "t_xfem", "t_plain", "ratio")} for s in bench["sizes"]]
 
+    log("[9/10] stress intensity factors against handbook and exact values")
+    hb = handbook.main(["--out", str(out / "handbook"), *(["--divisions", "20", "--cases",
+                                                            "centre crack a/b = 0.5", "pressurised crack, plane stress"]
+                                                           if args.quick else [])])
     if not args.quick:
-        log("[9/9] hard cases (degenerate geometry, extreme parameters, contact sign changes)")
+        handbook.plot(hb["rows"], out / "handbook" / "handbook.png")
+    summary["handbook"] = hb["rows"]
+
+    if not args.quick:
+        log("[10/10] hard cases (degenerate geometry, extreme parameters, contact sign changes)")
         hc = hard_cases.main(["--json", str(out / "hard_cases.json")])
         summary["hard_cases"] = {k: hc[k] for k in ("all_finite", "max_relative_residual", "all_converge")}
     summary["wall_time"] = time.perf_counter() - t0
@@ -204,6 +214,11 @@ def markdown(s: dict) -> str:
               "| n | K_I (tip 1) | K_II (tip 1) | K_I (tip 2) | K_II (tip 2) |", "|---|---|---|---|---|"]
     lines += [f"| {r['n']} | {r['tips'][0]['K_I']:.2e} | {r['tips'][0]['K_II']:.6f} | {r['tips'][1]['K_I']:.2e} | "
               f"{r['tips'][1]['K_II']:.6f} |" for r in sl["rows"]]
+    if s.get("handbook"):
+        lines += ["", "## Stress intensity factors against handbook and exact values", "",
+                  "Default settings (SIF domains of 6 tip elements, three domains per tip), tip_h = 0.01, "
+                  "enrichment radius 0.1; W the part's width. `demos/handbook.py`.", "",
+                  handbook.markdown(s["handbook"]).rstrip("\n"), "", "Figure: `handbook/handbook.png`."]
     lines += ["", "## Speed: whole X-FEM solve vs plain DOLFINx P1 solve (same mesh, same MUMPS)", "",
               "| dofs | X-FEM (s) | plain (s) | ratio |", "|---|---|---|---|"]
     lines += [f"| {b['ndofs']} | {b['t_xfem']:.3f} | {b['t_plain']:.3f} | {b['ratio']:.3f} |"

@@ -4,25 +4,17 @@ closing contact, a linear (bending) traction from a scene file, point forces.
 """
 import math
 import pathlib
+import sys
 
 import numpy as np
 import pytest
 
 import cracklip as cl
 from cracklip.griffith import GriffithField, remote_in_crack_frame
-from conftest import plate_scene, tada_bending
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from handbook import griffith_scene, plate_scene, tada_bending  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-
-
-def griffith_scene(field: GriffithField, h: float, tip_h: float, half_width: float = 1.0, **options):
-    """The exact field of a Griffith crack imposed on the boundary of a square."""
-    tips = field.tips
-    md = cl.create_square(h, half_width, refine=[(t[0], t[1], tip_h, 0.0) for t in tips])
-    return cl.Scene(md, field.material, cracks=[cl.Crack(tips, pressure=field.pressure)],
-                    dirichlet=[cl.Dirichlet(side, None, lambda x, s: field.displacement(x, s))
-                               for side in ("left", "right", "bottom", "top")],
-                    options=cl.Options(radius=0.1, **options))
 
 
 def test_griffith_field_is_exact():
@@ -115,24 +107,28 @@ def test_initial_stress_superposition():
     assert np.allclose(far["stress"][top, 1], 1.0 - 2.0 * c[top, 0] ** 2, atol=0.02)
 
 
-@pytest.mark.parametrize("contact", ["bilateral", "unilateral"])
-def test_compressive_residual_stress_closes_the_crack(contact):
+@pytest.mark.parametrize("contact,tip_h", [("bilateral", 0.0125), ("unilateral", 0.0125), ("bilateral", 0.01)])
+def test_compressive_residual_stress_closes_the_crack(contact, tip_h):
     """Acceptance 3: a residual stress that compresses an aligned crack
     (sigma_0,yy = -1 along it, with a residual bending sigma_0,xx = 0.3 y
     parallel to it; equilibrated, its tractions on every side) closes the
-    lips: the contact pressure equals -sigma_0,yy at every point to 1e-3
-    (measured 7e-7) and K_I = 0 to 1e-6 of the K scale, 1.48 (the K of the
-    same crack opened by +1)."""
+    lips: the contact pressure equals -sigma_0,yy at every point (the issue
+    asks 1e-3; measured 7e-13) and K_I = 0 (asked: 1e-6 of the K scale, 1.48,
+    the K of the same crack opened by +1; measured 1e-13). Exact because the
+    lip integrals are graded in sqrt(r) toward the tip on every segment near
+    it: with plain Gauss on the segment next to the tip cell the pressure
+    was off by 2e-4 and K_I by 2e-5 on a mesh whose tip sat near its cell's
+    edge (tip_h = 0.01)."""
     s0 = cl.LinearStress((0.0, -1.0, 0.0), gradient=((0.0, 0.0, 0.0), (0.3, 0.0, 0.0)))
-    scene = plate_scene([[-0.5, 0.0], [0.5, 0.0]], stress=0.0, contact=contact)
+    scene = plate_scene([[-0.5, 0.0], [0.5, 0.0]], tip_h=tip_h, stress=0.0, contact=contact)
     scene.initial_stress = s0
     scene.tractions = [cl.Traction(side, stress=s0) for side in ("left", "right", "top", "bottom")]
     sol = cl.solve(scene)
     cp = sol.contact_pressure(0)
-    assert np.abs(cp["pressure"] - 1.0).max() < 1e-3
+    assert np.abs(cp["pressure"] - 1.0).max() < 1e-9
     k_scale = 1.48
     for k in sol.stress_intensity_factors(0):
-        assert abs(k["K_I"]) < 1e-6 * k_scale and abs(k["K_II"]) < 1e-6 * k_scale
+        assert abs(k["K_I"]) < 1e-9 * k_scale and abs(k["K_II"]) < 1e-9 * k_scale
 
 
 def test_bending_scene_file(tmp_path):

@@ -457,3 +457,46 @@ def test_loads_scenes(tmp_path):
     closed = column(crack, "closed") == 1
     assert column(crack, "x")[closed].max() < column(crack, "x")[~closed].min()  # the mouth is closed
     assert column(sif, "K_I")[0] > 0.0
+
+
+def test_pictures(tmp_path, monkeypatch):
+    """Issue 14 item 7 and the pictures that show the crack: stress.png's
+    colour bar names the input's units (not "units of E") and its scale is
+    clipped below the tip singularity; deformed.png zooms on a crack much
+    smaller than the part, with its own scale."""
+    from cracklip import outputs
+    figures = {}
+    monkeypatch.setattr(outputs, "_save", lambda fig, path: figures.__setitem__(path.name, fig))
+    run_scene("pressurised_crack", tmp_path)
+    stress = figures["stress.png"]
+    bar = stress.axes[-1]
+    assert "the input's stress units" in bar.get_ylabel() and "units of E" not in bar.get_ylabel()
+    coll = stress.axes[0].collections[0]
+    lo, hi = coll.get_clim()
+    assert lo == -hi and hi < 0.5 * np.abs(coll.get_array()).max()
+    deformed = figures["deformed.png"]
+    full, zoom = deformed.axes[0], deformed.axes[1]
+    assert "around the cracks" in zoom.get_title()
+    assert np.ptp(zoom.get_xlim()) < 0.25 * np.ptp(full.get_xlim())
+    scale = lambda title: float(title.rsplit("x", 1)[1])  # noqa: E731
+    assert scale(zoom.get_title()) < scale(full.get_title())
+
+
+def test_check_quiet_prints_nothing(capsys):
+    """Issue 14 item 7: check --quiet printed the summary."""
+    assert cli.main(["check", str(SCENES / "westergaard.toml"), "--set", "mesh.h=0.1", "--quiet"]) == 0
+    captured = capsys.readouterr()
+    assert captured.out == "" and captured.err == ""
+    # Warnings still reach stderr.
+    assert cli.main(["check", str(SCENES / "westergaard.toml"), "--set", "mesh.h=0.2", "--quiet"]) == 0
+    captured = capsys.readouterr()
+    assert captured.out == "" and captured.err.startswith("cracklip: warning: ")
+    assert cli.main(["check", str(SCENES / "westergaard.toml"), "--set", "mesh.h=0.2"]) == 0
+    out = capsys.readouterr().out
+    assert "valid" in out and "tip (0, 0): element size" in out and "SIF domains of radius" in out
+
+
+def test_create_rectangle_documents_its_refinement():
+    """Issue 14 item 7: the docstring said the size was h_near within the radius."""
+    doc = " ".join(cl.create_rectangle.__doc__.split())
+    assert "within 4 h_near" in doc and "never faster than 0.25" in doc

@@ -6,6 +6,7 @@ bottom, h = 0.1, tip_h = 0.0125. References: Tada's finite-width factors
 """
 import json
 import pathlib
+import sys
 
 import numpy as np
 import pytest
@@ -13,7 +14,8 @@ import pytest
 import cracklip as cl
 from cracklip import cli
 from cracklip.sif import tip_domains
-from conftest import plate_scene, tada_centre_crack, tada_edge_crack
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from handbook import plate_scene, tada_centre_crack, tada_edge_crack  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 WESTERGAARD = ROOT / "demos" / "scenes" / "westergaard.toml"

@@ -261,27 +261,34 @@ def _q_at(model, dist: np.ndarray, radius: float, cells: np.ndarray, ref: np.nda
     return np.einsum("na,na->n", N, qn)
 
 
-def lip_traction(solution, crack: int, points: dict[str, np.ndarray]) -> np.ndarray:
-    """Traction (n, 2) on the + lip of a crack at crack points (cell, ref, x,
-    normal as from _cracklip.compute_crack_points); the - lip carries the
-    opposite. It sums the contact pressure, the crack's lip pressure and an
-    initial stress's sigma_0 n, each pushing on the + lip along n (into the
-    + side) when the lips are pressed or pushed apart."""
+def lip_traction_parts(solution, crack: int, points: dict[str, np.ndarray]) -> list[np.ndarray]:
+    """The tractions (n, 2) on the + lip of a crack at crack points (cell,
+    ref, x, normal as from _cracklip.compute_crack_points), one array per
+    cause: the contact pressure, the crack's lip pressure, an initial
+    stress's sigma_0 n (the correction field of an initial stress sees it on
+    its lips). Each pushes the + lip along n (into the + side) when the lips
+    are pressed or pushed apart; the - lip carries the opposite."""
     m = solution.model
     n = points["normal"]
-    pressure = np.zeros(len(n))
+    parts = []
     if solution.contact:
         cs = solution.contact["system"]
         lam_full = cs.R @ solution.contact["lambda"]
-        pressure -= _cracklip.evaluate_multipliers(cs.space, crack, points["cell"], points["ref"], lam_full)
+        p = -_cracklip.evaluate_multipliers(cs.space, crack, points["cell"], points["ref"], lam_full)
+        parts.append(p[:, None] * n)
     from .loads import lip_pressure
-    pressure += lip_pressure(m.cracks[crack].crack, points["x"])
-    t = pressure[:, None] * n
+    if callable(m.cracks[crack].crack.pressure) or m.cracks[crack].crack.pressure != 0.0:
+        parts.append(lip_pressure(m.cracks[crack].crack, points["x"])[:, None] * n)
     if m.scene.initial_stress is not None:
         from .stress_field import evaluate_stress
         sig = evaluate_stress(m.scene.initial_stress, points["x"], "initial stress")
-        t += np.einsum("nij,nj->ni", sig, n)
-    return t
+        parts.append(np.einsum("nij,nj->ni", sig, n))
+    return parts
+
+
+def lip_traction(solution, crack: int, points: dict[str, np.ndarray]) -> np.ndarray:
+    """The total traction (n, 2) on the + lip (lip_traction_parts summed)."""
+    return sum(lip_traction_parts(solution, crack, points), np.zeros_like(points["normal"]))
 
 
 def _lip_points(model, crack: int):
@@ -351,11 +358,19 @@ def _body_force(model) -> typing.Callable[[np.ndarray], np.ndarray] | None:
 # -- K per tip --------------------------------------------------------------------------------------
 
 def natural_k(solution) -> float:
-    """E* max|u| / sqrt(L) (L the part's size): about the K of a crack as
-    large as the part under the solution's loads."""
+    """A K that the scene's loads could make: E* max|u| / sqrt(L) (L the
+    part's size), or, if larger, the largest lip traction of any cause
+    (contact pressure, lip pressure, sigma_0 n) times sqrt(pi a) (a half a
+    crack's length), the K of the crack were it open: the scale of a crack
+    held closed."""
     m = solution.model
     size = float(np.ptp(m.x, axis=0).max())
-    return m.scene.material.E_star * float(np.abs(solution.standard_displacement).max()) / math.sqrt(size)
+    k = m.scene.material.E_star * float(np.abs(solution.standard_displacement).max()) / math.sqrt(size)
+    for ci in range(len(m.cracks)):
+        pts = _lip_points(m, ci)
+        for t in lip_traction_parts(solution, ci, pts) if len(pts["weight"]) else []:
+            k = max(k, float(np.linalg.norm(t, axis=1).max()) * math.sqrt(math.pi * 0.5 * float(pts["weight"].sum())))
+    return k
 
 
 def k_scale(solution, ks: list[tuple[float, float]]) -> float:

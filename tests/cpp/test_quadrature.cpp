@@ -40,3 +40,41 @@ TEST(TriangleRule, ExactForItsDegree)
 }
 
 TEST(TriangleRule, RejectsNegativeDegree) { EXPECT_THROW(triangle(-1), std::invalid_argument); }
+
+// Along a segment at distances r0 (t = 0) .. r1 (t = 1) from a tip on its
+// line, r = r0 + (r1 - r0) t: int_0^1 r^(k + 1/2) dt and int_0^1 r^(k - 1/2)
+// dt in closed form, with the tip on an end (r0 = 0), just beyond the
+// near end (r0 = 1e-6) or far (plain Gauss is exact there only in the limit).
+TEST(LineTowardTip, ExactForRootPowersOfTheDistance)
+{
+  const int n = 6;
+  for (const auto& [r0, r1] : {std::pair{0.0, 1.0}, std::pair{1.0, 0.0}, std::pair{1e-6, 0.5},
+                               std::pair{0.3, 2e-7}, std::pair{2.0, 3.0}})
+  {
+    const Rule rule = line_toward_tip(n, r0, r1);
+    for (int k = 0; k <= n - 2; ++k) // 2 rho^(2k + 2) d rho: degree 2n - 2 <= 2n - 1
+      for (const double half : {0.5, -0.5})
+      {
+        const double p = k + half;
+        double s = 0.0;
+        for (int q = 0; q < rule.size(); ++q)
+          s += rule.weights[q] * std::pow(r0 + (r1 - r0) * rule.points[q], p);
+        const double exact = (std::pow(r1, p + 1) - std::pow(r0, p + 1)) / ((p + 1) * (r1 - r0));
+        EXPECT_NEAR(s, exact, 1e-12 * std::abs(exact)) << "r0=" << r0 << " r1=" << r1 << " p=" << p;
+      }
+  }
+}
+
+// Plain Gauss-Legendre misses the near-singular end by far more: the
+// reason the graded rule exists (6 points, tip 1e-4 beyond the segment).
+TEST(LineTowardTip, PlainGaussMissesTheNearSingularEnd)
+{
+  const Rule g = gauss_legendre(6);
+  const double r0 = 1e-4, r1 = 1.0;
+  double s = 0.0;
+  for (int q = 0; q < g.size(); ++q)
+    s += g.weights[q] / std::sqrt(r0 + (r1 - r0) * g.points[q]);
+  const double exact = 2.0 * (std::sqrt(r1) - std::sqrt(r0)) / (r1 - r0);
+  EXPECT_GT(std::abs(s - exact), 1e-3 * exact);
+  EXPECT_EQ(line_toward_tip(6, 0.5, 0.5).points, g.points);
+}
