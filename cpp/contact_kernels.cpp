@@ -55,7 +55,8 @@ SegmentPoints compute_segment_points(std::span<const double> x, std::span<const 
 
 void assemble_coupling(std::span<const double> x, std::span<const std::int32_t> cells,
                        const EnrichmentLayout& layout, std::span<const CrackGeometry* const> cracks,
-                       const MultiplierSpace& space, int n, Triplets& B, Triplets& M)
+                       const MultiplierSpace& space, int n, Triplets& B, Triplets& M,
+                       Triplets* Bt)
 {
   const SegmentPoints sp = compute_segment_points(x, cells, cracks, space, n);
   std::vector<double> vp, vm, grad;
@@ -84,12 +85,21 @@ void assemble_coupling(std::span<const double> x, std::span<const std::int32_t> 
       const double psi = sp.entry_value[k] * w;
       for (int j = 0; j < basis.num_dofs(); ++j)
       {
-        const double jump = (vp[2 * j] - vm[2 * j]) * nx + (vp[2 * j + 1] - vm[2 * j + 1]) * ny;
-        if (std::abs(jump) < 1e-300)
-          continue;
-        B.row.push_back(sp.entry_mult[k]);
-        B.col.push_back(basis.dofs[j]);
-        B.value.push_back(psi * jump);
+        const double jx = vp[2 * j] - vm[2 * j], jy = vp[2 * j + 1] - vm[2 * j + 1];
+        const double jump = jx * nx + jy * ny;
+        if (std::abs(jump) >= 1e-300)
+        {
+          B.row.push_back(sp.entry_mult[k]);
+          B.col.push_back(basis.dofs[j]);
+          B.value.push_back(psi * jump);
+        }
+        const double slip = jx * ny - jy * nx; // t = (n_y, -n_x)
+        if (Bt and std::abs(slip) >= 1e-300)
+        {
+          Bt->row.push_back(sp.entry_mult[k]);
+          Bt->col.push_back(basis.dofs[j]);
+          Bt->value.push_back(psi * slip);
+        }
       }
       for (std::size_t l = e0; l < e; ++l)
       {

@@ -43,10 +43,13 @@ SegmentPoints compute_segment_points(std::span<const double> x, std::span<const 
                                      const MultiplierSpace& space, int n);
 
 /// B (full multipliers x dofs) with [[v]] . n from the Heaviside and tip
-/// functions (standard functions do not jump), and M (full x full).
+/// functions (standard functions do not jump), and M (full x full); with Bt,
+/// also the tangential coupling [[v]] . t, t = n turned by -90 degrees (the
+/// crack's direction: slip > 0 when the + lip moves along t).
 void assemble_coupling(std::span<const double> x, std::span<const std::int32_t> cells,
                        const EnrichmentLayout& layout, std::span<const CrackGeometry* const> cracks,
-                       const MultiplierSpace& space, int n, Triplets& B, Triplets& M);
+                       const MultiplierSpace& space, int n, Triplets& B, Triplets& M,
+                       Triplets* Bt = nullptr);
 
 /// Values of a full multiplier field (lambda_full, (num_full)) at points of
 /// crack `crack` given by cell (n) and reference coordinates (n, 2): the

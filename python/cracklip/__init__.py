@@ -23,7 +23,7 @@ from .errors import (BoundaryConditionError, CrackGeometryError, CracklipError, 
 from .mesh import MeshData, create_half_annulus, create_rectangle, create_square, read_msh
 from .model import XfemModel, create_model
 from .post import Solution
-from .scene import Crack, Dirichlet, Material, Options, PointForce, Scene, Traction
+from .scene import Crack, Dirichlet, LoadStep, Material, Options, PointForce, Scene, Traction
 from .stress_field import LinearStress
 from .solve import solve, solve_plain
 from .io import write_vtu
@@ -40,5 +40,5 @@ __all__ = [
     "Solution", "SolverError", "Traction", "XfemModel", "create_half_annulus", "create_model",
     "create_rectangle", "create_square", "read_msh", "solve", "solve_plain", "write_vtu",
     "ContactError", "OutputError", "SceneFile", "create_plate_with_hole", "load_scene_file",
-    "LinearStress", "PointForce",
+    "LinearStress", "LoadStep", "PointForce",
 ]

@@ -19,7 +19,7 @@ import dolfinx.fem
 import dolfinx.fem.petsc
 
 from . import _cracklip
-from .loads import assemble_load
+from .loads import assemble_loads
 from .model import XfemModel
 
 
@@ -55,7 +55,21 @@ def assemble_system(model: XfemModel) -> tuple[PETSc.Mat, PETSc.Vec, dict[str, f
     """Assemble the full X-FEM system with Dirichlet conditions applied.
 
     Returns (A, b, timings); Dirichlet rows/columns are replaced by identity,
-    b carries the lifted load and the prescribed values.
+    b carries the lifted load and the prescribed values, every load group at
+    factor 1.
+    """
+    A, loads, timings = assemble_system_groups(model)
+    b = A.createVecRight()
+    b.array[:] = sum(loads.values(), np.zeros(model.num_dofs))
+    return A, b, timings
+
+
+def assemble_system_groups(model: XfemModel) -> tuple[PETSc.Mat, dict[str, np.ndarray], dict[str, float]]:
+    """The X-FEM matrix with Dirichlet conditions applied and the right-hand
+    side of every load group (loads and prescribed values of that group,
+    lifted): b = sum_g factor_g b_g solves the scene at those factors.
+
+    Returns (A, {group: b_g (num_dofs,)}, timings).
     """
     timings = {}
     mat = model.scene.material
@@ -76,10 +90,23 @@ def assemble_system(model: XfemModel) -> tuple[PETSc.Mat, PETSc.Vec, dict[str, f
     timings["assemble_enriched"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
-    b = A.createVecRight()
-    b.array[:] = assemble_load(model)
-    g = A.createVecRight()
-    g.array[model.bc_dofs] = model.bc_values
-    A.zeroRowsColumns(model.bc_dofs, diag=1.0, x=g, b=b)
+    loads = assemble_loads(model)
+    groups = set(loads) | {g for g, v in model.bc_group_values.items() if np.any(v)}
+    out: dict[str, np.ndarray] = {}
+    g, Ag = A.createVecRight(), A.createVecRight()
+    for group in sorted(groups):
+        b = loads.get(group, np.zeros(model.num_dofs)).copy()
+        values = model.bc_group_values.get(group, np.zeros(len(model.bc_dofs)))
+        if np.any(values):
+            # Lifting: b - A g over the free rows, the prescribed values on the constrained ones.
+            g.set(0.0)
+            g.array[model.bc_dofs] = values
+            A.mult(g, Ag)
+            b -= Ag.array
+        b[model.bc_dofs] = values
+        out[group] = b
+    for v in (g, Ag):
+        v.destroy()
+    A.zeroRowsColumns(model.bc_dofs, diag=1.0)
     timings["load_and_constraints"] = time.perf_counter() - t0
-    return A, b, timings
+    return A, out, timings

@@ -44,12 +44,21 @@ class ContactSystem:
         B: (num_reduced, num_dofs) coupling, Dirichlet columns removed.
         M: (num_reduced, num_reduced) multiplier mass.
         g: (num_reduced,) right-hand side of B u = g (prescribed enriched dofs).
+        Bt: (num_reduced, num_dofs) tangential coupling int lambda [[v]].t
+            (t = n turned by -90 degrees), Dirichlet columns removed; None
+            without friction.
+        gt: (num_reduced,) its right-hand side (zeros without friction).
+        g_groups, gt_groups: g and gt of each load group's prescribed values.
     """
     space: typing.Any
     R: sp.csr_matrix
     B: sp.csr_matrix
     M: sp.csr_matrix
     g: np.ndarray
+    Bt: typing.Optional[sp.csr_matrix] = None
+    gt: typing.Optional[np.ndarray] = None
+    g_groups: dict = dataclasses.field(default_factory=dict)
+    gt_groups: dict = dataclasses.field(default_factory=dict)
 
     @property
     def num_multipliers(self) -> int:
@@ -57,33 +66,47 @@ class ContactSystem:
 
 
 def create_contact_system(model: XfemModel) -> ContactSystem:
-    """Multiplier space and B, M for the model's cracks (options.multipliers)."""
+    """Multiplier space and B, M for the model's cracks (options.multipliers);
+    with friction (options.friction > 0) also the tangential coupling Bt."""
     opts = model.scene.options
     space = _cracklip.create_multiplier_space(model.x, model.cells, model.geometries, model.layout,
                                               opts.multipliers, opts.enrichment != "none")
     nf, nr = space.num_full, space.num_reduced
     R = sp.csr_matrix((np.ones(nf), (np.arange(nf), space.full_to_reduced)), shape=(nf, nr))
-    br, bc, bv, mr, mc, mv = _cracklip.assemble_coupling(model.x, model.cells, model.layout,
-                                                          model.geometries, space, opts.contact_points)
+    friction = opts.friction > 0.0
+    coo = _cracklip.assemble_coupling(model.x, model.cells, model.layout, model.geometries, space,
+                                      opts.contact_points, tangential=friction)
+    br, bc, bv, mr, mc, mv = coo[:6]
     Bf = sp.csr_matrix((bv, (br, bc)), shape=(nf, model.num_dofs))
     Mf = sp.csr_matrix((mv, (mr, mc)), shape=(nf, nf))
     B = (R.T @ Bf).tocsr()
     M = (R.T @ Mf @ R).tocsr()
-    # Dirichlet dofs: move their known values to the right-hand side.
+    Bt = (R.T @ sp.csr_matrix((coo[8], (coo[6], coo[7])), shape=(nf, model.num_dofs))).tocsr() if friction else None
+    # Dirichlet dofs: move their known values to the right-hand side, per load group.
     fixed = np.zeros(model.num_dofs, dtype=bool)
     fixed[model.bc_dofs] = True
-    ufix = np.zeros(model.num_dofs)
-    ufix[model.bc_dofs] = model.bc_values
-    g = -(B @ ufix)
-    B = B @ sp.diags((~fixed).astype(float))
+    g_groups, gt_groups = {}, {}
+    for group, values in sorted(model.bc_group_values.items()):
+        ufix = np.zeros(model.num_dofs)
+        ufix[model.bc_dofs] = values
+        g_groups[group] = -(B @ ufix)
+        if friction:
+            gt_groups[group] = -(Bt @ ufix)
+    g = sum(g_groups.values(), np.zeros(nr))
+    gt = sum(gt_groups.values(), np.zeros(nr))
+    free = sp.diags((~fixed).astype(float))
+    B = B @ free
     B.eliminate_zeros()
+    if friction:
+        Bt = (Bt @ free).tocsr()
+        Bt.eliminate_zeros()
     rownorm = np.sqrt(np.asarray(B.multiply(B).sum(axis=1))).ravel()
     dead = np.flatnonzero(rownorm <= 1e-14 * max(rownorm.max(initial=0.0), 1e-300))
     if dead.size:
         raise SolverError(f"{dead.size} contact multiplier(s) see no jump of the displacement (e.g. "
                           f"reduced multiplier {int(dead[0])}): the crack there has no enriched dofs "
                           "(check the enrichment and the Dirichlet conditions near the crack)")
-    return ContactSystem(space, R, B.tocsr(), M, g)
+    return ContactSystem(space, R, B.tocsr(), M, g, Bt, gt, g_groups, gt_groups)
 
 
 def solve_saddle(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, active: np.ndarray,
@@ -111,6 +134,10 @@ class _VisitedSets:
     def __init__(self, start: np.ndarray):
         self._first = {start.tobytes(): 0}
 
+    def first_visit(self, key: bytes) -> int | None:
+        """The iteration that first met this set (0: the start), or None."""
+        return self._first.get(key)
+
     def visit(self, active: np.ndarray, it: int, history: list[int]) -> None:
         key = active.tobytes()
         if key in self._first:
@@ -123,6 +150,12 @@ class _VisitedSets:
         self._first[key] = it
 
 
+def contact_constant(model: XfemModel) -> float:
+    """c = E / h of the active-set tests (a stiffness per length: pressure
+    minus c times the mean gap)."""
+    return model.scene.material.E / model.h
+
+
 def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
                   transform: sp.spmatrix | None = None) -> tuple[np.ndarray, dict]:
     """Solve the contact problem on the assembled stiffness A (constraints
@@ -132,20 +165,30 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
     transform: if A and b are rescaled (T^T K T, T^T f), the T: the
     constraints act on u = T y, the returned u is y, info["system"] keeps
     the unscaled B."""
-    opts = model.scene.options
     physical = create_contact_system(model)
     cs = physical if transform is None else dataclasses.replace(physical, B=(physical.B @ transform).tocsr())
-    K = scipy_from_petsc(A)
-    f = b.array.copy()
+    u, info = solve_frictionless(scipy_from_petsc(A), b.array.copy(), cs, model.scene.options,
+                                 contact_constant(model))
+    info["system"] = physical
+    return u, info
+
+
+def solve_frictionless(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, opts,
+                       c: float, active: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
+    """Frictionless contact on the stiffness K (constraints applied), load f
+    and the constraints B u = cs.g: bilateral (all multipliers active) or
+    unilateral by the primal-dual active set, a multiplier active when its
+    pressure exceeds c times its mean gap. active: the starting set (default
+    options.active_set_start). Returns (u, info: lambda, active, iterations,
+    history)."""
     m = cs.num_multipliers
     if opts.contact == "bilateral":
         active = np.ones(m, dtype=bool)
         u, lam = solve_saddle(K, f, cs, active, opts.residual_tol)
-        return u, {"system": physical, "lambda": lam, "active": active, "iterations": 1, "history": [m]}
-    # Unilateral: primal-dual active set.
-    active = np.full(m, opts.active_set_start == "closed")
+        return u, {"lambda": lam, "active": active, "iterations": 1, "history": [m]}
+    if active is None:
+        active = np.full(m, opts.active_set_start == "closed")
     lumped = np.asarray(cs.M.sum(axis=1)).ravel()
-    c = model.scene.material.E / model.h
     history = []
     seen = _VisitedSets(active)
     for it in range(1, opts.max_active_set_iterations + 1):
@@ -156,8 +199,7 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
         history.append(int(new_active.sum()))
         logger.info("active set iteration %d: %d of %d multipliers active", it, new_active.sum(), m)
         if np.array_equal(new_active, active):
-            return u, {"system": physical, "lambda": lam, "active": active, "iterations": it,
-                       "history": history}
+            return u, {"lambda": lam, "active": active, "iterations": it, "history": history}
         seen.visit(new_active, it, history)
         active = new_active
     raise ContactError(f"the active set did not settle in {opts.max_active_set_iterations} iterations "

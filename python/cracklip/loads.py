@@ -98,12 +98,14 @@ def _normals(model, where):
     return cache[where]
 
 
-def assemble_tractions(model) -> np.ndarray:
+def assemble_tractions(model, group: str | None = None) -> np.ndarray:
     """int t . phi_j ds over the loaded boundaries (one facet quadrature for
-    standard and enriched dofs, split where a crack crosses a facet)."""
+    standard and enriched dofs, split where a crack crosses a facet); only
+    the tractions of `group` if given."""
     scene = model.scene
     b = np.zeros(model.num_dofs)
-    if not scene.tractions:
+    tractions = [t for t in scene.tractions if group is None or t.group == group]
+    if not tractions:
         return b
     msh = scene.mesh.mesh
     tdim = msh.topology.dim
@@ -111,7 +113,7 @@ def assemble_tractions(model) -> np.ndarray:
     msh.topology.create_connectivity(tdim, tdim - 1)
     f2c = msh.topology.connectivity(tdim - 1, tdim)
     c2f = msh.topology.connectivity(tdim, tdim - 1).array.reshape(-1, 3)
-    for tr in scene.tractions:
+    for tr in tractions:
         facets = scene.mesh.facets(tr.where)
         if facets.size == 0:
             raise InputError(f"traction boundary {tr.where!r} has no facets")
@@ -125,14 +127,17 @@ def assemble_tractions(model) -> np.ndarray:
     return b
 
 
-def assemble_point_forces(model) -> np.ndarray:
+def assemble_point_forces(model, group: str | None = None) -> np.ndarray:
     """Each force on the standard dofs of the node nearest to its point (every
-    enriched function vanishes at the nodes: the enrichment is shifted)."""
+    enriched function vanishes at the nodes: the enrichment is shifted);
+    only the forces of `group` if given."""
     b = np.zeros(model.num_dofs)
     if not model.scene.point_forces:
         return b
     scale = float(np.ptp(model.x, axis=0).max())
     for k, pf in enumerate(model.scene.point_forces):
+        if group is not None and pf.group != group:
+            continue
         d = np.linalg.norm(model.x - np.asarray(pf.point), axis=1)
         node = int(np.argmin(d))
         cells = model.cells[np.any(model.cells == node, axis=1)]
@@ -254,16 +259,46 @@ def assemble_lip_pressure(model, crack: int) -> np.ndarray:
                                        pts["cell"], pts["ref"], pts["weight"], t)
 
 
-def assemble_load(model) -> np.ndarray:
-    """The load vector (num_dofs,) of every load of the model's scene."""
+def load_groups(scene) -> set[str]:
+    """The names of the load groups the scene's loads and Dirichlet values use."""
+    groups = {t.group for t in scene.tractions} | {p.group for p in scene.point_forces}
+    groups |= {d.group for d in scene.dirichlet if callable(d.value) or d.value != 0.0}
+    groups |= {c.pressure_group for c in scene.cracks if callable(c.pressure) or c.pressure != 0.0}
+    if scene.body_force is not None and np.any(scene.body_force):
+        groups.add(scene.body_force_group)
+    if scene.initial_stress is not None:
+        groups.add(scene.initial_stress_group)
+    return groups
+
+
+def assemble_loads(model) -> dict[str, np.ndarray]:
+    """The load vector (num_dofs,) of each load group (Scene.load_path scales them)."""
     scene = model.scene
-    b = assemble_tractions(model) + assemble_point_forces(model)
     force = None if scene.body_force is None else np.asarray(scene.body_force, dtype=float).reshape(2)
     if force is not None and not np.all(np.isfinite(force)):
         raise InputError(f"body force {force.tolist()} contains NaN or infinity")
-    if (force is not None and np.any(force)) or scene.initial_stress is not None:
-        b += _cell_loads(model, force if force is not None and np.any(force) else None, scene.initial_stress)
+    if force is not None and not np.any(force):
+        force = None
+    out: dict[str, np.ndarray] = {}
+
+    def add(group: str, b: np.ndarray) -> None:
+        out[group] = out[group] + b if group in out else b
+    for group in sorted({t.group for t in scene.tractions} | {p.group for p in scene.point_forces}):
+        add(group, assemble_tractions(model, group) + assemble_point_forces(model, group))
+    if force is not None or scene.initial_stress is not None:
+        if force is not None and scene.initial_stress is not None and scene.body_force_group != scene.initial_stress_group:
+            add(scene.body_force_group, _cell_loads(model, force, None))
+            add(scene.initial_stress_group, _cell_loads(model, None, scene.initial_stress))
+        else:
+            group = scene.body_force_group if force is not None else scene.initial_stress_group
+            add(group, _cell_loads(model, force, scene.initial_stress))
     for ci, cm in enumerate(model.cracks):
         if callable(cm.crack.pressure) or cm.crack.pressure != 0.0:
-            b += assemble_lip_pressure(model, ci)
-    return b
+            add(cm.crack.pressure_group, assemble_lip_pressure(model, ci))
+    return out
+
+
+def assemble_load(model) -> np.ndarray:
+    """The load vector (num_dofs,) of every load of the model's scene, each
+    group at factor 1."""
+    return sum(assemble_loads(model).values(), np.zeros(model.num_dofs))

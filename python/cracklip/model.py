@@ -49,6 +49,8 @@ class XfemModel:
         layout: enriched pseudo-nodes and cells (_cracklip.EnrichmentLayout).
         bc_dofs: constrained scalar dofs (standard dofs only), sorted.
         bc_values: prescribed values at bc_dofs.
+        bc_group_values: the prescribed values of each load group at bc_dofs
+            (Dirichlet.group): bc_values is their sum.
         timings: seconds per phase.
         warnings: the model checks' findings (diagnostics.ModelWarning).
     """
@@ -62,6 +64,7 @@ class XfemModel:
     bc_values: np.ndarray
     timings: dict[str, float]
     warnings: list = dataclasses.field(default_factory=list)
+    bc_group_values: dict = dataclasses.field(default_factory=dict)
 
     @property
     def num_dofs(self) -> int:
@@ -102,10 +105,11 @@ def create_model(scene: Scene) -> XfemModel:
                 layout.num_enriched, layout.cells.size)
 
     t0 = time.perf_counter()
-    bc_dofs, bc_values = _dirichlet(scene, V, x, layout, [c.geometry for c in cracks])
+    bc_dofs, bc_values, bc_group_values = _dirichlet(scene, V, x, layout, [c.geometry for c in cracks])
     check_rigid_motion(x, bc_dofs[bc_dofs < 2 * x.shape[0]])
     timings["constraints"] = time.perf_counter() - t0
-    model = XfemModel(scene, V, x, cells, cracks, layout, bc_dofs, bc_values, timings)
+    model = XfemModel(scene, V, x, cells, cracks, layout, bc_dofs, bc_values, timings,
+                      bc_group_values=bc_group_values)
     t0 = time.perf_counter()
     from .diagnostics import check_model, check_pieces
     check_pieces(model)
@@ -206,8 +210,10 @@ def _accepts_side(f) -> bool:
     return len(required) >= 2
 
 
-def _dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tuple[np.ndarray, np.ndarray]:
-    """Constrained scalar dofs and their values.
+def _dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tuple[np.ndarray, np.ndarray, dict]:
+    """Constrained scalar dofs, their values (every group at factor 1) and
+    the values of each load group (Dirichlet.group; conditions of different
+    groups on one dof add up).
 
     A value callable f(x) is continuous; f(x, side) may jump across a crack
     (side (n,) = +1 / -1, the side of the crack nearest to each point). On a
@@ -227,17 +233,21 @@ def _dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tuple[np.n
         phis = np.stack([g.phi for g in geometries])
         nearest = phis[np.argmin(np.abs(phis), axis=0), np.arange(x.shape[0])]
         node_side = np.where(nearest >= 0.0, 1, -1).astype(np.int8)
-    values: dict[int, float] = {}
-    owner: dict[int, int] = {}
+    # Per load group: the values of one group must agree where conditions
+    # meet; the groups' values add up (superposed loads).
+    values: dict[str, dict[int, float]] = {}
+    owner: dict[tuple[str, int], int] = {}
     clashes: list[tuple[int, int, int, float, float]] = []
 
     def prescribe(dofs: np.ndarray, vals: np.ndarray, k: int) -> None:
+        grp = scene.dirichlet[k].group
+        mine = values.setdefault(grp, {})
         for dof, val in zip(dofs.tolist(), vals.tolist()):
-            old = values.get(dof)
+            old = mine.get(dof)
             if old is not None and old != val:
-                clashes.append((dof, owner[dof], k, old, val))
-            values[dof] = val
-            owner[dof] = k
+                clashes.append((dof, owner[grp, dof], k, old, val))
+            mine[dof] = val
+            owner[grp, dof] = k
     for k_bc, bc in enumerate(scene.dirichlet):
         is_point = isinstance(bc.where, (tuple, list, np.ndarray))
         if is_point:
@@ -282,9 +292,12 @@ def _dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tuple[np.n
                 jump = (evaluate(xp, -H.astype(np.int8)) - evaluate(xp, H.astype(np.int8))) / (-2.0 * H[:, None])
             for j, c in enumerate(comps):
                 prescribe(2 * (layout.num_std_nodes + pseudo) + c, jump[:, j], k_bc)
-    _check_clashes(scene, x, layout, values, clashes)
-    dofs = np.array(sorted(values), dtype=np.int32)
-    return dofs, np.array([values[d] for d in dofs.tolist()], dtype=np.float64)
+    for grp, mine in values.items():
+        _check_clashes(scene, x, layout, mine, [c for c in clashes if scene.dirichlet[c[1]].group == grp])
+    dofs = np.array(sorted(set().union(*values.values())), dtype=np.int32)
+    group_values = {grp: np.array([mine.get(d, 0.0) for d in dofs.tolist()], dtype=np.float64)
+                    for grp, mine in values.items()}
+    return dofs, sum(group_values.values(), np.zeros(len(dofs))), group_values
 
 
 def _check_clashes(scene: Scene, x: np.ndarray, layout, values: dict, clashes: list) -> None:

@@ -27,6 +27,11 @@ class Solution:
         solver: "relative_residual" ||A x - b|| / ||b|| of the final linear
             solve, and "solves": one record per MUMPS solve (what, size,
             relative_residual).
+        factors: on a load path, the factor of every load group at this
+            state (None: every group at 1).
+        step: on a load path, the step this state ends (index, name,
+            factors, increments); steps: on the last one, every step's
+            Solution in order.
     """
     model: XfemModel
     u: np.ndarray
@@ -34,7 +39,14 @@ class Solution:
     condition: dict[str, float] = dataclasses.field(default_factory=dict)
     contact: dict[str, typing.Any] = dataclasses.field(default_factory=dict)
     solver: dict[str, typing.Any] = dataclasses.field(default_factory=dict)
+    factors: typing.Optional[dict] = None
+    step: typing.Optional[dict] = None
+    steps: typing.Optional[list] = dataclasses.field(default=None, repr=False)
     _sif_cache: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
+
+    def factor(self, group: str) -> float:
+        """The factor of a load group at this state (1 without a load path)."""
+        return 1.0 if self.factors is None else float(self.factors.get(group, 0.0))
 
     # -- point values -------------------------------------------------------
     def locate(self, points: np.ndarray, prefer_crossed: bool = True) -> tuple[np.ndarray, np.ndarray]:
@@ -113,10 +125,12 @@ class Solution:
             keep = ~np.isin(pts["cell"], np.asarray(g.tip_cells["cell"]))
             pts = {k: v[keep] for k, v in pts.items()}
         cells, ref, normal = pts["cell"], pts["ref"], pts["normal"]
-        pressure = np.zeros(len(cells))
+        pressure, shear = np.zeros(len(cells)), np.zeros(len(cells))
         if self.contact:
             cs = self.contact["system"]
             pressure = -_cracklip.evaluate_multipliers(cs.space, crack, cells, ref, cs.R @ self.contact["lambda"])
+            if "lambda_t" in self.contact:
+                shear = -_cracklip.evaluate_multipliers(cs.space, crack, cells, ref, cs.R @ self.contact["lambda_t"])
         up = self._evaluate(cells, ref, np.ones(len(cells), dtype=np.int8))
         um = self._evaluate(cells, ref, -np.ones(len(cells), dtype=np.int8))
         jump = up - um
@@ -126,7 +140,24 @@ class Solution:
         return {"s": s[o], "x": pts["x"][o], "weight": pts["weight"][o], "normal": normal[o],
                 "u_plus": up[o], "u_minus": um[o], "jump": jump[o],
                 "gap": np.einsum("ij,ij->i", jump, normal)[o], "slip": np.einsum("ij,ij->i", jump, tangent)[o],
-                "pressure": pressure[o], "cell": cells[o], "ref": ref[o]}
+                "pressure": pressure[o], "shear": shear[o], "state": self._lip_states(pressure, shear)[o],
+                "cell": cells[o], "ref": ref[o]}
+
+    def _lip_states(self, pressure: np.ndarray, shear: np.ndarray) -> np.ndarray:
+        """Per point "open", "stick" or "slip" from the lip tractions: open
+        where a unilateral contact carries no pressure (or without contact),
+        stick where |shear| < mu p (1 - 1e-6), slip where the shear is at the
+        bound (or closed without friction: the lips slide freely)."""
+        out = np.full(len(pressure), "open", dtype=object)
+        if not self.contact:
+            return out
+        opts = self.model.scene.options
+        scale = max(float(np.abs(pressure).max(initial=0.0)), 1e-300)
+        closed = np.ones(len(pressure), dtype=bool) if opts.contact == "bilateral" else pressure > 1e-9 * scale
+        stick = closed & (np.abs(shear) < opts.friction * pressure * (1.0 - 1e-6))
+        out[closed] = "slip"
+        out[stick] = "stick"
+        return out
 
     def crack_opening(self, crack: int = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
         """Jump [[u]] = u(+) - u(-) along a crack (see lip_samples): x (n, 2),
@@ -145,11 +176,11 @@ class Solution:
         mat = m.scene.material
         f = _cracklip.compute_subcell_fields(m.x, m.cells, m.layout, m.geometries, self.u,
                                              mat.E_strain, mat.nu_strain)
-        if m.scene.initial_stress is not None:
+        if m.scene.initial_stress is not None and self.factor(m.scene.initial_stress_group) != 0.0:
             from .stress_field import evaluate_stress, tensor_to_voigt
             centroids = f["points"].reshape(-1, 3, 2).mean(axis=1)
-            f["stress"] = f["stress"] + tensor_to_voigt(evaluate_stress(m.scene.initial_stress, centroids,
-                                                                        "initial stress"))
+            f["stress"] = f["stress"] + self.factor(m.scene.initial_stress_group) * tensor_to_voigt(
+                evaluate_stress(m.scene.initial_stress, centroids, "initial stress"))
         return f
 
     def field_points(self, cells: np.ndarray | None = None, degree: int | None = None
@@ -232,11 +263,14 @@ class Solution:
         """Contact pressure p = -lambda (>= 0 in compression) and normal gap
         [[u]].n at points along the crack (see lip_samples), sorted along
         it: x (n, 2), s (n,), pressure (n,), gap (n,), weight (n,) (for
-        integrals along the crack)."""
+        integrals along the crack), shear (n,) the friction traction on the
+        + lip along the crack's direction t (0 without friction), slip (n,)
+        = [[u]].t accumulated over the load path, state (n,) "open",
+        "stick" or "slip"."""
         if not self.contact:
             raise InputError("this solution has no contact (Options.contact is 'none')")
         smp = self.lip_samples(crack, points_per_segment)
-        return {k: smp[k] for k in ("x", "s", "pressure", "gap", "weight")}
+        return {k: smp[k] for k in ("x", "s", "pressure", "gap", "weight", "shear", "slip", "state")}
 
     @property
     def standard_displacement(self) -> np.ndarray:

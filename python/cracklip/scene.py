@@ -98,10 +98,13 @@ class Crack:
             crack), a number or a callable p(x) of points (n, 2) returning
             (n,); 0 for traction-free lips. With contact the lips carry it
             besides the contact pressure.
+        pressure_group: load group whose factor (Scene.load_path) scales
+            the pressure.
     """
     points: np.ndarray
     name: str = ""
     pressure: Value = 0.0
+    pressure_group: str = "default"
 
     def __post_init__(self):
         pts = np.asarray(self.points, dtype=np.float64)
@@ -192,12 +195,15 @@ class Dirichlet:
             (n,) for one component or (n, 2) for both; a callable f(x, side)
             also receives the crack side (n,) of each point (+1 / -1) and may
             jump across a crack (an exact crack field on a cut boundary).
+        group: load group whose factor (Scene.load_path) scales the value.
     """
     where: typing.Union[str, int, tuple[float, float]]
     component: typing.Optional[int] = None
     value: Value = 0.0
+    group: str = "default"
 
     def __post_init__(self):
+        _check_group(self.group, f"Dirichlet condition on {self.where!r}")
         if self.component not in (None, 0, 1):
             raise BoundaryConditionError(f"Dirichlet component must be 0 (x), 1 (y) or None (both), "
                                          f"got {self.component!r}")
@@ -214,12 +220,15 @@ class Traction:
             the outward normal) loads the boundary: (sxx, syy, sxy), a
             stress_field.LinearStress (e.g. bending), or a callable sigma(x)
             returning (n, 2, 2).
+        group: load group whose factor (Scene.load_path) scales it.
     """
     where: typing.Union[str, int]
     value: typing.Optional[VectorValue] = None
     stress: typing.Any = None
+    group: str = "default"
 
     def __post_init__(self):
+        _check_group(self.group, f"traction on {self.where!r}")
         if (self.value is None) == (self.stress is None):
             raise InputError(f"traction on {self.where!r}: give exactly one of value (a traction) or stress "
                              "(a stress field whose sigma n is applied)")
@@ -241,11 +250,14 @@ class PointForce:
     Attributes:
         point: (x, y).
         value: (F_x, F_y).
+        group: load group whose factor (Scene.load_path) scales it.
     """
     point: tuple[float, float]
     value: tuple[float, float]
+    group: str = "default"
 
     def __post_init__(self):
+        _check_group(self.group, f"point force at {self.point!r}")
         p = np.asarray(self.point, dtype=float)
         v = np.asarray(self.value, dtype=float)
         if p.shape != (2,) or v.shape != (2,) or not (np.all(np.isfinite(p)) and np.all(np.isfinite(v))):
@@ -254,11 +266,41 @@ class PointForce:
         self.point, self.value = tuple(p.tolist()), tuple(v.tolist())
 
 
+def _check_group(group, what: str) -> None:
+    if not isinstance(group, str) or not group:
+        raise InputError(f"{what}: a load group must be a non-empty name, got {group!r}")
+
+
+@dataclasses.dataclass
+class LoadStep:
+    """One step of a load path: the factor of each named load group at the
+    end of the step. A group not named keeps its factor from the step before
+    (0 before the first step: the path starts unloaded).
+
+    Attributes:
+        factors: group name -> factor.
+        name: label in outputs (default "step k").
+    """
+    factors: dict[str, float]
+    name: str = ""
+
+    def __post_init__(self):
+        if not isinstance(self.factors, dict) or not self.factors:
+            raise InputError(f"load step {self.name!r}: factors must be a non-empty mapping group -> factor, "
+                             f"got {self.factors!r}")
+        for g, f in self.factors.items():
+            _check_group(g, f"load step {self.name!r}")
+            if isinstance(f, bool) or not isinstance(f, numbers.Real) or not math.isfinite(f):
+                raise InputError(f"load step {self.name!r}: the factor of group {g!r} must be a finite number, "
+                                 f"got {f!r}")
+
+
 ENRICHMENTS = ("none", "scalar", "vector")
 #: Integer options and their largest accepted value (quadrature degrees and
 #: point counts beyond these cost time without adding accuracy).
 INTEGER_OPTIONS = {"quadrature_degree": 60, "degree": 60, "facet_degree": 60, "tip_radial": 60,
-                   "tip_angular": 60, "contact_points": 60, "max_active_set_iterations": 10000}
+                   "tip_angular": 60, "contact_points": 60, "max_active_set_iterations": 10000,
+                   "load_steps": 10000}
 TIP_QUADRATURES = ("collapsed", "gauss")
 
 
@@ -308,6 +350,13 @@ class Options:
             at that tip. Either way it is clipped to stay inside the part and
             away from other tips, other cracks, kinks of the crack and holes
             (a warning says so).
+        friction: Coulomb friction coefficient mu of the crack lips (0:
+            frictionless); needs contact "bilateral" or "unilateral". Each
+            contact multiplier is then open, stick or slip (semi-smooth
+            Newton over the three states, friction.py).
+        load_steps: increments per step of the load path (Scene.load_path);
+            friction is path-dependent, so a leg in several increments
+            follows its slip history more closely.
     """
     enrichment: str = "vector"
     radius: float = 0.0
@@ -328,6 +377,8 @@ class Options:
     residual_tol: float = 1e-8
     rescale: str = "none"
     sif_radius: float = 0.0
+    friction: float = 0.0
+    load_steps: int = 1
 
     def __post_init__(self):
         if self.enrichment not in ENRICHMENTS:
@@ -360,6 +411,13 @@ class Options:
                 and self.sif_radius >= 0.0):
             raise InputError(f"sif_radius must be a finite number >= 0 (0: chosen per tip), got "
                              f"{self.sif_radius!r}")
+        if isinstance(self.friction, bool) or not (isinstance(self.friction, numbers.Real)
+                                                   and math.isfinite(self.friction) and self.friction >= 0.0):
+            raise InputError(f"friction must be a finite number >= 0 (the Coulomb coefficient mu; 0: "
+                             f"frictionless), got {self.friction!r}")
+        if self.friction > 0.0 and self.contact == "none":
+            raise InputError(f"friction = {self.friction:g} needs contact = 'bilateral' or 'unilateral' (the "
+                             "lips must be able to touch to rub)")
         if not (0.05 <= self.tip_max_angle <= 3.2):
             raise InputError(f"tip_max_angle must lie in [0.05, 3.2] radians, got {self.tip_max_angle}")
 
@@ -394,8 +452,23 @@ class Scene:
     #: loads (-div sigma_0 inside, sigma_0 n on the boundary and the lips).
     #: (sxx, syy, sxy), a stress_field.LinearStress or a callable sigma_0(x).
     initial_stress: typing.Any = None
+    #: Load groups of the body force and the initial stress.
+    body_force_group: str = "default"
+    initial_stress_group: str = "default"
+    #: The load path: steps of factors per load group (LoadStep), solved in
+    #: order with Options.load_steps increments per step; friction is
+    #: path-dependent, so its slip and states carry over. None: one step
+    #: with every group at factor 1.
+    load_path: typing.Optional[list] = None
 
     def __post_init__(self):
+        if self.load_path is not None:
+            self.load_path = [st if isinstance(st, LoadStep) else LoadStep(dict(st), name=f"step {k + 1}")
+                              for k, st in enumerate(self.load_path)]
+            for k, st in enumerate(self.load_path):
+                st.name = st.name or f"step {k + 1}"
+            if not self.load_path:
+                raise InputError("load_path is empty: give at least one step, or None for one step at factor 1")
         if self.initial_stress is not None:
             from .stress_field import as_stress_field
             self.initial_stress = as_stress_field(self.initial_stress, "initial stress")

@@ -30,7 +30,8 @@ import numpy as np
 
 from .errors import BoundaryConditionError, InputError, MeshError
 from .mesh import (MeshData, create_half_annulus, create_plate_with_hole, create_rectangle, read_msh)
-from .scene import ENRICHMENTS, TIP_QUADRATURES, Crack, Dirichlet, Material, Options, PointForce, Scene, Traction
+from .scene import (ENRICHMENTS, TIP_QUADRATURES, Crack, Dirichlet, LoadStep, Material, Options, PointForce, Scene,
+                    Traction)
 from .stress_field import LinearStress
 
 MESH_KINDS = ("rectangle", "plate_with_hole", "half_annulus", "file")
@@ -164,6 +165,18 @@ def p_tag(value, path):
     return value
 
 
+def p_group(value, path):
+    if not isinstance(value, str) or not value:
+        raise _type_error(path, "a load group name (a non-empty string)", value)
+    return value
+
+
+def p_factors(value, path):
+    if not isinstance(value, dict) or not value:
+        raise _type_error(path, "a table of load group = factor, e.g. { clamp = 1.0, shear = 0.5 }", value)
+    return {str(k): _number(v, f"{path}.{k}") for k, v in value.items()}
+
+
 def p_value(value, path):
     if isinstance(value, list):
         return p_vector(value, path)
@@ -226,6 +239,10 @@ _OPTION_MEANINGS = {
     "residual_tol": "largest accepted relative residual of a linear solve",
     "rescale": "`none`, or `nodal`: each enriched node's block of standard and enriched dofs "
                "orthonormalised (Cholesky), others Jacobi-scaled; same answer, better conditioned matrix",
+    "friction": "Coulomb friction coefficient mu of the lips (0: frictionless); needs contact `bilateral` or "
+                "`unilateral`; each multiplier open, stick or slip",
+    "load_steps": "increments per step of the load path (friction is path-dependent: more increments "
+                  "follow the slip history closely)",
     "sif_radius": "radius of the largest SIF domain at every tip (K also on 1/2 and 3/4 of it; their "
                   "spread is reported); 0: 6 element sizes at that tip; clipped to stay inside the part "
                   "and away from other tips, cracks, kinks and holes (with a warning)",
@@ -332,6 +349,7 @@ SCHEMA: tuple[Key, ...] = tuple([
     Key("cracks[].arc.segments", "integer", 24, "circular-arc crack: polyline segments", p_int(1)),
     Key("cracks[].pressure", "float", 0.0, "pressure on both lips (> 0 pushes them apart: a pressurised "
         "crack); with contact it acts besides the contact pressure", p_float()),
+    Key("cracks[].pressure_group", "string", "default", "load group of the lip pressure (see load_path)", p_group),
     # Dirichlet conditions
     Key("dirichlet[].tag", "string or integer", UNSET,
         "boundary tag the displacement is prescribed on (one of tag, box, point)", p_tag),
@@ -344,11 +362,15 @@ SCHEMA: tuple[Key, ...] = tuple([
     Key("dirichlet[].component", "string", "both", "`x`, `y` or `both`", p_choice("x", "y", "both")),
     Key("dirichlet[].value", "float or [x, y]", 0.0,
         "prescribed displacement ([x, y] with component = both)", p_value),
+    Key("dirichlet[].group", "string", "default", "load group of the prescribed value (see load_path); the "
+        "values of conditions of different groups on one node add up", p_group),
 ] + [Key(f"dirichlet[].williams.{n}", t, d, m + " (displacement prescribed; replaces value)", p)
      for n, t, d, m, p in _WILLIAMS] + [
     # loads
     Key("loads.body_force", "[x, y]", [0.0, 0.0], "constant body force, force per unit area", p_vector),
+    Key("loads.body_force_group", "string", "default", "load group of the body force (see load_path)", p_group),
     Key("loads.tractions[].tag", "string or integer", REQUIRED, "boundary tag loaded", p_tag),
+    Key("loads.tractions[].group", "string", "default", "load group (see load_path)", p_group),
     Key("loads.tractions[].value", "[x, y]", UNSET, "constant traction, force per unit length "
         "(one of value, stress, williams, kirsch)", p_vector),
     Key("loads.tractions[].stress", "[sxx, syy, sxy]", UNSET,
@@ -366,18 +388,27 @@ SCHEMA: tuple[Key, ...] = tuple([
         p_float(positive=True)),
     Key("loads.tractions[].kirsch.center", "[x, y]", [0.0, 0.0], "Kirsch field: hole centre", p_point),
     Key("loads.pressures[].tag", "string or integer", REQUIRED, "boundary tag under pressure", p_tag),
+    Key("loads.pressures[].group", "string", "default", "load group (see load_path)", p_group),
     Key("loads.pressures[].value", "float", REQUIRED,
         "pressure (> 0 pushes on the part): traction -p n", p_float()),
     Key("loads.point_forces[].point", "[x, y]", REQUIRED,
         "a concentrated force at the mesh node nearest to the point (within one element); a generated "
         "rectangle or plate has a node there", p_point),
     Key("loads.point_forces[].value", "[x, y]", REQUIRED, "the force (per unit thickness)", p_vector),
+    Key("loads.point_forces[].group", "string", "default", "load group (see load_path)", p_group),
     Key("loads.initial_stress.value", "[sxx, syy, sxy]", REQUIRED,
         "initial (residual) stress sigma_0 at `origin`: the stress is C eps(u) + sigma_0, its "
         "equivalent loads open or close the cracks", p_stress),
     Key("loads.initial_stress.gradient", "[[3 numbers], [3 numbers]]", [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0]],
         "d sigma_0 / dx and d sigma_0 / dy of a linear initial stress", p_gradient),
     Key("loads.initial_stress.origin", "[x, y]", [0.0, 0.0], "where sigma_0 = value", p_point),
+    Key("loads.initial_stress.group", "string", "default", "load group of the initial stress (see load_path)",
+        p_group),
+    Key("load_path[].name", "string", "", "label of the step in outputs (default: step k)", p_str),
+    Key("load_path[].factors", "table of group = factor", REQUIRED,
+        "the factor of each named load group at the end of the step (a group not named keeps its factor "
+        "from the step before; all are 0 before the first step); without load_path one step takes every "
+        "group to 1", p_factors),
 ] + _option_keys() + [
     # outputs
     Key("outputs.vtu", "boolean", True, "write ParaView files solution.vtu and crack_lips.vtu", p_bool),
@@ -484,7 +515,7 @@ def check_keys(doc: dict, table: str = "", where: str = "") -> None:
                 raise InputError(f"{path} must be an array of tables ([[{path}]]), got {value!r}")
             for i, item in enumerate(value):
                 check_keys(item, sub + "[]", f"{path}[{i}]")
-        elif isinstance(value, dict):
+        elif isinstance(value, dict) and not KEYS[f"{table}.{name}" if table else name].type.startswith("table"):
             raise InputError(f"{path} must be a value, not a table")
 
 
@@ -586,6 +617,7 @@ def parse_settings(doc: dict) -> dict:
     if "initial_stress" in loads_doc:
         s["loads"]["initial_stress"] = _section(loads_doc["initial_stress"], "loads.initial_stress",
                                                 "loads.initial_stress")
+    s["load_path"] = [_section(st, "load_path[]", f"load_path[{i}]") for i, st in enumerate(_items(doc, "load_path"))]
     s["options"] = _section(doc.get("options", {}), "options", "options")
     s["outputs"] = _section(doc.get("outputs", {}), "outputs", "outputs")
     return s
@@ -722,9 +754,20 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
         options = Options(**s["options"])
     except InputError as e:
         raise InputError(f"options: {e}") from None
+    load_path = None
+    if s["load_path"]:
+        load_path = [LoadStep(st["factors"], st["name"] or f"step {k + 1}") for k, st in enumerate(s["load_path"])]
+        notes.append("load path: " + "; ".join(f"{st.name}: " + ", ".join(f"{g} = {f:g}" for g, f in st.factors.items())
+                                               for st in load_path)
+                     + f" ({options.load_steps} increment(s) per step)")
     scene = Scene(mesh, material, cracks=cracks, dirichlet=dirichlet, tractions=tractions,
                   options=options, body_force=body_force, point_forces=point_forces,
-                  initial_stress=initial_stress)
+                  initial_stress=initial_stress, body_force_group=s["loads"]["body_force_group"],
+                  initial_stress_group=s["loads"].get("initial_stress", {}).get("group", "default"),
+                  load_path=load_path)
+    if load_path is not None:
+        from .load_path import steps
+        steps(scene)  # unknown groups are an InputError now, not at the solve
     title = s["title"] or (path.stem if path is not None else "scene")
     return SceneFile(path, title, s, scene, s["outputs"], notes, {"mesh": t_mesh})
 
@@ -738,8 +781,9 @@ def _crack(c: dict, i: int) -> Crack:
             raise InputError(f"cracks[{i}].arc.angles: the start and end angles are equal")
         t = np.linspace(t0, t1, a["segments"] + 1)
         pts = np.asarray(a["center"]) + a["radius"] * np.stack([np.cos(t), np.sin(t)], axis=1)
-        return Crack(pts, name=name, pressure=c["pressure"])
-    return Crack(np.asarray(c["points"], dtype=float), name=name, pressure=c["pressure"])
+        return Crack(pts, name=name, pressure=c["pressure"], pressure_group=c["pressure_group"])
+    return Crack(np.asarray(c["points"], dtype=float), name=name, pressure=c["pressure"],
+                 pressure_group=c["pressure_group"])
 
 
 def _inside(m: dict, p: np.ndarray) -> bool:
@@ -855,7 +899,7 @@ def _dirichlet(bc: dict, i: int, mesh: MeshData, material: Material, cracks: lis
         targets = [(float(x[n, 0]), float(x[n, 1])) for n in inside]
         notes.append(f"{where}: box {bc['box']} ({inside.size} nodes), {what}")
     for target in targets:
-        out += [Dirichlet(target, c, v) for c, v in entries]
+        out += [Dirichlet(target, c, v, group=bc["group"]) for c, v in entries]
     return out
 
 
@@ -876,27 +920,28 @@ def _traction(tr: dict, i: int, mesh: MeshData, material: Material, cracks: list
     nf = mesh.facets(tag).size
     if "value" in tr:
         notes.append(f"{where}: tag {tag!r} ({nf} facets), traction {tr['value']}")
-        return Traction(tag, tuple(tr["value"]))
+        return Traction(tag, tuple(tr["value"]), group=tr["group"])
     if "stress" in tr:
         field = LinearStress(tuple(tr["stress"]), tuple(map(tuple, tr.get("stress_gradient", [[0.0] * 3] * 2))),
                              tuple(tr["origin"]))
         what = (f"sigma = {tr['stress']}" if field.is_uniform else
                 f"linear sigma = {tr['stress']} at {tr['origin']}, gradient {tr['stress_gradient']}")
         notes.append(f"{where}: tag {tag!r} ({nf} facets), traction sigma n, {what}")
-        return Traction(tag, stress=field)
+        return Traction(tag, stress=field, group=tr["group"])
     normals = boundary_normals(mesh, tag)
     if "williams" in tr:
         field = _williams(tr["williams"], material, cracks, f"{where}.williams")
         notes.append(f"{where}: tag {tag!r} ({nf} facets), traction of the Williams field "
                      f"K_I = {field.K_I:g}, K_II = {field.K_II:g}")
-        return Traction(tag, lambda p: np.einsum("nij,nj->ni", field.stress(p), normals(p)))
+        return Traction(tag, lambda p: np.einsum("nij,nj->ni", field.stress(p), normals(p)), group=tr["group"])
     from .kirsch import kirsch_stress
     k = tr["kirsch"]
     center = np.asarray(k["center"], dtype=float)
     notes.append(f"{where}: tag {tag!r} ({nf} facets), traction of the Kirsch field, remote stress "
                  f"{k['remote_stress']:g}, hole radius {k['hole_radius']:g}")
-    return Traction(tag, lambda p: np.einsum("nij,nj->ni", kirsch_stress(p - center, k["remote_stress"],
-                                                                         k["hole_radius"]), normals(p)))
+    def kirsch_traction(p):
+        return np.einsum("nij,nj->ni", kirsch_stress(p - center, k["remote_stress"], k["hole_radius"]), normals(p))
+    return Traction(tag, kirsch_traction, group=tr["group"])
 
 
 def _nearest_node(mesh: MeshData, point, where: str) -> tuple[float, float]:
@@ -918,7 +963,7 @@ def _point_force(pf: dict, i: int, mesh: MeshData, notes: list[str]) -> PointFor
     where = f"loads.point_forces[{i}]"
     node = _nearest_node(mesh, pf["point"], f"{where}.point")
     notes.append(f"{where}: force {pf['value']} at node ({node[0]:.6g}, {node[1]:.6g})")
-    return PointForce(node, tuple(pf["value"]))
+    return PointForce(node, tuple(pf["value"]), group=pf["group"])
 
 
 def _pressure(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
@@ -928,7 +973,7 @@ def _pressure(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
     normals = boundary_normals(mesh, pr["tag"])
     p = pr["value"]
     notes.append(f"{where}: tag {pr['tag']!r} ({mesh.facets(pr['tag']).size} facets), pressure {p:g}")
-    return Traction(pr["tag"], lambda x: -p * normals(x))
+    return Traction(pr["tag"], lambda x: -p * normals(x), group=pr["group"])
 
 
 # -- the reference table -------------------------------------------------------------------------

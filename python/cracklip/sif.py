@@ -275,14 +275,20 @@ def lip_traction_parts(solution, crack: int, points: dict[str, np.ndarray]) -> l
         cs = solution.contact["system"]
         lam_full = cs.R @ solution.contact["lambda"]
         p = -_cracklip.evaluate_multipliers(cs.space, crack, points["cell"], points["ref"], lam_full)
-        parts.append(p[:, None] * n)
+        t = p[:, None] * n
+        if "lambda_t" in solution.contact:  # friction: the shear tau = -lambda_t along t = (n_y, -n_x)
+            tau = -_cracklip.evaluate_multipliers(cs.space, crack, points["cell"], points["ref"],
+                                                  cs.R @ solution.contact["lambda_t"])
+            t = t + tau[:, None] * np.stack([n[:, 1], -n[:, 0]], axis=1)
+        parts.append(t)
     from .loads import lip_pressure
-    if callable(m.cracks[crack].crack.pressure) or m.cracks[crack].crack.pressure != 0.0:
-        parts.append(lip_pressure(m.cracks[crack].crack, points["x"])[:, None] * n)
-    if m.scene.initial_stress is not None:
+    crk = m.cracks[crack].crack
+    if (callable(crk.pressure) or crk.pressure != 0.0) and solution.factor(crk.pressure_group) != 0.0:
+        parts.append(solution.factor(crk.pressure_group) * lip_pressure(crk, points["x"])[:, None] * n)
+    if m.scene.initial_stress is not None and solution.factor(m.scene.initial_stress_group) != 0.0:
         from .stress_field import evaluate_stress
         sig = evaluate_stress(m.scene.initial_stress, points["x"], "initial stress")
-        parts.append(np.einsum("nij,nj->ni", sig, n))
+        parts.append(solution.factor(m.scene.initial_stress_group) * np.einsum("nij,nj->ni", sig, n))
     return parts
 
 
@@ -306,7 +312,7 @@ def interaction_integrals(solution, domain: TipDomain, radius: float) -> np.ndar
     mat = m.scene.material
     q_opts = m.scene.options.quadrature_options()
     q_opts.degree = max(q_opts.degree, SIF_DEGREE)
-    body = _body_force(m)
+    body = _body_force(solution)
     d = _cracklip.compute_domain_points(m.x, m.cells, m.layout, m.geometries, domain.position,
                                         domain.direction, radius, q_opts, body is not None)
     if not np.any(d["grad_q"]):
@@ -335,11 +341,17 @@ def interaction_integrals(solution, domain: TipDomain, radius: float) -> np.ndar
     return I
 
 
-def _body_force(model) -> typing.Callable[[np.ndarray], np.ndarray] | None:
-    """b(x) (n, 2) = body force + div sigma_0, or None if both vanish."""
+def _body_force(solution) -> typing.Callable[[np.ndarray], np.ndarray] | None:
+    """b(x) (n, 2) = body force + div sigma_0 (at their load factors), or
+    None if both vanish."""
+    model = solution.model
     scene = model.scene
-    f = None if scene.body_force is None else np.asarray(scene.body_force, dtype=float)
+    f = None if scene.body_force is None else solution.factor(scene.body_force_group) * np.asarray(
+        scene.body_force, dtype=float)
     s0 = scene.initial_stress
+    if s0 is not None and solution.factor(scene.initial_stress_group) == 0.0:
+        s0 = None
+    k0 = 1.0 if s0 is None else solution.factor(scene.initial_stress_group)
     if (f is None or not np.any(f)) and s0 is None:
         return None
     from .stress_field import LinearStress, divergence
@@ -350,7 +362,7 @@ def _body_force(model) -> typing.Callable[[np.ndarray], np.ndarray] | None:
     def b(x):
         out = np.zeros((len(x), 2)) if f is None else np.broadcast_to(f, (len(x), 2)).copy()
         if s0 is not None:
-            out += divergence(s0, x, size, "initial stress")
+            out += k0 * divergence(s0, x, size, "initial stress")
         return out
     return b
 

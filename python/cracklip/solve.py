@@ -29,7 +29,14 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
 
     condition_number: also estimate the 1-norm condition number of the
     stiffness with constraints applied, raw and Jacobi-scaled (Solution.condition).
+
+    With a load path (Scene.load_path) or friction (path-dependent), the
+    steps are solved in order (load_path.solve_path) and the last step's
+    Solution is returned; its .steps holds every step's.
     """
+    if scene.load_path is not None or scene.options.friction > 0.0:
+        from .load_path import solve_path
+        return solve_path(scene, condition_number)[-1]
     t_start = time.perf_counter()
     model = create_model(scene)
     # Solve the problem in units of E (E = 1, prescribed displacements times
@@ -39,7 +46,8 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     # the constraint rows (1 on the diagonal) match the stiffness rows.
     E = scene.material.E
     unit = dataclasses.replace(model, scene=dataclasses.replace(scene, material=scene.material.scaled(1.0)),
-                               bc_values=model.bc_values * E)
+                               bc_values=model.bc_values * E,
+                               bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
     A, b, timings = assemble_system(unit)
     T = None
     if scene.options.rescale == "nodal":

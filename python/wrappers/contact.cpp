@@ -55,16 +55,23 @@ void declare_contact(py::module& m)
   m.def(
       "assemble_coupling",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
-         const Cracks& cracks, const MultiplierSpace& space, int n)
+         const Cracks& cracks, const MultiplierSpace& space, int n, bool tangential)
       {
-        Triplets B, M;
-        assemble_coupling(as_span(x), as_span(cells), layout, cracks, space, n, B, M);
-        return py::make_tuple(as_pyarray(std::move(B.row)), as_pyarray(std::move(B.col)),
-                              as_pyarray(std::move(B.value)), as_pyarray(std::move(M.row)),
-                              as_pyarray(std::move(M.col)), as_pyarray(std::move(M.value)));
+        Triplets B, M, Bt;
+        assemble_coupling(as_span(x), as_span(cells), layout, cracks, space, n, B, M,
+                          tangential ? &Bt : nullptr);
+        auto out = py::make_tuple(as_pyarray(std::move(B.row)), as_pyarray(std::move(B.col)),
+                                  as_pyarray(std::move(B.value)), as_pyarray(std::move(M.row)),
+                                  as_pyarray(std::move(M.col)), as_pyarray(std::move(M.value)));
+        if (!tangential)
+          return out;
+        return py::tuple(out + py::make_tuple(as_pyarray(std::move(Bt.row)), as_pyarray(std::move(Bt.col)),
+                                              as_pyarray(std::move(Bt.value))));
       },
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("space"), py::arg("n"),
-      "Coupling B (full multipliers x dofs) and multiplier mass M as COO triplets.");
+      py::arg("tangential") = false,
+      "Coupling B (full multipliers x dofs) and multiplier mass M as COO triplets (B rows, cols, "
+      "values, M rows, cols, values); with tangential, then the tangential coupling Bt's triplets.");
 
   m.def(
       "compute_segment_points",

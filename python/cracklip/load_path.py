@@ -1,0 +1,189 @@
+"""The load path: steps of factors per load group, split into increments, solved in order.
+
+A scene's loads belong to named groups (Traction.group, Dirichlet.group,
+...; "default" unless named). Scene.load_path is a list of LoadStep: the
+factor of each group at the end of the step; a group not named keeps its
+factor from the step before, and every factor is 0 before the first step
+(the path starts unloaded). Options.load_steps splits each step into that
+many increments (linear in the factors). Without a load path the scene is
+one step taking every group from 0 to 1.
+
+The matrix is assembled once; each group's right-hand side too (its loads
+and its prescribed values, lifted), so an increment costs only the contact
+iteration. Frictional contact carries its slip and states from increment to
+increment (friction is path-dependent); frictionless contact starts each
+increment from the last active set.
+"""
+from __future__ import annotations
+
+import dataclasses
+import logging
+import time
+import typing
+
+import numpy as np
+
+from .assembly import assemble_system_groups
+from .contact import contact_constant, create_contact_system, solve_frictionless
+from .errors import InputError
+from .friction import STATE_NAMES, solve_friction
+from .linear_solver import record_solves, scipy_from_petsc, solve_checked
+from .loads import load_groups
+from .model import create_model
+from .post import Solution
+from .scene import LoadStep, Scene
+
+logger = logging.getLogger(__name__)
+
+
+@dataclasses.dataclass(frozen=True)
+class Increment:
+    """One increment of the path: step index, increment index within the
+    step (1 .. load_steps), and the factor of every group."""
+    step: int
+    index: int
+    factors: dict[str, float]
+
+
+def steps(scene: Scene) -> list[LoadStep]:
+    """The scene's load steps (one step of factor 1 for every group without a path)."""
+    groups = load_groups(scene) | {"default"}
+    if scene.load_path is None:
+        return [LoadStep({g: 1.0 for g in sorted(groups)}, name="load")]
+    for st in scene.load_path:
+        unknown = sorted(set(st.factors) - groups)
+        if unknown:
+            raise InputError(f"load step {st.name!r} names load group(s) {unknown} that no load or Dirichlet "
+                             f"value belongs to; the scene's groups: {sorted(groups)}")
+    return list(scene.load_path)
+
+
+def increments(scene: Scene) -> list[Increment]:
+    """Every increment of the path, in order (the module doc)."""
+    groups = sorted(load_groups(scene) | {"default"})
+    n = scene.options.load_steps
+    prev = {g: 0.0 for g in groups}
+    out = []
+    for k, st in enumerate(steps(scene)):
+        target = {**prev, **st.factors}
+        for i in range(1, n + 1):
+            out.append(Increment(k, i, {g: prev[g] + (target[g] - prev[g]) * i / n for g in groups}))
+        prev = target
+    return out
+
+
+def _combine(vectors: dict[str, np.ndarray], factors: dict[str, float], size: int) -> np.ndarray:
+    out = np.zeros(size)
+    for g, v in vectors.items():
+        out += factors.get(g, 0.0) * v
+    return out
+
+
+def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
+    """Solve every increment of the scene's load path; return one Solution
+    per step (its last increment), each with .factors and .step, the last
+    also with .steps (all of them)."""
+    t_start = time.perf_counter()
+    model = create_model(scene)
+    opts = scene.options
+    E = scene.material.E
+    # In units of E, as solve.solve does (exact scaling with E and the loads).
+    unit = dataclasses.replace(model, scene=dataclasses.replace(scene, material=scene.material.scaled(1.0)),
+                               bc_values=model.bc_values * E,
+                               bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
+    A, rhs, timings = assemble_system_groups(unit)
+    T = None
+    if opts.rescale == "nodal":
+        from .rescaling import nodal_transform
+        t0 = time.perf_counter()
+        T = nodal_transform(unit, A)
+        K = (T.T @ scipy_from_petsc(A) @ T).tocsr()
+        rhs = {g: T.T @ b for g, b in rhs.items()}
+        timings["rescale"] = time.perf_counter() - t0
+    else:
+        K = scipy_from_petsc(A)
+    contact = opts.contact != "none" and bool(model.cracks)
+    friction = contact and opts.friction > 0.0
+    physical = cs = None
+    if contact:
+        physical = create_contact_system(unit)
+        cs = physical
+        if T is not None:
+            cs = dataclasses.replace(physical, B=(physical.B @ T).tocsr(),
+                                     Bt=None if physical.Bt is None else (physical.Bt @ T).tocsr())
+    c = contact_constant(unit)
+    n = model.num_dofs
+    m = cs.num_multipliers if cs is not None else 0
+    s_old = np.zeros(m)
+    state = sign = active = None
+    out: list[Solution] = []
+    step_list = steps(scene)
+    incs = increments(scene)
+    iterations: list[int] = []
+    t0 = time.perf_counter()
+    with record_solves() as solves:
+        for inc in incs:
+            f = _combine(rhs, inc.factors, n)
+            info: dict[str, typing.Any] = {}
+            if not contact:
+                A_f = A.createVecRight()
+                A_f.array[:] = f
+                x = solve_checked(A, A_f, opts.residual_tol, what="X-FEM stiffness system")
+                y = x.array.copy()
+                A_f.destroy()
+                x.destroy()
+            else:
+                g_n = _combine(cs.g_groups, inc.factors, m)
+                work = dataclasses.replace(cs, g=g_n)
+                if friction:
+                    g_t = _combine(cs.gt_groups, inc.factors, m)
+                    y, info = solve_friction(K, f, work, g_n, g_t, s_old, opts, c, state, sign)
+                    state, sign = info["state"], info["sign"]
+                    s_old = cs.Bt @ y - g_t
+                else:
+                    y, info = solve_frictionless(K, f, work, opts, c, active)
+                    active = info["active"]
+                iterations.append(int(info["iterations"]))
+            if inc.index == opts.load_steps:
+                out.append(_step_solution(model, unit, physical, y, T, E, info, inc, step_list[inc.step],
+                                          iterations, timings, solves))
+                iterations = []
+                logger.info("load step %d/%d (%s) solved", inc.step + 1, len(step_list), step_list[inc.step].name)
+    timings["path_solve"] = time.perf_counter() - t0
+    if condition_number:
+        from .linear_solver import condition_number_1norm
+        out[-1].condition = condition_number_1norm(A)
+    A.destroy()
+    timings["total"] = time.perf_counter() - t_start
+    for sol in out:
+        sol.timings = {**model.timings, **timings}
+    out[-1].steps = out
+    return out
+
+
+def _step_solution(model, unit, physical, y, T, E, info, inc: Increment, step: LoadStep,
+                   iterations: list[int], timings, solves) -> Solution:
+    u = (y if T is None else T @ y) / E
+    contact = {}
+    if physical is not None:
+        system = dataclasses.replace(
+            physical, g=_combine(physical.g_groups, inc.factors, physical.num_multipliers) / E,
+            gt=None if physical.Bt is None else _combine(physical.gt_groups, inc.factors, physical.num_multipliers) / E,
+            g_groups={k: v / E for k, v in physical.g_groups.items()},
+            gt_groups={k: v / E for k, v in physical.gt_groups.items()})
+        contact = {"system": system, **{k: (v.copy() if isinstance(v, np.ndarray) else v) for k, v in info.items()},
+                   "increment_iterations": list(iterations)}
+        contact["iterations"] = int(sum(iterations))
+    solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None, "solves": list(solves)}
+    sol = Solution(model, u, dict(timings), {}, contact, solver)
+    sol.factors = dict(inc.factors)
+    sol.step = {"index": inc.step, "name": step.name, "factors": dict(inc.factors),
+                "increments": len(iterations) or 1}
+    return sol
+
+
+def state_names(codes: np.ndarray) -> list[str]:
+    return [STATE_NAMES[int(c)] for c in codes]
+
+
+__all__ = ["Increment", "increments", "steps", "solve_path", "state_names"]
