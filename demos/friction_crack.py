@@ -149,6 +149,20 @@ def hysteresis(mu: float, sigma_n: float = 1.0, tau_max: float = 0.7, n: int = 4
     return out
 
 
+def inf_sup_rows(ns=(10, 20, 40, 80)) -> list[dict]:
+    """sqrt(beta_min) of the normal multipliers and of the pair [B_n; B_t] on
+    the paper's block (section 5.1), h = 2 / n."""
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+    import block_uniform_pressure
+    from cracklip.infsup import inf_sup_constant
+    rows = []
+    for n in ns:
+        model = cl.create_model(block_uniform_pressure.scene_for(n))
+        rows.append({"n": n, "h": 2.0 / n, "normal": inf_sup_constant(model),
+                     "normal_and_tangential": inf_sup_constant(model, tangential=True)})
+    return rows
+
+
 def markdown(rows: list[dict]) -> str:
     betas = sorted({r["beta_deg"] for r in rows})
     mus = sorted({r["mu"] for r in rows})
@@ -174,6 +188,25 @@ def markdown(rows: list[dict]) -> str:
     return "\n".join(lines) + "\n"
 
 
+def extras_markdown(result: dict) -> str:
+    """The hysteresis and inf-sup tables, when computed."""
+    lines = []
+    if result.get("hysteresis"):
+        lines += ["", "Load-unload cycle (sigma_n = 1, shear up to 0.7 and back to 0; slip max against the exact):", "",
+                  "| mu | sheared: slip (exact) | K_II (exact) | unloaded: slip (exact) | K_II (exact) |",
+                  "|---|---|---|---|---|"]
+        for r in result["hysteresis"]:
+            up, end = r["steps"][1], r["steps"][2]
+            lines.append(f"| {r['mu']:g} | {up['slip_max']:.5f} ({up['slip_exact_max']:.5f}) | "
+                         f"{np.mean(up['K_II']):.5f} ({up['K_II_exact']:.5f}) | {end['slip_max']:.3g} "
+                         f"({end['slip_exact_max']:.5f}) | {np.mean(end['K_II']):.3g} ({end['K_II_exact']:.5f}) |")
+    if result.get("inf_sup"):
+        lines += ["", "Inf-sup sqrt(beta_min) on the paper's block:", "", "| h | normal | normal and tangential |",
+                  "|---|---|---|"]
+        lines += [f"| {r['h']:g} | {r['normal']:.3f} | {r['normal_and_tangential']:.3f} |" for r in result["inf_sup"]]
+    return "\n".join(lines) + ("\n" if lines else "")
+
+
 def main(argv=None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--betas", type=float, nargs="+", default=[30.0, 45.0, 60.0])
@@ -183,6 +216,7 @@ def main(argv=None) -> dict:
     ap.add_argument("--json", type=pathlib.Path, default=None)
     ap.add_argument("--out", type=pathlib.Path, default=None, help="folder for friction.{json,md,png}")
     ap.add_argument("--no-hysteresis", action="store_true")
+    ap.add_argument("--inf-sup", action="store_true", help="also the inf-sup values of [B_n; B_t] on the block")
     args = ap.parse_args(argv)
     rows = []
     for n in args.ns:
@@ -195,11 +229,13 @@ def main(argv=None) -> dict:
     result = {"rows": rows}
     if not args.no_hysteresis:
         result["hysteresis"] = [hysteresis(mu, n=min(args.ns)) for mu in (0.0, 0.3, 0.5)]
+    if args.inf_sup:
+        result["inf_sup"] = inf_sup_rows()
     if args.json:
         write_json(args.json, result)
     if args.out:
         write_json(args.out / "friction.json", result)
-        (args.out / "friction.md").write_text(markdown(rows))
+        (args.out / "friction.md").write_text(markdown(rows) + extras_markdown(result))
         if __name__ == "__main__":
             plot(rows, args.out / "friction.png")
     return result

@@ -9,6 +9,8 @@ per multiplier), the small dense eigenproblem is solved by LAPACK.
 """
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import scipy.linalg
 
@@ -18,10 +20,22 @@ from .linear_solver import create_lu_solver
 from .model import XfemModel
 
 
-def inf_sup_constant(model: XfemModel, h: float | None = None, max_multipliers: int = 4000) -> float:
-    """sqrt(beta_min) of the model's multiplier space (Options.multipliers)."""
+def inf_sup_constant(model: XfemModel, h: float | None = None, max_multipliers: int = 4000,
+                     tangential: bool = False) -> float:
+    """sqrt(beta_min) of the model's multiplier space (Options.multipliers);
+    tangential: of the pair [B_n; B_t] (normal and tangential multipliers on
+    the same space, the multiplier mass block-diagonal), the space friction
+    uses."""
+    if tangential and model.scene.options.friction <= 0.0:
+        model = dataclasses.replace(model, scene=dataclasses.replace(
+            model.scene, options=dataclasses.replace(model.scene.options, friction=1.0,
+                                                     contact=model.scene.options.contact
+                                                     if model.scene.options.contact != "none" else "bilateral")))
     cs = create_contact_system(model)
-    m = cs.num_multipliers
+    if tangential:
+        import scipy.sparse as sp
+        cs = dataclasses.replace(cs, B=sp.vstack([cs.B, cs.Bt]).tocsr(), M=sp.block_diag([cs.M, cs.M]).tocsr())
+    m = cs.B.shape[0]
     if m > max_multipliers:
         raise ValueError(f"{m} multipliers: the dense inf-sup test is limited to {max_multipliers}")
     A, _, _ = assemble_system(model)

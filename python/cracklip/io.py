@@ -70,9 +70,11 @@ def subcell_mesh(solution: Solution) -> meshio.Mesh:
 def crack_lips_mesh(samples: typing.Sequence[dict]) -> meshio.Mesh:
     """The lips of every crack as two polylines (+ and - lip) through the
     crack sample points (see outputs.crack_samples), each point carrying
-    the displacement of its lip, pressure, normal gap and tangential slip;
-    cell data: crack index and lip (+1 / -1)."""
-    pts, disp, data, conn, crack_id, lip = [], [], {"pressure": [], "gap": [], "slip": [], "s": []}, [], [], []
+    the displacement of its lip, pressure, shear (friction), normal gap,
+    tangential slip, state (0 open, 1 stick, 2 slip); cell data: crack index
+    and lip (+1 / -1)."""
+    pts, disp, conn, crack_id, lip = [], [], [], [], []
+    data = {"pressure": [], "shear": [], "gap": [], "slip": [], "s": [], "state": []}
     offset = 0
     for c, smp in enumerate(samples):
         n = len(smp["s"])
@@ -82,7 +84,10 @@ def crack_lips_mesh(samples: typing.Sequence[dict]) -> meshio.Mesh:
             pts.append(smp["x"])
             disp.append(smp[key])
             for name in data:
-                data[name].append(smp[name])
+                v = smp[name]
+                if name == "state":  # 0 open, 1 stick, 2 slip
+                    v = np.select([v == "stick", v == "slip"], [1, 2], 0).astype(np.int32)
+                data[name].append(v)
             idx = offset + np.arange(n)
             conn.append(np.stack([idx[:-1], idx[1:]], axis=1))
             crack_id.append(np.full(n - 1, c, dtype=np.int32))

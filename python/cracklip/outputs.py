@@ -252,6 +252,11 @@ def crack_statistics(samples: dict[str, np.ndarray], closed: np.ndarray, gap_tol
         out["pressure"] = {"max": float(p.max()), "min": float(p.min()),
                            "mean": float((w * p).sum() / total) if total > 0 else 0.0,
                            "normal_force": float((w * p).sum())}
+        state = samples["state"]
+        for name in ("open", "stick", "slip"):
+            out[f"{name}_length"] = float(w[state == name].sum())
+            out[f"{name}_s_ranges"] = _ranges(samples["s"], state == name)
+        out["shear_max_abs"] = float(np.abs(samples["shear"]).max())
     if len(w):
         s = samples["s"]
         out["closed_s_ranges"] = _ranges(s, closed)
@@ -320,35 +325,44 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
     m = solution.model
     files: list[str] = []
 
+    states = solution.steps or [solution]
     t0 = time.perf_counter()
     sifs = sif_rows(solution)
     warnings = [w.as_dict() for w in solution.warnings]
     timings["sif"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    samples = [crack_samples(solution, i, cfg["crack_points"]) for i in range(len(m.cracks))]
     u_scale = float(np.abs(solution.standard_displacement).max()) if m.num_dofs else 0.0
     gap_tol = 1e-6 * max(u_scale, 1e-300)
     law = m.scene.options.contact if solution.contact else "none"
-    closed = [closed_points(smp, law, gap_tol) for smp in samples]
+    per_step = []
+    for st in states:
+        smps = [crack_samples(st, i, cfg["crack_points"]) for i in range(len(m.cracks))]
+        shut = [closed_points(smp, law, gap_tol) for smp in smps]
+        per_step.append((st, smps, shut))
+        for smp in smps:
+            _finite("the crack samples", smp["pressure"], smp["gap"], smp["slip"], smp["shear"])
+    _, samples, closed = per_step[-1]
     crack_stats = [{"crack": i, "name": m.cracks[i].crack.name, **crack_statistics(smp, closed[i], gap_tol, law)}
                    for i, smp in enumerate(samples)]
     energy = solution.strain_energy()
     timings["crack_post"] = time.perf_counter() - t0
     _finite("the displacement", solution.u)
-    for smp in samples:
-        _finite("the crack samples", smp["pressure"], smp["gap"], smp["slip"])
 
     t0 = time.perf_counter()
-    _write_csv(out / "crack.csv", ["crack", "s", "x", "y", "pressure", "gap", "slip", "closed"],
-               [[i, smp["s"][k], smp["x"][k, 0], smp["x"][k, 1], smp["pressure"][k], smp["gap"][k],
-                 smp["slip"][k], int(closed[i][k])]
-                for i, smp in enumerate(samples) for k in range(len(smp["s"]))])
-    _write_csv(out / "sif.csv", ["crack", "tip", "x", "y", "direction_x", "direction_y", "K_I", "K_II",
+    _write_csv(out / "crack.csv", ["step", "crack", "s", "x", "y", "pressure", "shear", "gap", "slip", "state",
+                                   "closed"],
+               [[k, i, smp["s"][j], smp["x"][j, 0], smp["x"][j, 1], smp["pressure"][j], smp["shear"][j],
+                 smp["gap"][j], smp["slip"][j], smp["state"][j], int(shut[i][j])]
+                for k, (_, smps, shut) in enumerate(per_step) for i, smp in enumerate(smps)
+                for j in range(len(smp["s"]))])
+    step_sifs = [(k, st.stress_intensity_factors(None) if st is not solution else sifs)
+                 for k, (st, _, _) in enumerate(per_step)]
+    _write_csv(out / "sif.csv", ["step", "crack", "tip", "x", "y", "direction_x", "direction_y", "K_I", "K_II",
                                  "K_I_spread", "K_II_spread", "mode_mix_deg", "G", "radius", "element_size",
                                  "limited_by", "domain_clear"],
-               [[r["crack"], r["tip"], r["x"], r["y"], r["direction"][0], r["direction"][1], r["K_I"],
+               [[k, r["crack"], r["tip"], r["x"], r["y"], r["direction"][0], r["direction"][1], r["K_I"],
                  r["K_II"], r["K_I_spread"], r["K_II_spread"], r["mode_mix_deg"], r["G"], r["radius"],
-                 r["element_size"], r["limited_by"], int(r["domain_clear"])] for r in sifs])
+                 r["element_size"], r["limited_by"], int(r["domain_clear"])] for k, rows in step_sifs for r in rows])
     files += ["crack.csv", "sif.csv"]
     timings["write_csv"] = time.perf_counter() - t0
     if cfg["vtu"]:
@@ -365,12 +379,7 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
         timings["write_png"] = time.perf_counter() - t0
         logger.info("wrote PNGs")
 
-    contact = None
-    if solution.contact:
-        c = solution.contact
-        contact = {"law": m.scene.options.contact, "space": m.scene.options.multipliers,
-                   "multipliers": int(c["system"].num_multipliers), "active": int(np.count_nonzero(c["active"])),
-                   "iterations": int(c["iterations"]), "active_history": [int(v) for v in c["history"]]}
+    contact = contact_summary(solution)
     solver = getattr(solution, "solver", None) or {}
     results = {
         "title": scene_file.title,
@@ -384,6 +393,16 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
         "sifs": sifs,
         "cracks": crack_stats,
         "contact": contact,
+        "steps": [{"step": k, "name": st.step["name"], "factors": st.step["factors"],
+                   "increments": st.step["increments"], "contact": contact_summary(st),
+                   "sifs": [{key: r[key] for key in ("crack", "tip", "K_I", "K_II", "K_I_spread", "K_II_spread")}
+                            for r in rows],
+                   "cracks": [{"crack": i, **{key: v for key, v in crack_statistics(smp, shut[i], gap_tol, law).items()
+                                               if key in ("closed_fraction", "stick_length", "slip_length",
+                                                          "open_length", "slip_max_abs")}}
+                              for i, smp in enumerate(smps)]}
+                  for k, ((st, smps, shut), (_, rows)) in enumerate(zip(per_step, step_sifs))]
+        if solution.steps else None,
         "condition_number": dict(solution.condition) if solution.condition else None,
         "timings": {},
         "files": files + ["results.json"],
@@ -398,6 +417,29 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
         tmp.write_text(text + "\n")
     logger.info("wrote %s", ", ".join(results["files"]))
     return results
+
+
+def contact_summary(solution: Solution) -> dict[str, typing.Any] | None:
+    """The contact law, multipliers and iterations of a solution (with
+    friction: mu, the states' counts and the method that settled them)."""
+    if not solution.contact:
+        return None
+    m = solution.model
+    c = solution.contact
+    out = {"law": m.scene.options.contact, "space": m.scene.options.multipliers,
+           "multipliers": int(c["system"].num_multipliers), "active": int(np.count_nonzero(c["active"])),
+           "iterations": int(c["iterations"])}
+    if "state" in c:
+        from .friction import STATE_NAMES
+        out["friction"] = m.scene.options.friction
+        out["states"] = {name: int(np.count_nonzero(c["state"] == code)) for code, name in STATE_NAMES.items()}
+        out["method"] = c.get("method")
+        out["state_history"] = c["history"]
+    else:
+        out["active_history"] = [int(v) for v in c["history"]]
+    if "increment_iterations" in c:
+        out["increment_iterations"] = c["increment_iterations"]
+    return out
 
 
 def _json_default(value):
@@ -535,10 +577,11 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
     _save(fig, out / "deformed.png")
     names.append("deformed.png")
 
-    fig = _figure((7, 4))
-    ax = fig.add_subplot()
-    ax2 = ax.twinx()
     contact = bool(solution.contact)
+    mu = solution.model.scene.options.friction if contact and "lambda_t" in solution.contact else 0.0
+    fig = _figure((7, 6.5) if mu else (7, 4))
+    ax = fig.add_subplot(2, 1, 1) if mu else fig.add_subplot()
+    ax2 = ax.twinx()
     for i, smp in enumerate(samples):
         label = solution.model.cracks[i].crack.name
         if contact:
@@ -556,6 +599,30 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
         ax.legend(h1 + h2, l1 + l2, fontsize=7)
     ax.set_title(f"{title}\nalong the crack" + (" (traction-free lips: no pressure)" if not contact else ""),
                  fontsize=10)
+    if mu:
+        # Friction: the shear against its bound mu p, the slip, and the states.
+        bx = fig.add_subplot(2, 1, 2, sharex=ax)
+        bx2 = bx.twinx()
+        for i, smp in enumerate(samples):
+            label = solution.model.cracks[i].crack.name
+            bx.plot(smp["s"], np.abs(smp["shear"]), ".-", ms=3, lw=0.8, color=f"C{i}", label=f"{label}: |shear|")
+            bx.plot(smp["s"], mu * np.maximum(smp["pressure"], 0.0), "--", lw=0.8, color=f"C{i}",
+                    label=f"{label}: mu p = {mu:g} p")
+            bx2.plot(smp["s"], smp["slip"], "x:", ms=3, lw=0.8, color=f"C{i + 3}", label=f"{label}: slip [[u]].t")
+            for name, colour in (("stick", "tab:green"), ("slip", "tab:red"), ("open", "0.6")):
+                on = smp["state"] == name
+                if np.any(on):
+                    bx.plot(smp["s"][on], np.zeros(np.count_nonzero(on)), "|", color=colour, ms=6,
+                            label=f"{label}: {name}" if i == 0 else None)
+        bx.set_xlabel("arc length along the crack (from its first point)")
+        bx.set_ylabel("friction traction")
+        bx2.set_ylabel("slip (accumulated)")
+        h1, l1 = bx.get_legend_handles_labels()
+        h2, l2 = bx2.get_legend_handles_labels()
+        bx.legend(h1 + h2, l1 + l2, fontsize=6, ncol=2)
+        bx.set_title("friction: shear against its bound, slip, states (stick green, slip red, open grey)",
+                     fontsize=9)
+        fig.tight_layout()
     _save(fig, out / "crack_pressure.png")
     names.append("crack_pressure.png")
 
