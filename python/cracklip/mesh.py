@@ -33,12 +33,17 @@ class MeshData:
         h: nominal mesh size used to generate it (None for a file).
         refinements: the (x, y, size) of the local refinements asked for
             (checked against the mesh made: diagnostics).
+        cache_standard_block: keep the assembled standard stiffness block
+            (the uncracked P1 stiffness) for the next solves on this mesh
+            (crack growth: the cracks change, the mesh does not).
     """
     mesh: dolfinx.mesh.Mesh
     facet_tags: typing.Any
     tags: dict[str, int]
     h: float | None = None
     refinements: list[tuple[float, float, float]] = dataclasses.field(default_factory=list)
+    cache_standard_block: bool = False
+    standard_blocks: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
 
     def facets(self, where: str | int) -> np.ndarray:
         """Facet indices of a named (or numbered) boundary tag."""

@@ -1,0 +1,454 @@
+"""Crack growth through the fixed mesh, and fatigue life.
+
+The growth loop: solve the scene (with contact and friction if it has them)
+-> K_I, K_II at every tip (three domains, their spread) -> the kink angle by
+the maximum hoop stress criterion (or maximum energy release rate) -> extend
+each growing tip's polyline by its increment -> rebuild the level sets,
+enrichment and multipliers on the same mesh -> repeat. The standard
+stiffness block is assembled once (MeshData's cache) and reused; per step
+the enriched work stays proportional to the cracks.
+
+Increments: a fixed da for every growing tip, or fatigue: the load cycle
+between a maximum and a minimum load (Growth.cycle_max / cycle_min: factors
+per load group) is solved at both ends with contact (closure: where the lips
+touch at the minimum, K_min is what contact gives, not the linear value),
+Delta K_eff = K_eq(max) - K_eq(min) along the kink direction, the Paris law
+da/dN = C (Delta K_eff)^m (Walker's R-ratio form with gamma != 1, none below
+the threshold), the fastest tip advancing da and the others da (rate_i /
+rate_max), the cycles integrated by the trapezoidal rule between steps.
+
+Conventions (README "Conventions"): angles in the tip frame (e1 out of the
+crack, e2 = e1 turned by +90 degrees), positive toward e2: K_II > 0 kinks
+the crack toward -e2 (pure mode II: -70.53 degrees). A closed crack (K_I <=
+0 with contact) grows by its K_II like any other.
+
+Stops, each reported: a tip reaching the boundary (or a hole: the crack
+becomes an edge or a through crack, its end on the boundary), a tip
+reaching another crack (it stops there), K_eq above K_Ic (final failure),
+a kink that turns by more than max_kink_change between steps (instability),
+the step count, a crack length, and in fatigue a tip below the threshold.
+"""
+from __future__ import annotations
+
+import dataclasses
+import logging
+import math
+import time
+import typing
+
+import numpy as np
+
+from .errors import InputError
+from .scene import Crack, LoadStep, Scene
+
+logger = logging.getLogger(__name__)
+
+CRITERIA = ("max_hoop", "max_energy_release")
+
+
+@dataclasses.dataclass
+class Growth:
+    """Growth settings.
+
+    Attributes:
+        criterion: "max_hoop" (maximum hoop stress, Erdogan-Sih) or
+            "max_energy_release" (the kink maximising k1^2 + k2^2 of the
+            first-order local stress intensity factors).
+        da: the increment of a step (of the fastest tip in fatigue), in
+            length units; 0 takes 3 element sizes at the first tip.
+        steps: the number of increments.
+        paris_C, paris_m: Paris law da/dN = C (Delta K)^m; with them the
+            growth is fatigue (cycles integrated) and a load cycle is needed.
+        threshold: Delta K below which a tip does not grow (fatigue), or
+            K_eq below which it does not (fixed increments; 0: always grows).
+        walker_gamma: Walker's R-ratio form da/dN = C (Delta K / (1 -
+            R)^(1 - gamma))^m with R = K_min / K_max; 1: plain Paris.
+        K_Ic: fracture toughness: K_eq above it is final failure (None: no check).
+        cycle_max, cycle_min: factors per load group at the maximum and the
+            minimum of the load cycle (None: the scene's loads at factor 1
+            for the maximum; cycle_min None and R: the minimum is R times the
+            maximum).
+        R: load ratio min / max of a proportional cycle (used when
+            cycle_min is None).
+        max_length: stop when a crack's length reaches this (None: no limit).
+        max_kink_change: stop when a tip's kink turns by more than this
+            (degrees) between steps (instability).
+    """
+    criterion: str = "max_hoop"
+    da: float = 0.0
+    steps: int = 10
+    paris_C: float | None = None
+    paris_m: float | None = None
+    threshold: float = 0.0
+    walker_gamma: float = 1.0
+    K_Ic: float | None = None
+    cycle_max: dict[str, float] | None = None
+    cycle_min: dict[str, float] | None = None
+    R: float | None = None
+    max_length: float | None = None
+    max_kink_change: float = 60.0
+
+    def __post_init__(self):
+        def positive(name, v, allow_none=False, allow_zero=False):
+            if v is None and allow_none:
+                return
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or \
+                    v < 0.0 or (v == 0.0 and not allow_zero):
+                raise InputError(f"growth.{name} must be a {'non-negative' if allow_zero else 'positive'} "
+                                 f"finite number, got {v!r}")
+        if self.criterion not in CRITERIA:
+            raise InputError(f"growth.criterion must be one of {CRITERIA}, got {self.criterion!r}")
+        positive("da", self.da, allow_zero=True)
+        if isinstance(self.steps, bool) or not isinstance(self.steps, int) or self.steps < 1:
+            raise InputError(f"growth.steps must be an integer >= 1, got {self.steps!r}")
+        positive("threshold", self.threshold, allow_zero=True)
+        positive("K_Ic", self.K_Ic, allow_none=True)
+        positive("max_length", self.max_length, allow_none=True)
+        positive("max_kink_change", self.max_kink_change)
+        positive("walker_gamma", self.walker_gamma)
+        if (self.paris_C is None) != (self.paris_m is None):
+            raise InputError("growth.paris_C and growth.paris_m come together (da/dN = C (Delta K)^m)")
+        if self.paris_C is not None:
+            positive("paris_C", self.paris_C)
+            positive("paris_m", self.paris_m)
+            if self.cycle_min is None and self.R is None:
+                raise InputError("fatigue growth (paris_C, paris_m) needs a load cycle: growth.cycle_min "
+                                 "(factors at the minimum load) or growth.R (min = R max)")
+        if self.R is not None and not (isinstance(self.R, (int, float)) and math.isfinite(self.R) and self.R < 1.0):
+            raise InputError(f"growth.R (the load ratio min / max) must be a finite number below 1, got {self.R!r}")
+        for name in ("cycle_max", "cycle_min"):
+            v = getattr(self, name)
+            if v is not None and (not isinstance(v, dict) or not v or not all(
+                    isinstance(f, (int, float)) and not isinstance(f, bool) and math.isfinite(f) for f in v.values())):
+                raise InputError(f"growth.{name} must be a table of load group = factor, got {v!r}")
+        if self.cycle_max is not None and self.cycle_min is not None:
+            bad = [g for g in self.cycle_max if self.cycle_min.get(g, 0.0) > self.cycle_max[g]]
+            if bad:
+                raise InputError(f"growth.cycle_min is above growth.cycle_max for group(s) {bad}: the load cycle "
+                                 "goes from the minimum to the maximum load")
+
+    @property
+    def fatigue(self) -> bool:
+        return self.paris_C is not None
+
+
+# -- criteria -----------------------------------------------------------------------------------------
+
+def kink_angle(K_I: float, K_II: float, criterion: str = "max_hoop") -> float:
+    """The kink angle (radians, in the tip frame, positive toward e2) of a tip
+    with K_I, K_II. A negative K_I (lips pressed: with contact it is ~0)
+    counts as 0."""
+    kI = max(K_I, 0.0)
+    if criterion == "max_hoop":
+        # d sigma_theta_theta / d theta = 0: K_I sin(theta) + K_II (3 cos(theta) - 1) = 0, the root
+        # with the larger hoop stress. (Written with sign(K_II) in front of the root, as in some
+        # texts, it is only right for K_II > 0: that form belongs to the ratio K_I / K_II.)
+        if K_II == 0.0:
+            return 0.0
+        return 2.0 * math.atan((kI - math.sqrt(kI * kI + 8.0 * K_II * K_II)) / (4.0 * K_II))
+    # Maximum energy release rate: maximise k1^2 + k2^2 of the local fields.
+    th = np.linspace(-math.radians(85.0), math.radians(85.0), 3401)
+    k1, k2 = local_sifs(kI, K_II, th)
+    t0 = float(th[np.argmax(k1 * k1 + k2 * k2 - 1e9 * np.minimum(k1, 0.0) ** 2)])
+    lo, hi = t0 - 1e-3, t0 + 1e-3
+    for _ in range(60):  # golden-section refinement
+        a, b = hi - 0.618 * (hi - lo), lo + 0.618 * (hi - lo)
+        ga, gb = (np.hypot(*local_sifs(kI, K_II, np.array([v]))) for v in (a, b))
+        lo, hi = (lo, b) if ga > gb else (a, hi)
+    return 0.5 * (lo + hi)
+
+
+def local_sifs(K_I: float, K_II: float, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The first-order stress intensity factors of a kink at theta:
+    sigma_theta_theta and sigma_r_theta of the tip field times sqrt(2 pi r)."""
+    c1, c3 = np.cos(theta / 2), np.cos(3 * theta / 2)
+    s1, s3 = np.sin(theta / 2), np.sin(3 * theta / 2)
+    k1 = 0.25 * (3 * c1 + c3) * K_I - 0.75 * (s1 + s3) * K_II
+    k2 = 0.25 * (s1 + s3) * K_I + 0.25 * (c1 + 3 * c3) * K_II
+    return k1, k2
+
+
+def equivalent_k(K_I: float, K_II: float, theta: float) -> float:
+    """K_eq = sigma_theta_theta sqrt(2 pi r) along the kink: cos(theta/2)
+    (K_I cos^2(theta/2) - 3/2 K_II sin(theta)) (pure mode II: 1.1547 K_II)."""
+    c = math.cos(theta / 2)
+    return c * (max(K_I, 0.0) * c * c - 1.5 * K_II * math.sin(theta))
+
+
+# -- records ------------------------------------------------------------------------------------------
+
+@dataclasses.dataclass
+class TipRecord:
+    """One tip at one step: where it is, its K (at the maximum load in
+    fatigue), the kink it takes, and the cycles."""
+    step: int
+    crack: int
+    end: int  # 0: the polyline's first point, 1: its last
+    x: float
+    y: float
+    length: float
+    K_I: float
+    K_II: float
+    K_I_spread: float
+    K_II_spread: float
+    kink_deg: float
+    K_eq: float
+    closed_fraction: float
+    da: float = 0.0
+    K_I_min: float | None = None
+    K_II_min: float | None = None
+    delta_K: float | None = None
+    dN: float = 0.0
+    N: float = 0.0
+    status: str = "growing"
+
+    def row(self) -> dict[str, typing.Any]:
+        return dataclasses.asdict(self)
+
+
+@dataclasses.dataclass
+class GrowthResult:
+    """What grow returns: the tip records of every step (records[k] at step
+    k, the last one at the final geometry), the final cracks, why it stopped,
+    the warnings met, each step's Solution if kept, seconds per step."""
+    records: list[list[TipRecord]]
+    cracks: list[Crack]
+    stop_reason: str
+    stops: list[str]
+    warnings: list[str]
+    solutions: list
+    step_times: list[float]
+    cycles: float = 0.0
+
+    @property
+    def rows(self) -> list[dict[str, typing.Any]]:
+        return [r.row() for step in self.records for r in step]
+
+
+# -- geometry -----------------------------------------------------------------------------------------
+
+def _segment_hit(p: np.ndarray, q: np.ndarray, a: np.ndarray, b: np.ndarray) -> float | None:
+    """The smallest t in (0, 1] with p + t (q - p) on one of the segments a-b, or None."""
+    d = q - p
+    e = b - a
+    den = d[0] * e[:, 1] - d[1] * e[:, 0]
+    ok = np.abs(den) > 1e-300
+    w = a - p
+    t = np.where(ok, (w[:, 0] * e[:, 1] - w[:, 1] * e[:, 0]) / np.where(ok, den, 1.0), np.inf)
+    s = np.where(ok, (w[:, 0] * d[1] - w[:, 1] * d[0]) / np.where(ok, den, 1.0), np.inf)
+    hit = ok & (t > 1e-12) & (t <= 1.0) & (s >= 0.0) & (s <= 1.0)
+    return float(t[hit].min()) if np.any(hit) else None
+
+
+def _distance_to_segments(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> float:
+    d = b - a
+    dd = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
+    t = np.clip(np.einsum("ij,ij->i", p - a, d) / dd, 0.0, 1.0)
+    return float(np.linalg.norm(a + t[:, None] * d - p, axis=1).min()) if len(a) else math.inf
+
+
+def crack_length(points: np.ndarray) -> float:
+    return float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
+
+
+# -- the loop -----------------------------------------------------------------------------------------
+
+def _cycle_scene(scene: Scene, growth: Growth) -> tuple[Scene, bool]:
+    """The scene solved at each step: its own loads, or (fatigue) the load
+    cycle as a two-step path [max, min]."""
+    if not growth.fatigue:
+        return scene, False
+    from .load_path import increments  # noqa: F401  (groups are checked by solve)
+    from .loads import load_groups
+    groups = sorted(load_groups(scene) | {"default"})
+    high = dict(growth.cycle_max) if growth.cycle_max is not None else {g: 1.0 for g in groups}
+    low = dict(growth.cycle_min) if growth.cycle_min is not None else {g: growth.R * f for g, f in high.items()}
+    low = {g: low.get(g, 0.0) for g in set(high) | set(low)}
+    path = [LoadStep(high, "maximum load"), LoadStep(low, "minimum load")]
+    return dataclasses.replace(scene, load_path=path), True
+
+
+def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
+         on_step: typing.Callable[[int, list[TipRecord]], None] | None = None) -> GrowthResult:
+    """Grow the scene's cracks (module doc). on_step(k, records) is called
+    after every solve (progress); keep_solutions keeps each step's Solution
+    (for ParaView time series)."""
+    from .model import boundary_segments
+    from .sif import tip_element_size
+    from .solve import solve
+    scene.mesh.cache_standard_block = True
+    cracks = [dataclasses.replace(c, points=np.array(c.points, dtype=float)) for c in scene.cracks]
+    if not cracks:
+        raise InputError("growth needs at least one crack")
+    a_bnd, b_bnd = boundary_segments(scene.mesh)
+    records: list[list[TipRecord]] = []
+    stops: list[str] = []
+    warnings: list[str] = []
+    solutions = []
+    step_times: list[float] = []
+    stopped: set[tuple[int, int]] = set()      # (crack, end) that no longer grow
+    last_kink: dict[tuple[int, int], float] = {}
+    N = 0.0
+    prev_rate: float | None = None
+    prev_da = 0.0
+    da = growth.da
+    stop_reason = f"{growth.steps} steps done"
+    for k in range(growth.steps + 1):
+        t0 = time.perf_counter()
+        current = dataclasses.replace(scene, cracks=[dataclasses.replace(c) for c in cracks])
+        solved_scene, fatigue = _cycle_scene(current, growth)
+        sol = solve(solved_scene)
+        sol_max, sol_min = (sol.steps[0], sol.steps[1]) if fatigue else (sol, None)
+        model = sol_max.model
+        if k == 0:
+            warnings += [w.message for w in sol_max.warnings]
+        sifs_max = sol_max.stress_intensity_factors(None)
+        sifs_min = {(r["crack"], r["tip"]): r for r in sol_min.stress_intensity_factors(None)} if fatigue else {}
+        step: list[TipRecord] = []
+        rates: dict[tuple[int, int], float] = {}
+        for r in sifs_max:
+            ci = r["crack"]
+            g = model.geometries[ci]
+            end = 1 if int(np.asarray(g.tip_orientation)[r["tip"]]) == 1 else 0
+            key = (ci, end)
+            theta = kink_angle(r["K_I"], r["K_II"], growth.criterion)
+            keq = equivalent_k(r["K_I"], r["K_II"], theta)
+            closed = _closed_fraction(sol_max, ci)
+            rec = TipRecord(k, ci, end, r["x"], r["y"], crack_length(cracks[ci].points), r["K_I"], r["K_II"],
+                            r["K_I_spread"], r["K_II_spread"], math.degrees(theta), keq, closed, N=N)
+            if key in stopped:
+                rec.status = "stopped"
+            if fatigue:
+                rm = sifs_min[(ci, r["tip"])]
+                rec.K_I_min, rec.K_II_min = rm["K_I"], rm["K_II"]
+                keq_min = equivalent_k(rm["K_I"], rm["K_II"], theta)
+                rec.delta_K = max(keq - keq_min, 0.0)
+                ratio = keq_min / keq if keq > 0 else 0.0
+                dk = rec.delta_K / (1.0 - ratio) ** (1.0 - growth.walker_gamma) if ratio < 1 else rec.delta_K
+                if rec.status == "growing":
+                    if rec.delta_K <= growth.threshold:
+                        rec.status = "below threshold"
+                    else:
+                        rates[key] = growth.paris_C * dk ** growth.paris_m
+            elif rec.status == "growing" and keq < growth.threshold:
+                rec.status = "below threshold"
+            step.append(rec)
+        # The cycles of the increment just taken (trapezoid between its two ends).
+        if fatigue and k > 0 and prev_rate is not None:
+            rate_now = max(rates.values()) if rates else prev_rate
+            dN = prev_da * 0.5 * (1.0 / prev_rate + 1.0 / rate_now)
+            N += dN
+            for rec in step:  # the cycles spent to reach this geometry
+                rec.dN, rec.N = dN, N
+        records.append(step)
+        if on_step is not None:
+            on_step(k, step)
+        if keep_solutions:
+            solutions.append(sol_max)
+        # Stops that end the run.
+        if growth.K_Ic is not None:
+            failing = [r for r in step if r.K_eq >= growth.K_Ic]
+            if failing:
+                r = failing[0]
+                stop_reason = (f"final failure: K_eq = {r.K_eq:.6g} >= K_Ic = {growth.K_Ic:g} at the tip "
+                               f"({r.x:.6g}, {r.y:.6g}) of crack {cracks[r.crack].name!r} (step {k})")
+                stops.append(stop_reason)
+                step_times.append(time.perf_counter() - t0)
+                break
+        if growth.max_length is not None and any(crack_length(c.points) >= growth.max_length for c in cracks):
+            stop_reason = f"a crack reached the length {growth.max_length:g} (step {k})"
+            stops.append(stop_reason)
+            step_times.append(time.perf_counter() - t0)
+            break
+        if k == growth.steps:
+            step_times.append(time.perf_counter() - t0)
+            break
+        growing = [r for r in step if r.status == "growing"]
+        if not growing:
+            stop_reason = f"no tip grows any more (step {k}: " + "; ".join(
+                f"crack {cracks[r.crack].name!r} end {r.end}: {r.status}" for r in step) + ")"
+            stops.append(stop_reason)
+            step_times.append(time.perf_counter() - t0)
+            break
+        if da <= 0.0:
+            r0 = growing[0]
+            da = 3.0 * tip_element_size(model, np.array([r0.x, r0.y]))
+            growth = dataclasses.replace(growth, da=da)
+        unstable = [r for r in growing if (r.crack, r.end) in last_kink
+                    and abs(r.kink_deg - last_kink[r.crack, r.end]) > growth.max_kink_change]
+        if unstable:
+            r = unstable[0]
+            stop_reason = (f"unstable growth: the kink at ({r.x:.6g}, {r.y:.6g}) turned from "
+                           f"{last_kink[r.crack, r.end]:.2f} to {r.kink_deg:.2f} degrees between steps "
+                           f"(more than growth.max_kink_change = {growth.max_kink_change:g})")
+            stops.append(stop_reason)
+            step_times.append(time.perf_counter() - t0)
+            break
+        rate_max = max(rates.values()) if rates else None
+        # Advance every growing tip.
+        for r in growing:
+            key = (r.crack, r.end)
+            last_kink[key] = r.kink_deg
+            inc = da if not fatigue else da * rates[key] / rate_max
+            r.da = inc
+            h_tip = tip_element_size(model, np.array([r.x, r.y]))
+            if inc < h_tip:
+                warnings.append(f"step {k}: the increment {inc:.3g} at ({r.x:.6g}, {r.y:.6g}) is below the element "
+                                f"size there ({h_tip:.3g}): the path follows the mesh; use a larger da or a finer mesh")
+            note = _advance(cracks, r, inc, model, a_bnd, b_bnd, h_tip)
+            if note:
+                stops.append(f"step {k}: {note}")
+                stopped.add(key)
+                r.status = note.split(":")[0]
+        if fatigue:
+            prev_rate, prev_da = rate_max, da
+        step_times.append(time.perf_counter() - t0)
+        logger.info("growth step %d: %s", k, "; ".join(
+            f"crack {cracks[r.crack].name!r} end {r.end}: a = {r.length:.4g}, K_I = {r.K_I:.4g}, K_II = {r.K_II:.4g}, "
+            f"kink {r.kink_deg:.1f} deg" + (f", N = {r.N:.4g}" if fatigue else "") for r in step))
+    return GrowthResult(records, cracks, stop_reason, stops, list(dict.fromkeys(warnings)), solutions, step_times, N)
+
+
+def _closed_fraction(sol, crack: int) -> float:
+    if not sol.contact:
+        return 0.0
+    smp = sol.lip_samples(crack, 2)
+    w = smp["weight"]
+    closed = smp["state"] != "open"
+    return float(w[closed].sum() / w.sum()) if w.sum() > 0 else 0.0
+
+
+def _advance(cracks: list[Crack], r: TipRecord, inc: float, model, a_bnd, b_bnd, h_tip: float) -> str | None:
+    """Extend the polyline of crack r.crack at end r.end by inc along the
+    kink; returns a stop note when the tip reached the boundary (the end is
+    put beyond it) or another crack (the tip stays)."""
+    crack = cracks[r.crack]
+    pts = crack.points
+    tip = pts[-1] if r.end == 1 else pts[0]
+    prev = pts[-2] if r.end == 1 else pts[1]
+    e1 = (tip - prev) / np.linalg.norm(tip - prev)
+    e2 = np.array([-e1[1], e1[0]])
+    th = math.radians(r.kink_deg)
+    d = math.cos(th) * e1 + math.sin(th) * e2
+    new = tip + inc * d
+    note = None
+    # Another crack ahead: stop the tip short of it.
+    for j, other in enumerate(cracks):
+        if j == r.crack:
+            continue
+        o = other.points
+        t = _segment_hit(tip, tip + (inc + 1.5 * h_tip) * d, o[:-1], o[1:])
+        if t is not None or _distance_to_segments(new, o[:-1], o[1:]) < 1.5 * h_tip:
+            return f"reached crack {other.name!r}: the tip at ({tip[0]:.6g}, {tip[1]:.6g}) stops"
+    # The boundary (or a hole) ahead: the crack runs to it and beyond.
+    t = _segment_hit(tip, tip + (inc + h_tip) * d, a_bnd, b_bnd)
+    if t is not None:
+        reach = t * (inc + h_tip)
+        new = tip + (reach + 0.5 * h_tip) * d
+        hit = tip + reach * d
+        note = f"reached the boundary: at ({hit[0]:.6g}, {hit[1]:.6g})"
+    crack.points = np.vstack([pts, new]) if r.end == 1 else np.vstack([new, pts])
+    return note
+
+
+__all__ = ["Growth", "GrowthResult", "TipRecord", "grow", "kink_angle", "equivalent_k", "local_sifs", "CRITERIA"]
