@@ -83,21 +83,25 @@ def classify(p: np.ndarray, tau: np.ndarray, gap: np.ndarray, dslip: np.ndarray,
     """The states and slip signs of the multipliers after an iterate that
     was solved with (state, sign) (module doc): closed by the normal test;
     a closed multiplier that stuck slips when |tau| exceeds the bound (the
-    sign of tau); one that slipped keeps slipping while its slip increment
-    opposes its friction (sigma ds < 0), and sticks when the increment turns
-    along it (a slip the friction would drive). `bound`: a given friction
+    sign of tau), one that was open when tau - c ds / m does (its sign);
+    one that slipped keeps slipping while its slip increment opposes its
+    friction (sigma ds < 0), and sticks when the increment turns along it
+    (a slip the friction would drive). `bound`: a given friction
     bound (Tresca) instead of mu (p - c g / m)."""
     normal = p - c * gap / lumped
     closed = np.ones(len(p), dtype=bool) if bilateral else normal > 0.0
     if bound is None:
         bound = mu * np.maximum(normal, 0.0)
     was_slip = state == SLIP
-    scale = max(float(np.abs(tau).max(initial=0.0)), float(bound.max(initial=0.0)), 1e-300)
-    starts = ~was_slip & (np.abs(tau) > bound + 1e-12 * scale)
+    # A sticking multiplier has no slip increment: xi = tau. One that was
+    # open closes sliding when its increment beats the bound (xi = tau - c ds / m).
+    xi = np.where(state == OPEN, tau - c * dslip / lumped, tau)
+    scale = max(float(np.abs(xi).max(initial=0.0)), float(bound.max(initial=0.0)), 1e-300)
+    starts = ~was_slip & (np.abs(xi) > bound + 1e-12 * scale)
     ds_scale = max(float(np.abs(dslip / lumped).max(initial=0.0)), 1e-300)
     keeps = was_slip & (sign * dslip / lumped <= 1e-12 * ds_scale)
     slip = closed & (starts | keeps)
-    new_sign = np.where(starts, np.sign(tau), sign)
+    new_sign = np.where(starts, np.sign(xi), sign)
     state = np.where(closed, np.where(slip, SLIP, STICK), OPEN).astype(np.int8)
     return state, np.where(slip, new_sign, 0.0)
 
@@ -166,20 +170,48 @@ class _Cycle(Exception):
         self.lam_n, self.state, self.sign = lam_n, state, sign
 
 
+#: A cycle of states is settled by its iterate of least complementarity
+#: violation when that violation is below this fraction of the pressure scale.
+CYCLE_TOLERANCE = 1e-2
+
+
+def violation(p: np.ndarray, tau: np.ndarray, gap: np.ndarray, dslip: np.ndarray, lumped: np.ndarray, c: float,
+              mu: float, state: np.ndarray, sign: np.ndarray, bound: np.ndarray | None = None) -> float:
+    """How far an iterate solved with (state, sign) is from the contact and
+    friction laws, as a traction relative to the largest pressure: tension
+    on closed multipliers, c times the interpenetration of open ones, shear
+    above the bound on sticking ones, c times a slip along the friction on
+    slipping ones."""
+    closed = state != OPEN
+    b = mu * np.maximum(p, 0.0) if bound is None else bound
+    v = np.zeros(len(p))
+    v[closed] = np.maximum(-p[closed], 0.0)
+    v[~closed] = c * np.maximum(-gap[~closed] / lumped[~closed], 0.0)
+    stick, slip = state == STICK, state == SLIP
+    v[stick] = np.maximum(v[stick], np.abs(tau[stick]) - b[stick])
+    v[slip] = np.maximum(v[slip], c * np.maximum(sign[slip] * dslip[slip] / lumped[slip], 0.0))
+    return float(v.max(initial=0.0) / max(float(np.abs(p).max(initial=0.0)), 1e-300))
+
+
 def _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound):
     """The state iteration (Coulomb, or Tresca with a given bound) from the
-    given states; raises _Cycle when a set of states comes back."""
+    given states. When a set of states comes back, the iterate of least
+    violation in the cycle is taken if its violation is below
+    CYCLE_TOLERANCE (info["note"] says so), else _Cycle is raised."""
     mu = float(opts.friction)
     bilateral = opts.contact == "bilateral"
     lumped = np.asarray(cs.M.sum(axis=1)).ravel()
     key = lambda st, sg: st.tobytes() + np.sign(sg).astype(np.int8).tobytes()  # noqa: E731
     seen = {key(state, sign): len(history)}
     start = len(history)
+    iterates: dict[int, tuple] = {}
     for it in range(1, opts.max_active_set_iterations + 1):
         u, lam_n, lam_t = solve_saddle_friction(K, f, cs, g_n, g_t, s_old, state, sign, mu, opts.residual_tol,
                                                 bound)
         gap = cs.B @ u - g_n
         dslip = cs.Bt @ u - g_t - s_old
+        iterates[len(history)] = (u, lam_n, lam_t, state, sign,
+                                  violation(-lam_n, -lam_t, gap, dslip, lumped, c, mu, state, sign, bound))
         new_state, new_sign = classify(-lam_n, -lam_t, gap, dslip, lumped, c, mu, bilateral, state, sign, bound)
         counts = {name: int(np.count_nonzero(new_state == code)) for code, name in STATE_NAMES.items()}
         history.append(counts)
@@ -192,6 +224,16 @@ def _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound):
         if k in seen:
             first = seen[k]
             flips = np.flatnonzero(state != new_state)
+            best = min((i for i in iterates if i >= first), key=lambda i: iterates[i][5])
+            bu, bn, bt, bs, bg, bv = iterates[best]
+            logger.debug("cycle violations: %s", {i: iterates[i][5] for i in iterates if i >= first})
+            if bv <= CYCLE_TOLERANCE:
+                note = (f"the friction states cycled (period {len(history) - first}, multipliers "
+                        f"{flips[:8].tolist()}); the iterate of least violation of the contact and friction laws "
+                        f"was taken: {bv:.1e} of the largest pressure")
+                logger.info("friction: %s", note)
+                return bu, {"lambda": bn, "lambda_t": bt, "state": bs, "sign": bg, "active": bs != OPEN,
+                            "iterations": len(history), "history": history, "note": note, "violation": bv}
             raise _Cycle(f"the friction states cycle: iteration {len(history)} gives the states of "
                          f"{'the start' if first == start else f'iteration {first}'} again (period "
                          f"{len(history) - first}); multipliers {flips[:8].tolist()} flip between "
