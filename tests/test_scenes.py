@@ -29,6 +29,9 @@ SMALL = {
     "three_point_bending": ["mesh.h=0.1", "mesh.tip_h=0.02"],
     "residual_stress": ["mesh.h=0.1", "mesh.tip_h=0.02"],
     "frictional_crack": ["mesh.h=0.1", "mesh.tip_h=0.025"],
+    # growth scenes (grown by tests/test_growth.py)
+    "fatigue_edge_crack": ["mesh.h=0.1", "mesh.refine[0].h=0.02"],
+    "wing_crack": ["mesh.h=0.2", "mesh.refine[0].h=0.03"],
 }
 
 

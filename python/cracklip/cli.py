@@ -1,6 +1,7 @@
 """The command line: ``python3 -m cracklip {run,check,reference}``.
 
     python3 -m cracklip run SCENE.toml --out DIR      solve, write results into DIR
+    python3 -m cracklip grow SCENE.toml --out DIR     grow the cracks ([growth] table), write the path
     python3 -m cracklip check SCENE.toml             validate, print what will be modelled
     python3 -m cracklip reference                    the scene-file reference (Markdown)
 
@@ -62,7 +63,7 @@ def print_warnings(warnings) -> None:
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog=PROG, description="cracklip: 2D X-FEM cracks with crack-lip contact, from a "
                      "TOML scene file.", epilog="Scene keys: `python3 -m cracklip reference` or README.md.")
-    sub = parser.add_subparsers(dest="command", metavar="{run,check,reference}", parser_class=_Parser)
+    sub = parser.add_subparsers(dest="command", metavar="{run,grow,check,reference}", parser_class=_Parser)
 
     def common(p: argparse.ArgumentParser) -> None:
         p.add_argument("scene", type=pathlib.Path, help="scene file (TOML)")
@@ -81,6 +82,15 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--condition-number", action="store_true",
                      help="also estimate the 1-norm condition number (as outputs.condition_number = true)")
     run.set_defaults(func=cmd_run)
+
+    grow = sub.add_parser("grow", help="grow a scene's cracks (its [growth] table) and write the path",
+                          description="Grow the cracks of a scene with a [growth] table through the fixed mesh: "
+                                      "path.csv, results.json, path.png, sif_history.png, a_N.png (fatigue) and "
+                                      "the ParaView series growth.pvd into --out; a progress line per step.")
+    common(grow)
+    grow.add_argument("--out", type=pathlib.Path, required=True, metavar="DIR",
+                      help="output folder (created if missing)")
+    grow.set_defaults(func=cmd_grow)
 
     check = sub.add_parser("check", help="validate a scene and print what will be modelled",
                            description="Validate a scene, mesh it and build its model without "
@@ -155,6 +165,45 @@ def cmd_run(args) -> int:
                 line += f", pressure {c['pressure']['min']:.4g} .. {c['pressure']['max']:.4g}"
             print(line)
         print(f"results in {out}: {', '.join(results['files'])}")
+    return 0
+
+
+def cmd_grow(args) -> int:
+    from .errors import InputError
+    from .growth import grow
+    from .growth_outputs import SeriesWriter, write_growth_outputs
+    from .outputs import ensure_output_dir
+    t_start = time.perf_counter()
+    doc = _load(args)
+    if "growth" not in doc:
+        raise InputError(f"{args.scene} has no [growth] table: give growth.da (fixed increments) or "
+                         "growth.paris_C and growth.paris_m (fatigue) and growth.steps")
+    out = ensure_output_dir(args.out)
+    sf = _build(args, doc)
+    series = SeriesWriter(out) if sf.outputs["vtu"] else None
+
+    def progress(k, records, solution):
+        if series is not None:
+            series.add(k, solution)
+        if not args.quiet:
+            sys.stderr.write(f"cracklip grow: step {k}: " + "; ".join(
+                f"{sf.scene.cracks[r.crack].name} end {r.end}: a = {r.length:.5g}, K_I = {r.K_I:.5g}, "
+                f"K_II = {r.K_II:.5g}, kink {r.kink_deg:+.2f} deg"
+                + (f", N = {r.N:.5g}" if sf.growth.fatigue else "") + ("" if r.status == "growing" else f" ({r.status})")
+                for r in records) + "\n")
+            sys.stderr.flush()
+    result = grow(sf.scene, sf.growth, on_step=progress)
+    results = write_growth_outputs(sf, result, out, sf.growth, {"total": time.perf_counter() - t_start}, series)
+    print_warnings(result.warnings)
+    if not args.quiet:
+        print(f"{sf.title}: {results['steps']} growth steps; {result.stop_reason}")
+        for c in results["final"]["cracks"]:
+            a = c["length_in_part"]
+            print(f"  {c['name']}: " + (f"length {a:.6g} in the part" if a is not None else
+                                        f"through the part (polyline length {c['polyline_length']:.6g})"))
+        if sf.growth.fatigue:
+            print(f"  cycles: {result.cycles:.6g}")
+        print(f"results in {out}: {', '.join(results['files'][:6])}" + (" ..." if len(results["files"]) > 6 else ""))
     return 0
 
 

@@ -38,7 +38,7 @@ import typing
 
 import numpy as np
 
-from .errors import InputError
+from .errors import BoundaryConditionError, InputError
 from .scene import Crack, LoadStep, Scene
 
 logger = logging.getLogger(__name__)
@@ -57,22 +57,33 @@ class Growth:
         da: the increment of a step (of the fastest tip in fatigue), in
             length units; 0 takes 3 element sizes at the first tip.
         steps: the number of increments.
-        paris_C, paris_m: Paris law da/dN = C (Delta K)^m; with them the
-            growth is fatigue (cycles integrated) and a load cycle is needed.
+        paris_C: C of the Paris law da/dN = C (Delta K)^m; with paris_m the
+            growth is fatigue (cycles integrated) and needs a load cycle.
+        paris_m: m of the Paris law (> 0).
         threshold: Delta K below which a tip does not grow (fatigue), or
             K_eq below which it does not (fixed increments; 0: always grows).
         walker_gamma: Walker's R-ratio form da/dN = C (Delta K / (1 -
             R)^(1 - gamma))^m with R = K_min / K_max; 1: plain Paris.
-        K_Ic: fracture toughness: K_eq above it is final failure (None: no check).
-        cycle_max, cycle_min: factors per load group at the maximum and the
-            minimum of the load cycle (None: the scene's loads at factor 1
-            for the maximum; cycle_min None and R: the minimum is R times the
-            maximum).
-        R: load ratio min / max of a proportional cycle (used when
-            cycle_min is None).
-        max_length: stop when a crack's length reaches this (None: no limit).
+        K_Ic: fracture toughness: K_eq at or above it is final failure
+            (unset: no check).
+        cycle_max: factors per load group at the maximum of the load cycle
+            (unset: every group at 1).
+        cycle_min: factors per load group at the minimum of the load cycle
+            (unset: R times cycle_max).
+        R: load ratio min / max of a proportional cycle (when cycle_min is
+            unset).
+        max_length: stop when a crack's length in the part reaches this
+            (unset: no limit).
         max_kink_change: stop when a tip's kink turns by more than this
-            (degrees) between steps (instability).
+            (degrees) between steps (instability; the first kink, off the
+            initial crack, is not compared).
+        corrections: corrector solves per step (0: the explicit scheme):
+            each increment is turned about its start until the kink wanted
+            at its end is below corrector_tolerance (local symmetry at the
+            end of the increment); steadies paths whose explicit kinks
+            zig-zag (strong compression along the crack, T << 0).
+        corrector_tolerance: the kink (degrees) below which an increment
+            is not corrected.
     """
     criterion: str = "max_hoop"
     da: float = 0.0
@@ -87,6 +98,8 @@ class Growth:
     R: float | None = None
     max_length: float | None = None
     max_kink_change: float = 60.0
+    corrections: int = 0
+    corrector_tolerance: float = 1.0
 
     def __post_init__(self):
         def positive(name, v, allow_none=False, allow_zero=False):
@@ -101,6 +114,9 @@ class Growth:
         positive("da", self.da, allow_zero=True)
         if isinstance(self.steps, bool) or not isinstance(self.steps, int) or self.steps < 1:
             raise InputError(f"growth.steps must be an integer >= 1, got {self.steps!r}")
+        if isinstance(self.corrections, bool) or not isinstance(self.corrections, int) or self.corrections < 0:
+            raise InputError(f"growth.corrections must be an integer >= 0, got {self.corrections!r}")
+        positive("corrector_tolerance", self.corrector_tolerance)
         positive("threshold", self.threshold, allow_zero=True)
         positive("K_Ic", self.K_Ic, allow_none=True)
         positive("max_length", self.max_length, allow_none=True)
@@ -168,11 +184,14 @@ def local_sifs(K_I: float, K_II: float, theta: np.ndarray) -> tuple[np.ndarray, 
     return k1, k2
 
 
-def equivalent_k(K_I: float, K_II: float, theta: float) -> float:
+def equivalent_k(K_I: float, K_II: float, theta: float, clamp: bool = True) -> float:
     """K_eq = sigma_theta_theta sqrt(2 pi r) along the kink: cos(theta/2)
-    (K_I cos^2(theta/2) - 3/2 K_II sin(theta)) (pure mode II: 1.1547 K_II)."""
+    (K_I cos^2(theta/2) - 3/2 K_II sin(theta)) (pure mode II: 1.1547 K_II).
+    clamp: a negative K_I (pressed lips) counts as 0; without it K_eq is the
+    linear value (Delta K of a cycle whose lips would pass through each
+    other, contact off)."""
     c = math.cos(theta / 2)
-    return c * (max(K_I, 0.0) * c * c - 1.5 * K_II * math.sin(theta))
+    return c * ((max(K_I, 0.0) if clamp else K_I) * c * c - 1.5 * K_II * math.sin(theta))
 
 
 # -- records ------------------------------------------------------------------------------------------
@@ -201,6 +220,7 @@ class TipRecord:
     dN: float = 0.0
     N: float = 0.0
     status: str = "growing"
+    sif_radius: float = 0.0
 
     def row(self) -> dict[str, typing.Any]:
         return dataclasses.asdict(self)
@@ -210,7 +230,9 @@ class TipRecord:
 class GrowthResult:
     """What grow returns: the tip records of every step (records[k] at step
     k, the last one at the final geometry), the final cracks, why it stopped,
-    the warnings met, each step's Solution if kept, seconds per step."""
+    the warnings met, each step's Solution if kept, seconds per step, the
+    cycles, the solves per step (1 + the corrector's), the model warning
+    codes of each step."""
     records: list[list[TipRecord]]
     cracks: list[Crack]
     stop_reason: str
@@ -219,6 +241,8 @@ class GrowthResult:
     solutions: list
     step_times: list[float]
     cycles: float = 0.0
+    step_solves: list[int] = dataclasses.field(default_factory=list)
+    step_warnings: list[list[str]] = dataclasses.field(default_factory=list)
 
     @property
     def rows(self) -> list[dict[str, typing.Any]]:
@@ -251,6 +275,12 @@ def crack_length(points: np.ndarray) -> float:
     return float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
 
 
+def part_length(model, crack: int) -> float:
+    """The length of a crack inside the part (its polyline may run beyond the boundary)."""
+    from .sif import _lip_points
+    return float(_lip_points(model, crack)["weight"].sum())
+
+
 # -- the loop -----------------------------------------------------------------------------------------
 
 def _cycle_scene(scene: Scene, growth: Growth) -> tuple[Scene, bool]:
@@ -268,14 +298,130 @@ def _cycle_scene(scene: Scene, growth: Growth) -> tuple[Scene, bool]:
     return dataclasses.replace(scene, load_path=path), True
 
 
+@dataclasses.dataclass
+class _Measured:
+    """One solve of a geometry: the tip records, the fatigue rates, the
+    solution at the maximum load and its model."""
+    records: list[TipRecord]
+    rates: dict[tuple[int, int], float]
+    lengths: list[float]
+    sol: typing.Any
+    model: typing.Any
+
+
+def _measure(scene: Scene, cracks: list[Crack], growth: Growth, k: int, N: float,
+             stopped: set[tuple[int, int]]) -> _Measured:
+    """Solve the scene with the given cracks (the load cycle in fatigue) and
+    record every tip: K, kink, K_eq, closed fraction, Delta K and the Paris
+    rate (growing tips only)."""
+    from .solve import solve
+    current = dataclasses.replace(scene, cracks=[dataclasses.replace(c) for c in cracks])
+    solved_scene, fatigue = _cycle_scene(current, growth)
+    sol = solve(solved_scene)
+    sol_max, sol_min = (sol.steps[0], sol.steps[1]) if fatigue else (sol, None)
+    model = sol_max.model
+    sifs_max = sol_max.stress_intensity_factors(None)
+    sifs_min = {(r["crack"], r["tip"]): r for r in sol_min.stress_intensity_factors(None)} if fatigue else {}
+    step: list[TipRecord] = []
+    rates: dict[tuple[int, int], float] = {}
+    lengths = [part_length(model, ci) for ci in range(len(cracks))]
+    closed = [_closed_fraction(sol_max, ci) for ci in range(len(cracks))]
+    for r in sifs_max:
+        ci = r["crack"]
+        g = model.geometries[ci]
+        end = 1 if int(np.asarray(g.tip_orientation)[r["tip"]]) == 1 else 0
+        key = (ci, end)
+        theta = kink_angle(r["K_I"], r["K_II"], growth.criterion)
+        keq = equivalent_k(r["K_I"], r["K_II"], theta)
+        rec = TipRecord(k, ci, end, r["x"], r["y"], lengths[ci], r["K_I"], r["K_II"],
+                        r["K_I_spread"], r["K_II_spread"], math.degrees(theta), keq, closed[ci], N=N,
+                        sif_radius=float(r["radius"]))
+        if key in stopped:
+            rec.status = "stopped"
+        if fatigue:
+            rm = sifs_min[(ci, r["tip"])]
+            rec.K_I_min, rec.K_II_min = rm["K_I"], rm["K_II"]
+            # The linear K_eq at both ends: with contact K_min is what the closed lips give
+            # (about 0), without it the value of lips passing through each other.
+            keq_max = equivalent_k(r["K_I"], r["K_II"], theta, clamp=False)
+            keq_min = equivalent_k(rm["K_I"], rm["K_II"], theta, clamp=False)
+            rec.delta_K = max(keq_max - keq_min, 0.0)
+            ratio = keq_min / keq_max if keq_max > 0 else 0.0
+            dk = rec.delta_K / (1.0 - ratio) ** (1.0 - growth.walker_gamma) if ratio < 1 else rec.delta_K
+            if rec.status == "growing":
+                if rec.delta_K <= growth.threshold:
+                    rec.status = "below threshold"
+                else:
+                    rates[key] = growth.paris_C * dk ** growth.paris_m
+        elif rec.status == "growing" and keq < growth.threshold:
+            rec.status = "below threshold"
+        step.append(rec)
+    return _Measured(step, rates, lengths, sol_max, model)
+
+
+def _rotate_last_segment(crack: Crack, end: int, delta: float) -> None:
+    """Turn the segment at the given end of a polyline about its inner point by delta (radians)."""
+    pts = crack.points.copy()
+    i, j = (-1, -2) if end == 1 else (0, 1)
+    v = pts[i] - pts[j]
+    c, s = math.cos(delta), math.sin(delta)
+    pts[i] = pts[j] + np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
+    crack.points = pts
+
+
+def _correct(scene: Scene, cracks: list[Crack], growth: Growth, k: int, N: float, stopped, grown,
+             measured: _Measured) -> tuple[_Measured, dict[tuple[int, int], float], int]:
+    """The corrector: turn each tip's last increment about its start until
+    the kink wanted at its end vanishes (local symmetry at the end of the
+    increment, K_II = 0 there, not only at its start): secant iterations on
+    the turn, at most growth.corrections solves, stopping when every kink is
+    below growth.corrector_tolerance degrees. Returns the measurement of the
+    best geometry met (least sum of |kink|), the turn it gives each tip
+    (radians) and the number of solves."""
+    tol = math.radians(growth.corrector_tolerance)
+    turn: dict[tuple[int, int], float] = {}
+    hist: dict[tuple[int, int], list[tuple[float, float]]] = {}
+    best = measured
+    best_err = {(r.crack, r.end): abs(math.radians(r.kink_deg)) for r in measured.records}
+    best_turn: dict[tuple[int, int], float] = {}
+    cur = measured
+    solves = 0
+    for _ in range(growth.corrections):
+        todo = {(r.crack, r.end): math.radians(r.kink_deg) for r in cur.records
+                if (r.crack, r.end) in grown and r.status == "growing" and abs(math.radians(r.kink_deg)) > tol}
+        if not todo:
+            break
+        for key, th in todo.items():
+            d0 = turn.get(key, 0.0)
+            h = hist.setdefault(key, [])
+            h.append((d0, th))
+            if len(h) >= 2 and abs(h[-1][1] - h[-2][1]) > 1e-9:
+                (da_, ta), (db, tb) = h[-2], h[-1]
+                d1 = db - tb * (db - da_) / (tb - ta)
+            else:
+                d1 = d0 + 0.5 * th  # the first trial: half the kink wanted (a full one overshoots when T < 0)
+            d1 = max(-math.radians(60.0), min(math.radians(60.0), d1))
+            _rotate_last_segment(cracks[key[0]], key[1], d1 - d0)
+            turn[key] = d1
+        cur = _measure(scene, cracks, growth, k, N, stopped)
+        solves += 1
+        errs = {(r.crack, r.end): abs(math.radians(r.kink_deg)) for r in cur.records}
+        if sum(errs.get(key, 0.0) for key in grown) < sum(best_err.get(key, 0.0) for key in grown):
+            best, best_err, best_turn = cur, errs, dict(turn)
+    # Back to the geometry of the best measurement met.
+    for key in turn:
+        _rotate_last_segment(cracks[key[0]], key[1], best_turn.get(key, 0.0) - turn[key])
+    return best, best_turn, solves
+
+
 def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
-         on_step: typing.Callable[[int, list[TipRecord]], None] | None = None) -> GrowthResult:
-    """Grow the scene's cracks (module doc). on_step(k, records) is called
-    after every solve (progress); keep_solutions keeps each step's Solution
-    (for ParaView time series)."""
+         on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None = None) -> GrowthResult:
+    """Grow the scene's cracks (module doc). on_step(k, records, solution) is
+    called after every step's solve (progress, a ParaView file per step; in
+    fatigue the solution at the maximum load); keep_solutions keeps each
+    step's Solution in the result."""
     from .model import boundary_segments
     from .sif import tip_element_size
-    from .solve import solve
     scene.mesh.cache_standard_block = True
     cracks = [dataclasses.replace(c, points=np.array(c.points, dtype=float)) for c in scene.cracks]
     if not cracks:
@@ -286,53 +432,46 @@ def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
     warnings: list[str] = []
     solutions = []
     step_times: list[float] = []
+    solves: list[int] = []
     stopped: set[tuple[int, int]] = set()      # (crack, end) that no longer grow
+    grown: set[tuple[int, int]] = set()        # (crack, end) advanced by the last step
+    warned: set[str] = set()                   # increment warnings given (once each)
+    warning_counts: dict[str, int] = {}        # model warnings by code, over all steps
+    step_warnings: list[list[str]] = []
     last_kink: dict[tuple[int, int], float] = {}
     N = 0.0
     prev_rate: float | None = None
     prev_da = 0.0
     da = growth.da
+    fatigue = growth.fatigue
     stop_reason = f"{growth.steps} steps done"
     for k in range(growth.steps + 1):
         t0 = time.perf_counter()
-        current = dataclasses.replace(scene, cracks=[dataclasses.replace(c) for c in cracks])
-        solved_scene, fatigue = _cycle_scene(current, growth)
-        sol = solve(solved_scene)
-        sol_max, sol_min = (sol.steps[0], sol.steps[1]) if fatigue else (sol, None)
-        model = sol_max.model
-        if k == 0:
-            warnings += [w.message for w in sol_max.warnings]
-        sifs_max = sol_max.stress_intensity_factors(None)
-        sifs_min = {(r["crack"], r["tip"]): r for r in sol_min.stress_intensity_factors(None)} if fatigue else {}
-        step: list[TipRecord] = []
-        rates: dict[tuple[int, int], float] = {}
-        for r in sifs_max:
-            ci = r["crack"]
-            g = model.geometries[ci]
-            end = 1 if int(np.asarray(g.tip_orientation)[r["tip"]]) == 1 else 0
-            key = (ci, end)
-            theta = kink_angle(r["K_I"], r["K_II"], growth.criterion)
-            keq = equivalent_k(r["K_I"], r["K_II"], theta)
-            closed = _closed_fraction(sol_max, ci)
-            rec = TipRecord(k, ci, end, r["x"], r["y"], crack_length(cracks[ci].points), r["K_I"], r["K_II"],
-                            r["K_I_spread"], r["K_II_spread"], math.degrees(theta), keq, closed, N=N)
-            if key in stopped:
-                rec.status = "stopped"
-            if fatigue:
-                rm = sifs_min[(ci, r["tip"])]
-                rec.K_I_min, rec.K_II_min = rm["K_I"], rm["K_II"]
-                keq_min = equivalent_k(rm["K_I"], rm["K_II"], theta)
-                rec.delta_K = max(keq - keq_min, 0.0)
-                ratio = keq_min / keq if keq > 0 else 0.0
-                dk = rec.delta_K / (1.0 - ratio) ** (1.0 - growth.walker_gamma) if ratio < 1 else rec.delta_K
-                if rec.status == "growing":
-                    if rec.delta_K <= growth.threshold:
-                        rec.status = "below threshold"
-                    else:
-                        rates[key] = growth.paris_C * dk ** growth.paris_m
-            elif rec.status == "growing" and keq < growth.threshold:
-                rec.status = "below threshold"
-            step.append(rec)
+        try:
+            m = _measure(scene, cracks, growth, k, N, stopped)
+        except BoundaryConditionError as e:
+            if k == 0 or "cut the part into" not in str(e):
+                raise
+            stop_reason = f"final separation: after step {k - 1} the cracks cut the part apart ({e})"
+            stops.append(stop_reason)
+            break
+        n_solves = 1
+        if growth.corrections and k > 0 and grown:
+            m, turns, extra = _correct(scene, cracks, growth, k, N, stopped, grown, m)
+            n_solves += extra
+            for r in records[-1]:  # the kink the last increment actually took
+                if (r.crack, r.end) in turns:
+                    r.kink_deg += math.degrees(turns[r.crack, r.end])
+                    last_kink[r.crack, r.end] = r.kink_deg
+        step, rates, lengths, sol_max, model = m.records, m.rates, m.lengths, m.sol, m.model
+        solves.append(n_solves)
+        # The model's warnings of every step (a kinked path can clip a SIF domain): the first of
+        # each code in full, the later ones counted.
+        step_warnings.append(sorted({w.code for w in sol_max.warnings}))
+        for w in sol_max.warnings:
+            if w.code not in warning_counts:
+                warnings.append(w.message if k == 0 else f"step {k}: {w.message}")
+            warning_counts[w.code] = warning_counts.get(w.code, 0) + 1
         # The cycles of the increment just taken (trapezoid between its two ends).
         if fatigue and k > 0 and prev_rate is not None:
             rate_now = max(rates.values()) if rates else prev_rate
@@ -342,7 +481,7 @@ def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
                 rec.dN, rec.N = dN, N
         records.append(step)
         if on_step is not None:
-            on_step(k, step)
+            on_step(k, step, sol_max)
         if keep_solutions:
             solutions.append(sol_max)
         # Stops that end the run.
@@ -355,7 +494,7 @@ def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
                 stops.append(stop_reason)
                 step_times.append(time.perf_counter() - t0)
                 break
-        if growth.max_length is not None and any(crack_length(c.points) >= growth.max_length for c in cracks):
+        if growth.max_length is not None and any(v >= growth.max_length * (1.0 - 1e-9) for v in lengths):
             stop_reason = f"a crack reached the length {growth.max_length:g} (step {k})"
             stops.append(stop_reason)
             step_times.append(time.perf_counter() - t0)
@@ -364,6 +503,11 @@ def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
             step_times.append(time.perf_counter() - t0)
             break
         growing = [r for r in step if r.status == "growing"]
+        if not step:
+            stop_reason = f"no crack tip is left in the part (step {k}): the cracks run through it"
+            stops.append(stop_reason)
+            step_times.append(time.perf_counter() - t0)
+            break
         if not growing:
             stop_reason = f"no tip grows any more (step {k}: " + "; ".join(
                 f"crack {cracks[r.crack].name!r} end {r.end}: {r.status}" for r in step) + ")"
@@ -386,27 +530,41 @@ def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
             break
         rate_max = max(rates.values()) if rates else None
         # Advance every growing tip.
+        grown = set()
         for r in growing:
             key = (r.crack, r.end)
-            last_kink[key] = r.kink_deg
+            if k > 0:  # the first kink leaves the initial crack, any angle: not a reference
+                last_kink[key] = r.kink_deg
             inc = da if not fatigue else da * rates[key] / rate_max
             r.da = inc
             h_tip = tip_element_size(model, np.array([r.x, r.y]))
-            if inc < h_tip:
+            if inc < h_tip and "small" not in warned:
+                warned.add("small")
                 warnings.append(f"step {k}: the increment {inc:.3g} at ({r.x:.6g}, {r.y:.6g}) is below the element "
-                                f"size there ({h_tip:.3g}): the path follows the mesh; use a larger da or a finer mesh")
+                                f"size there ({h_tip:.3g}): the path follows the mesh; use a larger da or a finer mesh "
+                                "(said once)")
+            if inc > r.sif_radius and not growth.corrections and "large" not in warned:
+                warned.add("large")  # (the corrector checks the kink at the increment's end)
+                warnings.append(f"step {k}: the increment {inc:.3g} at ({r.x:.6g}, {r.y:.6g}) is larger than the SIF "
+                                f"domain there (radius {r.sif_radius:.3g}): the kink comes from the field within "
+                                "that radius and is extrapolated beyond it; use a smaller da or growth.corrections (said once)")
             note = _advance(cracks, r, inc, model, a_bnd, b_bnd, h_tip)
             if note:
                 stops.append(f"step {k}: {note}")
                 stopped.add(key)
                 r.status = note.split(":")[0]
+            else:
+                grown.add(key)
         if fatigue:
             prev_rate, prev_da = rate_max, da
         step_times.append(time.perf_counter() - t0)
-        logger.info("growth step %d: %s", k, "; ".join(
+        logger.debug("growth step %d: %s", k, "; ".join(
             f"crack {cracks[r.crack].name!r} end {r.end}: a = {r.length:.4g}, K_I = {r.K_I:.4g}, K_II = {r.K_II:.4g}, "
             f"kink {r.kink_deg:.1f} deg" + (f", N = {r.N:.4g}" if fatigue else "") for r in step))
-    return GrowthResult(records, cracks, stop_reason, stops, list(dict.fromkeys(warnings)), solutions, step_times, N)
+    warnings += [f"the model warning '{c}' came {n} times in all (at the steps listed in results.json per_step)"
+                 for c, n in warning_counts.items() if n > 1]
+    return GrowthResult(records, cracks, stop_reason, stops, list(dict.fromkeys(warnings)), solutions, step_times, N,
+                        solves, step_warnings)
 
 
 def _closed_fraction(sol, crack: int) -> float:

@@ -168,7 +168,8 @@ def create_rectangle(x0: float, y0: float, x1: float, y1: float, h: float,
     (e.g. crack tips): the size is h_near at and near the point (within
     4 h_near) and grows linearly to h over `radius` beyond that, never
     faster than 0.25 per unit distance (see refinement_size); 0 takes the
-    fastest growth.
+    fastest growth. (x, y, h_near, radius, x1, y1) refines along the
+    segment (x, y)-(x1, y1) alike (a band along a crack's expected path).
     embed_lines / embed_points: segments and points the mesh must conform to
     (mesh edges along the segments, nodes at the points), inside the domain.
     Tags: left, right, bottom, top.
@@ -261,17 +262,28 @@ def _mesh_2d(gmsh, h: float, refine) -> None:
     gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
     if refine:
         fields = []
-        for (x, y, h_near, radius) in refine:
+        for item in refine:
+            x, y, h_near, radius = item[:4]
+            x1, y1 = item[4:6] if len(item) >= 6 else (x, y)
             if not (0.0 < h_near and radius >= 0.0):
                 raise MeshError(f"refinement at ({x:g}, {y:g}): need a size > 0 and a radius >= 0, got "
                                 f"size {h_near!r}, radius {radius!r}")
             plateau, growth = refinement_size(h, h_near, radius)
             f = gmsh.model.mesh.field.add("MathEval")
-            # Every number in parentheses: "x--0.5" (a negative centre) makes
-            # gmsh's expression parser abort the process.
+            # Distance to the point, or to the segment (x, y)-(x1, y1). Every
+            # number in parentheses: "x--0.5" (a negative centre) makes gmsh's
+            # expression parser abort the process.
+            dx, dy = float(x1) - float(x), float(y1) - float(y)
+            if dx == 0.0 and dy == 0.0:
+                dist = "Sqrt((x - ({0!r}))^2 + (y - ({1!r}))^2)".format(float(x), float(y))
+            else:
+                t = "Max(0, Min(1, ((x - ({0!r})) * ({2!r}) + (y - ({1!r})) * ({3!r})) / ({4!r})))".format(
+                    float(x), float(y), dx, dy, dx * dx + dy * dy)
+                dist = "Sqrt((x - ({0!r}) - {2} * ({3!r}))^2 + (y - ({1!r}) - {2} * ({4!r}))^2)".format(
+                    float(x), float(y), t, dx, dy)
             gmsh.model.mesh.field.setString(
-                f, "F", "Min(({0!r}), ({1!r}) + ({2!r}) * Max(0, Sqrt((x - ({3!r}))^2 + (y - ({4!r}))^2) - ({5!r})))"
-                .format(*(float(v) for v in (h, h_near, growth, x, y, plateau))))
+                f, "F", "Min(({0!r}), ({1!r}) + ({2!r}) * Max(0, {3} - ({4!r})))"
+                .format(float(h), float(h_near), float(growth), dist, float(plateau)))
             fields.append(f)
         fmin = gmsh.model.mesh.field.add("Min")
         gmsh.model.mesh.field.setNumbers(fmin, "FieldsList", fields)

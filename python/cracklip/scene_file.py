@@ -165,6 +165,13 @@ def p_tag(value, path):
     return value
 
 
+def p_segment(value, path):
+    pts = p_polyline(value, path)
+    if len(pts) != 2:
+        raise _type_error(path, "a segment [[x0, y0], [x1, y1]]", value)
+    return pts
+
+
 def p_group(value, path):
     if not isinstance(value, str) or not value:
         raise _type_error(path, "a load group name (a non-empty string)", value)
@@ -260,7 +267,7 @@ def _docstring_attributes(cls) -> dict[str, str]:
     doc = (cls.__doc__ or "").split("Attributes:", 1)[-1]
     name = None
     for line in doc.splitlines():
-        m = re.match(r"^\s{8}([a-z_, ]+): (.*)$", line)
+        m = re.match(r"^\s{8}([A-Za-z_][A-Za-z0-9_, ]*): (.*)$", line)
         if m:
             name = m.group(1)
             out[name] = m.group(2).strip()
@@ -291,6 +298,31 @@ def _option_keys() -> list[Key]:
             keys.append(Key(f"options.{f.name}", "string", default, meaning, p_str))
         else:
             keys.append(Key(f"options.{f.name}", "float", default, meaning, p_float(0.0)))
+    return keys
+
+
+def _growth_keys() -> list[Key]:
+    """The [growth] keys: every field of cracklip.growth.Growth, with the
+    meanings of its docstring (cycle_max / cycle_min are tables of load group
+    = factor; the optional numbers have no default)."""
+    from .growth import CRITERIA, Growth
+    documented = _docstring_attributes(Growth)
+    keys = []
+    for f in dataclasses.fields(Growth):
+        meaning = documented.get(f.name, f.name.replace("_", " "))
+        path = f"growth.{f.name}"
+        if f.name == "criterion":
+            keys.append(Key(path, "string", f.default, meaning, p_choice(*CRITERIA)))
+        elif f.name in ("cycle_max", "cycle_min"):
+            keys.append(Key(path, "table of group = factor", UNSET, meaning, p_factors))
+        elif f.name == "steps":
+            keys.append(Key(path, "integer", f.default, meaning, p_int(1)))
+        elif f.name == "corrections":
+            keys.append(Key(path, "integer", f.default, meaning, p_int(0)))
+        elif f.default is None:
+            keys.append(Key(path, "float", UNSET, meaning, p_float()))
+        else:
+            keys.append(Key(path, "float", f.default, meaning, p_float()))
     return keys
 
 
@@ -326,7 +358,10 @@ SCHEMA: tuple[Key, ...] = tuple([
         "distance over which the size grows from tip_h to h beyond a plateau of 4 tip_h around the tip; "
         "never faster than 0.25 per unit length (a shorter radius is lengthened); 0: that fastest growth",
         p_float(0.0), GENERATED),
-    Key("mesh.refine[].point", "[x, y]", REQUIRED, "centre of a local refinement", p_point, GENERATED),
+    Key("mesh.refine[].point", "[x, y]", UNSET, "centre of a local refinement (one of point, segment)",
+        p_point, GENERATED),
+    Key("mesh.refine[].segment", "[[x0, y0], [x1, y1]]", UNSET, "a segment refined along its length (a band "
+        "along a crack's expected path; one of point, segment)", p_segment, GENERATED),
     Key("mesh.refine[].h", "float", REQUIRED, "element size at the point (and within 4 times that size of it)",
         p_float(positive=True), GENERATED),
     Key("mesh.refine[].radius", "float", 0.0, "distance over which the size grows back to h beyond that "
@@ -409,7 +444,7 @@ SCHEMA: tuple[Key, ...] = tuple([
         "the factor of each named load group at the end of the step (a group not named keeps its factor "
         "from the step before; all are 0 before the first step); without load_path one step takes every "
         "group to 1", p_factors),
-] + _option_keys() + [
+] + _option_keys() + _growth_keys() + [
     # outputs
     Key("outputs.vtu", "boolean", True, "write ParaView files solution.vtu and crack_lips.vtu", p_bool),
     Key("outputs.png", "boolean", True, "write deformed.png, crack_pressure.png and stress.png", p_bool),
@@ -563,6 +598,9 @@ def parse_settings(doc: dict) -> dict:
     if refine and kind not in GENERATED:
         raise InputError(f"mesh.refine applies to generated meshes only; this mesh is {kind!r}")
     s["mesh"]["refine"] = [_section(r, "mesh.refine[]", f"mesh.refine[{i}]", kind) for i, r in enumerate(refine)]
+    for i, r in enumerate(s["mesh"]["refine"]):
+        if ("point" in r) == ("segment" in r):
+            raise InputError(f"mesh.refine[{i}] needs exactly one of point or segment")
     if "material" not in doc:
         raise InputError("the scene has no [material] table: give material.E and material.nu")
     s["material"] = _section(doc["material"], "material", "material")
@@ -618,6 +656,8 @@ def parse_settings(doc: dict) -> dict:
         s["loads"]["initial_stress"] = _section(loads_doc["initial_stress"], "loads.initial_stress",
                                                 "loads.initial_stress")
     s["load_path"] = [_section(st, "load_path[]", f"load_path[{i}]") for i, st in enumerate(_items(doc, "load_path"))]
+    if "growth" in doc:
+        s["growth"] = _section(doc["growth"], "growth", "growth")
     s["options"] = _section(doc.get("options", {}), "options", "options")
     s["outputs"] = _section(doc.get("outputs", {}), "outputs", "outputs")
     return s
@@ -689,6 +729,7 @@ class SceneFile:
         title: the title (or the file's stem).
         settings: every key with its value (parse_settings).
         scene: the cracklip Scene.
+        growth: the [growth] settings (cracklip.growth.Growth), or None.
         outputs: the [outputs] settings.
         notes: one line per boundary condition and load, saying what it became.
         timings: seconds spent meshing ("mesh").
@@ -700,6 +741,7 @@ class SceneFile:
     outputs: dict
     notes: list[str]
     timings: dict[str, float]
+    growth: typing.Any = None
 
 
 def load_scene_file(path: str | pathlib.Path, overrides: typing.Sequence[str] = ()) -> SceneFile:
@@ -769,7 +811,42 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
         from .load_path import steps
         steps(scene)  # unknown groups are an InputError now, not at the solve
     title = s["title"] or (path.stem if path is not None else "scene")
-    return SceneFile(path, title, s, scene, s["outputs"], notes, {"mesh": t_mesh})
+    growth = None
+    if "growth" in s:
+        from .growth import Growth
+        try:
+            growth = Growth(**s["growth"])
+        except InputError as e:
+            raise InputError(f"growth: {e}") from None
+        if scene.load_path is not None:
+            raise InputError("a scene with [growth] solves its loads (or its load cycle) at every step: give "
+                             "growth.cycle_max / cycle_min instead of [[load_path]]")
+        from .loads import load_groups
+        groups = load_groups(scene) | {"default"}
+        for name in ("cycle_max", "cycle_min"):
+            unknown = sorted(set(getattr(growth, name) or {}) - groups)
+            if unknown:
+                raise InputError(f"growth.{name} names load group(s) {unknown} that no load belongs to; the "
+                                 f"scene's groups: {sorted(groups)}")
+        notes.append("growth: " + describe_growth(growth))
+    return SceneFile(path, title, s, scene, s["outputs"], notes, {"mesh": t_mesh}, growth)
+
+
+def describe_growth(g) -> str:
+    """One line of the growth settings (check and the progress)."""
+    if g.fatigue:
+        cycle = (f"cycle max {g.cycle_max or 'every group at 1'}, min "
+                 f"{g.cycle_min if g.cycle_min is not None else f'R = {g.R:g} x max'}")
+        how = (f"fatigue: Paris C = {g.paris_C:g}, m = {g.paris_m:g}"
+               + (f", Walker gamma = {g.walker_gamma:g}" if g.walker_gamma != 1.0 else "")
+               + (f", threshold {g.threshold:g}" if g.threshold else "") + f"; {cycle}; fastest tip da = "
+               + (f"{g.da:g}" if g.da else "3 tip elements"))
+    else:
+        how = "fixed increments da = " + (f"{g.da:g}" if g.da else "3 tip elements") + \
+            (f", K_eq threshold {g.threshold:g}" if g.threshold else "")
+    stops = [f"{g.steps} steps"] + ([f"K_Ic = {g.K_Ic:g}"] if g.K_Ic is not None else []) + \
+        ([f"length {g.max_length:g}"] if g.max_length is not None else []) + [f"kink change > {g.max_kink_change:g} deg"]
+    return f"{g.criterion.replace('_', ' ')} criterion, {how}; stops: {', '.join(stops)}"
 
 
 def _crack(c: dict, i: int) -> Crack:
@@ -807,7 +884,9 @@ def _mesh(m: dict, cracks: list[Crack], base_dir: pathlib.Path, points=()) -> Me
         f = pathlib.Path(m["path"])
         return read_msh(f if f.is_absolute() else base_dir / f)
     h = m["h"]
-    refine = [(r["point"][0], r["point"][1], r["h"], r["radius"]) for r in m["refine"]]
+    refine = [(r["point"][0], r["point"][1], r["h"], r["radius"]) if "point" in r else
+              (r["segment"][0][0], r["segment"][0][1], r["h"], r["radius"], r["segment"][1][0], r["segment"][1][1])
+              for r in m["refine"]]
     if m["tip_h"] > 0.0:
         radius = m["tip_radius"]
         for c in cracks:
