@@ -1,6 +1,9 @@
-"""Checked direct solves with MUMPS.
+"""Checked direct solves with MUMPS, and which BLAS they run on.
 
-MUMPS can meet a singular saddle-point or stiffness matrix (a piece of the
+Every cracklip system is symmetric (the stiffness, and the saddle-point
+system of contact), so MUMPS factors it as LDL^T (PETSc's "cholesky" with the
+matrix flagged symmetric: MUMPS sym = 2, symmetric indefinite, which also
+covers the saddle point): half the flops and memory of LU. MUMPS can meet a singular saddle-point or stiffness matrix (a piece of the
 domain cut free by a crack, a constraint missing) and return an arbitrary
 solution with only a warning. Every solve here reads the factorisation status,
 the number of null pivots and the relative residual, and raises SolverError
@@ -9,12 +12,18 @@ naming the likely cause.
 from __future__ import annotations
 
 import contextlib
+import functools
+import logging
+import os
+import pathlib
 
 import numpy as np
 import scipy.sparse as sp
 from petsc4py import PETSc
 
 from .errors import SolverError
+
+logger = logging.getLogger(__name__)
 
 
 #: Records of the checked solves inside a ``record_solves()`` block (else None).
@@ -23,8 +32,10 @@ _SOLVE_RECORDS: list | None = None
 
 @contextlib.contextmanager
 def record_solves():
-    """Collect {"what", "size", "relative_residual"} of every solve_checked
-    call inside the block (also those made by the contact active set)."""
+    """Collect one record per checked solve inside the block (also those made
+    by the contact active set): {"what", "size", "relative_residual",
+    "solver" ("direct" or "iterative"), "method", "iterations"} (iterative
+    solves add "band" and "setup_reused", see cracklip.solvers)."""
     global _SOLVE_RECORDS
     outer, _SOLVE_RECORDS = _SOLVE_RECORDS, []
     try:
@@ -47,13 +58,28 @@ def scipy_from_petsc(A: PETSc.Mat) -> sp.csr_matrix:
     return sp.csr_matrix((data, indices, indptr), shape=A.getSize())
 
 
-def create_lu_solver(A: PETSc.Mat, detect_null_pivots: bool = True) -> PETSc.KSP:
-    """KSP preonly + LU (MUMPS) on A."""
+def record_solve(record: dict) -> None:
+    """Append a solve record to the open record_solves() block, if any."""
+    if _SOLVE_RECORDS is not None:
+        _SOLVE_RECORDS.append(record)
+
+
+def create_lu_solver(A: PETSc.Mat, detect_null_pivots: bool = True, symmetric: bool = False) -> PETSc.KSP:
+    """KSP preonly + MUMPS on A: LU, or LDL^T (symmetric: A must be
+    symmetric; it is flagged so, which makes MUMPS use sym = 2).
+
+    The ordering is MUMPS' own choice (ICNTL(7) = 7): with Debian's MUMPS
+    (no METIS, no SCOTCH) it picks PORD, which has the fewest factor entries
+    and flops of AMD, AMF, PORD and QAMD on cracklip's matrices
+    (demos/bench_solvers.py --orderings records them)."""
     ksp = PETSc.KSP().create(PETSc.COMM_SELF)
+    if symmetric:
+        A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
+        A.setOption(PETSc.Mat.Option.SYMMETRY_ETERNAL, True)
     ksp.setOperators(A)
     ksp.setType("preonly")
     pc = ksp.getPC()
-    pc.setType("lu")
+    pc.setType("cholesky" if symmetric else "lu")
     pc.setFactorSolverType("mumps")
     pc.setFactorSetUpSolverType()
     F = pc.getFactorMatrix()
@@ -79,8 +105,11 @@ def _factor_call(ksp: PETSc.KSP, method: str, *args):
 
 
 def solve_checked(A: PETSc.Mat, b: PETSc.Vec, residual_tol: float = 1e-8,
-                  what: str = "system", scale: bool = True) -> PETSc.Vec:
-    """Solve A x = b by MUMPS LU; raise SolverError on any sign of failure.
+                  what: str = "system", scale: bool = True, symmetric: bool = True) -> PETSc.Vec:
+    """Solve A x = b by MUMPS; raise SolverError on any sign of failure.
+
+    symmetric: A is symmetric (every cracklip system is): LDL^T (MUMPS
+    sym = 2); else LU.
 
     scale: solve the symmetrically Jacobi-scaled system D A D y = D b, x = D y
     (D = |diag A|^-1/2): enriched dofs with small supports make the raw matrix
@@ -102,7 +131,7 @@ def solve_checked(A: PETSc.Mat, b: PETSc.Vec, residual_tol: float = 1e-8,
     ksp = None
     try:
         for relax in (20, 100, 400):
-            ksp = create_lu_solver(M)
+            ksp = create_lu_solver(M, symmetric=symmetric)
             _factor_call(ksp, "setMumpsIcntl", 14, relax)
             error = None
             try:
@@ -143,8 +172,8 @@ def solve_checked(A: PETSc.Mat, b: PETSc.Vec, residual_tol: float = 1e-8,
     bnorm = b.norm()
     rel = r.norm() / bnorm if bnorm > 0 else r.norm()
     r.destroy()
-    if _SOLVE_RECORDS is not None:
-        _SOLVE_RECORDS.append({"what": what, "size": A.getSize()[0], "relative_residual": float(rel)})
+    record_solve({"what": what, "size": A.getSize()[0], "relative_residual": float(rel), "solver": "direct",
+                  "method": f"MUMPS {'LDL^T' if symmetric else 'LU'}", "iterations": 1})
     if not np.all(np.isfinite(x.array)) or not rel <= residual_tol:
         raise SolverError(f"the solve of the {what} is inaccurate: relative residual {rel:.3g} "
                           f"> {residual_tol:g}; the matrix is singular or very ill-conditioned")
@@ -206,3 +235,31 @@ def condition_number_1norm(A: PETSc.Mat) -> dict[str, float]:
         if scaled:
             M.destroy()
     return out
+
+
+@functools.lru_cache(maxsize=None)
+def blas_library() -> str:
+    """The BLAS library this process runs (PETSc's and MUMPS'), as loaded:
+    "openblas-pthread 0.3.21 (/usr/lib/...)" or "reference (netlib) (...)",
+    read from /proc/self/maps after PETSc is loaded (so it reports what
+    Debian's alternatives or LD_LIBRARY_PATH actually resolved)."""
+    try:
+        maps = pathlib.Path("/proc/self/maps").read_text()
+    except OSError:
+        return "unknown (no /proc/self/maps)"
+    libs = sorted({line.split()[-1] for line in maps.splitlines()
+                   if "/" in line and ("blas" in line.rsplit("/", 1)[-1] or "lapack" in line.rsplit("/", 1)[-1])})
+    if not libs:
+        return "unknown (no BLAS library mapped)"
+    for lib in libs:
+        name = os.path.basename(lib)
+        if name.startswith("libopenblas"):
+            version = name.split("-r", 1)[1].rsplit(".so", 1)[0] if "-r" in name else ""
+            flavour = os.path.basename(os.path.dirname(lib))
+            return f"openblas {version} ({flavour}; {lib})".replace("  ", " ")
+    for lib in libs:
+        for marker, label in (("libmkl", "mkl"), ("libblis", "blis"), ("atlas", "atlas")):
+            if marker in lib:
+                return f"{label} ({lib})"
+    blas = [lib for lib in libs if os.path.basename(lib).startswith("libblas")]
+    return f"reference (netlib) ({(blas or libs)[0]})"
