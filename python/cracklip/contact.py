@@ -27,6 +27,9 @@ from .errors import CracklipError, SolverError
 from .linear_solver import petsc_from_scipy, scipy_from_petsc, solve_checked
 from .model import XfemModel
 
+if typing.TYPE_CHECKING:
+    from .solvers import LinearSolver
+
 logger = logging.getLogger(__name__)
 
 
@@ -110,8 +113,13 @@ def create_contact_system(model: XfemModel) -> ContactSystem:
 
 
 def solve_saddle(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, active: np.ndarray,
-                 residual_tol: float) -> tuple[np.ndarray, np.ndarray]:
-    """Solve with the constraints of the active multipliers; inactive ones are 0."""
+                 residual_tol: float, linear: "LinearSolver | None" = None,
+                 x0: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Solve with the constraints of the active multipliers; inactive ones are 0.
+
+    linear: the solver path (cracklip.solvers; default MUMPS LDL^T); x0: an
+    initial guess (u, lambda) for an iterative path (the previous active
+    set's solution)."""
     m = cs.num_multipliers
     Ba = sp.diags(active.astype(float)) @ cs.B
     inactive = sp.diags((~active).astype(float))
@@ -120,9 +128,15 @@ def solve_saddle(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, active: np.
     A = petsc_from_scipy(S)
     b = A.createVecRight()
     b.array[:] = rhs
-    x = solve_checked(A, b, residual_tol, what="contact saddle-point system")
+    what = "contact saddle-point system"
+    if linear is None:
+        x = solve_checked(A, b, residual_tol, what=what)
+    else:
+        x = linear.solve(A, b, residual_tol, what=what, x0=x0)
     sol = x.array.copy()
     A.destroy()
+    b.destroy()
+    x.destroy()
     return sol[:-m] if m else sol, sol[-m:] if m else np.zeros(0)
 
 
@@ -157,42 +171,48 @@ def contact_constant(model: XfemModel) -> float:
 
 
 def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
-                  transform: sp.spmatrix | None = None) -> tuple[np.ndarray, dict]:
+                  transform: sp.spmatrix | None = None,
+                  linear: "LinearSolver | None" = None) -> tuple[np.ndarray, dict]:
     """Solve the contact problem on the assembled stiffness A (constraints
     applied) and load b. Returns (u, info) with info: system, lambda (reduced),
     active, iterations, history.
 
     transform: if A and b are rescaled (T^T K T, T^T f), the T: the
     constraints act on u = T y, the returned u is y, info["system"] keeps
-    the unscaled B."""
+    the unscaled B. linear: the solver path of every saddle-point solve
+    (cracklip.solvers; default MUMPS LDL^T)."""
     physical = create_contact_system(model)
     cs = physical if transform is None else dataclasses.replace(physical, B=(physical.B @ transform).tocsr())
     u, info = solve_frictionless(scipy_from_petsc(A), b.array.copy(), cs, model.scene.options,
-                                 contact_constant(model))
+                                 contact_constant(model), linear=linear)
     info["system"] = physical
     return u, info
 
 
 def solve_frictionless(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, opts,
-                       c: float, active: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
+                       c: float, active: np.ndarray | None = None,
+                       linear: "LinearSolver | None" = None) -> tuple[np.ndarray, dict]:
     """Frictionless contact on the stiffness K (constraints applied), load f
     and the constraints B u = cs.g: bilateral (all multipliers active) or
     unilateral by the primal-dual active set, a multiplier active when its
     pressure exceeds c times its mean gap. active: the starting set (default
-    options.active_set_start). Returns (u, info: lambda, active, iterations,
-    history)."""
+    options.active_set_start). linear: the solver path of every
+    saddle-point solve (default MUMPS LDL^T). Returns (u, info: lambda,
+    active, iterations, history)."""
     m = cs.num_multipliers
     if opts.contact == "bilateral":
         active = np.ones(m, dtype=bool)
-        u, lam = solve_saddle(K, f, cs, active, opts.residual_tol)
+        u, lam = solve_saddle(K, f, cs, active, opts.residual_tol, linear)
         return u, {"lambda": lam, "active": active, "iterations": 1, "history": [m]}
     if active is None:
         active = np.full(m, opts.active_set_start == "closed")
     lumped = np.asarray(cs.M.sum(axis=1)).ravel()
     history = []
     seen = _VisitedSets(active)
+    x0 = None
     for it in range(1, opts.max_active_set_iterations + 1):
-        u, lam = solve_saddle(K, f, cs, active, opts.residual_tol)
+        u, lam = solve_saddle(K, f, cs, active, opts.residual_tol, linear, x0)
+        x0 = np.concatenate([u, lam])
         gap = cs.B @ u - cs.g                  # weighted normal gap (>= 0 open)
         pressure = -lam                        # >= 0 in compression
         new_active = pressure - c * gap / lumped > 0.0

@@ -284,9 +284,10 @@ def versions() -> dict[str, str]:
     import petsc4py
     import scipy
     from . import __version__
+    from .linear_solver import blas_library
     return {"cracklip": __version__, "dolfinx": dolfinx.__version__, "petsc4py": petsc4py.__version__,
             "numpy": np.__version__, "scipy": scipy.__version__, "meshio": meshio.__version__,
-            "python": platform.python_version()}
+            "python": platform.python_version(), "blas": blas_library()}
 
 
 def sif_rows(solution: Solution) -> list[dict[str, typing.Any]]:
@@ -388,7 +389,8 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
         "model": describe_model(m, solution.contact.get("system") if solution.contact else None),
         "boundary_conditions_and_loads": scene_file.notes,
         "solution": {"dofs": int(m.num_dofs), "strain_energy": energy, "max_displacement": u_scale,
-                     "relative_residual": solver.get("relative_residual")},
+                     "relative_residual": solver.get("relative_residual"),
+                     "solver": solver.get("solver"), "solves": solver.get("solves", [])},
         "warnings": warnings,
         "sifs": sifs,
         "cracks": crack_stats,

@@ -302,6 +302,7 @@ INTEGER_OPTIONS = {"quadrature_degree": 60, "degree": 60, "facet_degree": 60, "t
                    "tip_angular": 60, "contact_points": 60, "max_active_set_iterations": 10000,
                    "load_steps": 10000}
 TIP_QUADRATURES = ("collapsed", "gauss")
+SOLVERS = ("auto", "direct", "iterative")
 
 
 @dataclasses.dataclass
@@ -357,6 +358,10 @@ class Options:
         load_steps: increments per step of the load path (Scene.load_path);
             friction is path-dependent, so a leg in several increments
             follows its slip history more closely.
+        solver: linear solver: "direct" (MUMPS LDL^T), "iterative" (AMG in a
+            phantom-node basis, a direct solve of the crack band; same
+            checked accuracy) or "auto" (direct below
+            cracklip.solvers.AUTO_ITERATIVE_DOFS dofs, iterative above).
     """
     enrichment: str = "vector"
     radius: float = 0.0
@@ -379,6 +384,7 @@ class Options:
     sif_radius: float = 0.0
     friction: float = 0.0
     load_steps: int = 1
+    solver: str = "auto"
 
     def __post_init__(self):
         if self.enrichment not in ENRICHMENTS:
@@ -389,6 +395,8 @@ class Options:
             raise InputError(f"contact must be 'none', 'bilateral' or 'unilateral', got {self.contact!r}")
         if self.rescale not in ("none", "nodal"):
             raise InputError(f"rescale must be 'none' or 'nodal', got {self.rescale!r}")
+        if self.solver not in SOLVERS:
+            raise InputError(f"solver must be one of {SOLVERS}, got {self.solver!r}")
         if self.multipliers not in ("stable", "naive"):
             raise InputError(f"multipliers must be 'stable' or 'naive', got {self.multipliers!r}")
         if self.active_set_start not in ("closed", "open"):

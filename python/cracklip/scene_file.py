@@ -30,7 +30,7 @@ import numpy as np
 
 from .errors import BoundaryConditionError, InputError, MeshError
 from .mesh import (MeshData, create_half_annulus, create_plate_with_hole, create_rectangle, read_msh)
-from .scene import (ENRICHMENTS, TIP_QUADRATURES, Crack, Dirichlet, LoadStep, Material, Options, PointForce, Scene,
+from .scene import (ENRICHMENTS, SOLVERS, TIP_QUADRATURES, Crack, Dirichlet, LoadStep, Material, Options, PointForce, Scene,
                     Traction)
 from .stress_field import LinearStress
 
@@ -253,11 +253,15 @@ _OPTION_MEANINGS = {
     "sif_radius": "radius of the largest SIF domain at every tip (K also on 1/2 and 3/4 of it; their "
                   "spread is reported); 0: 6 element sizes at that tip; clipped to stay inside the part "
                   "and away from other tips, cracks, kinks and holes (with a warning)",
+    "solver": "linear solver: `direct` (MUMPS LDL^T), `iterative` (AMG in a phantom-node basis with a "
+              "direct solve of the crack band; same checked accuracy) or `auto` (direct on small "
+              "systems, iterative on large ones)",
 }
 _OPTION_CHOICES = {
     "enrichment": ENRICHMENTS, "blending": ("corrected", "standard"), "quadrature": TIP_QUADRATURES,
     "contact": ("none", "bilateral", "unilateral"), "multipliers": ("stable", "naive"),
     "active_set_start": ("closed", "open"), "rescale": ("none", "nodal"),
+    "solver": SOLVERS,
 }
 
 

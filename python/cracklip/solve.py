@@ -20,6 +20,7 @@ from .model import create_model
 from .post import Solution
 from .rescaling import nodal_transform, rescale_system
 from .scene import Material, Scene
+from .solvers import create_linear_solver
 
 logger = logging.getLogger(__name__)
 
@@ -49,8 +50,16 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
                                bc_values=model.bc_values * E,
                                bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
     A, b, timings = assemble_system(unit)
+    linear = create_linear_solver(unit)  # Options.solver: direct or iterative (cracklip.solvers)
     T = None
-    if scene.options.rescale == "nodal":
+    if linear.name == "iterative":  # phantom-node basis: (T^T A T, T^T b), u = T y
+        t0 = time.perf_counter()
+        A_t, b_t, T = linear.transform(A, b)
+        A.destroy()
+        b.destroy()
+        A, b = A_t, b_t
+        timings["phantom_transform"] = time.perf_counter() - t0
+    elif scene.options.rescale == "nodal":
         t0 = time.perf_counter()
         T = nodal_transform(unit, A)
         A_s, b_s = rescale_system(A, b, T)
@@ -63,7 +72,7 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     with record_solves() as solves:
         if scene.options.contact != "none" and model.cracks:
             try:
-                u, contact = solve_contact(unit, A, b, transform=T)
+                u, contact = solve_contact(unit, A, b, transform=T, linear=linear)
             except SolverError as e:
                 raise _contact_singularity(scene, A, b, e) from None
             contact["system"].g = contact["system"].g / E  # B u = g in the scene's units
@@ -71,12 +80,13 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
             x.array[:] = u
             timings["contact_solve"] = time.perf_counter() - t0
         else:
-            x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system")
+            x = linear.solve(A, b, scene.options.residual_tol, what="X-FEM stiffness system")
             timings["solve"] = time.perf_counter() - t0
     # Relative residual ||A x - b|| / ||b|| of the last solve (the final
     # active set's saddle system with contact) and of every solve.
+    linear.destroy()
     solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None,
-              "solves": solves}
+              "solver": linear.name, "solves": solves}
     condition = {}
     if condition_number:
         t0 = time.perf_counter()

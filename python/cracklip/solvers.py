@@ -1,0 +1,467 @@
+"""Which linear solver runs, and the iterative (AMG) path.
+
+This module owns the choice between the two checked solver paths
+(Options.solver: "auto", "direct", "iterative") and everything the
+iterative path needs:
+
+* the phantom-node (Hansbo) basis of the Heaviside pairs: per Heaviside
+  pseudo-node k (base node i, side s = H(x_i)) and component d, the standard
+  dof u and the enriched dof a become p = u (the node's own-side copy) and
+  q = u - 2 s a (the other-side copy): u = p, a = s (p - q) / 2. T maps the
+  new dofs to the old ones (u = T y); the solved system is T^T A T y = T^T b,
+  and with contact the constraints become B T. In this basis every Heaviside
+  basis function is N_i times the indicator of one side of the crack, so the
+  stiffness looks like two standard meshes glued along the uncut part: an
+  ordinary elasticity operator that smoothed aggregation can coarsen (with a
+  strength threshold that drops the rounding-level couplings across the crack);
+* the rigid-body near-nullspace on the standard and phantom dofs;
+* the crack band: every dof of the enriched nodes and of their first ring of
+  neighbours, every tip dof and every multiplier;
+* IterativeSolver: CG + GAMG on the whole transformed stiffness when the
+  model has only Heaviside dofs and no contact, else GMRES preconditioned by
+  an overlapping multiplicative two-block Schwarz method: block 0 = all
+  standard + phantom dofs by one GAMG V-cycle, block 1 = the crack band by
+  MUMPS LDL^T. Block 0 does not contain a multiplier, so its AMG hierarchy is
+  built once per stiffness and reused by every active-set iteration.
+
+Every iterative solve is checked like the direct one (linear_solver.
+solve_checked): the relative residual of the original (untransformed)
+system must be at most Options.residual_tol, else SolverError names the
+likely cause. The Krylov tolerance is much tighter (KRYLOV_RTOL) so that
+SIFs, pressures and energies equal the direct path's.
+"""
+from __future__ import annotations
+
+import dataclasses
+import itertools
+import logging
+import time
+import typing
+
+import numpy as np
+import scipy.sparse as sp
+from petsc4py import PETSc
+
+from .errors import InputError, SolverError
+from .linear_solver import record_solve, solve_checked
+
+if typing.TYPE_CHECKING:
+    from .model import XfemModel
+    from .scene import Options
+
+logger = logging.getLogger(__name__)
+
+#: Options.solver = "auto" takes the iterative path from this many dofs on
+#: (stiffness dofs; measured by demos/bench_solvers.py: below it MUMPS LDL^T
+#: is faster than building the AMG hierarchy).
+AUTO_ITERATIVE_DOFS = 150_000
+
+#: Relative (unpreconditioned) residual at which the Krylov iteration stops.
+#: residual_tol (1e-8) would leave an error of cond(A) * 1e-8 in the dofs;
+#: at 1e-11 the SIFs, pressures and energies equal the direct path's to
+#: 1e-8 relative on the test scenes (tests/test_solvers.py).
+KRYLOV_RTOL = 1e-11
+
+#: Krylov iterations before the iterative path gives up.
+MAX_ITERATIONS = 1000
+
+#: GAMG on the standard + phantom dofs (pinned: PETSc's defaults change
+#: between versions). The strength threshold must be > 0: T^T A T leaves
+#: rounding-level couplings across the crack, and with threshold 0 the
+#: aggregates straddle the crack (78-140 iterations instead of ~40).
+GAMG_OPTIONS = {
+    "pc_type": "gamg",
+    "pc_gamg_type": "agg",
+    "pc_gamg_threshold": 0.01,
+    "pc_gamg_coarse_eq_limit": 1000,
+    "mg_levels_ksp_type": "chebyshev",
+    "mg_levels_pc_type": "jacobi",
+    "mg_levels_esteig_ksp_type": "cg",
+    "mg_levels_ksp_chebyshev_esteig_steps": 20,
+}
+
+_prefixes = itertools.count()
+
+
+def choose_solver(options: "Options", num_dofs: int) -> str:
+    """The path Options.solver names for a system of num_dofs stiffness
+    dofs: "direct" or "iterative" ("auto": iterative from
+    AUTO_ITERATIVE_DOFS on, unless rescale = "nodal", a direct-solver
+    option)."""
+    if options.solver == "auto":
+        if options.rescale == "nodal":
+            return "direct"
+        return "iterative" if num_dofs >= AUTO_ITERATIVE_DOFS else "direct"
+    if options.solver == "iterative" and options.rescale == "nodal":
+        raise InputError("rescale = 'nodal' conditions the matrix for the direct solver; the iterative "
+                         "solver uses its own (phantom-node) basis: use rescale = 'none' with "
+                         "solver = 'iterative', or solver = 'direct'")
+    return options.solver
+
+
+# -- the phantom-node basis ------------------------------------------------------------------------
+
+@dataclasses.dataclass
+class PhantomBasis:
+    """The phantom-node transform of a model's Heaviside pairs.
+
+    Attributes:
+        T: (n, n) new -> old dofs, u = T y (n = model.num_dofs).
+        T_inv: (n, n) old -> new dofs, y = T_inv u.
+        heaviside: (num_heaviside,) the Heaviside pseudo-nodes.
+    """
+    T: sp.csr_matrix
+    T_inv: sp.csr_matrix
+    heaviside: np.ndarray
+
+    def petsc(self) -> PETSc.Mat:
+        """T as a PETSc AIJ matrix with block size 2 (so that T^T A T keeps
+        the block size GAMG needs)."""
+        T = self.T
+        return PETSc.Mat().createAIJ(T.shape, bsize=2, comm=PETSc.COMM_SELF,
+                                     csr=(T.indptr.astype(PETSc.IntType), T.indices.astype(PETSc.IntType), T.data))
+
+
+def phantom_basis(model: "XfemModel") -> PhantomBasis:
+    """T and T^-1 of the phantom-node basis (module docstring); identity on
+    standard dofs of plain nodes and on tip dofs."""
+    lay = model.layout
+    n = model.num_dofs
+    nstd = lay.num_std_nodes
+    kind = np.asarray(lay.kind)
+    heav = np.flatnonzero(kind == 0)
+    base = np.asarray(lay.node, dtype=np.int64)[heav]
+    side = np.asarray(lay.node_side, dtype=np.float64)[heav]  # H(x_i): +1 on the crack itself
+    e = (2 * (nstd + heav)[:, None] + np.arange(2)).ravel()
+    s = (2 * base[:, None] + np.arange(2)).ravel()
+    sgn = np.repeat(side, 2)
+    eye = np.ones(n)
+    eye[e] = 0.0
+    diag = np.arange(n)
+    # T: a = s/2 p - s/2 q; u = p.
+    T = sp.csr_matrix((np.concatenate([eye[eye > 0], 0.5 * sgn, -0.5 * sgn]),
+                       (np.concatenate([diag[eye > 0], e, e]), np.concatenate([diag[eye > 0], s, e]))), shape=(n, n))
+    # T^-1: q = u - 2 s a; p = u.
+    T_inv = sp.csr_matrix((np.concatenate([eye[eye > 0], np.ones(e.size), -2.0 * sgn]),
+                           (np.concatenate([diag[eye > 0], e, e]), np.concatenate([diag[eye > 0], s, e]))),
+                          shape=(n, n))
+    T.sort_indices()
+    T_inv.sort_indices()
+    return PhantomBasis(T, T_inv, heav)
+
+
+def transform_system(basis: PhantomBasis, A: PETSc.Mat, b: PETSc.Vec) -> tuple[PETSc.Mat, PETSc.Vec]:
+    """(T^T A T, T^T b) as new PETSc objects (A keeps block size 2)."""
+    Tp = basis.petsc()
+    A_t = A.PtAP(Tp)
+    b_t = A_t.createVecRight()
+    Tp.multTranspose(b, b_t)
+    Tp.destroy()
+    return A_t, b_t
+
+
+def rigid_modes(model: "XfemModel", size: int | None = None) -> np.ndarray:
+    """(size, 3) orthonormal rigid motions (two translations, one rotation)
+    on the standard dofs and the phantom (Heaviside) dofs, evaluated at the
+    base node; 0 on tip dofs and on any dof beyond the stiffness
+    (multipliers). size defaults to model.num_dofs."""
+    lay = model.layout
+    n = model.num_dofs if size is None else size
+    nstd = lay.num_std_nodes
+    heav = np.flatnonzero(np.asarray(lay.kind) == 0)
+    nodes = np.concatenate([np.arange(nstd), nstd + heav])
+    xy = np.concatenate([model.x, model.x[np.asarray(lay.node)[heav]]])
+    xy = xy - model.x.mean(axis=0)
+    R = np.zeros((n, 3))
+    R[2 * nodes, 0] = 1.0
+    R[2 * nodes + 1, 1] = 1.0
+    R[2 * nodes, 2] = -xy[:, 1]
+    R[2 * nodes + 1, 2] = xy[:, 0]
+    q, _ = np.linalg.qr(R)
+    return q
+
+
+def crack_band(model: "XfemModel") -> np.ndarray:
+    """Sorted stiffness dofs of the crack band: both dofs of every enriched
+    node and of its first ring of neighbours (nodes sharing a cell), and
+    every enriched dof (phantom copies and tip dofs)."""
+    lay = model.layout
+    nstd = lay.num_std_nodes
+    enriched = np.zeros(nstd, dtype=bool)
+    enriched[np.asarray(lay.node)] = True
+    ring = np.unique(model.cells[enriched[model.cells].any(axis=1)])
+    std = (2 * ring[:, None] + np.arange(2)).ravel()
+    return np.concatenate([std, np.arange(2 * nstd, model.num_dofs)]).astype(np.int64)
+
+
+def amg_dofs(model: "XfemModel") -> np.ndarray:
+    """Sorted dofs of block 0 (GAMG): all standard and phantom dofs."""
+    lay = model.layout
+    nstd = lay.num_std_nodes
+    heav = np.flatnonzero(np.asarray(lay.kind) == 0)
+    phantom = (2 * (nstd + heav)[:, None] + np.arange(2)).ravel()
+    return np.concatenate([np.arange(2 * nstd), phantom]).astype(np.int64)
+
+
+# -- the solvers -----------------------------------------------------------------------------------
+
+class LinearSolver:
+    """A checked solver path for a model's systems.
+
+    transform(A, b) gives the system the path solves (and the T of its
+    basis, or None); solve(A, b) solves a system in that basis: the
+    stiffness, or a saddle-point system [K B^T; B D] whose first num_dofs
+    unknowns are the stiffness's."""
+    name = "direct"
+
+    def transform(self, A: PETSc.Mat, b: PETSc.Vec) -> tuple[PETSc.Mat, PETSc.Vec, sp.csr_matrix | None]:
+        return A, b, None
+
+    def solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
+              x0: np.ndarray | None = None) -> PETSc.Vec:
+        raise NotImplementedError
+
+    def destroy(self) -> None:
+        pass
+
+
+class DirectSolver(LinearSolver):
+    """MUMPS LDL^T with every check of linear_solver.solve_checked."""
+    name = "direct"
+
+    def solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
+              x0: np.ndarray | None = None) -> PETSc.Vec:
+        return solve_checked(A, b, residual_tol, what=what, symmetric=True)
+
+
+def _set_options(prefix: str, options: dict[str, typing.Any]) -> None:
+    db = PETSc.Options()
+    for k, v in options.items():
+        db[prefix + k] = v
+
+
+def _clear_options(prefix: str, options: typing.Iterable[str]) -> None:
+    db = PETSc.Options()
+    for k in options:
+        db.delValue(prefix + k)
+
+
+class IterativeSolver(LinearSolver):
+    """CG + GAMG, or GMRES + overlapping multiplicative Schwarz {GAMG on the
+    standard + phantom dofs | MUMPS on the crack band}, in the phantom-node
+    basis (module docstring).
+
+    The GAMG hierarchy of block 0 is built on the first solve and reused by
+    every later solve of this object whose block 0 is the same (the
+    active-set iterations of contact only change multiplier rows).
+    """
+    name = "iterative"
+
+    def __init__(self, model: "XfemModel"):
+        self.model = model
+        self.basis = phantom_basis(model)
+        self.n = model.num_dofs
+        self.has_tip = bool(np.any(np.asarray(model.layout.kind) != 0))
+        self._K: PETSc.Mat | None = None
+        self._amg: PETSc.PC | None = None
+        self._amg_is: PETSc.IS | None = None
+        self._amg_dofs = amg_dofs(model)
+        self._band_k = crack_band(model)
+
+    # The system in the phantom basis.
+    def transform(self, A: PETSc.Mat, b: PETSc.Vec) -> tuple[PETSc.Mat, PETSc.Vec, sp.csr_matrix]:
+        A_t, b_t = transform_system(self.basis, A, b)
+        A_t.setOption(PETSc.Mat.Option.SYMMETRIC, True)
+        self._K = A_t
+        return A_t, b_t, self.basis.T
+
+    def destroy(self) -> None:
+        for obj in (self._amg, self._amg_is):
+            if obj is not None:
+                obj.destroy()
+        self._amg = self._amg_is = None
+
+    def _block0_pc(self, A: PETSc.Mat) -> tuple[PETSc.PC, bool]:
+        """The GAMG PC of block 0 of A (built once; (pc, reused))."""
+        if self._amg is not None:
+            return self._amg, True
+        is0 = PETSc.IS().createGeneral(self._amg_dofs.astype(PETSc.IntType), comm=PETSc.COMM_SELF)
+        is0.setBlockSize(2)
+        self._amg_is = is0
+        if self._amg_dofs.size == A.getSize()[0]:
+            # Block 0 is the whole stiffness (Heaviside only, no contact).
+            self._amg = self._gamg(A, rigid_modes(self.model))
+        else:
+            A00 = A.createSubMatrix(is0, is0)
+            self._amg = self._gamg(A00, rigid_modes(self.model)[self._amg_dofs])
+            A00.destroy()  # our handle; the PC keeps its reference
+        return self._amg, False
+
+    def _gamg(self, A: PETSc.Mat, modes: np.ndarray) -> PETSc.PC:
+        """A set-up GAMG PC on A with the rigid modes (rows of A) as near-nullspace."""
+        q, _ = np.linalg.qr(modes)
+        vecs = []
+        for j in range(q.shape[1]):
+            v = A.createVecRight()
+            v.array[:] = q[:, j]
+            vecs.append(v)
+        A.setNearNullSpace(PETSc.NullSpace().create(vectors=vecs, comm=PETSc.COMM_SELF))
+        A.setOption(PETSc.Mat.Option.SPD, True)
+        prefix = f"cracklip_amg{next(_prefixes)}_"
+        pc = PETSc.PC().create(PETSc.COMM_SELF)
+        pc.setOptionsPrefix(prefix)
+        pc.setOperators(A)
+        _set_options(prefix, GAMG_OPTIONS)
+        try:
+            pc.setFromOptions()
+            pc.setUp()
+        finally:
+            _clear_options(prefix, GAMG_OPTIONS)
+        return pc
+
+    def solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
+              x0: np.ndarray | None = None) -> PETSc.Vec:
+        """Solve A y = b (A in the phantom basis: the stiffness given to
+        transform(), or a saddle-point system extending it); check the
+        residual of the original system."""
+        size = A.getSize()[0]
+        m = size - self.n
+        t0 = time.perf_counter()
+        ksp = PETSc.KSP().create(PETSc.COMM_SELF)
+        ksp.setOperators(A)
+        ksp.setTolerances(rtol=KRYLOV_RTOL, atol=0.0, max_it=MAX_ITERATIONS)
+        ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
+        cleanup: list = []
+        band = 0
+        try:
+            pc0, reused = self._block0_pc(A)
+            if m == 0 and not self.has_tip:
+                method = "CG + GAMG (phantom basis)"
+                ksp.setType("cg")
+                ksp.setPC(pc0)
+                ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
+            else:
+                method = "GMRES + Schwarz {GAMG | MUMPS crack band} (phantom basis)"
+                ksp.setType("gmres")
+                ksp.setGMRESRestart(MAX_ITERATIONS)
+                band_dofs = np.concatenate([self._band_k, np.arange(self.n, size)])
+                band = int(band_dofs.size)
+                shell = _Schwarz(A, pc0, self._amg_is, band_dofs)
+                cleanup.append(shell)
+                pc = ksp.getPC()
+                pc.setType("python")
+                pc.setPythonContext(shell)
+            t_setup = time.perf_counter() - t0
+            y = A.createVecRight()
+            if x0 is not None:
+                y.array[:] = x0
+                ksp.setInitialGuessNonzero(True)
+            try:
+                ksp.solve(b, y)
+            except PETSc.Error as e:
+                raise SolverError(f"the iterative solve of the {what} failed in PETSc ({e}); the crack band "
+                                  "block is probably singular: check that every piece of the domain has "
+                                  "Dirichlet conditions fixing its rigid motion, or use solver = 'direct'") from None
+            its = ksp.getIterationNumber()
+            reason = ksp.getConvergedReason()
+        finally:
+            ksp.destroy()
+            for obj in cleanup:
+                obj.destroy()
+        rel = self._original_residual(A, y, b)
+        record_solve({"what": what, "size": size, "relative_residual": rel, "solver": "iterative",
+                      "method": method, "iterations": int(its), "band": band, "setup_reused": reused,
+                      "t_setup": t_setup, "t_total": time.perf_counter() - t0})
+        logger.info("%s: %d iterations (%s), relative residual %.3g", what, its, method, rel)
+        if not np.all(np.isfinite(y.array)) or not rel <= residual_tol:
+            cause = ("it stopped after the iteration limit" if reason == PETSc.KSP.ConvergedReason.DIVERGED_MAX_IT
+                     else f"PETSc reason {reason}")
+            y.destroy()
+            raise SolverError(
+                f"the iterative solve of the {what} is inaccurate: relative residual {rel:.3g} > "
+                f"{residual_tol:g} after {its} iterations ({cause}); the matrix is singular (a piece of the "
+                "domain cut free by a crack, a multiplier without a jump) or too ill-conditioned for the "
+                "AMG preconditioner (slivers cut by the crack, a large tip enrichment radius): use "
+                "solver = 'direct'")
+        return y
+
+    def _original_residual(self, A: PETSc.Mat, y: PETSc.Vec, b: PETSc.Vec) -> float:
+        """||A_orig u - b_orig|| / ||b_orig|| from the transformed system:
+        r_orig = T^-T r (T^T r_orig = r), on the stiffness rows; multiplier
+        rows are the same in both bases."""
+        r = b.duplicate()
+        A.mult(y, r)
+        r.axpy(-1.0, b)
+        ra, ba = r.array.copy(), b.array.copy()
+        r.destroy()
+        Ti = self.basis.T_inv.T.tocsr()
+        ra[:self.n] = Ti @ ra[:self.n]
+        ba[:self.n] = Ti @ ba[:self.n]
+        bn = float(np.linalg.norm(ba))
+        rn = float(np.linalg.norm(ra))
+        return rn / bn if bn > 0 else rn
+
+
+class _Schwarz:
+    """PCSHELL context: one multiplicative sweep of two overlapping blocks,
+    z = z0 + R1^T A11^-1 R1 (r - A R0^T z0), z0 = R0^T GAMG(R0 r)."""
+
+    def __init__(self, A: PETSc.Mat, amg: PETSc.PC, is0: PETSc.IS, band_dofs: np.ndarray):
+        self.amg = amg
+        self.is1 = PETSc.IS().createGeneral(np.sort(band_dofs).astype(PETSc.IntType), comm=PETSc.COMM_SELF)
+        all_cols = PETSc.IS().createStride(A.getSize()[1], 0, 1, comm=PETSc.COMM_SELF)
+        self.A1 = A.createSubMatrix(self.is1, all_cols)      # band rows, all columns
+        all_cols.destroy()
+        A11 = A.createSubMatrix(self.is1, self.is1)
+        self.band = _factor_band(A11)
+        A11.destroy()
+        r = A.createVecRight()
+        self.r0, self.z0 = amg.getOperators()[0].createVecs()
+        self.r1, self.z1 = self.A1.createVecLeft(), self.A1.createVecLeft()
+        self.s0 = PETSc.Scatter().create(r, is0, self.r0, None)
+        self.s1 = PETSc.Scatter().create(r, self.is1, self.r1, None)
+        r.destroy()
+
+    def apply(self, pc: PETSc.PC, r: PETSc.Vec, z: PETSc.Vec) -> None:
+        fwd, rev = PETSc.ScatterMode.FORWARD, PETSc.ScatterMode.REVERSE
+        ins, add = PETSc.InsertMode.INSERT_VALUES, PETSc.InsertMode.ADD_VALUES
+        self.s0.scatter(r, self.r0, ins, fwd)
+        self.amg.apply(self.r0, self.z0)
+        z.set(0.0)
+        self.s0.scatter(self.z0, z, ins, rev)
+        self.s1.scatter(r, self.r1, ins, fwd)
+        self.A1.mult(z, self.z1)
+        self.r1.axpy(-1.0, self.z1)
+        self.band.solve(self.r1, self.z1)
+        self.s1.scatter(self.z1, z, add, rev)
+
+    def destroy(self, pc: PETSc.PC | None = None) -> None:
+        """Free the PETSc objects (idempotent; PETSc calls it with the PC)."""
+        for obj in (self.is1, self.A1, self.band, self.r0, self.z0, self.r1, self.z1, self.s0, self.s1):
+            obj.destroy()
+
+
+def _factor_band(A11: PETSc.Mat) -> PETSc.KSP:
+    """MUMPS LDL^T of the crack band (symmetric indefinite with multipliers)."""
+    from .linear_solver import _factor_call, create_lu_solver
+    ksp = create_lu_solver(A11, symmetric=True)
+    try:
+        ksp.setUp()
+    except PETSc.Error as e:
+        ksp.destroy()
+        raise SolverError(f"MUMPS could not factor the crack band ({e}): the band block is singular; "
+                          "use solver = 'direct' to locate the cause") from None
+    info = _factor_call(ksp, "getMumpsInfog", 1)
+    null = _factor_call(ksp, "getMumpsInfog", 28)
+    if info < 0 or null > 0:
+        ksp.destroy()
+        raise SolverError(f"the crack band block is singular (MUMPS INFOG(1) = {info}, {null} null pivot(s)): "
+                          "a piece of the domain next to the crack has no Dirichlet condition, or a contact "
+                          "multiplier sees no jump; use solver = 'direct' to locate the cause")
+    return ksp
+
+
+def create_linear_solver(model: "XfemModel") -> LinearSolver:
+    """The solver path for a model (Options.solver, choose_solver)."""
+    which = choose_solver(model.scene.options, model.num_dofs)
+    return IterativeSolver(model) if which == "iterative" else DirectSolver()

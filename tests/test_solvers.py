@@ -1,0 +1,236 @@
+"""Solver paths (issue 15): the phantom-node basis, the iterative (AMG) path
+giving the direct path's answers to 1e-8 on the representative scenes
+(patch test, Westergaard, block, hole, hard cases 1-5), the automatic
+choice, failures reported, and the BLAS report. No timings: speed is
+demos/bench_solvers.py's business."""
+import dataclasses
+import pathlib
+import sys
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components
+
+import cracklip as cl
+from cracklip import solvers
+from cracklip.assembly import assemble_system
+from cracklip.linear_solver import blas_library, scipy_from_petsc
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+import block_uniform_pressure as block  # noqa: E402
+import hard_cases as hc  # noqa: E402
+import hole_crack  # noqa: E402
+import westergaard  # noqa: E402
+
+#: The issue's bar: iterative answers equal the direct ones to this, relative.
+MATCH = 1e-8
+
+
+def with_solver(scene: cl.Scene, solver: str) -> cl.Scene:
+    return dataclasses.replace(scene, options=dataclasses.replace(scene.options, solver=solver))
+
+
+def answers(sol: cl.Solution, sif_radius: float | None) -> dict[str, np.ndarray]:
+    """What a user reads off a solve: energy, SIFs at every tip, contact pressure."""
+    out = {"energy": np.array([sol.strain_energy()])}
+    sifs = [[k["K_I"], k["K_II"]] for ci, c in enumerate(sol.model.cracks) if np.asarray(c.geometry.tips).size
+            for k in sol.stress_intensity_factors(ci, radius=sif_radius)]
+    if sifs:
+        out["sif"] = np.array(sifs)
+    if sol.contact:
+        out["pressure"] = np.concatenate([sol.contact_pressure(ci)["pressure"] for ci in range(len(sol.model.cracks))])
+        out["active"] = sol.contact["active"].astype(float)
+    return out
+
+
+def sif_scale(sol: cl.Solution) -> float:
+    """E* max|u| / sqrt(L): the size a SIF has on this scene (some exact SIFs are 0)."""
+    m = sol.model
+    return m.scene.material.E_star * float(np.abs(sol.standard_displacement).max()) / np.sqrt(np.ptp(m.x, axis=0).max())
+
+
+def assert_same_answers(scene: cl.Scene, sif_radius: float | None = None) -> tuple[cl.Solution, cl.Solution]:
+    direct = cl.solve(with_solver(scene, "direct"))
+    iterative = cl.solve(with_solver(scene, "iterative"))
+    assert direct.solver["solver"] == "direct" and iterative.solver["solver"] == "iterative"
+    for rec in iterative.solver["solves"]:
+        assert rec["solver"] == "iterative" and rec["iterations"] > 1
+        assert rec["relative_residual"] <= scene.options.residual_tol
+    a, b = answers(direct, sif_radius), answers(iterative, sif_radius)
+    assert a.keys() == b.keys()
+    assert abs(b["energy"][0] - a["energy"][0]) <= MATCH * abs(a["energy"][0])
+    if "sif" in a:
+        scale = max(np.abs(a["sif"]).max(), sif_scale(direct))
+        assert np.abs(b["sif"] - a["sif"]).max() <= MATCH * scale, (a["sif"], b["sif"])
+    if "pressure" in a:
+        assert np.array_equal(a["active"], b["active"])
+        assert np.abs(b["pressure"] - a["pressure"]).max() <= MATCH * np.abs(a["pressure"]).max()
+    return direct, iterative
+
+
+# -- the phantom-node basis --------------------------------------------------------------------------
+
+def _through_crack_model(md):
+    """A crack through the square, held at two corners on each side away from the crack."""
+    pins = [md.nearest_node(p) for p in ([-1, -1], [1, -1], [-1, 1], [1, 1])]
+    scene = cl.Scene(md, cl.Material(1.0, 0.3), cracks=[cl.Crack([[-1.5, 0.013], [1.5, 0.013]])],
+                     dirichlet=[cl.Dirichlet(pins[0]), cl.Dirichlet(pins[1], 1), cl.Dirichlet(pins[2]),
+                                cl.Dirichlet(pins[3], 1)],
+                     tractions=[cl.Traction("top", (0.0, 1.0)), cl.Traction("bottom", (0.0, -1.0))],
+                     options=cl.Options(enrichment="none"))
+    return scene, cl.create_model(scene)
+
+
+def test_phantom_basis_splits_a_through_crack(square_h01):
+    """In the phantom basis a through crack leaves two uncoupled pieces (the
+    graph of the matrix without its Dirichlet dofs has two components); in
+    the shifted-Heaviside basis it is one. A wrong side sign couples them."""
+    scene, model = _through_crack_model(square_h01)
+    basis = solvers.phantom_basis(model)
+    n = model.num_dofs
+    assert basis.heaviside.size > 0
+    assert abs(basis.T_inv @ basis.T - sp.identity(n)).max() <= 1e-15
+    A, b, _ = assemble_system(model)
+    free = np.setdiff1d(np.arange(n), model.bc_dofs)
+
+    def pieces(M: sp.csr_matrix) -> int:
+        M = M[free][:, free]
+        strong = abs(M) > 1e-12 * abs(M).max()
+        return connected_components(strong, directed=False)[0]
+    K = scipy_from_petsc(A)
+    assert pieces(K) == 1
+    assert pieces((basis.T.T @ K @ basis.T).tocsr()) == 2
+    At, bt = solvers.transform_system(basis, A, b)
+    assert At.getBlockSize() == 2
+    assert pieces(scipy_from_petsc(At)) == 2
+    wrong = basis.T.tolil()
+    e = 2 * (model.layout.num_std_nodes + basis.heaviside)
+    wrong[e, :] = -wrong[e, :]
+    assert pieces((wrong.T @ K @ wrong).tocsr()) == 1
+    # The near-nullspace (a rigid motion on both copies) has zero energy:
+    # K' R = 0 on every row away from the pins (whose columns are eliminated).
+    R = solvers.rigid_modes(model)
+    assert np.allclose(R.T @ R, np.eye(3), atol=1e-12)
+    lay = model.layout
+    node = np.concatenate([np.arange(lay.num_std_nodes), np.asarray(lay.node)]).repeat(2)
+    pins = model.x[np.unique(model.bc_dofs // 2)]
+    far = np.linalg.norm(model.x[node][:, None, :] - pins[None], axis=2).min(axis=1) > 0.35
+    Kt = (basis.T.T @ K @ basis.T).tocsr()
+    assert far.sum() > 0.8 * n
+    assert np.abs((Kt @ R)[far]).max() <= 1e-12 * abs(Kt).max() * np.abs(R).max()
+    assert np.abs((K @ R)[far]).max() > 1e-3 * abs(K).max() * np.abs(R).max()  # not so in the old basis
+    for obj in (A, b, At, bt):
+        obj.destroy()
+
+
+def test_crack_band_holds_every_enriched_dof_and_a_ring(square_h01):
+    scene = block.scene_for(10)
+    model = cl.create_model(scene)
+    band = solvers.crack_band(model)
+    lay = model.layout
+    nstd = lay.num_std_nodes
+    assert np.array_equal(band[band >= 2 * nstd], np.arange(2 * nstd, model.num_dofs))
+    enriched = np.unique(np.asarray(lay.node))
+    std_nodes = np.unique(band[band < 2 * nstd] // 2)
+    assert set(enriched.tolist()) < set(std_nodes.tolist())
+    # Exactly the enriched nodes and their neighbours through a cell.
+    touching = model.cells[np.isin(model.cells, enriched).any(axis=1)]
+    assert np.array_equal(std_nodes, np.unique(touching))
+    block0 = solvers.amg_dofs(model)
+    tips = 2 * (nstd + np.flatnonzero(np.asarray(lay.kind) != 0))
+    assert np.intersect1d(block0, tips).size == 0
+    assert block0.size + 2 * tips.size == model.num_dofs
+
+
+# -- the iterative path gives the direct path's answers ----------------------------------------------
+
+def test_patch_test_iterative(square_h01):
+    from test_patch import YC, check_through_crack, through_crack_scene
+    scene, exact = through_crack_scene(square_h01, YC, cl.Material(2.0, 0.3), 0.7)
+    _, it = assert_same_answers(scene)
+    check_through_crack(it, exact, YC, 1e-10)
+    assert it.solver["solves"][0]["method"].startswith("CG + GAMG")
+
+
+def test_westergaard_iterative():
+    scene, _ = westergaard.scene_for(20)
+    d, it = assert_same_answers(scene)
+    assert it.solver["solves"][0]["band"] > 0  # tip dofs: the Schwarz path
+    assert abs(it.stress_intensity_factors(0)[0]["K_I"] - 1.0) < 0.02
+
+
+@pytest.mark.parametrize("contact", ["bilateral", "unilateral"])
+def test_block_iterative(contact):
+    d, it = assert_same_answers(block.scene_for(20, contact=contact))
+    p = it.contact_pressure(0)["pressure"]
+    assert np.abs(p - block.PRESSURE).max() <= 0.03 * block.PRESSURE
+
+
+def test_hole_iterative():
+    d, it = assert_same_answers(hole_crack.scene_for(0.25))
+    assert it.contact["iterations"] == d.contact["iterations"]
+
+
+@pytest.mark.parametrize("key", ["1", "2", "3", "4", "5"])
+def test_hard_cases_iterative(key):
+    case = hc.CASE_BY_KEY[key]
+    built = hc._bind(case, case.n0_small)(case.n0_small)
+    d, it = assert_same_answers(built.scene, built.sif_radius)
+    if built.quantities is not None:
+        qd, qi = np.asarray(built.quantities(d)), np.asarray(built.quantities(it))
+        assert np.abs(qi - qd).max() <= MATCH * np.abs(qd).max()
+
+
+def test_active_set_reuses_the_amg_hierarchy():
+    """Open-closed-open contact needs several active sets: every saddle solve
+    after the first reuses block 0's GAMG hierarchy, and only the band
+    (which holds all multipliers) is factored again."""
+    scene = hc.open_closed_open_scene(20)
+    d, it = assert_same_answers(scene)
+    solves = it.solver["solves"]
+    assert len(solves) == it.contact["iterations"] >= 3
+    assert [s["setup_reused"] for s in solves] == [False] + [True] * (len(solves) - 1)
+    nmult = it.contact["system"].num_multipliers
+    assert all(s["band"] > nmult and s["size"] == it.model.num_dofs + nmult for s in solves)
+
+
+# -- choice, failures, reporting ---------------------------------------------------------------------
+
+def test_auto_choice_by_size():
+    opts = cl.Options()
+    assert opts.solver == "auto"
+    assert solvers.choose_solver(opts, solvers.AUTO_ITERATIVE_DOFS - 1) == "direct"
+    assert solvers.choose_solver(opts, solvers.AUTO_ITERATIVE_DOFS) == "iterative"
+    assert solvers.choose_solver(cl.Options(solver="direct"), 10 ** 8) == "direct"
+    assert solvers.choose_solver(cl.Options(solver="iterative"), 10) == "iterative"
+    assert solvers.choose_solver(cl.Options(rescale="nodal"), 10 ** 8) == "direct"
+    with pytest.raises(cl.InputError, match="rescale = 'nodal'.*solver = 'iterative'"):
+        solvers.choose_solver(cl.Options(solver="iterative", rescale="nodal"), 10)
+    with pytest.raises(cl.InputError, match="solver must be one of"):
+        cl.Options(solver="amg")
+
+
+def test_iterative_reports_a_piece_cut_free(square_h01):
+    """Through crack, u_y fixed only below it: the iterative path must not
+    return a solution either (the direct path reports null pivots)."""
+    below = np.array(square_h01.nearest_node([-1, -1]))
+    scene = cl.Scene(square_h01, cl.Material(1.0, 0.3), cracks=[cl.Crack([[-2, 0.013], [2, 0.013]])],
+                     dirichlet=[cl.Dirichlet("left", 0), cl.Dirichlet(tuple(below), 1)],
+                     tractions=[cl.Traction("top", (0.0, 1.0))], options=cl.Options(solver="iterative"))
+    with pytest.raises(cl.SolverError, match="singular"):
+        cl.solve(scene)
+
+
+def test_direct_records_ldlt():
+    sol = cl.solve(block.scene_for(10))
+    rec = sol.solver["solves"]
+    assert sol.solver["solver"] == "direct"
+    assert [r["method"] for r in rec] == ["MUMPS LDL^T"] and rec[0]["iterations"] == 1
+
+
+def test_blas_is_reported():
+    from cracklip.outputs import versions
+    blas = blas_library()
+    assert blas.startswith(("openblas", "reference", "mkl", "blis", "atlas"))
+    assert versions()["blas"] == blas
