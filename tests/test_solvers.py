@@ -253,3 +253,30 @@ def test_saddle_matrix_equals_the_block_matrix():
         ref = sp.bmat([[K, (Da @ B).T], [Da @ B, sp.diags((~active).astype(float))]], format="csr")
         S = scipy_from_petsc(saddle_matrix(K, B, active))
         assert S.shape == ref.shape and abs(S - ref).max() == 0.0
+
+
+def test_bench_solvers_demo_tiny(tmp_path):
+    """The benchmark at a tiny size: one row per solver with the table's keys,
+    the X-FEM rows against plain GAMG, the untuned row on the reference BLAS."""
+    import json
+    import subprocess
+    out = tmp_path / "bench.json"
+    demo = pathlib.Path(__file__).resolve().parents[1] / "demos" / "bench_solvers.py"
+    subprocess.run([sys.executable, str(demo), "--sizes", "3e3", "--repeats", "1", "--cases", "open",
+                    "--untuned", "--json", str(out), "--quiet"], check=True, timeout=300)
+    doc = json.loads(out.read_text())
+    rows = {r["solver"]: r for r in doc["rows"]}
+    assert set(rows) == {"plain-gamg", "plain-mumps", "xfem-direct", "xfem-iterative",
+                         "xfem-direct-untuned (netlib BLAS, LU)"}
+    for r in rows.values():
+        assert r["status"] == "ok"
+        assert {"case", "ndofs", "solver", "t_solve", "t_total", "iterations", "peak_rss_gb"} <= r.keys()
+        assert r["t_solve"] > 0 and 0 < r["peak_rss_gb"] < 24
+    for s in ("xfem-direct", "xfem-iterative"):
+        assert rows[s]["ratio_to_plain_gamg"] == pytest.approx(rows[s]["t_solve"] / rows[s]["t_plain_gamg"])
+    assert rows["xfem-iterative"]["iterations"] > 1 and rows["xfem-direct"]["iterations"] == 1
+    assert rows["xfem-direct-untuned (netlib BLAS, LU)"]["blas"].startswith("reference")
+    assert rows["xfem-direct-untuned (netlib BLAS, LU)"]["method"] == "MUMPS LU"
+    assert rows["xfem-direct"]["method"] == "MUMPS LDL^T"
+    assert doc["auto_choice"][0]["auto"] == "direct"
+    assert (tmp_path / "bench.png").stat().st_size > 0

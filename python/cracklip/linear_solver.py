@@ -237,18 +237,42 @@ def condition_number_1norm(A: PETSc.Mat) -> dict[str, float]:
     return out
 
 
+def _mapped_libraries(marker: str) -> list[str]:
+    """Paths of the shared libraries mapped into this process whose file name contains marker."""
+    try:
+        maps = pathlib.Path("/proc/self/maps").read_text()
+    except OSError:
+        return []
+    return sorted({line.split()[-1] for line in maps.splitlines()
+                   if "/" in line and marker in line.rsplit("/", 1)[-1]})
+
+
+def limit_blas_threads(threads: int = 1) -> None:
+    """Run OpenBLAS (if that is the BLAS loaded) on `threads` threads,
+    unless OPENBLAS_NUM_THREADS or OMP_NUM_THREADS says otherwise. A second
+    thread does not speed up MUMPS here (the two cores share the memory
+    bandwidth; demos/bench_solvers.py --threads measures it) and its
+    spinning slows down everything else running on the machine."""
+    if os.environ.get("OPENBLAS_NUM_THREADS") or os.environ.get("OMP_NUM_THREADS"):
+        return
+    import ctypes
+    for lib in _mapped_libraries("libopenblas"):
+        try:
+            ctypes.CDLL(lib).openblas_set_num_threads(int(threads))
+        except (OSError, AttributeError):  # pragma: no cover - not an OpenBLAS after all
+            logger.debug("cannot set the threads of %s", lib)
+
+
+limit_blas_threads()
+
+
 @functools.lru_cache(maxsize=None)
 def blas_library() -> str:
     """The BLAS library this process runs (PETSc's and MUMPS'), as loaded:
     "openblas-pthread 0.3.21 (/usr/lib/...)" or "reference (netlib) (...)",
     read from /proc/self/maps after PETSc is loaded (so it reports what
     Debian's alternatives or LD_LIBRARY_PATH actually resolved)."""
-    try:
-        maps = pathlib.Path("/proc/self/maps").read_text()
-    except OSError:
-        return "unknown (no /proc/self/maps)"
-    libs = sorted({line.split()[-1] for line in maps.splitlines()
-                   if "/" in line and ("blas" in line.rsplit("/", 1)[-1] or "lapack" in line.rsplit("/", 1)[-1])})
+    libs = sorted(set(_mapped_libraries("blas") + _mapped_libraries("lapack")))
     if not libs:
         return "unknown (no BLAS library mapped)"
     for lib in libs:
