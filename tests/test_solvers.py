@@ -214,15 +214,31 @@ def test_auto_choice_by_size():
         cl.Options(solver="amg")
 
 
-def test_iterative_reports_a_piece_cut_free(square_h01):
-    """Through crack, u_y fixed only below it: the iterative path must not
-    return a solution either (the direct path reports null pivots)."""
-    below = np.array(square_h01.nearest_node([-1, -1]))
-    scene = cl.Scene(square_h01, cl.Material(1.0, 0.3), cracks=[cl.Crack([[-2, 0.013], [2, 0.013]])],
-                     dirichlet=[cl.Dirichlet("left", 0), cl.Dirichlet(tuple(below), 1)],
-                     tractions=[cl.Traction("top", (0.0, 1.0))], options=cl.Options(solver="iterative"))
+def test_iterative_reports_a_singular_saddle_point_system():
+    """Naive P1 multipliers: B loses rank and the saddle-point system is
+    singular. The iterative path must not return a solution either: its
+    crack band holds every multiplier, so the band's factorisation meets the
+    null pivots (the direct path's message then names the multiplier space)."""
+    scene = with_solver(block.scene_for(10, enrichment="vector", multipliers="naive"), "iterative")
     with pytest.raises(cl.SolverError, match="singular"):
         cl.solve(scene)
+
+
+def test_auto_falls_back_to_direct(monkeypatch):
+    """solver = "auto" on a large system takes the iterative path; if that
+    fails (here: an iteration limit of 3) the same system is solved by MUMPS
+    and the answer is the direct one; solver = "iterative" raises instead."""
+    scene = block.scene_for(10, contact="bilateral")
+    direct = cl.solve(with_solver(scene, "direct"))
+    monkeypatch.setattr(solvers, "AUTO_ITERATIVE_DOFS", 0)
+    monkeypatch.setattr(solvers, "MAX_ITERATIONS", 3)
+    sol = cl.solve(scene)
+    assert [(s["solver"], s["iterations"]) for s in sol.solver["solves"]] == [("iterative", 3), ("direct", 1)]
+    assert sol.solver["solves"][0]["relative_residual"] > scene.options.residual_tol
+    p0, p1 = direct.contact_pressure(0)["pressure"], sol.contact_pressure(0)["pressure"]
+    assert np.abs(p1 - p0).max() <= MATCH * np.abs(p0).max()
+    with pytest.raises(cl.SolverError, match=r"inaccurate.*after 3 iterations.*iteration limit.*solver = 'direct'"):
+        cl.solve(with_solver(scene, "iterative"))
 
 
 def test_direct_records_ldlt():

@@ -51,10 +51,14 @@ if typing.TYPE_CHECKING:
 
 logger = logging.getLogger(__name__)
 
-#: Options.solver = "auto" takes the iterative path from this many dofs on
-#: (stiffness dofs; measured by demos/bench_solvers.py: below it MUMPS LDL^T
-#: is faster than building the AMG hierarchy).
-AUTO_ITERATIVE_DOFS = 150_000
+#: Options.solver = "auto" takes the iterative path from this many dofs on.
+#: Measured (solve phase, medians of 3, a busy 2-core VM): on the bench
+#: scene the two paths cross between 2e4 and 8e4 dofs (open crack: direct
+#: 0.30 s vs iterative 0.25 s at 4e4; contact 0.47 vs 0.39 s), and on the
+#: Westergaard scene at 62k dofs (radius 0.2) the iterative solve takes
+#: 0.26 s against MUMPS' 0.45-0.60 s; demos/bench_solvers.py's auto_choice
+#: checks the choice at every size of its sweep.
+AUTO_ITERATIVE_DOFS = 50_000
 
 #: Relative (unpreconditioned) residual at which the Krylov iteration stops.
 #: At 1e-10 the SIFs, pressures and energies equal the direct path's to
@@ -260,8 +264,9 @@ class IterativeSolver(LinearSolver):
     """
     name = "iterative"
 
-    def __init__(self, model: "XfemModel"):
+    def __init__(self, model: "XfemModel", fallback: bool = False):
         self.model = model
+        self.fallback = fallback
         self.basis = phantom_basis(model)
         self.n = model.num_dofs
         self.has_tip = bool(np.any(np.asarray(model.layout.kind) != 0))
@@ -326,7 +331,19 @@ class IterativeSolver(LinearSolver):
               x0: np.ndarray | None = None) -> PETSc.Vec:
         """Solve A y = b (A in the phantom basis: the stiffness given to
         transform(), or a saddle-point system extending it); check the
-        residual of the original system."""
+        residual of the original system. With fallback (solver = "auto") a
+        failed iterative solve is repeated by MUMPS LDL^T, which either
+        solves the system or names what is singular."""
+        try:
+            return self._solve(A, b, residual_tol, what, x0)
+        except SolverError as e:
+            if not self.fallback:
+                raise
+            logger.warning("%s: the iterative solver failed (%s); solving with MUMPS LDL^T instead", what, e)
+            return solve_checked(A, b, residual_tol, what=what, symmetric=True)
+
+    def _solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
+               x0: np.ndarray | None) -> PETSc.Vec:
         size = A.getSize()[0]
         m = size - self.n
         t0 = time.perf_counter()
@@ -467,4 +484,6 @@ def _factor_band(A11: PETSc.Mat) -> PETSc.KSP:
 def create_linear_solver(model: "XfemModel") -> LinearSolver:
     """The solver path for a model (Options.solver, choose_solver)."""
     which = choose_solver(model.scene.options, model.num_dofs)
-    return IterativeSolver(model) if which == "iterative" else DirectSolver()
+    if which == "direct":
+        return DirectSolver()
+    return IterativeSolver(model, fallback=model.scene.options.solver == "auto")
