@@ -127,15 +127,17 @@ def _build(args, doc):
 
 
 def cmd_run(args) -> int:
-    from .outputs import ensure_output_dir, write_outputs
-    from .solve import solve
+    from . import prefetch
+    prefetch.start()  # DOLFINx, PETSc and the solver load in a thread while the scene is read and meshed
     t_start = time.perf_counter()
     doc = _load(args)
-    out = ensure_output_dir(args.out)
     t0 = time.perf_counter()
     logger.info("scene %s: meshing", args.scene)
     sf = _build(args, doc)
     t_build = time.perf_counter() - t0
+    from .outputs import ensure_output_dir, write_outputs
+    from .solve import solve
+    out = ensure_output_dir(args.out)
     cond = bool(args.condition_number or sf.outputs["condition_number"])
     logger.info("solving (%s enrichment, contact %s)", sf.scene.options.enrichment, sf.scene.options.contact)
     sol = solve(sf.scene, condition_number=cond)

@@ -12,10 +12,6 @@ import pathlib
 import typing
 
 import numpy as np
-from mpi4py import MPI
-
-import dolfinx.mesh
-from dolfinx.io import gmshio
 
 from .errors import MeshError
 
@@ -85,7 +81,11 @@ def _to_dolfinx(gmsh, h: float | None) -> MeshData:
     names = {}
     for dim, tag in gmsh.model.getPhysicalGroups(1):
         names[gmsh.model.getPhysicalName(dim, tag) or str(tag)] = tag
-    msh, _, facet_tags = gmshio.model_to_mesh(gmsh.model, MPI.COMM_WORLD, 0, gdim=2)
+    # DOLFINx is imported here, not at the top: the command line meshes
+    # while another thread loads it (cracklip.prefetch).
+    from mpi4py import MPI
+    from .mesh_convert import model_to_mesh
+    msh, facet_tags, _ = model_to_mesh(gmsh.model, MPI.COMM_WORLD)
     gmsh.model.remove()
     check_mesh(msh)
     return MeshData(msh, facet_tags, names, h)
@@ -93,6 +93,7 @@ def _to_dolfinx(gmsh, h: float | None) -> MeshData:
 
 def check_mesh(msh: dolfinx.mesh.Mesh) -> None:
     """Raise MeshError unless msh is a serial 2D triangle mesh."""
+    import dolfinx.mesh
     if msh.topology.cell_type != dolfinx.mesh.CellType.triangle:
         raise MeshError(f"cracklip needs triangles, the mesh has {msh.topology.cell_type.name} "
                         "cells; mesh with gmsh without recombination")
