@@ -124,7 +124,7 @@ def _plain(md, solver: str) -> dict:
     t_assemble = time.perf_counter() - t0
     t1 = time.perf_counter()
     if solver == "plain-mumps":
-        x = solve_checked(A, b, 1e-8, what="plain P1 system")
+        x = solve_checked(A, b, 1e-8, what="plain P1 system", symmetric=True)
         its, rel = 1, None
     else:
         xy = V.tabulate_dof_coordinates()[:, :2]

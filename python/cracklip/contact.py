@@ -117,7 +117,8 @@ def solve_saddle(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, active: np.
                  x0: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Solve with the constraints of the active multipliers; inactive ones are 0.
 
-    linear: the solver path (cracklip.solvers; default MUMPS LDL^T); x0: an
+    linear: the solver path (cracklip.solvers; default: solve_checked's MUMPS
+    LU, as the load-path and friction solvers use); x0: an
     initial guess (u, lambda) for an iterative path (the previous active
     set's solution)."""
     m = cs.num_multipliers
@@ -213,7 +214,7 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
     transform: if A and b are rescaled (T^T K T, T^T f), the T: the
     constraints act on u = T y, the returned u is y, info["system"] keeps
     the unscaled B. linear: the solver path of every saddle-point solve
-    (cracklip.solvers; default MUMPS LDL^T)."""
+    (cracklip.solvers; default: solve_checked's MUMPS LU)."""
     physical = create_contact_system(model)
     cs = physical if transform is None else dataclasses.replace(physical, B=(physical.B @ transform).tocsr())
     u, info = solve_frictionless(scipy_from_petsc(A), b.array.copy(), cs, model.scene.options,
@@ -230,7 +231,7 @@ def solve_frictionless(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, opts,
     unilateral by the primal-dual active set, a multiplier active when its
     pressure exceeds c times its mean gap. active: the starting set (default
     options.active_set_start). linear: the solver path of every
-    saddle-point solve (default MUMPS LDL^T). Returns (u, info: lambda,
+    saddle-point solve (default: solve_checked's MUMPS LU). Returns (u, info: lambda,
     active, iterations, history)."""
     m = cs.num_multipliers
     if opts.contact == "bilateral":

@@ -1,7 +1,7 @@
 """Checked direct solves with MUMPS, and which BLAS they run on.
 
-Every cracklip system is symmetric (the stiffness, and the saddle-point
-system of contact), so MUMPS factors it as LDL^T (PETSc's "cholesky" with the
+The stiffness and the saddle-point system of frictionless contact are
+symmetric, and their solvers ask for MUMPS LDL^T (PETSc's "cholesky" with the
 matrix flagged symmetric: MUMPS sym = 2, symmetric indefinite, which also
 covers the saddle point): half the flops and memory of LU. MUMPS can meet a singular saddle-point or stiffness matrix (a piece of the
 domain cut free by a crack, a constraint missing) and return an arbitrary
@@ -105,11 +105,14 @@ def _factor_call(ksp: PETSc.KSP, method: str, *args):
 
 
 def solve_checked(A: PETSc.Mat, b: PETSc.Vec, residual_tol: float = 1e-8,
-                  what: str = "system", scale: bool = True, symmetric: bool = True) -> PETSc.Vec:
+                  what: str = "system", scale: bool = True, symmetric: bool = False) -> PETSc.Vec:
     """Solve A x = b by MUMPS; raise SolverError on any sign of failure.
 
-    symmetric: A is symmetric (every cracklip system is): LDL^T (MUMPS
-    sym = 2); else LU.
+    symmetric: A is symmetric (the stiffness, the frictionless saddle point;
+    not the frictional system, whose slip rows are not): LDL^T (MUMPS
+    sym = 2, half the work of LU; only one triangle of A is read, so a
+    non-symmetric A gives a wrong answer that the residual check reports);
+    else LU.
 
     scale: solve the symmetrically Jacobi-scaled system D A D y = D b, x = D y
     (D = |diag A|^-1/2): enriched dofs with small supports make the raw matrix
