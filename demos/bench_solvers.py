@@ -194,7 +194,8 @@ def _orderings(md) -> list[dict]:
         ksp.solve(b, x)
         t = time.perf_counter() - t0
         F = pc.getFactorMatrix()
-        rows.append({"icntl_7": icntl, "requested": name, "used": ORDERINGS.get(F.getMumpsInfog(7), str(F.getMumpsInfog(7))),
+        used = F.getMumpsInfog(7)
+        rows.append({"icntl_7": icntl, "requested": name, "used": ORDERINGS.get(used, str(used)),
                      "factor_entries": int(F.getMumpsInfog(29)), "flops": float(F.getMumpsRinfog(3)),
                      "t_factor_solve": t, "ndofs": int(A.getSize()[0])})
         F.destroy()

@@ -3,9 +3,10 @@
 The stiffness and the saddle-point system of frictionless contact are
 symmetric, and their solvers ask for MUMPS LDL^T (PETSc's "cholesky" with the
 matrix flagged symmetric: MUMPS sym = 2, symmetric indefinite, which also
-covers the saddle point): half the flops and memory of LU. MUMPS can meet a singular saddle-point or stiffness matrix (a piece of the
-domain cut free by a crack, a constraint missing) and return an arbitrary
-solution with only a warning. Every solve here reads the factorisation status,
+covers the saddle point): half the flops and memory of LU. MUMPS can meet a
+singular saddle-point or stiffness matrix (a piece of the domain cut free by a
+crack, a constraint missing) and return an arbitrary solution with only a
+warning. Every solve here reads the factorisation status,
 the number of null pivots and the relative residual, and raises SolverError
 naming the likely cause.
 """
