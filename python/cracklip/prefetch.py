@@ -15,9 +15,9 @@ import typing
 
 logger = logging.getLogger(__name__)
 
-#: What a `run` needs: gmsh first (the main thread needs it as soon as the
-#: scene is read, ~0.2 s later), then what comes after the mesh, heaviest first.
-RUN_MODULES = ("gmsh", "dolfinx.fem.petsc", "cracklip._cracklip", "cracklip.solve", "cracklip.outputs")
+#: What a `run` needs after the mesh, heaviest first. Not gmsh: its import
+#: installs a signal handler, which only the main thread may do.
+RUN_MODULES = ("dolfinx.fem.petsc", "cracklip._cracklip", "cracklip.solve", "cracklip.outputs")
 
 
 def start(modules: typing.Sequence[str] = RUN_MODULES) -> threading.Thread:
@@ -28,7 +28,6 @@ def start(modules: typing.Sequence[str] = RUN_MODULES) -> threading.Thread:
                 importlib.import_module(name)
             except Exception as e:  # the main thread's import reports it
                 logger.debug("prefetch of %s failed: %s", name, e)
-                return
     thread = threading.Thread(target=load, name="cracklip-prefetch", daemon=True)
     thread.start()
     return thread
