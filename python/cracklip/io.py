@@ -106,10 +106,12 @@ def crack_lips_mesh(samples: typing.Sequence[dict]) -> meshio.Mesh:
 
 
 def write_mesh(mesh: meshio.Mesh, path: str | pathlib.Path) -> pathlib.Path:
-    """Write a meshio mesh as VTU through a temporary file."""
+    """Write a meshio mesh as VTU (binary, uncompressed) through a temporary
+    file. Uncompressed: meshio's default zlib took 0.97 s for the 2e5-dof
+    Westergaard sub-cell mesh, raw binary 0.15 s (60 MB instead of 23 MB)."""
     path = pathlib.Path(path)
     with atomic_path(path) as tmp:
-        meshio.write(tmp, mesh, file_format="vtu")
+        meshio.write(tmp, mesh, file_format="vtu", compression=None)
     return path
 
 

@@ -16,13 +16,13 @@ iterative path needs:
   strength threshold that drops the rounding-level couplings across the crack);
 * the rigid-body near-nullspace on the standard and phantom dofs;
 * the crack band: every dof of the enriched nodes and of their first ring of
-  neighbours, every tip dof and every multiplier;
-* IterativeSolver: CG + GAMG on the whole transformed stiffness when the
-  model has only Heaviside dofs and no contact, else GMRES preconditioned by
-  an overlapping multiplicative two-block Schwarz method: block 0 = all
-  standard + phantom dofs by one GAMG V-cycle, block 1 = the crack band by
-  MUMPS LDL^T. Block 0 does not contain a multiplier, so its AMG hierarchy is
-  built once per stiffness and reused by every active-set iteration.
+  neighbours, every tip dof and every multiplier; with contact it is
+  widened to ceil(0.07 m) rings for m multipliers;
+* IterativeSolver: a symmetric overlapping Schwarz sweep {band by MUMPS
+  LDL^T | one GAMG V-cycle on the whole transformed stiffness | band again}
+  as the preconditioner of CG (also for the saddle point of contact, with
+  GMRES(30) as the fallback). The GAMG hierarchy depends on the stiffness
+  only, so it is built once and reused by every active-set iteration.
 
 Every iterative solve is checked like the direct one (linear_solver.
 solve_checked): the relative residual of the original (untransformed)
@@ -61,19 +61,19 @@ logger = logging.getLogger(__name__)
 #: checks the choice at every size of its sweep.
 AUTO_ITERATIVE_DOFS = 50_000
 
+#: ... and while enriched dofs are at most this fraction of the dofs: the
+#: crack band (all enriched dofs and a ring) is factored, and a large tip
+#: enrichment disk slows the Krylov iteration. Westergaard at 2e5 dofs,
+#: radius 0.2: vector tip functions (3.4 % enriched) iterative 1.2 s vs
+#: direct 1.6 s; scalar ones (12 %) iterative 7.6 s vs direct 6.6 s.
+AUTO_MAX_ENRICHED_FRACTION = 0.05
+
 #: Relative (unpreconditioned) residual at which the Krylov iteration stops.
 #: At 1e-10 the SIFs, pressures and energies equal the direct path's to
 #: 1e-8 relative on the test scenes (tests/test_solvers.py; the errors there
 #: are 1e-10 .. 1e-12). The last decade is the expensive one: at 1e6 dofs the
 #: bilateral-contact solve needs 52 iterations to 1e-10 and 71 to 1e-11.
 KRYLOV_RTOL = 1e-10
-
-#: Block 0 (GAMG) is the whole stiffness when it has at most this many tip
-#: dofs (vector enrichment at radius 0 has ~50 at any mesh size), else the
-#: stiffness without its tip dofs (a submatrix copy): smoothed aggregation
-#: has no rigid modes for the singular tip functions, so many tip dofs
-#: would slow the V-cycle; the band solves them exactly either way.
-TIP_DOFS_IN_AMG = 200
 
 #: GMRES restart, when GMRES takes over from CG on a saddle point (see
 #: IterativeSolver._solve): at 1e6 dofs (bilateral, 1-ring band) GMRES(30)
@@ -113,15 +113,17 @@ GAMG_OPTIONS = {
 _prefixes = itertools.count()
 
 
-def choose_solver(options: "Options", num_dofs: int) -> str:
+def choose_solver(options: "Options", num_dofs: int, num_enriched_dofs: int = 0) -> str:
     """The path Options.solver names for a system of num_dofs stiffness
-    dofs: "direct" or "iterative" ("auto": iterative from
-    AUTO_ITERATIVE_DOFS on, unless rescale = "nodal", a direct-solver
-    option)."""
+    dofs, num_enriched_dofs of them enriched: "direct" or "iterative"
+    ("auto": iterative from AUTO_ITERATIVE_DOFS on while at most
+    AUTO_MAX_ENRICHED_FRACTION of the dofs are enriched, unless rescale =
+    "nodal", a direct-solver option)."""
     if options.solver == "auto":
         if options.rescale == "nodal":
             return "direct"
-        return "iterative" if num_dofs >= AUTO_ITERATIVE_DOFS else "direct"
+        small = num_dofs < AUTO_ITERATIVE_DOFS
+        return "direct" if small or num_enriched_dofs > AUTO_MAX_ENRICHED_FRACTION * num_dofs else "iterative"
     if options.solver == "iterative" and options.rescale == "nodal":
         raise InputError("rescale = 'nodal' conditions the matrix for the direct solver; the iterative "
                          "solver uses its own (phantom-node) basis: use rescale = 'none' with "
@@ -304,15 +306,6 @@ def grow_band(K: PETSc.Mat, dofs: np.ndarray, rings: int) -> np.ndarray:
     return np.flatnonzero(mark).astype(np.int64)
 
 
-def amg_dofs(model: "XfemModel") -> np.ndarray:
-    """Sorted dofs of block 0 (GAMG): all standard and phantom dofs."""
-    lay = model.layout
-    nstd = lay.num_std_nodes
-    heav = np.flatnonzero(np.asarray(lay.kind) == 0)
-    phantom = (2 * (nstd + heav)[:, None] + np.arange(2)).ravel()
-    return np.concatenate([np.arange(2 * nstd), phantom]).astype(np.int64)
-
-
 # -- the solvers -----------------------------------------------------------------------------------
 
 class LinearSolver:
@@ -362,9 +355,12 @@ class IterativeSolver(LinearSolver):
     preconditioner is symmetric positive definite), GMRES for the saddle
     point of contact.
 
-    Block 0 is the whole transformed stiffness K' when it has at most
-    TIP_DOFS_IN_AMG tip dofs (no copy, no scatter: the stiffness's dofs come
-    first in every system), else K' without its tip dofs. Its GAMG hierarchy
+    Block 0 is the whole transformed stiffness K', tip dofs included (no
+    copy, no scatter: the stiffness's dofs come first in every system; the
+    tip dofs' rows have no rigid modes, and the band solves them exactly):
+    Westergaard at 2e5 dofs, radius 0.2, takes 23 iterations so and 62 with
+    K' without its tip dofs as block 0 (a hole in the AMG's operator). Its
+    GAMG hierarchy
     is built on the first solve and reused by every later one (the
     active-set iterations of contact only change multiplier rows).
     """
@@ -375,8 +371,6 @@ class IterativeSolver(LinearSolver):
         self.fallback = fallback
         self.basis = phantom_basis(model)
         self.n = model.num_dofs
-        tips = int(np.count_nonzero(np.asarray(model.layout.kind) != 0))
-        self._amg_dofs = np.arange(self.n) if 2 * tips <= TIP_DOFS_IN_AMG else amg_dofs(model)
         self._band_k = crack_band(model)
         self._bands: dict[int, np.ndarray] = {}
         self._T_inv_t: sp.csr_matrix | None = None
@@ -406,28 +400,13 @@ class IterativeSolver(LinearSolver):
         return self._bands[rings]
 
     def _block0_pc(self, A: PETSc.Mat) -> tuple[PETSc.PC, bool]:
-        """The GAMG PC of block 0 (built once; (pc, reused)). A's leading
-        n x n block is the stiffness given to transform()."""
+        """The GAMG PC of block 0, the stiffness given to transform() (built
+        once; (pc, reused))."""
         if self._amg is not None:
             return self._amg, True
-        K = self._K if self._K is not None else A
-        modes = rigid_modes(self.model)[self._amg_dofs]
-        if self._amg_dofs.size == self.n:
-            if K.getSize()[0] != self.n:  # only without transform(): take the leading block
-                iset = PETSc.IS().createStride(self.n, 0, 1, comm=PETSc.COMM_SELF)
-                K = A.createSubMatrix(iset, iset)
-                iset.destroy()
-                self._amg = self._gamg(K, modes)
-                K.destroy()
-            else:
-                self._amg = self._gamg(K, modes)
-        else:
-            iset = PETSc.IS().createGeneral(self._amg_dofs.astype(PETSc.IntType), comm=PETSc.COMM_SELF)
-            iset.setBlockSize(2)
-            A00 = K.createSubMatrix(iset, iset)
-            iset.destroy()
-            self._amg = self._gamg(A00, modes)
-            A00.destroy()  # our handle; the PC keeps its reference
+        if self._K is None:
+            raise SolverError("IterativeSolver.solve needs the system from IterativeSolver.transform")
+        self._amg = self._gamg(self._K, rigid_modes(self.model))
         return self._amg, False
 
     def _gamg(self, A: PETSc.Mat, modes: np.ndarray) -> PETSc.PC:
@@ -475,7 +454,7 @@ class IterativeSolver(LinearSolver):
         try:
             pc0, reused = self._block0_pc(A)
             band_dofs = np.concatenate([self._contact_band(m), np.arange(self.n, size)])
-            shell = _Schwarz(A, pc0, self._amg_dofs, band_dofs)
+            shell = _Schwarz(A, pc0, self.n, band_dofs)
             t_setup = time.perf_counter() - t0
             # CG also for the saddle point: the sweep ends with an exact solve
             # of the band, which holds every multiplier and every dof they
@@ -500,7 +479,7 @@ class IterativeSolver(LinearSolver):
                   "Schwarz {MUMPS crack band | GAMG | band} (phantom basis)")
         record_solve({"what": what, "size": size, "relative_residual": rel, "solver": "iterative",
                       "method": method, "iterations": int(its), "band": int(band_dofs.size),
-                      "amg_dofs": int(self._amg_dofs.size), "setup_reused": reused,
+                      "amg_dofs": self.n, "setup_reused": reused,
                       "t_setup": t_setup, "t_total": time.perf_counter() - t0})
         logger.info("%s: %d iterations (%s), relative residual %.3g", what, its, method, rel)
         if not ok:
@@ -565,7 +544,7 @@ class IterativeSolver(LinearSolver):
 class _Schwarz:
     """PCSHELL context: a symmetric multiplicative sweep over two
     overlapping blocks, the crack band (exact, MUMPS) before and after one
-    GAMG V-cycle on block 0:
+    GAMG V-cycle on block 0 (the leading n0 dofs, the stiffness):
 
         z  = R1^T A11^-1 R1 r
         z += R0^T GAMG(R0 (r - A z))
@@ -575,28 +554,22 @@ class _Schwarz:
     definite for a positive definite A (CG). Only the band's rows and
     columns of A are needed for the residual updates (small matrices)."""
 
-    def __init__(self, A: PETSc.Mat, amg: PETSc.PC, amg_dofs: np.ndarray, band_dofs: np.ndarray):
+    def __init__(self, A: PETSc.Mat, amg: PETSc.PC, n0: int, band_dofs: np.ndarray):
         comm = PETSc.COMM_SELF
         size = A.getSize()[0]
         self.amg = amg
-        band = np.sort(band_dofs).astype(PETSc.IntType)
-        self.is1 = PETSc.IS().createGeneral(band, comm=comm)
+        self.is1 = PETSc.IS().createGeneral(np.sort(band_dofs).astype(PETSc.IntType), comm=comm)
         all_cols = PETSc.IS().createStride(size, 0, 1, comm=comm)
         self.A1 = A.createSubMatrix(self.is1, all_cols)  # band rows, all columns
         all_cols.destroy()
-        # Block 0's rows of A restricted to the band's columns (for r0 - A01 z1).
-        contiguous = amg_dofs.size > 0 and amg_dofs[0] == 0 and amg_dofs[-1] == amg_dofs.size - 1
-        self.is0 = (PETSc.IS().createStride(amg_dofs.size, 0, 1, comm=comm) if contiguous else
-                    PETSc.IS().createGeneral(amg_dofs.astype(PETSc.IntType), comm=comm))
-        self.A01 = A.createSubMatrix(self.is0, self.is1)
+        self.is0 = PETSc.IS().createStride(n0, 0, 1, comm=comm)
+        self.A01 = A.createSubMatrix(self.is0, self.is1)  # block 0's rows, band columns
         A11 = A.createSubMatrix(self.is1, self.is1)
         self.band = _factor_band(A11)
         A11.destroy()
-        self.contiguous = contiguous
-        self.r0, self.z0 = self.A01.createVecLeft(), self.A01.createVecLeft()
+        self.r0 = self.A01.createVecLeft()
         self.r1, self.z1, self.t1 = (self.A1.createVecLeft() for _ in range(3))
         r = A.createVecRight()
-        self.s0 = None if contiguous else PETSc.Scatter().create(r, self.is0, self.r0, None)
         self.s1 = PETSc.Scatter().create(r, self.is1, self.r1, None)
         r.destroy()
 
@@ -606,25 +579,18 @@ class _Schwarz:
         # Band first.
         self.s1.scatter(r, self.r1, ins, fwd)
         self.band.solve(self.r1, self.z1)
+        # GAMG on block 0 of r - A z (z is the band correction so far), on
+        # views of r and z (block 0 = the leading dofs: no copies).
         self.z1.scale(-1.0)
-        # GAMG on block 0 of r - A z (z is the band correction so far);
-        # block 0 = the leading dofs: views of r and z, no copies.
-        if self.contiguous:
-            r0 = r.getSubVector(self.is0)
-            self.A01.multAdd(self.z1, r0, self.r0)  # r0 - A01 z1
-            r.restoreSubVector(self.is0, r0)
-            z0 = z.getSubVector(self.is0)
-            self.amg.apply(self.r0, z0)
-            z.restoreSubVector(self.is0, z0)
-            n0 = self.r0.getSize()
-            if z.getSize() > n0:
-                z.array[n0:] = 0.0
-        else:
-            self.s0.scatter(r, self.r0, ins, fwd)
-            self.A01.multAdd(self.z1, self.r0, self.r0)
-            self.amg.apply(self.r0, self.z0)
-            z.set(0.0)
-            self.s0.scatter(self.z0, z, ins, rev)
+        r0 = r.getSubVector(self.is0)
+        self.A01.multAdd(self.z1, r0, self.r0)  # r0 - A01 z1
+        r.restoreSubVector(self.is0, r0)
+        z0 = z.getSubVector(self.is0)
+        self.amg.apply(self.r0, z0)
+        z.restoreSubVector(self.is0, z0)
+        n0 = self.r0.getSize()
+        if z.getSize() > n0:
+            z.array[n0:] = 0.0
         self.z1.scale(-1.0)
         self.s1.scatter(self.z1, z, add, rev)
         # Band again on r - A z.
@@ -639,35 +605,46 @@ class _Schwarz:
 
     def free(self) -> None:
         """Free the PETSc objects (idempotent)."""
-        for obj in (self.is0, self.is1, self.A1, self.A01, self.band, self.r0, self.z0, self.r1, self.z1,
-                    self.t1, self.s0, self.s1):
-            if obj is not None:
-                obj.destroy()
+        for obj in (self.is0, self.is1, self.A1, self.A01, self.band, self.r0, self.r1, self.z1, self.t1,
+                    self.s1):
+            obj.destroy()
 
 
 def _factor_band(A11: PETSc.Mat) -> PETSc.KSP:
-    """MUMPS LDL^T of the crack band (symmetric indefinite with multipliers)."""
+    """MUMPS LDL^T of the crack band (symmetric indefinite with multipliers),
+    with solve_checked's checks: a factorisation that runs out of workspace
+    (INFOG(1) = -8, -9: delayed pivots of the ill-conditioned tip dofs) is
+    retried with more (ICNTL(14)); an error or a null pivot raises."""
     from .linear_solver import _factor_call, create_lu_solver
-    ksp = create_lu_solver(A11, symmetric=True)
-    try:
-        ksp.setUp()
-    except PETSc.Error as e:
-        ksp.destroy()
-        raise SolverError(f"MUMPS could not factor the crack band ({e}): the band block is singular; "
-                          "use solver = 'direct' to locate the cause") from None
-    info = _factor_call(ksp, "getMumpsInfog", 1)
+    for relax in (20, 100, 400):
+        ksp = create_lu_solver(A11, symmetric=True)
+        _factor_call(ksp, "setMumpsIcntl", 14, relax)
+        error = None
+        try:
+            ksp.setUp()
+        except PETSc.Error as e:
+            error = e
+        info = _factor_call(ksp, "getMumpsInfog", 1)
+        if info in (-8, -9) and relax < 400:
+            ksp.destroy()
+            continue
+        break
     null = _factor_call(ksp, "getMumpsInfog", 28)
-    if info < 0 or null > 0:
+    if error is not None or info < 0 or null > 0:
         ksp.destroy()
-        raise SolverError(f"the crack band block is singular (MUMPS INFOG(1) = {info}, {null} null pivot(s)): "
-                          "a piece of the domain next to the crack has no Dirichlet condition, or a contact "
-                          "multiplier sees no jump; use solver = 'direct' to locate the cause")
+        what = (f"MUMPS INFOG(1) = {info} (out of workspace even with ICNTL(14) = 400)" if info in (-8, -9) else
+                f"MUMPS INFOG(1) = {info}, {null} null pivot(s)")
+        cause = ("the band is too large or too ill-conditioned for the workspace" if info in (-8, -9) else
+                 "a piece of the domain next to the crack has no Dirichlet condition, or a contact multiplier "
+                 "sees no jump")
+        verdict = "could not be factored" if info in (-8, -9) else "is singular"
+        raise SolverError(f"the crack band block {verdict} ({what}): {cause}; use solver = 'direct'")
     return ksp
 
 
 def create_linear_solver(model: "XfemModel") -> LinearSolver:
     """The solver path for a model (Options.solver, choose_solver)."""
-    which = choose_solver(model.scene.options, model.num_dofs)
+    which = choose_solver(model.scene.options, model.num_dofs, 2 * model.layout.num_enriched)
     if which == "direct":
         return DirectSolver()
     return IterativeSolver(model, fallback=model.scene.options.solver == "auto")
