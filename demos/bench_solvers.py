@@ -23,7 +23,8 @@ the same mesh, same Krylov tolerance) and ratio_to_plain_gamg.
 with MUMPS LU in a subprocess that loads the netlib reference BLAS/LAPACK
 first (LD_LIBRARY_PATH), as before issue 15. --orderings records, for the
 open-crack matrix, MUMPS' factor size, flops and time per ordering
-(ICNTL(7)). --threads adds the direct solve with 2 OpenBLAS threads.
+(ICNTL(7)). --threads adds the direct solve with 2 OpenBLAS threads. These
+three run at sizes up to 1.1e6 dofs only.
 A solver whose subprocess fails (out of memory: the direct path at large
 sizes) gets a row with "status" saying so; --max-direct-dofs skips the
 direct solves beyond a size.
@@ -54,6 +55,9 @@ CASES = ("open", "contact")
 XFEM_SOLVERS = ("xfem-direct", "xfem-iterative")
 PLAIN_SOLVERS = ("plain-gamg", "plain-mumps")
 REFERENCE_BLAS = ["/usr/lib/x86_64-linux-gnu/blas", "/usr/lib/x86_64-linux-gnu/lapack"]
+#: The untuned reference, the 2-thread row and the orderings run up to this
+#: size (acceptance 3 is at 1e6 dofs; netlib LU at 1e7 would take hours).
+REFERENCE_MAX_DOFS = 1.1e6
 #: Orderings of Debian's MUMPS (no METIS, no SCOTCH): ICNTL(7) value -> name.
 ORDERINGS = {0: "AMD", 2: "AMF", 4: "PORD", 6: "QAMD", 7: "auto"}
 
@@ -303,10 +307,10 @@ def benchmark(sizes: typing.Sequence[float], repeats: int, cases: typing.Sequenc
                     row["t_plain_gamg"] = t_gamg
                     row["ratio_to_plain_gamg"] = row["t_solve"] / t_gamg
                     measured[s] = row
-            if threads and target <= max_direct_dofs and case == "open":
+            if threads and target <= min(max_direct_dofs, REFERENCE_MAX_DOFS) and case == "open":
                 add({**base, "solver": "xfem-direct", "case": case}, env={"OPENBLAS_NUM_THREADS": "2"},
                     label="xfem-direct (2 BLAS threads)")
-            if untuned and case == "open" and target <= max_direct_dofs:
+            if untuned and case == "open" and target <= min(max_direct_dofs, REFERENCE_MAX_DOFS):
                 ld = ":".join(REFERENCE_BLAS + [os.environ.get("LD_LIBRARY_PATH", "")]).rstrip(":")
                 row = add({**base, "solver": "xfem-direct", "case": case, "lu": True}, env={"LD_LIBRARY_PATH": ld},
                           label="xfem-direct-untuned (netlib BLAS, LU)")
@@ -319,7 +323,7 @@ def benchmark(sizes: typing.Sequence[float], repeats: int, cases: typing.Sequenc
                 best = min(ok, key=ok.get) if ok else None
                 choices.append({"case": case, "ndofs": ndofs, "auto": auto, "fastest": best, "t_solve": ok,
                                 "auto_is_fastest": best is None or auto == best})
-        if orderings and target <= min(max_direct_dofs, 1.1e6):
+        if orderings and target <= min(max_direct_dofs, REFERENCE_MAX_DOFS):
             res = run_subprocess({**base, "solver": "orderings", "case": "open", "repeats": 1}, None, timeout)
             ordering_rows += [dict(r, target_dofs=target) for r in res.get("orderings", [])] or \
                 [{"target_dofs": target, "status": res["status"]}]
