@@ -24,6 +24,32 @@ def test_half_annulus_tags_and_area():
         assert md.facets(name).size > 0
 
 
+def test_plate_with_holes_tags_area_and_errors():
+    holes = [(4.0, 2.25, 0.25), (4.0, 4.25, 0.25), (4.0, 6.25, 0.25)]
+    md = cl.create_plate_with_holes(0.0, 0.0, 20.0, 8.0, 0.2, holes)
+    assert set(md.tags) == {"left", "right", "bottom", "top", "hole"}
+    assert _area(md) == pytest.approx(160.0 - 3 * np.pi * 0.25 ** 2, rel=1e-3)
+    # Every hole's edge is tagged: the facets' vertices on one of the three circles.
+    x = md.mesh.geometry.x[:, :2]
+    md.mesh.topology.create_connectivity(1, 0)
+    f2v = md.mesh.topology.connectivity(1, 0)
+    mids = np.array([x[f2v.links(f)] for f in md.facets("hole")]).reshape(-1, 2)
+    d = np.stack([np.hypot(mids[:, 0] - cx, mids[:, 1] - cy) - r for cx, cy, r in holes], axis=1)
+    assert np.all(np.abs(d).min(axis=1) < 1e-9)
+    assert set(np.abs(d).argmin(axis=1)) == {0, 1, 2}
+    with pytest.raises(cl.MeshError, match="holes 0 and 1 overlap"):
+        cl.create_plate_with_holes(0.0, 0.0, 20.0, 8.0, 0.5, [(4.0, 2.0, 0.5), (4.0, 2.8, 0.5)])
+    with pytest.raises(cl.MeshError, match="hole 1 .* must lie strictly inside"):
+        cl.create_plate_with_holes(0.0, 0.0, 20.0, 8.0, 0.5, [(4.0, 2.0, 0.5), (19.8, 2.0, 0.5)])
+    from cracklip.scene_file import build_scene
+    doc = {"mesh": {"kind": "plate_with_holes", "h": 0.5, "domain": [0, 0, 20, 8], "holes": [list(h) for h in holes]},
+           "material": {"E": 1.0, "nu": 0.3}, "dirichlet": [{"tag": "left"}]}
+    assert build_scene(doc).scene.mesh.facets("hole").size > 0
+    doc["mesh"]["holes"] = [[4.0, 2.0]]
+    with pytest.raises(cl.InputError, match=r"mesh\.holes\[0\]"):
+        build_scene(doc)
+
+
 def test_read_msh_round_trip(tmp_path):
     import gmsh
     from cracklip.mesh import _gmsh

@@ -32,7 +32,7 @@ _EXPORTS = {
     "BoundaryConditionError": "errors", "CrackGeometryError": "errors", "CracklipError": "errors",
     "InputError": "errors", "MaterialError": "errors", "MeshError": "errors", "SolverError": "errors",
     "MeshData": "mesh", "create_half_annulus": "mesh", "create_rectangle": "mesh", "create_square": "mesh",
-    "read_msh": "mesh", "create_plate_with_hole": "mesh",
+    "read_msh": "mesh", "create_plate_with_hole": "mesh", "create_plate_with_holes": "mesh",
     "XfemModel": "model", "create_model": "model",
     "Solution": "post",
     "Crack": "scene", "Dirichlet": "scene", "LoadStep": "scene", "Material": "scene", "Options": "scene",

@@ -9,6 +9,7 @@ from __future__ import annotations
 import dataclasses
 import logging
 import pathlib
+import math
 import typing
 
 import numpy as np
@@ -339,17 +340,35 @@ def create_plate_with_hole(x0: float, y0: float, x1: float, y1: float, h: float,
     create_rectangle); embed_points: points that must be mesh nodes (point
     supports, point forces). Tags: left, right, bottom, top, hole.
     """
+    return create_plate_with_holes(x0, y0, x1, y1, h, [(center[0], center[1], radius)], refine, embed_points)
+
+
+def create_plate_with_holes(x0: float, y0: float, x1: float, y1: float, h: float,
+                            holes: typing.Sequence[tuple[float, float, float]],
+                            refine: typing.Sequence[tuple[float, float, float, float]] = (),
+                            embed_points: typing.Sequence[tuple[float, float]] = ()) -> MeshData:
+    """Rectangle [x0, x1] x [y0, y1] with circular holes (x, y, radius),
+    each strictly inside the rectangle and apart from the others (a drilled
+    plate). refine, embed_points: as create_plate_with_hole. Tags: left,
+    right, bottom, top, hole (every hole's edge)."""
     _check_box(x0, y0, x1, y1, h)
-    cx, cy = float(center[0]), float(center[1])
-    if not (radius > 0.0 and x0 < cx - radius and cx + radius < x1 and y0 < cy - radius and cy + radius < y1):
-        raise MeshError(f"the hole (centre ({cx:g}, {cy:g}), radius {radius:g}) must lie strictly inside "
-                        f"the plate [{x0:g}, {x1:g}] x [{y0:g}, {y1:g}]")
+    holes = [(float(cx), float(cy), float(r)) for cx, cy, r in holes]
+    if not holes:
+        raise MeshError("a plate with holes needs at least one hole (x, y, radius)")
+    for i, (cx, cy, r) in enumerate(holes):
+        if not (r > 0.0 and x0 < cx - r and cx + r < x1 and y0 < cy - r and cy + r < y1):
+            raise MeshError(f"hole {i} (centre ({cx:g}, {cy:g}), radius {r:g}) must lie strictly inside "
+                            f"the plate [{x0:g}, {x1:g}] x [{y0:g}, {y1:g}]")
+        for j, (dx, dy, dr) in enumerate(holes[:i]):
+            if math.hypot(cx - dx, cy - dy) <= r + dr:
+                raise MeshError(f"holes {j} and {i} overlap or touch (centres ({dx:g}, {dy:g}) and "
+                                f"({cx:g}, {cy:g}), radii {dr:g} and {r:g})")
     gmsh = _gmsh()
-    gmsh.model.add("plate_with_hole")
+    gmsh.model.add("plate_with_holes")
     occ = gmsh.model.occ
     plate = occ.addRectangle(x0, y0, 0.0, x1 - x0, y1 - y0)
-    disk = occ.addDisk(cx, cy, 0.0, radius, radius)
-    body, _ = occ.cut([(2, plate)], [(2, disk)])
+    disks = [(2, occ.addDisk(cx, cy, 0.0, r, r)) for cx, cy, r in holes]
+    body, _ = occ.cut([(2, plate)], disks)
     if embed_points:
         body, _ = occ.fragment(body, [(0, occ.addPoint(p[0], p[1], 0.0)) for p in embed_points])
         body = [e for e in body if e[0] == 2]

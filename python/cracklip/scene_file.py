@@ -29,13 +29,14 @@ import typing
 import numpy as np
 
 from .errors import BoundaryConditionError, InputError, MeshError
-from .mesh import (MeshData, create_half_annulus, create_plate_with_hole, create_rectangle, read_msh)
+from .mesh import (MeshData, create_half_annulus, create_plate_with_holes, create_rectangle, read_msh)
 from .scene import (ENRICHMENTS, SOLVERS, TIP_QUADRATURES, Crack, Dirichlet, LoadStep, Material, Options, PointForce, Scene,
                     Traction)
 from .stress_field import LinearStress
 
-MESH_KINDS = ("rectangle", "plate_with_hole", "half_annulus", "file")
-GENERATED = ("rectangle", "plate_with_hole", "half_annulus")
+MESH_KINDS = ("rectangle", "plate_with_hole", "plate_with_holes", "half_annulus", "file")
+GENERATED = ("rectangle", "plate_with_hole", "plate_with_holes", "half_annulus")
+PLATES = ("rectangle", "plate_with_hole", "plate_with_holes")
 STRESS_COMPONENTS = ("xx", "yy", "xy", "von_mises")
 
 
@@ -143,6 +144,17 @@ def p_box(value, path):
     if not (x1 > x0 and y1 > y0):
         raise InputError(f"{path} = {value} is empty: need x0 < x1 and y0 < y1")
     return [x0, y0, x1, y1]
+
+
+def p_holes(value, path):
+    """[[x, y, r], ...]: at least one hole, radii > 0."""
+    if not isinstance(value, list) or not value:
+        raise _type_error(path, "a list of holes [[x, y, r], ...]", value)
+    holes = [p_numbers(3, "a hole [x, y, r]")(v, f"{path}[{i}]") for i, v in enumerate(value)]
+    for i, (_, _, r) in enumerate(holes):
+        if not r > 0.0:
+            raise InputError(f"{path}[{i}]: the radius must be > 0, got {r}")
+    return holes
 
 
 def p_region(value, path):
@@ -341,15 +353,17 @@ SCHEMA: tuple[Key, ...] = tuple([
     Key("title", "string", "", "name shown in outputs (default: the file name)", p_str),
     # mesh
     Key("mesh.kind", "string", "rectangle",
-        "`rectangle`, `plate_with_hole`, `half_annulus` (r between hole_radius and outer_radius, "
+        "`rectangle`, `plate_with_hole`, `plate_with_holes` (a drilled plate), `half_annulus` (r between hole_radius and outer_radius, "
         "y >= 0, centre at the origin) or `file` (a gmsh .msh file)", p_choice(*MESH_KINDS)),
     Key("mesh.h", "float", REQUIRED, "element size", p_float(positive=True), GENERATED),
     Key("mesh.domain", "[x0, y0, x1, y1]", [-1.0, -1.0, 1.0, 1.0],
-        "the rectangle; tags `left`, `right`, `bottom`, `top`", p_box, ("rectangle", "plate_with_hole")),
+        "the rectangle; tags `left`, `right`, `bottom`, `top`", p_box, PLATES),
     Key("mesh.hole_center", "[x, y]", [0.0, 0.0], "centre of the hole (tag `hole`)", p_point,
         ("plate_with_hole",)),
     Key("mesh.hole_radius", "float", REQUIRED, "radius of the hole (tag `hole`)", p_float(positive=True),
         ("plate_with_hole", "half_annulus")),
+    Key("mesh.holes", "[[x, y, r], ...]", REQUIRED, "the holes' centres and radii (tag `hole`: every hole's edge)",
+        p_holes, ("plate_with_holes",)),
     Key("mesh.outer_radius", "float", REQUIRED,
         "outer radius of the half annulus (tag `outer`; `symmetry` on y = 0)", p_float(positive=True),
         ("half_annulus",)),
@@ -870,14 +884,23 @@ def _crack(c: dict, i: int) -> Crack:
 def _inside(m: dict, p: np.ndarray) -> bool:
     """Whether p lies strictly inside a generated mesh's domain."""
     kind = m["kind"]
-    if kind in ("rectangle", "plate_with_hole"):
+    if kind in PLATES:
         x0, y0, x1, y1 = m["domain"]
         inside = x0 < p[0] < x1 and y0 < p[1] < y1
-        if kind == "plate_with_hole":
-            inside = inside and np.hypot(*(p - np.asarray(m["hole_center"]))) > m["hole_radius"]
+        for cx, cy, r in _holes(m):
+            inside = inside and np.hypot(p[0] - cx, p[1] - cy) > r
         return bool(inside)
     r = float(np.hypot(*p))
     return bool(m["hole_radius"] < r < m["outer_radius"] and p[1] > 0.0)
+
+
+def _holes(m: dict) -> list[tuple[float, float, float]]:
+    """The holes (x, y, r) of a generated plate."""
+    if m["kind"] == "plate_with_hole":
+        return [(m["hole_center"][0], m["hole_center"][1], m["hole_radius"])]
+    if m["kind"] == "plate_with_holes":
+        return [tuple(h) for h in m["holes"]]
+    return []
 
 
 def _mesh(m: dict, cracks: list[Crack], base_dir: pathlib.Path, points=()) -> MeshData:
@@ -897,15 +920,14 @@ def _mesh(m: dict, cracks: list[Crack], base_dir: pathlib.Path, points=()) -> Me
             for p in c.points[[0, -1]]:
                 if _inside(m, p):
                     refine.append((float(p[0]), float(p[1]), m["tip_h"], radius))
-    if kind in ("rectangle", "plate_with_hole"):
+    if kind in PLATES:
         x0, y0, x1, y1 = m["domain"]
         tol = 1e-12 * max(x1 - x0, y1 - y0)
         embed = [tuple(p) for p in points if x0 - tol <= p[0] <= x1 + tol and y0 - tol <= p[1] <= y1 + tol]
-        if kind == "plate_with_hole":
-            c, r = np.asarray(m["hole_center"]), m["hole_radius"]
-            embed = [p for p in embed if np.hypot(*(np.asarray(p) - c)) > r * (1 + 1e-9)]
-            return create_plate_with_hole(*m["domain"], h, center=tuple(m["hole_center"]),
-                                          radius=m["hole_radius"], refine=refine, embed_points=embed)
+        holes = _holes(m)
+        embed = [p for p in embed if all(np.hypot(p[0] - cx, p[1] - cy) > r * (1 + 1e-9) for cx, cy, r in holes)]
+        if holes:
+            return create_plate_with_holes(*m["domain"], h, holes, refine=refine, embed_points=embed)
         return create_rectangle(*m["domain"], h, refine=refine, embed_points=embed)
     if not m["hole_radius"] < m["outer_radius"]:
         raise MeshError(f"mesh.hole_radius ({m['hole_radius']}) must be smaller than mesh.outer_radius "
