@@ -54,7 +54,8 @@ def measure(h: float, steps: int, repeats: int) -> dict:
 
 def main(argv=None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--hs", type=float, nargs="+", default=[0.025])
+    ap.add_argument("--hs", type=float, nargs="+", default=[0.025, 0.008], help="mesh sizes (default: about 2e4 "
+                    "and 2e5 dofs)")
     ap.add_argument("--steps", type=int, default=6)
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--json", type=pathlib.Path, default=None)

@@ -122,7 +122,8 @@ def closure(steps: int = 8, da: float = 0.025) -> dict:
         res = grow(centre_crack_scene(contact=contact),
                    Growth(da=da, steps=steps, paris_C=PARIS_C, paris_m=PARIS_M, cycle_min={"default": -1.0}))
         r0 = res.records[0][0]
-        out[contact] = {"N": res.cycles, "delta_K_over_K_max": [st[0].delta_K / st[0].K_eq for st in res.records],
+        out[contact] = {"N": res.cycles, "a": [st[0].length / 2 for st in res.records],
+                        "N_steps": [st[0].N for st in res.records], "delta_K_over_K_max": [st[0].delta_K / st[0].K_eq for st in res.records],
                         "K_I_min": [st[0].K_I_min for st in res.records], "K_max": [st[0].K_I for st in res.records],
                         "closed_fraction_min": _closed_at_min(contact, r0)}
     out["slowdown"] = out["unilateral"]["N"] / out["none"]["N"]
@@ -162,8 +163,7 @@ def main(argv=None) -> dict:
     if args.out:
         write_json(args.out / "growth_benchmarks.json", result)
         (args.out / "growth_benchmarks.md").write_text(markdown(result))
-        if __name__ == "__main__":
-            plot(result, args.out)
+        plot(result, args.out)
     return result
 
 
@@ -201,6 +201,30 @@ def plot(r: dict, out: pathlib.Path) -> None:
     ax.legend()
     fig.tight_layout()
     fig.savefig(out / "paris_a_N.png", dpi=150)
+    plt.close(fig)
+
+    c = r["closure"]
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for key, label in (("unilateral", "contact: lips close at the minimum"), ("none", "no contact (linear Delta K)")):
+        ax.plot(c[key]["N_steps"], c[key]["a"], "o-", ms=4, label=label)
+    ax.set_xlabel("cycles N")
+    ax.set_ylabel("half length a")
+    ax.set_title(f"Closure: cycle -1 .. +1, growth {c['slowdown']:.2f}x slower with contact")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(out / "closure_a_N.png", dpi=150)
+    plt.close(fig)
+
+    d = r["drift"]
+    path = np.asarray(d["path"])
+    fig, ax = plt.subplots(figsize=(6, 3))
+    ax.plot(path[:, 0], path[:, 1] / d["tip_h"], "o-", ms=3)
+    ax.axhline(0.0, color="k", lw=0.5)
+    ax.set_xlabel("x")
+    ax.set_ylabel("y / h (tip elements)")
+    ax.set_title(f"Mode I growth, {d['steps']} steps: largest drift {d['drift_over_h']:.1e} h")
+    fig.tight_layout()
+    fig.savefig(out / "drift.png", dpi=150)
     plt.close(fig)
 
 
