@@ -32,6 +32,7 @@ SMALL = {
     # growth scenes (grown by tests/test_growth.py)
     "fatigue_edge_crack": ["mesh.h=0.1", "mesh.refine[0].h=0.02"],
     "wing_crack": ["mesh.h=0.2", "mesh.refine[0].h=0.03"],
+    "drilled_plate": ["mesh.h=1.0", "mesh.refine[0].h=0.1", "mesh.refine[1].h=0.1"],
 }
 
 
