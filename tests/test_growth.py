@@ -317,3 +317,62 @@ def test_check_shows_the_growth_settings(capsys):
     out = capsys.readouterr().out
     assert "growth: max hoop criterion, fatigue: Paris C = 0.001, m = 3" in out
     assert "R = -0.5" in out
+
+
+# -- benchmark 6: published paths, and the K_II of kinked cracks they rest on ---------------------------
+
+import growth_paths as gp  # noqa: E402
+
+
+def test_kinked_crack_k_ii_against_cotterell_rice():
+    """A growing path is a chain of small kinks, so its direction rests on
+    K_II at the tip of a kinked crack. Cotterell and Rice (1980), to first
+    order in the kink angle theta: k_II = (theta / 2) K_I - sqrt(8 l / pi) T
+    theta. With sigma_xx = 0 and 2 (T = -1, +1) on a Griffith crack (a = 1)
+    kinked by 5.71 degrees over l = 0.05, the half difference is the T term
+    and the mean the K_I term. Measured: 0.03487 against 0.03556 (-1.9 %),
+    0.08820 against 0.08977 (-1.7 %; theta^2 and l / a corrections are of
+    that size); a K_II taken in the wrong frame (the crack's, not the last
+    segment's) would be off by K_I theta = 0.18."""
+    r = gp.kinked_crack_check()
+    assert r["T_term"] == pytest.approx(r["T_term_first_order"], rel=0.04)
+    assert r["K_term"] == pytest.approx(r["K_term_first_order"], rel=0.03)
+    for row in r["rows"]:
+        assert row["K_II_spread"] < 2e-3
+
+
+def test_drilled_plate_path_runs_to_the_holes_and_converges():
+    """Bittencourt et al.'s drilled plate (code_aster SSLP322 set-up): the
+    edge crack at x = 5 is drawn right toward the column of holes at x = 6,
+    passes the bottom hole on its left and heads for the middle one (35
+    steps of 0.1). Measured: tips (6.3886, 4.6487), (6.3875, 4.6474),
+    (6.3858, 4.6480) with path bands of 0.03, 0.02, 0.012; 0.15 from the
+    middle hole's edge, 0.11 from the bottom hole's at the closest. A kink
+    of the wrong sign would send the crack left, away from the holes."""
+    runs = [gp.drilled_plate(h) for h in (0.03, 0.02)]
+    for r in runs:
+        assert r["steps"] == 35
+        path = np.asarray(r["path"])
+        assert np.all(np.diff(path[:, 1]) > 0)  # upward throughout
+        assert 6.25 < r["tip"][0] < 6.6 and 4.4 < r["tip"][1] < 4.9  # beside the middle hole, right of it
+        assert 0.05 < r["tip_to_hole_edge"][1] < 0.25
+        assert 0.05 < r["closest_to_hole_edge"][0] < 0.2
+        x_at_bottom_hole = np.interp(2.75, path[:, 1], path[:, 0])
+        assert 5.3 < x_at_bottom_hole < 5.75  # passes the bottom hole (x 5.75 .. 6.25) on its left
+        assert r["K_I_final"] > 0
+    assert np.hypot(*(np.subtract(runs[0]["tip"], runs[1]["tip"]))) < 0.01
+
+
+def test_dcb_path_turns_away_from_the_axis():
+    """Belytschko and Black's double cantilever beam: the T-stress along the
+    crack is positive, so the 5.71 degree initial kink grows into a path that
+    turns further up (the published path reaches y = 0.84 at x = 5.02; ours,
+    converged, y = 0.68 at x = 5.20, see README). On a coarse run the path
+    must rise monotonically and steepen."""
+    b = gp.dcb(0.1, 0.0125, 0.05, 0)
+    path = np.asarray(b["path"])
+    assert b["K_II_initial"] < 0  # kinks further up (toward +e2)
+    slope = np.diff(path[:, 1]) / np.diff(path[:, 0])
+    assert np.all(np.diff(path[:, 0]) > 0) and np.all(slope > 0)
+    assert slope[-1] > 10 * slope[1]
+    assert 0.4 < path[-1, 1] < 1.0
