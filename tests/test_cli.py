@@ -256,3 +256,33 @@ def test_readme_quick_start_works_as_written(tmp_path):
     for name in ("crack.csv", "sif.csv", "solution.vtu", "crack_lips.vtu", "deformed.png",
                  "crack_pressure.png", "stress.png"):
         assert (out / name).stat().st_size > 0
+
+
+def test_large_mesh_pngs_are_rasterised_exactly():
+    """The image path of the PNGs (above outputs.RASTER_MIN_TRIANGLES): on an
+    unstructured mesh, every pixel carries the value of a triangle that
+    contains its centre, and pixels outside the part are NaN."""
+    from cracklip.mesh import create_rectangle
+    from cracklip.raster import image_shape, rasterize
+    md = create_rectangle(-1.0, -0.5, 1.0, 0.5, 0.05)
+    x = md.mesh.geometry.x[:, :2]
+    cells = md.mesh.geometry.dofmap.array.reshape(-1, 3)
+    tris = x[cells]
+    values = np.arange(len(cells), dtype=float)
+    extent = (-1.2, 1.2, -0.6, 0.6)  # a margin outside the part
+    shape = image_shape(extent, 300)
+    assert shape == (150, 300)
+    img = rasterize(tris, values, extent, shape)
+    ny, nx = shape
+    yc = extent[2] + (np.arange(ny) + 0.5) * (extent[3] - extent[2]) / ny
+    xc = extent[0] + (np.arange(nx) + 0.5) * (extent[1] - extent[0]) / nx
+    X, Y = np.meshgrid(xc, yc)
+    inside = (np.abs(X) < 1.0 - 1e-9) & (np.abs(Y) < 0.5 - 1e-9)
+    outside = (np.abs(X) > 1.0 + 1e-9) | (np.abs(Y) > 0.5 + 1e-9)
+    assert np.all(np.isnan(img[outside])) and not np.any(np.isnan(img[inside]))
+    # Barycentric coordinates of every inside pixel centre in its triangle.
+    t = tris[img[inside].astype(int)]
+    p = np.stack([X[inside], Y[inside]], axis=1)
+    d = np.stack([t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]], axis=2)
+    lam = np.linalg.solve(d, (p - t[:, 0])[:, :, None])[:, :, 0]
+    assert lam.min() >= -1e-9 and (1.0 - lam.sum(axis=1)).min() >= -1e-9

@@ -2,6 +2,7 @@
 #include "array.h"
 
 #include <fields.h>
+#include <raster.h>
 #include <pybind11/stl.h>
 
 namespace cracklip_wrappers
@@ -47,6 +48,18 @@ void declare_fields(py::module& m)
       },
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("u"),
       py::arg("E"), py::arg("nu"));
+
+  m.def(
+      "rasterize_triangles",
+      [](const carray<double>& triangles, const carray<double>& values, double x0, double x1, double y0,
+         double y1, int ny, int nx)
+      {
+        auto img = rasterize_triangles(as_span(triangles), as_span(values), x0, x1, y0, y1, ny, nx);
+        return as_pyarray(std::move(img), {py::ssize_t(ny), py::ssize_t(nx)});
+      },
+      py::arg("triangles"), py::arg("values"), py::arg("x0"), py::arg("x1"), py::arg("y0"), py::arg("y1"),
+      py::arg("ny"), py::arg("nx"),
+      "Image (ny, nx), row 0 at y0, of values constant on triangles (n, 3, 2); NaN outside.");
 
   m.def(
       "compute_field_points",
