@@ -197,6 +197,48 @@ def test_hard_cases_iterative(key):
         assert np.abs(qi - qd).max() <= MATCH * np.abs(qd).max()
 
 
+def test_friction_load_path_iterative():
+    """Friction and load paths take Options.solver too: the shipped
+    frictional scene (clamp, shear up, shear removed) gives every step's
+    direct answers, friction states and slip included, by GMRES on the
+    unsymmetric saddle point."""
+    sf = cl.load_scene_file(pathlib.Path(__file__).resolve().parents[1] / "demos" / "scenes" / "frictional_crack.toml")
+    direct = cl.solve(with_solver(sf.scene, "direct"))
+    iterative = cl.solve(with_solver(sf.scene, "iterative"))
+    assert direct.solver["solver"] == "direct" and iterative.solver["solver"] == "iterative"
+    recs = iterative.solver["solves"]
+    assert recs and all(r["solver"] == "iterative" and r["method"].startswith("GMRES") for r in recs)
+    assert all(r["relative_residual"] <= sf.scene.options.residual_tol for r in recs)
+    assert len(direct.steps) == len(iterative.steps) == 3
+    for d, it in zip(direct.steps, iterative.steps):
+        a, b = answers(d, None), answers(it, None)
+        assert abs(b["energy"][0] - a["energy"][0]) <= MATCH * abs(a["energy"][0])
+        scale = max(np.abs(a["sif"]).max(), sif_scale(d))
+        assert np.abs(b["sif"] - a["sif"]).max() <= MATCH * scale
+        pd, pi = d.contact_pressure(0), it.contact_pressure(0)
+        assert list(pd["state"]) == list(pi["state"])
+        top = max(np.abs(pd["pressure"]).max(), 1e-300)
+        for key in ("pressure", "shear"):
+            assert np.abs(pi[key] - pd[key]).max() <= MATCH * top, key
+        # (0 to round-off while the crack sticks: the displacement sets the scale)
+        u_scale = max(np.abs(pd["slip"]).max(), float(np.abs(d.standard_displacement).max()))
+        assert np.abs(pi["slip"] - pd["slip"]).max() <= MATCH * u_scale
+
+
+def test_load_path_with_nodal_rescaling_without_contact():
+    """A load path without contact solves the rescaled system when
+    rescale = "nodal" (it used to solve the unscaled matrix with the
+    rescaled load: K_I 0.408 instead of 1.0008 on Westergaard)."""
+    sc = dataclasses.replace(westergaard.scene_for(20)[0], load_path=[cl.LoadStep({"default": 0.5}), cl.LoadStep({"default": 1.0})])
+    k = {}
+    for rescale in ("none", "nodal"):
+        sol = cl.solve(dataclasses.replace(sc, options=dataclasses.replace(sc.options, rescale=rescale, solver="direct")))
+        k[rescale] = np.array([[r["K_I"], r["K_II"]] for r in sol.stress_intensity_factors()])
+        assert [s.step["factors"]["default"] for s in sol.steps] == [0.5, 1.0]
+    assert abs(k["none"][0, 0] - 1.0) < 0.01
+    assert np.abs(k["nodal"] - k["none"]).max() <= 1e-8
+
+
 def test_active_set_reuses_the_amg_hierarchy():
     """Open-closed-open contact needs several active sets: every saddle solve
     after the first reuses block 0's GAMG hierarchy, and only the band

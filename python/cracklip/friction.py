@@ -32,12 +32,16 @@ whose state flips.
 from __future__ import annotations
 
 import logging
+import typing
 
 import numpy as np
 import scipy.sparse as sp
 
 from .contact import ContactError, ContactSystem
 from .linear_solver import petsc_from_scipy, solve_checked
+
+if typing.TYPE_CHECKING:
+    from .solvers import LinearSolver
 
 logger = logging.getLogger(__name__)
 
@@ -48,11 +52,14 @@ STATE_NAMES = {OPEN: "open", STICK: "stick", SLIP: "slip"}
 
 def solve_saddle_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.ndarray,
                           g_t: np.ndarray, s_old: np.ndarray, state: np.ndarray, sign: np.ndarray,
-                          mu: float, residual_tol: float, bound: np.ndarray | None = None
+                          mu: float, residual_tol: float, bound: np.ndarray | None = None,
+                          linear: "LinearSolver | None" = None, x0: np.ndarray | None = None
                           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """One linear solve for given states (module doc). With `bound` (Tresca:
     a given friction bound b_k per multiplier) the slip rows are
     lambda_t = -sigma b instead of lambda_t - mu sigma lambda_n = 0.
+    linear: the solver path (cracklip.solvers; default MUMPS LU), x0 an
+    initial guess (u, lambda_n, lambda_t) for an iterative one.
     Returns (u, lambda_n, lambda_t)."""
     m = cs.num_multipliers
     closed = state != OPEN
@@ -69,7 +76,13 @@ def solve_saddle_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_
     A = petsc_from_scipy(S)
     b = A.createVecRight()
     b.array[:] = rhs
-    x = solve_checked(A, b, residual_tol, what="frictional contact system")
+    what = "frictional contact system"
+    # Unsymmetric: open and slipping rows are masked while B^T, B_t^T are whole,
+    # and the Coulomb slip rows couple lambda_t to lambda_n.
+    if linear is None:
+        x = solve_checked(A, b, residual_tol, what=what, symmetric=False)
+    else:
+        x = linear.solve(A, b, residual_tol, what=what, x0=x0, symmetric=False)
     sol = x.array.copy()
     for obj in (A, b, x):
         obj.destroy()
@@ -108,7 +121,8 @@ def classify(p: np.ndarray, tau: np.ndarray, gap: np.ndarray, dslip: np.ndarray,
 
 def solve_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.ndarray, g_t: np.ndarray,
                    s_old: np.ndarray, opts, c: float, state: np.ndarray | None = None,
-                   sign: np.ndarray | None = None) -> tuple[np.ndarray, dict]:
+                   sign: np.ndarray | None = None, linear: "LinearSolver | None" = None
+                   ) -> tuple[np.ndarray, dict]:
     """Frictional contact for one load increment: stiffness K (constraints
     applied), load f, constraint right-hand sides g_n, g_t (prescribed
     values), s_old the weighted slip B_t u_old - g_t,old of the previous
@@ -122,8 +136,9 @@ def solve_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.n
     the bound b = mu p is frozen at the last pressure, the Tresca problem
     with that bound is solved by the same iteration (a convex problem: its
     states settle), and the bound is updated until it changes by less than
-    1e-10 of its size. Returns (u, info: lambda, lambda_t, state, sign,
-    active, iterations, history, method)."""
+    1e-10 of its size. linear: the solver path of every linear solve
+    (cracklip.solvers; default MUMPS LU). Returns (u, info: lambda,
+    lambda_t, state, sign, active, iterations, history, method)."""
     mu = float(opts.friction)
     m = cs.num_multipliers
     bilateral = opts.contact == "bilateral"
@@ -133,7 +148,7 @@ def solve_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.n
     sign = np.zeros(m) if sign is None else sign
     history: list[dict[str, int]] = []
     try:
-        u, info = _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, None)
+        u, info = _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, None, linear)
         info["method"] = "coulomb"
         return u, info
     except _Cycle as cycle:
@@ -143,7 +158,7 @@ def solve_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.n
     bound = mu * np.maximum(-lam_n, 0.0)
     for outer in range(1, opts.max_active_set_iterations + 1):
         try:
-            u, info = _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound)
+            u, info = _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, linear)
         except _Cycle as e:
             raise ContactError(f"{first_cycle}; the fixed point on the friction bound cycles too ({e}); split "
                                "the load into more increments (options.load_steps), or lower the friction "
@@ -193,7 +208,7 @@ def violation(p: np.ndarray, tau: np.ndarray, gap: np.ndarray, dslip: np.ndarray
     return float(v.max(initial=0.0) / max(float(np.abs(p).max(initial=0.0)), 1e-300))
 
 
-def _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound):
+def _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, linear=None):
     """The state iteration (Coulomb, or Tresca with a given bound) from the
     given states. When a set of states comes back, the iterate of least
     violation in the cycle is taken if its violation is below
@@ -205,9 +220,11 @@ def _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound):
     seen = {key(state, sign): len(history)}
     start = len(history)
     iterates: dict[int, tuple] = {}
+    x0 = None
     for it in range(1, opts.max_active_set_iterations + 1):
         u, lam_n, lam_t = solve_saddle_friction(K, f, cs, g_n, g_t, s_old, state, sign, mu, opts.residual_tol,
-                                                bound)
+                                                bound, linear, x0)
+        x0 = np.concatenate([u, lam_n, lam_t])
         gap = cs.B @ u - g_n
         dslip = cs.Bt @ u - g_t - s_old
         iterates[len(history)] = (u, lam_n, lam_t, state, sign,

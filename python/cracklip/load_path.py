@@ -27,11 +27,12 @@ from .assembly import assemble_system_groups
 from .contact import contact_constant, create_contact_system, solve_frictionless
 from .errors import InputError
 from .friction import STATE_NAMES, solve_friction
-from .linear_solver import record_solves, scipy_from_petsc, solve_checked
+from .linear_solver import petsc_from_scipy, record_solves, scipy_from_petsc
 from .loads import load_groups
 from .model import create_model
 from .post import Solution
 from .scene import LoadStep, Scene
+from .solvers import create_linear_solver
 
 logger = logging.getLogger(__name__)
 
@@ -93,11 +94,26 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
                                bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
     A, rhs, timings = assemble_system_groups(unit)
     T = None
-    if opts.rescale == "nodal":
+    linear = create_linear_solver(unit)  # Options.solver, as solve.solve (cracklip.solvers)
+    if linear.name == "iterative":  # phantom-node basis: T^T A T, T^T f per group, u = T y
+        t0 = time.perf_counter()
+        b = A.createVecRight()
+        A_t, b_t, T = linear.transform(A, b)  # may reuse A's storage (A_t is A)
+        if A_t is not A:
+            A.destroy()
+        b.destroy()
+        b_t.destroy()
+        A = A_t
+        K = scipy_from_petsc(A)
+        rhs = {g: T.T @ v for g, v in rhs.items()}
+        timings["phantom_transform"] = time.perf_counter() - t0
+    elif opts.rescale == "nodal":
         from .rescaling import nodal_transform
         t0 = time.perf_counter()
         T = nodal_transform(unit, A)
         K = (T.T @ scipy_from_petsc(A) @ T).tocsr()
+        A.destroy()
+        A = petsc_from_scipy(K)  # the system solved is T^T A T y = T^T f, u = T y
         rhs = {g: T.T @ b for g, b in rhs.items()}
         timings["rescale"] = time.perf_counter() - t0
     else:
@@ -128,7 +144,7 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
             if not contact:
                 A_f = A.createVecRight()
                 A_f.array[:] = f
-                x = solve_checked(A, A_f, opts.residual_tol, what="X-FEM stiffness system")
+                x = linear.solve(A, A_f, opts.residual_tol, what="X-FEM stiffness system")
                 y = x.array.copy()
                 A_f.destroy()
                 x.destroy()
@@ -137,16 +153,16 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
                 work = dataclasses.replace(cs, g=g_n)
                 if friction:
                     g_t = _combine(cs.gt_groups, inc.factors, m)
-                    y, info = solve_friction(K, f, work, g_n, g_t, s_old, opts, c, state, sign)
+                    y, info = solve_friction(K, f, work, g_n, g_t, s_old, opts, c, state, sign, linear)
                     state, sign = info["state"], info["sign"]
                     s_old = cs.Bt @ y - g_t
                 else:
-                    y, info = solve_frictionless(K, f, work, opts, c, active)
+                    y, info = solve_frictionless(K, f, work, opts, c, active, linear)
                     active = info["active"]
                 iterations.append(int(info["iterations"]))
             if inc.index == opts.load_steps:
                 out.append(_step_solution(model, unit, physical, y, T, E, info, inc, step_list[inc.step],
-                                          iterations, timings, solves))
+                                          iterations, timings, solves, linear.name))
                 iterations = []
                 logger.info("load step %d/%d (%s) solved", inc.step + 1, len(step_list), step_list[inc.step].name)
     timings["path_solve"] = time.perf_counter() - t0
@@ -154,6 +170,7 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
         from .linear_solver import condition_number_1norm
         out[-1].condition = condition_number_1norm(A)
     A.destroy()
+    linear.destroy()
     timings["total"] = time.perf_counter() - t_start
     for sol in out:
         sol.timings = {**model.timings, **timings}
@@ -162,7 +179,7 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
 
 
 def _step_solution(model, unit, physical, y, T, E, info, inc: Increment, step: LoadStep,
-                   iterations: list[int], timings, solves) -> Solution:
+                   iterations: list[int], timings, solves, solver_name: str = "direct") -> Solution:
     u = (y if T is None else T @ y) / E
     contact = {}
     if physical is not None:
@@ -174,7 +191,8 @@ def _step_solution(model, unit, physical, y, T, E, info, inc: Increment, step: L
         contact = {"system": system, **{k: (v.copy() if isinstance(v, np.ndarray) else v) for k, v in info.items()},
                    "increment_iterations": list(iterations)}
         contact["iterations"] = int(sum(iterations))
-    solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None, "solves": list(solves)}
+    solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None, "solver": solver_name,
+              "solves": list(solves)}
     sol = Solution(model, u, dict(timings), {}, contact, solver)
     sol.factors = dict(inc.factors)
     sol.step = {"index": inc.step, "name": step.name, "factors": dict(inc.factors),

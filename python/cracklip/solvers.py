@@ -22,7 +22,10 @@ iterative path needs:
   LDL^T | one GAMG V-cycle on the whole transformed stiffness | band again}
   as the preconditioner of CG (also for the saddle point of contact, with
   GMRES(30) as the fallback). The GAMG hierarchy depends on the stiffness
-  only, so it is built once and reused by every active-set iteration.
+  only, so it is built once and reused by every active-set iteration. The
+  unsymmetric saddle point of friction goes to GMRES(30) with the band
+  factored by LU. Every solve path takes it: solve.solve, the load path
+  and friction (load_path.solve_path), hence growth.
 
 Every iterative solve is checked like the direct one (linear_solver.
 solve_checked): the relative residual of the original (untransformed)
@@ -321,7 +324,9 @@ class LinearSolver:
         return A, b, None
 
     def solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
-              x0: np.ndarray | None = None) -> PETSc.Vec:
+              x0: np.ndarray | None = None, symmetric: bool = True) -> PETSc.Vec:
+        """symmetric = False for an unsymmetric system (frictional contact:
+        the slip rows): LU instead of LDL^T, GMRES instead of CG."""
         raise NotImplementedError
 
     def destroy(self) -> None:
@@ -333,8 +338,8 @@ class DirectSolver(LinearSolver):
     name = "direct"
 
     def solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
-              x0: np.ndarray | None = None) -> PETSc.Vec:
-        return solve_checked(A, b, residual_tol, what=what, symmetric=True)
+              x0: np.ndarray | None = None, symmetric: bool = True) -> PETSc.Vec:
+        return solve_checked(A, b, residual_tol, what=what, symmetric=symmetric)
 
 
 def _set_options(prefix: str, options: dict[str, typing.Any]) -> None:
@@ -431,22 +436,23 @@ class IterativeSolver(LinearSolver):
         return pc
 
     def solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
-              x0: np.ndarray | None = None) -> PETSc.Vec:
+              x0: np.ndarray | None = None, symmetric: bool = True) -> PETSc.Vec:
         """Solve A y = b (A in the phantom basis: the stiffness given to
-        transform(), or a saddle-point system extending it); check the
-        residual of the original system. With fallback (solver = "auto") a
-        failed iterative solve is repeated by MUMPS LDL^T, which either
-        solves the system or names what is singular."""
+        transform(), or a saddle-point system extending it, unsymmetric
+        with friction); check the residual of the original system. With
+        fallback (solver = "auto") a failed iterative solve is repeated by
+        MUMPS (LDL^T, or LU if not symmetric), which either solves the
+        system or names what is singular."""
         try:
-            return self._solve(A, b, residual_tol, what, x0)
+            return self._solve(A, b, residual_tol, what, x0, symmetric)
         except SolverError as e:
             if not self.fallback:
                 raise
-            logger.warning("%s: the iterative solver failed (%s); solving with MUMPS LDL^T instead", what, e)
-            return solve_checked(A, b, residual_tol, what=what, symmetric=True)
+            logger.warning("%s: the iterative solver failed (%s); solving with MUMPS instead", what, e)
+            return solve_checked(A, b, residual_tol, what=what, symmetric=symmetric)
 
     def _solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
-               x0: np.ndarray | None) -> PETSc.Vec:
+               x0: np.ndarray | None, symmetric: bool = True) -> PETSc.Vec:
         size = A.getSize()[0]
         m = size - self.n
         t0 = time.perf_counter()
@@ -454,7 +460,7 @@ class IterativeSolver(LinearSolver):
         try:
             pc0, reused = self._block0_pc(A)
             band_dofs = np.concatenate([self._contact_band(m), np.arange(self.n, size)])
-            shell = _Schwarz(A, pc0, self.n, band_dofs)
+            shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric)
             t_setup = time.perf_counter() - t0
             # CG also for the saddle point: the sweep ends with an exact solve
             # of the band, which holds every multiplier and every dof they
@@ -462,7 +468,8 @@ class IterativeSolver(LinearSolver):
             # constraints and CG works on the constrained (positive definite)
             # problem, as with a constraint preconditioner. If it breaks down
             # anyway, GMRES (which needs no definiteness) takes over.
-            attempts = ["cg"] if m == 0 else ["cg", "gmres"]
+            # An unsymmetric system (friction) goes to GMRES at once.
+            attempts = ["gmres"] if not symmetric else ["cg"] if m == 0 else ["cg", "gmres"]
             for krylov in attempts:
                 y, its, reason = self._krylov(A, b, shell, krylov, x0, what)
                 rel = self._original_residual(A, y, b)
@@ -554,7 +561,7 @@ class _Schwarz:
     definite for a positive definite A (CG). Only the band's rows and
     columns of A are needed for the residual updates (small matrices)."""
 
-    def __init__(self, A: PETSc.Mat, amg: PETSc.PC, n0: int, band_dofs: np.ndarray):
+    def __init__(self, A: PETSc.Mat, amg: PETSc.PC, n0: int, band_dofs: np.ndarray, symmetric: bool = True):
         comm = PETSc.COMM_SELF
         size = A.getSize()[0]
         self.amg = amg
@@ -565,7 +572,7 @@ class _Schwarz:
         self.is0 = PETSc.IS().createStride(n0, 0, 1, comm=comm)
         self.A01 = A.createSubMatrix(self.is0, self.is1)  # block 0's rows, band columns
         A11 = A.createSubMatrix(self.is1, self.is1)
-        self.band = _factor_band(A11)
+        self.band = _factor_band(A11, symmetric)
         A11.destroy()
         self.r0 = self.A01.createVecLeft()
         self.r1, self.z1, self.t1 = (self.A1.createVecLeft() for _ in range(3))
@@ -610,14 +617,15 @@ class _Schwarz:
             obj.destroy()
 
 
-def _factor_band(A11: PETSc.Mat) -> PETSc.KSP:
-    """MUMPS LDL^T of the crack band (symmetric indefinite with multipliers),
+def _factor_band(A11: PETSc.Mat, symmetric: bool = True) -> PETSc.KSP:
+    """MUMPS LDL^T of the crack band (symmetric indefinite with multipliers;
+    LU if not symmetric: friction's slip rows),
     with solve_checked's checks: a factorisation that runs out of workspace
     (INFOG(1) = -8, -9: delayed pivots of the ill-conditioned tip dofs) is
     retried with more (ICNTL(14)); an error or a null pivot raises."""
     from .linear_solver import _factor_call, create_lu_solver
     for relax in (20, 100, 400):
-        ksp = create_lu_solver(A11, symmetric=True)
+        ksp = create_lu_solver(A11, symmetric=symmetric)
         _factor_call(ksp, "setMumpsIcntl", 14, relax)
         error = None
         try:
