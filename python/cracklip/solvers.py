@@ -266,8 +266,23 @@ def rigid_modes(model: "XfemModel", size: int | None = None) -> np.ndarray:
     R[2 * nodes + 1, 1] = 1.0
     R[2 * nodes, 2] = -xy[:, 1]
     R[2 * nodes + 1, 2] = xy[:, 0]
-    q, _ = np.linalg.qr(R)
-    return q
+    return orthonormal_columns(R)
+
+
+def orthonormal_columns(R: np.ndarray) -> np.ndarray:
+    """R's columns orthonormalised (twice-repeated modified Gram-Schmidt: a
+    few vector operations on a tall (n, 3) R, where LAPACK's QR took 0.3 s at
+    1e6 dofs)."""
+    Q = np.array(R, dtype=np.float64, order="F", copy=True)  # contiguous columns
+    for j in range(Q.shape[1]):
+        for _ in range(2):
+            for i in range(j):
+                Q[:, j] -= (Q[:, i] @ Q[:, j]) * Q[:, i]
+        norm = float(np.linalg.norm(Q[:, j]))
+        if norm == 0.0:
+            raise SolverError("the rigid modes are linearly dependent (a mesh with a single node?)")
+        Q[:, j] /= norm
+    return Q
 
 
 def crack_band(model: "XfemModel", rings: int = 1) -> np.ndarray:
@@ -416,7 +431,7 @@ class IterativeSolver(LinearSolver):
 
     def _gamg(self, A: PETSc.Mat, modes: np.ndarray) -> PETSc.PC:
         """A set-up GAMG PC on A with the rigid modes (rows of A) as near-nullspace."""
-        q, _ = np.linalg.qr(modes)
+        q = orthonormal_columns(modes)
         vecs = []
         for j in range(q.shape[1]):
             v = A.createVecRight()

@@ -3,6 +3,7 @@
 
 #include <contact_kernels.h>
 #include <multiplier_space.h>
+#include <saddle_matrix.h>
 #include <pybind11/stl.h>
 
 namespace cracklip_wrappers
@@ -104,6 +105,22 @@ void declare_contact(py::module& m)
       },
       py::arg("space"), py::arg("crack"), py::arg("point_cells"), py::arg("ref"), py::arg("lambda_full"),
       "Values (n) of a full multiplier field at points (cell, reference) of a crack.");
+
+  m.def(
+      "saddle_csr",
+      [](const carray<std::int32_t>& k_indptr, const carray<std::int32_t>& k_indices,
+         const carray<double>& k_data, const carray<std::int32_t>& b_indptr,
+         const carray<std::int32_t>& b_indices, const carray<double>& b_data,
+         const carray<std::int8_t>& active)
+      {
+        SaddleCsr s = saddle_csr(as_span(k_indptr), as_span(k_indices), as_span(k_data), as_span(b_indptr),
+                                 as_span(b_indices), as_span(b_data), as_span(active));
+        return py::make_tuple(as_pyarray(std::move(s.indptr)), as_pyarray(std::move(s.indices)),
+                              as_pyarray(std::move(s.data)));
+      },
+      py::arg("k_indptr"), py::arg("k_indices"), py::arg("k_data"), py::arg("b_indptr"),
+      py::arg("b_indices"), py::arg("b_data"), py::arg("active"),
+      "CSR (indptr, indices, data) of [K B_a^T; B_a D] (cpp/saddle_matrix.h).");
 }
 
 } // namespace cracklip_wrappers
