@@ -318,7 +318,8 @@ def benchmark(sizes: typing.Sequence[float], repeats: int, cases: typing.Sequenc
                     measured["xfem-direct"]["ratio_to_untuned"] = measured["xfem-direct"]["t_solve"] / row["t_solve"]
             ndofs = next((r["ndofs"] for r in measured.values() if r.get("ndofs")), None)
             if ndofs:
-                auto = solvers.choose_solver(Options(), ndofs)
+                enriched = next((r["enriched_dofs"] for r in measured.values() if r.get("enriched_dofs")), 0)
+                auto = solvers.choose_solver(Options(), ndofs, enriched)
                 ok = {k.split("-")[1]: r["t_solve"] for k, r in measured.items()}
                 best = min(ok, key=ok.get) if ok else None
                 choices.append({"case": case, "ndofs": ndofs, "auto": auto, "fastest": best, "t_solve": ok,
@@ -351,6 +352,38 @@ def plot(result: dict, path: pathlib.Path) -> None:
     fig.savefig(path, dpi=120)
 
 
+def markdown(result: dict) -> str:
+    """The README's speed table from a result: one row per (case, size) with
+    t_solve of each path, the X-FEM iterative path's ratio to plain CG +
+    GAMG, iterations and peak memory."""
+    by: dict[tuple, dict] = {}
+    for r in result["rows"]:
+        by.setdefault((r["target_dofs"], r["case"]), {})[r["solver"]] = r
+    plain = {t: rows for (t, c), rows in by.items() if c == "plain"}
+
+    def cell(r: dict | None, what: str = "t_solve") -> str:
+        if r is None:
+            return "-"
+        if r.get("status") != "ok":
+            return str(r.get("status", "-")).split(" (")[0]
+        v = r.get(what)
+        return "-" if v is None else f"{v:.3g}"
+    lines = ["| case | dofs | X-FEM direct (s) | X-FEM iterative (s) | its | ratio to plain GAMG | plain CG + GAMG (s) "
+             "| plain MUMPS (s) | peak GB (direct / iterative) |", "|---|---|---|---|---|---|---|---|---|"]
+    for (t, case), rows in sorted(by.items(), key=lambda kv: (kv[0][1], kv[0][0])):
+        if case == "plain":
+            continue
+        d, it = rows.get("xfem-direct"), rows.get("xfem-iterative")
+        p = plain.get(t, {})
+        ndofs = next((r["ndofs"] for r in (d, it) if r and r.get("ndofs")), None)
+        ratio = it.get("ratio_to_plain_gamg") if it else None
+        mem = f"{cell(d, 'peak_rss_gb')} / {cell(it, 'peak_rss_gb')}"
+        lines.append(f"| {case} | {ndofs if ndofs else f'~{t:.0e}'} | {cell(d)} | {cell(it)} | "
+                     f"{it.get('iterations') if it else '-'} | {'-' if ratio is None else f'{ratio:.2f}'} | "
+                     f"{cell(p.get('plain-gamg'))} | {cell(p.get('plain-mumps'))} | {mem} |")
+    return "\n".join(lines)
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--sizes", type=float, nargs="+", default=[2e4, 2e5],
@@ -366,8 +399,13 @@ def main(argv=None) -> int:
     ap.add_argument("--timeout", type=float, default=None, help="seconds per subprocess")
     ap.add_argument("--json", type=pathlib.Path, default=pathlib.Path("results/bench_solvers.json"))
     ap.add_argument("--quiet", action="store_true")
+    ap.add_argument("--table", type=pathlib.Path, metavar="JSON",
+                    help="print the Markdown speed table of an earlier run's JSON and stop")
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
+    if args.table:
+        print(markdown(json.loads(args.table.read_text())))
+        return 0
     if args.worker:
         print(json.dumps(worker(json.loads(args.worker))))
         return 0
@@ -391,7 +429,7 @@ def main(argv=None) -> int:
 
 if __name__ == "__main__":
     status = main()
-    if "--worker" not in sys.argv:
+    if "--worker" not in sys.argv and "--table" not in sys.argv:
         import matplotlib
         matplotlib.use("Agg")
         args_json = pathlib.Path(sys.argv[sys.argv.index("--json") + 1]) if "--json" in sys.argv else \

@@ -257,11 +257,17 @@ def test_active_set_reuses_the_amg_hierarchy():
 def test_auto_choice_by_size():
     opts = cl.Options()
     assert opts.solver == "auto"
-    assert solvers.choose_solver(opts, solvers.AUTO_ITERATIVE_DOFS - 1) == "direct"
-    assert solvers.choose_solver(opts, solvers.AUTO_ITERATIVE_DOFS) == "iterative"
-    n = 10 ** 6  # a large tip-enrichment disk keeps auto on the direct path
+    n0 = solvers.AUTO_ITERATIVE_DOFS  # a tip-enrichment disk of 3 % of the dofs: iterative from n0 on
+    assert solvers.choose_solver(opts, n0 - 1, int(0.03 * n0)) == "direct"
+    assert solvers.choose_solver(opts, n0, int(0.03 * n0)) == "iterative"
+    n = 10 ** 6  # few enriched dofs (a small crack): MUMPS is faster, up to AUTO_DIRECT_MAX_DOFS
+    assert solvers.choose_solver(opts, n, int(solvers.AUTO_MIN_ENRICHED_FRACTION * n) - 1) == "direct"
+    assert solvers.choose_solver(opts, n, int(solvers.AUTO_MIN_ENRICHED_FRACTION * n)) == "iterative"
     assert solvers.choose_solver(opts, n, int(solvers.AUTO_MAX_ENRICHED_FRACTION * n)) == "iterative"
     assert solvers.choose_solver(opts, n, int(solvers.AUTO_MAX_ENRICHED_FRACTION * n) + 1) == "direct"
+    big = solvers.AUTO_DIRECT_MAX_DOFS  # the direct path's memory: iterative whatever the enrichment
+    assert solvers.choose_solver(opts, big - 1, 0) == "direct"
+    assert solvers.choose_solver(opts, big, 0) == solvers.choose_solver(opts, big, big // 4) == "iterative"
     assert solvers.choose_solver(cl.Options(solver="direct"), 10 ** 8) == "direct"
     assert solvers.choose_solver(cl.Options(solver="iterative"), 10) == "iterative"
     assert solvers.choose_solver(cl.Options(rescale="nodal"), 10 ** 8) == "direct"
@@ -288,6 +294,7 @@ def test_auto_falls_back_to_direct(monkeypatch):
     scene = block.scene_for(10, contact="bilateral")
     direct = cl.solve(with_solver(scene, "direct"))
     monkeypatch.setattr(solvers, "AUTO_ITERATIVE_DOFS", 0)
+    monkeypatch.setattr(solvers, "AUTO_MIN_ENRICHED_FRACTION", 0.0)
     monkeypatch.setattr(solvers, "AUTO_MAX_ENRICHED_FRACTION", 1.0)
     monkeypatch.setattr(solvers, "MAX_ITERATIONS", 3)
     sol = cl.solve(scene)
@@ -354,3 +361,7 @@ def test_bench_solvers_demo_tiny(tmp_path):
     assert rows["xfem-direct"]["method"] == "MUMPS LDL^T"
     assert doc["auto_choice"][0]["auto"] == "direct"
     assert (tmp_path / "bench.png").stat().st_size > 0
+    table = subprocess.run([sys.executable, str(demo), "--table", str(out)], check=True, timeout=60,
+                           capture_output=True, text=True).stdout.splitlines()
+    assert table[0].startswith("| case | dofs |") and len(table) == 3
+    assert table[2].startswith(f"| open | {rows['xfem-direct']['ndofs']} |")

@@ -256,7 +256,22 @@ def refinement_size(h: float, h_near: float, radius: float) -> tuple[float, floa
     return plateau, min(growth, MAX_GROWTH)
 
 
+#: gmsh's smoothing pass after meshing (Mesh.Smoothing = 1) runs while the
+#: mesh is expected to have at most this many nodes (NODES_PER_AREA_H2 x
+#: area / h^2, refinements not counted) and is skipped on larger meshes,
+#: where it costs half the meshing time: on [-1, 1]^2 at h = 0.0125 (30k
+#: nodes) 0.8 s of 1.6 s, for a smallest angle of 40.9 instead of 35.9
+#: degrees (1st percentile of the cells' smallest angles 48.0 vs 45.1, mean
+#: 59.6 either way); with a tip refinement 20 x finer, 36.0 vs 28.5.
+SMOOTHING_MAX_NODES = 20_000
+#: Nodes per unit area of gmsh's frontal-Delaunay mesh of size h: ~1.17 / h^2.
+NODES_PER_AREA_H2 = 1.17
+
+
 def _mesh_2d(gmsh, h: float, refine) -> None:
+    area = sum(gmsh.model.occ.getMass(2, tag) for _, tag in gmsh.model.getEntities(2))
+    smoothing = 1 if NODES_PER_AREA_H2 * area / h ** 2 <= SMOOTHING_MAX_NODES else 0
+    gmsh.option.setNumber("Mesh.Smoothing", smoothing)
     gmsh.option.setNumber("Mesh.MeshSizeMax", h)
     gmsh.option.setNumber("Mesh.MeshSizeMin", min([h] + [r[2] for r in refine]))
     gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)

@@ -360,8 +360,8 @@ class Options:
             follows its slip history more closely.
         solver: linear solver: "direct" (MUMPS LDL^T), "iterative" (AMG in a
             phantom-node basis, a direct solve of the crack band; same
-            checked accuracy) or "auto" (direct below
-            cracklip.solvers.AUTO_ITERATIVE_DOFS dofs, iterative above).
+            checked accuracy) or "auto" (chosen by size and enriched
+            fraction as measured: cracklip.solvers.choose_solver).
     """
     enrichment: str = "vector"
     radius: float = 0.0

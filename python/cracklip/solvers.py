@@ -55,14 +55,24 @@ if typing.TYPE_CHECKING:
 
 logger = logging.getLogger(__name__)
 
-#: Options.solver = "auto" takes the iterative path from this many dofs on.
-#: Measured (solve phase, medians of 3, a busy 2-core VM): on the bench
-#: scene the two paths cross between 2e4 and 8e4 dofs (open crack: direct
-#: 0.30 s vs iterative 0.25 s at 4e4; contact 0.47 vs 0.39 s), and on the
-#: Westergaard scene at 62k dofs (radius 0.2) the iterative solve takes
-#: 0.26 s against MUMPS' 0.45-0.60 s; demos/bench_solvers.py's auto_choice
-#: checks the choice at every size of its sweep.
+#: Options.solver = "auto": measured on this kind of machine (2 cores,
+#: OpenBLAS, medians of 3; demos/bench_solvers.py and the Westergaard scene),
+#: MUMPS LDL^T beats the iterative path wherever the enriched dofs are few:
+#: the bench scene (a 0.6-long crack, tip functions on the tip cell only,
+#: about 0.1 % enriched dofs) is faster direct at every size up to 4e6 dofs
+#: (open crack 7.5 s vs 8.1 s at 1e6, 39.5 vs 51.7 s at 4e6; contact 10.0
+#: vs 13.0 s and 38.1 vs 67.4 s), while a tip-enrichment disk (Westergaard,
+#: radius 0.2, vector tip functions, 3.4 % enriched) makes the factorisation
+#: dearer and the iterative path wins from 6e4 dofs (0.33 vs 0.59 s at 6.2e4,
+#: 1.3 vs 2.2 s at 2e5). So auto goes iterative from AUTO_ITERATIVE_DOFS
+#: dofs while the enriched fraction lies in [AUTO_MIN_ENRICHED_FRACTION,
+#: AUTO_MAX_ENRICHED_FRACTION], and at any enrichment from
+#: AUTO_DIRECT_MAX_DOFS dofs on, where the direct path's memory (2.4 GB per
+#: 1e6 dofs with contact, 9.6 GB at 4e6) nears a 24 GB machine's (the
+#: iterative path: 6.0 GB at 4e6).
 AUTO_ITERATIVE_DOFS = 50_000
+AUTO_MIN_ENRICHED_FRACTION = 0.01
+AUTO_DIRECT_MAX_DOFS = 5_000_000
 
 #: ... and while enriched dofs are at most this fraction of the dofs: the
 #: crack band (all enriched dofs and a ring) is factored, and a large tip
@@ -119,14 +129,18 @@ _prefixes = itertools.count()
 def choose_solver(options: "Options", num_dofs: int, num_enriched_dofs: int = 0) -> str:
     """The path Options.solver names for a system of num_dofs stiffness
     dofs, num_enriched_dofs of them enriched: "direct" or "iterative"
-    ("auto": iterative from AUTO_ITERATIVE_DOFS on while at most
-    AUTO_MAX_ENRICHED_FRACTION of the dofs are enriched, unless rescale =
-    "nodal", a direct-solver option)."""
+    ("auto": iterative from AUTO_DIRECT_MAX_DOFS on, and from
+    AUTO_ITERATIVE_DOFS on while the enriched fraction lies between
+    AUTO_MIN_ENRICHED_FRACTION and AUTO_MAX_ENRICHED_FRACTION; direct
+    otherwise, and always with rescale = "nodal", a direct-solver option)."""
     if options.solver == "auto":
         if options.rescale == "nodal":
             return "direct"
-        small = num_dofs < AUTO_ITERATIVE_DOFS
-        return "direct" if small or num_enriched_dofs > AUTO_MAX_ENRICHED_FRACTION * num_dofs else "iterative"
+        if num_dofs >= AUTO_DIRECT_MAX_DOFS:
+            return "iterative"
+        fraction = num_enriched_dofs / max(num_dofs, 1)
+        band = AUTO_MIN_ENRICHED_FRACTION <= fraction <= AUTO_MAX_ENRICHED_FRACTION
+        return "iterative" if num_dofs >= AUTO_ITERATIVE_DOFS and band else "direct"
     if options.solver == "iterative" and options.rescale == "nodal":
         raise InputError("rescale = 'nodal' conditions the matrix for the direct solver; the iterative "
                          "solver uses its own (phantom-node) basis: use rescale = 'none' with "
