@@ -488,7 +488,10 @@ class IterativeSolver(LinearSolver):
         shell = None
         try:
             pc0, reused = self._block0_pc(A)
-            band_dofs = np.concatenate([self._contact_band(m), np.arange(self.n, size)])
+            # The band's width follows the contact points: friction's
+            # unsymmetric system has two multipliers (normal, tangential) per point.
+            points = m if symmetric else m // 2
+            band_dofs = np.concatenate([self._contact_band(points), np.arange(self.n, size)])
             shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric)
             t_setup = time.perf_counter() - t0
             # CG also for the saddle point: the sweep ends with an exact solve
