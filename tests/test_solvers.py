@@ -228,15 +228,18 @@ def test_friction_load_path_iterative():
 def test_load_path_with_nodal_rescaling_without_contact():
     """A load path without contact solves the rescaled system when
     rescale = "nodal" (it used to solve the unscaled matrix with the
-    rescaled load: K_I 0.408 instead of 1.0008 on Westergaard)."""
+    rescaled load: K_I 0.408 instead of 1.0008 on Westergaard), and the
+    phantom-basis system on the iterative path."""
     sc = dataclasses.replace(westergaard.scene_for(20)[0], load_path=[cl.LoadStep({"default": 0.5}), cl.LoadStep({"default": 1.0})])
     k = {}
-    for rescale in ("none", "nodal"):
-        sol = cl.solve(dataclasses.replace(sc, options=dataclasses.replace(sc.options, rescale=rescale, solver="direct")))
-        k[rescale] = np.array([[r["K_I"], r["K_II"]] for r in sol.stress_intensity_factors()])
+    for rescale, solver in (("none", "direct"), ("nodal", "direct"), ("none", "iterative")):
+        sol = cl.solve(dataclasses.replace(sc, options=dataclasses.replace(sc.options, rescale=rescale, solver=solver)))
+        assert sol.solver["solver"] == solver
+        k[rescale, solver] = np.array([[r["K_I"], r["K_II"]] for r in sol.stress_intensity_factors()])
         assert [s.step["factors"]["default"] for s in sol.steps] == [0.5, 1.0]
-    assert abs(k["none"][0, 0] - 1.0) < 0.01
-    assert np.abs(k["nodal"] - k["none"]).max() <= 1e-8
+    assert abs(k["none", "direct"][0, 0] - 1.0) < 0.01
+    assert np.abs(k["nodal", "direct"] - k["none", "direct"]).max() <= 1e-8
+    assert np.abs(k["none", "iterative"] - k["none", "direct"]).max() <= MATCH
 
 
 def test_active_set_reuses_the_amg_hierarchy():
