@@ -47,11 +47,12 @@ def von_mises(stress: np.ndarray, zz_ratio: float) -> np.ndarray:
     return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxy ** 2)
 
 
-def subcell_mesh(solution: Solution) -> meshio.Mesh:
+def subcell_mesh(solution: Solution, fields: dict | None = None) -> meshio.Mesh:
     """The solution on the sub-cell mesh (vertices not shared across a crack):
     displacement (point data, 3 components for ParaView's Warp By Vector),
-    stress components, von Mises stress, crack side and parent cell (cell data)."""
-    f = solution.subcell_fields()
+    stress components, von Mises stress, crack side and parent cell (cell data).
+    fields: solution.subcell_fields() if the caller has it already."""
+    f = solution.subcell_fields() if fields is None else fields
     npts = f["points"].shape[0]
     points = np.zeros((npts, 3))
     points[:, :2] = f["points"]

@@ -366,9 +366,11 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
                  r["element_size"], r["limited_by"], int(r["domain_clear"])] for k, rows in step_sifs for r in rows])
     files += ["crack.csv", "sif.csv"]
     timings["write_csv"] = time.perf_counter() - t0
+    # The sub-cell fields, shared by the ParaView file and the PNGs.
+    fields = solution.subcell_fields() if cfg["vtu"] or cfg["png"] else None
     if cfg["vtu"]:
         t0 = time.perf_counter()
-        write_mesh(subcell_mesh(solution), out / "solution.vtu")
+        write_mesh(subcell_mesh(solution, fields), out / "solution.vtu")
         write_mesh(crack_lips_mesh(samples), out / "crack_lips.vtu")
         files += ["solution.vtu", "crack_lips.vtu"]
         timings["write_vtu"] = time.perf_counter() - t0
@@ -376,7 +378,7 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
     if cfg["png"]:
         t0 = time.perf_counter()
         files += write_pngs(solution, samples, out, cfg["magnification"], cfg["stress_component"],
-                            scene_file.title)
+                            scene_file.title, fields)
         timings["write_png"] = time.perf_counter() - t0
         logger.info("wrote PNGs")
 
@@ -557,13 +559,14 @@ def _draw_field(ax, tris: np.ndarray, values: np.ndarray, cmap: str, clim: tuple
 
 
 def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale: float,
-               component: str, title: str) -> list[str]:
+               component: str, title: str, fields: dict | None = None) -> list[str]:
     """deformed.png (sub-cells displaced, magnified; with a zoom on the
     cracks when they are small in the part), crack_pressure.png (pressure
     and gap, or opening and slip, along each crack) and stress.png (a
     stress component on the sub-cells, colour scale clipped at the
-    STRESS_PERCENTILE area-weighted percentile)."""
-    f = solution.subcell_fields()
+    STRESS_PERCENTILE area-weighted percentile). fields:
+    solution.subcell_fields() if the caller has it already."""
+    f = solution.subcell_fields() if fields is None else fields
     tris = f["points"].reshape(-1, 3, 2)
     disp = f["displacement"].reshape(-1, 3, 2)
     mag = magnification(solution, f, scale)

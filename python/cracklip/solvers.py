@@ -444,8 +444,9 @@ class IterativeSolver(LinearSolver):
         return self._amg, False
 
     def _gamg(self, A: PETSc.Mat, modes: np.ndarray) -> PETSc.PC:
-        """A set-up GAMG PC on A with the rigid modes (rows of A) as near-nullspace."""
-        q = orthonormal_columns(modes)
+        """A set-up GAMG PC on A with the rigid modes (orthonormal columns,
+        rows of A: rigid_modes) as near-nullspace."""
+        q = modes
         vecs = []
         for j in range(q.shape[1]):
             v = A.createVecRight()
