@@ -111,3 +111,45 @@ def test_two_parallel_interior_cracks_in_uniform_stress():
     scale = np.abs(sol.standard_displacement).max()
     for i in range(2):
         assert np.abs(sol.crack_opening(i)["jump"]).max() <= 1e-10 * scale
+
+
+def _tagged_length(md, name):
+    x = md.mesh.geometry.x[:, :2]
+    md.mesh.topology.create_connectivity(1, 0)
+    f2v = md.mesh.topology.connectivity(1, 0)
+    ends = np.array([x[f2v.links(f)] for f in md.facets(name)])
+    return float(np.linalg.norm(ends[:, 1] - ends[:, 0], axis=1).sum())
+
+
+@pytest.mark.parametrize("make, lengths", [
+    (lambda: cl.create_rectangle(-1.0, -0.5, 1.0, 0.5, 0.05),
+     {"left": 1.0, "right": 1.0, "bottom": 2.0, "top": 2.0}),
+    (lambda: cl.create_plate_with_holes(0.0, 0.0, 4.0, 2.0, 0.06, [(1.0, 1.0, 0.3), (3.0, 1.0, 0.4)]),
+     {"left": 2.0, "right": 2.0, "bottom": 4.0, "top": 4.0, "hole": 2 * np.pi * 0.7}),
+    (lambda: cl.create_half_annulus(0.08),
+     {"hole": np.pi, "outer": 3 * np.pi, "symmetry": 4.0}),
+])
+def test_large_meshes_cut_into_strips_keep_their_tags(monkeypatch, make, lengths):
+    """A large domain is meshed in strips (mesh.STRIP_NODES, here made small
+    so that these meshes count as large): every boundary keeps its tag over
+    its whole length, the cut lines carry none, the area is the domain's, and
+    the mesh is the same every time (gmsh meshes the strips one at a time)."""
+    from cracklip import mesh as cm
+    monkeypatch.setattr(cm, "STRIP_NODES", 300)
+    md = make()
+    x = md.mesh.geometry.x[:, :2]
+    # The cut lines are there: columns of nodes at the cuts' x.
+    x0, x1 = x[:, 0].min(), x[:, 0].max()
+    strips = min(cm.MAX_STRIPS, int(np.ceil(cm.NODES_PER_AREA_H2 * _area(md) / (md.h ** 2 * 300))))
+    assert strips >= 4
+    width = (x1 - x0) / strips
+    cut = x0 + (1 + cm.STRIP_OFFSET) * width
+    assert np.count_nonzero(np.abs(x[:, 0] - cut) < 1e-6) >= 5  # (OCC bounding boxes carry 1e-7)
+    for name, length in lengths.items():
+        # Polygonal arcs are a little shorter than the circles.
+        assert _tagged_length(md, name) == pytest.approx(length, rel=2e-3), name
+    tagged = sum(_tagged_length(md, name) for name in md.tags)
+    assert tagged == pytest.approx(sum(lengths.values()), rel=2e-3)  # nothing on the cuts
+    again = make()
+    assert np.array_equal(again.mesh.geometry.x, md.mesh.geometry.x)
+    assert np.array_equal(again.mesh.geometry.dofmap.array, md.mesh.geometry.dofmap.array)

@@ -27,6 +27,15 @@ def _node_index(tags: np.ndarray, sorted_tags: np.ndarray) -> np.ndarray:
     return pos
 
 
+def _serial_partitioner(comm, nparts, tdim, cells, *args):
+    """Every cell to process 0. DOLFINx's default partitioner builds the dual
+    graph to partition it even on one process (0.03-0.1 s of 0.15 s at 60k
+    cells); the mesh made is the same (its cells are reordered afterwards
+    either way)."""
+    import dolfinx.cpp.graph
+    return dolfinx.cpp.graph.AdjacencyList_int32(np.zeros(cells.num_nodes, dtype=np.int32))
+
+
 def model_to_mesh(model, comm) -> tuple[typing.Any, typing.Any, dict[str, int]]:
     """(mesh, facet_tags, names) of the current gmsh model: the 3-node
     triangles of its 2D elements, facet tags from its physical curves
@@ -46,7 +55,8 @@ def model_to_mesh(model, comm) -> tuple[typing.Any, typing.Any, dict[str, int]]:
         raise MeshError("only 3-node triangles are supported; mesh with Mesh.ElementOrder = 1 and "
                         "without recombination")
     cells = np.concatenate([_node_index(np.asarray(n), sorted_tags).reshape(-1, 3) for n in elem_nodes])
-    msh = dolfinx.mesh.create_mesh(comm, cells.astype(np.int64), x, gmshio.ufl_mesh(2, 2))
+    serial = {"partitioner": _serial_partitioner} if comm.size == 1 else {}
+    msh = dolfinx.mesh.create_mesh(comm, cells.astype(np.int64), x, gmshio.ufl_mesh(2, 2), **serial)
 
     names: dict[str, int] = {}
     keys, values = [], []

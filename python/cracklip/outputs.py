@@ -279,14 +279,14 @@ def _ranges(s: np.ndarray, mask: np.ndarray) -> list[list[float]]:
 # -- results ---------------------------------------------------------------------------------------
 
 def versions() -> dict[str, str]:
+    import importlib.metadata
     import dolfinx
-    import meshio
     import petsc4py
     import scipy
     from . import __version__
     from .linear_solver import blas_library
     return {"cracklip": __version__, "dolfinx": dolfinx.__version__, "petsc4py": petsc4py.__version__,
-            "numpy": np.__version__, "scipy": scipy.__version__, "meshio": meshio.__version__,
+            "numpy": np.__version__, "scipy": scipy.__version__, "meshio": importlib.metadata.version("meshio"),
             "python": platform.python_version(), "blas": blas_library()}
 
 
