@@ -179,7 +179,7 @@ def test_condition_number_and_vtu_off(tmp_path):
 def test_outputs_are_never_half_written(tmp_path, monkeypatch):
     """A writer that fails leaves neither its file nor a temporary one, and no
     results.json (written last)."""
-    import meshio
+    from cracklip import io as cio
     from cracklip.outputs import write_outputs
     sf = load_scene_file(BLOCK, overrides=["mesh.h=0.2", "outputs.png=false"])
     sol = cl.solve(sf.scene)
@@ -187,7 +187,7 @@ def test_outputs_are_never_half_written(tmp_path, monkeypatch):
     def broken(path, *args, **kwargs):
         pathlib.Path(path).write_bytes(b"partial")
         raise OSError(28, "No space left on device")
-    monkeypatch.setattr(meshio, "write", broken)
+    monkeypatch.setattr(cio, "_write_vtu_file", broken)
     with pytest.raises(OSError, match="No space left"):
         write_outputs(sf, sol, tmp_path)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["crack.csv", "sif.csv"]

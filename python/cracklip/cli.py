@@ -132,10 +132,7 @@ def cmd_run(args) -> int:
     loading = prefetch.start()  # DOLFINx, PETSc and the solver load in a thread while the scene is read and meshed
     t_start = time.perf_counter()
     doc = _load(args)
-    outputs = doc.get("outputs", {})
-    if outputs.get("vtu", True):
-        loading.add("meshio")  # (0.26 s, for the ParaView files only)
-    if outputs.get("png", True):
+    if doc.get("outputs", {}).get("png", True):
         loading.add("matplotlib.figure", "matplotlib.backends.backend_agg")  # (0.3 s)
     loading.close()
     t0 = time.perf_counter()

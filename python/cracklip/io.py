@@ -11,12 +11,7 @@ import typing
 import numpy as np
 
 from .post import Solution
-
-if typing.TYPE_CHECKING:
-    import meshio
-
-# meshio is imported where a mesh is made, not here: with its dependencies
-# it costs 0.26 s, which a run without ParaView output need not pay.
+from .vtu import VtuMesh, write_vtu as _write_vtu_file
 
 
 @contextlib.contextmanager
@@ -52,12 +47,11 @@ def von_mises(stress: np.ndarray, zz_ratio: float) -> np.ndarray:
     return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxy ** 2)
 
 
-def subcell_mesh(solution: Solution, fields: dict | None = None) -> meshio.Mesh:
+def subcell_mesh(solution: Solution, fields: dict | None = None) -> VtuMesh:
     """The solution on the sub-cell mesh (vertices not shared across a crack):
     displacement (point data, 3 components for ParaView's Warp By Vector),
     stress components, von Mises stress, crack side and parent cell (cell data).
     fields: solution.subcell_fields() if the caller has it already."""
-    import meshio
     f = solution.subcell_fields() if fields is None else fields
     npts = f["points"].shape[0]
     points = np.zeros((npts, 3))
@@ -66,21 +60,20 @@ def subcell_mesh(solution: Solution, fields: dict | None = None) -> meshio.Mesh:
     disp[:, :2] = f["displacement"]
     conn = np.arange(npts, dtype=np.int64).reshape(-1, 3)
     s = f["stress"]
-    return meshio.Mesh(
-        points, [("triangle", conn)],
+    return VtuMesh(
+        points, "triangle", conn,
         point_data={"displacement": disp},
-        cell_data={"stress_xx": [s[:, 0]], "stress_yy": [s[:, 1]], "stress_xy": [s[:, 2]],
-                   "stress_von_mises": [von_mises(s, solution.model.scene.material.sigma_zz_ratio)],
-                   "side": [f["side"].astype(np.int32)], "parent_cell": [f["parent"]]})
+        cell_data={"stress_xx": s[:, 0], "stress_yy": s[:, 1], "stress_xy": s[:, 2],
+                   "stress_von_mises": von_mises(s, solution.model.scene.material.sigma_zz_ratio),
+                   "side": f["side"].astype(np.int32), "parent_cell": f["parent"]})
 
 
-def crack_lips_mesh(samples: typing.Sequence[dict]) -> meshio.Mesh:
+def crack_lips_mesh(samples: typing.Sequence[dict]) -> VtuMesh:
     """The lips of every crack as two polylines (+ and - lip) through the
     crack sample points (see outputs.crack_samples), each point carrying
     the displacement of its lip, pressure, shear (friction), normal gap,
     tangential slip, state (0 open, 1 stick, 2 slip); cell data: crack index
     and lip (+1 / -1)."""
-    import meshio
     pts, disp, conn, crack_id, lip = [], [], [], [], []
     data = {"pressure": [], "shear": [], "gap": [], "slip": [], "s": [], "state": []}
     offset = 0
@@ -102,25 +95,23 @@ def crack_lips_mesh(samples: typing.Sequence[dict]) -> meshio.Mesh:
             lip.append(np.full(n - 1, sign, dtype=np.int32))
             offset += n
     if not pts:
-        return meshio.Mesh(np.zeros((0, 3)), [("line", np.zeros((0, 2), dtype=np.int64))])
+        return VtuMesh(np.zeros((0, 3)), "line", np.zeros((0, 2), dtype=np.int64))
     x = np.concatenate(pts)
     points = np.zeros((len(x), 3))
     points[:, :2] = x
     u = np.zeros((len(x), 3))
     u[:, :2] = np.concatenate(disp)
     point_data = {"displacement": u, **{k: np.concatenate(v) for k, v in data.items()}}
-    return meshio.Mesh(points, [("line", np.concatenate(conn).astype(np.int64))], point_data=point_data,
-                       cell_data={"crack": [np.concatenate(crack_id)], "lip": [np.concatenate(lip)]})
+    return VtuMesh(points, "line", np.concatenate(conn).astype(np.int64), point_data=point_data,
+                   cell_data={"crack": np.concatenate(crack_id), "lip": np.concatenate(lip)})
 
 
-def write_mesh(mesh: meshio.Mesh, path: str | pathlib.Path) -> pathlib.Path:
-    """Write a meshio mesh as VTU (binary, uncompressed) through a temporary
-    file. Uncompressed: meshio's default zlib took 0.97 s for the 2e5-dof
-    Westergaard sub-cell mesh, raw binary 0.15 s (60 MB instead of 23 MB)."""
-    import meshio
+def write_mesh(mesh: VtuMesh, path: str | pathlib.Path) -> pathlib.Path:
+    """Write a mesh as VTU (cracklip.vtu: raw appended binary) through a
+    temporary file."""
     path = pathlib.Path(path)
     with atomic_path(path) as tmp:
-        meshio.write(tmp, mesh, file_format="vtu", compression=None)
+        _write_vtu_file(tmp, mesh)
     return path
 
 

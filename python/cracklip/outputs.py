@@ -41,13 +41,14 @@ def _tip_cells(model: XfemModel) -> np.ndarray:
     return np.unique(np.concatenate(cells)) if cells else np.zeros(0, dtype=np.int32)
 
 
-def describe_model(model: XfemModel, contact_system=None) -> dict[str, typing.Any]:
+def describe_model(model: XfemModel, contact_system=None, solution: Solution | None = None) -> dict[str, typing.Any]:
     """Counts of what the model holds: nodes, cells, dofs; per crack its cell
     classes, Heaviside and tip nodes (core and blending) and their dofs; the
     quadrature per kind of enriched cell; the contact multipliers.
 
     contact_system: the contact.ContactSystem the solve uses (None without
-    contact)."""
+    contact). solution: a solution of the model, whose quadrature points
+    give the counts (computed otherwise)."""
     layout = model.layout
     opts = model.scene.options
     kind = np.asarray(layout.kind)
@@ -95,7 +96,7 @@ def describe_model(model: XfemModel, contact_system=None) -> dict[str, typing.An
         "enriched_cells": int(np.asarray(layout.cells).size),
         "enrichment": {"tip": opts.enrichment, "radius": opts.radius, "blending": opts.blending},
         "cracks": cracks,
-        "quadrature": _describe_quadrature(model),
+        "quadrature": _describe_quadrature(model, solution),
     }
     if contact_system is None:
         out["contact"] = {"law": "none" if not model.cracks else opts.contact, "multipliers": 0}
@@ -131,8 +132,9 @@ def enriched_nodes(model: XfemModel) -> list[dict[str, typing.Any]]:
     return list(out.values())
 
 
-def _describe_quadrature(model: XfemModel) -> list[dict[str, typing.Any]]:
-    """Cells of each quadrature kind with their rule and point counts."""
+def _describe_quadrature(model: XfemModel, solution: Solution | None = None) -> list[dict[str, typing.Any]]:
+    """Cells of each quadrature kind with their rule and point counts (the
+    points of solution.enriched_field_points() if given)."""
     layout = model.layout
     opts = model.scene.options
     ncells = model.cells.shape[0]
@@ -141,8 +143,9 @@ def _describe_quadrature(model: XfemModel) -> list[dict[str, typing.Any]]:
                "rule": "DOLFINx's rule for the P1 stiffness", "points": None}]
     if enr_cells.size == 0:
         return groups
-    fp = _cracklip.compute_field_points(model.x, model.cells, layout, model.geometries,
-                                        np.zeros(model.num_dofs), enr_cells, opts.quadrature_options())
+    fp = solution.enriched_field_points() if solution is not None else _cracklip.compute_field_points(
+        model.x, model.cells, layout, model.geometries, np.zeros(model.num_dofs), enr_cells,
+        opts.quadrature_options())
     per_cell = np.bincount(fp["cell"], minlength=ncells)
     offsets = np.asarray(layout.cell_offsets)
     kinds = np.asarray(layout.kind)[np.asarray(layout.cell_enr)]
@@ -279,14 +282,13 @@ def _ranges(s: np.ndarray, mask: np.ndarray) -> list[list[float]]:
 # -- results ---------------------------------------------------------------------------------------
 
 def versions() -> dict[str, str]:
-    import importlib.metadata
     import dolfinx
     import petsc4py
     import scipy
     from . import __version__
     from .linear_solver import blas_library
     return {"cracklip": __version__, "dolfinx": dolfinx.__version__, "petsc4py": petsc4py.__version__,
-            "numpy": np.__version__, "scipy": scipy.__version__, "meshio": importlib.metadata.version("meshio"),
+            "numpy": np.__version__, "scipy": scipy.__version__,
             "python": platform.python_version(), "blas": blas_library()}
 
 
@@ -320,6 +322,7 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
                   timings: dict[str, float] | None = None) -> dict[str, typing.Any]:
     """Write every output of a solved scene file into out_dir and return the
     results (what results.json holds)."""
+    t_outputs = time.perf_counter()
     out = ensure_output_dir(out_dir)
     timings = dict(timings or {})
     cfg = scene_file.outputs
@@ -367,7 +370,9 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
     files += ["crack.csv", "sif.csv"]
     timings["write_csv"] = time.perf_counter() - t0
     # The sub-cell fields, shared by the ParaView file and the PNGs.
+    t0 = time.perf_counter()
     fields = solution.subcell_fields() if cfg["vtu"] or cfg["png"] else None
+    timings["subcell_fields"] = time.perf_counter() - t0
     if cfg["vtu"]:
         t0 = time.perf_counter()
         write_mesh(subcell_mesh(solution, fields), out / "solution.vtu")
@@ -388,7 +393,7 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
         "title": scene_file.title,
         "scene_file": str(scene_file.path) if scene_file.path is not None else None,
         "versions": versions(),
-        "model": describe_model(m, solution.contact.get("system") if solution.contact else None),
+        "model": describe_model(m, solution.contact.get("system") if solution.contact else None, solution),
         "boundary_conditions_and_loads": scene_file.notes,
         "solution": {"dofs": int(m.num_dofs), "strain_energy": energy, "max_displacement": u_scale,
                      "relative_residual": solver.get("relative_residual"),
@@ -411,6 +416,8 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
         "timings": {},
         "files": files + ["results.json"],
     }
+    # Everything written so far and results.json's content (not its dump).
+    timings["outputs_total"] = time.perf_counter() - t_outputs
     timings = {**timings, **{f"solve.{k}": v for k, v in solution.timings.items()}}
     results["timings"] = timings
     try:
