@@ -216,7 +216,7 @@ def worker(spec: dict) -> dict:
     if spec.get("lu"):  # the untuned direct path: MUMPS LU as before issue 15
         from cracklip import linear_solver, solvers
 
-        def lu(self, A, b, residual_tol, what, x0=None):
+        def lu(self, A, b, residual_tol, what, x0=None, **_):
             return linear_solver.solve_checked(A, b, residual_tol, what=what, symmetric=False)
         solvers.DirectSolver.solve = lu
     # Warm-up: compile the forms, load the libraries.

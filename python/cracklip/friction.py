@@ -82,7 +82,7 @@ def solve_saddle_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_
     if linear is None:
         x = solve_checked(A, b, residual_tol, what=what, symmetric=False)
     else:
-        x = linear.solve(A, b, residual_tol, what=what, x0=x0, symmetric=False)
+        x = linear.solve(A, b, residual_tol, what=what, x0=x0, symmetric=False, contact_points=m)
     sol = x.array.copy()
     for obj in (A, b, x):
         obj.destroy()

@@ -27,12 +27,12 @@ from .assembly import assemble_system_groups
 from .contact import contact_constant, create_contact_system, solve_frictionless
 from .errors import InputError
 from .friction import STATE_NAMES, solve_friction
-from .linear_solver import petsc_from_scipy, record_solves, scipy_from_petsc
+from .linear_solver import record_solves, scipy_from_petsc
 from .loads import load_groups
 from .model import create_model
 from .post import Solution
 from .scene import LoadStep, Scene
-from .solvers import create_linear_solver
+from .solvers import create_linear_solver, to_solver_basis
 
 logger = logging.getLogger(__name__)
 
@@ -93,31 +93,11 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
                                bc_values=model.bc_values * E,
                                bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
     A, rhs, timings = assemble_system_groups(unit)
-    T = None
     linear = create_linear_solver(unit)  # Options.solver, as solve.solve (cracklip.solvers)
-    if linear.name == "iterative":  # phantom-node basis: T^T A T, T^T f per group, u = T y
-        t0 = time.perf_counter()
-        b = A.createVecRight()
-        A_t, b_t, T = linear.transform(A, b)  # may reuse A's storage (A_t is A)
-        if A_t is not A:
-            A.destroy()
-        b.destroy()
-        b_t.destroy()
-        A = A_t
-        K = scipy_from_petsc(A)
-        rhs = {g: T.T @ v for g, v in rhs.items()}
-        timings["phantom_transform"] = time.perf_counter() - t0
-    elif opts.rescale == "nodal":
-        from .rescaling import nodal_transform
-        t0 = time.perf_counter()
-        T = nodal_transform(unit, A)
-        K = (T.T @ scipy_from_petsc(A) @ T).tocsr()
-        A.destroy()
-        A = petsc_from_scipy(K)  # the system solved is T^T A T y = T^T f, u = T y
-        rhs = {g: T.T @ b for g, b in rhs.items()}
-        timings["rescale"] = time.perf_counter() - t0
-    else:
-        K = scipy_from_petsc(A)
+    A, values, T, t_basis = to_solver_basis(unit, linear, A, list(rhs.values()))
+    rhs = dict(zip(rhs.keys(), values))
+    K = scipy_from_petsc(A)
+    timings.update(t_basis)
     contact = opts.contact != "none" and bool(model.cracks)
     friction = contact and opts.friction > 0.0
     physical = cs = None

@@ -18,9 +18,8 @@ from .contact import solve_contact
 from .linear_solver import condition_number_1norm, record_solves, solve_checked
 from .model import create_model
 from .post import Solution
-from .rescaling import nodal_transform, rescale_system
 from .scene import Material, Scene
-from .solvers import create_linear_solver
+from .solvers import create_linear_solver, to_solver_basis
 
 logger = logging.getLogger(__name__)
 
@@ -51,23 +50,9 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
                                bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
     A, b, timings = assemble_system(unit)
     linear = create_linear_solver(unit)  # Options.solver: direct or iterative (cracklip.solvers)
-    T = None
-    if linear.name == "iterative":  # phantom-node basis: (T^T A T, T^T b), u = T y
-        t0 = time.perf_counter()
-        A_t, b_t, T = linear.transform(A, b)  # may reuse A's storage (A_t is A)
-        if A_t is not A:
-            A.destroy()
-        b.destroy()
-        A, b = A_t, b_t
-        timings["phantom_transform"] = time.perf_counter() - t0
-    elif scene.options.rescale == "nodal":
-        t0 = time.perf_counter()
-        T = nodal_transform(unit, A)
-        A_s, b_s = rescale_system(A, b, T)
-        A.destroy()
-        b.destroy()
-        A, b = A_s, b_s
-        timings["rescale"] = time.perf_counter() - t0
+    A, (b_t,), T, t_basis = to_solver_basis(unit, linear, A, [b.array])
+    b.array[:] = b_t
+    timings.update(t_basis)
     t0 = time.perf_counter()
     contact = {}
     with record_solves() as solves:

@@ -353,9 +353,13 @@ class LinearSolver:
         return A, b, None
 
     def solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
-              x0: np.ndarray | None = None, symmetric: bool = True) -> PETSc.Vec:
+              x0: np.ndarray | None = None, symmetric: bool = True,
+              contact_points: int | None = None) -> PETSc.Vec:
         """symmetric = False for an unsymmetric system (frictional contact:
-        the slip rows): LU instead of LDL^T, GMRES instead of CG."""
+        the slip rows): LU instead of LDL^T, GMRES instead of CG.
+        contact_points: the number of contact points the multipliers belong
+        to (default: one multiplier per point, frictionless; friction has
+        two), which sizes the iterative path's crack band."""
         raise NotImplementedError
 
     def destroy(self) -> None:
@@ -367,7 +371,8 @@ class DirectSolver(LinearSolver):
     name = "direct"
 
     def solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
-              x0: np.ndarray | None = None, symmetric: bool = True) -> PETSc.Vec:
+              x0: np.ndarray | None = None, symmetric: bool = True,
+              contact_points: int | None = None) -> PETSc.Vec:
         return solve_checked(A, b, residual_tol, what=what, symmetric=symmetric)
 
 
@@ -466,7 +471,8 @@ class IterativeSolver(LinearSolver):
         return pc
 
     def solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
-              x0: np.ndarray | None = None, symmetric: bool = True) -> PETSc.Vec:
+              x0: np.ndarray | None = None, symmetric: bool = True,
+              contact_points: int | None = None) -> PETSc.Vec:
         """Solve A y = b (A in the phantom basis: the stiffness given to
         transform(), or a saddle-point system extending it, unsymmetric
         with friction); check the residual of the original system. With
@@ -474,7 +480,7 @@ class IterativeSolver(LinearSolver):
         MUMPS (LDL^T, or LU if not symmetric), which either solves the
         system or names what is singular."""
         try:
-            return self._solve(A, b, residual_tol, what, x0, symmetric)
+            return self._solve(A, b, residual_tol, what, x0, symmetric, contact_points)
         except SolverError as e:
             if not self.fallback:
                 raise
@@ -482,17 +488,17 @@ class IterativeSolver(LinearSolver):
             return solve_checked(A, b, residual_tol, what=what, symmetric=symmetric)
 
     def _solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
-               x0: np.ndarray | None, symmetric: bool = True) -> PETSc.Vec:
+               x0: np.ndarray | None, symmetric: bool = True, contact_points: int | None = None) -> PETSc.Vec:
         size = A.getSize()[0]
         m = size - self.n
         t0 = time.perf_counter()
         shell = None
         try:
             pc0, reused = self._block0_pc(A)
-            # The band's width follows the contact points: friction's
-            # unsymmetric system has two multipliers (normal, tangential) per point.
-            points = m if symmetric else m // 2
-            band_dofs = np.concatenate([self._contact_band(points), np.arange(self.n, size)])
+            # The band's width follows the contact points (friction has two
+            # multipliers per point: normal, tangential).
+            band_dofs = np.concatenate([self._contact_band(m if contact_points is None else contact_points),
+                                        np.arange(self.n, size)])
             shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric)
             t_setup = time.perf_counter() - t0
             # CG also for the saddle point: the sweep ends with an exact solve
@@ -681,6 +687,36 @@ def _factor_band(A11: PETSc.Mat, symmetric: bool = True) -> PETSc.KSP:
         verdict = "could not be factored" if info in (-8, -9) else "is singular"
         raise SolverError(f"the crack band block {verdict} ({what}): {cause}; use solver = 'direct'")
     return ksp
+
+
+def to_solver_basis(model: "XfemModel", linear: LinearSolver, A: PETSc.Mat, rhs: typing.Sequence[np.ndarray]
+                    ) -> tuple[PETSc.Mat, list[np.ndarray], sp.csr_matrix | None, dict[str, float]]:
+    """The system the solver path solves, T^T A T y = T^T b with u = T y:
+    in the phantom-node basis for the iterative path, nodally rescaled for
+    Options.rescale = "nodal" (direct path), else as assembled (T None).
+    Returns (T^T A T, [T^T b for b in rhs], T, {timing key: seconds}). A is
+    consumed: reused or destroyed. (solve.solve and load_path.solve_path
+    share this step.)"""
+    t0 = time.perf_counter()
+    if linear.name == "iterative":
+        b = A.createVecRight()
+        A_t, b_t, T = linear.transform(A, b)  # may reuse A's storage (A_t is A)
+        b.destroy()
+        b_t.destroy()
+        key = "phantom_transform"
+    elif model.scene.options.rescale == "nodal":
+        from .linear_solver import petsc_from_scipy
+        from .rescaling import nodal_transform
+        T = nodal_transform(model, A)
+        Tp = petsc_from_scipy(T)
+        A_t = A.PtAP(Tp)
+        Tp.destroy()
+        key = "rescale"
+    else:
+        return A, list(rhs), None, {}
+    if A_t is not A:
+        A.destroy()
+    return A_t, [T.T @ v for v in rhs], T, {key: time.perf_counter() - t0}
 
 
 def create_linear_solver(model: "XfemModel") -> LinearSolver:
