@@ -25,6 +25,10 @@ first (LD_LIBRARY_PATH), as before issue 15. --orderings records, for the
 open-crack matrix, MUMPS' factor size, flops and time per ordering
 (ICNTL(7)). --threads adds the direct solve with 2 OpenBLAS threads. These
 three run at sizes up to 1.1e6 dofs only.
+--paired measures only acceptance 1 (iterative / plain CG + GAMG), in
+pairs: one process per size solves the plain problem and then each X-FEM
+case, --repeats times in turn, and reports the median of the pairs' ratios
+(a ratio of two subprocesses' medians moves by +-0.2 on this VM).
 A solver whose subprocess fails (out of memory: the direct path at large
 sizes) gets a row with "status" saying so; --max-direct-dofs skips the
 direct solves beyond a size.
@@ -208,6 +212,26 @@ def _orderings(md) -> list[dict]:
     return rows
 
 
+def _paired(md, cases: typing.Sequence[str], repeats: int) -> list[dict]:
+    """Acceptance 1 measured in pairs: each repeat solves the plain P1
+    problem by CG + GAMG and then each case by the X-FEM iterative path, one
+    after the other in this process, so that every ratio compares solves
+    made a few seconds apart (the VM's speed drifts by 20-30 % between
+    subprocesses). Rows per case: the times, the ratio of each pair and
+    their median."""
+    runs: dict[str, list[tuple[float, float, int]]] = {c: [] for c in cases}
+    for _ in range(repeats):
+        plain = _plain(md, "plain-gamg")
+        for case in cases:
+            r = _xfem(md, case, "iterative")
+            runs[case].append((plain["t_solve"], r["t_solve"], r["iterations"]))
+            ndofs, plain_its = r["ndofs"], plain["iterations"]
+    return [{"case": case, "ndofs": ndofs, "t_plain_gamg_runs": [p for p, _, _ in rs],
+             "t_iterative_runs": [x for _, x, _ in rs], "ratios": [x / p for p, x, _ in rs],
+             "ratio_median": statistics.median(x / p for p, x, _ in rs), "iterations": rs[-1][2],
+             "plain_iterations": plain_its} for case, rs in runs.items()]
+
+
 def worker(spec: dict) -> dict:
     """One measurement (run in a subprocess): spec = {n, case, solver, repeats}."""
     import resource
@@ -221,7 +245,11 @@ def worker(spec: dict) -> dict:
         solvers.DirectSolver.solve = lu
     # Warm-up: compile the forms, load the libraries.
     small = hc.structured_square(8)
-    if spec["solver"] in PLAIN_SOLVERS:
+    if spec["solver"] == "paired":
+        _plain(small, "plain-gamg")
+        for case in spec["cases"]:
+            _xfem(small, case, "iterative")
+    elif spec["solver"] in PLAIN_SOLVERS:
         _plain(small, spec["solver"])
     elif spec["solver"] == "orderings":
         pass
@@ -230,6 +258,8 @@ def worker(spec: dict) -> dict:
     t0 = time.perf_counter()
     md = hc.structured_square(spec["n"])
     t_mesh = time.perf_counter() - t0
+    if spec["solver"] == "paired":
+        return {"paired": _paired(md, spec["cases"], spec["repeats"]), "t_mesh": t_mesh, "blas": blas_library()}
     if spec["solver"] == "orderings":
         out = {"orderings": _orderings(md)}
     else:
@@ -401,6 +431,9 @@ def main(argv=None) -> int:
     ap.add_argument("--quiet", action="store_true")
     ap.add_argument("--table", type=pathlib.Path, metavar="JSON",
                     help="print the Markdown speed table of an earlier run's JSON and stop")
+    ap.add_argument("--paired", action="store_true",
+                    help="only acceptance 1 in pairs: plain CG + GAMG then the X-FEM iterative cases, alternately "
+                         "in one process per size (--repeats pairs), the median of the pairs' ratios")
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.table:
@@ -413,8 +446,19 @@ def main(argv=None) -> int:
     from cracklip.linear_solver import blas_library
     log = (lambda *a: None) if args.quiet else (lambda m: print(m, file=sys.stderr, flush=True))
     t0 = time.perf_counter()
-    result = benchmark(args.sizes, args.repeats, args.cases, args.untuned, args.orderings, args.threads,
-                       args.max_direct_dofs, args.timeout, log)
+    if args.paired:
+        result = {"paired": []}
+        for target in args.sizes:
+            n = divisions(target)
+            log(f"paired, size ~{target:.0e} dofs (n = {n}), {args.repeats} pairs ...")
+            res = run_subprocess({"n": n, "target": target, "repeats": args.repeats, "solver": "paired",
+                                  "cases": list(args.cases)}, None, args.timeout)
+            for row in res.get("paired", [{"status": res["status"]}]):
+                result["paired"].append({"target_dofs": target, **row})
+                log(f"  {row}")
+    else:
+        result = benchmark(args.sizes, args.repeats, args.cases, args.untuned, args.orderings, args.threads,
+                           args.max_direct_dofs, args.timeout, log)
     out = {"benchmark": "bench_solvers", "repeats": args.repeats, "crack": CRACK,
            "problem": "square [-1,1]^2, n x n structured, bottom clamped, traction on top; "
                       "open: (0, 1); contact: (0, -1) with bilateral contact; vector tip enrichment, radius 0",
@@ -429,7 +473,7 @@ def main(argv=None) -> int:
 
 if __name__ == "__main__":
     status = main()
-    if "--worker" not in sys.argv and "--table" not in sys.argv:
+    if not {"--worker", "--table", "--paired"} & set(sys.argv):
         import matplotlib
         matplotlib.use("Agg")
         args_json = pathlib.Path(sys.argv[sys.argv.index("--json") + 1]) if "--json" in sys.argv else \
