@@ -131,10 +131,12 @@ def cmd_run(args) -> int:
     from . import prefetch
     loading = prefetch.start()  # DOLFINx, PETSc and the solver load in a thread while the scene is read and meshed
     t_start = time.perf_counter()
-    doc = _load(args)
-    if doc.get("outputs", {}).get("png", True):
-        loading.add("matplotlib.figure", "matplotlib.backends.backend_agg")  # (0.3 s)
-    loading.close()
+    try:
+        doc = _load(args)
+        if doc.get("outputs", {}).get("png", True):
+            loading.add("matplotlib.figure", "matplotlib.backends.backend_agg")  # (0.3 s)
+    finally:
+        loading.close()  # (also when the scene is rejected: no thread left waiting)
     t0 = time.perf_counter()
     logger.info("scene %s: meshing", args.scene)
     sf = _build(args, doc)
