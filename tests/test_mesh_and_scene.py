@@ -124,6 +124,8 @@ def _tagged_length(md, name):
 @pytest.mark.parametrize("make, lengths", [
     (lambda: cl.create_rectangle(-1.0, -0.5, 1.0, 0.5, 0.05),
      {"left": 1.0, "right": 1.0, "bottom": 2.0, "top": 2.0}),
+    (lambda: cl.create_rectangle(0.0, 0.0, 0.2, 4.0, 0.01),  # tall: horizontal cuts
+     {"left": 4.0, "right": 4.0, "bottom": 0.2, "top": 0.2}),
     (lambda: cl.create_plate_with_holes(0.0, 0.0, 4.0, 2.0, 0.06, [(1.0, 1.0, 0.3), (3.0, 1.0, 0.4)]),
      {"left": 2.0, "right": 2.0, "bottom": 4.0, "top": 4.0, "hole": 2 * np.pi * 0.7}),
     (lambda: cl.create_half_annulus(0.08),
@@ -131,20 +133,24 @@ def _tagged_length(md, name):
 ])
 def test_large_meshes_cut_into_strips_keep_their_tags(monkeypatch, make, lengths):
     """A large domain is meshed in strips (mesh.STRIP_NODES, here made small
-    so that these meshes count as large): every boundary keeps its tag over
-    its whole length, the cut lines carry none, the area is the domain's, and
-    the mesh is the same every time (gmsh meshes the strips one at a time)."""
+    so that these meshes count as large), cut across its longer side, no
+    strip narrower than STRIP_MIN_WIDTH elements: every boundary keeps its
+    tag over its whole length, the cut lines carry none, and the mesh is the
+    same every time (gmsh meshes the strips one at a time)."""
     from cracklip import mesh as cm
     monkeypatch.setattr(cm, "STRIP_NODES", 300)
+    made = []
+    cut = cm._cut_into_strips
+    monkeypatch.setattr(cm, "_cut_into_strips", lambda gmsh, h: made.append(cut(gmsh, h)) or made[-1])
     md = make()
+    (axis, positions), = made
     x = md.mesh.geometry.x[:, :2]
-    # The cut lines are there: columns of nodes at the cuts' x.
-    x0, x1 = x[:, 0].min(), x[:, 0].max()
-    strips = min(cm.MAX_STRIPS, int(np.ceil(cm.NODES_PER_AREA_H2 * _area(md) / (md.h ** 2 * 300))))
-    assert strips >= 4
-    width = (x1 - x0) / strips
-    cut = x0 + (1 + cm.STRIP_OFFSET) * width
-    assert np.count_nonzero(np.abs(x[:, 0] - cut) < 1e-6) >= 5  # (OCC bounding boxes carry 1e-7)
+    span = np.ptp(x, axis=0)
+    assert axis == (0 if span[0] >= span[1] else 1)
+    assert len(positions) >= 3
+    assert np.diff(positions).min() >= cm.STRIP_MIN_WIDTH * md.h
+    for t in positions:  # a row of nodes along every cut (OCC bounding boxes carry 1e-7)
+        assert np.count_nonzero(np.abs(x[:, axis] - t) < 1e-6) >= 5
     for name, length in lengths.items():
         # Polygonal arcs are a little shorter than the circles.
         assert _tagged_length(md, name) == pytest.approx(length, rel=2e-3), name
@@ -153,3 +159,13 @@ def test_large_meshes_cut_into_strips_keep_their_tags(monkeypatch, make, lengths
     again = make()
     assert np.array_equal(again.mesh.geometry.x, md.mesh.geometry.x)
     assert np.array_equal(again.mesh.geometry.dofmap.array, md.mesh.geometry.dofmap.array)
+
+
+def test_strips_never_narrower_than_eight_elements(monkeypatch):
+    from cracklip import mesh as cm
+    monkeypatch.setattr(cm, "STRIP_NODES", 50)
+    made = []
+    cut = cm._cut_into_strips
+    monkeypatch.setattr(cm, "_cut_into_strips", lambda gmsh, h: made.append(cut(gmsh, h)) or made[-1])
+    cl.create_rectangle(0.0, 0.0, 0.32, 0.3, 0.02)  # ~280 nodes: 6 strips by count, 2 by width
+    assert made == [(0, [pytest.approx(0.16 * (1 + cm.STRIP_OFFSET))])]

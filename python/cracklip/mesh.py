@@ -167,39 +167,51 @@ def _finish(gmsh, classify: typing.Callable[[], dict[str, list[int]]], h: float,
     return md
 
 
-#: A domain expected to have more than STRIP_NODES nodes is cut by vertical
-#: lines into strips of about STRIP_NODES nodes before meshing (at most
-#: MAX_STRIPS). gmsh's frontal-Delaunay mesher costs more than linearly in a
-#: surface's size, and the strips are meshed one after the other (one
-#: thread: gmsh's parallel 2D meshing gives a different mesh from run to
-#: run). On [-1, 1]^2 at h = 0.0125 (30k nodes): 4 strips 0.49 s against
-#: 0.84 s in one piece, smallest angle 33.5 vs 35.9 degrees (mean of the
-#: cells' smallest angles 59.4 vs 59.6).
+#: A domain expected to have more than STRIP_NODES nodes is cut by straight
+#: lines across its longer side into strips of about STRIP_NODES nodes
+#: before meshing (at most MAX_STRIPS, and no strip narrower than
+#: STRIP_MIN_WIDTH element sizes). gmsh's frontal-Delaunay mesher costs more
+#: than linearly in a surface's size, and the strips are meshed one after
+#: the other (one thread: gmsh's parallel 2D meshing gives a different mesh
+#: from run to run). On [-1, 1]^2 at h = 0.0125 (30k nodes): 4 strips 0.49 s
+#: against 0.84 s in one piece, smallest angle 33.5 vs 35.9 degrees (mean of
+#: the cells' smallest angles 59.4 vs 59.6).
 STRIP_NODES = 8_000
 MAX_STRIPS = 64
+STRIP_MIN_WIDTH = 8.0
 #: Where the cuts sit within their strip's nominal position (as a fraction
 #: of the strip width): away from round coordinates, so that a crack tip or
-#: a crack segment a user places at a round x does not fall on a cut line.
+#: a crack segment a user places at a round coordinate does not fall on a
+#: cut line.
 STRIP_OFFSET = 0.1234
 
 
-def _cut_into_strips(gmsh, h: float) -> list[float]:
-    """Cut the model's surfaces by vertical lines into strips when the mesh
-    is expected to be large (STRIP_NODES); returns the cuts' x (none for a
-    small mesh). The mesh conforms to the cut lines, which are otherwise
-    invisible: interior, no tag, no crack, no material change."""
+def _cut_into_strips(gmsh, h: float) -> tuple[int, list[float]]:
+    """Cut the model's surfaces into strips when the mesh is expected to be
+    large (STRIP_NODES): by vertical lines if the domain is at least as wide
+    as it is tall, else by horizontal ones. Returns (axis, positions): the
+    cut lines are x = position (axis 0) or y = position (axis 1); no
+    positions for a small mesh. The mesh conforms to the cut lines, which
+    are otherwise invisible: interior, no tag, no crack, no material change."""
     occ = gmsh.model.occ
     surfaces = gmsh.model.getEntities(2)
     area = sum(occ.getMass(2, tag) for _, tag in surfaces)
-    strips = min(MAX_STRIPS, math.ceil(NODES_PER_AREA_H2 * area / h ** 2 / STRIP_NODES))
+    lo_x, lo_y, _, hi_x, hi_y, _ = gmsh.model.getBoundingBox(-1, -1)
+    axis = 0 if hi_x - lo_x >= hi_y - lo_y else 1
+    lo, hi = (lo_x, hi_x) if axis == 0 else (lo_y, hi_y)
+    across = (lo_y, hi_y) if axis == 0 else (lo_x, hi_x)
+    strips = min(MAX_STRIPS, math.ceil(NODES_PER_AREA_H2 * area / h ** 2 / STRIP_NODES),
+                 int((hi - lo) / (STRIP_MIN_WIDTH * h)))
     if strips < 2:
-        return []
-    x0, y0, _, x1, y1, _ = gmsh.model.getBoundingBox(-1, -1)
-    width = (x1 - x0) / strips
-    pad = 0.01 * (y1 - y0)
-    xs = [x0 + (i + STRIP_OFFSET) * width for i in range(1, strips)]
-    cuts = [(1, occ.addLine(occ.addPoint(x, y0 - pad, 0.0), occ.addPoint(x, y1 + pad, 0.0))) for x in xs]
-    occ.fragment(surfaces, cuts)
+        return axis, []
+    width = (hi - lo) / strips
+    pad = 0.01 * (across[1] - across[0])
+    cuts = [lo + (i + STRIP_OFFSET) * width for i in range(1, strips)]
+
+    def point(t: float, u: float) -> int:
+        return occ.addPoint(t, u, 0.0) if axis == 0 else occ.addPoint(u, t, 0.0)
+    lines = [(1, occ.addLine(point(t, across[0] - pad), point(t, across[1] + pad))) for t in cuts]
+    occ.fragment(surfaces, lines)
     occ.synchronize()
     # The parts of the cut lines outside the domain (beyond its ends, in its
     # holes) bound no surface: they go.
@@ -207,16 +219,19 @@ def _cut_into_strips(gmsh, h: float) -> list[float]:
     if loose:
         occ.remove(loose, recursive=True)
         occ.synchronize()
-    return xs
+    return axis, cuts
 
 
-def _on_cut(gmsh, curve: int, cuts: list[float]) -> bool:
-    """Is the curve a piece of one of the vertical cut lines at x in cuts?"""
-    if not cuts:
+def _on_cut(gmsh, curve: int, cuts: tuple[int, list[float]]) -> bool:
+    """Is the curve a piece of one of the cut lines (_cut_into_strips)?"""
+    axis, positions = cuts
+    if not positions:
         return False
-    xmin, ymin, _, xmax, ymax, _ = gmsh.model.getBoundingBox(1, curve)
-    tol = 1e-6 * max(ymax - ymin, 1.0)
-    return xmax - xmin <= 2 * tol and min(abs(0.5 * (xmin + xmax) - x) for x in cuts) <= 2 * tol
+    box = gmsh.model.getBoundingBox(1, curve)
+    lo, hi = box[axis], box[axis + 3]                # across the cut line
+    along = box[4 - axis] - box[1 - axis]            # along it
+    tol = 1e-6 * max(along, 1.0)
+    return hi - lo <= 2 * tol and min(abs(0.5 * (lo + hi) - t) for t in positions) <= 2 * tol
 
 
 def create_rectangle(x0: float, y0: float, x1: float, y1: float, h: float,
