@@ -72,11 +72,16 @@ def nodal_transform(model: XfemModel, A: PETSc.Mat) -> sp.csr_matrix:
     return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n))
 
 
-def rescale_system(A: PETSc.Mat, b: PETSc.Vec, T: sp.csr_matrix) -> tuple[PETSc.Mat, PETSc.Vec]:
-    """(T^T A T, T^T b) as new PETSc objects."""
+def rescale_matrix(A: PETSc.Mat, T: sp.csr_matrix) -> PETSc.Mat:
+    """T^T A T as a new PETSc matrix."""
     Tp = petsc_from_scipy(T)
     As = A.PtAP(Tp)
-    bs = b.duplicate()
-    Tp.multTranspose(b, bs)
     Tp.destroy()
-    return As, bs
+    return As
+
+
+def rescale_system(A: PETSc.Mat, b: PETSc.Vec, T: sp.csr_matrix) -> tuple[PETSc.Mat, PETSc.Vec]:
+    """(T^T A T, T^T b) as new PETSc objects."""
+    bs = b.duplicate()
+    bs.array[:] = T.T @ b.array
+    return rescale_matrix(A, T), bs

@@ -203,8 +203,16 @@ def phantom_basis(model: "XfemModel") -> PhantomBasis:
 
 
 def transform_system(basis: PhantomBasis, A: PETSc.Mat, b: PETSc.Vec) -> tuple[PETSc.Mat, PETSc.Vec]:
-    """(T^T A T, T^T b) (block size 2). A's storage is reused when it can
-    be (then the returned matrix is A itself, changed): do not use A after.
+    """(T^T A T, T^T b): transform_matrix and the load (A is consumed as
+    there)."""
+    b_t = A.createVecRight()
+    b_t.array[:] = basis.T.T @ b.array
+    return transform_matrix(basis, A), b_t
+
+
+def transform_matrix(basis: PhantomBasis, A: PETSc.Mat) -> PETSc.Mat:
+    """T^T A T (block size 2). A's storage is reused when it can be (then
+    the returned matrix is A itself, changed): do not use A after.
 
     T differs from the identity only on the Heaviside nodes' dofs J, so
     T^T A T differs from A only in the rows and columns R that couple to J
@@ -215,11 +223,9 @@ def transform_system(basis: PhantomBasis, A: PETSc.Mat, b: PETSc.Vec) -> tuple[P
     of PtAP's 0.9 s (and no copy of A). Falls back to PtAP (a new matrix,
     A untouched) if A's pattern lacks an entry."""
     T = basis.T
-    b_t = A.createVecRight()
-    b_t.array[:] = T.T @ b.array
     J = basis.touched
     if J.size == 0:
-        return A, b_t
+        return A
     n = A.getSize()[0]
     from .linear_solver import scipy_from_petsc
     all_cols = PETSc.IS().createStride(n, 0, 1, comm=PETSc.COMM_SELF)
@@ -247,7 +253,7 @@ def transform_system(basis: PhantomBasis, A: PETSc.Mat, b: PETSc.Vec) -> tuple[P
         Tp = basis.petsc()  # a coupling outside A's pattern: the general way
         A_t = A.PtAP(Tp)
         Tp.destroy()
-        return A_t, b_t
+        return A_t
     # One MatSetValues call: row r gets its entries, padded with column -1
     # (ignored by PETSc) to the longest row.
     lens = np.diff(delta.indptr)
@@ -260,7 +266,7 @@ def transform_system(basis: PhantomBasis, A: PETSc.Mat, b: PETSc.Vec) -> tuple[P
     vals[row_of, slot] = delta.data
     A.setValuesRCV(order.astype(PETSc.IntType).reshape(-1, 1), cols, vals, addv=PETSc.InsertMode.ADD_VALUES)
     A.assemble()
-    return A, b_t
+    return A
 
 
 def rigid_modes(model: "XfemModel", size: int | None = None) -> np.ndarray:
@@ -343,14 +349,14 @@ def grow_band(K: PETSc.Mat, dofs: np.ndarray, rings: int) -> np.ndarray:
 class LinearSolver:
     """A checked solver path for a model's systems.
 
-    transform(A, b) gives the system the path solves (and the T of its
-    basis, or None); solve(A, b) solves a system in that basis: the
+    transform(A) gives the matrix of the system the path solves and the T
+    of its basis (or None; see to_solver_basis); solve(A, b) solves a system in that basis: the
     stiffness, or a saddle-point system [K B^T; B D] whose first num_dofs
     unknowns are the stiffness's."""
     name = "direct"
 
-    def transform(self, A: PETSc.Mat, b: PETSc.Vec) -> tuple[PETSc.Mat, PETSc.Vec, sp.csr_matrix | None]:
-        return A, b, None
+    def transform(self, A: PETSc.Mat) -> tuple[PETSc.Mat, sp.csr_matrix | None]:
+        return A, None
 
     def solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
               x0: np.ndarray | None = None, symmetric: bool = True,
@@ -417,11 +423,11 @@ class IterativeSolver(LinearSolver):
         self._amg: PETSc.PC | None = None
 
     # The system in the phantom basis.
-    def transform(self, A: PETSc.Mat, b: PETSc.Vec) -> tuple[PETSc.Mat, PETSc.Vec, sp.csr_matrix]:
-        A_t, b_t = transform_system(self.basis, A, b)
+    def transform(self, A: PETSc.Mat) -> tuple[PETSc.Mat, sp.csr_matrix]:
+        A_t = transform_matrix(self.basis, A)
         A_t.setOption(PETSc.Mat.Option.SYMMETRIC, True)
         self._K = A_t
-        return A_t, b_t, self.basis.T
+        return A_t, self.basis.T
 
     def destroy(self) -> None:
         if self._amg is not None:
@@ -451,11 +457,10 @@ class IterativeSolver(LinearSolver):
     def _gamg(self, A: PETSc.Mat, modes: np.ndarray) -> PETSc.PC:
         """A set-up GAMG PC on A with the rigid modes (orthonormal columns,
         rows of A: rigid_modes) as near-nullspace."""
-        q = modes
         vecs = []
-        for j in range(q.shape[1]):
+        for j in range(modes.shape[1]):
             v = A.createVecRight()
-            v.array[:] = q[:, j]
+            v.array[:] = modes[:, j]
             vecs.append(v)
         A.setNearNullSpace(PETSc.NullSpace().create(vectors=vecs, comm=PETSc.COMM_SELF))
         prefix = f"cracklip_amg{next(_prefixes)}_"
@@ -699,18 +704,12 @@ def to_solver_basis(model: "XfemModel", linear: LinearSolver, A: PETSc.Mat, rhs:
     share this step.)"""
     t0 = time.perf_counter()
     if linear.name == "iterative":
-        b = A.createVecRight()
-        A_t, b_t, T = linear.transform(A, b)  # may reuse A's storage (A_t is A)
-        b.destroy()
-        b_t.destroy()
+        A_t, T = linear.transform(A)  # may reuse A's storage (A_t is A)
         key = "phantom_transform"
     elif model.scene.options.rescale == "nodal":
-        from .linear_solver import petsc_from_scipy
-        from .rescaling import nodal_transform
+        from .rescaling import nodal_transform, rescale_matrix
         T = nodal_transform(model, A)
-        Tp = petsc_from_scipy(T)
-        A_t = A.PtAP(Tp)
-        Tp.destroy()
+        A_t = rescale_matrix(A, T)
         key = "rescale"
     else:
         return A, list(rhs), None, {}
