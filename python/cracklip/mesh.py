@@ -195,12 +195,11 @@ def _cut_into_strips(gmsh, h: float) -> tuple[int, list[float]]:
     are otherwise invisible: interior, no tag, no crack, no material change."""
     occ = gmsh.model.occ
     surfaces = gmsh.model.getEntities(2)
-    area = sum(occ.getMass(2, tag) for _, tag in surfaces)
     lo_x, lo_y, _, hi_x, hi_y, _ = gmsh.model.getBoundingBox(-1, -1)
     axis = 0 if hi_x - lo_x >= hi_y - lo_y else 1
     lo, hi = (lo_x, hi_x) if axis == 0 else (lo_y, hi_y)
     across = (lo_y, hi_y) if axis == 0 else (lo_x, hi_x)
-    strips = min(MAX_STRIPS, math.ceil(NODES_PER_AREA_H2 * area / h ** 2 / STRIP_NODES),
+    strips = min(MAX_STRIPS, math.ceil(_expected_nodes(gmsh, h) / STRIP_NODES),
                  int((hi - lo) / (STRIP_MIN_WIDTH * h)))
     if strips < 2:
         return axis, []
@@ -351,9 +350,15 @@ SMOOTHING_MAX_NODES = 20_000
 NODES_PER_AREA_H2 = 1.17
 
 
-def _mesh_2d(gmsh, h: float, refine) -> None:
+def _expected_nodes(gmsh, h: float) -> float:
+    """Nodes of a mesh of size h of the model's surfaces (refinements not
+    counted): NODES_PER_AREA_H2 x area / h^2."""
     area = sum(gmsh.model.occ.getMass(2, tag) for _, tag in gmsh.model.getEntities(2))
-    smoothing = 1 if NODES_PER_AREA_H2 * area / h ** 2 <= SMOOTHING_MAX_NODES else 0
+    return NODES_PER_AREA_H2 * area / h ** 2
+
+
+def _mesh_2d(gmsh, h: float, refine) -> None:
+    smoothing = 1 if _expected_nodes(gmsh, h) <= SMOOTHING_MAX_NODES else 0
     gmsh.option.setNumber("Mesh.Smoothing", smoothing)
     gmsh.option.setNumber("Mesh.MeshSizeMax", h)
     gmsh.option.setNumber("Mesh.MeshSizeMin", min([h] + [r[2] for r in refine]))
