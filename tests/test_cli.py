@@ -286,3 +286,37 @@ def test_large_mesh_pngs_are_rasterised_exactly():
     d = np.stack([t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]], axis=2)
     lam = np.linalg.solve(d, (p - t[:, 0])[:, :, None])[:, :, 0]
     assert lam.min() >= -1e-9 and (1.0 - lam.sum(axis=1)).min() >= -1e-9
+
+
+def test_png_crop_matches_savefig_tight(tmp_path):
+    """outputs._save draws once and cuts the tight box out of the canvas: the
+    same picture as savefig(bbox_inches="tight") to a pixel of rounding in
+    size, and the same pixels where the two overlap after aligning on the
+    content; a figure whose content reaches outside its area (not drawn on
+    the canvas) goes to savefig, which enlarges the picture to hold it."""
+    from PIL import Image
+    from cracklip import outputs
+
+    def figure(outside: bool):
+        fig = outputs._figure((5.0, 3.0))
+        ax = fig.add_subplot()
+        ax.plot([0.0, 1.0, 2.0], [1.0, 0.0, 2.0], "b.-")
+        ax.set_title("a title\nover two lines")
+        ax.set_xlabel("x")
+        if outside:
+            fig.text(0.5, 1.15, "above the figure", ha="center")
+        return fig
+
+    for outside in (False, True):
+        ours, ref = tmp_path / f"ours{outside}.png", tmp_path / f"ref{outside}.png"
+        outputs._save(figure(outside), ours)
+        figure(outside).savefig(ref, dpi=outputs.PNG_DPI, bbox_inches="tight", pad_inches=outputs.PNG_PAD_INCHES)
+        a = np.asarray(Image.open(ours).convert("RGB")).astype(int)
+        b = np.asarray(Image.open(ref).convert("RGB")).astype(int)
+        assert abs(a.shape[0] - b.shape[0]) <= 2 and abs(a.shape[1] - b.shape[1]) <= 2, (a.shape, b.shape)
+        if outside:  # taller than the figure: the text above it is in the picture
+            assert a.shape[0] > 3.0 * outputs.PNG_DPI
+        # The ink (non-white pixels) has the same bounding box and the same count.
+        ink_a, ink_b = np.argwhere(a.sum(axis=2) < 600), np.argwhere(b.sum(axis=2) < 600)
+        assert np.abs((ink_a.max(axis=0) - ink_a.min(axis=0)) - (ink_b.max(axis=0) - ink_b.min(axis=0))).max() <= 1
+        assert abs(len(ink_a) - len(ink_b)) <= 0.01 * len(ink_b)
