@@ -291,9 +291,10 @@ def test_large_mesh_pngs_are_rasterised_exactly():
 def test_png_crop_matches_savefig_tight(tmp_path):
     """outputs._save draws once and cuts the tight box out of the canvas: the
     same picture as savefig(bbox_inches="tight") to a pixel of rounding in
-    size, and the same pixels where the two overlap after aligning on the
-    content; a figure whose content reaches outside its area (not drawn on
-    the canvas) goes to savefig, which enlarges the picture to hold it."""
+    size, with its ink (non-white pixels) spanning the same box and as many
+    pixels to 1 %; a figure whose content reaches outside its area (not
+    drawn on the canvas) goes to savefig, which enlarges the picture to hold
+    it."""
     from PIL import Image
     from cracklip import outputs
 
