@@ -112,20 +112,20 @@ def create_contact_system(model: XfemModel) -> ContactSystem:
     return ContactSystem(space, R, B.tocsr(), M, g, Bt, gt, g_groups, gt_groups)
 
 
-def solve_saddle(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, active: np.ndarray,
+def solve_saddle(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: ContactSystem, active: np.ndarray,
                  residual_tol: float, linear: "LinearSolver | None" = None,
                  x0: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Solve with the constraints of the active multipliers; inactive ones are 0.
 
-    linear: the solver path (cracklip.solvers; default: solve_checked's MUMPS
-    LU, as the load-path and friction solvers use); x0: an
+    K: the stiffness as linear.stiffness() gives it (scipy CSR without
+    linear); linear: the solver path (cracklip.solvers; default:
+    solve_checked's MUMPS LU, as the load-path and friction solvers use),
+    which also builds the saddle-point matrix; x0: an
     initial guess (u, lambda) for an iterative path (the previous active
     set's solution)."""
     m = cs.num_multipliers
-    A = saddle_matrix(K, cs.B, active)
-    rhs = np.concatenate([f, np.where(active, cs.g, 0.0)])
-    b = A.createVecRight()
-    b.array[:] = rhs
+    A = saddle_matrix(K, cs.B, active) if linear is None else linear.saddle_matrix(K, cs.B, active)
+    b = PETSc.Vec().createWithArray(np.concatenate([f, np.where(active, cs.g, 0.0)]), comm=PETSc.COMM_SELF)
     what = "contact saddle-point system"
     if linear is None:
         x = solve_checked(A, b, residual_tol, what=what)
@@ -205,16 +205,18 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
     (cracklip.solvers; default: solve_checked's MUMPS LU)."""
     physical = create_contact_system(model)
     cs = physical if transform is None else dataclasses.replace(physical, B=(physical.B @ transform).tocsr())
-    u, info = solve_frictionless(scipy_from_petsc(A), b.array.copy(), cs, model.scene.options,
+    K = scipy_from_petsc(A) if linear is None else linear.stiffness(A)
+    u, info = solve_frictionless(K, b.array.copy(), cs, model.scene.options,
                                  contact_constant(model), linear=linear)
     info["system"] = physical
     return u, info
 
 
-def solve_frictionless(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, opts,
+def solve_frictionless(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: ContactSystem, opts,
                        c: float, active: np.ndarray | None = None,
                        linear: "LinearSolver | None" = None) -> tuple[np.ndarray, dict]:
-    """Frictionless contact on the stiffness K (constraints applied), load f
+    """Frictionless contact on the stiffness K (constraints applied; as
+    linear.stiffness() gives it, scipy CSR without linear), load f
     and the constraints B u = cs.g: bilateral (all multipliers active) or
     unilateral by the primal-dual active set, a multiplier active when its
     pressure exceeds c times its mean gap. active: the starting set (default

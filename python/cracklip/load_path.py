@@ -96,10 +96,13 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
     linear = create_linear_solver(unit)  # Options.solver, as solve.solve (cracklip.solvers)
     A, values, T, t_basis = to_solver_basis(unit, linear, A, list(rhs.values()))
     rhs = dict(zip(rhs.keys(), values))
-    K = scipy_from_petsc(A)
     timings.update(t_basis)
     contact = opts.contact != "none" and bool(model.cracks)
     friction = contact and opts.friction > 0.0
+    # The stiffness as the contact solves take it: friction assembles its
+    # own (unsymmetric) saddle point from a scipy copy; frictionless contact
+    # lets the solver path build it (the iterative path around A, no copy).
+    K = None if not contact else scipy_from_petsc(A) if friction else linear.stiffness(A)
     physical = cs = None
     if contact:
         physical = create_contact_system(unit)
