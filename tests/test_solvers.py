@@ -255,6 +255,50 @@ def test_active_set_reuses_the_amg_hierarchy():
     assert all(s["band"] > nmult and s["size"] == it.model.num_dofs + nmult for s in solves)
 
 
+def test_constrained_coarse_solve_is_the_constrained_minimiser():
+    """GAMG's coarsest solve, constrained by the multipliers: its output
+    minimises the coarse energy under C y = 0 (the KKT system's answer), it
+    is symmetric (CG needs a symmetric V-cycle), and clear() restores the
+    plain coarse solve."""
+    from cracklip.contact import create_contact_system
+    md = hc.structured_square(100)  # three levels, a nonsingular coarse operator
+    model = cl.create_model(cl.Scene(md, cl.Material(1.0, 0.3), cracks=[cl.Crack([[-0.3, 0.0123], [0.3, 0.0123]])],
+                                     dirichlet=[cl.Dirichlet("bottom")], tractions=[cl.Traction("top", (0.0, -1.0))],
+                                     options=cl.Options(contact="bilateral", enrichment="vector", radius=0.0)))
+    A, _, _ = assemble_system(model)
+    it = solvers.IterativeSolver(model)
+    K, T = it.transform(A)
+    amg, _ = it._block0_pc(K)
+    coarse = it._coarse
+    Ac = scipy_from_petsc(coarse.Ac).toarray()
+    nc = Ac.shape[0]
+    B = (create_contact_system(model).B @ T).tocsr()
+    op = solvers._SaddleOperator(K, B, np.ones(B.shape[0], bool))
+    coarse.constrain(op.Ba_petsc)
+    assert amg.getMGLevels() >= 2 and 0 < coarse.rank < nc
+    rng = np.random.default_rng(0)
+    r, s = rng.standard_normal(nc), rng.standard_normal(nc)
+
+    def apply(v):
+        x, y = coarse.Ac.createVecs()
+        x.array[:] = v
+        coarse.apply(None, x, y)
+        return y.array.copy()
+    y = apply(r)
+    C = coarse.C
+    kkt = np.block([[Ac, C.T], [C, np.zeros((coarse.rank, coarse.rank))]])
+    ref = np.linalg.solve(kkt, np.concatenate([r, np.zeros(coarse.rank)]))[:nc]
+    assert np.abs(C @ y).max() <= 1e-10 * np.abs(y).max()
+    assert np.abs(y - ref).max() <= 1e-8 * np.abs(ref).max()
+    assert abs(s @ y - r @ apply(s)) <= 1e-10 * abs(s @ y)
+    coarse.clear()
+    y0 = apply(r)
+    assert np.abs(C @ y0).max() > 1e-3 * np.abs(y0).max()
+    assert np.abs(y0 - np.linalg.solve(Ac, r)).max() <= 1e-8 * np.abs(y0).max()
+    op.destroy(None)
+    it.destroy()
+
+
 # -- choice, failures, reporting ---------------------------------------------------------------------
 
 def test_auto_choice_by_size():
@@ -337,6 +381,34 @@ def test_saddle_matrix_equals_the_block_matrix():
         ref = sp.bmat([[K, (Da @ B).T], [Da @ B, sp.diags((~active).astype(float))]], format="csr")
         S = scipy_from_petsc(saddle_matrix(K, B, active))
         assert S.shape == ref.shape and abs(S - ref).max() == 0.0
+
+
+def test_iterative_saddle_operator_equals_the_block_matrix():
+    """The iterative path applies [K B_a^T; B_a D] block by block around K
+    (no copy); its products, its assembled copy (the MUMPS fallback) and the
+    band's blocks (the Schwarz sweep's) must equal the block matrix's."""
+    from cracklip.linear_solver import petsc_from_scipy
+    n, m = 60, 9
+    K = sp.random(n, n, 0.2, random_state=1, format="csr")
+    K = (K + K.T).tocsr()
+    B = sp.random(m, n, 0.3, random_state=2, format="csr")
+    rng = np.random.default_rng(3)
+    band = np.sort(np.concatenate([rng.choice(n, 20, replace=False), n + np.arange(m)]))
+    for active in (np.ones(m, bool), np.zeros(m, bool), rng.random(m) > 0.5):
+        Da = sp.diags(active.astype(float))
+        ref = sp.bmat([[K, (Da @ B).T], [Da @ B, sp.diags((~active).astype(float))]], format="csr")
+        op = solvers._SaddleOperator(petsc_from_scipy(K), B, active)
+        A = solvers.IterativeSolver.saddle_matrix(None, op.K, B, active)
+        x = rng.standard_normal(n + m)
+        xv, yv = (A.createVecRight() for _ in range(2))
+        xv.array[:] = x
+        A.mult(xv, yv)
+        assert np.abs(yv.array - ref @ x).max() <= 1e-13 * np.abs(ref @ x).max()
+        assert abs(scipy_from_petsc(op.assembled()) - ref).max() == 0.0
+        A1, A01, A11 = (scipy_from_petsc(M) for M in op.band_blocks(band))
+        assert abs(A1 - ref[band]).max() == 0.0 and A1.shape == (band.size, n + m)
+        assert abs(A01 - ref[:n][:, band]).max() == 0.0
+        assert abs(A11 - ref[band][:, band]).max() == 0.0
 
 
 def test_bench_solvers_demo_tiny(tmp_path):

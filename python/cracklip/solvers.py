@@ -23,8 +23,8 @@ iterative path needs:
   as the preconditioner of CG (also for the saddle point of contact, with
   GMRES(30) as the fallback). CG starts where the band's equations hold,
   so they hold at every iterate and the sweep's first band solve is
-  skipped; the frictionless saddle point is a MatNest around the stiffness
-  (no copy of it). The GAMG hierarchy depends on the stiffness
+  skipped; the frictionless saddle point is applied block by block around
+  the stiffness (no copy of it). The GAMG hierarchy depends on the stiffness
   only, so it is built once and reused by every active-set iteration. The
   unsymmetric saddle point of friction goes to GMRES(30) with the band
   factored by LU. Every solve path takes it: solve.solve, the load path
@@ -44,6 +44,7 @@ import logging
 import math
 import time
 import typing
+import weakref
 
 import numpy as np
 import scipy.sparse as sp
@@ -116,6 +117,13 @@ MAX_BAND_RINGS = 60
 #: open crack 39 -> 36, contact 44 -> 41).
 BAND_RESIDUAL_SKIP = 1e-10
 
+#: _ConstrainedCoarse keeps closed the jump modes of GAMG's coarsest space
+#: whose singular values (in B_a P) are at least this fraction of the
+#: largest. At 1e6 dofs (bilateral, coarsest level 3483 dofs): 0.1 and 0.01
+#: (17 and 50 modes) 43 -> 36 CG iterations; 1e-3 (87 modes) 44: modes the
+#: coarse space represents poorly lock it.
+COARSE_CONSTRAINT_SV = 0.05
+
 #: Krylov iterations before the iterative path gives up.
 MAX_ITERATIONS = 1000
 
@@ -140,9 +148,6 @@ GAMG_OPTIONS = {
 }
 
 _prefixes = itertools.count()
-
-#: Attribute of IterativeSolver.saddle_matrix's MatNest: its scipy blocks (B_a, D).
-_SADDLE_BLOCKS = "cracklip_saddle_blocks"
 
 
 def choose_solver(options: "Options", num_dofs: int, num_enriched_dofs: int = 0) -> str:
@@ -452,6 +457,13 @@ class IterativeSolver(LinearSolver):
         self._T_inv_t: sp.csr_matrix | None = None
         self._K: PETSc.Mat | None = None
         self._amg: PETSc.PC | None = None
+        self._coarse: _ConstrainedCoarse | None = None
+        # The hierarchy holds a Python PC (its coarse solve), which PETSc must
+        # not destroy after the interpreter's shutdown (a segfault at exit):
+        # destroy() frees it, and so does this finalizer, at the latest when
+        # the interpreter exits.
+        self._owned: list[typing.Any] = []
+        self._release = weakref.finalize(self, _release, self._owned)
 
     # The system in the phantom basis.
     def transform(self, A: PETSc.Mat) -> tuple[PETSc.Mat, sp.csr_matrix]:
@@ -465,31 +477,20 @@ class IterativeSolver(LinearSolver):
         return A
 
     def saddle_matrix(self, K: PETSc.Mat, B: sp.csr_matrix, active: np.ndarray) -> PETSc.Mat:
-        """[K B_a^T; B_a D] as a PETSc MatNest around K (no copy of the
-        stiffness: at 1e6 dofs the assembled saddle point cost 0.1-0.25 s
-        and the scipy copy of K it needs another 0.25-0.3 s): B_a = B with
-        the rows of inactive multipliers emptied, D = 1 on inactive
-        multipliers. Vectors of the system are ordinary (n + m) vectors."""
-        keep = sp.diags(np.asarray(active, dtype=float))
-        Ba = (keep @ B).tocsr()
-        Ba.sort_indices()
-        BaT = Ba.T.tocsr()
-        BaT.sort_indices()
-        D = sp.diags((~np.asarray(active, dtype=bool)).astype(float), format="csr")
-
-        def aij(M: sp.csr_matrix) -> PETSc.Mat:
-            return PETSc.Mat().createAIJ(M.shape, comm=PETSc.COMM_SELF, csr=(
-                M.indptr.astype(PETSc.IntType), M.indices.astype(PETSc.IntType), M.data))
-        blocks = [[K, aij(BaT)], [aij(Ba), aij(D) if D.nnz else None]]
-        A = PETSc.Mat().createNest(blocks, comm=PETSc.COMM_SELF)
+        """[K B_a^T; B_a D] as a Python PETSc matrix applied blockwise around
+        K (_SaddleOperator; no copy of the stiffness: at 1e6 dofs the
+        assembled saddle point cost 0.1-0.25 s and the scipy copy of K it
+        needs another 0.25-0.3 s)."""
+        op = _SaddleOperator(K, B, active)
+        size = op.n + op.m
+        A = PETSc.Mat().createPython([size, size], context=op, comm=PETSc.COMM_SELF)
         A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
-        A.setAttr(_SADDLE_BLOCKS, (Ba, D))  # for _band_blocks_nest
+        A.setUp()
         return A
 
     def destroy(self) -> None:
-        if self._amg is not None:
-            self._amg.destroy()
-        self._amg = None
+        self._release()
+        self._amg = self._coarse = None
 
     def _contact_band(self, m: int) -> np.ndarray:
         """The stiffness dofs of the band: one ring without contact; with m
@@ -509,6 +510,8 @@ class IterativeSolver(LinearSolver):
         if self._K is None:
             raise SolverError("IterativeSolver.solve needs the system from IterativeSolver.transform")
         self._amg = self._gamg(self._K, rigid_modes(self.model))
+        self._coarse = _ConstrainedCoarse(self._amg)
+        self._owned += [self._amg, self._coarse]
         return self._amg, False
 
     def _gamg(self, A: PETSc.Mat, modes: np.ndarray) -> PETSc.PC:
@@ -547,8 +550,8 @@ class IterativeSolver(LinearSolver):
             if not self.fallback:
                 raise
             logger.warning("%s: the iterative solver failed (%s); solving with MUMPS instead", what, e)
-            if A.getType() == PETSc.Mat.Type.NEST:  # saddle_matrix's: MUMPS needs it assembled
-                A_aij = A.convert(PETSc.Mat.Type.AIJ)
+            if A.getType() == PETSc.Mat.Type.PYTHON:  # saddle_matrix's: MUMPS needs it assembled
+                A_aij = A.getPythonContext().assembled()
                 try:
                     return solve_checked(A_aij, b, residual_tol, what=what, symmetric=symmetric)
                 finally:
@@ -568,6 +571,8 @@ class IterativeSolver(LinearSolver):
             band_dofs = np.concatenate([self._contact_band(m if contact_points is None else contact_points),
                                         np.arange(self.n, size)])
             shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric)
+            if A.getType() == PETSc.Mat.Type.PYTHON and m > 0:
+                self._coarse.constrain(A.getPythonContext().Ba_petsc)
             t_setup = time.perf_counter() - t0
             # CG also for the saddle point: the sweep ends with an exact solve
             # of the band, which holds every multiplier and every dof they
@@ -589,6 +594,8 @@ class IterativeSolver(LinearSolver):
         finally:
             if shell is not None:
                 shell.free()
+            if self._coarse is not None:
+                self._coarse.clear()
         method = (f"{'CG' if krylov == 'cg' else f'GMRES({GMRES_RESTART})'} + "
                   "Schwarz {MUMPS crack band | GAMG | band} (phantom basis)")
         record_solve({"what": what, "size": size, "relative_residual": rel, "solver": "iterative",
@@ -628,6 +635,7 @@ class IterativeSolver(LinearSolver):
             if krylov == "cg":
                 shell.start(A, b, y)
             ksp.setInitialGuessNonzero(x0 is not None or krylov == "cg")
+            shell.cg = ksp if krylov == "cg" else None
             try:
                 ksp.solve(b, y)
             except PETSc.Error as e:
@@ -636,6 +644,7 @@ class IterativeSolver(LinearSolver):
                                   "Dirichlet conditions fixing its rigid motion, or use solver = 'direct'") from None
             return y, ksp.getIterationNumber(), ksp.getConvergedReason()
         finally:
+            shell.cg = None
             ksp.destroy()
 
     def _original_residual(self, A: PETSc.Mat, y: PETSc.Vec, b: PETSc.Vec) -> float:
@@ -679,8 +688,8 @@ class _Schwarz:
         band = np.sort(band_dofs).astype(PETSc.IntType)
         self.is1 = PETSc.IS().createGeneral(band, comm=comm)
         self.is0 = PETSc.IS().createStride(n0, 0, 1, comm=comm)
-        if A.getType() == PETSc.Mat.Type.NEST:
-            self.A1, self.A01, A11 = _band_blocks_nest(A, n0, band)
+        if A.getType() == PETSc.Mat.Type.PYTHON:  # IterativeSolver.saddle_matrix's
+            self.A1, self.A01, A11 = A.getPythonContext().band_blocks(band)
         else:
             all_cols = PETSc.IS().createStride(size, 0, 1, comm=comm)
             self.A1 = A.createSubMatrix(self.is1, all_cols)  # band rows, all columns
@@ -694,13 +703,19 @@ class _Schwarz:
         r = PETSc.Vec().createSeq(size, comm=comm)
         self.s1 = PETSc.Scatter().create(r, self.is1, self.r1, None)
         r.destroy()
+        #: The CG KSP this sweep preconditions (set by IterativeSolver._krylov
+        #: for the solve), whose residual norm apply() reads.
+        self.cg: PETSc.KSP | None = None
 
     def apply(self, pc: PETSc.PC, r: PETSc.Vec, z: PETSc.Vec) -> None:
         fwd, rev = PETSc.ScatterMode.FORWARD, PETSc.ScatterMode.REVERSE
         ins, add = PETSc.InsertMode.INSERT_VALUES, PETSc.InsertMode.ADD_VALUES
         n0 = self.r0.getSize()
         self.s1.scatter(r, self.r1, ins, fwd)
-        if self.r1.norm() <= BAND_RESIDUAL_SKIP * r.norm():
+        # ||r||: CG has just computed it (unpreconditioned norm) before
+        # calling the preconditioner.
+        rnorm = self.cg.getResidualNorm() if self.cg is not None else r.norm()
+        if self.r1.norm() <= BAND_RESIDUAL_SKIP * rnorm:
             # r vanishes on the band (CG started by start(): every residual
             # does, up to rounding): the first band solve would give 0, and
             # the V-cycle acts on r itself (a view, no copy).
@@ -757,29 +772,161 @@ class _Schwarz:
             obj.destroy()
 
 
-def _band_blocks_nest(A: PETSc.Mat, n0: int, band: np.ndarray) -> tuple[PETSc.Mat, PETSc.Mat, PETSc.Mat]:
-    """(A1, A01, A11) of _Schwarz for the symmetric MatNest [[K, B^T], [B,
-    D]] of IterativeSolver.saddle_matrix, built from K's band rows and the
-    small blocks (MatNest has no general createSubMatrix): A1 = the band's
-    rows, A01 = block 0's rows at the band's columns (A1's transpose, A
-    being symmetric), A11 = the band's rows and columns."""
-    from .linear_solver import petsc_from_scipy, scipy_from_petsc
-    comm = PETSc.COMM_SELF
-    K = A.getNestSubMatrix(0, 0)
-    B, D = A.getAttr(_SADDLE_BLOCKS)
-    kb = band[band < n0]
-    rows = PETSc.IS().createGeneral(kb, comm=comm)
-    cols = PETSc.IS().createStride(n0, 0, 1, comm=comm)
-    K1 = K.createSubMatrix(rows, cols)
-    rows.destroy()
-    cols.destroy()
-    top = sp.hstack([scipy_from_petsc(K1), B.T.tocsr()[kb]], format="csr")
-    bottom = sp.hstack([B, D], format="csr")
-    K1.destroy()
-    A1 = sp.vstack([top, bottom], format="csr")
-    A11 = A1[:, band].tocsr()
-    A01 = A1[:, :n0].T.tocsr()
-    return petsc_from_scipy(A1), petsc_from_scipy(A01), petsc_from_scipy(A11)
+def _release(owned: list[typing.Any]) -> None:
+    """Free an IterativeSolver's PETSc objects (last made, first freed)."""
+    while owned:
+        obj = owned.pop()
+        (obj.free if isinstance(obj, _ConstrainedCoarse) else obj.destroy)()
+
+
+class _ConstrainedCoarse:
+    """Python PC of the coarsest solve of the GAMG hierarchy: the LU solve
+    of the coarse operator A_c and, while a contact solve runs, the solve
+    constrained to keep the coarse space's strongest crack-opening modes
+    closed:
+
+        y = A_c^-1 r - W S^-1 W^T r,   W = A_c^-1 C^T,  S = C W,
+
+    C (k x n_c, orthonormal rows) = the right singular vectors of B_a P
+    (P: coarse space -> stiffness dofs, the product of GAMG's
+    interpolations) whose singular values are at least COARSE_CONSTRAINT_SV
+    times the largest: the jumps the multipliers see best. Without it the
+    V-cycle's coarse correction opens the crack over its whole length, and
+    the band, a few cells wide, closes it again only locally. Symmetric
+    positive semidefinite, so the V-cycle stays symmetric (CG)."""
+
+    def __init__(self, amg: PETSc.PC):
+        ksp = amg.getMGCoarseSolve()
+        self.Ac = ksp.getOperators()[0]
+        self.lu = PETSc.PC().create(PETSc.COMM_SELF)
+        self.lu.setOperators(self.Ac)
+        self.lu.setType(PETSc.PC.Type.LU)
+        # As GAMG's own coarse solve: a coarse operator may be singular
+        # (rigid modes of a small hierarchy).
+        self.lu.setFactorShift(PETSc.Mat.FactorShiftType.INBLOCKS)
+        self.lu.setUp()
+        ksp.setType(PETSc.KSP.Type.PREONLY)
+        pc = ksp.getPC()
+        pc.setType(PETSc.PC.Type.PYTHON)
+        pc.setPythonContext(self)
+        levels = amg.getMGLevels()
+        self.interpolations = [amg.getMGInterpolation(level) for level in range(levels - 1, 0, -1)]  # finest first
+        self.C: np.ndarray | None = None
+        self.G: np.ndarray | None = None
+        self.rank = 0
+
+    def constrain(self, B: PETSc.Mat) -> None:
+        """Constrain the coarse solve by the multipliers' rows B (m x n,
+        stiffness columns in the solver's basis)."""
+        from .linear_solver import scipy_from_petsc
+        Bc = B
+        for P in self.interpolations:
+            nxt = Bc.matMult(P)
+            if Bc is not B:
+                Bc.destroy()
+            Bc = nxt
+        dense = scipy_from_petsc(Bc).toarray()
+        if Bc is not B:
+            Bc.destroy()
+        _, sv, Vt = np.linalg.svd(dense, full_matrices=False)
+        k = int((sv >= COARSE_CONSTRAINT_SV * sv[0]).sum()) if sv.size and sv[0] > 0 else 0
+        self.clear()
+        if k == 0:
+            return
+        C = Vt[:k]
+        W = np.empty((C.shape[1], k))
+        x, y = self.Ac.createVecs()
+        for j in range(k):
+            x.array[:] = C[j]
+            self.lu.apply(x, y)
+            W[:, j] = y.array
+        x.destroy()
+        y.destroy()
+        S = C @ W
+        # S = C A_c^-1 C^T is symmetric positive definite unless A_c is
+        # singular (GAMG's shifted LU then solves it): a pseudo-inverse.
+        self.C, self.G, self.rank = C, W @ np.linalg.pinv(0.5 * (S + S.T), rcond=1e-12, hermitian=True), k
+
+    def clear(self) -> None:
+        """Back to the plain LU solve (solves without contact)."""
+        self.C = self.G = None
+        self.rank = 0
+
+    def apply(self, pc: PETSc.PC, x: PETSc.Vec, y: PETSc.Vec) -> None:
+        self.lu.apply(x, y)
+        if self.C is not None:
+            ya = y.array
+            ya -= self.G @ (self.C @ ya)
+
+    def free(self) -> None:
+        self.lu.destroy()
+
+
+class _SaddleOperator:
+    """Python-matrix context of IterativeSolver.saddle_matrix: the
+    frictionless saddle point [K B_a^T; B_a D] (B_a = B with the rows of
+    inactive multipliers emptied, D = 1 on inactive multipliers, 0 on active
+    ones) applied block by block on ordinary (n + m) vectors, K in place
+    (K.mult on a view: a MatNest zeroes y and calls multAdd, 1.5 ms more per
+    product at 1e6 dofs)."""
+
+    def __init__(self, K: PETSc.Mat, B: sp.csr_matrix, active: np.ndarray):
+        from .linear_solver import petsc_from_scipy
+        comm = PETSc.COMM_SELF
+        self.K = K
+        self.active = np.asarray(active, dtype=bool)
+        self.B = B
+        self.Ba = (sp.diags(self.active.astype(float)) @ B).tocsr()
+        self.Ba.sort_indices()
+        self.n, self.m = K.getSize()[0], B.shape[0]
+        self.d = (~self.active).astype(float)
+        self.Ba_petsc = petsc_from_scipy(self.Ba)
+        self._BaT = petsc_from_scipy(self.Ba.T)
+        self._is_u = PETSc.IS().createStride(self.n, 0, 1, comm=comm)
+        self._is_l = PETSc.IS().createStride(self.m, self.n, 1, comm=comm)
+
+    def mult(self, mat: PETSc.Mat, x: PETSc.Vec, y: PETSc.Vec) -> None:
+        xu, yu = x.getSubVector(self._is_u), y.getSubVector(self._is_u)
+        self.K.mult(xu, yu)
+        if self.m:
+            xl, yl = x.getSubVector(self._is_l), y.getSubVector(self._is_l)
+            self._BaT.multAdd(xl, yu, yu)
+            self.Ba_petsc.mult(xu, yl)
+            yl.array[:] += self.d * xl.array_r
+            x.restoreSubVector(self._is_l, xl)
+            y.restoreSubVector(self._is_l, yl)
+        x.restoreSubVector(self._is_u, xu)
+        y.restoreSubVector(self._is_u, yu)
+
+    def multTranspose(self, mat: PETSc.Mat, x: PETSc.Vec, y: PETSc.Vec) -> None:
+        self.mult(mat, x, y)
+
+    def assembled(self) -> PETSc.Mat:
+        """The same matrix assembled (PETSc AIJ, for MUMPS)."""
+        from .contact import saddle_matrix
+        from .linear_solver import scipy_from_petsc
+        return saddle_matrix(scipy_from_petsc(self.K), self.B, self.active)
+
+    def band_blocks(self, band: np.ndarray) -> tuple[PETSc.Mat, PETSc.Mat, PETSc.Mat]:
+        """(A1, A01, A11) of _Schwarz for the sorted band dofs, from K's band
+        rows and the small blocks: A1 = the band's rows, A01 = the
+        stiffness rows at the band's columns (A1's transpose, the matrix
+        being symmetric), A11 = the band's rows and columns."""
+        from .linear_solver import petsc_from_scipy, scipy_from_petsc
+        comm = PETSc.COMM_SELF
+        n = self.n
+        kb = band[band < n]
+        rows = PETSc.IS().createGeneral(kb.astype(PETSc.IntType), comm=comm)
+        K1 = self.K.createSubMatrix(rows, self._is_u)
+        rows.destroy()
+        top = sp.hstack([scipy_from_petsc(K1), self.Ba.T.tocsr()[kb]], format="csr")
+        K1.destroy()
+        A1 = sp.vstack([top, sp.hstack([self.Ba, sp.diags(self.d)], format="csr")], format="csr")
+        return petsc_from_scipy(A1), petsc_from_scipy(A1[:, :n].T), petsc_from_scipy(A1[:, band])
+
+    def destroy(self, mat: PETSc.Mat) -> None:
+        for obj in (self.Ba_petsc, self._BaT, self._is_u, self._is_l):
+            obj.destroy()
 
 
 def _factor_band(A11: PETSc.Mat, symmetric: bool = True) -> PETSc.KSP:
