@@ -289,35 +289,43 @@ def test_large_mesh_pngs_are_rasterised_exactly():
 
 
 def test_png_crop_matches_savefig_tight(tmp_path):
-    """outputs._save draws once and cuts the tight box out of the canvas: the
-    same picture as savefig(bbox_inches="tight") to a pixel of rounding in
-    size, with its ink (non-white pixels) spanning the same box and as many
-    pixels to 1 %; a figure whose content reaches outside its area (not
-    drawn on the canvas) goes to savefig, which enlarges the picture to hold
-    it."""
+    """outputs._save draws once and cuts the ink (pixels not of the face
+    colour) plus PNG_PAD_INCHES out of the canvas: the same content as
+    savefig(bbox_inches="tight") (the ink spans the same box, as many ink
+    pixels to 1 %), the pad exact on every side, and a picture the size of
+    savefig's but for the artists' few pixels of slack and rounding. A title longer than
+    the figure is wide (ink on the canvas's border, clipped) goes to savefig,
+    which widens the picture to hold it."""
     from PIL import Image
     from cracklip import outputs
+    pad = int(round(outputs.PNG_PAD_INCHES * outputs.PNG_DPI))
 
-    def figure(outside: bool):
+    def figure(overflow: bool):
         fig = outputs._figure((5.0, 3.0))
+        fig.subplots_adjust(top=0.75, bottom=0.2)
         ax = fig.add_subplot()
         ax.plot([0.0, 1.0, 2.0], [1.0, 0.0, 2.0], "b.-")
-        ax.set_title("a title\nover two lines")
+        ax.set_title(("a title far too long for the width of this figure " * 3) if overflow else
+                     "a title\nover two lines")
         ax.set_xlabel("x")
-        if outside:
-            fig.text(0.5, 1.15, "above the figure", ha="center")
         return fig
 
-    for outside in (False, True):
-        ours, ref = tmp_path / f"ours{outside}.png", tmp_path / f"ref{outside}.png"
-        outputs._save(figure(outside), ours)
-        figure(outside).savefig(ref, dpi=outputs.PNG_DPI, bbox_inches="tight", pad_inches=outputs.PNG_PAD_INCHES)
+    def ink_box(img):
+        ink = np.argwhere(img.sum(axis=2) < 765)
+        return ink.min(axis=0), ink.max(axis=0), len(np.argwhere(img.sum(axis=2) < 600))
+
+    for overflow in (False, True):
+        ours, ref = tmp_path / f"ours{overflow}.png", tmp_path / f"ref{overflow}.png"
+        outputs._save(figure(overflow), ours)
+        figure(overflow).savefig(ref, dpi=outputs.PNG_DPI, bbox_inches="tight", pad_inches=outputs.PNG_PAD_INCHES)
         a = np.asarray(Image.open(ours).convert("RGB")).astype(int)
         b = np.asarray(Image.open(ref).convert("RGB")).astype(int)
-        assert abs(a.shape[0] - b.shape[0]) <= 2 and abs(a.shape[1] - b.shape[1]) <= 2, (a.shape, b.shape)
-        if outside:  # taller than the figure: the text above it is in the picture
-            assert a.shape[0] > 3.0 * outputs.PNG_DPI
-        # The ink (non-white pixels) has the same bounding box and the same count.
-        ink_a, ink_b = np.argwhere(a.sum(axis=2) < 600), np.argwhere(b.sum(axis=2) < 600)
-        assert np.abs((ink_a.max(axis=0) - ink_a.min(axis=0)) - (ink_b.max(axis=0) - ink_b.min(axis=0))).max() <= 1
-        assert abs(len(ink_a) - len(ink_b)) <= 0.01 * len(ink_b)
+        (lo_a, hi_a, n_a), (lo_b, hi_b, n_b) = ink_box(a), ink_box(b)
+        assert np.abs((hi_a - lo_a) - (hi_b - lo_b)).max() <= 1
+        assert abs(n_a - n_b) <= 0.01 * n_b
+        if overflow:  # savefig's picture, wider than the figure: the whole title is in it
+            assert a.shape == b.shape and a.shape[1] > 5.0 * outputs.PNG_DPI
+        else:
+            assert list(lo_a) == [pad, pad] and list(np.array(a.shape[:2]) - 1 - hi_a) == [pad, pad]
+            # savefig's box: the artists' (a few pixels of slack), rounded (+-2 px).
+            assert -2 <= b.shape[0] - a.shape[0] <= 12 and -2 <= b.shape[1] - a.shape[1] <= 12, (a.shape, b.shape)
