@@ -208,6 +208,7 @@ def _orderings(md) -> list[dict]:
                      "t_factor_solve": t, "ndofs": int(A.getSize()[0])})
         F.destroy()
         x.destroy()
+        del pc  # no wrapper may outlive ksp.destroy() (PETSc would keep the PC and its factors)
         ksp.destroy()
     return rows
 
