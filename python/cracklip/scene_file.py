@@ -267,7 +267,7 @@ _OPTION_MEANINGS = {
                   "and away from other tips, cracks, kinks and holes (with a warning)",
     "solver": "linear solver: `direct` (MUMPS LDL^T), `iterative` (AMG in a phantom-node basis with a "
               "direct solve of the crack band; same checked accuracy) or `auto` (iterative from 5e4 "
-              "dofs when 1-5 % of them are enriched and from 5e6 dofs always, else direct: the faster one as "
+              "dofs when 1-5 % of them are enriched and from 2e6 dofs always, else direct: the faster one as "
               "measured)",
 }
 _OPTION_CHOICES = {

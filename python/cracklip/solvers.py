@@ -61,23 +61,24 @@ if typing.TYPE_CHECKING:
 logger = logging.getLogger(__name__)
 
 #: Options.solver = "auto": measured on this kind of machine (2 cores,
-#: OpenBLAS, medians of 3; demos/bench_solvers.py and the Westergaard scene),
-#: MUMPS LDL^T beats the iterative path wherever the enriched dofs are few:
-#: the bench scene (a 0.6-long crack, tip functions on the tip cell only,
-#: about 0.1 % enriched dofs) is faster direct at every size up to 4e6 dofs
-#: (open crack 7.5 s vs 8.1 s at 1e6, 39.5 vs 51.7 s at 4e6; contact 10.0
-#: vs 13.0 s and 38.1 vs 67.4 s), while a tip-enrichment disk (Westergaard,
-#: radius 0.2, vector tip functions, 3.4 % enriched) makes the factorisation
-#: dearer and the iterative path wins from 6e4 dofs (0.33 vs 0.59 s at 6.2e4,
-#: 1.3 vs 2.2 s at 2e5). So auto goes iterative from AUTO_ITERATIVE_DOFS
-#: dofs while the enriched fraction lies in [AUTO_MIN_ENRICHED_FRACTION,
-#: AUTO_MAX_ENRICHED_FRACTION], and at any enrichment from
-#: AUTO_DIRECT_MAX_DOFS dofs on, where the direct path's memory (2.4 GB per
-#: 1e6 dofs with contact, 9.6 GB at 4e6) nears a 24 GB machine's (the
-#: iterative path: 6.0 GB at 4e6).
+#: OpenBLAS, medians of 3; demos/bench_solvers.py and the Westergaard scene).
+#: Where the enriched dofs are few, MUMPS LDL^T and the iterative path are
+#: about as fast up to 1e6 dofs and the iterative one wins beyond: the bench
+#: scene (a 0.6-long crack, tip functions on the tip cell only, about 0.1 %
+#: enriched dofs; docs/bench/bench_solvers.json) direct / iterative: open
+#: crack 1.09 / 1.50 s at 2e5, 6.05 / 6.20 s at 1e6, 31.3 / 25.7 s at 4e6;
+#: contact 1.19 / 1.32, 6.03 / 6.69, 32.7 / 29.1 s; and the direct path's
+#: memory (2.3 GB per 1e6 dofs with contact, 9.6 GB at 4e6; iterative 0.93
+#: and 3.4 GB) nears a 24 GB machine's between 4e6 and 1e7 dofs. A
+#: tip-enrichment disk (Westergaard, radius 0.2, vector tip functions, 3.4 %
+#: enriched) makes the factorisation dearer and the iterative path wins from
+#: 6e4 dofs (0.33 vs 0.59 s at 6.2e4, 1.3 vs 2.2 s at 2e5). So auto goes
+#: iterative from AUTO_ITERATIVE_DOFS dofs while the enriched fraction lies
+#: in [AUTO_MIN_ENRICHED_FRACTION, AUTO_MAX_ENRICHED_FRACTION], and at any
+#: enrichment from AUTO_DIRECT_MAX_DOFS dofs on.
 AUTO_ITERATIVE_DOFS = 50_000
 AUTO_MIN_ENRICHED_FRACTION = 0.01
-AUTO_DIRECT_MAX_DOFS = 5_000_000
+AUTO_DIRECT_MAX_DOFS = 2_000_000
 
 #: ... and while enriched dofs are at most this fraction of the dofs: the
 #: crack band (all enriched dofs and a ring) is factored, and a large tip
