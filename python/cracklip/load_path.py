@@ -120,40 +120,42 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
     incs = increments(scene)
     iterations: list[int] = []
     t0 = time.perf_counter()
-    with record_solves() as solves:
-        for inc in incs:
-            f = _combine(rhs, inc.factors, n)
-            info: dict[str, typing.Any] = {}
-            if not contact:
-                A_f = A.createVecRight()
-                A_f.array[:] = f
-                x = linear.solve(A, A_f, opts.residual_tol, what="X-FEM stiffness system")
-                y = x.array.copy()
-                A_f.destroy()
-                x.destroy()
-            else:
-                g_n = _combine(cs.g_groups, inc.factors, m)
-                work = dataclasses.replace(cs, g=g_n)
-                if friction:
-                    g_t = _combine(cs.gt_groups, inc.factors, m)
-                    y, info = solve_friction(K, f, work, g_n, g_t, s_old, opts, c, state, sign, linear)
-                    state, sign = info["state"], info["sign"]
-                    s_old = cs.Bt @ y - g_t
+    try:  # the solver's PETSc objects go when the path ends, also when a solve fails
+        with record_solves() as solves:
+            for inc in incs:
+                f = _combine(rhs, inc.factors, n)
+                info: dict[str, typing.Any] = {}
+                if not contact:
+                    A_f = A.createVecRight()
+                    A_f.array[:] = f
+                    x = linear.solve(A, A_f, opts.residual_tol, what="X-FEM stiffness system")
+                    y = x.array.copy()
+                    A_f.destroy()
+                    x.destroy()
                 else:
-                    y, info = solve_frictionless(K, f, work, opts, c, active, linear)
-                    active = info["active"]
-                iterations.append(int(info["iterations"]))
-            if inc.index == opts.load_steps:
-                out.append(_step_solution(model, unit, physical, y, T, E, info, inc, step_list[inc.step],
-                                          iterations, timings, solves, linear.name))
-                iterations = []
-                logger.info("load step %d/%d (%s) solved", inc.step + 1, len(step_list), step_list[inc.step].name)
+                    g_n = _combine(cs.g_groups, inc.factors, m)
+                    work = dataclasses.replace(cs, g=g_n)
+                    if friction:
+                        g_t = _combine(cs.gt_groups, inc.factors, m)
+                        y, info = solve_friction(K, f, work, g_n, g_t, s_old, opts, c, state, sign, linear)
+                        state, sign = info["state"], info["sign"]
+                        s_old = cs.Bt @ y - g_t
+                    else:
+                        y, info = solve_frictionless(K, f, work, opts, c, active, linear)
+                        active = info["active"]
+                    iterations.append(int(info["iterations"]))
+                if inc.index == opts.load_steps:
+                    out.append(_step_solution(model, unit, physical, y, T, E, info, inc, step_list[inc.step],
+                                              iterations, timings, solves, linear.name))
+                    iterations = []
+                    logger.info("load step %d/%d (%s) solved", inc.step + 1, len(step_list), step_list[inc.step].name)
+    finally:
+        linear.destroy()
     timings["path_solve"] = time.perf_counter() - t0
     if condition_number:
         from .linear_solver import condition_number_1norm
         out[-1].condition = condition_number_1norm(A)
     A.destroy()
-    linear.destroy()
     timings["total"] = time.perf_counter() - t_start
     for sol in out:
         sol.timings = {**model.timings, **timings}

@@ -55,22 +55,27 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     timings.update(t_basis)
     t0 = time.perf_counter()
     contact = {}
-    with record_solves() as solves:
-        if scene.options.contact != "none" and model.cracks:
-            try:
-                u, contact = solve_contact(unit, A, b, transform=T, linear=linear)
-            except SolverError as e:
-                raise _contact_singularity(scene, A, b, e) from None
-            contact["system"].g = contact["system"].g / E  # B u = g in the scene's units
-            x = A.createVecRight()
-            x.array[:] = u
-            timings["contact_solve"] = time.perf_counter() - t0
-        else:
-            x = linear.solve(A, b, scene.options.residual_tol, what="X-FEM stiffness system")
-            timings["solve"] = time.perf_counter() - t0
+    # The solver's PETSc objects (the iterative path's AMG hierarchy) go
+    # when the solve ends, also when it fails.
+    try:
+        with record_solves() as solves:
+            if scene.options.contact != "none" and model.cracks:
+                try:
+                    u, contact = solve_contact(unit, A, b, transform=T, linear=linear)
+                except SolverError as e:
+                    linear.destroy()
+                    raise _contact_singularity(scene, A, b, e) from None
+                contact["system"].g = contact["system"].g / E  # B u = g in the scene's units
+                x = A.createVecRight()
+                x.array[:] = u
+                timings["contact_solve"] = time.perf_counter() - t0
+            else:
+                x = linear.solve(A, b, scene.options.residual_tol, what="X-FEM stiffness system")
+                timings["solve"] = time.perf_counter() - t0
+    finally:
+        linear.destroy()
     # Relative residual ||A x - b|| / ||b|| of the last solve (the final
     # active set's saddle system with contact) and of every solve.
-    linear.destroy()
     solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None,
               "solver": linear.name, "solves": solves}
     condition = {}
