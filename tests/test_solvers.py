@@ -255,16 +255,22 @@ def test_active_set_reuses_the_amg_hierarchy():
     assert all(s["band"] > nmult and s["size"] == it.model.num_dofs + nmult for s in solves)
 
 
+def clamped_square_contact_model(n: int) -> "cl.XfemModel":
+    """The solver benchmark's bilateral-contact scene (demos/bench_solvers.py)
+    on an n x n structured square: interior crack, bottom clamped, top pressed."""
+    return cl.create_model(cl.Scene(hc.structured_square(n), cl.Material(1.0, 0.3),
+                                    cracks=[cl.Crack([[-0.3, 0.0123], [0.3, 0.0123]])],
+                                    dirichlet=[cl.Dirichlet("bottom")], tractions=[cl.Traction("top", (0.0, -1.0))],
+                                    options=cl.Options(contact="bilateral", enrichment="vector", radius=0.0)))
+
+
 def test_constrained_coarse_solve_is_the_constrained_minimiser():
     """GAMG's coarsest solve, constrained by the multipliers: its output
     minimises the coarse energy under C y = 0 (the KKT system's answer), it
     is symmetric (CG needs a symmetric V-cycle), and clear() restores the
     plain coarse solve."""
     from cracklip.contact import create_contact_system
-    md = hc.structured_square(100)  # three levels, a nonsingular coarse operator
-    model = cl.create_model(cl.Scene(md, cl.Material(1.0, 0.3), cracks=[cl.Crack([[-0.3, 0.0123], [0.3, 0.0123]])],
-                                     dirichlet=[cl.Dirichlet("bottom")], tractions=[cl.Traction("top", (0.0, -1.0))],
-                                     options=cl.Options(contact="bilateral", enrichment="vector", radius=0.0)))
+    model = clamped_square_contact_model(100)  # three levels, a nonsingular coarse operator
     A, _, _ = assemble_system(model)
     it = solvers.IterativeSolver(model)
     K, T = it.transform(A)
@@ -305,10 +311,7 @@ def test_iterative_solves_release_the_stiffness():
     alive across ksp.destroy(), or PETSc objects held by a Python PC's
     context, kept K' and its hierarchy (0.2-0.4 GB per solve at 1e6 dofs)."""
     from cracklip.contact import create_contact_system
-    md = hc.structured_square(60)
-    model = cl.create_model(cl.Scene(md, cl.Material(1.0, 0.3), cracks=[cl.Crack([[-0.3, 0.0123], [0.3, 0.0123]])],
-                                     dirichlet=[cl.Dirichlet("bottom")], tractions=[cl.Traction("top", (0.0, -1.0))],
-                                     options=cl.Options(contact="bilateral", enrichment="vector", radius=0.0)))
+    model = clamped_square_contact_model(60)
     A, b, _ = assemble_system(model)
     it = solvers.IterativeSolver(model)
     K, T = it.transform(A)

@@ -723,32 +723,24 @@ class _Schwarz:
         # ||r||: CG has just computed it (unpreconditioned norm) before
         # calling the preconditioner.
         rnorm = self.cg.getResidualNorm() if self.cg is not None else r.norm()
-        if self.r1.norm() <= BAND_RESIDUAL_SKIP * rnorm:
-            # r vanishes on the band (CG started by start(): every residual
-            # does, up to rounding): the first band solve would give 0, and
-            # the V-cycle acts on r itself (a view, no copy).
-            r0 = r.getSubVector(self.is0)
-            z0 = z.getSubVector(self.is0)
-            self.amg.apply(r0, z0)
-            r.restoreSubVector(self.is0, r0)
-            z.restoreSubVector(self.is0, z0)
-            if z.getSize() > n0:
-                z.array[n0:] = 0.0
-        else:
-            # Band first.
+        # r vanishes on the band (CG started by start(): every residual does,
+        # up to rounding): the first band solve would give 0, and the V-cycle
+        # acts on r itself. Else band first, and the V-cycle on r - A z (z the
+        # band correction so far). Block 0 = the leading dofs: views, no copies.
+        band_first = self.r1.norm() > BAND_RESIDUAL_SKIP * rnorm
+        r0 = r.getSubVector(self.is0)
+        if band_first:
             self.band.solve(self.r1, self.z1)
-            # GAMG on block 0 of r - A z (z is the band correction so far),
-            # on views of r and z (block 0 = the leading dofs: no copies).
             self.z1.scale(-1.0)
-            r0 = r.getSubVector(self.is0)
             self.A01.multAdd(self.z1, r0, self.r0)  # r0 - A01 z1
-            r.restoreSubVector(self.is0, r0)
-            z0 = z.getSubVector(self.is0)
-            self.amg.apply(self.r0, z0)
-            z.restoreSubVector(self.is0, z0)
-            if z.getSize() > n0:
-                z.array[n0:] = 0.0
             self.z1.scale(-1.0)
+        z0 = z.getSubVector(self.is0)
+        self.amg.apply(self.r0 if band_first else r0, z0)
+        r.restoreSubVector(self.is0, r0)
+        z.restoreSubVector(self.is0, z0)
+        if z.getSize() > n0:
+            z.array[n0:] = 0.0
+        if band_first:
             self.s1.scatter(self.z1, z, add, rev)
         # Band again on r - A z.
         self.A1.mult(z, self.t1)
@@ -822,7 +814,11 @@ class _ConstrainedCoarse:
         self.interpolations = [amg.getMGInterpolation(level) for level in range(levels - 1, 0, -1)]  # finest first
         self.C: np.ndarray | None = None
         self.G: np.ndarray | None = None
-        self.rank = 0
+
+    @property
+    def rank(self) -> int:
+        """The number of constrained coarse modes (0: the plain LU solve)."""
+        return 0 if self.C is None else self.C.shape[0]
 
     def constrain(self, B: PETSc.Mat) -> None:
         """Constrain the coarse solve by the multipliers' rows B (m x n,
@@ -854,12 +850,11 @@ class _ConstrainedCoarse:
         S = C @ W
         # S = C A_c^-1 C^T is symmetric positive definite unless A_c is
         # singular (GAMG's shifted LU then solves it): a pseudo-inverse.
-        self.C, self.G, self.rank = C, W @ np.linalg.pinv(0.5 * (S + S.T), rcond=1e-12, hermitian=True), k
+        self.C, self.G = C, W @ np.linalg.pinv(0.5 * (S + S.T), rcond=1e-12, hermitian=True)
 
     def clear(self) -> None:
         """Back to the plain LU solve (solves without contact)."""
         self.C = self.G = None
-        self.rank = 0
 
     def apply(self, pc: PETSc.PC, x: PETSc.Vec, y: PETSc.Vec) -> None:
         self.lu.apply(x, y)
