@@ -213,18 +213,73 @@ def quick_start():
     return commands, quoted
 
 
+def ignore_rules(root: pathlib.Path) -> list[tuple[str, bool, bool]]:
+    """The patterns of root/.gitignore as (pattern, anchored, directory only).
+
+    Only the forms the project's .gitignore uses are understood (a name or
+    glob, a leading / anchoring it to the root, a trailing / for
+    directories); anything else (negation, **) fails loudly so the copy never
+    silently differs from a clone."""
+    rules = []
+    for line in (root / ".gitignore").read_text().splitlines():
+        line = line.strip()
+        if not line or line.startswith("#"):
+            continue
+        if line.startswith("!") or "**" in line:
+            raise ValueError(f".gitignore pattern {line!r} is not understood by fresh_checkout")
+        directory = line.endswith("/")
+        anchored = line.startswith("/")
+        rules.append((line.strip("/"), anchored, directory))
+    return rules
+
+
 def fresh_checkout(dest: pathlib.Path) -> None:
-    """The repository's files (tracked and new, not ignored) copied to dest,
-    plus the C++ module that `bash scripts/setup.sh` builds."""
-    listing = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard", "-z"],
-                             cwd=ROOT, capture_output=True, check=True).stdout.decode()
-    for name in filter(None, listing.split("\0")):
-        src = ROOT / name
-        if src.is_file():
-            (dest / name).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(src, dest / name)
+    """The repository's files, as a clone or a release archive holds them,
+    copied to dest, plus the C++ module that `bash scripts/setup.sh` builds.
+
+    The tree is walked and .gitignore's rules applied (no git needed: the
+    repository may arrive as an archive on a machine without git); .git
+    itself is skipped."""
+    import fnmatch
+    rules = ignore_rules(ROOT)
+
+    def ignored(rel: pathlib.PurePosixPath, is_dir: bool) -> bool:
+        for pattern, anchored, directory in rules:
+            if directory and not is_dir:
+                continue
+            target = str(rel) if anchored else rel.name
+            if fnmatch.fnmatchcase(target, pattern):
+                return True
+        return False
+
+    for here, dirs, files in os.walk(ROOT):
+        rel_here = pathlib.PurePosixPath(pathlib.Path(here).relative_to(ROOT).as_posix())
+        dirs[:] = sorted(d for d in dirs if d != ".git" and not ignored(rel_here / d, True))
+        for name in files:
+            rel = rel_here / name
+            if ignored(rel, False):
+                continue
+            (dest / rel).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(ROOT / rel, dest / rel)
     for so in (ROOT / "python" / "cracklip").glob("_cracklip*.so"):
         shutil.copy2(so, dest / "python" / "cracklip" / so.name)
+
+
+def test_fresh_checkout_copies_what_a_clone_holds(tmp_path):
+    """fresh_checkout needs no git; where git is present, the files it copies
+    are exactly git's tracked and untracked-not-ignored files (plus the built
+    module), so the quick-start test runs on what a clone would hold."""
+    fresh_checkout(tmp_path)
+    copied = {p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*") if p.is_file()}
+    assert "README.md" in copied and "scripts/setup.sh" in copied
+    assert not any(c.startswith(("build/", ".git/")) or "__pycache__" in c for c in copied)
+    if shutil.which("git") is None or not (ROOT / ".git").exists():
+        pytest.skip("no git here: the comparison with git ls-files needs it")
+    listing = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard", "-z"],
+                             cwd=ROOT, capture_output=True, check=True).stdout.decode()
+    expected = {n for n in listing.split("\0") if n and (ROOT / n).is_file()}
+    modules = {p.relative_to(ROOT).as_posix() for p in (ROOT / "python" / "cracklip").glob("_cracklip*.so")}
+    assert copied == expected | modules
 
 
 def test_readme_quick_start_works_as_written(tmp_path):
