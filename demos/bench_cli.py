@@ -62,7 +62,7 @@ def main(argv=None) -> int:
     ap.add_argument("--json", type=pathlib.Path, default=pathlib.Path("results/bench_cli.json"))
     args = ap.parse_args(argv)
     sys.path.insert(0, str(ROOT / "python"))
-    from cracklip.io import write_json
+    from cracklip.io.files import write_json
     with tempfile.TemporaryDirectory() as tmp:
         out = pathlib.Path(tmp)
         cli_run(args.h_run, False, out)  # warm the file cache

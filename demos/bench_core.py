@@ -22,8 +22,8 @@ import time
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
-from cracklip.mesh import NODES_PER_AREA_H2  # noqa: E402  (gmsh's nodes per unit area at size h: ~1.17 / h^2)
+from cracklip.io.files import write_json  # noqa: E402
+from cracklip.scene.mesh import NODES_PER_AREA_H2  # noqa: E402  (gmsh's nodes per unit area at size h: ~1.17 / h^2)
 
 
 def h_for_dofs(ndofs: float, area: float = 4.0) -> float:

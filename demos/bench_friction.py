@@ -24,7 +24,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 
 import cracklip as cl  # noqa: E402
 import friction_crack  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
 
 
 def measure(n: int, repeats: int, beta: float = 60.0, mu: float = 0.5) -> dict:

@@ -23,8 +23,9 @@ import time
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
-from cracklip.growth import Growth, grow  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
+from cracklip.scene.growth import Growth
+from cracklip.analysis.growth import grow  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
 
 
 def scene_for(h: float) -> cl.Scene:

@@ -111,9 +111,9 @@ def _plain(md, solver: str) -> dict:
     from petsc4py import PETSc
     import dolfinx.fem
     import dolfinx.fem.petsc
-    from cracklip import solvers
-    from cracklip.assembly import elasticity_form
-    from cracklip.linear_solver import solve_checked
+    from cracklip.model.assembly import elasticity_form
+    from cracklip.solvers import iterative
+    from cracklip.solvers.checked import solve_checked
     t0 = time.perf_counter()
     msh = md.mesh
     V = dolfinx.fem.VectorFunctionSpace(msh, ("Lagrange", 1))
@@ -149,13 +149,13 @@ def _plain(md, solver: str) -> dict:
         A.setNearNullSpace(PETSc.NullSpace().create(vectors=vecs))
         A.setOption(PETSc.Mat.Option.SPD, True)
         opts = PETSc.Options()
-        for k, val in solvers.GAMG_OPTIONS.items():
+        for k, val in iterative.GAMG_OPTIONS.items():
             opts["plain_" + k] = val
         ksp = PETSc.KSP().create(PETSc.COMM_SELF)
         ksp.setOptionsPrefix("plain_")
         ksp.setOperators(A)
         ksp.setType("cg")
-        ksp.setTolerances(rtol=solvers.KRYLOV_RTOL, atol=0.0, max_it=solvers.MAX_ITERATIONS)
+        ksp.setTolerances(rtol=iterative.KRYLOV_RTOL, atol=0.0, max_it=iterative.MAX_ITERATIONS)
         ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
         ksp.setFromOptions()
         ksp.setUp()
@@ -179,7 +179,7 @@ def _orderings(md) -> list[dict]:
     """Factor size, flops and time of the open-crack X-FEM matrix per MUMPS ordering."""
     from petsc4py import PETSc
     import cracklip as cl
-    from cracklip.assembly import assemble_system
+    from cracklip.model.assembly import assemble_system
     model = cl.create_model(_scene(md, "open"))
     A, b, _ = assemble_system(model)
     A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
@@ -237,13 +237,13 @@ def worker(spec: dict) -> dict:
     """One measurement (run in a subprocess): spec = {n, case, solver, repeats}."""
     import resource
     import hard_cases as hc
-    from cracklip.linear_solver import blas_library
+    from cracklip.solvers.checked import blas_library
     if spec.get("lu"):  # the untuned direct path: MUMPS LU as before issue 15
-        from cracklip import linear_solver, solvers
+        from cracklip.solvers import checked as linear_solver, direct
 
         def lu(self, A, b, residual_tol, what, x0=None, **_):
             return linear_solver.solve_checked(A, b, residual_tol, what=what, symmetric=False)
-        solvers.DirectSolver.solve = lu
+        direct.DirectSolver.solve = lu
     # Warm-up: compile the forms, load the libraries.
     small = hc.structured_square(8)
     if spec["solver"] == "paired":
@@ -298,8 +298,8 @@ def run_subprocess(spec: dict, env: dict[str, str] | None = None, timeout: float
 
 def benchmark(sizes: typing.Sequence[float], repeats: int, cases: typing.Sequence[str], untuned: bool,
               orderings: bool, threads: bool, max_direct_dofs: float, timeout: float | None, log) -> dict:
-    from cracklip import solvers
-    from cracklip.scene import Options
+    from cracklip.scene.options import Options
+    from cracklip.solvers import choice
     rows: list[dict] = []
     ordering_rows: list[dict] = []
     choices: list[dict] = []
@@ -350,7 +350,7 @@ def benchmark(sizes: typing.Sequence[float], repeats: int, cases: typing.Sequenc
             ndofs = next((r["ndofs"] for r in measured.values() if r.get("ndofs")), None)
             if ndofs:
                 enriched = next((r["enriched_dofs"] for r in measured.values() if r.get("enriched_dofs")), 0)
-                auto = solvers.choose_solver(Options(), ndofs, enriched)
+                auto = choice.choose_solver(Options(), ndofs, enriched)
                 ok = {k.split("-")[1]: r["t_solve"] for k, r in measured.items()}
                 best = min(ok, key=ok.get) if ok else None
                 choices.append({"case": case, "ndofs": ndofs, "auto": auto, "fastest": best, "t_solve": ok,
@@ -443,8 +443,8 @@ def main(argv=None) -> int:
     if args.worker:
         print(json.dumps(worker(json.loads(args.worker))))
         return 0
-    from cracklip.io import write_json
-    from cracklip.linear_solver import blas_library
+    from cracklip.io.files import write_json
+    from cracklip.solvers.checked import blas_library
     log = (lambda *a: None) if args.quiet else (lambda m: print(m, file=sys.stderr, flush=True))
     t0 = time.perf_counter()
     if args.paired:

@@ -27,10 +27,10 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "python"))
 
 import cracklip as cl  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
 import hole_crack  # noqa: E402
 import westergaard  # noqa: E402
-from cracklip.kirsch import crack_pressure, kirsch_strain  # noqa: E402
+from cracklip.exact.kirsch import crack_pressure, kirsch_strain  # noqa: E402
 
 CONFIGS = {
     "westergaard": [dict(enrichment="vector", quadrature="collapsed"),

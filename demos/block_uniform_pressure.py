@@ -22,9 +22,9 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
-from cracklip.infsup import inf_sup_constant  # noqa: E402
-from cracklip.scene_file import add_option_arguments  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
+from cracklip.contact.infsup import inf_sup_constant  # noqa: E402
+from cracklip.io.scene_file import add_option_arguments  # noqa: E402
 
 PRESSURE = 0.01
 TIP_X = -0.6

@@ -30,11 +30,11 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "python"))
 
 import westergaard  # noqa: E402
-from cracklip.assembly import assemble_system  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
-from cracklip.linear_solver import scipy_from_petsc  # noqa: E402
-from cracklip.model import create_model  # noqa: E402
-from cracklip.rescaling import nodal_transform, rescale_system  # noqa: E402
+from cracklip.model.assembly import assemble_system  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
+from cracklip.solvers.checked import scipy_from_petsc  # noqa: E402
+from cracklip.model.model import create_model  # noqa: E402
+from cracklip.solvers.rescaling import nodal_transform, rescale_system  # noqa: E402
 
 CONFIGS = [("vector", "corrected"), ("scalar", "corrected"), ("vector", "standard"), ("scalar", "standard")]
 

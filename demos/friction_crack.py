@@ -28,8 +28,8 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
-from cracklip.griffith import GriffithField, remote_in_crack_frame  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
+from cracklip.exact.griffith import GriffithField, remote_in_crack_frame  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
 
 A = 0.5
 P = 1.0
@@ -154,7 +154,7 @@ def inf_sup_rows(ns=(10, 20, 40, 80)) -> list[dict]:
     the paper's block (section 5.1), h = 2 / n."""
     sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
     import block_uniform_pressure
-    from cracklip.infsup import inf_sup_constant
+    from cracklip.contact.infsup import inf_sup_constant
     rows = []
     for n in ns:
         model = cl.create_model(block_uniform_pressure.scene_for(n))

@@ -37,8 +37,10 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import cracklip as cl  # noqa: E402
 import friction_crack  # noqa: E402
 import handbook  # noqa: E402
-from cracklip.growth import Growth, grow, kink_angle  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
+from cracklip.scene.growth import Growth
+from cracklip.analysis.growth import grow
+from cracklip.fracture.kink import kink_angle  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
 
 PARIS_C, PARIS_M = 1e-3, 3.0
 

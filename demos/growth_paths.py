@@ -47,9 +47,10 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
 
 import cracklip as cl  # noqa: E402
-from cracklip.growth import Growth, grow  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
-from cracklip.scene_file import build_scene, read_document  # noqa: E402
+from cracklip.scene.growth import Growth
+from cracklip.analysis.growth import grow  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
+from cracklip.io.scene_file import build_scene, read_document  # noqa: E402
 
 DATA = pathlib.Path(__file__).resolve().parent / "data"
 DRILLED_PLATE = pathlib.Path(__file__).resolve().parent / "scenes" / "drilled_plate.toml"

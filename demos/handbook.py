@@ -25,8 +25,8 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
-from cracklip.griffith import GriffithField, remote_in_crack_frame  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
+from cracklip.exact.griffith import GriffithField, remote_in_crack_frame  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
 
 TIP_H = 0.01
 

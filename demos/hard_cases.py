@@ -33,8 +33,8 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
-from cracklip.williams import WilliamsField  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
+from cracklip.exact.williams import WilliamsField  # noqa: E402
 
 MAT = cl.Material(1.0, 0.3)
 SIDES = ("left", "right", "bottom", "top")

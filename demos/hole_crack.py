@@ -23,9 +23,9 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
-from cracklip.kirsch import crack_pressure, kirsch_strain, kirsch_stress  # noqa: E402
-from cracklip.scene_file import add_option_arguments  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
+from cracklip.exact.kirsch import crack_pressure, kirsch_strain, kirsch_stress  # noqa: E402
+from cracklip.io.scene_file import add_option_arguments  # noqa: E402
 from westergaard import slope  # noqa: E402  (least-squares log-log rate)
 
 SIGMA_INF = 0.01

@@ -45,7 +45,7 @@ import patch_test  # noqa: E402
 import sliding_crack  # noqa: E402
 import tip_quadrature  # noqa: E402
 import westergaard  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
 
 
 def log(msg: str) -> None:

@@ -17,7 +17,7 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
 
 
 def run(h: float = 0.1, yc: float = 0.013, tension: float = 0.01, E: float = 1.0,

@@ -17,7 +17,7 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
 
 HALF_LENGTH = 0.3
 ANGLE = np.radians(30.0)

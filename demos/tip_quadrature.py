@@ -18,7 +18,7 @@ from scipy import integrate
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 from cracklip import _cracklip  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
 
 #: A tip cell (not symmetric about the crack) and the tip inside it.
 TRIANGLE = np.array([[-0.13, -0.07], [0.11, -0.05], [0.02, 0.12]])

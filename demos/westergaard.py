@@ -19,9 +19,9 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
-from cracklip.io import write_json  # noqa: E402
-from cracklip.scene_file import add_option_arguments  # noqa: E402
-from cracklip.williams import WilliamsField  # noqa: E402
+from cracklip.io.files import write_json  # noqa: E402
+from cracklip.io.scene_file import add_option_arguments  # noqa: E402
+from cracklip.exact.williams import WilliamsField  # noqa: E402
 
 MODES = {"I": (1.0, 0.0), "II": (0.0, 1.0), "mixed": (1.0, 1.0)}
 

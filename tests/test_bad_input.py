@@ -1,11 +1,10 @@
 """Bad input raises typed errors with actionable messages (issue 2)."""
+import cracklip as cl
 import numpy as np
 import pytest
 from mpi4py import MPI
 
 import dolfinx.mesh
-
-import cracklip as cl
 
 
 def _scene(md, cracks=(), dirichlet=None, material=None):
@@ -91,7 +90,7 @@ import pathlib  # noqa: E402
 import sys  # noqa: E402
 
 from cracklip import _cracklip  # noqa: E402
-from cracklip.contact import ContactError  # noqa: E402
+from cracklip.contact.frictionless import ContactError  # noqa: E402
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
 
@@ -348,7 +347,7 @@ def test_active_set_that_cycles():
     """The iteration is deterministic in its active set: meeting a set again
     is a cycle, reported at once with its period (here the start comes back
     after two iterations)."""
-    from cracklip.contact import _VisitedSets
+    from cracklip.contact.frictionless import _VisitedSets
     a, b = np.array([True, False]), np.array([False, True])
     seen = _VisitedSets(a)
     seen.visit(b, 1, [1])
@@ -417,5 +416,5 @@ def test_traction_function_with_wrong_shape(square_h01):
 
 
 def test_contact_error_is_exported():
-    from cracklip.contact import ContactError
+    from cracklip.contact.frictionless import ContactError
     assert cl.ContactError is ContactError and issubclass(cl.ContactError, cl.CracklipError)

@@ -10,12 +10,11 @@ import shutil
 import subprocess
 import sys
 
+import cracklip as cl
 import numpy as np
 import pytest
-
-import cracklip as cl
 from cracklip import cli
-from cracklip.scene_file import load_scene_file, reference_markdown
+from cracklip.io.scene_file import load_scene_file, reference_markdown
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 BLOCK = ROOT / "demos" / "scenes" / "block_uniform_pressure.toml"
@@ -130,7 +129,7 @@ def test_unwritable_output_folder(tmp_path, capsys):
     line = one_error_line(capsys, ["run", str(BLOCK), "--set", "mesh.h=0.2", "--out", str(out), "--quiet"])
     assert f"cannot write to the output folder {out}" in line
     with pytest.raises(cl.OutputError, match="output folder"):
-        from cracklip.outputs import ensure_output_dir
+        from cracklip.io.outputs import ensure_output_dir
         ensure_output_dir(out)
 
 
@@ -179,8 +178,8 @@ def test_condition_number_and_vtu_off(tmp_path):
 def test_outputs_are_never_half_written(tmp_path, monkeypatch):
     """A writer that fails leaves neither its file nor a temporary one, and no
     results.json (written last)."""
-    from cracklip import io as cio
-    from cracklip.outputs import write_outputs
+    from cracklip.io import paraview as cio
+    from cracklip.io.outputs import write_outputs
     sf = load_scene_file(BLOCK, overrides=["mesh.h=0.2", "outputs.png=false"])
     sol = cl.solve(sf.scene)
 
@@ -317,8 +316,8 @@ def test_large_mesh_pngs_are_rasterised_exactly():
     """The image path of the PNGs (above outputs.RASTER_MIN_TRIANGLES): on an
     unstructured mesh, every pixel carries the value of a triangle that
     contains its centre, and pixels outside the part are NaN."""
-    from cracklip.mesh import create_rectangle
-    from cracklip.raster import image_shape, rasterize
+    from cracklip.scene.mesh import create_rectangle
+    from cracklip.io.raster import image_shape, rasterize
     md = create_rectangle(-1.0, -0.5, 1.0, 0.5, 0.05)
     x = md.mesh.geometry.x[:, :2]
     cells = md.mesh.geometry.dofmap.array.reshape(-1, 3)
@@ -344,7 +343,7 @@ def test_large_mesh_pngs_are_rasterised_exactly():
 
 
 def test_png_crop_matches_savefig_tight(tmp_path):
-    """outputs._save draws once and cuts the ink (pixels not of the face
+    """outputs.save_png draws once and cuts the ink (pixels not of the face
     colour) plus PNG_PAD_INCHES out of the canvas: the same content as
     savefig(bbox_inches="tight") (the ink spans the same box, as many ink
     pixels to 1 %), the pad exact on every side, and a picture the size of
@@ -352,11 +351,11 @@ def test_png_crop_matches_savefig_tight(tmp_path):
     the figure is wide (ink on the canvas's border, clipped) goes to savefig,
     which widens the picture to hold it."""
     from PIL import Image
-    from cracklip import outputs
+    from cracklip.io import pictures as outputs
     pad = int(round(outputs.PNG_PAD_INCHES * outputs.PNG_DPI))
 
     def figure(overflow: bool):
-        fig = outputs._figure((5.0, 3.0))
+        fig = outputs.new_figure((5.0, 3.0))
         fig.subplots_adjust(top=0.75, bottom=0.2)
         ax = fig.add_subplot()
         ax.plot([0.0, 1.0, 2.0], [1.0, 0.0, 2.0], "b.-")
@@ -371,7 +370,7 @@ def test_png_crop_matches_savefig_tight(tmp_path):
 
     for overflow in (False, True):
         ours, ref = tmp_path / f"ours{overflow}.png", tmp_path / f"ref{overflow}.png"
-        outputs._save(figure(overflow), ours)
+        outputs.save_png(figure(overflow), ours)
         figure(overflow).savefig(ref, dpi=outputs.PNG_DPI, bbox_inches="tight", pad_inches=outputs.PNG_PAD_INCHES)
         a = np.asarray(Image.open(ours).convert("RGB")).astype(int)
         b = np.asarray(Image.open(ref).convert("RGB")).astype(int)

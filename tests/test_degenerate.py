@@ -6,9 +6,8 @@ crack through a node splits the cells there through the node, a crack along
 mesh edges makes "edge" cells whose Heaviside side is the cell's side, and a
 tip on a node or an edge makes no tip cell (the crack ends at that node).
 """
-import numpy as np
-
 import cracklip as cl
+import numpy as np
 from conftest import side_tractions, uniform_strain, uniform_stress_scene
 from test_patch import check_through_crack, through_crack_scene
 

@@ -1,15 +1,14 @@
 """Enriched kernels: oracles and locality (issue 2, acceptance 3)."""
+import cracklip as cl
 import numpy as np
 import pytest
 import scipy.sparse as sp
+from cracklip import _cracklip
+from cracklip.model.assembly import assemble_system, create_matrix, elasticity_form
+from cracklip.solvers.checked import scipy_from_petsc
 
 import dolfinx.fem
 import dolfinx.fem.petsc
-
-import cracklip as cl
-from cracklip import _cracklip
-from cracklip.assembly import assemble_system, create_matrix, elasticity_form
-from cracklip.linear_solver import scipy_from_petsc
 
 
 def _plain_scene(md, cracks=(), enrichment="none"):

@@ -10,12 +10,11 @@ import math
 import pathlib
 import sys
 
+import cracklip as cl
 import numpy as np
 import pytest
-
-import cracklip as cl
 from cracklip import cli
-from cracklip.infsup import inf_sup_constant
+from cracklip.contact.infsup import inf_sup_constant
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
 import block_uniform_pressure  # noqa: E402
@@ -48,10 +47,10 @@ def test_frictionless_limit_is_todays_answer():
     """Acceptance 2: the friction solver with mu = 0 gives the frictionless
     contact solution to 1e-12 (friction = 0 itself keeps the frictionless
     code, bit for bit)."""
-    from cracklip.contact import contact_constant, create_contact_system, solve_frictionless
-    from cracklip.assembly import assemble_system
-    from cracklip.friction import solve_friction
-    from cracklip.linear_solver import scipy_from_petsc
+    from cracklip.contact.frictionless import contact_constant, create_contact_system, solve_frictionless
+    from cracklip.model.assembly import assemble_system
+    from cracklip.contact.friction import solve_friction
+    from cracklip.solvers.checked import scipy_from_petsc
     field, _, _ = friction_crack.exact(30.0, 0.0)
     scene = friction_crack.scene_for(field, 20, 0.5)
     model = cl.create_model(scene)
@@ -144,7 +143,7 @@ def test_tangential_lip_term_makes_K_II_domain_independent():
     its tangential part, K_II of the slipping crack (beta = 60, mu = 0.5)
     changes with the domain radius by several per cent; with it the domains
     agree to 1e-3 and K_II is the exact one."""
-    from cracklip.sif import compute_sifs
+    from cracklip.fracture.sif import compute_sifs
     field, tau_eff, _ = friction_crack.exact(60.0, 0.5)
     sol = cl.solve(friction_crack.scene_for(field, 40, 0.5))
     exact = tau_eff * K_REF

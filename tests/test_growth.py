@@ -15,12 +15,13 @@ import math
 import pathlib
 import sys
 
+import cracklip as cl
 import numpy as np
 import pytest
-
-import cracklip as cl
 from cracklip import cli
-from cracklip.growth import Growth, equivalent_k, grow, kink_angle, local_sifs
+from cracklip.analysis.growth import grow
+from cracklip.fracture.kink import equivalent_k, kink_angle, local_sifs
+from cracklip.scene.growth import Growth
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 SCENES = ROOT / "demos" / "scenes"

@@ -6,10 +6,9 @@ table is demos/hard_cases.py."""
 import pathlib
 import sys
 
+import cracklip as cl
 import numpy as np
 import pytest
-
-import cracklip as cl
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
 import hard_cases as hc  # noqa: E402

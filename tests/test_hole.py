@@ -4,8 +4,7 @@ import sys
 
 import numpy as np
 import pytest
-
-from cracklip.kirsch import crack_pressure, kirsch_stress
+from cracklip.exact.kirsch import crack_pressure, kirsch_stress
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
 import hole_crack  # noqa: E402

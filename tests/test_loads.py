@@ -6,11 +6,10 @@ import math
 import pathlib
 import sys
 
+import cracklip as cl
 import numpy as np
 import pytest
-
-import cracklip as cl
-from cracklip.griffith import GriffithField, remote_in_crack_frame
+from cracklip.exact.griffith import GriffithField, remote_in_crack_frame
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
 from handbook import griffith_scene, plate_scene, tada_bending  # noqa: E402
 

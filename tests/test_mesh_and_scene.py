@@ -1,8 +1,7 @@
 """Scene input: gmsh meshes with named tags, .msh files, several and kinked cracks."""
+import cracklip as cl
 import numpy as np
 import pytest
-
-import cracklip as cl
 
 
 def _area(md):
@@ -41,7 +40,7 @@ def test_plate_with_holes_tags_area_and_errors():
         cl.create_plate_with_holes(0.0, 0.0, 20.0, 8.0, 0.5, [(4.0, 2.0, 0.5), (4.0, 2.8, 0.5)])
     with pytest.raises(cl.MeshError, match="hole 1 .* must lie strictly inside"):
         cl.create_plate_with_holes(0.0, 0.0, 20.0, 8.0, 0.5, [(4.0, 2.0, 0.5), (19.8, 2.0, 0.5)])
-    from cracklip.scene_file import build_scene
+    from cracklip.io.scene_file import build_scene
     doc = {"mesh": {"kind": "plate_with_holes", "h": 0.5, "domain": [0, 0, 20, 8], "holes": [list(h) for h in holes]},
            "material": {"E": 1.0, "nu": 0.3}, "dirichlet": [{"tag": "left"}]}
     assert build_scene(doc).scene.mesh.facets("hole").size > 0
@@ -52,7 +51,7 @@ def test_plate_with_holes_tags_area_and_errors():
 
 def test_read_msh_round_trip(tmp_path):
     import gmsh
-    from cracklip.mesh import _gmsh
+    from cracklip.scene.mesh import _gmsh
     g = _gmsh()
     g.model.add("file")
     g.model.occ.addRectangle(0, 0, 0, 2, 1)
@@ -137,7 +136,7 @@ def test_large_meshes_cut_into_strips_keep_their_tags(monkeypatch, make, lengths
     strip narrower than STRIP_MIN_WIDTH elements: every boundary keeps its
     tag over its whole length, the cut lines carry none, and the mesh is the
     same every time (gmsh meshes the strips one at a time)."""
-    from cracklip import mesh as cm
+    from cracklip.scene import mesh as cm
     monkeypatch.setattr(cm, "STRIP_NODES", 300)
     made = []
     cut = cm._cut_into_strips
@@ -162,7 +161,7 @@ def test_large_meshes_cut_into_strips_keep_their_tags(monkeypatch, make, lengths
 
 
 def test_strips_never_narrower_than_eight_elements(monkeypatch):
-    from cracklip import mesh as cm
+    from cracklip.scene import mesh as cm
     monkeypatch.setattr(cm, "STRIP_NODES", 50)
     made = []
     cut = cm._cut_into_strips

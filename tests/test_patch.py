@@ -1,8 +1,7 @@
 """Patch tests: the exact solution lies in the discrete space (issue 2, acceptance 1-2)."""
+import cracklip as cl
 import numpy as np
 import pytest
-
-import cracklip as cl
 from conftest import uniform_strain, uniform_stress_scene
 
 YC = 0.013

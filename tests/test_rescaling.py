@@ -3,10 +3,9 @@ condition number growing like standard FE (exponent ~2 in 1/h)."""
 import pathlib
 import sys
 
+import cracklip as cl
 import numpy as np
 import pytest
-
-import cracklip as cl
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
 import block_uniform_pressure as block  # noqa: E402

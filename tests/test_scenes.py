@@ -5,14 +5,14 @@ import json
 import pathlib
 import re
 
+import cracklip as cl
 import meshio
 import numpy as np
 import pytest
-
-import cracklip as cl
-from cracklip import cli, scene_file
-from cracklip.scene_file import (SCHEMA, apply_override, build_scene, check_keys, load_scene_file,
-                                 parse_settings, reference_markdown, reference_rows)
+from cracklip import cli
+from cracklip.io import scene_file
+from cracklip.io.scene_file import (SCHEMA, apply_override, build_scene, check_keys, load_scene_file,
+                                    parse_settings, reference_markdown, reference_rows)
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 SCENES = ROOT / "demos" / "scenes"
@@ -362,7 +362,7 @@ def test_body_force_matches_subcell_integration():
     """int f . phi_j for Heaviside enrichment against an independent
     integration over the linear sub-triangles."""
     from cracklip import _cracklip
-    from cracklip.loads import assemble_body_force
+    from cracklip.model.loads import assemble_body_force
     mesh = cl.create_square(0.25)
     scene = cl.Scene(mesh, cl.Material(1.0, 0.3), cracks=[cl.Crack([[-0.55, 0.03], [0.45, 0.1]])],
                      dirichlet=[cl.Dirichlet("bottom")], options=cl.Options(enrichment="none"))
@@ -405,7 +405,7 @@ def test_body_force_column_under_gravity():
 def test_file_mesh(tmp_path):
     """A gmsh .msh file with named physical curves, path relative to the scene."""
     import gmsh
-    from cracklip.mesh import _gmsh
+    from cracklip.scene.mesh import _gmsh
     g = _gmsh()
     gmsh.model.add("file_test")
     occ = gmsh.model.occ
@@ -471,9 +471,9 @@ def test_pictures(tmp_path, monkeypatch):
     colour bar names the input's units (not "units of E") and its scale is
     clipped below the tip singularity; deformed.png zooms on a crack much
     smaller than the part, with its own scale."""
-    from cracklip import outputs
+    from cracklip.io import pictures
     figures = {}
-    monkeypatch.setattr(outputs, "_save", lambda fig, path: figures.__setitem__(path.name, fig))
+    monkeypatch.setattr(pictures, "save_png", lambda fig, path: figures.__setitem__(path.name, fig))
     run_scene("pressurised_crack", tmp_path)
     stress = figures["stress.png"]
     bar = stress.axes[-1]

@@ -8,12 +8,11 @@ import json
 import pathlib
 import sys
 
+import cracklip as cl
 import numpy as np
 import pytest
-
-import cracklip as cl
 from cracklip import cli
-from cracklip.sif import tip_domains
+from cracklip.model.tip_regions import tip_domains
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
 from handbook import plate_scene, tada_centre_crack, tada_edge_crack  # noqa: E402
 

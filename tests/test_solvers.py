@@ -7,15 +7,14 @@ import dataclasses
 import pathlib
 import sys
 
+import cracklip as cl
 import numpy as np
 import pytest
 import scipy.sparse as sp
+from cracklip.model.assembly import assemble_system
+from cracklip.solvers import choice, iterative, phantom, saddle
+from cracklip.solvers.checked import blas_library, scipy_from_petsc
 from scipy.sparse.csgraph import connected_components
-
-import cracklip as cl
-from cracklip import solvers
-from cracklip.assembly import assemble_system
-from cracklip.linear_solver import blas_library, scipy_from_petsc
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
 import block_uniform_pressure as block  # noqa: E402
@@ -87,7 +86,7 @@ def test_phantom_basis_splits_a_through_crack(square_h01):
     graph of the matrix without its Dirichlet dofs has two components); in
     the shifted-Heaviside basis it is one. A wrong side sign couples them."""
     scene, model = _through_crack_model(square_h01)
-    basis = solvers.phantom_basis(model)
+    basis = phantom.phantom_basis(model)
     n = model.num_dofs
     assert basis.heaviside.size > 0
     assert abs(basis.T_inv @ basis.T - sp.identity(n)).max() <= 1e-15
@@ -101,7 +100,7 @@ def test_phantom_basis_splits_a_through_crack(square_h01):
     K = scipy_from_petsc(A)
     assert pieces(K) == 1
     assert pieces((basis.T.T @ K @ basis.T).tocsr()) == 2
-    At, bt = solvers.transform_system(basis, A, b)  # in place: A is At now
+    At, bt = phantom.transform_system(basis, A, b)  # in place: A is At now
     assert At.getBlockSize() == 2
     assert pieces(scipy_from_petsc(At)) == 2
     # The row-wise update equals the full product T^T K T, and T^T b.
@@ -114,7 +113,7 @@ def test_phantom_basis_splits_a_through_crack(square_h01):
     assert pieces((wrong.T @ K @ wrong).tocsr()) == 1
     # The near-nullspace (a rigid motion on both copies) has zero energy:
     # K' R = 0 on every row away from the pins (whose columns are eliminated).
-    R = solvers.rigid_modes(model)
+    R = iterative.rigid_modes(model)
     assert np.allclose(R.T @ R, np.eye(3), atol=1e-12)
     lay = model.layout
     node = np.concatenate([np.arange(lay.num_std_nodes), np.asarray(lay.node)]).repeat(2)
@@ -131,7 +130,7 @@ def test_phantom_basis_splits_a_through_crack(square_h01):
 def test_crack_band_holds_every_enriched_dof_and_a_ring(square_h01):
     scene = block.scene_for(10)
     model = cl.create_model(scene)
-    band = solvers.crack_band(model)
+    band = iterative.crack_band(model)
     lay = model.layout
     nstd = lay.num_std_nodes
     assert np.array_equal(band[band >= 2 * nstd], np.arange(2 * nstd, model.num_dofs))
@@ -142,13 +141,13 @@ def test_crack_band_holds_every_enriched_dof_and_a_ring(square_h01):
     touching = model.cells[np.isin(model.cells, enriched).any(axis=1)]
     assert np.array_equal(std_nodes, np.unique(touching))
     # Grown by rings through the stiffness's graph: the next ring of cells.
-    from cracklip.assembly import assemble_system
+    from cracklip.model.assembly import assemble_system
     A, b, _ = assemble_system(model)
-    wider = solvers.grow_band(A, band, 1)
+    wider = iterative.grow_band(A, band, 1)
     nodes2 = np.unique(wider[wider < 2 * nstd] // 2)
     ring2 = np.unique(model.cells[np.isin(model.cells, std_nodes).any(axis=1)])
     assert np.array_equal(nodes2, ring2)
-    assert np.array_equal(wider, solvers.crack_band(model, rings=2))
+    assert np.array_equal(wider, iterative.crack_band(model, rings=2))
     A.destroy()
     b.destroy()
 
@@ -269,17 +268,17 @@ def test_constrained_coarse_solve_is_the_constrained_minimiser():
     minimises the coarse energy under C y = 0 (the KKT system's answer), it
     is symmetric (CG needs a symmetric V-cycle), and clear() restores the
     plain coarse solve."""
-    from cracklip.contact import create_contact_system
+    from cracklip.contact.frictionless import create_contact_system
     model = clamped_square_contact_model(100)  # three levels, a nonsingular coarse operator
     A, _, _ = assemble_system(model)
-    it = solvers.IterativeSolver(model)
+    it = iterative.IterativeSolver(model)
     K, T = it.transform(A)
     amg, _ = it._block0_pc(K)
     coarse = it._coarse
     Ac = scipy_from_petsc(coarse.Ac).toarray()
     nc = Ac.shape[0]
     B = (create_contact_system(model).B @ T).tocsr()
-    op = solvers._SaddleOperator(K, B, np.ones(B.shape[0], bool))
+    op = saddle.SaddleOperator(K, B, np.ones(B.shape[0], bool))
     coarse.constrain(op.Ba_petsc)
     assert amg.getMGLevels() >= 2 and 0 < coarse.rank < nc
     rng = np.random.default_rng(0)
@@ -310,10 +309,10 @@ def test_iterative_solves_release_the_stiffness():
     destroy(), nothing in PETSc holds the stiffness any more: a PC wrapper
     alive across ksp.destroy(), or PETSc objects held by a Python PC's
     context, kept K' and its hierarchy (0.2-0.4 GB per solve at 1e6 dofs)."""
-    from cracklip.contact import create_contact_system
+    from cracklip.contact.frictionless import create_contact_system
     model = clamped_square_contact_model(60)
     A, b, _ = assemble_system(model)
-    it = solvers.IterativeSolver(model)
+    it = iterative.IterativeSolver(model)
     K, T = it.transform(A)
     b.array[:] = T.T @ b.array
     it.solve(K, b, 1e-8, what="stiffness").destroy()
@@ -332,22 +331,22 @@ def test_iterative_solves_release_the_stiffness():
 def test_auto_choice_by_size():
     opts = cl.Options()
     assert opts.solver == "auto"
-    n0 = solvers.AUTO_ITERATIVE_DOFS  # a tip-enrichment disk of 3 % of the dofs: iterative from n0 on
-    assert solvers.choose_solver(opts, n0 - 1, int(0.03 * n0)) == "direct"
-    assert solvers.choose_solver(opts, n0, int(0.03 * n0)) == "iterative"
+    n0 = choice.AUTO_ITERATIVE_DOFS  # a tip-enrichment disk of 3 % of the dofs: iterative from n0 on
+    assert choice.choose_solver(opts, n0 - 1, int(0.03 * n0)) == "direct"
+    assert choice.choose_solver(opts, n0, int(0.03 * n0)) == "iterative"
     n = 10 ** 6  # few enriched dofs (a small crack): MUMPS is faster, up to AUTO_DIRECT_MAX_DOFS
-    assert solvers.choose_solver(opts, n, int(solvers.AUTO_MIN_ENRICHED_FRACTION * n) - 1) == "direct"
-    assert solvers.choose_solver(opts, n, int(solvers.AUTO_MIN_ENRICHED_FRACTION * n)) == "iterative"
-    assert solvers.choose_solver(opts, n, int(solvers.AUTO_MAX_ENRICHED_FRACTION * n)) == "iterative"
-    assert solvers.choose_solver(opts, n, int(solvers.AUTO_MAX_ENRICHED_FRACTION * n) + 1) == "direct"
-    big = solvers.AUTO_DIRECT_MAX_DOFS  # the direct path's memory: iterative whatever the enrichment
-    assert solvers.choose_solver(opts, big - 1, 0) == "direct"
-    assert solvers.choose_solver(opts, big, 0) == solvers.choose_solver(opts, big, big // 4) == "iterative"
-    assert solvers.choose_solver(cl.Options(solver="direct"), 10 ** 8) == "direct"
-    assert solvers.choose_solver(cl.Options(solver="iterative"), 10) == "iterative"
-    assert solvers.choose_solver(cl.Options(rescale="nodal"), 10 ** 8) == "direct"
+    assert choice.choose_solver(opts, n, int(choice.AUTO_MIN_ENRICHED_FRACTION * n) - 1) == "direct"
+    assert choice.choose_solver(opts, n, int(choice.AUTO_MIN_ENRICHED_FRACTION * n)) == "iterative"
+    assert choice.choose_solver(opts, n, int(choice.AUTO_MAX_ENRICHED_FRACTION * n)) == "iterative"
+    assert choice.choose_solver(opts, n, int(choice.AUTO_MAX_ENRICHED_FRACTION * n) + 1) == "direct"
+    big = choice.AUTO_DIRECT_MAX_DOFS  # the direct path's memory: iterative whatever the enrichment
+    assert choice.choose_solver(opts, big - 1, 0) == "direct"
+    assert choice.choose_solver(opts, big, 0) == choice.choose_solver(opts, big, big // 4) == "iterative"
+    assert choice.choose_solver(cl.Options(solver="direct"), 10 ** 8) == "direct"
+    assert choice.choose_solver(cl.Options(solver="iterative"), 10) == "iterative"
+    assert choice.choose_solver(cl.Options(rescale="nodal"), 10 ** 8) == "direct"
     with pytest.raises(cl.InputError, match="rescale = 'nodal'.*solver = 'iterative'"):
-        solvers.choose_solver(cl.Options(solver="iterative", rescale="nodal"), 10)
+        choice.choose_solver(cl.Options(solver="iterative", rescale="nodal"), 10)
     with pytest.raises(cl.InputError, match="solver must be one of"):
         cl.Options(solver="amg")
 
@@ -368,10 +367,10 @@ def test_auto_falls_back_to_direct(monkeypatch):
     and the answer is the direct one; solver = "iterative" raises instead."""
     scene = block.scene_for(10, contact="bilateral")
     direct = cl.solve(with_solver(scene, "direct"))
-    monkeypatch.setattr(solvers, "AUTO_ITERATIVE_DOFS", 0)
-    monkeypatch.setattr(solvers, "AUTO_MIN_ENRICHED_FRACTION", 0.0)
-    monkeypatch.setattr(solvers, "AUTO_MAX_ENRICHED_FRACTION", 1.0)
-    monkeypatch.setattr(solvers, "MAX_ITERATIONS", 3)
+    monkeypatch.setattr(choice, "AUTO_ITERATIVE_DOFS", 0)
+    monkeypatch.setattr(choice, "AUTO_MIN_ENRICHED_FRACTION", 0.0)
+    monkeypatch.setattr(choice, "AUTO_MAX_ENRICHED_FRACTION", 1.0)
+    monkeypatch.setattr(iterative, "MAX_ITERATIONS", 3)
     sol = cl.solve(scene)
     assert [(s["solver"], s["iterations"]) for s in sol.solver["solves"]] == [("iterative", 3), ("direct", 1)]
     assert sol.solver["solves"][0]["relative_residual"] > scene.options.residual_tol
@@ -389,7 +388,7 @@ def test_direct_records_ldlt():
 
 
 def test_blas_is_reported():
-    from cracklip.outputs import versions
+    from cracklip.io.outputs import versions
     blas = blas_library()
     assert blas.startswith(("openblas", "reference", "mkl", "blis", "atlas"))
     assert versions()["blas"] == blas
@@ -398,7 +397,7 @@ def test_blas_is_reported():
 def test_saddle_matrix_equals_the_block_matrix():
     """contact.saddle_matrix builds [K B_a^T; B_a D] from CSR arrays; it must
     equal scipy's block product for any active set."""
-    from cracklip.contact import saddle_matrix
+    from cracklip.solvers.saddle import saddle_matrix
     n, m = 60, 9
     K = sp.random(n, n, 0.2, random_state=1, format="csr")
     K = (K + K.T).tocsr()
@@ -415,7 +414,7 @@ def test_iterative_saddle_operator_equals_the_block_matrix():
     """The iterative path applies [K B_a^T; B_a D] block by block around K
     (no copy); its products, its assembled copy (the MUMPS fallback) and the
     band's blocks (the Schwarz sweep's) must equal the block matrix's."""
-    from cracklip.linear_solver import petsc_from_scipy
+    from cracklip.solvers.checked import petsc_from_scipy
     n, m = 60, 9
     K = sp.random(n, n, 0.2, random_state=1, format="csr")
     K = (K + K.T).tocsr()
@@ -425,8 +424,8 @@ def test_iterative_saddle_operator_equals_the_block_matrix():
     for active in (np.ones(m, bool), np.zeros(m, bool), rng.random(m) > 0.5):
         Da = sp.diags(active.astype(float))
         ref = sp.bmat([[K, (Da @ B).T], [Da @ B, sp.diags((~active).astype(float))]], format="csr")
-        op = solvers._SaddleOperator(petsc_from_scipy(K), B, active)
-        A = solvers.IterativeSolver.saddle_matrix(None, op.K, B, active)
+        op = saddle.SaddleOperator(petsc_from_scipy(K), B, active)
+        A = iterative.IterativeSolver.saddle_matrix(None, op.K, B, active)
         x = rng.standard_normal(n + m)
         xv, yv = (A.createVecRight() for _ in range(2))
         xv.array[:] = x

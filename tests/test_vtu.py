@@ -2,8 +2,7 @@
 reader (meshio) array for array."""
 import meshio
 import numpy as np
-
-from cracklip.vtu import VtuMesh, write_vtu
+from cracklip.io.vtu import VtuMesh, write_vtu
 
 
 def test_written_arrays_read_back_exactly(tmp_path):

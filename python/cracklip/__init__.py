@@ -12,12 +12,26 @@ Quick use::
 
 The names below are loaded on first use (PEP 562): ``import cracklip``
 alone costs nothing, so the command line can start meshing while DOLFINx,
-PETSc and the C++ module load (cracklip.prefetch).
+PETSc and the C++ module load (cracklip.cli.prefetch).
+
+The package follows the method, one subpackage per step in the order data
+flows; a module imports only from its own step or earlier ones
+(tests/test_layering.py checks it, from LAYERS below):
+
+    scene     what the user describes: mesh, material, cracks, loads, options
+    model     the discrete X-FEM model: level sets, enrichment, constraints,
+              room around the tips, model checks, assembly
+    solvers   checked linear solves: direct, phantom basis + AMG, saddle point
+    contact   crack-lip contact and friction on the stable multiplier space
+    fracture  stress intensity factors, kink criteria, growth laws
+    post      a solved model: Solution, fields along the crack and in the part
+    analysis  drivers that solve: one scene, a load path, crack growth
+    exact     closed-form fields for demos, tests and exact boundary values
+    io        scene files and output writers (JSON, CSV, VTU, PNG)
+    cli       the command line
 """
 import importlib
 import importlib.util
-import sys
-import types
 
 if importlib.util.find_spec(f"{__name__}._cracklip") is None:  # pragma: no cover
     raise ImportError(
@@ -27,39 +41,32 @@ if importlib.util.find_spec(f"{__name__}._cracklip") is None:  # pragma: no cove
 
 __version__ = "0.1.0"
 
+#: The steps of the method, in the order data flows (see the docstring).
+#: errors and the C++ module _cracklip come before all of them.
+LAYERS = ("scene", "model", "solvers", "contact", "fracture", "post", "analysis", "exact", "io", "cli")
+
 #: Public name -> submodule that defines it.
 _EXPORTS = {
     "BoundaryConditionError": "errors", "CrackGeometryError": "errors", "CracklipError": "errors",
     "InputError": "errors", "MaterialError": "errors", "MeshError": "errors", "SolverError": "errors",
-    "MeshData": "mesh", "create_half_annulus": "mesh", "create_rectangle": "mesh", "create_square": "mesh",
-    "read_msh": "mesh", "create_plate_with_hole": "mesh", "create_plate_with_holes": "mesh",
-    "XfemModel": "model", "create_model": "model",
-    "Solution": "post",
-    "Crack": "scene", "Dirichlet": "scene", "LoadStep": "scene", "Material": "scene", "Options": "scene",
-    "PointForce": "scene", "Scene": "scene", "Traction": "scene",
-    "LinearStress": "stress_field",
-    "solve": "solve", "solve_plain": "solve",
-    "write_vtu": "io",
-    "ContactError": "contact",
-    "OutputError": "outputs",
-    "SceneFile": "scene_file", "load_scene_file": "scene_file",
+    "MeshData": "scene.mesh", "create_half_annulus": "scene.mesh", "create_rectangle": "scene.mesh",
+    "create_square": "scene.mesh", "read_msh": "scene.mesh", "create_plate_with_hole": "scene.mesh",
+    "create_plate_with_holes": "scene.mesh",
+    "Crack": "scene.crack", "Material": "scene.material", "Options": "scene.options", "Scene": "scene.scene",
+    "Dirichlet": "scene.conditions", "LoadStep": "scene.conditions", "PointForce": "scene.conditions",
+    "Traction": "scene.conditions",
+    "LinearStress": "scene.stress_field",
+    "Growth": "scene.growth",
+    "XfemModel": "model.model", "create_model": "model.model",
+    "ContactError": "contact.frictionless",
+    "Solution": "post.solution",
+    "solve": "analysis.solve", "solve_plain": "analysis.solve", "grow": "analysis.growth",
+    "write_vtu": "io.paraview",
+    "OutputError": "io.outputs",
+    "SceneFile": "io.scene_file", "load_scene_file": "io.scene_file",
 }
 
 __all__ = sorted(_EXPORTS)
-
-
-class _Package(types.ModuleType):
-    """The package module: importing the submodule cracklip.solve must not
-    replace the function cracklip.solve (importlib sets a package attribute
-    for every submodule it loads; the eager __init__ rebound it after)."""
-
-    def __setattr__(self, name: str, value) -> None:
-        if isinstance(value, types.ModuleType) and name in _EXPORTS:
-            return
-        super().__setattr__(name, value)
-
-
-sys.modules[__name__].__class__ = _Package
 
 
 def __getattr__(name: str):

@@ -1,0 +1,2 @@
+"""Drivers that solve: one scene, a load path, crack growth step by step.
+"""

@@ -1,0 +1,145 @@
+"""Solving a load path: its increments in order on one assembled matrix.
+
+The matrix is assembled once; each group's right-hand side too (its loads
+and its prescribed values, lifted), so an increment costs only the contact
+iteration. Frictional contact carries its slip and states from increment to
+increment (friction is path-dependent); frictionless contact starts each
+increment from the last active set.
+"""
+from __future__ import annotations
+
+import dataclasses
+import logging
+import time
+import typing
+
+import numpy as np
+
+from ..contact.friction import STATE_NAMES, solve_friction
+from ..contact.frictionless import contact_constant, create_contact_system, solve_frictionless
+from ..model.assembly import assemble_system_groups
+from ..model.model import create_model
+from ..post.solution import Solution
+from ..scene.conditions import LoadStep
+from ..scene.load_path import Increment, increments, steps
+from ..scene.scene import Scene
+from ..solvers.checked import condition_number_1norm, record_solves, scipy_from_petsc
+from ..solvers.choice import create_linear_solver, to_solver_basis
+
+
+logger = logging.getLogger(__name__)
+
+
+def _combine(vectors: dict[str, np.ndarray], factors: dict[str, float], size: int) -> np.ndarray:
+    out = np.zeros(size)
+    for g, v in vectors.items():
+        out += factors.get(g, 0.0) * v
+    return out
+
+
+def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
+    """Solve every increment of the scene's load path; return one Solution
+    per step (its last increment), each with .factors and .step, the last
+    also with .steps (all of them)."""
+    t_start = time.perf_counter()
+    model = create_model(scene)
+    opts = scene.options
+    E = scene.material.E
+    # In units of E, as solve.solve does (exact scaling with E and the loads).
+    unit = dataclasses.replace(model, scene=dataclasses.replace(scene, material=scene.material.scaled(1.0)),
+                               bc_values=model.bc_values * E,
+                               bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
+    A, rhs, timings = assemble_system_groups(unit)
+    linear = create_linear_solver(unit)  # Options.solver, as solve.solve (cracklip.solvers)
+    A, values, T, t_basis = to_solver_basis(unit, linear, A, list(rhs.values()))
+    rhs = dict(zip(rhs.keys(), values))
+    timings.update(t_basis)
+    contact = opts.contact != "none" and bool(model.cracks)
+    friction = contact and opts.friction > 0.0
+    # The stiffness as the contact solves take it: friction assembles its
+    # own (unsymmetric) saddle point from a scipy copy; frictionless contact
+    # lets the solver path build it (the iterative path around A, no copy).
+    K = None if not contact else scipy_from_petsc(A) if friction else linear.stiffness(A)
+    physical = cs = None
+    if contact:
+        physical = create_contact_system(unit)
+        cs = physical
+        if T is not None:
+            cs = dataclasses.replace(physical, B=(physical.B @ T).tocsr(),
+                                     Bt=None if physical.Bt is None else (physical.Bt @ T).tocsr())
+    c = contact_constant(unit)
+    n = model.num_dofs
+    m = cs.num_multipliers if cs is not None else 0
+    s_old = np.zeros(m)
+    state = sign = active = None
+    out: list[Solution] = []
+    step_list = steps(scene)
+    incs = increments(scene)
+    iterations: list[int] = []
+    t0 = time.perf_counter()
+    try:  # the solver's PETSc objects go when the path ends, also when a solve fails
+        with record_solves() as solves:
+            for inc in incs:
+                f = _combine(rhs, inc.factors, n)
+                info: dict[str, typing.Any] = {}
+                if not contact:
+                    A_f = A.createVecRight()
+                    A_f.array[:] = f
+                    x = linear.solve(A, A_f, opts.residual_tol, what="X-FEM stiffness system")
+                    y = x.array.copy()
+                    A_f.destroy()
+                    x.destroy()
+                else:
+                    g_n = _combine(cs.g_groups, inc.factors, m)
+                    work = dataclasses.replace(cs, g=g_n)
+                    if friction:
+                        g_t = _combine(cs.gt_groups, inc.factors, m)
+                        y, info = solve_friction(K, f, work, g_n, g_t, s_old, opts, c, state, sign, linear)
+                        state, sign = info["state"], info["sign"]
+                        s_old = cs.Bt @ y - g_t
+                    else:
+                        y, info = solve_frictionless(K, f, work, opts, c, active, linear)
+                        active = info["active"]
+                    iterations.append(int(info["iterations"]))
+                if inc.index == opts.load_steps:
+                    out.append(_step_solution(model, unit, physical, y, T, E, info, inc, step_list[inc.step],
+                                              iterations, timings, solves, linear.name))
+                    iterations = []
+                    logger.info("load step %d/%d (%s) solved", inc.step + 1, len(step_list), step_list[inc.step].name)
+    finally:
+        linear.destroy()
+    timings["path_solve"] = time.perf_counter() - t0
+    if condition_number:
+        out[-1].condition = condition_number_1norm(A)
+    A.destroy()
+    timings["total"] = time.perf_counter() - t_start
+    for sol in out:
+        sol.timings = {**model.timings, **timings}
+    out[-1].steps = out
+    return out
+
+
+def _step_solution(model, unit, physical, y, T, E, info, inc: Increment, step: LoadStep,
+                   iterations: list[int], timings, solves, solver_name: str = "direct") -> Solution:
+    u = (y if T is None else T @ y) / E
+    contact = {}
+    if physical is not None:
+        system = dataclasses.replace(
+            physical, g=_combine(physical.g_groups, inc.factors, physical.num_multipliers) / E,
+            gt=None if physical.Bt is None else _combine(physical.gt_groups, inc.factors, physical.num_multipliers) / E,
+            g_groups={k: v / E for k, v in physical.g_groups.items()},
+            gt_groups={k: v / E for k, v in physical.gt_groups.items()})
+        contact = {"system": system, **{k: (v.copy() if isinstance(v, np.ndarray) else v) for k, v in info.items()},
+                   "increment_iterations": list(iterations)}
+        contact["iterations"] = int(sum(iterations))
+    solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None, "solver": solver_name,
+              "solves": list(solves)}
+    sol = Solution(model, u, dict(timings), {}, contact, solver)
+    sol.factors = dict(inc.factors)
+    sol.step = {"index": inc.step, "name": step.name, "factors": dict(inc.factors),
+                "increments": len(iterations) or 1}
+    return sol
+
+
+def state_names(codes: np.ndarray) -> list[str]:
+    return [STATE_NAMES[int(c)] for c in codes]

@@ -1,0 +1,169 @@
+"""Solve a scene: the X-FEM system, or a plain DOLFINx P1 baseline on the same mesh."""
+from __future__ import annotations
+
+import dataclasses
+import logging
+import time
+
+import numpy as np
+from petsc4py import PETSc
+
+import dolfinx.fem
+import dolfinx.fem.petsc
+import ufl
+
+from ..contact.frictionless import solve_contact
+from ..errors import InputError, SolverError
+from ..model.assembly import assemble_system, elasticity_form
+from ..model.model import create_model
+from ..post.solution import Solution
+from ..scene.scene import Scene
+from ..solvers.checked import condition_number_1norm, record_solves, solve_checked
+from ..solvers.choice import create_linear_solver, to_solver_basis
+from .load_path import solve_path
+
+
+logger = logging.getLogger(__name__)
+
+
+def solve(scene: Scene, condition_number: bool = False) -> Solution:
+    """Build, assemble and solve the X-FEM model of a scene.
+
+    condition_number: also estimate the 1-norm condition number of the
+    stiffness with constraints applied, raw and Jacobi-scaled (Solution.condition).
+
+    With a load path (Scene.load_path) or friction (path-dependent), the
+    steps are solved in order (load_path.solve_path) and the last step's
+    Solution is returned; its .steps holds every step's.
+    """
+    if scene.load_path is not None or scene.options.friction > 0.0:
+        return solve_path(scene, condition_number)[-1]
+    t_start = time.perf_counter()
+    model = create_model(scene)
+    # Solve the problem in units of E (E = 1, prescribed displacements times
+    # E, u = u_1 / E): the matrix is then the same bit for bit whatever E, so
+    # every output scales exactly with E and the loads (an E-scaled matrix
+    # differs by round-off that the conditioning amplifies to ~1e-11), and
+    # the constraint rows (1 on the diagonal) match the stiffness rows.
+    E = scene.material.E
+    unit = dataclasses.replace(model, scene=dataclasses.replace(scene, material=scene.material.scaled(1.0)),
+                               bc_values=model.bc_values * E,
+                               bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
+    A, b, timings = assemble_system(unit)
+    linear = create_linear_solver(unit)  # Options.solver: direct or iterative (cracklip.solvers)
+    A, (b_t,), T, t_basis = to_solver_basis(unit, linear, A, [b.array])
+    b.array[:] = b_t
+    timings.update(t_basis)
+    t0 = time.perf_counter()
+    contact = {}
+    # The solver's PETSc objects (the iterative path's AMG hierarchy) go
+    # when the solve ends, also when it fails.
+    try:
+        with record_solves() as solves:
+            if scene.options.contact != "none" and model.cracks:
+                try:
+                    u, contact = solve_contact(unit, A, b, transform=T, linear=linear)
+                except SolverError as e:
+                    linear.destroy()
+                    raise _contact_singularity(scene, A, b, e) from None
+                contact["system"].g = contact["system"].g / E  # B u = g in the scene's units
+                x = A.createVecRight()
+                x.array[:] = u
+                timings["contact_solve"] = time.perf_counter() - t0
+            else:
+                x = linear.solve(A, b, scene.options.residual_tol, what="X-FEM stiffness system")
+                timings["solve"] = time.perf_counter() - t0
+    finally:
+        linear.destroy()
+    # Relative residual ||A x - b|| / ||b|| of the last solve (the final
+    # active set's saddle system with contact) and of every solve.
+    solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None,
+              "solver": linear.name, "solves": solves}
+    condition = {}
+    if condition_number:
+        t0 = time.perf_counter()
+        condition = condition_number_1norm(A)
+        timings["condition_number"] = time.perf_counter() - t0
+    u = (x.array if T is None else T @ x.array) / E
+    A.destroy()
+    b.destroy()
+    x.destroy()
+    timings = {**model.timings, **timings}
+    timings["total"] = time.perf_counter() - t_start
+    logger.info("solved %d dofs (%d enriched) in %.3f s", model.num_dofs,
+                2 * model.layout.num_enriched, timings["total"])
+    return Solution(model, u, timings, condition, contact, solver)
+
+
+def _contact_singularity(scene: Scene, A, b, error: SolverError) -> SolverError:
+    """The error to raise for a failed contact solve: if the saddle-point
+    system is singular but the stiffness alone is not, the multiplier space
+    is at fault (B without full row rank), which the message then says."""
+    if "singular" not in str(error):
+        return error
+    try:
+        solve_checked(A, b, scene.options.residual_tol, what="stiffness").destroy()
+    except SolverError:
+        return error  # the stiffness is singular itself: the original cause stands
+    if scene.options.multipliers == "naive":
+        hint = ("multipliers='naive' puts one P1 multiplier on every node of the cut cells, whose traces "
+                "on the crack are linearly dependent; use multipliers='stable'")
+    else:
+        hint = "the stable space should not be rank-deficient: please report this scene"
+    return SolverError(f"{error}. The stiffness alone is regular, so the contact multiplier space "
+                       f"({scene.options.multipliers!r}) is singular: its constraints B are not "
+                       f"independent ({hint})")
+
+
+def solve_plain(scene: Scene) -> tuple[np.ndarray, dict[str, float]]:
+    """Plain DOLFINx P1 elasticity solve of the scene without its cracks.
+
+    The baseline for benchmarks: DOLFINx creates, assembles (with its
+    Dirichlet conditions) and the same checked MUMPS solve runs. Only
+    constant tractions and Dirichlet values are supported here.
+    Returns (dofs (2 num_nodes,), timings).
+    """
+    t_start = time.perf_counter()
+    timings: dict[str, float] = {}
+    msh = scene.mesh.mesh
+    tdim = msh.topology.dim
+    V = dolfinx.fem.VectorFunctionSpace(msh, ("Lagrange", 1))
+    msh.topology.create_connectivity(tdim - 1, tdim)
+    bcs = []
+    for bc in scene.dirichlet:
+        if callable(bc.value) or not isinstance(bc.where, (str, int)):
+            raise InputError("solve_plain supports constant Dirichlet values on tagged boundaries")
+        facets = scene.mesh.facets(bc.where)
+        comps = [0, 1] if bc.component is None else [bc.component]
+        for c in comps:
+            dofs = dolfinx.fem.locate_dofs_topological(V.sub(c), tdim - 1, facets)
+            bcs.append(dolfinx.fem.dirichletbc(PETSc.ScalarType(bc.value), dofs, V.sub(c)))
+    v = ufl.TestFunction(V)
+    ds = ufl.Measure("ds", domain=msh, subdomain_data=scene.mesh.facet_tags)
+    L = ufl.inner(dolfinx.fem.Constant(msh, PETSc.ScalarType((0.0, 0.0))), v) * ufl.dx
+    for tr in scene.tractions:
+        if callable(tr.value):
+            raise InputError("solve_plain supports constant tractions only")
+        t = dolfinx.fem.Constant(msh, PETSc.ScalarType(tuple(tr.value)))
+        L += ufl.inner(t, v) * ds(scene.mesh.tag_value(tr.where))
+    a = elasticity_form(V, scene.material.E_strain, scene.material.nu_strain)
+    L = dolfinx.fem.form(L)
+    timings["setup"] = time.perf_counter() - t_start
+
+    t0 = time.perf_counter()
+    A = dolfinx.fem.petsc.assemble_matrix(a, bcs=bcs)
+    A.assemble()
+    b = dolfinx.fem.petsc.assemble_vector(L)
+    dolfinx.fem.petsc.apply_lifting(b, [a], bcs=[bcs])
+    b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+    dolfinx.fem.petsc.set_bc(b, bcs)
+    timings["assemble"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    x = solve_checked(A, b, scene.options.residual_tol, what="plain P1 system")
+    timings["solve"] = time.perf_counter() - t0
+    u = x.array.copy()
+    for obj in (A, b, x):
+        obj.destroy()
+    timings["total"] = time.perf_counter() - t_start
+    return u, timings

@@ -1,0 +1,298 @@
+"""The command line: ``python3 -m cracklip {run,check,reference}``.
+
+    python3 -m cracklip run SCENE.toml --out DIR      solve, write results into DIR
+    python3 -m cracklip grow SCENE.toml --out DIR     grow the cracks ([growth] table), write the path
+    python3 -m cracklip check SCENE.toml             validate, print what will be modelled
+    python3 -m cracklip reference                    the scene-file reference (Markdown)
+
+``--set KEY=VALUE`` (repeatable) overrides a scene key, e.g. ``--set
+mesh.h=0.1``. Progress with phase timings and active-set iterations goes to
+stderr (``--quiet`` silences it). Exit status: 0 on success, 2 with one line
+``cracklip: error: ...`` on bad input, a solver failure or a file that
+cannot be read or written.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import pathlib
+import sys
+import time
+import typing
+
+from ..errors import CracklipError
+
+
+PROG = "python3 -m cracklip"
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors and exit status 2."""
+
+    def error(self, message: str) -> typing.NoReturn:
+        self.exit(2, f"cracklip: error: {message} (see {PROG} --help)\n")
+
+
+class _Progress(logging.Handler):
+    """Log records of the cracklip loggers as 'cracklip [  1.23 s] message' on stderr."""
+
+    def __init__(self, start: float):
+        super().__init__(logging.INFO)
+        self.start = start
+
+    def emit(self, record: logging.LogRecord) -> None:
+        if record.levelno >= logging.WARNING:
+            return  # warnings are printed once, as "cracklip: warning: ..." (print_warnings)
+        try:
+            sys.stderr.write(f"cracklip [{time.perf_counter() - self.start:7.2f} s] {record.getMessage()}\n")
+            sys.stderr.flush()
+        except Exception:  # pragma: no cover - never let progress break a run
+            self.handleError(record)
+
+
+logger = logging.getLogger("cracklip.cli")
+
+
+def print_warnings(warnings) -> None:
+    """Each model or SIF warning as one 'cracklip: warning: ...' line on stderr."""
+    for w in warnings:
+        sys.stderr.write(f"cracklip: warning: {' '.join(str(w).split())}\n")
+    sys.stderr.flush()
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog=PROG, description="cracklip: 2D X-FEM cracks with crack-lip contact, from a "
+                     "TOML scene file.", epilog="Scene keys: `python3 -m cracklip reference` or README.md.")
+    sub = parser.add_subparsers(dest="command", metavar="{run,grow,check,reference}", parser_class=_Parser)
+
+    def common(p: argparse.ArgumentParser) -> None:
+        p.add_argument("scene", type=pathlib.Path, help="scene file (TOML)")
+        p.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
+                       help="override a scene key, e.g. --set mesh.h=0.1 (repeatable; VALUE in TOML "
+                            "syntax, a bare word is a string)")
+        p.add_argument("--quiet", "-q", action="store_true",
+                       help="no progress on stderr, no summary on stdout (warnings are still printed on stderr)")
+
+    run = sub.add_parser("run", help="solve a scene and write its results into a folder",
+                         description="Solve a scene and write results.json, crack.csv, sif.csv, "
+                                     "ParaView files and PNGs into --out.")
+    common(run)
+    run.add_argument("--out", type=pathlib.Path, required=True, metavar="DIR",
+                     help="output folder (created if missing)")
+    run.add_argument("--condition-number", action="store_true",
+                     help="also estimate the 1-norm condition number (as outputs.condition_number = true)")
+    run.set_defaults(func=cmd_run)
+
+    grow = sub.add_parser("grow", help="grow a scene's cracks (its [growth] table) and write the path",
+                          description="Grow the cracks of a scene with a [growth] table through the fixed mesh: "
+                                      "path.csv, results.json, path.png, sif_history.png, a_N.png (fatigue) and "
+                                      "the ParaView series growth.pvd into --out; a progress line per step.")
+    common(grow)
+    grow.add_argument("--out", type=pathlib.Path, required=True, metavar="DIR",
+                      help="output folder (created if missing)")
+    grow.set_defaults(func=cmd_grow)
+
+    check = sub.add_parser("check", help="validate a scene and print what will be modelled",
+                           description="Validate a scene, mesh it and build its model without "
+                                       "solving: print which nodes get which enrichment, the dofs, "
+                                       "the multipliers and the quadrature in each kind of cell.")
+    common(check)
+    check.add_argument("--json", action="store_true", help="print the model summary as JSON")
+    check.add_argument("--nodes", action="store_true",
+                       help="also list every enriched node with its enrichments")
+    check.set_defaults(func=cmd_check)
+
+    ref = sub.add_parser("reference", help="print the scene-file reference (Markdown table)")
+    ref.set_defaults(func=cmd_reference)
+    return parser
+
+
+def _load(args):
+    """Read and validate the scene document (nothing built yet)."""
+    from ..io.scene_file import apply_override, parse_settings, read_document
+    doc = read_document(args.scene)
+    for o in args.overrides:
+        apply_override(doc, o)
+    parse_settings(doc)
+    return doc
+
+
+def _build(args, doc):
+    from ..io.scene_file import build_scene
+    sf = build_scene(doc, base_dir=args.scene.parent, path=args.scene)
+    msh = sf.scene.mesh.mesh
+    logger.info("mesh: %d nodes, %d cells (%.2f s)", msh.geometry.x.shape[0],
+                msh.topology.index_map(2).size_local, sf.timings["mesh"])
+    return sf
+
+
+def cmd_run(args) -> int:
+    from . import prefetch
+    loading = prefetch.start()  # DOLFINx, PETSc and the solver load in a thread while the scene is read and meshed
+    t_start = time.perf_counter()
+    try:
+        doc = _load(args)
+        if doc.get("outputs", {}).get("png", True):
+            loading.add("matplotlib.figure", "matplotlib.backends.backend_agg")  # (0.3 s)
+    finally:
+        loading.close()  # (also when the scene is rejected: no thread left waiting)
+    t0 = time.perf_counter()
+    logger.info("scene %s: meshing", args.scene)
+    sf = _build(args, doc)
+    t_build = time.perf_counter() - t0
+    from ..io.outputs import ensure_output_dir, write_outputs
+    from ..analysis.solve import solve
+    out = ensure_output_dir(args.out)
+    cond = bool(args.condition_number or sf.outputs["condition_number"])
+    logger.info("solving (%s enrichment, contact %s)", sf.scene.options.enrichment, sf.scene.options.contact)
+    sol = solve(sf.scene, condition_number=cond)
+    phases = ", ".join(f"{k} {v:.3f} s" for k, v in sol.timings.items())
+    logger.info("solve phases: %s", phases)
+    if sol.contact:
+        c = sol.contact
+        logger.info("contact: %d active-set iteration(s), active multipliers per iteration %s of %d",
+                    c["iterations"], c["history"], c["system"].num_multipliers)
+    logger.info("writing outputs into %s", out)
+    t0 = time.perf_counter()
+    results = write_outputs(sf, sol, out, timings={"mesh": sf.timings["mesh"], "build_scene": t_build})
+    print_warnings(w["message"] for w in results["warnings"])
+    logger.info("outputs written (%.2f s); total %.2f s", time.perf_counter() - t0,
+                time.perf_counter() - t_start)
+    if not args.quiet:
+        print(f"{sf.title}: {results['solution']['dofs']} dofs, strain energy "
+              f"{results['solution']['strain_energy']:.6g}")
+        for r in results["sifs"]:
+            mix = "n/a (K negligible)" if r["mode_mix_deg"] is None else f"{r['mode_mix_deg']:.1f} deg"
+            print(f"  {r['crack_name']} tip ({r['x']:.6g}, {r['y']:.6g}): K_I = {r['K_I']:.6g} "
+                  f"(+- {r['K_I_spread']:.2g}), K_II = {r['K_II']:.6g} (+- {r['K_II_spread']:.2g}), "
+                  f"mode mix {mix}")
+        for c in results["cracks"]:
+            line = f"  {c['name']}: closed {c['closed_fraction'] * 100:.0f} % of {c['length_in_part']:.4g}"
+            if results["contact"] and "pressure" in c:
+                line += f", pressure {c['pressure']['min']:.4g} .. {c['pressure']['max']:.4g}"
+            print(line)
+        print(f"results in {out}: {', '.join(results['files'])}")
+    return 0
+
+
+def cmd_grow(args) -> int:
+    from ..errors import InputError
+    from ..analysis.growth import grow
+    from ..io.growth_outputs import SeriesWriter, write_growth_outputs
+    from ..io.outputs import ensure_output_dir
+    t_start = time.perf_counter()
+    doc = _load(args)
+    if "growth" not in doc:
+        raise InputError(f"{args.scene} has no [growth] table: give growth.da (fixed increments) or "
+                         "growth.paris_C and growth.paris_m (fatigue) and growth.steps")
+    out = ensure_output_dir(args.out)
+    sf = _build(args, doc)
+    series = SeriesWriter(out) if sf.outputs["vtu"] else None
+
+    def progress(k, records, solution):
+        if series is not None:
+            series.add(k, solution)
+        if not args.quiet:
+            sys.stderr.write(f"cracklip grow: step {k}: " + "; ".join(
+                f"{sf.scene.cracks[r.crack].name} end {r.end}: a = {r.length:.5g}, K_I = {r.K_I:.5g}, "
+                f"K_II = {r.K_II:.5g}, kink {r.kink_deg:+.2f} deg"
+                + (f", N = {r.N:.5g}" if sf.growth.fatigue else "") + ("" if r.status == "growing" else f" ({r.status})")
+                for r in records) + "\n")
+            sys.stderr.flush()
+    result = grow(sf.scene, sf.growth, on_step=progress)
+    results = write_growth_outputs(sf, result, out, sf.growth, {"total": time.perf_counter() - t_start}, series)
+    print_warnings(result.warnings)
+    if not args.quiet:
+        print(f"{sf.title}: {results['steps']} growth steps; {result.stop_reason}")
+        for c in results["final"]["cracks"]:
+            a = c["length_in_part"]
+            print(f"  {c['name']}: " + (f"length {a:.6g} in the part" if a is not None else
+                                        f"through the part (polyline length {c['polyline_length']:.6g})"))
+        if sf.growth.fatigue:
+            print(f"  cycles: {result.cycles:.6g}")
+        print(f"results in {out}: {', '.join(results['files'][:6])}" + (" ..." if len(results["files"]) > 6 else ""))
+    return 0
+
+
+def cmd_check(args) -> int:
+    from ..contact.frictionless import create_contact_system
+    from ..model.model import create_model
+    from ..io.model_summary import describe_model, enriched_nodes, format_model
+    doc = _load(args)
+    sf = _build(args, doc)
+    scene = sf.scene
+    model = create_model(scene)  # runs the model checks of a run (cracklip.model.checks)
+    cs = create_contact_system(model) if scene.options.contact != "none" and model.cracks else None
+    summary = describe_model(model, cs)
+    nodes = enriched_nodes(model) if args.nodes else None
+    print_warnings(model.warnings)
+    if args.json:
+        doc = {"title": sf.title, "notes": sf.notes, "model": summary,
+               "warnings": [w.as_dict() for w in model.warnings]}
+        if nodes is not None:
+            doc["enriched_nodes"] = nodes
+        print(json.dumps(doc, indent=2))
+        return 0
+    if args.quiet:
+        return 0
+    mat = scene.material
+    o = sf.outputs
+    lines = [f"scene {args.scene} ({sf.title!r}): valid" + (f", {len(model.warnings)} warning(s) on stderr"
+                                                            if model.warnings else ""),
+             f"material: E = {mat.E:g}, nu = {mat.nu:g} (plane {mat.plane})"]
+    lines += sf.notes
+    lines += format_model(summary)
+    files = ["results.json", "crack.csv", "sif.csv"] + (["solution.vtu", "crack_lips.vtu"] if o["vtu"] else []) \
+        + (["deformed.png", "crack_pressure.png", "stress.png"] if o["png"] else [])
+    lines.append(f"run writes: {', '.join(files)}")
+    if nodes is not None:
+        names = [c.crack.name for c in model.cracks]
+        lines.append(f"enriched nodes ({len(nodes)}):")
+        lines += [f"  node {n['node']} ({n['x']:.6g}, {n['y']:.6g}): "
+                  + ", ".join(f"{what} ({names[c]})" for c, what in n["enrichment"]) for n in nodes]
+    print("\n".join(lines))
+    return 0
+
+
+def cmd_reference(args) -> int:
+    from ..io.scene_file import reference_markdown
+    sys.stdout.write(reference_markdown())
+    return 0
+
+
+def _one_line(e: BaseException) -> str:
+    if isinstance(e, OSError) and not isinstance(e, CracklipError) and e.strerror:
+        text = f"{e.filename}: {e.strerror}" if e.filename else e.strerror
+    else:
+        text = str(e) or type(e).__name__
+    return " ".join(text.split())
+
+
+def main(argv: typing.Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help(sys.stderr)
+        return 2
+    root = logging.getLogger("cracklip")
+    old_level, old_propagate = root.level, root.propagate
+    # Progress on stderr unless --quiet; warnings are printed by the commands
+    # themselves (print_warnings), not again through logging.
+    handler = logging.NullHandler() if getattr(args, "quiet", False) else _Progress(time.perf_counter())
+    root.addHandler(handler)
+    root.setLevel(logging.INFO)
+    root.propagate = False
+    try:
+        return args.func(args)
+    except (CracklipError, OSError) as e:
+        sys.stderr.write(f"cracklip: error: {_one_line(e)}\n")
+        return 2
+    except KeyboardInterrupt:
+        sys.stderr.write("cracklip: error: interrupted\n")
+        return 130
+    finally:
+        root.removeHandler(handler)
+        root.setLevel(old_level)
+        root.propagate = old_propagate

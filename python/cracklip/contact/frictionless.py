@@ -1,0 +1,228 @@
+"""Frictionless crack-lip contact with Lagrange multipliers.
+
+The multiplier space (C++) gives the full multipliers and the 0/1
+prolongation R (reduced -> full); B_red = R^T B, M_red = R^T M R. The
+saddle-point system
+
+    [ K      B^T ] [ u      ]   [ f ]
+    [ B      0   ] [ lambda ] = [ g ]
+
+is solved by MUMPS; the contact pressure is p = -lambda (>= 0 in
+compression), the weighted normal gap is B u (>= 0 when open). Unilateral
+contact: primal-dual active set on the reduced multipliers, a multiplier
+active when p_k - c g_k / m_k > 0 (m_k the lumped multiplier mass, c = E / h).
+"""
+from __future__ import annotations
+
+import dataclasses
+import logging
+import typing
+
+import numpy as np
+import scipy.sparse as sp
+from petsc4py import PETSc
+
+from .. import _cracklip
+from ..errors import CracklipError, SolverError
+from ..model.model import XfemModel
+from ..solvers.checked import scipy_from_petsc, solve_checked
+if typing.TYPE_CHECKING:
+    from ..solvers.direct import LinearSolver
+from ..solvers.saddle import saddle_matrix
+
+
+logger = logging.getLogger(__name__)
+
+
+class ContactError(CracklipError, RuntimeError):
+    """The active set did not settle."""
+
+
+@dataclasses.dataclass
+class ContactSystem:
+    """Multiplier space and constraint operators of a model.
+
+    Attributes:
+        space: the C++ MultiplierSpace.
+        R: (num_full, num_reduced) 0/1 prolongation.
+        B: (num_reduced, num_dofs) coupling, Dirichlet columns removed.
+        M: (num_reduced, num_reduced) multiplier mass.
+        g: (num_reduced,) right-hand side of B u = g (prescribed enriched dofs).
+        Bt: (num_reduced, num_dofs) tangential coupling int lambda [[v]].t
+            (t = n turned by -90 degrees), Dirichlet columns removed; None
+            without friction.
+        gt: (num_reduced,) its right-hand side (zeros without friction).
+        g_groups, gt_groups: g and gt of each load group's prescribed values.
+    """
+    space: typing.Any
+    R: sp.csr_matrix
+    B: sp.csr_matrix
+    M: sp.csr_matrix
+    g: np.ndarray
+    Bt: typing.Optional[sp.csr_matrix] = None
+    gt: typing.Optional[np.ndarray] = None
+    g_groups: dict = dataclasses.field(default_factory=dict)
+    gt_groups: dict = dataclasses.field(default_factory=dict)
+
+    @property
+    def num_multipliers(self) -> int:
+        return self.R.shape[1]
+
+
+def create_contact_system(model: XfemModel) -> ContactSystem:
+    """Multiplier space and B, M for the model's cracks (options.multipliers);
+    with friction (options.friction > 0) also the tangential coupling Bt."""
+    opts = model.scene.options
+    space = _cracklip.create_multiplier_space(model.x, model.cells, model.geometries, model.layout,
+                                              opts.multipliers, opts.enrichment != "none")
+    nf, nr = space.num_full, space.num_reduced
+    R = sp.csr_matrix((np.ones(nf), (np.arange(nf), space.full_to_reduced)), shape=(nf, nr))
+    friction = opts.friction > 0.0
+    coo = _cracklip.assemble_coupling(model.x, model.cells, model.layout, model.geometries, space,
+                                      opts.contact_points, tangential=friction)
+    br, bc, bv, mr, mc, mv = coo[:6]
+    Bf = sp.csr_matrix((bv, (br, bc)), shape=(nf, model.num_dofs))
+    Mf = sp.csr_matrix((mv, (mr, mc)), shape=(nf, nf))
+    B = (R.T @ Bf).tocsr()
+    M = (R.T @ Mf @ R).tocsr()
+    Bt = (R.T @ sp.csr_matrix((coo[8], (coo[6], coo[7])), shape=(nf, model.num_dofs))).tocsr() if friction else None
+    # Dirichlet dofs: move their known values to the right-hand side, per load group.
+    fixed = np.zeros(model.num_dofs, dtype=bool)
+    fixed[model.bc_dofs] = True
+    g_groups, gt_groups = {}, {}
+    for group, values in sorted(model.bc_group_values.items()):
+        ufix = np.zeros(model.num_dofs)
+        ufix[model.bc_dofs] = values
+        g_groups[group] = -(B @ ufix)
+        if friction:
+            gt_groups[group] = -(Bt @ ufix)
+    g = sum(g_groups.values(), np.zeros(nr))
+    gt = sum(gt_groups.values(), np.zeros(nr))
+    free = sp.diags((~fixed).astype(float))
+    B = B @ free
+    B.eliminate_zeros()
+    if friction:
+        Bt = (Bt @ free).tocsr()
+        Bt.eliminate_zeros()
+    rownorm = np.sqrt(np.asarray(B.multiply(B).sum(axis=1))).ravel()
+    dead = np.flatnonzero(rownorm <= 1e-14 * max(rownorm.max(initial=0.0), 1e-300))
+    if dead.size:
+        raise SolverError(f"{dead.size} contact multiplier(s) see no jump of the displacement (e.g. "
+                          f"reduced multiplier {int(dead[0])}): the crack there has no enriched dofs "
+                          "(check the enrichment and the Dirichlet conditions near the crack)")
+    return ContactSystem(space, R, B.tocsr(), M, g, Bt, gt, g_groups, gt_groups)
+
+
+def solve_saddle(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: ContactSystem, active: np.ndarray,
+                 residual_tol: float, linear: "LinearSolver | None" = None,
+                 x0: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Solve with the constraints of the active multipliers; inactive ones are 0.
+
+    K: the stiffness as linear.stiffness() gives it (scipy CSR without
+    linear); linear: the solver path (cracklip.solvers; default:
+    solve_checked's MUMPS LU, as the load-path and friction solvers use),
+    which also builds the saddle-point matrix; x0: an
+    initial guess (u, lambda) for an iterative path (the previous active
+    set's solution)."""
+    m = cs.num_multipliers
+    A = saddle_matrix(K, cs.B, active) if linear is None else linear.saddle_matrix(K, cs.B, active)
+    b = PETSc.Vec().createWithArray(np.concatenate([f, np.where(active, cs.g, 0.0)]), comm=PETSc.COMM_SELF)
+    what = "contact saddle-point system"
+    if linear is None:
+        x = solve_checked(A, b, residual_tol, what=what)
+    else:
+        x = linear.solve(A, b, residual_tol, what=what, x0=x0)
+    sol = x.array.copy()
+    A.destroy()
+    b.destroy()
+    x.destroy()
+    return sol[:-m] if m else sol, sol[-m:] if m else np.zeros(0)
+
+
+class _VisitedSets:
+    """Active sets met so far. Each iteration depends only on its active set,
+    so meeting one again means the iteration cycles for ever: stop at once
+    instead of running into the iteration limit."""
+
+    def __init__(self, start: np.ndarray):
+        self._first = {start.tobytes(): 0}
+
+    def first_visit(self, key: bytes) -> int | None:
+        """The iteration that first met this set (0: the start), or None."""
+        return self._first.get(key)
+
+    def visit(self, active: np.ndarray, it: int, history: list[int]) -> None:
+        key = active.tobytes()
+        if key in self._first:
+            k = self._first[key]
+            raise ContactError(f"the active set cycles: iteration {it} gives the set of "
+                               f"{'the start' if k == 0 else f'iteration {k}'} again (period {it - k}; active "
+                               f"counts per iteration: {history}); the primal-dual active set method cannot "
+                               "settle here: refine the mesh near the crack, or use contact='bilateral' if "
+                               "the crack stays closed")
+        self._first[key] = it
+
+
+def contact_constant(model: XfemModel) -> float:
+    """c = E / h of the active-set tests (a stiffness per length: pressure
+    minus c times the mean gap)."""
+    return model.scene.material.E / model.h
+
+
+def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
+                  transform: sp.spmatrix | None = None,
+                  linear: "LinearSolver | None" = None) -> tuple[np.ndarray, dict]:
+    """Solve the contact problem on the assembled stiffness A (constraints
+    applied) and load b. Returns (u, info) with info: system, lambda (reduced),
+    active, iterations, history.
+
+    transform: if A and b are rescaled (T^T K T, T^T f), the T: the
+    constraints act on u = T y, the returned u is y, info["system"] keeps
+    the unscaled B. linear: the solver path of every saddle-point solve
+    (cracklip.solvers; default: solve_checked's MUMPS LU)."""
+    physical = create_contact_system(model)
+    cs = physical if transform is None else dataclasses.replace(physical, B=(physical.B @ transform).tocsr())
+    K = scipy_from_petsc(A) if linear is None else linear.stiffness(A)
+    u, info = solve_frictionless(K, b.array.copy(), cs, model.scene.options,
+                                 contact_constant(model), linear=linear)
+    info["system"] = physical
+    return u, info
+
+
+def solve_frictionless(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: ContactSystem, opts,
+                       c: float, active: np.ndarray | None = None,
+                       linear: "LinearSolver | None" = None) -> tuple[np.ndarray, dict]:
+    """Frictionless contact on the stiffness K (constraints applied; as
+    linear.stiffness() gives it, scipy CSR without linear), load f
+    and the constraints B u = cs.g: bilateral (all multipliers active) or
+    unilateral by the primal-dual active set, a multiplier active when its
+    pressure exceeds c times its mean gap. active: the starting set (default
+    options.active_set_start). linear: the solver path of every
+    saddle-point solve (default: solve_checked's MUMPS LU). Returns (u, info: lambda,
+    active, iterations, history)."""
+    m = cs.num_multipliers
+    if opts.contact == "bilateral":
+        active = np.ones(m, dtype=bool)
+        u, lam = solve_saddle(K, f, cs, active, opts.residual_tol, linear)
+        return u, {"lambda": lam, "active": active, "iterations": 1, "history": [m]}
+    if active is None:
+        active = np.full(m, opts.active_set_start == "closed")
+    lumped = np.asarray(cs.M.sum(axis=1)).ravel()
+    history = []
+    seen = _VisitedSets(active)
+    x0 = None
+    for it in range(1, opts.max_active_set_iterations + 1):
+        u, lam = solve_saddle(K, f, cs, active, opts.residual_tol, linear, x0)
+        x0 = np.concatenate([u, lam])
+        gap = cs.B @ u - cs.g                  # weighted normal gap (>= 0 open)
+        pressure = -lam                        # >= 0 in compression
+        new_active = pressure - c * gap / lumped > 0.0
+        history.append(int(new_active.sum()))
+        logger.info("active set iteration %d: %d of %d multipliers active", it, new_active.sum(), m)
+        if np.array_equal(new_active, active):
+            return u, {"lambda": lam, "active": active, "iterations": it, "history": history}
+        seen.visit(new_active, it, history)
+        active = new_active
+    raise ContactError(f"the active set did not settle in {opts.max_active_set_iterations} iterations "
+                       f"(active counts per iteration: {history}); raise max_active_set_iterations "
+                       "or check that the load keeps the crack partly closed")

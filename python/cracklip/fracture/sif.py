@@ -1,0 +1,239 @@
+"""Stress intensity factors: a domain chosen per tip, K on three domains, and their spread.
+
+For every tip this module
+
+- measures the element size at the tip (the mean edge of the cells around
+  the node nearest to it);
+- finds what a domain must stay clear of: the part's boundary (holes
+  included), the other tips, the other cracks, and the crack's own polyline
+  beyond the straight run that ends at the tip (a kink of more than
+  KINK_DEG degrees: the auxiliary fields assume a straight crack);
+- takes the largest radius whose domain (every cell with a node inside the
+  radius) stays clear of all of that, and clips the requested radius
+  (Options.sif_radius, default DEFAULT_ELEMENTS element sizes) to it;
+- computes K_I, K_II by the domain interaction integral on three domains
+  (DOMAIN_FRACTIONS of the radius) with the lip term (tractions on the lips:
+  contact pressure, lip pressure, an initial stress's sigma_0 n) and the
+  body-force term (body force and div sigma_0), and reports K on the largest
+  domain with the spread (max - min) over the three.
+
+Conventions (README "Conventions"): the tip frame has e1 along the crack's
+extension and e2 = e1 turned by +90 degrees; K_I > 0 opens the crack; K_II > 0
+when the material on the e2 side of the crack moves along +e1 relative to the
+other side behind the tip (the Williams mode-II field, cpp/tip_functions.h).
+The interaction integral (q the plateau function, u^aux the auxiliary field
+of unit K):
+
+    I = int_A (sigma_ij u^aux_i,1 + sigma^aux_ij u_i,1 - sigma_kl eps^aux_kl delta_1j) q,_j dA
+        - int_lips t_i u^aux_i,1 q ds - int_A b_i u^aux_i,1 q dA,      K = E* I / 2,
+
+with sigma the stress of the displacement (C eps(u)), t the traction on each
+lip and b the body force (plus div sigma_0).
+"""
+from __future__ import annotations
+
+import logging
+import math
+import typing
+
+import numpy as np
+
+from .. import _cracklip
+from ..errors import InputError
+from ..model.loads import lip_pressure
+from ..model.tip_regions import TipDomain, lip_points, node_distances, tip_domains
+from ..scene.stress_field import LinearStress, divergence, evaluate_stress
+
+
+logger = logging.getLogger(__name__)
+
+
+#: Spread (max - min over the domains) above this fraction of the K scale is warned about.
+SPREAD_WARNING = 0.01
+
+
+#: Gauss degree of the interaction integral in cells without tip functions:
+#: the integrand (smooth, non-polynomial auxiliary fields) needs more than
+#: the stiffness's rule.
+SIF_DEGREE = 8
+
+
+def _aux_derivative(material, domain: TipDomain, x: np.ndarray, sides: np.ndarray) -> np.ndarray:
+    """d u^aux / d x_1 (n, mode, component) of the unit-K auxiliary fields."""
+    _, dU = _cracklip.williams_displacement(domain.position, domain.direction, material.kappa, x,
+                                            np.asarray(sides, dtype=np.int8), domain.orientation)
+    scale = 1.0 / (2.0 * material.mu * math.sqrt(2.0 * math.pi))
+    return scale * np.einsum("nmij,j->nmi", dU, domain.direction)
+
+
+def _q_at(model, dist: np.ndarray, radius: float, cells: np.ndarray, ref: np.ndarray) -> np.ndarray:
+    """The plateau q (1 at nodes closer than radius, P1) at points (cell, ref)."""
+    qn = (dist < radius).astype(float)[model.cells[cells]]
+    N = np.stack([1.0 - ref[:, 0] - ref[:, 1], ref[:, 0], ref[:, 1]], axis=1)
+    return np.einsum("na,na->n", N, qn)
+
+
+def lip_traction_parts(solution, crack: int, points: dict[str, np.ndarray]) -> list[np.ndarray]:
+    """The tractions (n, 2) on the + lip of a crack at crack points (cell,
+    ref, x, normal as from _cracklip.compute_crack_points), one array per
+    cause: the contact pressure, the crack's lip pressure, an initial
+    stress's sigma_0 n (the correction field of an initial stress sees it on
+    its lips). Each pushes the + lip along n (into the + side) when the lips
+    are pressed or pushed apart; the - lip carries the opposite."""
+    m = solution.model
+    n = points["normal"]
+    parts = []
+    if solution.contact:
+        cs = solution.contact["system"]
+        lam_full = cs.R @ solution.contact["lambda"]
+        p = -_cracklip.evaluate_multipliers(cs.space, crack, points["cell"], points["ref"], lam_full)
+        t = p[:, None] * n
+        if "lambda_t" in solution.contact:  # friction: the shear tau = -lambda_t along t = (n_y, -n_x)
+            tau = -_cracklip.evaluate_multipliers(cs.space, crack, points["cell"], points["ref"],
+                                                  cs.R @ solution.contact["lambda_t"])
+            t = t + tau[:, None] * np.stack([n[:, 1], -n[:, 0]], axis=1)
+        parts.append(t)
+    crk = m.cracks[crack].crack
+    if (callable(crk.pressure) or crk.pressure != 0.0) and solution.factor(crk.pressure_group) != 0.0:
+        parts.append(solution.factor(crk.pressure_group) * lip_pressure(crk, points["x"])[:, None] * n)
+    if m.scene.initial_stress is not None and solution.factor(m.scene.initial_stress_group) != 0.0:
+        sig = evaluate_stress(m.scene.initial_stress, points["x"], "initial stress")
+        parts.append(solution.factor(m.scene.initial_stress_group) * np.einsum("nij,nj->ni", sig, n))
+    return parts
+
+
+def lip_traction(solution, crack: int, points: dict[str, np.ndarray]) -> np.ndarray:
+    """The total traction (n, 2) on the + lip (lip_traction_parts summed)."""
+    return sum(lip_traction_parts(solution, crack, points), np.zeros_like(points["normal"]))
+
+
+def interaction_integrals(solution, domain: TipDomain, radius: float) -> np.ndarray:
+    """(I_I, I_II) on the domain of one radius: domain, lip and body-force terms."""
+    m = solution.model
+    mat = m.scene.material
+    q_opts = m.scene.options.quadrature_options()
+    q_opts.degree = max(q_opts.degree, SIF_DEGREE)
+    body = _body_force(solution)
+    d = _cracklip.compute_domain_points(m.x, m.cells, m.layout, m.geometries, domain.position,
+                                        domain.direction, radius, q_opts, body is not None)
+    if not np.any(d["grad_q"]):
+        raise InputError(f"no cell crosses the SIF domain circle of radius {radius:.4g} around tip "
+                         f"{domain.position.tolist()}: the q-function is constant; use a larger radius")
+    _, grad = _cracklip.evaluate_displacement(m.x, m.cells, m.layout, m.geometries, solution.u,
+                                              d["cell"], d["ref"], d["side"])
+    I = np.asarray(_cracklip.interaction_integral(domain.position, domain.direction, mat.E_strain, mat.nu_strain,
+                                                  d["x"], d["weight"], d["grad_q"], grad, d["side"],
+                                                  domain.orientation))
+    if body is not None:
+        b = body(d["x"])
+        daux = _aux_derivative(mat, domain, d["x"], d["side"])
+        I = I - np.einsum("n,n,nmi,ni->m", d["weight"], d["q"], daux, b)
+    pts = lip_points(m, domain.crack)
+    dist = node_distances(m, domain.position)
+    q = _q_at(m, dist, radius, pts["cell"], pts["ref"])
+    on = q > 0.0
+    if np.any(on):
+        sub = {k: v[on] for k, v in pts.items()}
+        t = lip_traction(solution, domain.crack, sub)
+        if np.any(t):
+            jump = (_aux_derivative(mat, domain, sub["x"], np.ones(len(t), dtype=np.int8))
+                    - _aux_derivative(mat, domain, sub["x"], -np.ones(len(t), dtype=np.int8)))
+            I = I - np.einsum("n,n,nmi,ni->m", sub["weight"], q[on], jump, t)
+    return I
+
+
+def _body_force(solution) -> typing.Callable[[np.ndarray], np.ndarray] | None:
+    """b(x) (n, 2) = body force + div sigma_0 (at their load factors), or
+    None if both vanish."""
+    model = solution.model
+    scene = model.scene
+    f = None if scene.body_force is None else solution.factor(scene.body_force_group) * np.asarray(
+        scene.body_force, dtype=float)
+    s0 = scene.initial_stress
+    if s0 is not None and solution.factor(scene.initial_stress_group) == 0.0:
+        s0 = None
+    k0 = 1.0 if s0 is None else solution.factor(scene.initial_stress_group)
+    if (f is None or not np.any(f)) and s0 is None:
+        return None
+    if isinstance(s0, LinearStress) and s0.is_uniform and (f is None or not np.any(f)):
+        return None
+    size = float(np.ptp(model.x, axis=0).max())
+
+    def b(x):
+        out = np.zeros((len(x), 2)) if f is None else np.broadcast_to(f, (len(x), 2)).copy()
+        if s0 is not None:
+            out += k0 * divergence(s0, x, size, "initial stress")
+        return out
+    return b
+
+
+def natural_k(solution) -> float:
+    """A K that the scene's loads could make: E* max|u| / sqrt(L) (L the
+    part's size), or, if larger, the largest lip traction of any cause
+    (contact pressure, lip pressure, sigma_0 n) times sqrt(pi a) (a half a
+    crack's length), the K of the crack were it open: the scale of a crack
+    held closed."""
+    m = solution.model
+    size = float(np.ptp(m.x, axis=0).max())
+    k = m.scene.material.E_star * float(np.abs(solution.standard_displacement).max()) / math.sqrt(size)
+    for ci in range(len(m.cracks)):
+        pts = lip_points(m, ci)
+        for t in lip_traction_parts(solution, ci, pts) if len(pts["weight"]) else []:
+            k = max(k, float(np.linalg.norm(t, axis=1).max()) * math.sqrt(math.pi * 0.5 * float(pts["weight"].sum())))
+    return k
+
+
+def k_scale(solution, ks: list[tuple[float, float]]) -> float:
+    """The scale against which a spread of K is judged: the largest |K| of
+    the scene's tips, at least 1e-3 natural_k (a floor for scenes whose
+    cracks are all closed, K = 0)."""
+    return max([math.hypot(*k) for k in ks] + [1e-3 * natural_k(solution), 1e-300])
+
+
+def compute_sifs(solution, radius: float | None = None, cracks: typing.Sequence[int] | None = None
+                 ) -> tuple[list[dict[str, typing.Any]], list[str]]:
+    """K_I, K_II with their spreads at every tip of the given cracks (all by
+    default), and the warnings about them (domains clipped, spreads above
+    SPREAD_WARNING of the K scale). radius: the largest domain's radius,
+    overriding Options.sif_radius. Each row holds the keys of results.json's
+    "sifs": crack, crack_name, tip, x, y, direction, K_I, K_II, K_I_spread,
+    K_II_spread, mode_mix_deg, G, radius, radii, element_size, limited_by,
+    domain_clear."""
+    m = solution.model
+    mat = m.scene.material
+    cracks = range(len(m.cracks)) if cracks is None else cracks
+    rows, warnings, raw = [], [], []
+    for ci in cracks:
+        doms = tip_domains(m, ci, radius)
+        if radius is not None:  # a caller's radius: say what became of it (the model checks did the default)
+            for dom in doms:
+                for w in dom.warnings:
+                    logger.warning("%s", w)
+        for dom in doms:
+            K = np.array([0.5 * mat.E_star * interaction_integrals(solution, dom, r) for r in dom.radii])
+            raw.append((dom, K))
+    scale = k_scale(solution, [tuple(K[-1]) for _, K in raw])
+    negligible = 1e-6 * natural_k(solution)
+    for dom, K in raw:
+        kI, kII = float(K[-1, 0]), float(K[-1, 1])
+        spread = np.ptp(K, axis=0)
+        name = m.cracks[dom.crack].crack.name
+        warnings += dom.warnings
+        if dom.clear and max(spread) > SPREAD_WARNING * scale:
+            warnings.append(
+                f"tip {dom.tip} of crack {name!r} at ({dom.position[0]:.6g}, {dom.position[1]:.6g}): K varies "
+                f"with the SIF domain by {max(spread) / scale * 100:.2g} % of the K scale {scale:.4g} (K_I "
+                f"{', '.join(f'{v:.5g}' for v in K[:, 0])}, K_II {', '.join(f'{v:.5g}' for v in K[:, 1])} on "
+                f"radii {', '.join(f'{r:.3g}' for r in dom.radii)}): the field near the tip is not resolved "
+                f"(element {dom.element_size:.3g}); refine the mesh at the tip (mesh.tip_h) or enlarge the "
+                "enrichment radius")
+        mix = math.degrees(math.atan2(kII, kI)) if math.hypot(kI, kII) > negligible else None
+        rows.append({"crack": dom.crack, "crack_name": name, "tip": dom.tip,
+                     "x": float(dom.position[0]), "y": float(dom.position[1]),
+                     "direction": dom.direction.tolist(), "K_I": kI, "K_II": kII,
+                     "K_I_spread": float(spread[0]), "K_II_spread": float(spread[1]),
+                     "mode_mix_deg": mix, "G": (kI ** 2 + kII ** 2) / mat.E_star,
+                     "radius": dom.radius, "radii": list(dom.radii), "element_size": dom.element_size,
+                     "limited_by": dom.obstacle if dom.limited or not dom.clear else None,
+                     "domain_clear": dom.clear})
+    return rows, warnings

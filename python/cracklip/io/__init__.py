@@ -1,0 +1,2 @@
+"""Files: scene files (TOML), results.json, CSV, ParaView (VTU) and PNG writers.
+"""

@@ -1,0 +1,193 @@
+"""The model summary that ``cracklip check`` prints and results.json records: the
+counts come from the same model and contact system objects the solver uses."""
+from __future__ import annotations
+
+import typing
+
+import numpy as np
+
+from .. import _cracklip
+from ..model.model import CELL_CLASSES, XfemModel
+from ..post.solution import Solution
+
+
+def _tip_cells(model: XfemModel) -> np.ndarray:
+    cells = [np.asarray(g.tip_cells["cell"]) for g in model.geometries]
+    return np.unique(np.concatenate(cells)) if cells else np.zeros(0, dtype=np.int32)
+
+
+def describe_model(model: XfemModel, contact_system=None, solution: Solution | None = None) -> dict[str, typing.Any]:
+    """Counts of what the model holds: nodes, cells, dofs; per crack its cell
+    classes, Heaviside and tip nodes (core and blending) and their dofs; the
+    quadrature per kind of enriched cell; the contact multipliers.
+
+    contact_system: the contact.ContactSystem the solve uses (None without
+    contact). solution: a solution of the model, whose quadrature points
+    give the counts (computed otherwise)."""
+    layout = model.layout
+    opts = model.scene.options
+    kind = np.asarray(layout.kind)
+    crack_of = np.asarray(layout.crack)
+    node = np.asarray(layout.node)
+    core = np.asarray(layout.core)
+    cracks = []
+    for ci, cm in enumerate(model.cracks):
+        g = cm.geometry
+        cls = np.bincount(np.asarray(g.cell_class), minlength=len(CELL_CLASSES))
+        heav = (crack_of == ci) & (kind == 0)
+        tip = (crack_of == ci) & (kind != 0)
+        tip_nodes = np.unique(node[tip])
+        core_nodes = np.unique(node[tip & (core == 1)])
+        pts = cm.crack.points
+        from ..model.tip_regions import tip_domains
+        domains = tip_domains(model, ci)
+        cracks.append({
+            "name": cm.crack.name,
+            "polyline_points": int(len(pts)),
+            "length": float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum()),
+            "kind": {0: "through (no tip inside)", 1: "edge (one tip)", 2: "interior (two tips)"}[sum(cm.tips)],
+            "tips": np.asarray(g.tips).tolist(),
+            "tip_element_size": [d.element_size for d in domains],
+            "sif_radius": [d.radius for d in domains],
+            "sif_limited_by": [d.obstacle if d.limited or not d.clear else None for d in domains],
+            "lip_pressure": "function" if callable(cm.crack.pressure) else float(cm.crack.pressure),
+            "cells": {name: int(cls[v]) for name, v in CELL_CLASSES.items() if name != "plain"},
+            "heaviside_nodes": int(np.unique(node[heav]).size),
+            "heaviside_dofs": int(2 * np.count_nonzero(heav)),
+            "tip_nodes": int(tip_nodes.size),
+            "tip_core_nodes": int(core_nodes.size),
+            "tip_blending_nodes": int(tip_nodes.size - core_nodes.size),
+            "tip_dofs": int(2 * np.count_nonzero(tip)),
+            "snapped_nodes": int(g.num_snapped),
+        })
+    out: dict[str, typing.Any] = {
+        "nodes": int(layout.num_std_nodes),
+        "cells": int(model.cells.shape[0]),
+        "mean_edge": model.h,
+        "dofs": {"standard": int(2 * layout.num_std_nodes), "enriched": int(2 * layout.num_enriched),
+                 "total": int(model.num_dofs)},
+        "enriched_nodes": int(np.unique(node).size),
+        "enriched_pseudo_nodes": int(layout.num_enriched),
+        "enriched_cells": int(np.asarray(layout.cells).size),
+        "enrichment": {"tip": opts.enrichment, "radius": opts.radius, "blending": opts.blending},
+        "cracks": cracks,
+        "quadrature": _describe_quadrature(model, solution),
+    }
+    if contact_system is None:
+        out["contact"] = {"law": "none" if not model.cracks else opts.contact, "multipliers": 0}
+    else:
+        space = contact_system.space
+        out["contact"] = {
+            "law": opts.contact, "space": opts.multipliers,
+            "multipliers": int(contact_system.num_multipliers),
+            "full_multipliers": int(space.num_full),
+            "p0_multipliers": int(np.count_nonzero(np.asarray(space.full_node) < 0)),
+            "segments": int(space.num_segments), "points_per_segment": int(opts.contact_points),
+        }
+    return out
+
+
+def enriched_nodes(model: XfemModel) -> list[dict[str, typing.Any]]:
+    """Every enriched node with its enrichments: node index, x, y and a list
+    of (crack, kind) with kind "heaviside", "tip core" or "tip blending"."""
+    layout = model.layout
+    node = np.asarray(layout.node)
+    kind = np.asarray(layout.kind)
+    crack = np.asarray(layout.crack)
+    core = np.asarray(layout.core)
+    out: dict[int, dict[str, typing.Any]] = {}
+    for k in np.argsort(node, kind="stable"):
+        n = int(node[k])
+        entry = out.setdefault(n, {"node": n, "x": float(model.x[n, 0]), "y": float(model.x[n, 1]),
+                                   "enrichment": []})
+        what = "heaviside" if kind[k] == 0 else ("tip core" if core[k] else "tip blending")
+        item = [int(crack[k]), what]
+        if item not in entry["enrichment"]:
+            entry["enrichment"].append(item)
+    return list(out.values())
+
+
+def _describe_quadrature(model: XfemModel, solution: Solution | None = None) -> list[dict[str, typing.Any]]:
+    """Cells of each quadrature kind with their rule and point counts (the
+    points of solution.enriched_field_points() if given)."""
+    layout = model.layout
+    opts = model.scene.options
+    ncells = model.cells.shape[0]
+    enr_cells = np.asarray(layout.cells, dtype=np.int32)
+    groups = [{"cells": "plain cells (standard block only)", "count": int(ncells - enr_cells.size),
+               "rule": "DOLFINx's rule for the P1 stiffness", "points": None}]
+    if enr_cells.size == 0:
+        return groups
+    fp = solution.enriched_field_points() if solution is not None else _cracklip.compute_field_points(
+        model.x, model.cells, layout, model.geometries, np.zeros(model.num_dofs), enr_cells,
+        opts.quadrature_options())
+    per_cell = np.bincount(fp["cell"], minlength=ncells)
+    offsets = np.asarray(layout.cell_offsets)
+    kinds = np.asarray(layout.kind)[np.asarray(layout.cell_enr)]
+    has_tip = np.zeros(ncells, dtype=bool)
+    has_tip[enr_cells] = np.add.reduceat((kinds != 0).astype(int), offsets[:-1]) > 0 if kinds.size else False
+    crossed = np.zeros(ncells, dtype=bool)
+    for g in model.geometries:
+        cls = np.asarray(g.cell_class)
+        crossed |= (cls == CELL_CLASSES["cut"]) | (cls == CELL_CLASSES["edge"])
+    is_tip = np.zeros(ncells, dtype=bool)
+    is_tip[_tip_cells(model)] = True
+    enriched = np.zeros(ncells, dtype=bool)
+    enriched[enr_cells] = True
+    if opts.quadrature == "collapsed":
+        tip_rule = (f"quasi-polar fan from the tip, {opts.tip_radial} x {opts.tip_angular} points per fan "
+                    f"triangle (apex angle <= {opts.tip_max_angle:g})")
+        near_rule = "quasi-polar fans from the tip (signed sums); Gauss far from the tip"
+    else:
+        tip_rule = f"Gauss degree {opts.quadrature_degree} on fan triangles from the tip (paper's rule)"
+        near_rule = f"Gauss degree {opts.quadrature_degree} on sub-triangles (paper's rule)"
+    for label, mask, rule in [
+            ("tip cells", enriched & is_tip, tip_rule),
+            ("other cells with tip functions", enriched & has_tip & ~is_tip, near_rule),
+            ("cut or edge cells, Heaviside only", enriched & crossed & ~has_tip & ~is_tip,
+             f"Gauss degree {opts.degree} on each sub-triangle"),
+            ("uncut cells with Heaviside nodes", enriched & ~crossed & ~has_tip & ~is_tip,
+             f"Gauss degree {opts.degree}")]:
+        n = per_cell[mask]
+        if n.size:
+            groups.append({"cells": label, "count": int(n.size), "rule": rule, "points": int(n.sum()),
+                           "points_per_cell": [int(n.min()), int(n.max())]})
+    return groups
+
+
+def format_model(summary: dict[str, typing.Any]) -> list[str]:
+    """Human-readable lines of describe_model's summary (for `cracklip check`)."""
+    d = summary["dofs"]
+    e = summary["enrichment"]
+    lines = [f"mesh: {summary['nodes']} nodes, {summary['cells']} cells, mean edge {summary['mean_edge']:.4g}",
+             f"dofs: {d['total']} = {d['standard']} standard + {d['enriched']} enriched "
+             f"({summary['enriched_nodes']} enriched nodes, {summary['enriched_pseudo_nodes']} "
+             f"enriched pseudo-nodes on {summary['enriched_cells']} cells)",
+             f"enrichment: tip {e['tip']}, radius {e['radius']:g}, {e['blending']} blending"]
+    for c in summary["cracks"]:
+        cells = ", ".join(f"{v} {k}" for k, v in c["cells"].items())
+        tips = "; ".join(f"({t[0]:.6g}, {t[1]:.6g})" for t in c["tips"]) or "none"
+        lines += [f"crack {c['name']!r}: {c['kind']}, length {c['length']:.6g}, tips {tips}",
+                  f"  cells: {cells}",
+                  f"  Heaviside: {c['heaviside_nodes']} nodes, {c['heaviside_dofs']} dofs",
+                  f"  tip: {c['tip_nodes']} nodes ({c['tip_core_nodes']} core, {c['tip_blending_nodes']} "
+                  f"blending), {c['tip_dofs']} dofs"
+                  + (f"; {c['snapped_nodes']} node(s) snapped onto the crack" if c["snapped_nodes"] else "")]
+        for t, h, r, lim in zip(c["tips"], c["tip_element_size"], c["sif_radius"], c["sif_limited_by"]):
+            lines.append(f"  tip ({t[0]:.6g}, {t[1]:.6g}): element size {h:.4g}, SIF domains of radius "
+                         f"{0.5 * r:.4g}, {0.75 * r:.4g}, {r:.4g}" + (f" (limited by {lim})" if lim else ""))
+        if c["lip_pressure"] != 0.0:
+            lines.append(f"  lip pressure: {c['lip_pressure']}")
+    lines.append("quadrature:")
+    for q in summary["quadrature"]:
+        pts = "" if q["points"] is None else (f", {q['points']} points "
+                                              f"({q['points_per_cell'][0]}-{q['points_per_cell'][1]} per cell)")
+        lines.append(f"  {q['count']} {q['cells']}: {q['rule']}{pts}")
+    c = summary["contact"]
+    if c["law"] == "none":
+        lines.append("contact: none (traction-free lips), 0 multipliers")
+    else:
+        lines.append(f"contact: {c['law']}, {c['space']} space: {c['multipliers']} multipliers "
+                     f"({c['full_multipliers']} full, {c['p0_multipliers']} P0 in tip cells) on "
+                     f"{c['segments']} crack segments x {c['points_per_segment']} points")
+    return lines

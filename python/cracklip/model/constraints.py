@@ -1,0 +1,177 @@
+"""Dirichlet conditions on the model's dofs (standard and Heaviside), and the check
+that they fix the rigid motions."""
+from __future__ import annotations
+
+import inspect
+
+import numpy as np
+
+import dolfinx.fem
+import dolfinx.mesh
+
+from ..errors import BoundaryConditionError
+from ..scene.scene import Scene
+
+
+def _component_dofs(nodes: np.ndarray, component: int | None) -> np.ndarray:
+    comps = [0, 1] if component is None else [component]
+    return np.sort(np.concatenate([2 * nodes + c for c in comps])).astype(np.int32)
+
+
+def _accepts_side(f) -> bool:
+    try:
+        params = inspect.signature(f).parameters.values()
+    except (TypeError, ValueError):
+        return False
+    required = [p for p in params if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)
+                and p.default is p.empty]
+    return len(required) >= 2
+
+
+def compute_dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tuple[np.ndarray, np.ndarray, dict]:
+    """Constrained scalar dofs, their values (every group at factor 1) and
+    the values of each load group (Dirichlet.group; conditions of different
+    groups on one dof add up).
+
+    A value callable f(x) is continuous; f(x, side) may jump across a crack
+    (side (n,) = +1 / -1, the side of the crack nearest to each point). On a
+    tagged boundary the Heaviside dofs of the boundary's nodes are fixed too,
+    because their functions do not vanish between the nodes of a boundary
+    facet that the crack crosses: to 0 for a continuous value, to the jump
+    (f(x_i, -H_i) - f(x_i, H_i)) / (-2 H_i) otherwise. Tip dofs stay free.
+    A point condition fixes only the node's standard dofs. Conditions that
+    constrain the same dof (two sides sharing a corner node) must agree.
+    """
+    msh = scene.mesh.mesh
+    tdim = msh.topology.dim
+    msh.topology.create_connectivity(tdim - 1, tdim)
+    # Side of every node with respect to its nearest crack (+1 without cracks).
+    node_side = np.ones(x.shape[0], dtype=np.int8)
+    if geometries:
+        phis = np.stack([g.phi for g in geometries])
+        nearest = phis[np.argmin(np.abs(phis), axis=0), np.arange(x.shape[0])]
+        node_side = np.where(nearest >= 0.0, 1, -1).astype(np.int8)
+    # Per load group: the values of one group must agree where conditions
+    # meet; the groups' values add up (superposed loads).
+    values: dict[str, dict[int, float]] = {}
+    owner: dict[tuple[str, int], int] = {}
+    clashes: list[tuple[int, int, int, float, float]] = []
+
+    def prescribe(dofs: np.ndarray, vals: np.ndarray, k: int) -> None:
+        grp = scene.dirichlet[k].group
+        mine = values.setdefault(grp, {})
+        for dof, val in zip(dofs.tolist(), vals.tolist()):
+            old = mine.get(dof)
+            if old is not None and old != val:
+                clashes.append((dof, owner[grp, dof], k, old, val))
+            mine[dof] = val
+            owner[grp, dof] = k
+    for k_bc, bc in enumerate(scene.dirichlet):
+        is_point = isinstance(bc.where, (tuple, list, np.ndarray))
+        if is_point:
+            p = np.asarray(bc.where, dtype=float)
+            d = np.linalg.norm(x - p, axis=1)
+            node = int(np.argmin(d))
+            scale = float(np.ptp(x, axis=0).max())
+            if d[node] > 1e-8 * scale:
+                raise BoundaryConditionError(
+                    f"Dirichlet point {p.tolist()} is not a mesh node (nearest node "
+                    f"{x[node].tolist()} at distance {d[node]:.3g}); use a node or a boundary tag")
+            nodes = np.array([node], dtype=np.int32)
+        else:
+            facets = scene.mesh.facets(bc.where)
+            if facets.size == 0:
+                raise BoundaryConditionError(f"Dirichlet boundary {bc.where!r} has no facets")
+            nodes = dolfinx.fem.locate_dofs_topological(V, tdim - 1, facets)
+        comps = [0, 1] if bc.component is None else [bc.component]
+        with_side = callable(bc.value) and _accepts_side(bc.value)
+
+        def evaluate(points, sides):
+            if not callable(bc.value):
+                return np.full((len(points), len(comps)), float(bc.value))
+            out = np.asarray(bc.value(points, sides) if with_side else bc.value(points), dtype=float)
+            if out.size != len(points) * len(comps):
+                raise BoundaryConditionError(
+                    f"Dirichlet condition {k_bc} ({bc.where!r}): its value function returned shape "
+                    f"{out.shape} for {len(points)} points; it must return ({len(points)},) for one "
+                    f"component or ({len(points)}, 2) for both")
+            return out.reshape(len(points), len(comps))
+        v = evaluate(x[nodes], node_side[nodes])
+        if not np.all(np.isfinite(v)):
+            raise BoundaryConditionError(f"Dirichlet values on {bc.where!r} contain NaN or infinity")
+        for j, c in enumerate(comps):
+            prescribe(2 * nodes + c, v[:, j], k_bc)
+        if not is_point:
+            pseudo = np.flatnonzero(np.isin(layout.node, nodes) & (layout.kind == 0))
+            jump = np.zeros((len(pseudo), len(comps)))
+            if with_side and len(pseudo):
+                H = layout.node_side[pseudo].astype(float)
+                xp = x[layout.node[pseudo]]
+                jump = (evaluate(xp, -H.astype(np.int8)) - evaluate(xp, H.astype(np.int8))) / (-2.0 * H[:, None])
+            for j, c in enumerate(comps):
+                prescribe(2 * (layout.num_std_nodes + pseudo) + c, jump[:, j], k_bc)
+    for grp, mine in values.items():
+        _check_clashes(scene, x, layout, mine, [c for c in clashes if scene.dirichlet[c[1]].group == grp])
+    dofs = np.array(sorted(set().union(*values.values())), dtype=np.int32)
+    group_values = {grp: np.array([mine.get(d, 0.0) for d in dofs.tolist()], dtype=np.float64)
+                    for grp, mine in values.items()}
+    return dofs, sum(group_values.values(), np.zeros(len(dofs))), group_values
+
+
+def _check_clashes(scene: Scene, x: np.ndarray, layout, values: dict, clashes: list) -> None:
+    """Raise if two Dirichlet conditions prescribe different values to a dof
+    (beyond round-off: 1e-10 relative and 1e-12 of the largest value)."""
+    if not clashes:
+        return
+    vmax = max(abs(v) for v in values.values())
+    for dof, k0, k1, a, b in clashes:
+        if abs(a - b) <= 1e-10 * max(abs(a), abs(b)) or abs(a - b) <= 1e-12 * vmax:
+            continue
+        node, comp = divmod(dof, 2)
+        what = f"u_{'xy'[comp]}"
+        if node >= layout.num_std_nodes:
+            node = int(layout.node[node - layout.num_std_nodes])
+            what = f"the jump (Heaviside dof) of u_{'xy'[comp]}"
+        w0, w1 = scene.dirichlet[k0].where, scene.dirichlet[k1].where
+        raise BoundaryConditionError(
+            f"Dirichlet conditions {k0} ({w0!r}) and {k1} ({w1!r}) prescribe different values to {what} "
+            f"at node {x[node].tolist()}: {a:.6g} and {b:.6g}; conditions that share a node (two sides "
+            "meeting at a corner, a point on a tagged side) must prescribe the same value there")
+
+
+def rigid_motion_rank(x: np.ndarray, nodes: np.ndarray, comps: np.ndarray) -> tuple[int, list[str]]:
+    """How many of the three rigid motions of the plane the constraints of
+    components `comps` (0 x, 1 y) at nodes fix, and the names of those left free."""
+    R = np.zeros((nodes.size, 3))
+    R[comps == 0, 0] = 1.0
+    R[comps == 1, 1] = 1.0
+    # rotation about the centroid: u = (-(y - yc), x - xc)
+    c = x.mean(axis=0)
+    R[comps == 0, 2] = -(x[nodes[comps == 0], 1] - c[1])
+    R[comps == 1, 2] = x[nodes[comps == 1], 0] - c[0]
+    scale = float(np.ptp(x, axis=0).max()) or 1.0
+    R[:, 2] /= scale
+    s = np.linalg.svd(R, compute_uv=False) if R.shape[0] else np.zeros(0)
+    rank = int(np.sum(s > 1e-10 * (s.max() if s.size else 1.0)))
+    free = []
+    if rank < 3:
+        if not np.any(comps == 0):
+            free.append("translation in x")
+        if not np.any(comps == 1):
+            free.append("translation in y")
+        if not free:
+            free.append("rotation")
+    return rank, free
+
+
+def check_rigid_motion(x: np.ndarray, bc_dofs: np.ndarray) -> None:
+    """Raise unless the constraints remove the three rigid motions of the plane.
+
+    (A crack that cuts the part into pieces is checked piece by piece:
+    checks.check_pieces.)
+    """
+    rank, free = rigid_motion_rank(x, bc_dofs // 2, bc_dofs % 2)
+    if rank < 3:
+        raise BoundaryConditionError(
+            f"the Dirichlet conditions leave rigid motion free ({', '.join(free)}); "
+            f"{bc_dofs.size} constrained dofs fix only {rank} of the 3 rigid motions")

@@ -1,0 +1,246 @@
+"""The load vector of a model: every load of a scene against every basis function.
+
+- ``assemble_load(model)``: boundary tractions (constant, f(x), or sigma n
+  of a stress field), point forces, a body force, an initial stress and
+  pressures on the crack lips, on standard and enriched dofs.
+- ``boundary_normals(mesh, where)`` gives the outward unit normal of a tagged
+  boundary at any point on it (the normal of the nearest boundary facet), so
+  that a pressure p becomes the traction -p n and a stress field sigma(x)
+  the traction sigma(x) n.
+- ``assemble_body_force(model, force)`` and ``assemble_initial_stress(model,
+  field)``: int f . phi_j and -int sigma_0 : eps(phi_j) over the cracked
+  part. Standard dofs: per cell, exactly for a linear sigma_0 (a 6-point
+  degree-4 rule for a callable); enriched dofs: the stiffness's quadrature
+  in the enriched cells, at least degree 4 (C++ assemble_cell_load). The lips need no term of
+  their own: the enriched functions jump there, so -int sigma_0 : eps(phi_j)
+  already holds the lip traction sigma_0 n.
+- ``lip_pressure(crack, x)`` and ``assemble_lip_pressure(model, crack)``: a
+  pressure p on both lips, the load int p [[phi_j]] . n ds.
+"""
+from __future__ import annotations
+
+import typing
+
+import numpy as np
+
+from .. import _cracklip
+from ..errors import InputError
+from ..scene.stress_field import LinearStress, evaluate_stress, tensor_to_voigt
+from .boundary import boundary_normals
+from .tip_regions import LIP_POINTS
+
+
+def _traction_values(model, tr, points: np.ndarray) -> np.ndarray:
+    """t (n, 2) of a Traction at boundary points."""
+    if tr.stress is not None:
+        sig = evaluate_stress(tr.stress, points, f"traction on {tr.where!r}")
+        normals = _normals(model, tr.where)
+        t = np.einsum("nij,nj->ni", sig, normals(points))
+    elif callable(tr.value):
+        t = np.asarray(tr.value(points), dtype=float)
+        if t.shape != (len(points), 2):
+            raise InputError(f"traction on {tr.where!r}: its value function returned shape {t.shape} "
+                             f"for points of shape {points.shape}; it must return (n, 2) (t_x, t_y)")
+    else:
+        t = np.broadcast_to(np.asarray(tr.value, dtype=float).reshape(1, 2), (len(points), 2))
+    if not np.all(np.isfinite(t)):
+        raise InputError(f"traction on {tr.where!r} evaluates to NaN or infinity")
+    return t
+
+
+def _normals(model, where):
+    cache = model.__dict__.setdefault("_normals_cache", {})
+    if where not in cache:
+        cache[where] = boundary_normals(model.scene.mesh, where)
+    return cache[where]
+
+
+def assemble_tractions(model, group: str | None = None) -> np.ndarray:
+    """int t . phi_j ds over the loaded boundaries (one facet quadrature for
+    standard and enriched dofs, split where a crack crosses a facet); only
+    the tractions of `group` if given."""
+    scene = model.scene
+    b = np.zeros(model.num_dofs)
+    tractions = [t for t in scene.tractions if group is None or t.group == group]
+    if not tractions:
+        return b
+    msh = scene.mesh.mesh
+    tdim = msh.topology.dim
+    msh.topology.create_connectivity(tdim - 1, tdim)
+    msh.topology.create_connectivity(tdim, tdim - 1)
+    f2c = msh.topology.connectivity(tdim - 1, tdim)
+    c2f = msh.topology.connectivity(tdim, tdim - 1).array.reshape(-1, 3)
+    for tr in tractions:
+        facets = scene.mesh.facets(tr.where)
+        if facets.size == 0:
+            raise InputError(f"traction boundary {tr.where!r} has no facets")
+        fcells = f2c.array[f2c.offsets[facets]].astype(np.int32)
+        flocal = np.argmax(c2f[fcells] == facets[:, None], axis=1).astype(np.int32)
+        fb = _cracklip.compute_facet_basis(model.x, model.cells, model.layout, model.geometries,
+                                           fcells, flocal, scene.options.facet_degree)
+        t = _traction_values(model, tr, fb["points"])
+        q, dof, val = fb["entry_point"], fb["entry_dof"], fb["entry_value"]
+        np.add.at(b, dof, fb["weights"][q] * np.einsum("ij,ij->i", val, t[q]))
+    return b
+
+
+def assemble_point_forces(model, group: str | None = None) -> np.ndarray:
+    """Each force on the standard dofs of the node nearest to its point (every
+    enriched function vanishes at the nodes: the enrichment is shifted);
+    only the forces of `group` if given."""
+    b = np.zeros(model.num_dofs)
+    if not model.scene.point_forces:
+        return b
+    scale = float(np.ptp(model.x, axis=0).max())
+    for k, pf in enumerate(model.scene.point_forces):
+        if group is not None and pf.group != group:
+            continue
+        d = np.linalg.norm(model.x - np.asarray(pf.point), axis=1)
+        node = int(np.argmin(d))
+        cells = model.cells[np.any(model.cells == node, axis=1)]
+        edge = float(np.linalg.norm(model.x[cells[:, [1, 2, 0]]] - model.x[cells], axis=2).max())
+        if d[node] > max(edge, 1e-12 * scale):
+            raise InputError(f"point force {k} at {list(pf.point)}: the nearest mesh node {model.x[node].tolist()} "
+                             f"is {d[node]:.3g} away, more than an element ({edge:.3g}); put the point on the part")
+        b[2 * node:2 * node + 2] += pf.value
+    return b
+
+
+def _cell_rule(degree: int) -> tuple[np.ndarray, np.ndarray]:
+    """Barycentric points (k, 3) and weights (k,) summing to 1 on a triangle."""
+    if degree <= 1:
+        return np.full((1, 3), 1.0 / 3.0), np.ones(1)
+    # Strang-Fix / Dunavant 6-point rule, degree 4.
+    a, b = 0.445948490915965, 0.091576213509771
+    wa, wb = 0.223381589678011, 0.109951743655322
+    pts = np.array([[a, a, 1 - 2 * a], [a, 1 - 2 * a, a], [1 - 2 * a, a, a],
+                    [b, b, 1 - 2 * b], [b, 1 - 2 * b, b], [1 - 2 * b, b, b]])
+    return pts, np.array([wa, wa, wa, wb, wb, wb])
+
+
+#: Gauss degree of the cell loads in enriched cells without tip functions:
+#: exact for a body force and an initial stress up to degree 4 (a P1 x
+#: Heaviside gradient is piecewise constant).
+LOAD_DEGREE = 4
+
+
+def _enriched_points(model) -> dict:
+    """Quadrature points of the enriched cells (cell, ref, x, weight, side):
+    the stiffness's rules, at least degree LOAD_DEGREE."""
+    cache = model.__dict__.get("_enriched_points_cache")
+    if cache is None:
+        q = model.scene.options.quadrature_options()
+        q.degree = max(q.degree, LOAD_DEGREE)
+        cache = _cracklip.compute_field_points(model.x, model.cells, model.layout, model.geometries,
+                                               np.zeros(model.num_dofs), np.asarray(model.layout.cells, dtype=np.int32), q)
+        model._enriched_points_cache = cache
+    return cache
+
+
+def _cell_loads(model, force: np.ndarray | None, stress_field) -> np.ndarray:
+    """int f . phi_j - int sigma_0 : eps(phi_j) for every dof (standard:
+    per cell in numpy; enriched: C++ on the enriched cells' quadrature)."""
+    b = np.zeros(model.num_dofs)
+    xv = model.x[model.cells]
+    e1, e2 = xv[:, 1] - xv[:, 0], xv[:, 2] - xv[:, 0]
+    det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+    area = 0.5 * np.abs(det)
+    if force is not None:
+        for d in (0, 1):
+            np.add.at(b, 2 * model.cells.ravel() + d, np.repeat(force[d] * area / 3.0, 3))
+    if stress_field is not None:
+        bary, w = _cell_rule(1 if isinstance(stress_field, LinearStress) else 4)
+        mean = np.zeros((len(area), 3))
+        for k in range(len(w)):
+            pts = np.einsum("a,cai->ci", bary[k], xv)
+            mean += w[k] * tensor_to_voigt(evaluate_stress(stress_field, pts, "initial stress"))
+        # grad N_a per cell: rows of J^-T.
+        inv = np.stack([np.stack([e2[:, 1], -e2[:, 0]], axis=1), np.stack([-e1[:, 1], e1[:, 0]], axis=1)],
+                       axis=1) / det[:, None, None]  # (c, 2 (xi, eta), 2 (x, y))
+        grads = np.stack([-inv[:, 0] - inv[:, 1], inv[:, 0], inv[:, 1]], axis=1)  # (c, 3, 2)
+        # -int sigma : eps(N_a e_d) = -area (sigma_dx dN_a/dx + sigma_dy dN_a/dy)
+        sxx, syy, sxy = mean[:, 0], mean[:, 1], mean[:, 2]
+        fx = -(sxx[:, None] * grads[:, :, 0] + sxy[:, None] * grads[:, :, 1]) * area[:, None]
+        fy = -(sxy[:, None] * grads[:, :, 0] + syy[:, None] * grads[:, :, 1]) * area[:, None]
+        np.add.at(b, 2 * model.cells.ravel(), fx.ravel())
+        np.add.at(b, 2 * model.cells.ravel() + 1, fy.ravel())
+    if model.layout.num_enriched == 0:
+        return b
+    fp = _enriched_points(model)
+    n = len(fp["weight"])
+    f_at = np.zeros((n, 2)) if force is None else np.broadcast_to(force, (n, 2)).copy()
+    s_at = np.zeros((n, 3))
+    if stress_field is not None:
+        s_at = tensor_to_voigt(evaluate_stress(stress_field, fp["x"], "initial stress"))
+    b += _cracklip.assemble_cell_load(model.x, model.cells, model.layout, model.geometries, fp["cell"],
+                                      fp["ref"], fp["side"], fp["weight"], f_at, s_at)
+    return b
+
+
+def assemble_body_force(model, force: typing.Sequence[float]) -> np.ndarray:
+    """Load vector (num_dofs,) of a constant body force f: int f . phi_j dx for every dof j."""
+    f = np.asarray(force, dtype=float).reshape(2)
+    if not np.all(np.isfinite(f)):
+        raise InputError(f"body force {f.tolist()} contains NaN or infinity")
+    if not np.any(f):
+        return np.zeros(model.num_dofs)
+    return _cell_loads(model, f, None)
+
+
+def assemble_initial_stress(model, field) -> np.ndarray:
+    """Load vector (num_dofs,) of an initial stress: -int sigma_0 : eps(phi_j) dx."""
+    return _cell_loads(model, None, field)
+
+
+def lip_pressure(crack, x: np.ndarray) -> np.ndarray:
+    """The crack's lip pressure (n,) at points (n, 2) (> 0 pushes the lips apart)."""
+    p = crack.pressure
+    if callable(p):
+        v = np.asarray(p(np.asarray(x, dtype=float).reshape(-1, 2)), dtype=float).reshape(-1)
+        if v.shape != (len(x),) or not np.all(np.isfinite(v)):
+            raise InputError(f"{crack.name}: the lip pressure function must return ({len(x)},) finite "
+                             f"values for points ({len(x)}, 2), got shape {v.shape}")
+        return v
+    return np.full(len(x), float(p))
+
+
+def assemble_lip_pressure(model, crack: int) -> np.ndarray:
+    """int p [[phi_j]] . n ds over a crack's segments: the pressure p pushes
+    the + lip along n (into the + side) and the - lip along -n."""
+    pts = _cracklip.compute_crack_points(model.x, model.cells, model.geometries[crack], LIP_POINTS)
+    t = lip_pressure(model.cracks[crack].crack, pts["x"])[:, None] * pts["normal"]
+    return _cracklip.assemble_lip_load(model.x, model.cells, model.layout, model.geometries, crack,
+                                       pts["cell"], pts["ref"], pts["weight"], t)
+
+
+def assemble_loads(model) -> dict[str, np.ndarray]:
+    """The load vector (num_dofs,) of each load group (Scene.load_path scales them)."""
+    scene = model.scene
+    force = None if scene.body_force is None else np.asarray(scene.body_force, dtype=float).reshape(2)
+    if force is not None and not np.all(np.isfinite(force)):
+        raise InputError(f"body force {force.tolist()} contains NaN or infinity")
+    if force is not None and not np.any(force):
+        force = None
+    out: dict[str, np.ndarray] = {}
+
+    def add(group: str, b: np.ndarray) -> None:
+        out[group] = out[group] + b if group in out else b
+    for group in sorted({t.group for t in scene.tractions} | {p.group for p in scene.point_forces}):
+        add(group, assemble_tractions(model, group) + assemble_point_forces(model, group))
+    if force is not None or scene.initial_stress is not None:
+        if force is not None and scene.initial_stress is not None and scene.body_force_group != scene.initial_stress_group:
+            add(scene.body_force_group, _cell_loads(model, force, None))
+            add(scene.initial_stress_group, _cell_loads(model, None, scene.initial_stress))
+        else:
+            group = scene.body_force_group if force is not None else scene.initial_stress_group
+            add(group, _cell_loads(model, force, scene.initial_stress))
+    for ci, cm in enumerate(model.cracks):
+        if callable(cm.crack.pressure) or cm.crack.pressure != 0.0:
+            add(cm.crack.pressure_group, assemble_lip_pressure(model, ci))
+    return out
+
+
+def assemble_load(model) -> np.ndarray:
+    """The load vector (num_dofs,) of every load of the model's scene, each
+    group at factor 1."""
+    return sum(assemble_loads(model).values(), np.zeros(model.num_dofs))

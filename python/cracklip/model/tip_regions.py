@@ -1,0 +1,232 @@
+"""Room around each crack tip on the mesh: element size at the tip, what a domain
+must stay clear of, and the SIF domains each tip has room for.
+
+For every tip:
+
+- the element size at the tip (the mean edge of the cells around the node
+  nearest to it);
+- what a domain must stay clear of: the part's boundary (holes
+  included), the other tips, the other cracks, and the crack's own polyline
+  beyond the straight run that ends at the tip (a kink of more than
+  KINK_DEG degrees: the auxiliary fields assume a straight crack);
+- the largest radius whose domain (every cell with a node inside the
+  radius) stays clear of all of that, and the requested radius
+  (Options.sif_radius, default DEFAULT_ELEMENTS element sizes) clipped to it;
+  K is computed on DOMAIN_FRACTIONS of it (cracklip.fracture.sif).
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from .. import _cracklip
+from ..errors import InputError
+from .boundary import boundary_segments
+
+
+#: Default radius of the largest domain, in element sizes at the tip.
+DEFAULT_ELEMENTS = 6.0
+
+
+#: The domains' radii as fractions of the largest.
+DOMAIN_FRACTIONS = (0.5, 0.75, 1.0)
+
+
+#: A turn of the crack polyline by more than this (degrees) is a kink that a
+#: domain must not hold.
+KINK_DEG = 1.0
+
+
+#: Gauss points per crack segment for the lip term.
+LIP_POINTS = 8
+
+
+@dataclasses.dataclass
+class TipDomain:
+    """The SIF domains of one tip.
+
+    Attributes:
+        crack, tip: crack index and tip index within the crack.
+        position, direction: the tip and its unit direction e1 (2,).
+        orientation: +1 if e2 points to the crack's + side (see CrackGeometry).
+        element_size: mean edge length of the cells around the node nearest to the tip.
+        clearance: distance from the tip to the nearest thing a domain must avoid.
+        obstacle: what that is (e.g. "the boundary", "tip 1 of crack 'a'").
+        admissible: the largest radius whose domain stays clear of it.
+        radius: the largest domain's radius used.
+        radii: the radii of the domains, increasing.
+        requested: Options.sif_radius (or a caller's radius), None for the default.
+        clear: False when no domain of at least one element fits (K is then
+            computed on the smallest domain around the tip and is not reliable).
+        warnings: messages about this tip's domains.
+    """
+    crack: int
+    tip: int
+    position: np.ndarray
+    direction: np.ndarray
+    orientation: int
+    element_size: float
+    clearance: float
+    obstacle: str
+    admissible: float
+    radius: float
+    radii: tuple[float, ...]
+    requested: float | None
+    clear: bool
+    warnings: list[str] = dataclasses.field(default_factory=list)
+
+    @property
+    def limited(self) -> bool:
+        """Whether the obstacle made the domain smaller than asked."""
+        wanted = self.requested if self.requested else DEFAULT_ELEMENTS * self.element_size
+        return self.radius < wanted * (1.0 - 1e-12)
+
+
+def segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Distances from p (2,) to segments a-b (m, 2), (m, 2)."""
+    d = b - a
+    dd = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
+    t = np.clip(np.einsum("ij,ij->i", p - a, d) / dd, 0.0, 1.0)
+    return np.linalg.norm(a + t[:, None] * d - p, axis=1)
+
+
+def straight_runs(points: np.ndarray, kink_deg: float = KINK_DEG) -> list[np.ndarray]:
+    """The polyline split at its kinks (turns above kink_deg): a list of
+    vertex-index arrays, each a straight run (consecutive runs share a vertex)."""
+    d = np.diff(points, axis=0)
+    ang = np.arctan2(d[:, 1], d[:, 0])
+    turn = np.abs((np.diff(ang) + np.pi) % (2 * np.pi) - np.pi)
+    kinks = np.flatnonzero(turn > np.radians(kink_deg)) + 1  # vertex indices
+    bounds = [0, *kinks.tolist(), len(points) - 1]
+    return [np.arange(bounds[i], bounds[i + 1] + 1) for i in range(len(bounds) - 1)]
+
+
+def model_boundary(model) -> tuple[np.ndarray, np.ndarray]:
+    seg = getattr(model, "_boundary_cache", None)
+    if seg is None:
+        seg = boundary_segments(model.scene.mesh)
+        model._boundary_cache = seg
+    return seg
+
+
+def _obstacles(model, crack: int, tip: int) -> list[tuple[float, str]]:
+    """(distance, description) of everything a domain at this tip must avoid."""
+    g = model.geometries[crack]
+    p = np.asarray(g.tips)[tip]
+    out: list[tuple[float, str]] = []
+    a, b = model_boundary(model)
+    out.append((float(segment_distance(p, a, b).min()), "the boundary of the part"))
+    names = [cm.crack.name for cm in model.cracks]
+    for ci, cm in enumerate(model.cracks):
+        tips = np.asarray(cm.geometry.tips).reshape(-1, 2)
+        for j, q in enumerate(tips):
+            if ci == crack and j == tip:
+                continue
+            out.append((float(np.linalg.norm(q - p)), f"tip {j} of crack {names[ci]!r} at "
+                                                       f"({q[0]:.6g}, {q[1]:.6g})"))
+        pts = cm.crack.points
+        if ci != crack:
+            out.append((float(segment_distance(p, pts[:-1], pts[1:]).min()), f"crack {names[ci]!r}"))
+            continue
+        # The crack itself beyond the straight run ending at this tip.
+        end = 0 if np.linalg.norm(pts[0] - p) <= np.linalg.norm(pts[-1] - p) else len(pts) - 1
+        runs = straight_runs(pts)
+        run = runs[0] if end == 0 else runs[-1]
+        rest = np.setdiff1d(np.arange(len(pts) - 1), run[:-1])  # segment indices off the run
+        if rest.size:
+            kink = pts[run[-1]] if end == 0 else pts[run[0]]
+            d = float(segment_distance(p, pts[rest], pts[rest + 1]).min())
+            out.append((d, f"the kink of crack {names[ci]!r} at ({kink[0]:.6g}, {kink[1]:.6g})"))
+    return out
+
+
+def node_distances(model, p: np.ndarray) -> np.ndarray:
+    return np.linalg.norm(model.x - p, axis=1)
+
+
+def tip_element_size(model, p: np.ndarray, dist: np.ndarray | None = None) -> float:
+    """Mean edge length of the cells around the node nearest to point p."""
+    dist = node_distances(model, p) if dist is None else dist
+    node = int(np.argmin(dist))
+    cells = model.cells[np.any(model.cells == node, axis=1)]
+    e = model.x[cells[:, [1, 2, 0]]] - model.x[cells]
+    return float(np.linalg.norm(e, axis=2).mean())
+
+
+def _admissible(model, dist: np.ndarray, clearance: float) -> float:
+    """Largest radius r such that every cell with a node closer than r to the
+    tip has all its nodes closer than `clearance` (the domain's cells stay
+    clear of the obstacle)."""
+    dc = dist[model.cells]
+    dmin, dmax = dc.min(axis=1), dc.max(axis=1)
+    near = dmin < clearance
+    dmin, dmax = dmin[near], dmax[near]
+    order = np.argsort(dmin, kind="stable")
+    reach = np.maximum.accumulate(dmax[order])
+    bad = np.flatnonzero(reach >= clearance)
+    return float(dmin[order][bad[0]]) if bad.size else float(clearance)
+
+
+def tip_domains(model, crack: int, requested: float | None = None) -> list[TipDomain]:
+    """The SIF domains of every tip of a crack. requested: the largest
+    domain's radius (None or 0: Options.sif_radius, else DEFAULT_ELEMENTS
+    element sizes)."""
+    if requested is not None and not (isinstance(requested, (int, float, np.floating))
+                                      and math.isfinite(requested) and requested > 0.0):
+        raise InputError(f"the SIF domain radius must be a finite number > 0, got {requested!r}")
+    if requested is None:
+        requested = model.scene.options.sif_radius or None
+    g = model.geometries[crack]
+    tips = np.asarray(g.tips).reshape(-1, 2)
+    name = model.cracks[crack].crack.name
+    out = []
+    for j, p in enumerate(tips):
+        dist = node_distances(model, p)
+        h = tip_element_size(model, p, dist)
+        obstacles = _obstacles(model, crack, j)
+        clearance, obstacle = min(obstacles, key=lambda o: o[0])
+        admissible = _admissible(model, dist, clearance)
+        wanted = float(requested) if requested else DEFAULT_ELEMENTS * h
+        where = f"tip {j} of crack {name!r} at ({p[0]:.6g}, {p[1]:.6g})"
+        warnings = []
+        # The smallest usable radius: one element, and the smallest domain
+        # (DOMAIN_FRACTIONS[0] of it) must hold the node nearest to the tip.
+        least = max(h, 1.01 * float(dist.min()) / DOMAIN_FRACTIONS[0])
+        clear = admissible >= least
+        if not clear:
+            radius = least
+            warnings.append(
+                f"{where}: no SIF domain of at least one element ({h:.3g}) fits between the tip and "
+                f"{obstacle} ({clearance:.3g} away); K there is computed on a domain of radius "
+                f"{radius:.3g} that reaches it and is NOT reliable: refine the mesh at the tip "
+                "(mesh.tip_h) or move the crack")
+        elif wanted < least:
+            radius = least
+            warnings.append(f"{where}: sif_radius {wanted:.3g} is below one element ({h:.3g}) there; K uses "
+                            f"domains up to radius {radius:.3g}")
+        else:
+            radius = min(wanted, admissible)
+            if radius < wanted * (1.0 - 1e-12):
+                asked = f"sif_radius {wanted:.4g}" if requested else \
+                    f"the default SIF domain ({DEFAULT_ELEMENTS:g} elements, {wanted:.3g})"
+                warnings.append(
+                    f"{where}: {asked} would reach {obstacle} ({clearance:.3g} away); K uses domains up to "
+                    f"radius {radius:.3g} ({radius / h:.1f} elements of {h:.3g})"
+                    + (": fewer than 3 elements, refine the mesh at the tip (mesh.tip_h)" if radius < 3 * h else ""))
+        radii = tuple(float(f * radius) for f in DOMAIN_FRACTIONS)
+        out.append(TipDomain(crack, j, p.copy(), np.asarray(g.tip_tangents).reshape(-1, 2)[j].copy(),
+                             int(np.asarray(g.tip_orientation)[j]), h, clearance, obstacle, admissible,
+                             float(radius), radii, float(requested) if requested else None, clear,
+                             warnings))
+    return out
+
+
+def lip_points(model, crack: int):
+    cache = getattr(model, "_lip_points_cache", None)
+    if cache is None:
+        cache = model._lip_points_cache = {}
+    if crack not in cache:
+        cache[crack] = _cracklip.compute_crack_points(model.x, model.cells, model.geometries[crack], LIP_POINTS)
+    return cache[crack]

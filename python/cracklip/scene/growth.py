@@ -1,0 +1,112 @@
+"""Growth settings as the user gives them (cracklip grow, the [growth] table)."""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from ..errors import InputError
+
+
+CRITERIA = ("max_hoop", "max_energy_release")
+
+
+@dataclasses.dataclass
+class Growth:
+    """Growth settings.
+
+    Attributes:
+        criterion: "max_hoop" (maximum hoop stress, Erdogan-Sih) or
+            "max_energy_release" (the kink maximising k1^2 + k2^2 of the
+            first-order local stress intensity factors).
+        da: the increment of a step (of the fastest tip in fatigue), in
+            length units; 0 takes 3 element sizes at the first tip.
+        steps: the number of increments.
+        paris_C: C of the Paris law da/dN = C (Delta K)^m; with paris_m the
+            growth is fatigue (cycles integrated) and needs a load cycle.
+        paris_m: m of the Paris law (> 0).
+        threshold: Delta K below which a tip does not grow (fatigue), or
+            K_eq below which it does not (fixed increments; 0: always grows).
+        walker_gamma: Walker's R-ratio form da/dN = C (Delta K / (1 -
+            R)^(1 - gamma))^m with R = K_min / K_max; 1: plain Paris.
+        K_Ic: fracture toughness: K_eq at or above it is final failure
+            (unset: no check).
+        cycle_max: factors per load group at the maximum of the load cycle
+            (unset: every group at 1).
+        cycle_min: factors per load group at the minimum of the load cycle
+            (unset: R times cycle_max).
+        R: load ratio min / max of a proportional cycle (when cycle_min is
+            unset).
+        max_length: stop when a crack's length in the part reaches this
+            (unset: no limit).
+        max_kink_change: stop when a tip's kink turns by more than this
+            (degrees) between steps (instability; the first kink, off the
+            initial crack, is not compared).
+        corrections: corrector solves per step (0: the explicit scheme):
+            each increment is turned about its start until the kink wanted
+            at its end is below corrector_tolerance (local symmetry at the
+            end of the increment); steadies paths whose explicit kinks
+            zig-zag (strong compression along the crack, T << 0).
+        corrector_tolerance: the kink (degrees) below which an increment
+            is not corrected.
+    """
+    criterion: str = "max_hoop"
+    da: float = 0.0
+    steps: int = 10
+    paris_C: float | None = None
+    paris_m: float | None = None
+    threshold: float = 0.0
+    walker_gamma: float = 1.0
+    K_Ic: float | None = None
+    cycle_max: dict[str, float] | None = None
+    cycle_min: dict[str, float] | None = None
+    R: float | None = None
+    max_length: float | None = None
+    max_kink_change: float = 60.0
+    corrections: int = 0
+    corrector_tolerance: float = 1.0
+
+    def __post_init__(self):
+        def positive(name, v, allow_none=False, allow_zero=False):
+            if v is None and allow_none:
+                return
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or \
+                    v < 0.0 or (v == 0.0 and not allow_zero):
+                raise InputError(f"growth.{name} must be a {'non-negative' if allow_zero else 'positive'} "
+                                 f"finite number, got {v!r}")
+        if self.criterion not in CRITERIA:
+            raise InputError(f"growth.criterion must be one of {CRITERIA}, got {self.criterion!r}")
+        positive("da", self.da, allow_zero=True)
+        if isinstance(self.steps, bool) or not isinstance(self.steps, int) or self.steps < 1:
+            raise InputError(f"growth.steps must be an integer >= 1, got {self.steps!r}")
+        if isinstance(self.corrections, bool) or not isinstance(self.corrections, int) or self.corrections < 0:
+            raise InputError(f"growth.corrections must be an integer >= 0, got {self.corrections!r}")
+        positive("corrector_tolerance", self.corrector_tolerance)
+        positive("threshold", self.threshold, allow_zero=True)
+        positive("K_Ic", self.K_Ic, allow_none=True)
+        positive("max_length", self.max_length, allow_none=True)
+        positive("max_kink_change", self.max_kink_change)
+        positive("walker_gamma", self.walker_gamma)
+        if (self.paris_C is None) != (self.paris_m is None):
+            raise InputError("growth.paris_C and growth.paris_m come together (da/dN = C (Delta K)^m)")
+        if self.paris_C is not None:
+            positive("paris_C", self.paris_C)
+            positive("paris_m", self.paris_m)
+            if self.cycle_min is None and self.R is None:
+                raise InputError("fatigue growth (paris_C, paris_m) needs a load cycle: growth.cycle_min "
+                                 "(factors at the minimum load) or growth.R (min = R max)")
+        if self.R is not None and not (isinstance(self.R, (int, float)) and math.isfinite(self.R) and self.R < 1.0):
+            raise InputError(f"growth.R (the load ratio min / max) must be a finite number below 1, got {self.R!r}")
+        for name in ("cycle_max", "cycle_min"):
+            v = getattr(self, name)
+            if v is not None and (not isinstance(v, dict) or not v or not all(
+                    isinstance(f, (int, float)) and not isinstance(f, bool) and math.isfinite(f) for f in v.values())):
+                raise InputError(f"growth.{name} must be a table of load group = factor, got {v!r}")
+        if self.cycle_max is not None and self.cycle_min is not None:
+            bad = [g for g in self.cycle_max if self.cycle_min.get(g, 0.0) > self.cycle_max[g]]
+            if bad:
+                raise InputError(f"growth.cycle_min is above growth.cycle_max for group(s) {bad}: the load cycle "
+                                 "goes from the minimum to the maximum load")
+
+    @property
+    def fatigue(self) -> bool:
+        return self.paris_C is not None

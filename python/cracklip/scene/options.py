@@ -1,0 +1,161 @@
+"""Numerical options of a solve: enrichment, quadrature, contact, SIF domains, solver."""
+from __future__ import annotations
+
+import dataclasses
+import math
+import numbers
+
+from ..errors import InputError
+
+
+ENRICHMENTS = ("none", "scalar", "vector")
+
+
+#: Integer options and their largest accepted value (quadrature degrees and
+#: point counts beyond these cost time without adding accuracy).
+INTEGER_OPTIONS = {"quadrature_degree": 60, "degree": 60, "facet_degree": 60, "tip_radial": 60,
+                   "tip_angular": 60, "contact_points": 60, "max_active_set_iterations": 10000,
+                   "load_steps": 10000}
+
+
+TIP_QUADRATURES = ("collapsed", "gauss")
+
+
+SOLVERS = ("auto", "direct", "iterative")
+
+
+@dataclasses.dataclass
+class Options:
+    """Numerical options.
+
+    Attributes:
+        enrichment: crack-tip enrichment: "vector" (the two Williams fields,
+            2 dofs per node), "scalar" (4 branch functions x 2 components, 8
+            dofs per node) or "none" (Heaviside only; the crack then ends at
+            the edge of the tip cell).
+        radius: geometric enrichment radius: nodes within it of a tip get tip
+            dofs. 0 enriches only the nodes of the cell holding the tip.
+        blending: "corrected" (tip functions times the ramp of the enriched
+            nodes' partition of unity, also on the blending cells' nodes:
+            Fries' corrected X-FEM, optimal convergence) or "standard".
+        quadrature: rule where tip functions live: "collapsed" (quasi-polar
+            fan from the tip, exact for the 1/r singularity) or "gauss" (the
+            paper's plain ((p + 3) / 2)^2-point rule on sub-triangles).
+        quadrature_degree: p of the "gauss" rule.
+        tip_radial, tip_angular, tip_max_angle: the collapsed rule's points
+            along and across each fan triangle, and its largest apex angle.
+        degree: Gauss degree in cells without tip functions (1 is exact for
+            P1 x Heaviside).
+        contact: crack-lip contact: "none" (traction-free lips), "bilateral"
+            (normal gap held at 0, lips slide freely) or "unilateral" (gap >= 0,
+            pressure >= 0, complementarity; primal-dual active set).
+        multipliers: "stable" (P1-, Bechet-Moes-Wohlmuth, P0 in the tip
+            cell) or "naive" (P1 on every node of the cut cells).
+        contact_points: Gauss points per crack segment (tau^2 toward a tip).
+        active_set_start: "closed" or "open" initial active set.
+        max_active_set_iterations: active-set iterations before giving up (a set
+            that comes back stops at once as a cycle).
+        snap_tol: a node closer to a crack (or tip line) than snap_tol times
+            its shortest edge is moved onto it (level set set to 0).
+        facet_degree: degree of the rule for tractions on boundary facets.
+        residual_tol: largest accepted relative residual of the linear solve.
+        rescale: "none" (the solver still Jacobi-scales internally) or
+            "nodal": every node with enriched dofs has its block of standard
+            and enriched dofs orthonormalised in the energy (Cholesky), other
+            dofs Jacobi-scaled; same answer, a better conditioned matrix
+            (Solution.condition then reports the rescaled matrix).
+        sif_radius: radius of the largest SIF interaction-integral domain at
+            every tip; K is also computed on domains of 1/2 and 3/4 of it,
+            whose spread is reported. 0 chooses it per tip: 6 element sizes
+            at that tip. Either way it is clipped to stay inside the part and
+            away from other tips, other cracks, kinks of the crack and holes
+            (a warning says so).
+        friction: Coulomb friction coefficient mu of the crack lips (0:
+            frictionless); needs contact "bilateral" or "unilateral". Each
+            contact multiplier is then open, stick or slip (semi-smooth
+            Newton over the three states, cracklip.contact.friction).
+        load_steps: increments per step of the load path (Scene.load_path);
+            friction is path-dependent, so a leg in several increments
+            follows its slip history more closely.
+        solver: linear solver: "direct" (MUMPS LDL^T), "iterative" (AMG in a
+            phantom-node basis, a direct solve of the crack band; same
+            checked accuracy) or "auto" (chosen by size and enriched
+            fraction as measured: cracklip.solvers.choose_solver).
+    """
+    enrichment: str = "vector"
+    radius: float = 0.0
+    blending: str = "corrected"
+    quadrature: str = "collapsed"
+    quadrature_degree: int = 5
+    tip_radial: int = 6
+    tip_angular: int = 6
+    tip_max_angle: float = 0.6
+    degree: int = 1
+    contact: str = "none"
+    multipliers: str = "stable"
+    contact_points: int = 6
+    active_set_start: str = "closed"
+    max_active_set_iterations: int = 20
+    snap_tol: float = 1e-6
+    facet_degree: int = 4
+    residual_tol: float = 1e-8
+    rescale: str = "none"
+    sif_radius: float = 0.0
+    friction: float = 0.0
+    load_steps: int = 1
+    solver: str = "auto"
+
+    def __post_init__(self):
+        if self.enrichment not in ENRICHMENTS:
+            raise InputError(f"enrichment must be one of {ENRICHMENTS}, got {self.enrichment!r}")
+        if self.blending not in ("corrected", "standard"):
+            raise InputError(f"blending must be 'corrected' or 'standard', got {self.blending!r}")
+        if self.contact not in ("none", "bilateral", "unilateral"):
+            raise InputError(f"contact must be 'none', 'bilateral' or 'unilateral', got {self.contact!r}")
+        if self.rescale not in ("none", "nodal"):
+            raise InputError(f"rescale must be 'none' or 'nodal', got {self.rescale!r}")
+        if self.solver not in SOLVERS:
+            raise InputError(f"solver must be one of {SOLVERS}, got {self.solver!r}")
+        if self.multipliers not in ("stable", "naive"):
+            raise InputError(f"multipliers must be 'stable' or 'naive', got {self.multipliers!r}")
+        if self.active_set_start not in ("closed", "open"):
+            raise InputError(f"active_set_start must be 'closed' or 'open', got {self.active_set_start!r}")
+        if self.quadrature not in TIP_QUADRATURES:
+            raise InputError(f"quadrature must be one of {TIP_QUADRATURES}, got {self.quadrature!r}")
+        if not (isinstance(self.radius, numbers.Real) and math.isfinite(self.radius) and self.radius >= 0.0):
+            raise InputError(f"enrichment radius must be a finite number >= 0 (0: the tip cell's nodes "
+                             f"only), got {self.radius!r}")
+        for name, top in INTEGER_OPTIONS.items():
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, numbers.Integral) or not 1 <= v <= top:
+                raise InputError(f"{name} must be an integer in [1, {top}], got {v!r}")
+        if not (isinstance(self.snap_tol, numbers.Real) and 0.0 <= self.snap_tol < 0.5):
+            raise InputError(f"snap_tol must lie in [0, 0.5) (a fraction of the shortest edge at a "
+                             f"node), got {self.snap_tol!r}")
+        if not (isinstance(self.residual_tol, numbers.Real) and 0.0 < self.residual_tol < 1.0):
+            raise InputError(f"residual_tol must lie in (0, 1), got {self.residual_tol!r}")
+        if not (isinstance(self.sif_radius, numbers.Real) and math.isfinite(self.sif_radius)
+                and self.sif_radius >= 0.0):
+            raise InputError(f"sif_radius must be a finite number >= 0 (0: chosen per tip), got "
+                             f"{self.sif_radius!r}")
+        if isinstance(self.friction, bool) or not (isinstance(self.friction, numbers.Real)
+                                                   and math.isfinite(self.friction) and self.friction >= 0.0):
+            raise InputError(f"friction must be a finite number >= 0 (the Coulomb coefficient mu; 0: "
+                             f"frictionless), got {self.friction!r}")
+        if self.friction > 0.0 and self.contact == "none":
+            raise InputError(f"friction = {self.friction:g} needs contact = 'bilateral' or 'unilateral' (the "
+                             "lips must be able to touch to rub)")
+        if not (0.05 <= self.tip_max_angle <= 3.2):
+            raise InputError(f"tip_max_angle must lie in [0.05, 3.2] radians, got {self.tip_max_angle}")
+
+    def quadrature_options(self):
+        """The C++ QuadratureOptions of these options."""
+        from .. import _cracklip
+        q = _cracklip.QuadratureOptions()
+        q.degree = int(self.degree)
+        q.tip_rule = getattr(_cracklip.TipQuadrature, self.quadrature)
+        q.tip_radial = int(self.tip_radial)
+        q.tip_angular = int(self.tip_angular)
+        q.tip_max_angle = float(self.tip_max_angle)
+        q.tip_degree = int(self.quadrature_degree)
+        return q

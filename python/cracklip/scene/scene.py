@@ -1,0 +1,75 @@
+"""The scene: everything a solve needs (mesh, material, cracks, conditions, loads, options)."""
+from __future__ import annotations
+
+import dataclasses
+import typing
+
+import numpy as np
+
+from ..errors import BoundaryConditionError, InputError
+from .conditions import Dirichlet, LoadStep, PointForce, Traction
+from .crack import Crack
+from .material import Material
+from .mesh import MeshData
+from .options import Options
+from .stress_field import as_stress_field
+
+
+@dataclasses.dataclass
+class Scene:
+    """Everything a solve needs."""
+    mesh: MeshData
+    material: Material
+    cracks: list[Crack] = dataclasses.field(default_factory=list)
+    dirichlet: list[Dirichlet] = dataclasses.field(default_factory=list)
+    tractions: list[Traction] = dataclasses.field(default_factory=list)
+    options: Options = dataclasses.field(default_factory=Options)
+    #: Constant body force (f_x, f_y), force per unit area, or None.
+    body_force: typing.Optional[typing.Sequence[float]] = None
+    #: Concentrated forces at nodes.
+    point_forces: list[PointForce] = dataclasses.field(default_factory=list)
+    #: Initial (residual) stress sigma_0 of the part, or None: the stress is
+    #: sigma = C eps(u) + sigma_0, so sigma_0 acts through its equivalent
+    #: loads (-div sigma_0 inside, sigma_0 n on the boundary and the lips).
+    #: (sxx, syy, sxy), a stress_field.LinearStress or a callable sigma_0(x).
+    initial_stress: typing.Any = None
+    #: Load groups of the body force and the initial stress.
+    body_force_group: str = "default"
+    initial_stress_group: str = "default"
+    #: The load path: steps of factors per load group (LoadStep), solved in
+    #: order with Options.load_steps increments per step; friction is
+    #: path-dependent, so its slip and states carry over. None: one step
+    #: with every group at factor 1.
+    load_path: typing.Optional[list] = None
+
+    def __post_init__(self):
+        if self.load_path is not None:
+            self.load_path = [st if isinstance(st, LoadStep) else LoadStep(dict(st), name=f"step {k + 1}")
+                              for k, st in enumerate(self.load_path)]
+            for k, st in enumerate(self.load_path):
+                st.name = st.name or f"step {k + 1}"
+            if not self.load_path:
+                raise InputError("load_path is empty: give at least one step, or None for one step at factor 1")
+        if self.initial_stress is not None:
+            self.initial_stress = as_stress_field(self.initial_stress, "initial stress")
+        for i, c in enumerate(self.cracks):
+            if not isinstance(c, Crack):
+                self.cracks[i] = Crack(np.asarray(c), name=f"crack {i}")
+            elif not c.name:
+                c.name = f"crack {i}"
+        if not self.dirichlet:
+            raise BoundaryConditionError("the scene has no Dirichlet condition: rigid body motion "
+                                         "is free; fix at least u_x and u_y somewhere and one more "
+                                         "component elsewhere")
+
+
+def load_groups(scene) -> set[str]:
+    """The names of the load groups the scene's loads and Dirichlet values use."""
+    groups = {t.group for t in scene.tractions} | {p.group for p in scene.point_forces}
+    groups |= {d.group for d in scene.dirichlet if callable(d.value) or d.value != 0.0}
+    groups |= {c.pressure_group for c in scene.cracks if callable(c.pressure) or c.pressure != 0.0}
+    if scene.body_force is not None and np.any(scene.body_force):
+        groups.add(scene.body_force_group)
+    if scene.initial_stress is not None:
+        groups.add(scene.initial_stress_group)
+    return groups

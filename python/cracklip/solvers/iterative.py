@@ -1,0 +1,697 @@
+"""Which linear solver runs, and the iterative (AMG) path.
+
+This module owns the choice between the two checked solver paths
+(Options.solver: "auto", "direct", "iterative") and everything the
+iterative path needs:
+
+* the phantom-node (Hansbo) basis of the Heaviside pairs: per Heaviside
+  pseudo-node k (base node i, side s = H(x_i)) and component d, the standard
+  dof u and the enriched dof a become p = u (the node's own-side copy) and
+  q = u - 2 s a (the other-side copy): u = p, a = s (p - q) / 2. T maps the
+  new dofs to the old ones (u = T y); the solved system is T^T A T y = T^T b,
+  and with contact the constraints become B T. In this basis every Heaviside
+  basis function is N_i times the indicator of one side of the crack, so the
+  stiffness looks like two standard meshes glued along the uncut part: an
+  ordinary elasticity operator that smoothed aggregation can coarsen (with a
+  strength threshold that drops the rounding-level couplings across the crack);
+* the rigid-body near-nullspace on the standard and phantom dofs;
+* the crack band: every dof of the enriched nodes and of their first ring of
+  neighbours, every tip dof and every multiplier; with contact it is
+  widened to ceil(0.07 m) rings for m multipliers;
+* IterativeSolver: a symmetric overlapping Schwarz sweep {band by MUMPS
+  LDL^T | one GAMG V-cycle on the whole transformed stiffness | band again}
+  as the preconditioner of CG (also for the saddle point of contact, with
+  GMRES(30) as the fallback). CG starts where the band's equations hold,
+  so they hold at every iterate and the sweep's first band solve is
+  skipped; the frictionless saddle point is applied block by block around
+  the stiffness (no copy of it), and GAMG's coarsest solve keeps the
+  coarse space's main crack-opening modes closed (_ConstrainedCoarse). The GAMG hierarchy depends on the stiffness
+  only, so it is built once and reused by every active-set iteration. The
+  unsymmetric saddle point of friction goes to GMRES(30) with the band
+  factored by LU. Every solve path takes it: solve.solve, the load path
+  and friction (load_path.solve_path), hence growth.
+
+Every iterative solve is checked like the direct one (checked.
+solve_checked): the relative residual of the original (untransformed)
+system must be at most Options.residual_tol, else SolverError names the
+likely cause. The Krylov tolerance is much tighter (KRYLOV_RTOL) so that
+SIFs, pressures and energies equal the direct path's.
+"""
+from __future__ import annotations
+
+import itertools
+import logging
+import math
+import time
+import typing
+import weakref
+
+import numpy as np
+import scipy.sparse as sp
+from petsc4py import PETSc
+
+from ..errors import SolverError
+from .checked import record_solve, solve_checked
+if typing.TYPE_CHECKING:
+    from ..model.model import XfemModel
+from .direct import LinearSolver
+from .phantom import phantom_basis, transform_matrix
+from .saddle import SaddleOperator
+from .checked import scipy_from_petsc
+from .checked import factor_call, create_lu_solver
+
+
+logger = logging.getLogger(__name__)
+
+
+#: Relative (unpreconditioned) residual at which the Krylov iteration stops.
+#: At 1e-10 the SIFs, pressures and energies equal the direct path's to
+#: 1e-8 relative on the test scenes (tests/test_solvers.py; the errors there
+#: are 1e-10 .. 1e-12). The last decade is the expensive one: at 1e6 dofs the
+#: bilateral-contact solve needs 52 iterations to 1e-10 and 71 to 1e-11.
+KRYLOV_RTOL = 1e-10
+
+
+#: GMRES restart, when GMRES takes over from CG on a saddle point (see
+#: IterativeSolver._solve): at 1e6 dofs (bilateral, 1-ring band) GMRES(30)
+#: was faster than full GMRES (13.7 s vs 15.5 s): orthogonalising against up
+#: to 54 vectors of 1e6 entries costs more than 20 extra V-cycles.
+GMRES_RESTART = 30
+
+
+#: With contact the band is wider: ceil(this x the number of multipliers)
+#: rings of cells around the enriched nodes (15 rings for the bench crack's
+#: 212 multipliers at 1e6 dofs), so that its exact solve carries the
+#: multipliers' coupling to the body beyond the next cell. At 1e6 dofs
+#: (bilateral) 1 ring takes 74 GMRES(30) iterations, 5 rings 50, 15 rings 42,
+#: 40 rings 39: the Schur complement of the multipliers is nonlocal, and a
+#: band of fixed physical width (rings ~ 1 / h ~ multipliers) keeps the
+#: count from growing with the mesh.
+CONTACT_BAND_RINGS_PER_MULTIPLIER = 0.07
+
+
+MAX_BAND_RINGS = 60
+
+
+#: The Schwarz sweep skips its first band solve when the residual's band
+#: part is below this fraction of the residual: so it is (1e-14 .. 1e-12)
+#: in every CG iteration started by _Schwarz.start, whose band equations
+#: hold. One MUMPS band solve per iteration instead of two (4.5 ms each at
+#: 1e6 dofs with contact), and the start itself saves iterations (2e5 dofs:
+#: open crack 39 -> 36, contact 44 -> 41).
+BAND_RESIDUAL_SKIP = 1e-10
+
+
+#: _ConstrainedCoarse keeps closed the jump modes of GAMG's coarsest space
+#: whose singular values (in B_a P) are at least this fraction of the
+#: largest. At 1e6 dofs (bilateral, coarsest level 3483 dofs): 0.1 and 0.01
+#: (17 and 50 modes) 43 -> 36 CG iterations; 1e-3 (87 modes) 44: modes the
+#: coarse space represents poorly lock it.
+COARSE_CONSTRAINT_SV = 0.05
+
+
+#: Krylov iterations before the iterative path gives up.
+MAX_ITERATIONS = 1000
+
+
+#: GAMG on the standard + phantom dofs (pinned: PETSc's defaults change
+#: between versions). The strength threshold must be > 0: T^T A T leaves
+#: rounding-level couplings across the crack, and with threshold 0 the
+#: aggregates straddle the crack (78-140 iterations instead of ~40).
+GAMG_OPTIONS = {
+    "pc_type": "gamg",
+    "pc_gamg_type": "agg",
+    "pc_gamg_threshold": 0.01,
+    "pc_gamg_coarse_eq_limit": 1000,
+    "mg_levels_ksp_type": "chebyshev",
+    "mg_levels_pc_type": "jacobi",
+    "mg_levels_esteig_ksp_type": "cg",
+    "mg_levels_ksp_chebyshev_esteig_steps": 20,
+    # The prolongator smoother's eigenvalue estimate by CG, as GAMG does by
+    # itself for a matrix flagged SPD (plain DOLFINx): K' is SPD, but the flag
+    # would also make a MUMPS fallback factor it without pivoting. GMRES
+    # (the default otherwise) cost 0.26 s more at 1e6 dofs.
+    "pc_gamg_esteig_ksp_type": "cg",
+}
+
+
+_prefixes = itertools.count()
+
+
+def rigid_modes(model: "XfemModel", size: int | None = None) -> np.ndarray:
+    """(size, 3) orthonormal rigid motions (two translations, one rotation)
+    on the standard dofs and the phantom (Heaviside) dofs, evaluated at the
+    base node; 0 on tip dofs and on any dof beyond the stiffness
+    (multipliers). size defaults to model.num_dofs."""
+    lay = model.layout
+    n = model.num_dofs if size is None else size
+    nstd = lay.num_std_nodes
+    heav = np.flatnonzero(np.asarray(lay.kind) == 0)
+    nodes = np.concatenate([np.arange(nstd), nstd + heav])
+    xy = np.concatenate([model.x, model.x[np.asarray(lay.node)[heav]]])
+    xy = xy - model.x.mean(axis=0)
+    R = np.zeros((n, 3))
+    R[2 * nodes, 0] = 1.0
+    R[2 * nodes + 1, 1] = 1.0
+    R[2 * nodes, 2] = -xy[:, 1]
+    R[2 * nodes + 1, 2] = xy[:, 0]
+    return orthonormal_columns(R)
+
+
+def orthonormal_columns(R: np.ndarray) -> np.ndarray:
+    """R's columns orthonormalised (twice-repeated modified Gram-Schmidt: a
+    few vector operations on a tall (n, 3) R, where LAPACK's QR took 0.3 s at
+    1e6 dofs)."""
+    Q = np.array(R, dtype=np.float64, order="F", copy=True)  # contiguous columns
+    for j in range(Q.shape[1]):
+        for _ in range(2):
+            for i in range(j):
+                Q[:, j] -= (Q[:, i] @ Q[:, j]) * Q[:, i]
+        norm = float(np.linalg.norm(Q[:, j]))
+        if norm == 0.0:
+            raise SolverError("the rigid modes are linearly dependent (a mesh with a single node?)")
+        Q[:, j] /= norm
+    return Q
+
+
+def crack_band(model: "XfemModel", rings: int = 1) -> np.ndarray:
+    """Sorted stiffness dofs of the crack band: both dofs of every enriched
+    node and of its first `rings` rings of neighbours (nodes sharing a
+    cell), and every enriched dof (phantom copies and tip dofs)."""
+    lay = model.layout
+    nstd = lay.num_std_nodes
+    mark = np.zeros(nstd, dtype=bool)
+    mark[np.asarray(lay.node)] = True
+    for _ in range(rings):
+        mark[model.cells[mark[model.cells].any(axis=1)]] = True
+    ring = np.flatnonzero(mark)
+    std = (2 * ring[:, None] + np.arange(2)).ravel()
+    return np.concatenate([std, np.arange(2 * nstd, model.num_dofs)]).astype(np.int64)
+
+
+def grow_band(K: PETSc.Mat, dofs: np.ndarray, rings: int) -> np.ndarray:
+    """Sorted dofs reached from `dofs` in `rings` steps through the graph of
+    K (one step = one ring of cells for P1 dofs); work proportional to the
+    band, not to the mesh."""
+    n = K.getSize()[0]
+    mark = np.zeros(n, dtype=bool)
+    mark[dofs] = True
+    frontier = np.asarray(dofs)
+    all_cols = PETSc.IS().createStride(n, 0, 1, comm=PETSc.COMM_SELF)
+    for _ in range(rings):
+        iset = PETSc.IS().createGeneral(frontier.astype(PETSc.IntType), comm=PETSc.COMM_SELF)
+        sub = K.createSubMatrix(iset, all_cols)
+        _, cols, _ = sub.getValuesCSR()
+        sub.destroy()
+        iset.destroy()
+        reached = np.unique(cols)
+        frontier = reached[~mark[reached]]
+        if frontier.size == 0:
+            break
+        mark[frontier] = True
+    all_cols.destroy()
+    return np.flatnonzero(mark).astype(np.int64)
+
+
+def _set_options(prefix: str, options: dict[str, typing.Any]) -> None:
+    db = PETSc.Options()
+    for k, v in options.items():
+        db[prefix + k] = v
+
+
+def _clear_options(prefix: str, options: typing.Iterable[str]) -> None:
+    db = PETSc.Options()
+    for k in options:
+        db.delValue(prefix + k)
+
+
+class IterativeSolver(LinearSolver):
+    """Krylov + overlapping symmetric multiplicative Schwarz in the
+    phantom-node basis (module docstring): CG for the stiffness and for the
+    frictionless saddle point (the sweep ends with the band's exact solve,
+    so CG works on the constrained problem; GMRES(30) if CG breaks down),
+    GMRES(30) for friction's unsymmetric saddle point.
+
+    Block 0 is the whole transformed stiffness K', tip dofs included (no
+    copy, no scatter: the stiffness's dofs come first in every system; the
+    tip dofs' rows have no rigid modes, and the band solves them exactly):
+    Westergaard at 2e5 dofs, radius 0.2, takes 23 iterations so and 62 with
+    K' without its tip dofs as block 0 (a hole in the AMG's operator). Its
+    GAMG hierarchy is built on the first solve and reused by every later
+    one (the active-set iterations of contact only change multiplier rows);
+    with contact its coarsest solve is constrained by the active
+    multipliers (_ConstrainedCoarse), set anew for every solve.
+    """
+    name = "iterative"
+
+    def __init__(self, model: "XfemModel", fallback: bool = False):
+        self.model = model
+        self.fallback = fallback
+        self.basis = phantom_basis(model)
+        self.n = model.num_dofs
+        self._band_k = crack_band(model)
+        self._bands: dict[int, np.ndarray] = {}
+        self._T_inv_t: sp.csr_matrix | None = None
+        self._K: PETSc.Mat | None = None
+        self._amg: PETSc.PC | None = None
+        self._coarse: _ConstrainedCoarse | None = None
+        # The hierarchy holds a Python PC (its coarse solve), which PETSc must
+        # not destroy after the interpreter's shutdown (a segfault at exit):
+        # destroy() frees it, and so does this finalizer, at the latest when
+        # the interpreter exits.
+        self._owned: list[typing.Any] = []
+        self._release = weakref.finalize(self, _release, self._owned)
+
+    # The system in the phantom basis.
+    def transform(self, A: PETSc.Mat) -> tuple[PETSc.Mat, sp.csr_matrix]:
+        A_t = transform_matrix(self.basis, A)
+        A_t.setOption(PETSc.Mat.Option.SYMMETRIC, True)
+        self._K = A_t
+        return A_t, self.basis.T
+
+    def stiffness(self, A: PETSc.Mat) -> PETSc.Mat:
+        """The stiffness itself: saddle_matrix() does not copy it."""
+        return A
+
+    def saddle_matrix(self, K: PETSc.Mat, B: sp.csr_matrix, active: np.ndarray) -> PETSc.Mat:
+        """[K B_a^T; B_a D] as a Python PETSc matrix applied blockwise around
+        K (SaddleOperator; no copy of the stiffness: at 1e6 dofs the
+        assembled saddle point cost 0.1-0.25 s and the scipy copy of K it
+        needs another 0.25-0.3 s)."""
+        op = SaddleOperator(K, B, active)
+        size = op.n + op.m
+        A = PETSc.Mat().createPython([size, size], context=op, comm=PETSc.COMM_SELF)
+        A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
+        A.setUp()
+        return A
+
+    def destroy(self) -> None:
+        self._release()
+        self._amg = self._coarse = None
+
+    def _contact_band(self, m: int) -> np.ndarray:
+        """The stiffness dofs of the band: one ring without contact; with m
+        multipliers, ceil(CONTACT_BAND_RINGS_PER_MULTIPLIER m) rings (grown
+        through the stiffness's graph), kept for later solves."""
+        rings = 1 if m == 0 else min(MAX_BAND_RINGS, max(1, math.ceil(CONTACT_BAND_RINGS_PER_MULTIPLIER * m)))
+        if rings not in self._bands:
+            K = self._K
+            self._bands[rings] = self._band_k if rings == 1 or K is None else grow_band(K, self._band_k, rings - 1)
+        return self._bands[rings]
+
+    def _block0_pc(self, A: PETSc.Mat) -> tuple[PETSc.PC, bool]:
+        """The GAMG PC of block 0, the stiffness given to transform() (built
+        once; (pc, reused))."""
+        if self._amg is not None:
+            return self._amg, True
+        if self._K is None:
+            raise SolverError("IterativeSolver.solve needs the system from IterativeSolver.transform")
+        self._amg = self._gamg(self._K, rigid_modes(self.model))
+        self._coarse = _ConstrainedCoarse(self._amg)
+        self._owned += [self._amg, self._coarse]
+        return self._amg, False
+
+    def _gamg(self, A: PETSc.Mat, modes: np.ndarray) -> PETSc.PC:
+        """A set-up GAMG PC on A with the rigid modes (orthonormal columns,
+        rows of A: rigid_modes) as near-nullspace."""
+        vecs = []
+        for j in range(modes.shape[1]):
+            v = A.createVecRight()
+            v.array[:] = modes[:, j]
+            vecs.append(v)
+        A.setNearNullSpace(PETSc.NullSpace().create(vectors=vecs, comm=PETSc.COMM_SELF))
+        prefix = f"cracklip_amg{next(_prefixes)}_"
+        pc = PETSc.PC().create(PETSc.COMM_SELF)
+        pc.setOptionsPrefix(prefix)
+        pc.setOperators(A)
+        _set_options(prefix, GAMG_OPTIONS)
+        try:
+            pc.setFromOptions()
+            pc.setUp()
+        finally:
+            _clear_options(prefix, GAMG_OPTIONS)
+        return pc
+
+    def solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
+              x0: np.ndarray | None = None, symmetric: bool = True,
+              contact_points: int | None = None) -> PETSc.Vec:
+        """Solve A y = b (A in the phantom basis: the stiffness given to
+        transform(), or a saddle-point system extending it, unsymmetric
+        with friction); check the residual of the original system. With
+        fallback (solver = "auto") a failed iterative solve is repeated by
+        MUMPS (LDL^T, or LU if not symmetric), which either solves the
+        system or names what is singular."""
+        try:
+            return self._solve(A, b, residual_tol, what, x0, symmetric, contact_points)
+        except SolverError as e:
+            if not self.fallback:
+                raise
+            logger.warning("%s: the iterative solver failed (%s); solving with MUMPS instead", what, e)
+            if A.getType() == PETSc.Mat.Type.PYTHON:  # saddle_matrix's: MUMPS needs it assembled
+                A_aij = A.getPythonContext().assembled()
+                try:
+                    return solve_checked(A_aij, b, residual_tol, what=what, symmetric=symmetric)
+                finally:
+                    A_aij.destroy()
+            return solve_checked(A, b, residual_tol, what=what, symmetric=symmetric)
+
+    def _solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
+               x0: np.ndarray | None, symmetric: bool = True, contact_points: int | None = None) -> PETSc.Vec:
+        size = A.getSize()[0]
+        m = size - self.n
+        t0 = time.perf_counter()
+        shell = None
+        try:
+            pc0, reused = self._block0_pc(A)
+            # The band's width follows the contact points (friction has two
+            # multipliers per point: normal, tangential).
+            band_dofs = np.concatenate([self._contact_band(m if contact_points is None else contact_points),
+                                        np.arange(self.n, size)])
+            shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric)
+            if A.getType() == PETSc.Mat.Type.PYTHON and m > 0:
+                self._coarse.constrain(A.getPythonContext().Ba_petsc)
+            t_setup = time.perf_counter() - t0
+            # CG also for the saddle point: the sweep ends with an exact solve
+            # of the band, which holds every multiplier and every dof they
+            # touch, so the preconditioned residual always satisfies the
+            # constraints and CG works on the constrained (positive definite)
+            # problem, as with a constraint preconditioner. If it breaks down
+            # anyway, GMRES (which needs no definiteness) takes over.
+            # An unsymmetric system (friction) goes to GMRES at once.
+            attempts = ["gmres"] if not symmetric else ["cg"] if m == 0 else ["cg", "gmres"]
+            for krylov in attempts:
+                y, its, reason = self._krylov(A, b, shell, krylov, x0, what)
+                rel = self._original_residual(A, y, b)
+                ok = bool(np.all(np.isfinite(y.array))) and rel <= residual_tol
+                if ok or krylov == attempts[-1]:
+                    break
+                logger.info("%s: CG stopped at relative residual %.3g after %d iterations (reason %s); "
+                            "GMRES(%d) instead", what, rel, its, reason, GMRES_RESTART)
+                y.destroy()
+        finally:
+            if shell is not None:
+                shell.free()
+            if self._coarse is not None:
+                self._coarse.clear()
+        method = (f"{'CG' if krylov == 'cg' else f'GMRES({GMRES_RESTART})'} + "
+                  "Schwarz {MUMPS crack band | GAMG | band} (phantom basis)")
+        record_solve({"what": what, "size": size, "relative_residual": rel, "solver": "iterative",
+                      "method": method, "iterations": int(its), "band": int(band_dofs.size),
+                      "amg_dofs": self.n, "setup_reused": reused,
+                      "t_setup": t_setup, "t_total": time.perf_counter() - t0})
+        logger.info("%s: %d iterations (%s), relative residual %.3g", what, its, method, rel)
+        if not ok:
+            cause = ("it stopped after the iteration limit" if reason == PETSc.KSP.ConvergedReason.DIVERGED_MAX_IT
+                     else f"PETSc reason {reason}")
+            y.destroy()
+            raise SolverError(
+                f"the iterative solve of the {what} is inaccurate: relative residual {rel:.3g} > "
+                f"{residual_tol:g} after {its} iterations ({cause}); the matrix is singular (a piece of the "
+                "domain cut free by a crack, a multiplier without a jump) or too ill-conditioned for the "
+                "AMG preconditioner (slivers cut by the crack, a large tip enrichment radius): use "
+                "solver = 'direct'")
+        return y
+
+    def _krylov(self, A: PETSc.Mat, b: PETSc.Vec, shell: "_Schwarz", krylov: str, x0: np.ndarray | None,
+                what: str) -> tuple[PETSc.Vec, int, int]:
+        """One Krylov solve of A y = b preconditioned by the Schwarz sweep: (y, iterations, reason)."""
+        ksp = PETSc.KSP().create(PETSc.COMM_SELF)
+        try:
+            ksp.setOperators(A)
+            ksp.setType(krylov)
+            if krylov == "gmres":
+                ksp.setGMRESRestart(GMRES_RESTART)
+            ksp.setTolerances(rtol=KRYLOV_RTOL, atol=0.0, max_it=MAX_ITERATIONS)
+            ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
+            pc = ksp.getPC()
+            pc.setType("python")
+            pc.setPythonContext(shell)
+            # No wrapper of the PC may outlive ksp.destroy(): PETSc then keeps
+            # the PC, and the PC the matrix (K' leaked, 0.2 GB per solve at
+            # 1e6 dofs).
+            del pc
+            y = PETSc.Vec().createSeq(A.getSize()[0], comm=PETSc.COMM_SELF)
+            if x0 is not None:
+                y.array[:] = x0
+            if krylov == "cg":
+                shell.start(A, b, y)
+            ksp.setInitialGuessNonzero(x0 is not None or krylov == "cg")
+            shell.cg = ksp if krylov == "cg" else None
+            try:
+                ksp.solve(b, y)
+            except PETSc.Error as e:
+                raise SolverError(f"the iterative solve of the {what} failed in PETSc ({e}); the crack band "
+                                  "block is probably singular: check that every piece of the domain has "
+                                  "Dirichlet conditions fixing its rigid motion, or use solver = 'direct'") from None
+            return y, ksp.getIterationNumber(), ksp.getConvergedReason()
+        finally:
+            shell.cg = None
+            ksp.destroy()
+
+    def _original_residual(self, A: PETSc.Mat, y: PETSc.Vec, b: PETSc.Vec) -> float:
+        """||A_orig u - b_orig|| / ||b_orig|| from the transformed system:
+        r_orig = T^-T r (T^T r_orig = r), on the stiffness rows; multiplier
+        rows are the same in both bases."""
+        r = b.duplicate()
+        A.mult(y, r)
+        r.axpy(-1.0, b)
+        ra, ba = r.array.copy(), b.array.copy()
+        r.destroy()
+        if self._T_inv_t is None:
+            self._T_inv_t = self.basis.T_inv.T.tocsr()
+        Ti = self._T_inv_t
+        ra[:self.n] = Ti @ ra[:self.n]
+        ba[:self.n] = Ti @ ba[:self.n]
+        bn = float(np.linalg.norm(ba))
+        rn = float(np.linalg.norm(ra))
+        return rn / bn if bn > 0 else rn
+
+
+class _Schwarz:
+    """PCSHELL context: a symmetric multiplicative sweep over two
+    overlapping blocks, the crack band (exact, MUMPS) before and after one
+    GAMG V-cycle on block 0 (the leading n0 dofs, the stiffness):
+
+        z  = R1^T A11^-1 R1 r
+        z += R0^T GAMG(R0 (r - A z))
+        z += R1^T A11^-1 R1 (r - A z)
+
+    i.e. I - M A = (I - B1 A)(I - B0 A)(I - B1 A): symmetric, and positive
+    definite for a positive definite A (CG). Only the band's rows and
+    columns of A are needed for the residual updates (small matrices).
+    When R1 r = 0 (CG started by start()) the first line gives z = 0 and
+    is skipped: one band solve per iteration."""
+
+    def __init__(self, A: PETSc.Mat, amg: PETSc.PC, n0: int, band_dofs: np.ndarray, symmetric: bool = True):
+        comm = PETSc.COMM_SELF
+        size = A.getSize()[0]
+        self.amg = amg
+        band = np.sort(band_dofs).astype(PETSc.IntType)
+        self.is1 = PETSc.IS().createGeneral(band, comm=comm)
+        self.is0 = PETSc.IS().createStride(n0, 0, 1, comm=comm)
+        if A.getType() == PETSc.Mat.Type.PYTHON:  # IterativeSolver.saddle_matrix's
+            self.A1, self.A01, A11 = A.getPythonContext().band_blocks(band)
+        else:
+            all_cols = PETSc.IS().createStride(size, 0, 1, comm=comm)
+            self.A1 = A.createSubMatrix(self.is1, all_cols)  # band rows, all columns
+            all_cols.destroy()
+            self.A01 = A.createSubMatrix(self.is0, self.is1)  # block 0's rows, band columns
+            A11 = A.createSubMatrix(self.is1, self.is1)
+        self.band = _factor_band(A11, symmetric)
+        A11.destroy()
+        self.r0 = self.A01.createVecLeft()
+        self.r1, self.z1, self.t1 = (self.A1.createVecLeft() for _ in range(3))
+        r = PETSc.Vec().createSeq(size, comm=comm)
+        self.s1 = PETSc.Scatter().create(r, self.is1, self.r1, None)
+        r.destroy()
+        #: The CG KSP this sweep preconditions (set by IterativeSolver._krylov
+        #: for the solve), whose residual norm apply() reads.
+        self.cg: PETSc.KSP | None = None
+
+    def apply(self, pc: PETSc.PC, r: PETSc.Vec, z: PETSc.Vec) -> None:
+        fwd, rev = PETSc.ScatterMode.FORWARD, PETSc.ScatterMode.REVERSE
+        ins, add = PETSc.InsertMode.INSERT_VALUES, PETSc.InsertMode.ADD_VALUES
+        n0 = self.r0.getSize()
+        self.s1.scatter(r, self.r1, ins, fwd)
+        # ||r||: CG has just computed it (unpreconditioned norm) before
+        # calling the preconditioner.
+        rnorm = self.cg.getResidualNorm() if self.cg is not None else r.norm()
+        # r vanishes on the band (CG started by start(): every residual does,
+        # up to rounding): the first band solve would give 0, and the V-cycle
+        # acts on r itself. Else band first, and the V-cycle on r - A z (z the
+        # band correction so far). Block 0 = the leading dofs: views, no copies.
+        band_first = self.r1.norm() > BAND_RESIDUAL_SKIP * rnorm
+        r0 = r.getSubVector(self.is0)
+        if band_first:
+            self.band.solve(self.r1, self.z1)
+            self.z1.scale(-1.0)
+            self.A01.multAdd(self.z1, r0, self.r0)  # r0 - A01 z1
+            self.z1.scale(-1.0)
+        z0 = z.getSubVector(self.is0)
+        self.amg.apply(self.r0 if band_first else r0, z0)
+        r.restoreSubVector(self.is0, r0)
+        z.restoreSubVector(self.is0, z0)
+        if z.getSize() > n0:
+            z.array[n0:] = 0.0
+        if band_first:
+            self.s1.scatter(self.z1, z, add, rev)
+        # Band again on r - A z.
+        self.A1.mult(z, self.t1)
+        self.t1.aypx(-1.0, self.r1)
+        self.band.solve(self.t1, self.z1)
+        self.s1.scatter(self.z1, z, add, rev)
+
+    def start(self, A: PETSc.Mat, b: PETSc.Vec, y: PETSc.Vec) -> None:
+        """y += R1^T A11^-1 R1 (b - A y): the band's equations hold at y,
+        and then at every CG iterate (R1 A z = R1 r for each preconditioned
+        residual z, so R1 r stays 0), which lets apply() skip its first
+        band solve."""
+        r = b.duplicate()
+        A.mult(y, r)
+        r.aypx(-1.0, b)
+        self.s1.scatter(r, self.r1, PETSc.InsertMode.INSERT_VALUES, PETSc.ScatterMode.FORWARD)
+        r.destroy()
+        self.band.solve(self.r1, self.z1)
+        self.s1.scatter(self.z1, y, PETSc.InsertMode.ADD_VALUES, PETSc.ScatterMode.REVERSE)
+
+    def destroy(self, pc: PETSc.PC) -> None:
+        """Called by PETSc when a PC using this context is destroyed: the
+        context outlives it (several Krylov attempts share it); free() frees."""
+
+    def free(self) -> None:
+        """Free the PETSc objects (idempotent)."""
+        for obj in (self.is0, self.is1, self.A1, self.A01, self.band, self.r0, self.r1, self.z1, self.t1,
+                    self.s1):
+            obj.destroy()
+        self.amg = self.cg = None
+
+
+def _release(owned: list[typing.Any]) -> None:
+    """Free an IterativeSolver's PETSc objects (last made, first freed)."""
+    while owned:
+        obj = owned.pop()
+        (obj.free if isinstance(obj, _ConstrainedCoarse) else obj.destroy)()
+
+
+class _ConstrainedCoarse:
+    """Python PC of the coarsest solve of the GAMG hierarchy: the LU solve
+    of the coarse operator A_c and, while a contact solve runs, the solve
+    constrained to keep the coarse space's strongest crack-opening modes
+    closed:
+
+        y = A_c^-1 r - W S^-1 W^T r,   W = A_c^-1 C^T,  S = C W,
+
+    C (k x n_c, orthonormal rows) = the right singular vectors of B_a P
+    (P: coarse space -> stiffness dofs, the product of GAMG's
+    interpolations) whose singular values are at least COARSE_CONSTRAINT_SV
+    times the largest: the jumps the multipliers see best. Without it the
+    V-cycle's coarse correction opens the crack over its whole length, and
+    the band, a few cells wide, closes it again only locally. Symmetric
+    positive semidefinite, so the V-cycle stays symmetric (CG)."""
+
+    def __init__(self, amg: PETSc.PC):
+        ksp = amg.getMGCoarseSolve()
+        self.Ac = ksp.getOperators()[0]
+        self.lu = PETSc.PC().create(PETSc.COMM_SELF)
+        self.lu.setOperators(self.Ac)
+        self.lu.setType(PETSc.PC.Type.LU)
+        # As GAMG's own coarse solve: a coarse operator may be singular
+        # (rigid modes of a small hierarchy).
+        self.lu.setFactorShift(PETSc.Mat.FactorShiftType.INBLOCKS)
+        self.lu.setUp()
+        ksp.setType(PETSc.KSP.Type.PREONLY)
+        pc = ksp.getPC()
+        pc.setType(PETSc.PC.Type.PYTHON)
+        pc.setPythonContext(self)
+        levels = amg.getMGLevels()
+        self.interpolations = [amg.getMGInterpolation(level) for level in range(levels - 1, 0, -1)]  # finest first
+        self.C: np.ndarray | None = None
+        self.G: np.ndarray | None = None
+
+    @property
+    def rank(self) -> int:
+        """The number of constrained coarse modes (0: the plain LU solve)."""
+        return 0 if self.C is None else self.C.shape[0]
+
+    def constrain(self, B: PETSc.Mat) -> None:
+        """Constrain the coarse solve by the multipliers' rows B (m x n,
+        stiffness columns in the solver's basis)."""
+        Bc = B
+        for P in self.interpolations:
+            nxt = Bc.matMult(P)
+            if Bc is not B:
+                Bc.destroy()
+            Bc = nxt
+        dense = scipy_from_petsc(Bc).toarray()
+        if Bc is not B:
+            Bc.destroy()
+        _, sv, Vt = np.linalg.svd(dense, full_matrices=False)
+        k = int((sv >= COARSE_CONSTRAINT_SV * sv[0]).sum()) if sv.size and sv[0] > 0 else 0
+        self.clear()
+        if k == 0:
+            return
+        C = Vt[:k]
+        W = np.empty((C.shape[1], k))
+        x, y = self.Ac.createVecs()
+        for j in range(k):
+            x.array[:] = C[j]
+            self.lu.apply(x, y)
+            W[:, j] = y.array
+        x.destroy()
+        y.destroy()
+        S = C @ W
+        # S = C A_c^-1 C^T is symmetric positive definite unless A_c is
+        # singular (GAMG's shifted LU then solves it): a pseudo-inverse.
+        self.C, self.G = C, W @ np.linalg.pinv(0.5 * (S + S.T), rcond=1e-12, hermitian=True)
+
+    def clear(self) -> None:
+        """Back to the plain LU solve (solves without contact)."""
+        self.C = self.G = None
+
+    def apply(self, pc: PETSc.PC, x: PETSc.Vec, y: PETSc.Vec) -> None:
+        self.lu.apply(x, y)
+        if self.C is not None:
+            ya = y.array
+            ya -= self.G @ (self.C @ ya)
+
+    def free(self) -> None:
+        """Free the LU and drop every PETSc object this context holds: the
+        coarse PC holding the context does not release it when GAMG is
+        destroyed, and wrappers kept here kept the stiffness alive (0.2 GB
+        per solve at 1e6 dofs)."""
+        self.lu.destroy()
+        self.Ac = None
+        self.interpolations = []
+        self.clear()
+
+
+def _factor_band(A11: PETSc.Mat, symmetric: bool = True) -> PETSc.KSP:
+    """MUMPS LDL^T of the crack band (symmetric indefinite with multipliers;
+    LU if not symmetric: friction's slip rows),
+    with solve_checked's checks: a factorisation that runs out of workspace
+    (INFOG(1) = -8, -9: delayed pivots of the ill-conditioned tip dofs) is
+    retried with more (ICNTL(14)); an error or a null pivot raises."""
+    for relax in (20, 100, 400):
+        ksp = create_lu_solver(A11, symmetric=symmetric)
+        factor_call(ksp, "setMumpsIcntl", 14, relax)
+        error = None
+        try:
+            ksp.setUp()
+        except PETSc.Error as e:
+            error = e
+        info = factor_call(ksp, "getMumpsInfog", 1)
+        if info in (-8, -9) and relax < 400:
+            ksp.destroy()
+            continue
+        break
+    null = factor_call(ksp, "getMumpsInfog", 28)
+    if error is not None or info < 0 or null > 0:
+        ksp.destroy()
+        what = (f"MUMPS INFOG(1) = {info} (out of workspace even with ICNTL(14) = 400)" if info in (-8, -9) else
+                f"MUMPS INFOG(1) = {info}, {null} null pivot(s)")
+        cause = ("the band is too large or too ill-conditioned for the workspace" if info in (-8, -9) else
+                 "a piece of the domain next to the crack has no Dirichlet condition, or a contact multiplier "
+                 "sees no jump")
+        verdict = "could not be factored" if info in (-8, -9) else "is singular"
+        raise SolverError(f"the crack band block {verdict} ({what}): {cause}; use solver = 'direct'")
+    return ksp

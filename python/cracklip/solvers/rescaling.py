@@ -1,0 +1,87 @@
+"""Nodal block rescaling of the X-FEM stiffness (Options.rescale = "nodal").
+
+Every node that carries enriched dofs forms one group with its standard
+dofs; the group's diagonal block K_gg = L L^T is replaced by the identity
+through T_g = L^-T (C++ kernel nodal_block_transform), all other dofs are
+Jacobi-scaled. The solved system is (T^T K T) y = T^T f, u = T y; with
+contact the constraint rows become B T. The span of the discretisation is
+untouched: the answer is the same, only the conditioning of the matrix
+changes (and what MUMPS sees). Work is proportional to the enriched nodes:
+only the rows of grouped dofs are extracted from the matrix.
+"""
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+from petsc4py import PETSc
+
+from .. import _cracklip
+from ..errors import SolverError
+from ..model.model import XfemModel
+from .checked import petsc_from_scipy
+
+
+def nodal_groups(model: XfemModel) -> tuple[np.ndarray, np.ndarray]:
+    """(group_offsets, group_dofs): per enriched mesh node, its two standard
+    dofs followed by the two dofs of each of its enriched pseudo-nodes."""
+    lay = model.layout
+    nstd = lay.num_std_nodes
+    base = np.asarray(lay.node, dtype=np.int64)
+    if base.size == 0:
+        return np.zeros(1, dtype=np.int32), np.zeros(0, dtype=np.int32)
+    order = np.argsort(base, kind="stable")
+    nodes, start, counts = np.unique(base[order], return_index=True, return_counts=True)
+    sizes = 2 + 2 * counts
+    offsets = np.concatenate([[0], np.cumsum(sizes)])
+    dofs = np.empty(offsets[-1], dtype=np.int64)
+    dofs[offsets[:-1]] = 2 * nodes
+    dofs[offsets[:-1] + 1] = 2 * nodes + 1
+    group = np.repeat(np.arange(nodes.size), counts)
+    rank = np.arange(order.size) - start[group]
+    pos = offsets[group] + 2 + 2 * rank
+    dofs[pos] = 2 * (nstd + order)
+    dofs[pos + 1] = 2 * (nstd + order) + 1
+    return offsets.astype(np.int32), dofs.astype(np.int32)
+
+
+def nodal_transform(model: XfemModel, A: PETSc.Mat) -> sp.csr_matrix:
+    """The block-diagonal T (num_dofs x num_dofs) of the nodal rescaling of A."""
+    n = A.getSize()[0]
+    offsets, dofs = nodal_groups(model)
+    grouped = np.unique(dofs)
+    diag = np.abs(A.getDiagonal().array)
+    scale = np.where(diag > 0.0, 1.0 / np.sqrt(np.where(diag > 0.0, diag, 1.0)), 1.0)
+    rows = [np.setdiff1d(np.arange(n), grouped)]
+    cols = [rows[0]]
+    vals = [scale[rows[0]]]
+    if grouped.size:
+        iset = PETSc.IS().createGeneral(grouped.astype(PETSc.IntType), comm=PETSc.COMM_SELF)
+        S = A.createSubMatrix(iset, iset)
+        indptr, indices, data = S.getValuesCSR()
+        S.destroy()
+        iset.destroy()
+        local = np.searchsorted(grouped, dofs).astype(np.int32)
+        try:
+            r, c, v = _cracklip.nodal_block_transform(indptr.astype(np.int32), indices.astype(np.int32),
+                                                      data, offsets, local)
+        except RuntimeError as e:
+            raise SolverError(f"{e}; use rescale='none'") from None
+        rows.append(grouped[r])
+        cols.append(grouped[c])
+        vals.append(v)
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n))
+
+
+def rescale_matrix(A: PETSc.Mat, T: sp.csr_matrix) -> PETSc.Mat:
+    """T^T A T as a new PETSc matrix."""
+    Tp = petsc_from_scipy(T)
+    As = A.PtAP(Tp)
+    Tp.destroy()
+    return As
+
+
+def rescale_system(A: PETSc.Mat, b: PETSc.Vec, T: sp.csr_matrix) -> tuple[PETSc.Mat, PETSc.Vec]:
+    """(T^T A T, T^T b) as new PETSc objects."""
+    bs = b.duplicate()
+    bs.array[:] = T.T @ b.array
+    return rescale_matrix(A, T), bs
