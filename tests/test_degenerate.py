@@ -1,6 +1,6 @@
 """Degenerate crack geometry: finite, correct answers (issue 2, acceptance 4).
 
-Rule (see Options.snap_tol and cpp/crack_geometry.h): a node closer to the
+Rule (see Options.snap_tol and cpp/geometry/crack_geometry_2d.h): a node closer to the
 crack than snap_tol x its shortest edge is put on the crack (phi = 0); a
 crack through a node splits the cells there through the node, a crack along
 mesh edges makes "edge" cells whose Heaviside side is the cell's side, and a

@@ -1,11 +1,11 @@
 // Bindings: sparsity, enriched stiffness (into PETSc or COO), facet basis.
 #include "array.h"
 
-#include <dolfinx_glue.h>
-#include <enriched_kernels.h>
-#include <rescaling.h>
+#include "assembly/dolfinx_glue.h"
+#include "assembly/enriched_kernels_2d.h"
+#include "solvers/rescaling.h"
 #include <pybind11/stl.h>
-#include <sparsity.h>
+#include "assembly/sparsity.h"
 
 namespace cracklip_wrappers
 {
@@ -30,7 +30,7 @@ void declare_assembly(py::module& m)
       "create_sparsity",
       [](const carray<std::int32_t>& cells, const EnrichmentLayout& layout)
       {
-        CSR s = expand_blocks(create_block_sparsity(as_span(cells), layout), 2);
+        CSR s = expand_blocks(create_block_sparsity(as_span(cells), 3, layout.num_std_nodes, layout.num_enriched(), layout), 2);
         return py::make_tuple(as_pyarray(std::move(s.offsets)), as_pyarray(std::move(s.indices)));
       },
       py::arg("cells"), py::arg("layout"),
@@ -55,23 +55,11 @@ void declare_assembly(py::module& m)
       [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
          const Cracks& cracks, double E, double nu, const QuadratureOptions& options)
       {
-        std::vector<std::int32_t> ri, ci;
-        std::vector<double> v;
-        const MatrixSink sink = [&](std::span<const std::int32_t> rows,
-                                    std::span<const std::int32_t> cols, std::span<const double> vals)
-        {
-          for (std::size_t i = 0; i < rows.size(); ++i)
-            for (std::size_t j = 0; j < cols.size(); ++j)
-              if (const double a = vals[i * cols.size() + j]; a != 0.0)
-              {
-                ri.push_back(rows[i]);
-                ci.push_back(cols[j]);
-                v.push_back(a);
-              }
-        };
+        Triplets coo;
+        const MatrixSink sink = coo_sink(coo);
         const auto n = assemble_enriched_stiffness(sink, as_span(x), as_span(cells), layout, cracks, E, nu, options);
-        return py::make_tuple(as_pyarray(std::move(ri)), as_pyarray(std::move(ci)),
-                              as_pyarray(std::move(v)), n);
+        return py::make_tuple(as_pyarray(std::move(coo.row)), as_pyarray(std::move(coo.col)),
+                              as_pyarray(std::move(coo.value)), n);
       },
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("E"),
       py::arg("nu"), py::arg("options"),

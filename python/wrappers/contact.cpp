@@ -1,9 +1,9 @@
 // Bindings: multiplier spaces, contact coupling, lip term of the interaction integral.
 #include "array.h"
 
-#include <contact_kernels.h>
-#include <multiplier_space.h>
-#include <saddle_matrix.h>
+#include "contact/contact_kernels_2d.h"
+#include "contact/multiplier_space_2d.h"
+#include "solvers/saddle_matrix.h"
 #include <pybind11/stl.h>
 
 namespace cracklip_wrappers
@@ -120,7 +120,7 @@ void declare_contact(py::module& m)
       },
       py::arg("k_indptr"), py::arg("k_indices"), py::arg("k_data"), py::arg("b_indptr"),
       py::arg("b_indices"), py::arg("b_data"), py::arg("active"),
-      "CSR (indptr, indices, data) of [K B_a^T; B_a D] (cpp/saddle_matrix.h).");
+      "CSR (indptr, indices, data) of [K B_a^T; B_a D] (cpp/solvers/saddle_matrix.h).");
 }
 
 } // namespace cracklip_wrappers

@@ -1,8 +1,8 @@
 // Bindings: point evaluation, sub-cell fields, quadrature-point fields.
 #include "array.h"
 
-#include <fields.h>
-#include <raster.h>
+#include "post/fields_2d.h"
+#include "post/raster.h"
 #include <pybind11/stl.h>
 
 namespace cracklip_wrappers

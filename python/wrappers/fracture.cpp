@@ -1,10 +1,10 @@
 // Bindings: tip enrichment functions, interaction integral.
 #include "array.h"
 
-#include <cell_quadrature.h>
-#include <interaction_integral.h>
+#include "quadrature/cell_quadrature_2d.h"
+#include "fracture/interaction_integral_2d.h"
 #include <pybind11/stl.h>
-#include <tip_functions.h>
+#include "enrichment/tip_functions_2d.h"
 
 namespace cracklip_wrappers
 {

@@ -1,10 +1,10 @@
 // Bindings: crack geometry, node mesh extraction, enrichment layout.
 #include "array.h"
 
-#include <crack_geometry.h>
+#include "geometry/crack_geometry_2d.h"
 #include <dolfinx/fem/FunctionSpace.h>
-#include <dolfinx_glue.h>
-#include <enrichment.h>
+#include "assembly/dolfinx_glue.h"
+#include "enrichment/enrichment_layout.h"
 #include <pybind11/stl.h>
 
 namespace cracklip_wrappers

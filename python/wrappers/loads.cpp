@@ -1,8 +1,8 @@
 // Bindings: points on a crack's segments, lip loads, loads in enriched cells.
 #include "array.h"
 
-#include <crack_points.h>
-#include <loads.h>
+#include "quadrature/crack_points_2d.h"
+#include "assembly/loads_2d.h"
 #include <pybind11/stl.h>
 
 namespace cracklip_wrappers

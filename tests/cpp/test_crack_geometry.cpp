@@ -1,4 +1,4 @@
-#include <crack_geometry.h>
+#include "geometry/crack_geometry_2d.h"
 
 #include <cmath>
 #include <gtest/gtest.h>

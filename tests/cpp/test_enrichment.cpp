@@ -1,4 +1,4 @@
-#include <enrichment.h>
+#include "enrichment/enrichment_layout.h"
 
 #include <gtest/gtest.h>
 

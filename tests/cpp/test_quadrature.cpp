@@ -1,4 +1,4 @@
-#include <quadrature.h>
+#include "quadrature/rules.h"
 
 #include <cmath>
 #include <gtest/gtest.h>

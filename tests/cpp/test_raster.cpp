@@ -1,4 +1,4 @@
-#include <raster.h>
+#include "post/raster.h"
 
 #include <cmath>
 #include <gtest/gtest.h>

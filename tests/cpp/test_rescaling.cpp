@@ -1,4 +1,4 @@
-#include <rescaling.h>
+#include "solvers/rescaling.h"
 
 #include <cmath>
 #include <gtest/gtest.h>

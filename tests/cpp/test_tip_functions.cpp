@@ -1,6 +1,6 @@
-#include <cell_quadrature.h>
-#include <quadrature.h>
-#include <tip_functions.h>
+#include "quadrature/cell_quadrature_2d.h"
+#include "quadrature/rules.h"
+#include "enrichment/tip_functions_2d.h"
 
 #include <cmath>
 #include <gtest/gtest.h>

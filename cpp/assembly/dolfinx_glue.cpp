@@ -1,0 +1,64 @@
+#include "assembly/dolfinx_glue.h"
+
+#include <dolfinx/common/IndexMap.h>
+#include <dolfinx/fem/DofMap.h>
+#include <dolfinx/fem/FiniteElement.h>
+#include <dolfinx/fem/FunctionSpace.h>
+#include <dolfinx/mesh/Mesh.h>
+#include <stdexcept>
+#include <string>
+
+namespace cracklip
+{
+
+NodeMesh extract_node_mesh(const dolfinx::fem::FunctionSpace& V)
+{
+  const auto mesh = V.mesh();
+  if (mesh->topology().cell_type() != dolfinx::mesh::CellType::triangle)
+    throw std::invalid_argument("cracklip needs a triangle mesh, got cell type "
+                                + dolfinx::mesh::to_string(mesh->topology().cell_type()));
+  if (mesh->geometry().dim() != 2)
+    throw std::invalid_argument("cracklip needs a 2D mesh (geometric dimension 2)");
+  const auto dofmap = V.dofmap();
+  if (dofmap->index_map_bs() != 2 or dofmap->cell_dofs(0).size() != 3)
+    throw std::invalid_argument("cracklip needs a P1 vector function space (block size 2, "
+                                "3 dof blocks per cell)");
+  if (dofmap->index_map->num_ghosts() != 0)
+    throw std::invalid_argument("cracklip runs in serial only (the mesh has ghost dofs)");
+
+  NodeMesh out;
+  const std::int32_t num_nodes = dofmap->index_map->size_local();
+  const std::vector<double> xall = V.tabulate_dof_coordinates(false); // (num_nodes, 3)
+  out.x.resize(2 * num_nodes);
+  for (std::int32_t i = 0; i < num_nodes; ++i)
+  {
+    out.x[2 * i] = xall[3 * i];
+    out.x[2 * i + 1] = xall[3 * i + 1];
+  }
+  const auto& list = dofmap->list();
+  const std::int32_t num_cells = list.num_nodes();
+  out.cells.resize(3 * num_cells);
+  for (std::int32_t c = 0; c < num_cells; ++c)
+  {
+    auto dofs = list.links(c);
+    for (int a = 0; a < 3; ++a)
+      out.cells[3 * c + a] = dofs[a];
+  }
+  return out;
+}
+
+MatrixSink petsc_add_sink(Mat A)
+{
+  return [A](std::span<const std::int32_t> rows, std::span<const std::int32_t> cols,
+             std::span<const double> values)
+  {
+    PetscErrorCode ierr = MatSetValues(A, static_cast<PetscInt>(rows.size()), rows.data(),
+                                       static_cast<PetscInt>(cols.size()), cols.data(),
+                                       values.data(), ADD_VALUES);
+    if (ierr != 0)
+      throw std::runtime_error("MatSetValues failed (PETSc error " + std::to_string(ierr)
+                               + "): the matrix sparsity misses an enriched coupling");
+  };
+}
+
+} // namespace cracklip

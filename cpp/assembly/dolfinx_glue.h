@@ -1,0 +1,33 @@
+// DOLFINx and PETSc glue (layer b).
+#pragma once
+
+#include "assembly/enriched_kernels_2d.h"
+
+#include <cstdint>
+#include <petscmat.h>
+#include <vector>
+
+namespace dolfinx::fem
+{
+class FunctionSpace;
+}
+
+namespace cracklip
+{
+
+/// The P1 "node mesh" of a DOLFINx P1 vector function space: one node per
+/// dof block. x: (num_nodes, 2) node coordinates, cells: (num_cells, 3) node
+/// (= dof block) indices per cell in the reference vertex order. Throws
+/// unless V is a serial P1 vector space on triangles.
+struct NodeMesh
+{
+  std::vector<double> x;
+  std::vector<std::int32_t> cells;
+};
+NodeMesh extract_node_mesh(const dolfinx::fem::FunctionSpace& V);
+
+/// A sink that adds blocks into a PETSc matrix with global scalar indices
+/// (MatSetValues, ADD_VALUES; negative indices are skipped by PETSc).
+MatrixSink petsc_add_sink(Mat A);
+
+} // namespace cracklip

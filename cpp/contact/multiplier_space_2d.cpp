@@ -1,0 +1,369 @@
+#include "contact/multiplier_space_2d.h"
+#include "contact/vital_edges.h"
+#include "enrichment/enriched_basis_2d.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <set>
+#include <stdexcept>
+
+namespace cracklip
+{
+namespace
+{
+struct UnionFind
+{
+  std::vector<std::int32_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  std::int32_t find(std::int32_t i)
+  {
+    while (parent[i] != i)
+      i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void unite(std::int32_t a, std::int32_t b) { parent[find(a)] = find(b); }
+};
+} // namespace
+
+MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<const std::int32_t> cells,
+                                        std::span<const CrackGeometry* const> cracks,
+                                        const EnrichmentLayout& layout, MultiplierKind kind,
+                                        bool with_tip_segments)
+{
+  MultiplierSpace space;
+  space.kind = kind;
+  std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> nodal; // (crack, node) -> full
+  auto nodal_mult = [&](std::int32_t ic, std::int32_t node)
+  {
+    auto [it, inserted] = nodal.try_emplace({ic, node}, space.num_full());
+    if (inserted)
+    {
+      space.full_node.push_back(node);
+      space.full_crack.push_back(ic);
+      space.full_cell.push_back(-1);
+    }
+    return it->second;
+  };
+
+  // Cut edges of each crack, for the stable space: (crack, a, b) with a < b.
+  std::vector<std::array<std::int32_t, 3>> cut_edges;
+  std::vector<std::array<double, 2>> cut_points;
+
+  for (std::size_t icr = 0; icr < cracks.size(); ++icr)
+  {
+    const auto ic = static_cast<std::int32_t>(icr);
+    const CrackGeometry& g = *cracks[icr];
+    for (const CrackCell& cc : g.crack_cells)
+    {
+      if (!cc.owns_segment)
+        continue;
+      CrackSegment seg;
+      seg.crack = ic;
+      seg.cell = cc.cell;
+      seg.ref = cc.segment;
+      const std::int32_t* v = &cells[3 * cc.cell];
+      for (int a = 0; a < 3; ++a)
+      {
+        // On an edge cell only the nodes on the crack edge have a trace.
+        if (cc.cls == CellClass::edge and g.phi[v[a]] != 0.0)
+          continue;
+        seg.mult.push_back(nodal_mult(ic, v[a]));
+        seg.local.push_back(a);
+      }
+      space.segments.push_back(seg);
+      if (cc.cls == CellClass::cut)
+        for (int a = 0; a < 3; ++a)
+        {
+          std::int32_t p = v[a], q = v[(a + 1) % 3];
+          const double fp = g.phi[p], fq = g.phi[q];
+          if (fp * fq < 0.0)
+          {
+            if (p > q)
+              std::swap(p, q);
+            cut_edges.push_back({ic, p, q});
+            const double t = g.phi[p] / (g.phi[p] - g.phi[q]);
+            cut_points.push_back({x[2 * p] + t * (x[2 * q] - x[2 * p]), x[2 * p + 1] + t * (x[2 * q + 1] - x[2 * p + 1])});
+          }
+        }
+    }
+    if (!with_tip_segments)
+      continue;
+    for (const TipCell& tc : g.tip_cells)
+    {
+      CrackSegment seg;
+      seg.crack = ic;
+      seg.cell = tc.cell;
+      seg.ref = tc.segment; // entry point E, then the tip T
+      seg.tip = true;
+      seg.tip_end = 1;
+      seg.tip_index = tc.tip;
+      const std::int32_t* v = &cells[3 * tc.cell];
+      if (kind == MultiplierKind::naive)
+        for (int a = 0; a < 3; ++a)
+        {
+          seg.mult.push_back(nodal_mult(ic, v[a]));
+          seg.local.push_back(a);
+        }
+      else
+      {
+        seg.mult.push_back(space.num_full());
+        seg.local.push_back(-1);
+        space.full_node.push_back(-1);
+        space.full_crack.push_back(ic);
+        space.full_cell.push_back(tc.cell);
+      }
+      space.segments.push_back(seg);
+    }
+  }
+
+  const std::int32_t nfull = space.num_full();
+  space.full_to_reduced.assign(nfull, -1);
+  if (kind == MultiplierKind::naive)
+  {
+    std::iota(space.full_to_reduced.begin(), space.full_to_reduced.end(), 0);
+    space.num_reduced = nfull;
+    return space;
+  }
+
+  // Stable (P1-): drop cut edges by score until every score is <= 1.
+  std::vector<std::size_t> order(cut_edges.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return cut_edges[i] < cut_edges[j]; });
+  std::vector<CutEdge> edges;
+  std::vector<std::array<double, 2>> points;
+  for (std::size_t k = 0; k < order.size(); ++k)
+    if (k == 0 or cut_edges[order[k]] != cut_edges[order[k - 1]])
+    {
+      edges.push_back(cut_edges[order[k]]);
+      points.push_back(cut_points[order[k]]);
+    }
+  const std::vector<std::int8_t> alive = select_vital_edges<2>(edges, points);
+  UnionFind uf(nfull);
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    if (alive[i])
+    {
+      const std::int32_t ic = edges[i][0];
+      const auto a = nodal.find({ic, edges[i][1]}), b = nodal.find({ic, edges[i][2]});
+      if (a == nodal.end() or b == nodal.end())
+        throw std::logic_error("multiplier space: cut edge node without a multiplier");
+      uf.unite(a->second, b->second);
+      space.vital_edges.push_back(edges[i][1]);
+      space.vital_edges.push_back(edges[i][2]);
+    }
+  // Tie stars without enriched nodes to a neighbouring star.
+  std::set<std::pair<std::int32_t, std::int32_t>> enriched; // (crack, node)
+  std::set<std::pair<std::int32_t, std::int32_t>> heaviside; // (crack, node)
+  for (std::int32_t k = 0; k < layout.num_enriched(); ++k)
+  {
+    enriched.insert({layout.crack[k], layout.node[k]});
+    if (layout.kind[k] == static_cast<std::int8_t>(EnrichmentKind::heaviside))
+      heaviside.insert({layout.crack[k], layout.node[k]});
+  }
+  for (bool changed = true; changed;)
+  {
+    changed = false;
+    std::map<std::int32_t, bool> has_jump; // root -> any enriched node (or P0)
+    for (std::int32_t f = 0; f < nfull; ++f)
+    {
+      const bool j = space.full_node[f] < 0 or enriched.count({space.full_crack[f], space.full_node[f]});
+      has_jump[uf.find(f)] = has_jump[uf.find(f)] or j;
+    }
+    for (const CrackSegment& seg : space.segments)
+      for (std::size_t a = 0; a < seg.mult.size() and !changed; ++a)
+      {
+        const std::int32_t ra = uf.find(seg.mult[a]);
+        if (has_jump[ra])
+          continue;
+        for (std::size_t b = 0; b < seg.mult.size(); ++b)
+          if (const std::int32_t rb = uf.find(seg.mult[b]); rb != ra and has_jump[rb])
+          {
+            uf.unite(ra, rb);
+            changed = true;
+            break;
+          }
+      }
+  }
+  // The multiplier at a crack end sees a jump that fades (like sqrt(r) in a
+  // tip cell, linearly over the last cut cell of a Heaviside-only crack)
+  // and is barely controlled: left alone it makes the inf-sup constant drop.
+  // Such an end is tied to the multiplier of the segment next to it.
+  for (std::size_t icr = 0; icr < cracks.size(); ++icr)
+  {
+    const CrackGeometry& g = *cracks[icr];
+    const auto ic = static_cast<std::int32_t>(icr);
+    // Physical end points of this crack's segments.
+    std::vector<std::size_t> own;
+    std::vector<std::array<std::array<double, 2>, 2>> ends;
+    for (std::size_t s = 0; s < space.segments.size(); ++s)
+      if (const CrackSegment& seg = space.segments[s]; seg.crack == ic)
+      {
+        const P1Cell cell(x, cells, seg.cell);
+        own.push_back(s);
+        ends.push_back({cell.physical({seg.ref[0], seg.ref[1]}), cell.physical({seg.ref[2], seg.ref[3]})});
+      }
+    if (own.empty())
+      continue;
+    auto length = [&](std::size_t i) { return std::hypot(ends[i][1][0] - ends[i][0][0], ends[i][1][1] - ends[i][0][1]); };
+    // Calls fn(segment, shape values, weight) at two Gauss points of every
+    // segment of this crack: exact for a product of two functions linear on
+    // each segment.
+    auto for_each_point = [&](auto&& fn)
+    {
+      for (std::size_t i = 0; i < own.size(); ++i)
+      {
+        const CrackSegment& seg = space.segments[own[i]];
+        for (const double t : {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)})
+          fn(seg, P1Cell::shape({(1 - t) * seg.ref[0] + t * seg.ref[2], (1 - t) * seg.ref[1] + t * seg.ref[3]}),
+             0.5 * length(i));
+      }
+    };
+    // Shape value of a segment's k-th multiplier (P0: 1).
+    auto value = [](const CrackSegment& seg, const std::array<double, 3>& N, std::size_t k)
+    { return seg.local[k] < 0 ? 1.0 : N[seg.local[k]]; };
+    // Sum of the multiplier functions of the groups G at a point.
+    auto mu = [&](const CrackSegment& seg, const std::array<double, 3>& N, const std::set<std::int32_t>& G)
+    {
+      double m = 0.0;
+      for (std::size_t k = 0; k < seg.mult.size(); ++k)
+        if (G.count(uf.find(seg.mult[k])))
+          m += value(seg, N, k);
+      return m;
+    };
+    // Share of the weight of the groups G that sees the full Heaviside jump:
+    // int(mu w) / int(mu), w the sum of the shape functions of the crack's
+    // Heaviside-enriched nodes (1 where the crack opens fully, fading to 0
+    // over the last cut cell of a Heaviside-only crack).
+    auto full_jump_share = [&](const std::set<std::int32_t>& G)
+    {
+      double mu_w = 0.0, mu_1 = 0.0;
+      for_each_point(
+          [&](const CrackSegment& seg, const std::array<double, 3>& N, double wq)
+          {
+            const std::int32_t* v = &cells[3 * seg.cell];
+            double w = 0.0;
+            for (int a = 0; a < 3; ++a)
+              if (heaviside.count({ic, v[a]}))
+                w += N[a];
+            const double m = mu(seg, N, G);
+            mu_w += wq * m * w;
+            mu_1 += wq * m;
+          });
+      return mu_1 > 0.0 ? mu_w / mu_1 : 0.0;
+    };
+    for (std::size_t j = 0; j < g.tips.size() / 2; ++j)
+    {
+      const std::array<double, 2> T = {g.tips[2 * j], g.tips[2 * j + 1]};
+      std::size_t end = 0; // index into own / ends
+      double dmin = std::numeric_limits<double>::max();
+      for (std::size_t i = 0; i < own.size(); ++i)
+        for (const auto& P : ends[i])
+          if (const double dist = std::hypot(P[0] - T[0], P[1] - T[1]); dist < dmin)
+            dmin = dist, end = i;
+      const CrackSegment& end_seg = space.segments[own[end]];
+      if (!end_seg.tip and with_tip_segments)
+      {
+        // A tip-enriched crack whose tip sits on an edge or a vertex (no tip
+        // cell): tip dofs, not Heaviside ones, open its last segments. Tie
+        // that segment like a tip cell when it is shorter than the crack's
+        // mean segment.
+        double mean_len = 0.0;
+        for (std::size_t i = 0; i < own.size(); ++i)
+          mean_len += length(i) / static_cast<double>(own.size());
+        if (length(end) >= mean_len)
+          continue;
+      }
+      else if (!end_seg.tip)
+      {
+        // The end of a Heaviside-only crack (its last cut cell): its group G
+        // is controlled when it sees the full jump over as large a share of
+        // its weight as the hat of the last fully enriched node, which fades
+        // with the jump (2/3; a constant over the fade has 1/2 and gave
+        // sqrt(beta) = 0.44 on inclined cracks). Otherwise G absorbs the
+        // group it overlaps most (int mu_G mu_c) until it is.
+        std::set<std::int32_t> G;
+        for (std::int32_t f : end_seg.mult)
+          G.insert(uf.find(f));
+        while (full_jump_share(G) < 2.0 / 3.0 - 1e-9) // 2/3 itself is common: keep it
+        {
+          std::map<std::int32_t, double> overlap;
+          for_each_point(
+              [&](const CrackSegment& seg, const std::array<double, 3>& N, double wq)
+              {
+                if (const double m = mu(seg, N, G); m > 0.0)
+                  for (std::size_t k = 0; k < seg.mult.size(); ++k)
+                    if (const std::int32_t r = uf.find(seg.mult[k]); !G.count(r))
+                      overlap[r] += wq * m * value(seg, N, k);
+              });
+          std::int32_t pick = -1;
+          double best = 0.0;
+          for (const auto& [r, o] : overlap)
+            if (o > best)
+              best = o, pick = r;
+          if (pick < 0)
+            break;
+          for (std::int32_t r : G)
+            uf.unite(r, pick);
+          G = {uf.find(pick)};
+        }
+        continue;
+      }
+      // The tip cell's P0 multiplier sees a jump fading like sqrt(r) over
+      // its whole segment and is always tied (so is a short end segment of
+      // a tip-enriched crack without a tip cell, above).
+      const auto& E = ends[end];
+      const double len = length(end);
+      const std::int32_t r_end = uf.find(end_seg.mult.front());
+      for (std::int32_t f : end_seg.mult)
+        uf.unite(f, r_end);
+      for (std::size_t i = 0; i < own.size(); ++i)
+      {
+        if (i == end)
+          continue;
+        // The end point shared with the end segment (0 or 1 of this one).
+        int shared = -1;
+        for (int a = 0; a < 2; ++a)
+          for (const auto& P : E)
+            if (std::hypot(ends[i][a][0] - P[0], ends[i][a][1] - P[1]) <= 1e-9 * len)
+              shared = a;
+        if (shared < 0)
+          continue;
+        // Tie the end multiplier to the neighbour's multiplier that is
+        // largest at the shared point (the one continuous across it) among
+        // those not already on the end segment; if all of these vanish
+        // there, to the first of them.
+        const CrackSegment& nb = space.segments[own[i]];
+        const auto N = P1Cell::shape({nb.ref[2 * shared], nb.ref[2 * shared + 1]});
+        std::int32_t pick = -1;
+        double best_w = -1.0;
+        for (std::size_t k = 0; k < nb.mult.size(); ++k)
+        {
+          const std::int32_t f = nb.mult[k];
+          bool on_end = false;
+          for (std::int32_t fe : end_seg.mult)
+            on_end = on_end or uf.find(fe) == uf.find(f);
+          if (on_end)
+            continue;
+          if (const double w = value(nb, N, k); w > best_w + 1e-12)
+            best_w = w, pick = f;
+        }
+        if (pick >= 0)
+          uf.unite(r_end, pick);
+      }
+    }
+  }
+  std::map<std::int32_t, std::int32_t> root_to_reduced;
+  for (std::int32_t f = 0; f < nfull; ++f)
+  {
+    const std::int32_t r = uf.find(f);
+    auto [it, inserted] = root_to_reduced.try_emplace(r, space.num_reduced);
+    if (inserted)
+      ++space.num_reduced;
+    space.full_to_reduced[f] = it->second;
+  }
+  return space;
+}
+
+} // namespace cracklip

@@ -1,0 +1,56 @@
+// Stress intensity factors by the domain interaction integral (layer a).
+//
+//   I_m = int_A ( sigma_ij u^aux_i,1 + sigma^aux_ij u_i,1 - sigma_kl eps^aux_kl delta_1j ) q,_j dA
+//   K_m = (E* / 2) I_m,   E* = E / (1 - nu^2) (plane strain)
+//
+// with the auxiliary Williams field of mode m (K^aux_m = 1) and direction 1 =
+// e1 of the tip frame, written frame-free:
+//   (sigma grad q) . (grad u_aux e1) + (sigma_aux grad q) . (grad u e1)
+//   - (sigma : eps_aux) (e1 . grad q).
+// q is the plateau function: 1 at the nodes within the domain radius, 0
+// outside, interpolated by P1, so grad q lives on the ring of cells the
+// circle crosses. Lip tractions and body forces add terms that the caller
+// integrates (python/cracklip/sif.py).
+#pragma once
+
+#include "quadrature/cell_quadrature_2d.h"
+#include "geometry/crack_geometry_2d.h"
+#include "enrichment/enrichment_layout.h"
+#include "enrichment/tip_functions_2d.h"
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace cracklip
+{
+
+/// I (mode I, mode II) from values at points: points (n, 2), weights (n),
+/// grad_q (n, 2), grad_u (n, 2, 2) of the field whose SIFs are sought,
+/// sides (n) lip branch of the auxiliary field (+1 / -1 / 0).
+std::array<double, 2> interaction_integral(const TipFrame& tip, double E, double nu,
+                                           std::span<const double> points,
+                                           std::span<const double> weights,
+                                           std::span<const double> grad_q,
+                                           std::span<const double> grad_u,
+                                           std::span<const std::int8_t> sides);
+
+/// Quadrature points of the ring of cells where grad q != 0, for the
+/// plateau q of radius `radius` around the tip (with `interior`, of every
+/// cell where q != 0, for domain terms weighted by q such as body forces):
+/// cell (n), reference (n, 2) and physical points (n, 2), weights (n),
+/// sides (n), q (n), grad_q (n, 2).
+struct DomainPoints
+{
+  std::vector<std::int32_t> cell;
+  std::vector<double> ref, x, weight, q, grad_q;
+  std::vector<std::int8_t> side;
+};
+DomainPoints compute_domain_points(std::span<const double> x, std::span<const std::int32_t> cells,
+                                   const EnrichmentLayout& layout,
+                                   std::span<const CrackGeometry* const> cracks,
+                                   const TipFrame& tip, double radius,
+                                   const QuadratureOptions& options, bool interior = false);
+
+} // namespace cracklip

@@ -1,0 +1,51 @@
+// Small structured meshes for the C++ unit tests (no DOLFINx).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace cracklip::test
+{
+/// Structured n x n grid of [0,1]^2 split into 2 n^2 triangles: x (nodes, 2), cells (cells, 3).
+inline void triangle_grid(int n, std::vector<double>& x, std::vector<std::int32_t>& cells)
+{
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      x.insert(x.end(), {double(i) / n, double(j) / n});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+    {
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+      cells.insert(cells.end(), {a, b, c, a, c, d});
+    }
+}
+
+/// Kuhn mesh of [0,1]^3: n^3 cubes, each split into 6 tetrahedra around its
+/// main diagonal: x (nodes, 3), cells (cells, 4).
+inline void kuhn_cube(int n, std::vector<double>& x, std::vector<std::int32_t>& cells)
+{
+  auto id = [n](int i, int j, int k) { return (k * (n + 1) + j) * (n + 1) + i; };
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i)
+        x.insert(x.end(), {double(i) / n, double(j) / n, double(k) / n});
+  // The six paths from corner 000 to 111, one axis at a time.
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (const auto& p : perms)
+        {
+          std::array<int, 3> c = {i, j, k};
+          std::array<std::int32_t, 4> tet;
+          tet[0] = id(c[0], c[1], c[2]);
+          for (int s = 0; s < 3; ++s)
+          {
+            ++c[p[s]];
+            tet[s + 1] = id(c[0], c[1], c[2]);
+          }
+          cells.insert(cells.end(), tet.begin(), tet.end());
+        }
+}
+} // namespace cracklip::test
