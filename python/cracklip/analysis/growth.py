@@ -17,7 +17,7 @@ da/dN = C (Delta K_eff)^m (Walker's R-ratio form with gamma != 1, none below
 the threshold), the fastest tip advancing da and the others da (rate_i /
 rate_max), the cycles integrated by the trapezoidal rule between steps.
 
-Conventions (README "Conventions"): angles in the tip frame (e1 out of the
+Conventions (docs/sifs.md, "Conventions"): angles in the tip frame (e1 out of the
 crack, e2 = e1 turned by +90 degrees), positive toward e2: K_II > 0 kinks
 the crack toward -e2 (pure mode II: -70.53 degrees). A closed crack (K_I <=
 0 with contact) grows by its K_II like any other.

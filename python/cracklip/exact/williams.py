@@ -1,7 +1,7 @@
 """Exact Williams (Westergaard) crack-tip fields, for tests, demos and loads.
 
 u = (K_I U_I + K_II U_II) / (2 mu sqrt(2 pi)) with the vector functions of
-the C++ kernels (cpp/tip_functions.h), whose traction-free lips and
+the C++ kernels (cpp/enrichment/tip_functions_2d.h), whose traction-free lips and
 divergence-free stress are unit-tested.
 """
 from __future__ import annotations

@@ -2,7 +2,7 @@
 release rate), the local stress intensity factors of a kink, and the
 equivalent K along it.
 
-Conventions (README "Conventions"): angles in the tip frame (e1 out of the
+Conventions (docs/sifs.md, "Conventions"): angles in the tip frame (e1 out of the
 crack, e2 = e1 turned by +90 degrees), positive toward e2: K_II > 0 kinks
 the crack toward -e2 (pure mode II: -70.53 degrees).
 """

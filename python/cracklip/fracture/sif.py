@@ -17,10 +17,10 @@ For every tip this module
   body-force term (body force and div sigma_0), and reports K on the largest
   domain with the spread (max - min) over the three.
 
-Conventions (README "Conventions"): the tip frame has e1 along the crack's
+Conventions (docs/sifs.md, "Conventions"): the tip frame has e1 along the crack's
 extension and e2 = e1 turned by +90 degrees; K_I > 0 opens the crack; K_II > 0
 when the material on the e2 side of the crack moves along +e1 relative to the
-other side behind the tip (the Williams mode-II field, cpp/tip_functions.h).
+other side behind the tip (the Williams mode-II field, cpp/enrichment/tip_functions_2d.h).
 The interaction integral (q the plateau function, u^aux the auxiliary field
 of unit K):
 

@@ -3,7 +3,7 @@
 The PNGs of a large mesh (outputs.write_pngs) are drawn as an image, not as
 one matplotlib polygon per triangle: matplotlib builds a Path object per
 polygon (1.5 s for 1.9e5 sub-triangles) and draws each (0.4 s), while the
-C++ kernel (cpp/raster.cpp) paints the pixels whose centres lie in each
+C++ kernel (cpp/post/raster.cpp) paints the pixels whose centres lie in each
 triangle in milliseconds. A pixel takes the value of the triangle that
 contains its centre (the later one where triangles overlap, e.g. magnified
 lips); pixels outside every triangle are NaN (transparent in imshow).

@@ -30,7 +30,7 @@ from .constraints import check_rigid_motion, compute_dirichlet
 logger = logging.getLogger(__name__)
 
 
-#: Cell classes of CrackGeometry.cell_class (see cpp/crack_geometry.h).
+#: Cell classes of CrackGeometry.cell_class (see cpp/geometry/crack_geometry_2d.h).
 CELL_CLASSES = {"plain": 0, "cut": 1, "edge": 2, "tip": 3, "extension": 4}
 
 
