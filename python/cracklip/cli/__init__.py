@@ -3,7 +3,7 @@
     python3 -m cracklip run SCENE.toml --out DIR      solve, write results into DIR
     python3 -m cracklip grow SCENE.toml --out DIR     grow the cracks ([growth] table), write the path
     python3 -m cracklip check SCENE.toml             validate, print what will be modelled
-    python3 -m cracklip reference                    the scene-file reference (Markdown)
+    python3 -m cracklip reference [--update PAGE]    the scene-file reference (Markdown)
 
 ``--set KEY=VALUE`` (repeatable) overrides a scene key, e.g. ``--set
 mesh.h=0.1``. Progress with phase timings and active-set iterations goes to
@@ -63,7 +63,7 @@ def print_warnings(warnings) -> None:
 
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog=PROG, description="cracklip: 2D X-FEM cracks with crack-lip contact, from a "
-                     "TOML scene file.", epilog="Scene keys: `python3 -m cracklip reference` or README.md.")
+                     "TOML scene file.", epilog="Scene keys: `python3 -m cracklip reference` or docs/scene_reference.md.")
     sub = parser.add_subparsers(dest="command", metavar="{run,grow,check,reference}", parser_class=_Parser)
 
     def common(p: argparse.ArgumentParser) -> None:
@@ -104,6 +104,9 @@ def build_parser() -> argparse.ArgumentParser:
     check.set_defaults(func=cmd_check)
 
     ref = sub.add_parser("reference", help="print the scene-file reference (Markdown table)")
+    ref.add_argument("--update", metavar="PAGE", type=pathlib.Path,
+                     help="replace the reference table in PAGE (a Markdown file, e.g. docs/scene_reference.md) "
+                          "instead of printing it")
     ref.set_defaults(func=cmd_reference)
     return parser
 
@@ -257,7 +260,24 @@ def cmd_check(args) -> int:
 
 def cmd_reference(args) -> int:
     from ..io.scene_file import reference_markdown
-    sys.stdout.write(reference_markdown())
+    table = reference_markdown()
+    if args.update is None:
+        sys.stdout.write(table)
+        return 0
+    from ..errors import InputError
+    try:
+        lines = args.update.read_text().splitlines(keepends=True)
+    except OSError as e:
+        raise InputError(f"reference --update: cannot read {args.update}: {e.strerror}") from None
+    start = next((i for i, line in enumerate(lines) if line.startswith("| key | type | default | meaning |")), None)
+    if start is None:
+        raise InputError(f"reference --update: {args.update} has no reference table (a line starting "
+                         "'| key | type | default | meaning |') to replace")
+    end = start
+    while end < len(lines) and lines[end].startswith("|"):
+        end += 1
+    args.update.write_text("".join(lines[:start]) + table + "".join(lines[end:]))
+    print(f"{args.update}: reference table updated ({len(table.splitlines()) - 2} keys)")
     return 0
 
 

@@ -36,6 +36,7 @@ from ..scene.mesh import MeshData, create_half_annulus, create_plate_with_holes,
 from ..scene.options import ENRICHMENTS, Options, SOLVERS, TIP_QUADRATURES
 from ..scene.scene import Scene
 from ..scene.stress_field import LinearStress
+from ..scene.units import FORCES, LENGTHS, STRESSES, Units
 
 
 MESH_KINDS = ("rectangle", "plate_with_hole", "plate_with_holes", "half_annulus", "file")
@@ -403,6 +404,14 @@ SCHEMA: tuple[Key, ...] = tuple([
     Key("mesh.refine[].radius", "float", 0.0, "distance over which the size grows back to h beyond that "
         "plateau, never faster than 0.25 per unit length; 0: that fastest growth", p_float(0.0), GENERATED),
     # material
+    # units (optional: labels and conversions, the solve needs only consistent units)
+    Key("units.length", "string", UNSET, "length unit of every coordinate and size: " + ", ".join(
+        f"`{u}`" for u in LENGTHS) + "; with units.force or units.stress it labels every axis and K "
+        "(K in stress sqrt(length)) and converts constants given in other units", p_choice(*LENGTHS)),
+    Key("units.force", "string", UNSET, "force unit: " + ", ".join(f"`{u}`" for u in FORCES)
+        + " (stress = force / length^2)", p_choice(*FORCES)),
+    Key("units.stress", "string", UNSET, "stress unit (of E, tractions, pressures): " + ", ".join(
+        f"`{u}`" for u in STRESSES) + "; give it or units.force", p_choice(*STRESSES)),
     Key("material.E", "float", REQUIRED, "Young's modulus", p_float(positive=True)),
     Key("material.nu", "float", REQUIRED, "Poisson's ratio, -1 < nu < 0.5 (plane stress: <= 0.5)", p_float()),
     Key("material.plane", "string", "strain", "`strain` (thick part, eps_zz = 0) or `stress` (thin plate, "
@@ -636,6 +645,8 @@ def parse_settings(doc: dict) -> dict:
     for i, r in enumerate(s["mesh"]["refine"]):
         if ("point" in r) == ("segment" in r):
             raise InputError(f"mesh.refine[{i}] needs exactly one of point or segment")
+    if "units" in doc:
+        s["units"] = _section(doc["units"], "units", "units")
     if "material" not in doc:
         raise InputError("the scene has no [material] table: give material.E and material.nu")
     s["material"] = _section(doc["material"], "material", "material")
@@ -789,6 +800,10 @@ def load_scene_file(path: str | pathlib.Path, overrides: typing.Sequence[str] = 
 def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Path | None = None) -> SceneFile:
     """Validate a scene document and build its mesh and Scene."""
     s = parse_settings(doc)
+    units = None
+    if "units" in s:
+        u = s["units"]
+        units = Units(u.get("length"), u.get("force"), u.get("stress"))
     try:
         material = Material(s["material"]["E"], s["material"]["nu"], s["material"]["plane"])
     except InputError as e:
@@ -839,7 +854,7 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
                   options=options, body_force=body_force, point_forces=point_forces,
                   initial_stress=initial_stress, body_force_group=s["loads"]["body_force_group"],
                   initial_stress_group=s["loads"].get("initial_stress", {}).get("group", "default"),
-                  load_path=load_path)
+                  load_path=load_path, units=units)
     if load_path is not None:
         from ..scene.load_path import steps
         steps(scene)  # unknown groups are an InputError now, not at the solve

@@ -12,6 +12,7 @@ from .crack import Crack
 from .material import Material
 from .mesh import MeshData
 from .options import Options
+from .units import Units
 from .stress_field import as_stress_field
 
 
@@ -41,6 +42,8 @@ class Scene:
     #: path-dependent, so its slip and states carry over. None: one step
     #: with every group at factor 1.
     load_path: typing.Optional[list] = None
+    #: The units of the scene's numbers (labels and conversions only), or None.
+    units: typing.Optional[Units] = None
 
     def __post_init__(self):
         if self.load_path is not None:
