@@ -5,6 +5,7 @@ choice, failures reported, and the BLAS report. No timings: speed is
 demos/bench_solvers.py's business."""
 import dataclasses
 import pathlib
+import subprocess
 import sys
 
 import cracklip as cl
@@ -467,3 +468,18 @@ def test_bench_solvers_demo_tiny(tmp_path):
                            capture_output=True, text=True).stdout.splitlines()
     assert table[0].startswith("| case | dofs |") and len(table) == 3
     assert table[2].startswith(f"| open | {rows['xfem-direct']['ndofs']} |")
+
+
+def test_openblas_runs_on_one_thread_after_import():
+    """Importing the checked solves limits OpenBLAS to one thread (its
+    module-level limit_blas_threads(): a second thread does not speed MUMPS
+    up on two cores and changed results at round-off, which the unstable DCB
+    growth path amplified to 5e-4 when the call was lost in a move)."""
+    import os
+    code = ("import ctypes, cracklip.solvers.checked as c; "
+            "libs = c._mapped_libraries('libopenblas'); "
+            "print(ctypes.CDLL(libs[0]).openblas_get_num_threads() if libs else 'none')")
+    env = {k: v for k, v in os.environ.items() if k not in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS")}
+    env["PYTHONPATH"] = str(pathlib.Path(__file__).resolve().parents[1] / "python")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env).stdout
+    assert out.strip() in ("1", "none")

@@ -268,6 +268,9 @@ def limit_blas_threads(threads: int = 1) -> None:
             logger.debug("cannot set the threads of %s", lib)
 
 
+limit_blas_threads()
+
+
 @functools.lru_cache(maxsize=None)
 def blas_library() -> str:
     """The BLAS library this process runs (PETSc's and MUMPS'), as loaded:
