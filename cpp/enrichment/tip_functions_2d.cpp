@@ -1,4 +1,5 @@
 #include "enrichment/tip_functions_2d.h"
+#include "enrichment/williams_local.h"
 
 #include <cmath>
 #include <numbers>
@@ -10,8 +11,7 @@ namespace
 /// Global gradient from polar derivatives g_r, g_t of a function of (r, t).
 std::array<double, 2> polar_gradient(const TipFrame& f, const Polar& p, double g_r, double g_t)
 {
-  const double d1 = p.c * g_r - p.s / p.r * g_t;
-  const double d2 = p.s * g_r + p.c / p.r * g_t;
+  const auto [d1, d2] = polar_to_local(p.r, p.c, p.s, g_r, g_t);
   // x_loc = R (x - T), rows of R: e1, e2 = (-e1y, e1x); grad_glob = R^T grad_loc.
   const double e1x = f.e1[0], e1y = f.e1[1];
   return {e1x * d1 - e1y * d2, e1y * d1 + e1x * d2};
@@ -39,9 +39,7 @@ void branch_functions(const TipFrame& f, std::array<double, 2> x, int side,
   const Polar p = tip_polar(f, x, side);
   const double sr = std::sqrt(p.r);
   const double sh = std::sin(0.5 * p.theta), ch = std::cos(0.5 * p.theta);
-  const std::array<double, 4> h = {sh, ch, sh * p.s, ch * p.s};
-  const std::array<double, 4> ht = {0.5 * ch, -0.5 * sh, 0.5 * ch * p.s + sh * p.c,
-                                    -0.5 * sh * p.s + ch * p.c};
+  const auto [h, ht] = branch_angular(sh, ch, p.c, p.s);
   for (int l = 0; l < 4; ++l)
   {
     F[l] = sr * h[l];
@@ -57,12 +55,10 @@ void williams_displacement(const TipFrame& f, std::array<double, 2> x, int side,
   const Polar p = tip_polar(f, x, side);
   const double sr = std::sqrt(p.r);
   const double sh = std::sin(0.5 * p.theta), ch = std::cos(0.5 * p.theta);
-  const double c = p.c, s = p.s;
   // h[m][k]: angular part of local component k of mode m, ht its derivative.
-  const double h[2][2] = {{ch * (kappa - c), sh * (kappa - c)},
-                          {sh * (kappa + 2.0 + c), -ch * (kappa - 2.0 + c)}};
-  const double ht[2][2] = {{-0.5 * sh * (kappa - c) + ch * s, 0.5 * ch * (kappa - c) + sh * s},
-                           {0.5 * ch * (kappa + 2.0 + c) - sh * s, 0.5 * sh * (kappa - 2.0 + c) + ch * s}};
+  const WilliamsAngular w = williams_angular(sh, ch, p.c, p.s, kappa);
+  const auto& h = w.h;
+  const auto& ht = w.ht;
   const double e1x = f.e1[0], e1y = f.e1[1];
   for (int m = 0; m < 2; ++m)
   {
