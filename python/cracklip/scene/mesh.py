@@ -25,10 +25,12 @@ logger = logging.getLogger(__name__)
 
 @dataclasses.dataclass
 class MeshData:
-    """A DOLFINx triangle mesh with its boundary facet tags.
+    """A DOLFINx mesh with its boundary facet tags: triangles in 2D
+    (this module), tetrahedra in 3D (mesh_3d).
 
     Attributes:
-        mesh: the DOLFINx mesh (serial, triangles, geometric dimension 2).
+        mesh: the DOLFINx mesh (serial; triangles with geometric dimension 2,
+            or tetrahedra).
         facet_tags: DOLFINx MeshTags on boundary facets.
         tags: boundary name -> tag value.
         h: nominal mesh size used to generate it (None for a file).
@@ -37,6 +39,8 @@ class MeshData:
         cache_standard_block: keep the assembled standard stiffness block
             (the uncracked P1 stiffness) for the next solves on this mesh
             (crack growth: the cracks change, the mesh does not).
+        front_refinements: in 3D, the refinements around crack fronts asked
+            for (mesh_3d.FrontRefinement).
     """
     mesh: dolfinx.mesh.Mesh
     facet_tags: typing.Any
@@ -45,6 +49,12 @@ class MeshData:
     refinements: list[tuple[float, float, float]] = dataclasses.field(default_factory=list)
     cache_standard_block: bool = False
     standard_blocks: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
+    front_refinements: list = dataclasses.field(default_factory=list)
+
+    @property
+    def gdim(self) -> int:
+        """2 for a triangle mesh, 3 for a tetrahedral one."""
+        return self.mesh.topology.dim
 
     def facets(self, where: str | int) -> np.ndarray:
         """Facet indices of a named (or numbered) boundary tag."""

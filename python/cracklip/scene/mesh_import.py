@@ -6,8 +6,10 @@ the facet markers through the parallel entity-distribution path: on a 60k-cell
 mesh that is about half of its 0.4 s. Here the triangles and nodes go straight
 to dolfinx.mesh.create_mesh, and the physical curves' line elements are
 matched to the mesh's facets by their two vertices (original node indices,
-through geometry.input_global_indices). Serial only, first-order triangles
-(cracklip's meshes; mesh.check_mesh enforces it).
+through geometry.input_global_indices). Serial only, first-order
+triangles in 2D or tetrahedra in 3D (cracklip's meshes; mesh.check_mesh and
+mesh_3d.check_mesh_3d enforce it); in 3D the physical surfaces' triangles
+tag the facets.
 """
 from __future__ import annotations
 
@@ -36,40 +38,59 @@ def _serial_partitioner(comm, nparts, tdim, cells, *args):
     return dolfinx.cpp.graph.AdjacencyList_int32(np.zeros(cells.num_nodes, dtype=np.int32))
 
 
-def model_to_mesh(model, comm) -> tuple[typing.Any, typing.Any, dict[str, int]]:
-    """(mesh, facet_tags, names) of the current gmsh model: the 3-node
-    triangles of its 2D elements, facet tags from its physical curves
-    (value = the physical tag, names from the physical names)."""
+#: Per dimension: gmsh's cell element type, nodes per cell, its facet element
+#: type, nodes per facet, and the names used in messages.
+_GMSH_TYPES = {2: (2, 3, 1, 2, "3-node triangles", "2-node boundary lines", "curves"),
+               3: (4, 4, 2, 3, "4-node tetrahedra", "3-node boundary triangles", "surfaces")}
+
+
+def model_to_mesh(model, comm, dim: int = 2) -> tuple[typing.Any, typing.Any, dict[str, int]]:
+    """(mesh, facet_tags, names) of the current gmsh model: its first-order
+    cells of dimension dim (triangles in 2D, tetrahedra in 3D), facet tags
+    from its physical groups of dimension dim - 1 (curves in 2D, surfaces in
+    3D; value = the physical tag, names from the physical names)."""
     import dolfinx.cpp.mesh
     import dolfinx.mesh
     from dolfinx.io import gmshio
+    if dim not in _GMSH_TYPES:
+        raise MeshError(f"cracklip meshes are 2D or 3D, not {dim}D")
+    cell_type, npc, facet_type, npf, cell_name, facet_name, group_name = _GMSH_TYPES[dim]
     tags, coords, _ = model.mesh.getNodes()
     coords = coords.reshape(-1, 3)
     order = np.argsort(tags, kind="stable")
     sorted_tags = tags[order]
-    x = np.ascontiguousarray(coords[order, :2])
-    types, _, elem_nodes = model.mesh.getElements(2)
+    x = np.ascontiguousarray(coords[order, :dim])
+    types, _, elem_nodes = model.mesh.getElements(dim)
     if len(types) == 0:
-        raise MeshError("the gmsh model has no 2D elements")
-    if any(t != 2 for t in types):
-        raise MeshError("only 3-node triangles are supported; mesh with Mesh.ElementOrder = 1 and "
+        raise MeshError(f"the gmsh model has no {dim}D elements")
+    if any(t != cell_type for t in types):
+        raise MeshError(f"only {cell_name} are supported; mesh with Mesh.ElementOrder = 1 and "
                         "without recombination")
-    cells = np.concatenate([_node_index(np.asarray(n), sorted_tags).reshape(-1, 3) for n in elem_nodes])
+    cells = np.concatenate([_node_index(np.asarray(n), sorted_tags).reshape(-1, npc) for n in elem_nodes])
     serial = {"partitioner": _serial_partitioner} if comm.size == 1 else {}
-    msh = dolfinx.mesh.create_mesh(comm, cells.astype(np.int64), x, gmshio.ufl_mesh(2, 2), **serial)
+    shape = "triangle" if dim == 2 else "tetrahedron"
+    msh = dolfinx.mesh.create_mesh(comm, cells.astype(np.int64), x, gmshio.ufl_mesh(cell_type, dim), **serial)
+    assert msh.topology.cell_type.name == shape
 
     names: dict[str, int] = {}
     keys, values = [], []
-    for dim, tag in model.getPhysicalGroups(1):
-        names[model.getPhysicalName(dim, tag) or str(tag)] = tag
-        for entity in model.getEntitiesForPhysicalGroup(dim, tag):
-            ltypes, _, lnodes = model.mesh.getElements(1, entity)
+    n = np.int64(x.shape[0])
+
+    def key(sorted_nodes: np.ndarray) -> np.ndarray:
+        k = sorted_nodes[:, 0].astype(np.int64)
+        for j in range(1, sorted_nodes.shape[1]):
+            k = k * n + sorted_nodes[:, j]
+        return k
+    for gdim, tag in model.getPhysicalGroups(dim - 1):
+        names[model.getPhysicalName(gdim, tag) or str(tag)] = tag
+        for entity in model.getEntitiesForPhysicalGroup(gdim, tag):
+            ltypes, _, lnodes = model.mesh.getElements(dim - 1, entity)
             for t, nodes in zip(ltypes, lnodes):
-                if t != 1:
-                    raise MeshError("only 2-node boundary lines are supported (first-order mesh)")
-                pairs = np.sort(_node_index(np.asarray(nodes), sorted_tags).reshape(-1, 2), axis=1)
-                keys.append(pairs[:, 0].astype(np.int64) * x.shape[0] + pairs[:, 1])
-                values.append(np.full(len(pairs), tag, dtype=np.int32))
+                if t != facet_type:
+                    raise MeshError(f"only {facet_name} are supported (first-order mesh)")
+                groups = np.sort(_node_index(np.asarray(nodes), sorted_tags).reshape(-1, npf), axis=1)
+                keys.append(key(groups))
+                values.append(np.full(len(groups), tag, dtype=np.int32))
     tdim = msh.topology.dim
     msh.topology.create_entities(tdim - 1)
     msh.topology.create_connectivity(tdim - 1, tdim)
@@ -78,7 +99,7 @@ def model_to_mesh(model, comm) -> tuple[typing.Any, typing.Any, dict[str, int]]:
     geo = dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, tdim - 1, facets, False)
     original = np.asarray(msh.geometry.input_global_indices, dtype=np.int64)[geo]
     original.sort(axis=1)
-    facet_keys = original[:, 0] * x.shape[0] + original[:, 1]
+    facet_keys = key(original)
     if keys:
         line_keys, line_values = np.concatenate(keys), np.concatenate(values)
         key_order = np.argsort(facet_keys)
@@ -86,8 +107,8 @@ def model_to_mesh(model, comm) -> tuple[typing.Any, typing.Any, dict[str, int]]:
         pos = np.minimum(pos, num_facets - 1)
         found = facet_keys[key_order][pos] == line_keys
         if not found.all():
-            raise MeshError(f"{np.count_nonzero(~found)} boundary line element(s) of the gmsh model are not "
-                            "edges of its triangles")
+            raise MeshError(f"{np.count_nonzero(~found)} boundary element(s) of the gmsh model's physical "
+                            f"{group_name} are not facets of its {cell_name}")
         marked = key_order[pos]
         # One value per facet (the last physical group wins, as in gmshio).
         uniq, last = np.unique(marked[::-1], return_index=True)

@@ -1,0 +1,277 @@
+"""Cracks in 3D parts as the user gives them: crack surfaces.
+
+- ``EllipticalCrack``: a planar crack bounded by an ellipse (a circle when
+  b = a): centre, unit normal, the direction of the first semi-axis, the
+  semi-axes a and b. A surface crack is an ellipse centred on a face of the
+  part, a corner crack one centred on an edge: the part's boundary cuts the
+  crack, and only what lies inside the part is a crack.
+- ``PolygonCrack``: a planar crack bounded by a polygon (vertices in order).
+- ``SurfaceCrack``: a triangulated surface (vertices, consistently oriented
+  triangles) for non-planar cracks, read from STL or a gmsh file
+  (``read_crack_surface``).
+
+Every crack has a + side (the side its normal points to; for a triangulated
+surface, the side of the triangles' right-handed normals) and a front: the
+boundary of the surface inside the part. ``front_points(spacing)`` samples
+the front (before meshing: the mesh is refined around it).
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+import numbers
+import pathlib
+import typing
+
+import numpy as np
+
+from ..errors import CrackGeometryError
+
+Value = typing.Union[float, typing.Callable[[np.ndarray], np.ndarray]]
+
+
+def _unit(v, what: str, label: str) -> np.ndarray:
+    a = np.asarray(v, dtype=float).reshape(-1)
+    if a.shape != (3,) or not np.all(np.isfinite(a)) or np.linalg.norm(a) == 0.0:
+        raise CrackGeometryError(f"{label}: {what} must be three finite numbers, not all zero; got {v!r}")
+    return a / np.linalg.norm(a)
+
+
+def _check_pressure(pressure, label: str) -> None:
+    if not callable(pressure) and not (isinstance(pressure, numbers.Real) and math.isfinite(pressure)):
+        raise CrackGeometryError(f"{label}: the lip pressure must be a finite number or a callable p(x), "
+                                 f"got {pressure!r}")
+
+
+@dataclasses.dataclass
+class EllipticalCrack:
+    """A planar crack bounded by an ellipse.
+
+    Attributes:
+        center: (3,) centre of the ellipse.
+        normal: (3,) normal of the crack's plane (points to the + side).
+        axis: (3,) direction of the first semi-axis (projected onto the
+            plane; need not be exactly in it).
+        a: the semi-axis along `axis` (> 0).
+        b: the other semi-axis, along normal x axis (> 0; None: a circle,
+            b = a).
+        name: label in messages and outputs.
+        pressure: pressure on both lips (> 0 pushes them apart), a number
+            or a callable p(x) of points (n, 3) returning (n,).
+        pressure_group: load group whose factor scales the pressure.
+    """
+    center: typing.Sequence[float]
+    normal: typing.Sequence[float]
+    a: float
+    b: float | None = None
+    axis: typing.Sequence[float] | None = None
+    name: str = ""
+    pressure: Value = 0.0
+    pressure_group: str = "default"
+
+    def __post_init__(self):
+        label = self.name or "crack"
+        c = np.asarray(self.center, dtype=float).reshape(-1)
+        if c.shape != (3,) or not np.all(np.isfinite(c)):
+            raise CrackGeometryError(f"{label}: center must be three finite numbers, got {self.center!r}")
+        n = _unit(self.normal, "normal", label)
+        b = self.a if self.b is None else self.b
+        for key, v in (("a", self.a), ("b", b)):
+            if not (isinstance(v, numbers.Real) and math.isfinite(v) and v > 0.0):
+                raise CrackGeometryError(f"{label}: semi-axis {key} must be a positive number, got {v!r}")
+        if self.axis is None:  # any direction in the plane
+            trial = np.eye(3)[int(np.argmin(np.abs(n)))]
+            ax = trial - np.dot(trial, n) * n
+        else:
+            ax = _unit(self.axis, "axis", label)
+            ax = ax - np.dot(ax, n) * n
+            if np.linalg.norm(ax) < 1e-9:
+                raise CrackGeometryError(f"{label}: axis {list(self.axis)} is along the normal; give a direction "
+                                         "in the crack's plane for the semi-axis a")
+        self.center, self.normal, self.axis = c, n, ax / np.linalg.norm(ax)
+        self.b = float(b)
+        self.a = float(self.a)
+        _check_pressure(self.pressure, label)
+
+    @property
+    def axis2(self) -> np.ndarray:
+        """Direction of the semi-axis b: normal x axis."""
+        return np.cross(self.normal, self.axis)
+
+    def point(self, phi: np.ndarray) -> np.ndarray:
+        """Points (n, 3) of the front at parametric angles phi (n,)."""
+        phi = np.asarray(phi, dtype=float).reshape(-1)
+        return (self.center[None] + self.a * np.cos(phi)[:, None] * self.axis[None]
+                + self.b * np.sin(phi)[:, None] * self.axis2[None])
+
+    def parametric_angle(self, x: np.ndarray) -> np.ndarray:
+        """The parametric angle (n,) of points (n, 3) near the front."""
+        d = np.asarray(x, dtype=float).reshape(-1, 3) - self.center
+        return np.arctan2(d @ self.axis2 / self.b, d @ self.axis / self.a)
+
+    def front_points(self, spacing: float) -> np.ndarray:
+        """Points (m, 3) along the whole ellipse at most `spacing` apart (equal
+        steps in the parametric angle: the fastest part of the ellipse moves
+        max(a, b) per radian)."""
+        m = max(16, int(math.ceil(2 * math.pi * max(self.a, self.b) / spacing)))
+        return self.point(np.linspace(0.0, 2 * math.pi, m, endpoint=False))
+
+    @property
+    def area(self) -> float:
+        return math.pi * self.a * self.b
+
+
+@dataclasses.dataclass
+class PolygonCrack:
+    """A planar crack bounded by a polygon.
+
+    Attributes:
+        points: (k, 3) vertices in order around the crack, k >= 3, in one
+            plane; the normal (the + side) follows the right-hand rule.
+        name, pressure, pressure_group: as EllipticalCrack.
+    """
+    points: np.ndarray
+    name: str = ""
+    pressure: Value = 0.0
+    pressure_group: str = "default"
+
+    def __post_init__(self):
+        label = self.name or "crack"
+        p = np.asarray(self.points, dtype=float)
+        if p.ndim != 2 or p.shape[1] != 3 or p.shape[0] < 3 or not np.all(np.isfinite(p)):
+            raise CrackGeometryError(f"{label}: a polygon needs k >= 3 finite vertices (k, 3), got shape "
+                                     f"{np.shape(self.points)}")
+        c = p.mean(axis=0)
+        # Newell's normal: robust for any simple polygon.
+        nrm = np.zeros(3)
+        for i in range(len(p)):
+            q, r = p[i] - c, p[(i + 1) % len(p)] - c
+            nrm += np.cross(q, r)
+        area2 = np.linalg.norm(nrm)
+        scale = float(np.ptp(p, axis=0).max())
+        if area2 <= 1e-12 * scale * scale:
+            raise CrackGeometryError(f"{label}: the polygon has no area (its vertices are collinear or repeated)")
+        n = nrm / area2
+        off = np.abs((p - c) @ n)
+        if off.max() > 1e-9 * scale:
+            k = int(np.argmax(off))
+            raise CrackGeometryError(f"{label}: vertex {k} {p[k].tolist()} lies {off[k]:.3g} off the polygon's plane; "
+                                     "a polygon crack must be planar (use a SurfaceCrack for a curved one)")
+        self.points = p
+        self.normal = n
+        _check_pressure(self.pressure, label)
+
+    def front_points(self, spacing: float) -> np.ndarray:
+        out = []
+        for i in range(len(self.points)):
+            a, b = self.points[i], self.points[(i + 1) % len(self.points)]
+            m = max(1, int(math.ceil(np.linalg.norm(b - a) / spacing)))
+            t = np.arange(m) / m
+            out.append(a[None] + t[:, None] * (b - a)[None])
+        return np.concatenate(out)
+
+    @property
+    def area(self) -> float:
+        c = self.points.mean(axis=0)
+        return 0.5 * float(sum(np.dot(np.cross(self.points[i] - c, self.points[(i + 1) % len(self.points)] - c),
+                                      self.normal) for i in range(len(self.points))))
+
+
+@dataclasses.dataclass
+class SurfaceCrack:
+    """A crack given as a triangulated surface.
+
+    Attributes:
+        vertices: (nv, 3) points.
+        triangles: (nt, 3) vertex indices, consistently oriented (the +
+            side is that of their right-handed normals).
+        name, pressure, pressure_group: as EllipticalCrack.
+    The surface's boundary edges are its front where they lie inside the
+    part. Checks here: shapes, finite values, indices in range, no
+    degenerate triangle; manifoldness and orientation are checked with the
+    level sets (C++), which name the edge at fault.
+    """
+    vertices: np.ndarray
+    triangles: np.ndarray
+    name: str = ""
+    pressure: Value = 0.0
+    pressure_group: str = "default"
+
+    def __post_init__(self):
+        label = self.name or "crack"
+        v = np.asarray(self.vertices, dtype=float)
+        t = np.asarray(self.triangles)
+        if v.ndim != 2 or v.shape[1] != 3 or not np.all(np.isfinite(v)):
+            raise CrackGeometryError(f"{label}: vertices must be finite (nv, 3), got shape {np.shape(self.vertices)}")
+        if t.ndim != 2 or t.shape[1] != 3 or len(t) == 0 or not np.issubdtype(t.dtype, np.integer):
+            raise CrackGeometryError(f"{label}: triangles must be integer vertex indices (nt, 3), nt >= 1, got "
+                                     f"shape {np.shape(self.triangles)}")
+        if t.min() < 0 or t.max() >= len(v):
+            raise CrackGeometryError(f"{label}: triangle vertex index out of range [0, {len(v)})")
+        e = np.cross(v[t[:, 1]] - v[t[:, 0]], v[t[:, 2]] - v[t[:, 0]])
+        scale = float(np.ptp(v, axis=0).max())
+        bad = np.flatnonzero(np.linalg.norm(e, axis=1) <= 1e-12 * scale * scale)
+        if bad.size:
+            k = int(bad[0])
+            raise CrackGeometryError(f"{label}: triangle {k} (vertices {t[k].tolist()}) has no area; remove "
+                                     f"degenerate triangles ({bad.size} of them)")
+        self.vertices, self.triangles = v, t.astype(np.int32)
+        _check_pressure(self.pressure, label)
+
+    def boundary_edges(self) -> np.ndarray:
+        """(m, 2) vertex pairs of the edges that belong to one triangle only."""
+        edges = np.sort(self.triangles[:, [[0, 1], [1, 2], [2, 0]]].reshape(-1, 2), axis=1)
+        uniq, count = np.unique(edges, axis=0, return_counts=True)
+        return uniq[count == 1]
+
+    def front_points(self, spacing: float) -> np.ndarray:
+        out = []
+        for a, b in self.boundary_edges():
+            pa, pb = self.vertices[a], self.vertices[b]
+            m = max(1, int(math.ceil(np.linalg.norm(pb - pa) / spacing)))
+            out.append(pa[None] + (np.arange(m + 1) / m)[:, None] * (pb - pa)[None])
+        return np.concatenate(out) if out else np.zeros((0, 3))
+
+    @property
+    def area(self) -> float:
+        v, t = self.vertices, self.triangles
+        return 0.5 * float(np.linalg.norm(np.cross(v[t[:, 1]] - v[t[:, 0]], v[t[:, 2]] - v[t[:, 0]]), axis=1).sum())
+
+
+def read_crack_surface(path: str | pathlib.Path, name: str = "") -> SurfaceCrack:
+    """A SurfaceCrack from an STL file (ASCII or binary) or a gmsh .msh file
+    (its 3-node triangles)."""
+    path = pathlib.Path(path)
+    if not path.is_file():
+        raise CrackGeometryError(f"crack surface file {path} does not exist")
+    from .mesh import _gmsh
+    gmsh = _gmsh()
+    gmsh.model.add("crack_surface")
+    try:
+        gmsh.merge(str(path))
+    except Exception as e:  # gmsh raises a bare Exception for an unreadable file
+        gmsh.model.remove()
+        raise CrackGeometryError(f"{path}: gmsh cannot read this file ({e}); give an STL or a gmsh .msh file "
+                                 "with triangles") from None
+    try:
+        tags, coords, _ = gmsh.model.mesh.getNodes()
+        types, _, nodes = gmsh.model.mesh.getElements(2)
+    finally:
+        gmsh.model.remove()
+    tri = [np.asarray(n) for t, n in zip(types, nodes) if t == 2]
+    if not tri:
+        raise CrackGeometryError(f"{path}: no 3-node triangles in the file")
+    order = np.argsort(tags)
+    pos = np.searchsorted(tags[order], np.concatenate(tri))
+    triangles = order[pos].reshape(-1, 3)
+    vertices = coords.reshape(-1, 3)
+    # STL repeats vertices per triangle: merge coincident ones.
+    scale = float(np.ptp(vertices, axis=0).max()) or 1.0
+    key = np.round(vertices / (1e-9 * scale)).astype(np.int64)
+    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    return SurfaceCrack(vertices[first], inverse.reshape(-1)[triangles], name=name or path.stem)
+
+
+CrackSurface = typing.Union[EllipticalCrack, PolygonCrack, SurfaceCrack]
+
+__all__ = ["EllipticalCrack", "PolygonCrack", "SurfaceCrack", "CrackSurface", "read_crack_surface"]

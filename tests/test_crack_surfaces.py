@@ -1,0 +1,84 @@
+"""3D crack descriptions (cracklip.scene.crack_surface) and 3D meshes
+(cracklip.scene.mesh_3d): frames, front sampling, areas, bad input, and a
+box meshed finer around a penny crack's front."""
+import math
+
+import numpy as np
+import pytest
+
+import cracklip as cl
+from cracklip.scene.crack_surface import EllipticalCrack, PolygonCrack, SurfaceCrack, read_crack_surface
+from cracklip.scene.mesh_3d import FrontRefinement, create_box, create_cylinder, front_sampling
+
+
+def test_ellipse_frame_and_front():
+    c = EllipticalCrack(center=(1, 2, 3), normal=(0, 0, 2), a=2.0, b=0.5, axis=(1, 1, 0.3))
+    assert np.allclose(np.linalg.norm(c.normal), 1) and abs(c.axis @ c.normal) < 1e-15
+    assert np.allclose(np.cross(c.axis, c.axis2), c.normal)
+    pts = c.front_points(0.05)
+    d = pts - c.center
+    assert np.allclose((d @ c.axis / 2.0) ** 2 + (d @ c.axis2 / 0.5) ** 2, 1.0)
+    assert np.linalg.norm(np.diff(pts, axis=0), axis=1).max() <= 0.05
+    assert np.allclose(c.parametric_angle(c.point(np.array([0.3, -2.0]))), [0.3, -2.0])
+    assert EllipticalCrack((0, 0, 0), (0, 1, 0), 1.5).b == 1.5  # a circle
+
+
+def test_polygon_and_surface():
+    sq = PolygonCrack([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]])
+    assert np.allclose(sq.normal, [0, 0, 1]) and sq.area == pytest.approx(1.0)
+    assert len(sq.front_points(0.1)) == 40
+    s = SurfaceCrack([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], [[0, 1, 2], [0, 2, 3]])
+    assert s.area == pytest.approx(1.0) and len(s.boundary_edges()) == 4
+
+
+def test_bad_cracks_are_typed_errors():
+    with pytest.raises(cl.CrackGeometryError, match="normal"):
+        EllipticalCrack((0, 0, 0), (0, 0, 0), 1.0)
+    with pytest.raises(cl.CrackGeometryError, match="semi-axis a"):
+        EllipticalCrack((0, 0, 0), (0, 0, 1), -1.0)
+    with pytest.raises(cl.CrackGeometryError, match="along the normal"):
+        EllipticalCrack((0, 0, 0), (0, 0, 1), 1.0, axis=(0, 0, 1))
+    with pytest.raises(cl.CrackGeometryError, match="off the polygon's plane"):
+        PolygonCrack([[0, 0, 0], [1, 0, 0], [1, 1, 0.1], [0, 1, 0]])
+    with pytest.raises(cl.CrackGeometryError, match="no area"):
+        SurfaceCrack([[0, 0, 0], [1, 0, 0], [2, 0, 0]], [[0, 1, 2]])
+
+
+def test_stl_round_trip(tmp_path):
+    path = tmp_path / "crack.stl"
+    tri = [[[0, 0, 0], [1, 0, 0], [1, 1, 0.2]], [[0, 0, 0], [1, 1, 0.2], [0, 1, 0.2]]]
+    lines = ["solid crack"]
+    for t in tri:
+        lines += ["facet normal 0 0 1", "outer loop", *[f"vertex {p[0]} {p[1]} {p[2]}" for p in t], "endloop",
+                  "endfacet"]
+    path.write_text("\n".join(lines + ["endsolid crack", ""]))
+    s = read_crack_surface(path)
+    assert len(s.vertices) == 4 and len(s.triangles) == 2  # shared vertices merged
+    assert s.area == pytest.approx(math.sqrt(1 + 0.04))
+
+
+def test_box_refined_around_a_front():
+    crack = EllipticalCrack((0, 0, 0), (0, 0, 1), 0.5)
+    fr = FrontRefinement(crack.front_points(front_sampling(0.05)), 0.05, 0.5)
+    md = create_box(-1, -1, -1, 1, 1, 1, 0.4, fronts=[fr])
+    assert md.gdim == 3 and set(md.tags) == {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"}
+    x = md.mesh.geometry.x
+    cells = md.mesh.geometry.dofmap.array.reshape(-1, 4)
+    centre = x[cells].mean(axis=1)
+    edge = np.linalg.norm(x[cells[:, 1]] - x[cells[:, 0]], axis=1)
+    dist = np.hypot(np.hypot(centre[:, 0], centre[:, 1]) - 0.5, centre[:, 2])
+    # The size field: h_front = 0.05 within 0.2 of the front, then growing by 0.25 per unit
+    # distance: 0.25 or more beyond a distance of 1 (capped by h = 0.4).
+    assert 0.03 < np.median(edge[dist < 0.05]) < 0.07
+    assert np.median(edge[dist > 1.0]) > 0.18
+    # Facet tags cover the six faces, each of area 4.
+    for tag in md.tags:
+        f = md.facets(tag)
+        assert f.size > 0
+
+
+def test_cylinder_tags():
+    md = create_cylinder((0, 0, 0), (0, 0, 1), 1.0, 2.0, 0.4)
+    assert set(md.tags) == {"bottom", "top", "side"} and all(md.facets(t).size > 0 for t in md.tags)
+    with pytest.raises(cl.MeshError):
+        create_cylinder((0, 0, 0), (0, 0, 0), 1.0, 2.0, 0.4)
