@@ -99,9 +99,10 @@ EnrichmentLayout create_enrichment_layout(std::span<const double> x,
   for (std::size_t ic = 0; ic < cracks.size(); ++ic)
   {
     const CrackGeometry& g = *cracks[ic];
-    // Tip enrichment.
-    std::vector<std::int32_t> tip_of(num_nodes, -1);
-    std::vector<std::int8_t> is_core(num_nodes, 0);
+    // Core tip nodes: within the radius of a tip, and the nodes of the
+    // cells whose closure holds it (a later tip wins a node).
+    std::vector<std::int32_t> core_tip(num_nodes, -1);
+    std::vector<std::int32_t> tips;
     if (options.tip != TipEnrichment::none)
     {
       const int num_tips = static_cast<int>(g.tips.size() / 2);
@@ -114,138 +115,26 @@ EnrichmentLayout create_enrichment_layout(std::span<const double> x,
         layout.tip_frames.push_back(frame);
         layout.tip_crack.push_back(static_cast<std::int32_t>(ic));
         layout.tip_local.push_back(j);
+        tips.push_back(tid);
         for (std::int32_t i = 0; i < num_nodes; ++i)
           if (std::hypot(x[2 * i] - frame.tip[0], x[2 * i + 1] - frame.tip[1]) <= options.radius)
-            tip_of[i] = tid;
+            core_tip[i] = tid;
         for (std::size_t c = 0; c < num_cells; ++c)
           if (in_closure(x, &cells[3 * c], frame.tip))
             for (int a = 0; a < 3; ++a)
-              tip_of[cells[3 * c + a]] = tid;
+              core_tip[cells[3 * c + a]] = tid;
       }
-      for (std::int32_t i = 0; i < num_nodes; ++i)
-        is_core[i] = tip_of[i] >= 0;
-      if (options.corrected)
-        // Blending nodes: the other nodes of cells that hold a core node.
-        for (std::size_t c = 0; c < num_cells; ++c)
-        {
-          const std::int32_t* v = &cells[3 * c];
-          const int a = is_core[v[0]] ? 0 : (is_core[v[1]] ? 1 : (is_core[v[2]] ? 2 : -1));
-          if (a >= 0)
-            for (int b = 0; b < 3; ++b)
-              if (tip_of[v[b]] < 0)
-                tip_of[v[b]] = tip_of[v[a]];
-        }
     }
-    // Heaviside candidates.
-    std::vector<std::int8_t> split(num_nodes, 0), forbidden(num_nodes, 0);
-    for (std::size_t c = 0; c < num_cells; ++c)
+    // The distance of a node to the crack line at a tip.
+    auto line_distance = [&](std::int32_t i, std::int32_t t)
     {
-      const auto cls = static_cast<CellClass>(g.cell_class[c]);
-      const std::int32_t* v = &cells[3 * c];
-      // With the corrected scheme the Heaviside functions carry 1 - R, which
-      // vanishes on a cell whose nodes are all core tip nodes (always the
-      // tip cell): there they cannot open a crack that is not present, so
-      // such a tip or extension cell forbids nothing. (Forbidding its nodes
-      // would strip the Heaviside from a core node of a neighbouring cut
-      // blending cell, where the jump is then missing: a tip close to the
-      // tip cell's far edge.)
-      const bool ramp_one = options.tip != TipEnrichment::none and options.corrected
-                            and is_core[v[0]] and is_core[v[1]] and is_core[v[2]];
-      // A node's Heaviside function N_i (H - H_i) is non-zero on a cut cell,
-      // and on an edge cell only if the node lies on the crack edge (a node
-      // off the edge is on the cell's own side, where the function is 0).
-      for (int a = 0; a < 3; ++a)
-      {
-        if (cls == CellClass::cut or (cls == CellClass::edge and g.phi[v[a]] == 0.0))
-          split[v[a]] = 1;
-        else if ((cls == CellClass::tip or cls == CellClass::extension) and !ramp_one)
-          forbidden[v[a]] = 1;
-      }
-    }
-    // Core nodes of crossed cells that also hold a non-core node: there
-    // (1 - R) N_i (H - H_i) is not zero (elsewhere it vanishes identically).
-    std::vector<std::int8_t> blending_core(num_nodes, 0);
-    for (std::size_t c = 0; c < num_cells; ++c)
-    {
-      const std::int32_t* v = &cells[3 * c];
-      const auto cls = static_cast<CellClass>(g.cell_class[c]);
-      if (is_core[v[0]] and is_core[v[1]] and is_core[v[2]])
-        continue;
-      for (int a = 0; a < 3; ++a)
-        if (is_core[v[a]] and (cls == CellClass::cut or (cls == CellClass::edge and g.phi[v[a]] == 0.0)))
-          blending_core[v[a]] = 1;
-    }
-    // Scalar branch functions under the corrected scheme: in the tip frame
-    // (x1, x2) the identities  x2 F1 + x1 F3 - x2 F4 = 0  and
-    // x2 F2 - x2 F3 - x1 F4 = 0  hold everywhere, and where every node of the
-    // cell carries the functions sum_i N_i R x_i = R x. So for each component
-    // sum_i N_i R (x2_i F1 + x1_i F3 - x2_i F4) = 0 (and likewise for the
-    // second identity, also with the shifted functions): two exact
-    // dependencies per component and tip. Dropping F1 and F2 at the node
-    // farthest from the crack line (x2_p != 0) removes them without changing
-    // the span. Only when the tip's functions cover the whole support of its
-    // ramp (no overlap with another tip's nodes), else nothing is dropped.
-    std::vector<std::int32_t> dropped_node; // per tip of this crack's tips: node or -1
-    if (options.tip == TipEnrichment::scalar and options.corrected)
-    {
-      const auto first_tip = static_cast<std::int32_t>(layout.tip_frames.size() - g.tips.size() / 2);
-      for (auto t = first_tip; t < static_cast<std::int32_t>(layout.tip_frames.size()); ++t)
-      {
-        const TipFrame& f = layout.tip_frames[t];
-        bool complete = true;
-        for (std::size_t c = 0; c < num_cells and complete; ++c)
-        {
-          const std::int32_t* v = &cells[3 * c];
-          bool has_core = false;
-          for (int a = 0; a < 3; ++a)
-            has_core = has_core or (is_core[v[a]] and tip_of[v[a]] == t);
-          for (int a = 0; a < 3 and has_core; ++a)
-            complete = complete and tip_of[v[a]] == t;
-        }
-        std::int32_t best = -1;
-        double best_d = 0.0;
-        for (std::int32_t i = 0; i < num_nodes and complete; ++i)
-          if (tip_of[i] == t)
-          {
-            const double d = std::abs(-f.e1[1] * (x[2 * i] - f.tip[0]) + f.e1[0] * (x[2 * i + 1] - f.tip[1]));
-            if (d > best_d)
-              best_d = d, best = i;
-          }
-        dropped_node.push_back(best);
-      }
-    }
-    auto dropped = [&](std::int32_t i, int l)
-    { return l < 2 and std::find(dropped_node.begin(), dropped_node.end(), i) != dropped_node.end(); };
-    for (std::int32_t i = 0; i < num_nodes; ++i)
-    {
-      const auto icr = static_cast<std::int32_t>(ic);
-      if (tip_of[i] >= 0)
-      {
-        if (options.tip == TipEnrichment::scalar)
-          for (int l = 0; l < 4; ++l)
-          {
-            if (dropped(i, l))
-              continue;
-            node_enr[i].push_back(layout.num_enriched());
-            add(i, icr, EnrichmentKind::tip_scalar, l, tip_of[i], is_core[i]);
-          }
-        else
-        {
-          node_enr[i].push_back(layout.num_enriched());
-          add(i, icr, EnrichmentKind::tip_vector, 0, tip_of[i], is_core[i]);
-        }
-      }
-      // Heaviside on split nodes outside the core. With the corrected scheme
-      // the Heaviside functions carry the factor 1 - R: blending nodes keep
-      // them, and so do core nodes of blending cells, since the ramped tip
-      // functions carry only the fraction R of the jump there.
-      const bool heaviside_ok = !is_core[i] or (options.corrected and blending_core[i]);
-      if (heaviside_ok and split[i] and !forbidden[i])
-      {
-        node_enr[i].push_back(layout.num_enriched());
-        add(i, icr, EnrichmentKind::heaviside, 0, -1, false);
-      }
-    }
+      const TipFrame& f = layout.tip_frames[t];
+      return std::abs(-f.e1[1] * (x[2 * i] - f.tip[0]) + f.e1[0] * (x[2 * i + 1] - f.tip[1]));
+    };
+    const SelectionInput input{cells, 3, g.cell_class, g.phi, core_tip, tips, line_distance};
+    const auto icr = static_cast<std::int32_t>(ic);
+    for (const PseudoNode& pn : select_enrichment(input, options.tip, options.corrected, layout.num_enriched(), node_enr))
+      add(pn.node, icr, pn.kind, pn.function, pn.tip, pn.core);
   }
 
   // Enriched cells and their pseudo-nodes.

@@ -14,6 +14,7 @@
 
 #include "geometry/crack_geometry_2d.h"
 #include "enrichment/dof_numbering.h"
+#include "enrichment/enrichment_selection.h"
 #include "enrichment/tip_functions_2d.h"
 
 #include <cstdint>
@@ -22,22 +23,6 @@
 
 namespace cracklip
 {
-
-/// Kind of enrichment function of a pseudo-node.
-enum class EnrichmentKind : std::int8_t
-{
-  heaviside = 0,
-  tip_scalar = 1,
-  tip_vector = 2
-};
-
-/// Tip enrichment of the scene.
-enum class TipEnrichment : std::int8_t
-{
-  none = 0,
-  scalar = 1,
-  vector = 2
-};
 
 struct EnrichmentOptions
 {
