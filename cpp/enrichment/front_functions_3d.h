@@ -1,16 +1,24 @@
 // Crack-front enrichment functions in 3D and their gradients (layer a).
 //
-// Each point near the front is described in the frame of a point of the
-// front: origin on the front, e1 the propagation direction (in the crack's
-// plane, normal to the front, away from the crack), e2 the crack normal
-// (towards the phi > 0, "+", side), e3 = e1 x e2 along the front. In the
-// plane (e1, e2) the polar coordinates are (r, theta), theta in (-pi, pi],
-// the lips at theta = +pi (+ side) and -pi (- side). The fields are those of
+// Near the front a point has local coordinates (x1, x2) in the plane normal
+// to the front (x1 along the propagation direction e1, x2 along the crack
+// normal e2, towards the phi > 0, "+", side), polar (r, theta), theta in
+// (-pi, pi], the lips at theta = +pi (+ side) and -pi (- side), and the
+// directions e1, e2, e3 = e1 x e2 of the local frame. The fields are those of
 // williams_local.h (plane-strain modes I and II in (e1, e2), the anti-plane
-// mode III along e3, the four branch functions), rotated into the global
-// frame. Gradients hold the frame fixed: the O(r x curvature) terms of a
-// curved front are dropped, as code_aster does (coor_cyl, lcourb = false);
-// the shift by nodal values in the enrichment keeps them consistent.
+// mode III along e3, the four branch functions).
+//
+// Two sources of local coordinates:
+//   - a front point's frame (FrontFrame): x1 = (x - origin) . e1, x2 =
+//     (x - origin) . e2, constant directions: the exact fields of a straight
+//     front (the auxiliary fields of the interaction integral);
+//   - the level sets (the enrichment): x1 = psi, x2 = phi (signed distances
+//     to the front within the crack's surface and to the surface, P1
+//     interpolated, so their gradients are constant on a cell), the
+//     directions interpolated from nodal frames: a continuous function whose
+//     gradient below is exact (including the directions' variation).
+// Either way the caller fills LocalCoordinates and the functions below do
+// the rest.
 #pragma once
 
 #include <array>
@@ -28,28 +36,42 @@ struct FrontFrame
   Point3 e1, e2, e3;
 };
 
-/// Coordinates of a point in a front frame: local (x1, x2, x3), polar
-/// (r, theta) in the (e1, e2) plane, cos and sin theta.
-struct FrontPolar
+/// Local coordinates of a point and their derivatives: x1, x2 with their
+/// global gradients g1, g2; the directions e[k] (k = 0, 1, 2: e1, e2, e3)
+/// and their gradients de[k][i][j] = d e[k]_i / d x_j (zero for a fixed
+/// frame).
+struct LocalCoordinates
 {
-  double x1, x2, x3;
-  double r, theta, c, s;
+  double x1, x2;
+  Point3 g1, g2;
+  std::array<Point3, 3> e;
+  std::array<std::array<Point3, 3>, 3> de;
 };
 
-/// side (+1 / -1: the crack side, sign of phi) picks the branch of theta
-/// behind the front (x1 < 0), so that a point on the crack's plane gets the
-/// lip it belongs to (+pi on the + side); side 0 uses atan2.
-FrontPolar front_polar(const FrontFrame& f, const Point3& x, int side);
+/// The local coordinates of x in a front point's frame (fixed directions).
+LocalCoordinates frame_coordinates(const FrontFrame& f, const Point3& x);
+
+/// Polar angle of local coordinates: atan2(x2, x1); side (+1 / -1: the
+/// crack side, sign of phi) picks the branch behind the front (x1 < 0), so
+/// that a point on the crack's plane gets the lip it belongs to (+pi on the +
+/// side); side 0 uses atan2 alone.
+double front_angle(double x1, double x2, int side);
 
 /// The Williams displacement fields of modes I, II, III (williams_local.h,
 /// without K / (2 mu sqrt(2 pi))): U[m] global vector of mode m and
 /// dU[m][i][j] = d U[m]_i / d x_j (global). kappa = 3 - 4 nu (the front is
 /// in plane strain). At r = 0 the gradients are set to 0.
-void front_vector_functions(const FrontFrame& f, const Point3& x, int side, double kappa,
-                            std::array<Point3, 3>& U, std::array<std::array<Point3, 3>, 3>& dU);
+void front_vector_functions(const LocalCoordinates& lc, int side, double kappa, std::array<Point3, 3>& U,
+                            std::array<std::array<Point3, 3>, 3>& dU);
 
 /// The four scalar branch functions sqrt(r) {sin(t/2), cos(t/2),
 /// sin(t/2) sin t, cos(t/2) sin t}: values F and global gradients dF.
+void front_branch_functions(const LocalCoordinates& lc, int side, std::array<double, 4>& F,
+                            std::array<Point3, 4>& dF);
+
+/// The same in a front point's frame (the straight-front fields).
+void front_vector_functions(const FrontFrame& f, const Point3& x, int side, double kappa,
+                            std::array<Point3, 3>& U, std::array<std::array<Point3, 3>, 3>& dU);
 void front_branch_functions(const FrontFrame& f, const Point3& x, int side, std::array<double, 4>& F,
                             std::array<Point3, 4>& dF);
 

@@ -205,3 +205,62 @@ TEST(FrontFunctions3D, EachModeCarriesItsK)
   EXPECT_NEAR(local(s3, 0, 1), 0.0, 1e-12 * exact);
   (void)dot;
 }
+
+TEST(FrontFunctions3D, LevelSetCoordinatesGiveTheExactGradient)
+{
+  // x1 = psi(x), x2 = phi(x) linear (P1 level sets on a cell) and directions
+  // e_k(x) = e_k0 + A_k x varying linearly (frames interpolated from the
+  // nodes): the gradient of U = sum_k u_k(r, theta) e_k must be the exact
+  // derivative of that function (finite differences), directions included.
+  const Point3 gpsi = {0.9, 0.2, -0.1}, gphi = {-0.15, 0.95, 0.1};
+  const double psi0 = 0.05, phi0 = -0.02;
+  const double A[3][3][3] = {{{0.1, 0.0, 0.2}, {-0.1, 0.05, 0.0}, {0.0, 0.1, -0.2}},
+                             {{0.0, 0.3, 0.0}, {0.1, 0.0, 0.1}, {0.2, 0.0, 0.0}},
+                             {{-0.2, 0.0, 0.1}, {0.0, 0.0, 0.3}, {0.1, -0.1, 0.0}}};
+  auto coords = [&](const Point3& x)
+  {
+    LocalCoordinates lc;
+    lc.x1 = psi0 + gpsi[0] * x[0] + gpsi[1] * x[1] + gpsi[2] * x[2];
+    lc.x2 = phi0 + gphi[0] * x[0] + gphi[1] * x[1] + gphi[2] * x[2];
+    lc.g1 = gpsi;
+    lc.g2 = gphi;
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 3; ++i)
+      {
+        lc.e[k][i] = F.e1[i] * (k == 0) + F.e2[i] * (k == 1) + F.e3[i] * (k == 2);
+        for (int j = 0; j < 3; ++j)
+        {
+          lc.e[k][i] += A[k][i][j] * x[j];
+          lc.de[k][i][j] = A[k][i][j];
+        }
+      }
+    return lc;
+  };
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  for (int n = 0; n < 30; ++n)
+  {
+    const Point3 x = {u(gen), u(gen), u(gen)};
+    std::array<Point3, 3> U, Up, Um;
+    std::array<std::array<Point3, 3>, 3> dU, tmp;
+    std::array<double, 4> B, Bp, Bm;
+    std::array<Point3, 4> dB, tmpB;
+    front_vector_functions(coords(x), 0, kappa, U, dU);
+    front_branch_functions(coords(x), 0, B, dB);
+    const double h = 1e-6;
+    for (int j = 0; j < 3; ++j)
+    {
+      Point3 xp = x, xm = x;
+      xp[j] += h, xm[j] -= h;
+      front_vector_functions(coords(xp), 0, kappa, Up, tmp);
+      front_vector_functions(coords(xm), 0, kappa, Um, tmp);
+      front_branch_functions(coords(xp), 0, Bp, tmpB);
+      front_branch_functions(coords(xm), 0, Bm, tmpB);
+      for (int m = 0; m < 3; ++m)
+        for (int i = 0; i < 3; ++i)
+          EXPECT_NEAR(dU[m][i][j], (Up[m][i] - Um[m][i]) / (2 * h), 1e-6);
+      for (int l = 0; l < 4; ++l)
+        EXPECT_NEAR(dB[l][j], (Bp[l] - Bm[l]) / (2 * h), 1e-6);
+    }
+  }
+}
