@@ -1,0 +1,147 @@
+#include "assembly/enriched_kernels_3d.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace cracklip
+{
+namespace
+{
+/// The crack (index) crossing cell c (class cut, face or front), or -1.
+int crossing_crack_3d(std::span<const CrackFields3D> cracks, std::int32_t c)
+{
+  for (std::size_t ic = 0; ic < cracks.size(); ++ic)
+  {
+    const std::int8_t cls = cracks[ic].cell_class[c];
+    if (cls == 1 or cls == 2 or cls == 3)
+      return static_cast<int>(ic);
+  }
+  return -1;
+}
+} // namespace
+
+void region_sides_3d(std::span<const CrackFields3D> cracks, std::int32_t c, int crossing_side, std::vector<int>& side)
+{
+  side.resize(cracks.size());
+  for (std::size_t ic = 0; ic < cracks.size(); ++ic)
+  {
+    const std::int8_t cls = cracks[ic].cell_class[c];
+    side[ic] = (cls == 1 or cls == 2 or cls == 3) ? crossing_side : cracks[ic].cell_side[c];
+  }
+}
+
+std::int32_t assemble_enriched_stiffness_3d(const MatrixSink& sink, std::span<const double> x,
+                                            std::span<const std::int32_t> cells, const EnrichmentLayout3D& layout,
+                                            std::span<const CrackFields3D> cracks, double E, double nu,
+                                            const CellRule3D& rule)
+{
+  const std::array<double, 36> D = elasticity_matrix_3d(E, nu);
+  CellQuadrature3D q;
+  std::vector<double> val, grad, B, DB, Ke;
+  std::vector<int> side;
+  for (const std::int32_t c : layout.cells)
+  {
+    const P1Tet cell(x, cells, c);
+    const CellBasis3D basis(cell, layout, c);
+    const int nd = basis.num_dofs();
+    Ke.assign(static_cast<std::size_t>(nd) * nd, 0.0);
+    q.clear();
+    rule(c, q);
+    for (int p = 0; p < q.size(); ++p)
+    {
+      region_sides_3d(cracks, c, q.side[p], side);
+      evaluate_basis_3d(cell, basis, layout, cracks, side, {q.ref[3 * p], q.ref[3 * p + 1], q.ref[3 * p + 2]}, val,
+                        grad);
+      // B (6, nd): Voigt strains xx, yy, zz, yz, xz, xy (engineering shears).
+      B.assign(6 * static_cast<std::size_t>(nd), 0.0);
+      for (int i = 0; i < nd; ++i)
+      {
+        const double* g = &grad[9 * i]; // g[3 a + b] = d val_a / d x_b
+        B[0 * nd + i] = g[0];
+        B[1 * nd + i] = g[4];
+        B[2 * nd + i] = g[8];
+        B[3 * nd + i] = g[5] + g[7];
+        B[4 * nd + i] = g[2] + g[6];
+        B[5 * nd + i] = g[1] + g[3];
+      }
+      DB.assign(6 * static_cast<std::size_t>(nd), 0.0);
+      for (int r = 0; r < 6; ++r)
+        for (int s = 0; s < 6; ++s)
+          if (const double d = D[6 * r + s]; d != 0.0)
+            for (int i = 0; i < nd; ++i)
+              DB[r * nd + i] += d * B[s * nd + i];
+      const double w = q.weight[p];
+      for (int i = 0; i < nd; ++i)
+        for (int j = i; j < nd; ++j)
+        {
+          double v = 0.0;
+          for (int r = 0; r < 6; ++r)
+            v += B[r * nd + i] * DB[r * nd + j];
+          Ke[i * nd + j] += w * v;
+        }
+    }
+    for (int i = 0; i < nd; ++i)
+      for (int j = 0; j < i; ++j)
+        Ke[i * nd + j] = Ke[j * nd + i];
+    for (int i = 0; i < 12; ++i) // the standard-standard block is DOLFINx's
+      for (int j = 0; j < 12; ++j)
+        Ke[i * nd + j] = 0.0;
+    sink(basis.dofs, basis.dofs, Ke);
+  }
+  return static_cast<std::int32_t>(layout.cells.size());
+}
+
+std::vector<double> evaluate_displacement_3d(std::span<const double> x, std::span<const std::int32_t> cells,
+                                             const EnrichmentLayout3D& layout, std::span<const CrackFields3D> cracks,
+                                             std::span<const double> u, std::span<const std::int32_t> point_cells,
+                                             std::span<const double> ref_points, std::span<const std::int8_t> sides,
+                                             std::vector<double>* grad_out)
+{
+  const std::size_t n = point_cells.size();
+  if (ref_points.size() != 3 * n or sides.size() != n)
+    throw std::invalid_argument("evaluate_displacement_3d: " + std::to_string(n) + " cells but "
+                                + std::to_string(ref_points.size()) + " reference values and "
+                                + std::to_string(sides.size()) + " sides");
+  if (u.size() != 3 * static_cast<std::size_t>(layout.num_nodes_total()))
+    throw std::invalid_argument("evaluate_displacement_3d: u has " + std::to_string(u.size()) + " dofs, the layout "
+                                + std::to_string(3 * layout.num_nodes_total()));
+  std::vector<double> out(3 * n, 0.0), val, grad;
+  if (grad_out)
+    grad_out->assign(9 * n, 0.0);
+  std::vector<int> side;
+  for (std::size_t p = 0; p < n; ++p)
+  {
+    const std::int32_t c = point_cells[p];
+    const P1Tet cell(x, cells, c);
+    const CellBasis3D basis(cell, layout, c);
+    const Point3 r = {ref_points[3 * p], ref_points[3 * p + 1], ref_points[3 * p + 2]};
+    int s = sides[p];
+    const int ic = crossing_crack_3d(cracks, c);
+    if (s == 0 and ic >= 0)
+    {
+      const auto N = P1Tet::shape(r);
+      double phi = 0.0;
+      for (int a = 0; a < 4; ++a)
+        phi += N[a] * cracks[ic].phi[cell.nodes[a]];
+      s = phi >= 0.0 ? 1 : -1;
+    }
+    region_sides_3d(cracks, c, s, side);
+    evaluate_basis_3d(cell, basis, layout, cracks, side, r, val, grad);
+    for (int i = 0; i < basis.num_dofs(); ++i)
+    {
+      const double ui = u[basis.dofs[i]];
+      if (ui == 0.0)
+        continue;
+      for (int a = 0; a < 3; ++a)
+      {
+        out[3 * p + a] += ui * val[3 * i + a];
+        if (grad_out)
+          for (int b = 0; b < 3; ++b)
+            (*grad_out)[9 * p + 3 * a + b] += ui * grad[(3 * i + a) * 3 + b];
+      }
+    }
+  }
+  return out;
+}
+
+} // namespace cracklip
