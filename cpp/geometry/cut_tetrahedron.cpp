@@ -1,5 +1,7 @@
 #include "geometry/cut_tetrahedron.h"
 
+#include "geometry/vec3.h"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -8,16 +10,9 @@ namespace cracklip
 {
 namespace
 {
+using vec3::cross, vec3::dot, vec3::sub;
+
 int sgn(double v) { return (v > 0.0) - (v < 0.0); }
-
-Point3 sub(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-
-Point3 cross(const Point3& a, const Point3& b)
-{
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /// Points of a cut: the input vertices first, then cut points on edges.
 template <std::size_t N>
