@@ -1,0 +1,70 @@
+// Collapsed (Duffy-type) quadrature rules for integrands singular at a crack
+// front in 3D (layer a: no DOLFINx).
+//
+// Near a front line the enriched integrands behave like r^(1/2) (front
+// functions), r^(-1/2) (their gradients, and products with standard
+// gradients) and r^(-1) (products of two gradients), r the distance to the
+// front line. The rules below make r linear in a collapsed variable rho and
+// take rho = tau^2, so that the Jacobian cancels r^(-1) and sqrt(r) becomes
+// polynomial in tau; the remaining angular variable is smoothed by a sinh
+// substitution. Every rule is given on the simplex's own coordinates:
+//   tetrahedron ABCD: x = A + alpha (B - A) + beta (C - A) + gamma (D - A),
+//     points (n, 3) = (alpha, beta, gamma), weights summing to 1/6, so
+//     int_T f = 6 |T| sum_q w_q f(x_q);
+//   triangle ABC: x = A + alpha (B - A) + beta (C - A), points (n, 2),
+//     weights summing to 1/2: int_T f = 2 |T| sum_q w_q f(x_q).
+// The physical vertices enter only through the angular substitution and the
+// point rules' decomposition; r is the distance to the front LINE (within a
+// cell the P1 front is straight).
+#pragma once
+
+#include "quadrature/rules.h"
+
+#include <array>
+#include <span>
+
+namespace cracklip::quadrature
+{
+
+/// Edge-collapsed rule on the tetrahedron ABCD (physical vertices xv (4, 3))
+/// with the edge AB on the front:
+///   beta = rho (1 - eta), gamma = rho eta, alpha = (1 - rho) t, rho = tau^2,
+///   d(alpha, beta, gamma) = rho (1 - rho) drho deta dt = 2 tau^3 (1 - tau^2) dtau deta dt,
+/// and r = rho |P(eta)|, P(eta) = (1 - eta) C' + eta D' (C', D' the parts of
+/// C - A, D - A normal to AB): r^(-1) and r^(-1/2) times polynomials are
+/// polynomial in tau and t. Across (eta) the factor 1 / |P(eta)|, nearly
+/// singular for a flat or obtuse tetrahedron, is made constant by
+/// s0 + eta L = h0 sinh(u) (h0 the distance from the front to the line C'D',
+/// L = |D' - C'|). n_tau x n_eta x n_t Gauss-Legendre points in (tau, u, t).
+Rule tetrahedron_edge_collapsed(std::span<const double, 12> xv, int n_tau, int n_eta, int n_t);
+
+/// Point-collapsed rule on the tetrahedron ABCD with the vertex A on the
+/// front, whose direction at A is `front` (physical, any length > 0; the
+/// front line must not enter the tetrahedron). If the front line meets the
+/// plane of BCD at F within ten triangle sizes (F = b_B B + b_C C + b_D D,
+/// max |b| <= 10), ABCD is the signed sum of the tetrahedra AFCD, AFDB, AFBC
+/// with weights b_B, b_C, b_D (cones from A over the pieces of BCD seen from
+/// F), each with the edge AF on the front line: the edge-collapsed rule
+/// there. Points of those pieces may lie outside ABCD (and weights be
+/// negative) but inside the same wedge of the front (the convex hull of A,
+/// F and ABCD's vertices lies on the same side of phi = 0 and of psi = 0),
+/// where integrands are analytic. Otherwise (the front far from BCD, or
+/// parallel to it) x = A + rho Q(sigma) over the triangle BCD, rho = tau^2:
+/// weight 2 tau^5, sigma by an n_eta x n_t conical rule.
+Rule tetrahedron_point_collapsed(std::span<const double, 12> xv, std::span<const double, 3> front, int n_tau,
+                                 int n_eta, int n_t);
+
+/// Edge-collapsed rule on the triangle ABC with the edge AB on the front:
+/// beta = tau^2, alpha = (1 - beta) t, weight 2 tau (1 - tau^2); r = beta
+/// dist(C, AB), so r^(1/2) and r^(-1/2) times polynomials are polynomial.
+Rule triangle_edge_collapsed(int n_tau, int n_t);
+
+/// Point-collapsed rule on the triangle ABC (physical vertices xv (3, 3))
+/// with the vertex A on the front and the front direction `front` in the
+/// triangle's plane: where the front line meets the line BC at
+/// F = (1 - s) B + s C within ten triangle sizes (|s|, |1 - s| <= 10), ABC is
+/// the signed sum of AFC (weight 1 - s) and AFB (weight s), each with the edge
+/// AF on the front (the rule above); otherwise the fan from A with rho = tau^2.
+Rule triangle_point_collapsed(std::span<const double, 9> xv, std::span<const double, 3> front, int n_tau, int n_t);
+
+} // namespace cracklip::quadrature
