@@ -23,7 +23,7 @@ void check_points(int a, int b, int c, const char* what)
 /// Largest |b| a decomposition point F may have (barycentric in the far
 /// face or edge): beyond, the singular direction is far enough from the
 /// simplex for plain collapsed rules, and the signed pieces would cancel.
-constexpr double max_decomposition = 10.0;
+constexpr double max_decomposition = 1000.0;
 } // namespace
 
 Rule tetrahedron_edge_collapsed(std::span<const double, 12> xv, int n_tau, int n_eta, int n_t)
@@ -188,6 +188,91 @@ Rule triangle_point_collapsed(std::span<const double, 9> xv, std::span<const dou
     }
   }
   return tip_fan(n_tau, n_t);
+}
+
+namespace
+{
+/// The point of the line (origin, direction d) nearest to p.
+V nearest_on_line(const V& p, const V& origin, const V& d)
+{
+  const V e = unit(d);
+  return axpy(origin, dot(sub(p, origin), e), e);
+}
+} // namespace
+
+Rule tetrahedron_near_front(std::span<const double, 12> xv, std::span<const double, 3> origin,
+                            std::span<const double, 3> front, int n_tau, int n_eta, int n_t)
+{
+  const std::array<V, 4> X = {vertex(xv, 0), vertex(xv, 1), vertex(xv, 2), vertex(xv, 3)};
+  const V d = {front[0], front[1], front[2]};
+  if (!(norm(d) > 0.0))
+    throw std::invalid_argument("tetrahedron_near_front: the front direction is zero");
+  const V centroid = scale(0.25, add(add(X[0], X[1]), add(X[2], X[3])));
+  const V O = nearest_on_line(centroid, {origin[0], origin[1], origin[2]}, d);
+  const double vol = dot(sub(X[1], X[0]), cross(sub(X[2], X[0]), sub(X[3], X[0])));
+  // Faces oriented so that vol(O, face) sums to vol(ABCD): (B, C, D),
+  // (A, D, C), (A, B, D), (A, C, B).
+  static constexpr int faces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  // O in ABCD's coordinates (x = A + o . (B - A, C - A, D - A)).
+  const V e1 = sub(X[1], X[0]), e2 = sub(X[2], X[0]), e3 = sub(X[3], X[0]), w = sub(O, X[0]);
+  const V o = {dot(w, cross(e2, e3)) / vol, dot(e1, cross(w, e3)) / vol, dot(e1, cross(e2, w)) / vol};
+  const std::array<V, 4> ref = {V{0, 0, 0}, V{1, 0, 0}, V{0, 1, 0}, V{0, 0, 1}};
+  Rule rule;
+  rule.dim = 3;
+  for (const auto& f : faces)
+  {
+    const V &P = X[f[0]], &Q = X[f[1]], &R = X[f[2]];
+    const double cone = dot(sub(P, O), cross(sub(Q, O), sub(R, O)));
+    if (std::abs(cone) <= 1e-14 * std::abs(vol))
+      continue;
+    const std::array<double, 12> cv = {O[0], O[1], O[2], P[0], P[1], P[2], Q[0], Q[1], Q[2], R[0], R[1], R[2]};
+    const Rule r = tetrahedron_point_collapsed(cv, front, n_tau, n_eta, n_t);
+    const V a = sub(ref[f[0]], o), b = sub(ref[f[1]], o), c = sub(ref[f[2]], o);
+    for (int q = 0; q < r.size(); ++q)
+    {
+      const double* p = &r.points[3 * q];
+      const V pt = axpy(axpy(axpy(o, p[0], a), p[1], b), p[2], c);
+      rule.points.insert(rule.points.end(), pt.begin(), pt.end());
+      rule.weights.push_back(r.weights[q] * cone / vol);
+    }
+  }
+  return rule;
+}
+
+Rule triangle_near_front(std::span<const double, 9> xv, std::span<const double, 3> origin,
+                         std::span<const double, 3> front, int n_tau, int n_t)
+{
+  const std::array<V, 3> X = {vertex(xv, 0), vertex(xv, 1), vertex(xv, 2)};
+  const V d = {front[0], front[1], front[2]};
+  if (!(norm(d) > 0.0))
+    throw std::invalid_argument("triangle_near_front: the front direction is zero");
+  const V centroid = scale(1.0 / 3.0, add(add(X[0], X[1]), X[2]));
+  const V O = nearest_on_line(centroid, {origin[0], origin[1], origin[2]}, d);
+  const V n = cross(sub(X[1], X[0]), sub(X[2], X[0]));
+  const double n2 = dot(n, n); // (2 area)^2: signed area ratios are (u x v) . n / n2
+  // O in ABC's coordinates (least squares in the plane: O lies in it).
+  const V e1 = sub(X[1], X[0]), e2 = sub(X[2], X[0]), w = sub(O, X[0]);
+  const std::array<double, 2> o = {dot(cross(w, e2), n) / n2, dot(cross(e1, w), n) / n2};
+  const std::array<std::array<double, 2>, 3> ref = {{{0, 0}, {1, 0}, {0, 1}}};
+  Rule rule;
+  rule.dim = 2;
+  for (int k = 0; k < 3; ++k)
+  {
+    const int i = k, j = (k + 1) % 3;
+    const double fan = dot(cross(sub(X[i], O), sub(X[j], O)), n);
+    if (std::abs(fan) <= 1e-14 * n2)
+      continue;
+    const std::array<double, 9> fv = {O[0], O[1], O[2], X[i][0], X[i][1], X[i][2], X[j][0], X[j][1], X[j][2]};
+    const Rule r = triangle_point_collapsed(fv, front, n_tau, n_t);
+    for (int q = 0; q < r.size(); ++q)
+    {
+      const double a = r.points[2 * q], b = r.points[2 * q + 1];
+      rule.points.push_back(o[0] + a * (ref[i][0] - o[0]) + b * (ref[j][0] - o[0]));
+      rule.points.push_back(o[1] + a * (ref[i][1] - o[1]) + b * (ref[j][1] - o[1]));
+      rule.weights.push_back(r.weights[q] * fan / n2);
+    }
+  }
+  return rule;
 }
 
 } // namespace cracklip::quadrature

@@ -67,4 +67,21 @@ Rule triangle_edge_collapsed(int n_tau, int n_t);
 /// AF on the front (the rule above); otherwise the fan from A with rho = tau^2.
 Rule triangle_point_collapsed(std::span<const double, 9> xv, std::span<const double, 3> front, int n_tau, int n_t);
 
+/// A tetrahedron near a front line it does not touch (the line through
+/// `origin` along `front`, physical): the signed sum of the cones from O,
+/// the point of the line nearest the tetrahedron's centroid, over its four
+/// faces (sum of signed cone volumes = the volume), each integrated by the
+/// point-collapsed rule at O. Points of the cones lie between the line and
+/// the tetrahedron, inside the same wedge of the front if the tetrahedron
+/// is; weights carry the cones' signs. The nearly singular integrand then
+/// gets the accuracy of the collapsed rules.
+Rule tetrahedron_near_front(std::span<const double, 12> xv, std::span<const double, 3> origin,
+                            std::span<const double, 3> front, int n_tau, int n_eta, int n_t);
+
+/// A triangle near a front line in its plane: the signed sum of the fans
+/// from O (the line's point nearest the centroid) over its three edges,
+/// each point-collapsed at O.
+Rule triangle_near_front(std::span<const double, 9> xv, std::span<const double, 3> origin,
+                         std::span<const double, 3> front, int n_tau, int n_t);
+
 } // namespace cracklip::quadrature

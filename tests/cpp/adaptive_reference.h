@@ -7,6 +7,9 @@
 // near-endpoint singularities are resolved by the bisection.
 #pragma once
 
+#include "geometry/vec3.h"
+
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -18,10 +21,11 @@
 namespace cracklip::test
 {
 
-/// int_a^b f to the absolute tolerance tol (pieces at round-off accepted;
-/// at most max_intervals pieces, else throws).
+/// int_a^b f to the absolute tolerance tol or the relative one rel, the
+/// larger (pieces at round-off accepted; at most max_intervals pieces, else
+/// throws).
 inline double adaptive_integral(const std::function<double(double)>& f, double a, double b, double tol,
-                                int max_intervals = 20000)
+                                int max_intervals = 20000, double rel = 1e-13)
 {
   // Kronrod nodes (the even-indexed ones 1, 3, 5, 7 are the Gauss nodes)
   // and weights on [-1, 1].
@@ -73,7 +77,7 @@ inline double adaptive_integral(const std::function<double(double)>& f, double a
   };
   push(gk(a, b));
   int n = 1;
-  while (!heap.empty() and error > tol)
+  while (!heap.empty() and error > std::max(tol, rel * std::abs(value + done)))
   {
     if (++n > max_intervals)
     {
@@ -120,6 +124,49 @@ inline double adaptive_square(const std::function<double(double, double)>& f, do
   return adaptive_integral(
       [&](double u) { return adaptive_integral([&](double v) { return f(u, v); }, 0.0, 1.0, 0.1 * tol); }, 0.0, 1.0,
       tol);
+}
+
+using Fr = std::function<double(const std::array<double, 3>&, double)>;
+
+/// int_T f(x, r) over the tetrahedron X (4 points) with its edge X0 X1 on a
+/// front line, r the distance to that line, in plain collapsed coordinates:
+/// x = X0 + (1 - rho) t (X1 - X0) + rho (1 - eta) (X2 - X0) + rho eta (X3 - X0),
+/// dV = 6 |T| rho (1 - rho) drho deta dt; r = rho |(1 - eta) C' + eta D'|
+/// (C', D' the parts of X2 - X0, X3 - X0 normal to the edge), evaluated so,
+/// without the cancellation of |x - X0| minus its part along the edge.
+inline double edge_reference(const std::array<std::array<double, 3>, 4>& X, const Fr& f, double tol)
+{
+  using namespace vec3;
+  const V e = unit(sub(X[1], X[0]));
+  const V Cn = axpy(sub(X[2], X[0]), -dot(sub(X[2], X[0]), e), e), Dn = axpy(sub(X[3], X[0]), -dot(sub(X[3], X[0]), e), e);
+  const double V6 = std::abs(dot(sub(X[1], X[0]), cross(sub(X[2], X[0]), sub(X[3], X[0]))));
+  return V6 * adaptive_cube(
+                  [&](double eta, double rho, double t)
+                  {
+                    const V x = axpy(axpy(axpy(X[0], (1 - rho) * t, sub(X[1], X[0])), rho * (1 - eta), sub(X[2], X[0])),
+                                     rho * eta, sub(X[3], X[0]));
+                    return rho * (1 - rho) * f(x, rho * norm(axpy(scale(1 - eta, Cn), eta, Dn)));
+                  },
+                  tol / V6);
+}
+
+/// int_T f(x, r) with X0 on a front line along the unit vector e, r the
+/// distance to that line: x = X0 + rho Q, Q = (1 - s1 - s2) (X1 - X0) +
+/// s1 (X2 - X0) + s2 (X3 - X0), s2 = (1 - s1) v, dV = 6 |T| rho^2 (1 - s1)
+/// drho ds1 dv; r = rho |Q'| (Q' the part of Q normal to e).
+inline double point_reference(const std::array<std::array<double, 3>, 4>& X, const std::array<double, 3>& e,
+                              const Fr& f, double tol)
+{
+  using namespace vec3;
+  const double V6 = std::abs(dot(sub(X[1], X[0]), cross(sub(X[2], X[0]), sub(X[3], X[0]))));
+  return V6 * adaptive_cube(
+                  [&](double s1, double v, double rho)
+                  {
+                    const double s2 = (1 - s1) * v;
+                    const V Q = axpy(axpy(scale(1 - s1 - s2, sub(X[1], X[0])), s1, sub(X[2], X[0])), s2, sub(X[3], X[0]));
+                    return (1 - s1) * rho * rho * f(axpy(X[0], rho, Q), rho * norm(axpy(Q, -dot(Q, e), e)));
+                  },
+                  tol / V6);
 }
 
 } // namespace cracklip::test

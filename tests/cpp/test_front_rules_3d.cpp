@@ -39,45 +39,16 @@ double line_distance(const Point3& x, const Point3& A, const Point3& e)
   return norm(axpy(v, -dot(v, e), e));
 }
 
-using Fr = std::function<double(const Point3&, double)>;
+using test::Fr;
 
-/// int_T f(x, r) with AB singular, r the distance to the line AB:
-/// x = A + (1 - rho) t (B - A) + rho (1 - eta) (C - A) + rho eta (D - A),
-/// dV = 6 |T| rho (1 - rho) drho deta dt; r = rho |(1 - eta) C' + eta D'|
-/// (C', D' the parts of C - A, D - A normal to AB), evaluated so, without
-/// the cancellation of |x - A| - its part along AB near the edge.
 double edge_reference(const Tet& T, const Fr& f, double tol)
 {
-  const Point3 A = vtx(T, 0), B = vtx(T, 1), C = vtx(T, 2), D = vtx(T, 3);
-  const Point3 e = unit(sub(B, A));
-  const Point3 Cn = axpy(sub(C, A), -dot(sub(C, A), e), e), Dn = axpy(sub(D, A), -dot(sub(D, A), e), e);
-  const double V6 = 6.0 * volume(T);
-  return V6 * test::adaptive_cube(
-                  [&](double eta, double rho, double t)
-                  {
-                    const Point3 x = axpy(axpy(axpy(A, (1 - rho) * t, sub(B, A)), rho * (1 - eta), sub(C, A)), rho * eta,
-                                          sub(D, A));
-                    return rho * (1 - rho) * f(x, rho * norm(axpy(scale(1 - eta, Cn), eta, Dn)));
-                  },
-                  tol / V6);
+  return test::edge_reference({vtx(T, 0), vtx(T, 1), vtx(T, 2), vtx(T, 3)}, f, tol);
 }
 
-/// int_T f(x, r) with A singular, r the distance to the line through A along
-/// e: x = A + rho Q, Q = (1 - s1 - s2) (B - A) + s1 (C - A) + s2 (D - A),
-/// s2 = (1 - s1) v, dV = 6 |T| rho^2 (1 - s1) drho ds1 dv; r = rho |Q'| (Q'
-/// the part of Q normal to e).
 double point_reference(const Tet& T, const Point3& e, const Fr& f, double tol)
 {
-  const Point3 A = vtx(T, 0), B = vtx(T, 1), C = vtx(T, 2), D = vtx(T, 3);
-  const double V6 = 6.0 * volume(T);
-  return V6 * test::adaptive_cube(
-                  [&](double s1, double v, double rho)
-                  {
-                    const double s2 = (1 - s1) * v;
-                    const Point3 Q = axpy(axpy(scale(1 - s1 - s2, sub(B, A)), s1, sub(C, A)), s2, sub(D, A));
-                    return (1 - s1) * rho * rho * f(axpy(A, rho, Q), rho * norm(axpy(Q, -dot(Q, e), e)));
-                  },
-                  tol / V6);
+  return test::point_reference({vtx(T, 0), vtx(T, 1), vtx(T, 2), vtx(T, 3)}, e, f, tol);
 }
 
 /// A rule on T's own coordinates applied to f.
