@@ -21,8 +21,8 @@ void check_points(int a, int b, int c, const char* what)
 }
 
 /// Largest |b| a decomposition point F may have (barycentric in the far
-/// face or edge): beyond, the singular direction is far enough from the
-/// simplex for plain collapsed rules, and the signed pieces would cancel.
+/// face or edge): beyond, the front is parallel to that face within 1e-3
+/// and the plain collapse converges fast; round-off grows like max |b|.
 constexpr double max_decomposition = 1000.0;
 } // namespace
 

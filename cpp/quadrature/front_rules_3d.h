@@ -40,17 +40,22 @@ Rule tetrahedron_edge_collapsed(std::span<const double, 12> xv, int n_tau, int n
 
 /// Point-collapsed rule on the tetrahedron ABCD with the vertex A on the
 /// front, whose direction at A is `front` (physical, any length > 0; the
-/// front line must not enter the tetrahedron). If the front line meets the
-/// plane of BCD at F within ten triangle sizes (F = b_B B + b_C C + b_D D,
-/// max |b| <= 10), ABCD is the signed sum of the tetrahedra AFCD, AFDB, AFBC
-/// with weights b_B, b_C, b_D (cones from A over the pieces of BCD seen from
-/// F), each with the edge AF on the front line: the edge-collapsed rule
-/// there. Points of those pieces may lie outside ABCD (and weights be
-/// negative) but inside the same wedge of the front (the convex hull of A,
-/// F and ABCD's vertices lies on the same side of phi = 0 and of psi = 0),
-/// where integrands are analytic. Otherwise (the front far from BCD, or
-/// parallel to it) x = A + rho Q(sigma) over the triangle BCD, rho = tau^2:
-/// weight 2 tau^5, sigma by an n_eta x n_t conical rule.
+/// front line must not enter the tetrahedron). Where the front line meets
+/// the plane of BCD at F = b_B B + b_C C + b_D D (max |b| <= 1000), ABCD is
+/// the signed sum of the tetrahedra AFCD, AFDB, AFBC with weights b_B, b_C,
+/// b_D (cones from A over the pieces of BCD seen from F), each with the edge
+/// AF on the front line: the edge-collapsed rule there. This is exact for
+/// r^(-1) and r^(-1/2) times polynomials however close the front passes to
+/// BCD; a front nearly parallel to BCD puts F far (b = 62 on a penny mesh's
+/// sub-tetrahedra), where the plain collapse below needs three times the
+/// angular points. Round-off grows with max |b|. Points of the pieces lie
+/// outside ABCD (weights may be negative) but inside the same wedge of the
+/// front (the convex hull of A, F and ABCD's vertices lies on the same side
+/// of phi = 0 and of psi = 0), where integrands built from the cell's P1
+/// level sets are analytic: evaluate them from the cell's data, not from a
+/// point-wise nearest-front frame. Otherwise (F farther, or the front
+/// parallel to BCD) x = A + rho Q(sigma) over the triangle BCD, rho = tau^2:
+/// weight 2 tau^5, sigma by an n x n conical rule, n = max(n_eta, n_t).
 Rule tetrahedron_point_collapsed(std::span<const double, 12> xv, std::span<const double, 3> front, int n_tau,
                                  int n_eta, int n_t);
 
@@ -62,9 +67,10 @@ Rule triangle_edge_collapsed(int n_tau, int n_t);
 /// Point-collapsed rule on the triangle ABC (physical vertices xv (3, 3))
 /// with the vertex A on the front and the front direction `front` in the
 /// triangle's plane: where the front line meets the line BC at
-/// F = (1 - s) B + s C within ten triangle sizes (|s|, |1 - s| <= 10), ABC is
-/// the signed sum of AFC (weight 1 - s) and AFB (weight s), each with the edge
-/// AF on the front (the rule above); otherwise the fan from A with rho = tau^2.
+/// F = (1 - s) B + s C (|s|, |1 - s| <= 1000), ABC is the signed sum of AFC
+/// (weight 1 - s) and AFB (weight s), each with the edge AF on the front (the
+/// rule above; points outside ABC as for the tetrahedron); otherwise the fan
+/// from A with rho = tau^2.
 Rule triangle_point_collapsed(std::span<const double, 9> xv, std::span<const double, 3> front, int n_tau, int n_t);
 
 /// A tetrahedron near a front line it does not touch (the line through
