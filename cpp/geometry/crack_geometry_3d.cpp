@@ -432,6 +432,16 @@ CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<c
       throw std::runtime_error("compute_crack_geometry_3d: all four nodes of cell " + std::to_string(c)
                                + " lie on the crack surface (phi = 0): a degenerate cell, or snap_tol too large");
     const std::array<double, 4> gv = {g.psi[v[0]], g.psi[v[1]], g.psi[v[2]], g.psi[v[3]]};
+    if (gv[0] > 0.0 and gv[1] > 0.0 and gv[2] > 0.0 and gv[3] > 0.0)
+    {
+      // psi > 0 on the whole cell: phi = 0 crosses it where the crack is
+      // absent (no cutting needed: the work stays with the crack's cells).
+      const bool straddled = npos > 0 and nneg > 0;
+      g.cell_class[c] = static_cast<std::int8_t>(straddled ? CellClass3D::extension : CellClass3D::plain);
+      g.cell_side[c] = static_cast<std::int8_t>(straddled ? 0 : (npos > 0 ? 1 : -1));
+      num_extension += straddled;
+      continue;
+    }
     const P1Tetrahedron T(x, cells, static_cast<std::int32_t>(c));
     const CellCutter cutter(T, static_cast<std::int32_t>(c), f, gv);
     const ZeroSet kind = cutter.kind();
