@@ -70,7 +70,9 @@ struct CrackCell3D
   /// Front cells: the front segment in the cell (phi = psi = 0 of the P1
   /// level sets), reference coordinates (P, Q) (2, 3), P -> Q along
   /// e3 ~ grad psi x grad phi, and its physical length (0 when the front
-  /// only touches the cell at a point).
+  /// only touches the cell at a point). A segment on a face or an edge is
+  /// held by every front cell around it; the front polyline takes it from
+  /// the cells where the crack is present (psi < 0 on their crossing).
   std::array<double, 6> front_segment = {};
   double front_length = 0.0;
 
