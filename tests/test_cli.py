@@ -238,7 +238,7 @@ def fresh_checkout(dest: pathlib.Path) -> None:
 
     The tree is walked and .gitignore's rules applied (no git needed: the
     repository may arrive as an archive on a machine without git); .git
-    itself is skipped."""
+    itself is skipped (a directory in a clone, a file in a git worktree)."""
     import fnmatch
     rules = ignore_rules(ROOT)
 
@@ -256,7 +256,7 @@ def fresh_checkout(dest: pathlib.Path) -> None:
         dirs[:] = sorted(d for d in dirs if d != ".git" and not ignored(rel_here / d, True))
         for name in files:
             rel = rel_here / name
-            if ignored(rel, False):
+            if name == ".git" or ignored(rel, False):  # a file in a git worktree
                 continue
             (dest / rel).parent.mkdir(parents=True, exist_ok=True)
             shutil.copy2(ROOT / rel, dest / rel)

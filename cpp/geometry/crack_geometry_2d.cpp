@@ -1,5 +1,7 @@
 #include "geometry/crack_geometry_2d.h"
 
+#include "geometry/snapping.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -139,31 +141,21 @@ CrackGeometry compute_crack_geometry(std::span<const double> x,
   CrackGeometry g;
 
   // Shortest edge at each node (snapping scale) and longest edge per cell.
-  std::vector<double> h_node(num_nodes, std::numeric_limits<double>::max());
+  const std::vector<double> h_node = compute_shortest_edges(x, 2, cells, 3);
   std::vector<double> h_cell(num_cells, 0.0);
   for (std::size_t c = 0; c < num_cells; ++c)
     for (int i = 0; i < 3; ++i)
     {
       const int a = cells[3 * c + i], b = cells[3 * c + (i + 1) % 3];
-      const double len = std::hypot(x[2 * a] - x[2 * b], x[2 * a + 1] - x[2 * b + 1]);
-      h_node[a] = std::min(h_node[a], len);
-      h_node[b] = std::min(h_node[b], len);
-      h_cell[c] = std::max(h_cell[c], len);
+      h_cell[c] = std::max(h_cell[c], std::hypot(x[2 * a] - x[2 * b], x[2 * a + 1] - x[2 * b + 1]));
     }
 
   // Level sets with snapping.
   g.phi.resize(num_nodes);
   std::vector<char> snapped(num_nodes, 0);
   for (std::size_t i = 0; i < num_nodes; ++i)
-  {
-    double v = signed_distance(crack, {x[2 * i], x[2 * i + 1]});
-    if (std::abs(v) < snap_tol * h_node[i] and v != 0.0)
-    {
-      v = 0.0;
-      snapped[i] = 1;
-    }
-    g.phi[i] = v;
-  }
+    g.phi[i] = signed_distance(crack, {x[2 * i], x[2 * i + 1]});
+  snap_to_zero(g.phi, h_node, snap_tol, snapped);
   for (int e = 0; e < 2; ++e)
   {
     if (!crack.tip[e])
@@ -177,16 +169,10 @@ CrackGeometry compute_crack_geometry(std::span<const double> x,
     g.tips.insert(g.tips.end(), T.begin(), T.end());
     g.tip_tangents.insert(g.tip_tangents.end(), t.begin(), t.end());
     g.tip_orientation.push_back(e == 0 ? -1 : 1);
+    const std::size_t offset = g.psi.size();
     for (std::size_t i = 0; i < num_nodes; ++i)
-    {
-      double v = (x[2 * i] - T[0]) * t[0] + (x[2 * i + 1] - T[1]) * t[1];
-      if (std::abs(v) < snap_tol * h_node[i] and v != 0.0)
-      {
-        v = 0.0;
-        snapped[i] = 1;
-      }
-      g.psi.push_back(v);
-    }
+      g.psi.push_back((x[2 * i] - T[0]) * t[0] + (x[2 * i + 1] - T[1]) * t[1]);
+    snap_to_zero(std::span(g.psi).subspan(offset, num_nodes), h_node, snap_tol, snapped);
   }
   const int num_tips = static_cast<int>(g.tips.size() / 2);
   for (char s : snapped)

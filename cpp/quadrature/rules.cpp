@@ -123,6 +123,35 @@ Rule triangle(int degree)
   return conical_product((degree + 3) / 2, (degree + 2) / 2);
 }
 
+Rule tetrahedron(int degree)
+{
+  if (degree < 0)
+    throw std::invalid_argument("tetrahedron quadrature: degree must be >= 0, got "
+                                + std::to_string(degree));
+  Rule rule;
+  rule.dim = 3;
+  if (degree <= 1)
+  {
+    rule.points = {0.25, 0.25, 0.25};
+    rule.weights = {1.0 / 6.0};
+    return rule;
+  }
+  // A monomial of degree p becomes a polynomial of degree p + 2 in u (with
+  // the Jacobian's (1 - u)^2), p + 1 in v and p in w.
+  const Rule gu = gauss_legendre((degree + 4) / 2), gv = gauss_legendre((degree + 3) / 2),
+             gw = gauss_legendre((degree + 2) / 2);
+  for (int i = 0; i < gu.size(); ++i)
+    for (int j = 0; j < gv.size(); ++j)
+      for (int k = 0; k < gw.size(); ++k)
+      {
+        const double u = gu.points[i], v = gv.points[j], w = gw.points[k];
+        rule.points.insert(rule.points.end(), {u, (1.0 - u) * v, (1.0 - u) * (1.0 - v) * w});
+        rule.weights.push_back(gu.weights[i] * gv.weights[j] * gw.weights[k] * (1.0 - u) * (1.0 - u)
+                               * (1.0 - v));
+      }
+  return rule;
+}
+
 Rule triangle_product(int n)
 {
   if (n < 1)

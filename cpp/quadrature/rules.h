@@ -39,6 +39,14 @@ Rule triangle(int degree);
 /// 2n - 2.
 Rule triangle_product(int n);
 
+/// Rule on the reference tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1),
+/// exact for polynomials of total degree `degree` (collapsed Gauss-Legendre
+/// product rule: x = u, y = (1 - u) v, z = (1 - u)(1 - v) w, Jacobian
+/// (1 - u)^2 (1 - v), with (degree + 4) / 2, (degree + 3) / 2 and
+/// (degree + 2) / 2 points in u, v, w; weights sum to 1/6). Degree 1 returns
+/// the one-point centroid rule.
+Rule tetrahedron(int degree);
+
 /// Quasi-polar rule for integrands with a 1/r (and sqrt(r)) singularity at
 /// vertex 0 of the reference triangle: x = rho ((1 - eta), eta) with
 /// rho = t^2, n_t x n_eta Gauss-Legendre points in (t, eta), weight

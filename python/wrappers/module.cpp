@@ -4,6 +4,7 @@
 namespace cracklip_wrappers
 {
 void declare_geometry(pybind11::module& m);
+void declare_geometry_3d(pybind11::module& m);
 void declare_assembly(pybind11::module& m);
 void declare_fields(pybind11::module& m);
 void declare_fracture(pybind11::module& m);
@@ -15,6 +16,7 @@ PYBIND11_MODULE(_cracklip, m)
 {
   m.doc() = "cracklip C++ kernels: crack geometry, enrichment, enriched assembly, fields, tip functions, SIFs";
   cracklip_wrappers::declare_geometry(m);
+  cracklip_wrappers::declare_geometry_3d(m);
   cracklip_wrappers::declare_assembly(m);
   cracklip_wrappers::declare_fields(m);
   cracklip_wrappers::declare_fracture(m);

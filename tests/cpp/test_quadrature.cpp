@@ -39,6 +39,37 @@ TEST(TriangleRule, ExactForItsDegree)
   }
 }
 
+// Exact on the reference tetrahedron: int x^a y^b z^c = a! b! c! / (a + b + c + 3)!.
+TEST(TetrahedronRule, ExactForItsDegree)
+{
+  auto fact = [](int n) { double f = 1; for (int i = 2; i <= n; ++i) f *= i; return f; };
+  for (int deg = 0; deg <= 14; ++deg)
+  {
+    const Rule r = tetrahedron(deg);
+    double wsum = 0.0;
+    for (int q = 0; q < r.size(); ++q)
+    {
+      wsum += r.weights[q];
+      EXPECT_GT(r.weights[q], 0.0);
+      const double* p = &r.points[3 * q];
+      EXPECT_TRUE(p[0] >= 0 and p[1] >= 0 and p[2] >= 0 and p[0] + p[1] + p[2] <= 1.0);
+    }
+    EXPECT_NEAR(wsum, 1.0 / 6.0, 1e-15);
+    for (int a = 0; a <= deg; ++a)
+      for (int b = 0; a + b <= deg; ++b)
+        for (int c = 0; a + b + c <= deg; ++c)
+        {
+          double s = 0.0;
+          for (int q = 0; q < r.size(); ++q)
+            s += r.weights[q] * std::pow(r.points[3 * q], a) * std::pow(r.points[3 * q + 1], b)
+                 * std::pow(r.points[3 * q + 2], c);
+          const double exact = fact(a) * fact(b) * fact(c) / fact(a + b + c + 3);
+          EXPECT_NEAR(s, exact, 1e-15) << deg << " " << a << " " << b << " " << c;
+        }
+  }
+  EXPECT_THROW(tetrahedron(-1), std::invalid_argument);
+}
+
 TEST(TriangleRule, RejectsNegativeDegree) { EXPECT_THROW(triangle(-1), std::invalid_argument); }
 
 // Along a segment at distances r0 (t = 0) .. r1 (t = 1) from a tip on its

@@ -1,0 +1,147 @@
+#include "quadrature/cell_quadrature_3d.h"
+
+#include "geometry/p1_tetrahedron.h"
+#include "geometry/vec3.h"
+#include "quadrature/front_rules_3d.h"
+
+#include <limits>
+#include <stdexcept>
+
+namespace cracklip
+{
+using namespace vec3;
+
+Point3 front_direction(std::span<const double> x, std::span<const std::int32_t> cells, const CrackGeometry3D& g,
+                       std::int32_t c)
+{
+  const P1Tetrahedron T(x, cells, c);
+  std::array<double, 4> f, p;
+  for (int a = 0; a < 4; ++a)
+    f[a] = g.phi[T.nodes[a]], p[a] = g.psi[T.nodes[a]];
+  const Point3 gf = T.gradient(f), gp = T.gradient(p);
+  const Point3 d = cross(gp, gf);
+  if (!(norm(d) > 1e-12 * norm(gp) * norm(gf)))
+    return {0.0, 0.0, 0.0};
+  return unit(d);
+}
+
+bool front_line(std::span<const double> x, std::span<const std::int32_t> cells, const CrackGeometry3D& g,
+                std::int32_t c, Point3& point, Point3& direction)
+{
+  const P1Tetrahedron T(x, cells, c);
+  std::array<double, 4> f, p;
+  for (int a = 0; a < 4; ++a)
+    f[a] = g.phi[T.nodes[a]], p[a] = g.psi[T.nodes[a]];
+  const Point3 gf = T.gradient(f), gp = T.gradient(p);
+  const Point3 d = cross(gp, gf);
+  if (!(norm(d) > 1e-12 * norm(gp) * norm(gf)))
+    return false;
+  direction = unit(d);
+  // Least-norm correction from the centroid xc: p = xc - G^T (G G^T)^{-1} v,
+  // G = [grad phi; grad psi], v = (phi(xc), psi(xc)).
+  const Point3 xc = T.physical({0.25, 0.25, 0.25});
+  const double v0 = 0.25 * (f[0] + f[1] + f[2] + f[3]), v1 = 0.25 * (p[0] + p[1] + p[2] + p[3]);
+  const double a = dot(gf, gf), b = dot(gf, gp), cc = dot(gp, gp), det = a * cc - b * b;
+  const double l0 = (cc * v0 - b * v1) / det, l1 = (a * v1 - b * v0) / det;
+  point = axpy(axpy(xc, -l0, gf), -l1, gp);
+  return true;
+}
+
+void compute_cell_quadrature_3d(std::span<const double> x, std::span<const std::int32_t> cells,
+                                const CrackGeometry3D& g, std::int32_t c, const QuadratureOptions3D& options,
+                                CellQuadrature3D& out)
+{
+  out.clear();
+  if (c < 0 or static_cast<std::size_t>(c) >= g.crack_cell_index.size())
+    throw std::invalid_argument("compute_cell_quadrature_3d: cell " + std::to_string(c) + " out of range");
+  const P1Tetrahedron T(x, cells, c);
+  const double det = std::abs(T.detJ);
+  // A rule on the simplex's own coordinates mapped into the cell's reference
+  // coordinates through the sub-tetrahedron's reference vertices R (4, 3).
+  auto append = [&](const quadrature::Rule& rule, const double* R, int side, int nf)
+  {
+    const Point3 R0 = {R[0], R[1], R[2]}, R1 = {R[3], R[4], R[5]}, R2 = {R[6], R[7], R[8]},
+                 R3 = {R[9], R[10], R[11]};
+    const double scale6 = 6.0 * det * signed_volume(R0, R1, R2, R3);
+    const Point3 e1 = sub(R1, R0), e2 = sub(R2, R0), e3 = sub(R3, R0);
+    for (int q = 0; q < rule.size(); ++q)
+    {
+      const double* p = &rule.points[3 * q];
+      const Point3 r = axpy(axpy(axpy(R0, p[0], e1), p[1], e2), p[2], e3);
+      out.ref.insert(out.ref.end(), r.begin(), r.end());
+      out.weight.push_back(rule.weights[q] * scale6);
+      out.side.push_back(static_cast<std::int8_t>(side));
+      out.front_vertices.push_back(static_cast<std::int8_t>(nf));
+    }
+  };
+  const std::int32_t i = g.crack_cell_index[c];
+  if (i < 0)
+  {
+    static constexpr double whole[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    append(quadrature::tetrahedron(options.degree), whole, 0, 0);
+    return;
+  }
+  const CrackCell3D& cc = g.crack_cells[i];
+  const quadrature::Rule smooth = quadrature::tetrahedron(options.degree);
+  const bool collapsed = options.front_rule == FrontQuadrature::collapsed;
+  const quadrature::Rule front_gauss = quadrature::tetrahedron(options.front_degree);
+  Point3 dir = {0, 0, 0}, on_line = {0, 0, 0};
+  const bool has_line = collapsed and front_line(x, cells, g, c, on_line, dir);
+  for (int k = 0; k < cc.num_sub(); ++k)
+  {
+    const double* R = &cc.sub[12 * k];
+    const int nf = cc.num_front[k];
+    std::array<double, 12> xv;
+    std::array<Point3, 4> X;
+    for (int a = 0; a < 4; ++a)
+    {
+      X[a] = T.physical({R[3 * a], R[3 * a + 1], R[3 * a + 2]});
+      for (int d = 0; d < 3; ++d)
+        xv[3 * a + d] = X[a][d];
+    }
+    if (nf == 0)
+    {
+      // Near the front line: the near-front rule (signed cones from it).
+      bool near = false;
+      if (has_line and options.near_factor > 0.0)
+      {
+        double dmin = std::numeric_limits<double>::infinity(), diam = 0.0;
+        for (int a = 0; a < 4; ++a)
+        {
+          const Point3 w = sub(X[a], on_line);
+          dmin = std::min(dmin, norm(axpy(w, -dot(w, dir), dir)));
+          for (int b = a + 1; b < 4; ++b)
+            diam = std::max(diam, dist(X[a], X[b]));
+        }
+        near = dmin < options.near_factor * diam;
+      }
+      if (near)
+        append(quadrature::tetrahedron_near_front(xv, on_line, dir, options.front_radial, options.front_angular,
+                                                  options.front_axial),
+               R, cc.side[k], 0);
+      else
+        append(smooth, R, cc.side[k], 0);
+      continue;
+    }
+    if (!collapsed)
+    {
+      append(front_gauss, R, cc.side[k], nf);
+      continue;
+    }
+    if (nf == 2)
+    {
+      append(quadrature::tetrahedron_edge_collapsed(xv, options.front_radial, options.front_angular,
+                                                    options.front_axial),
+             R, cc.side[k], nf);
+      continue;
+    }
+    // Without a front line (P1 psi vanishing on the crossing) collapse onto
+    // the vertex plainly: a direction parallel to the opposite face.
+    const Point3 d = has_line ? dir : Point3{xv[6] - xv[3], xv[7] - xv[4], xv[8] - xv[5]};
+    append(quadrature::tetrahedron_point_collapsed(xv, d, options.front_radial, options.front_angular,
+                                                   options.front_axial),
+           R, cc.side[k], nf);
+  }
+}
+
+} // namespace cracklip

@@ -1,0 +1,83 @@
+// Quadrature points of one tetrahedron for enriched integrands (layer a):
+// the 3D counterpart of cell_quadrature_2d.
+//
+// A cell the crack touches is integrated over its sub-tetrahedra, each on one
+// side of the crack: a Gauss rule on those away from the front, the
+// edge-collapsed rule on those with an edge on the front and the
+// point-collapsed rule on those with a vertex on it (front_rules_3d.h), so
+// that the 1/r and 1/sqrt(r) of front-enriched integrands are integrated to
+// round-off. Other cells get the Gauss rule on the whole cell. For
+// comparison the collapsed rules can be replaced by a plain Gauss rule of a
+// given degree. Sub-tetrahedra of crack cells that do not touch the front
+// but lie near the cell's front line (the zero line of its P1 level sets)
+// see a nearly singular integrand: they get the near-front rule (signed
+// cones from the line, tetrahedron_near_front). Cells the crack does not
+// touch get the Gauss rule; for those near the front the enrichment's
+// assembly can call tetrahedron_near_front with the front from FrontLocator.
+#pragma once
+
+#include "geometry/crack_geometry_3d.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace cracklip
+{
+
+enum class FrontQuadrature : std::int8_t
+{
+  collapsed = 0, ///< edge- and point-collapsed rules (default)
+  gauss = 1      ///< plain Gauss of degree front_degree on sub-tetrahedra touching the front
+};
+
+struct QuadratureOptions3D
+{
+  int degree = 2; ///< Gauss degree on sub-tetrahedra away from the front and on other cells
+  FrontQuadrature front_rule = FrontQuadrature::collapsed;
+  int front_radial = 6;  ///< collapsed: points in tau (rho = tau^2, across the front)
+  int front_angular = 8; ///< collapsed: points around the front (sinh-mapped)
+  int front_axial = 3;   ///< collapsed: points along the front
+  int front_degree = 5;  ///< gauss: degree on sub-tetrahedra touching the front
+  /// collapsed: sub-tetrahedra of crack cells not touching the front whose
+  /// nearest vertex is within near_factor times their diameter of the
+  /// cell's front line get the near-front rule (0: never).
+  double near_factor = 1.0;
+};
+
+/// Quadrature points of a cell: reference coordinates (n, 3) in the cell,
+/// physical weights (n, summing to the cell's volume; a point-collapsed
+/// piece may contribute negative weights, see front_rules_3d.h), and the
+/// side (n) of the crack for each point: +1 / -1 in cut, face and front
+/// cells (from the sub-tetrahedron), 0 in other cells. `front_vertices`
+/// (n): 0, 1 or 2, the num_front of the sub-tetrahedron the point belongs
+/// to (which rule made it).
+struct CellQuadrature3D
+{
+  std::vector<double> ref;
+  std::vector<double> weight;
+  std::vector<std::int8_t> side;
+  std::vector<std::int8_t> front_vertices;
+  void clear() { ref.clear(), weight.clear(), side.clear(), front_vertices.clear(); }
+  int size() const { return static_cast<int>(weight.size()); }
+};
+
+/// Fill `out` for cell c of the mesh (x (num_nodes, 3), cells (num_cells, 4))
+/// with crack geometry g.
+void compute_cell_quadrature_3d(std::span<const double> x, std::span<const std::int32_t> cells,
+                                const CrackGeometry3D& g, std::int32_t c, const QuadratureOptions3D& options,
+                                CellQuadrature3D& out);
+
+/// Unit direction of the front line in a cell (grad psi x grad phi of its
+/// P1 level sets, physical; along e3), or (0, 0, 0) where the gradients are
+/// parallel.
+Point3 front_direction(std::span<const double> x, std::span<const std::int32_t> cells, const CrackGeometry3D& g,
+                       std::int32_t c);
+
+/// The front line of a cell's P1 level sets (phi = psi = 0, extended beyond
+/// the cell): its point nearest the cell's centroid and unit direction (as
+/// front_direction). False where the gradients are parallel.
+bool front_line(std::span<const double> x, std::span<const std::int32_t> cells, const CrackGeometry3D& g,
+                std::int32_t c, Point3& point, Point3& direction);
+
+} // namespace cracklip
