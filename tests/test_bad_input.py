@@ -308,9 +308,16 @@ def test_bad_dirichlet_values(square_h01, value, match):
         cl.solve(_scene(square_h01, dirichlet=[cl.Dirichlet("left", None, value)]))
 
 
-def test_bad_dirichlet_component():
-    with pytest.raises(cl.BoundaryConditionError, match=r"component must be 0 \(x\), 1 \(y\) or None \(both\), got 2"):
-        cl.Dirichlet("left", 2)
+def test_bad_dirichlet_component(square_h01):
+    """A component that exists in no dimension is refused at once; z (2) is
+    refused on a 2D part when the model is made (it is valid in 3D)."""
+    with pytest.raises(cl.BoundaryConditionError, match=r"component must be 0 \(x\), 1 \(y\), 2 \(z, in 3D\) or None "
+                                                          r"\(all\), got 3"):
+        cl.Dirichlet("left", 3)
+    scene = _scene(square_h01)
+    scene.dirichlet = [cl.Dirichlet("left", 2), *scene.dirichlet]
+    with pytest.raises(cl.BoundaryConditionError, match=r"component 2 does not exist in 2D \(0 .. 1\)"):
+        cl.create_model(scene)
 
 
 def test_nan_traction(square_h01):
@@ -402,10 +409,17 @@ def test_cpp_boundary_geometry_of_another_mesh():
         _cracklip.create_enrichment_layout(x4, cells4, [g], tip="vector", radius=0.1)
 
 
-@pytest.mark.parametrize("value", [(1.0, 2.0, 3.0), (1.0,), (0.0, float("inf"))])
+@pytest.mark.parametrize("value", [(1.0,), (0.0, float("inf")), (1.0, 2.0, 3.0, 4.0)])
 def test_bad_constant_traction(value):
-    with pytest.raises(cl.InputError, match=r"traction on 'right': a constant value must be two finite numbers"):
+    with pytest.raises(cl.InputError, match=r"traction on 'right': a constant value must be finite numbers \(t_x, t_y\)"):
         cl.Traction("right", value)
+
+
+def test_traction_of_the_wrong_dimension(square_h01):
+    """(t_x, t_y, t_z) is a 3D traction: on a 2D part the scene refuses it."""
+    with pytest.raises(cl.InputError, match=r"traction on 'right': 3 components on a 2D part; give \(t_x, t_y\)"):
+        cl.Scene(square_h01, cl.Material(1.0, 0.3), dirichlet=[cl.Dirichlet("left")],
+                 tractions=[cl.Traction("right", (1.0, 2.0, 3.0))])
 
 
 def test_traction_function_with_wrong_shape(square_h01):

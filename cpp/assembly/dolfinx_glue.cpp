@@ -14,35 +14,37 @@ namespace cracklip
 NodeMesh extract_node_mesh(const dolfinx::fem::FunctionSpace& V)
 {
   const auto mesh = V.mesh();
-  if (mesh->topology().cell_type() != dolfinx::mesh::CellType::triangle)
-    throw std::invalid_argument("cracklip needs a triangle mesh, got cell type "
-                                + dolfinx::mesh::to_string(mesh->topology().cell_type()));
-  if (mesh->geometry().dim() != 2)
-    throw std::invalid_argument("cracklip needs a 2D mesh (geometric dimension 2)");
+  const auto type = mesh->topology().cell_type();
+  if (type != dolfinx::mesh::CellType::triangle and type != dolfinx::mesh::CellType::tetrahedron)
+    throw std::invalid_argument("cracklip needs a triangle or a tetrahedron mesh, got cell type "
+                                + dolfinx::mesh::to_string(type));
+  const int gdim = type == dolfinx::mesh::CellType::triangle ? 2 : 3;
+  if (mesh->geometry().dim() != gdim)
+    throw std::invalid_argument("cracklip needs a mesh whose geometric dimension is its cells' ("
+                                + std::to_string(gdim) + "), got " + std::to_string(mesh->geometry().dim()));
   const auto dofmap = V.dofmap();
-  if (dofmap->index_map_bs() != 2 or dofmap->cell_dofs(0).size() != 3)
-    throw std::invalid_argument("cracklip needs a P1 vector function space (block size 2, "
-                                "3 dof blocks per cell)");
+  if (dofmap->index_map_bs() != gdim or static_cast<int>(dofmap->cell_dofs(0).size()) != gdim + 1)
+    throw std::invalid_argument("cracklip needs a P1 vector function space (block size " + std::to_string(gdim)
+                                + ", " + std::to_string(gdim + 1) + " dof blocks per cell)");
   if (dofmap->index_map->num_ghosts() != 0)
     throw std::invalid_argument("cracklip runs in serial only (the mesh has ghost dofs)");
 
   NodeMesh out;
+  out.gdim = gdim;
   const std::int32_t num_nodes = dofmap->index_map->size_local();
   const std::vector<double> xall = V.tabulate_dof_coordinates(false); // (num_nodes, 3)
-  out.x.resize(2 * num_nodes);
+  out.x.resize(gdim * num_nodes);
   for (std::int32_t i = 0; i < num_nodes; ++i)
-  {
-    out.x[2 * i] = xall[3 * i];
-    out.x[2 * i + 1] = xall[3 * i + 1];
-  }
+    for (int d = 0; d < gdim; ++d)
+      out.x[gdim * i + d] = xall[3 * i + d];
   const auto& list = dofmap->list();
   const std::int32_t num_cells = list.num_nodes();
-  out.cells.resize(3 * num_cells);
+  out.cells.resize((gdim + 1) * num_cells);
   for (std::int32_t c = 0; c < num_cells; ++c)
   {
     auto dofs = list.links(c);
-    for (int a = 0; a < 3; ++a)
-      out.cells[3 * c + a] = dofs[a];
+    for (int a = 0; a <= gdim; ++a)
+      out.cells[(gdim + 1) * c + a] = dofs[a];
   }
   return out;
 }

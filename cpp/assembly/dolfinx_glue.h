@@ -1,7 +1,7 @@
 // DOLFINx and PETSc glue (layer b).
 #pragma once
 
-#include "assembly/enriched_kernels_2d.h"
+#include "assembly/matrix_sink.h"
 
 #include <cstdint>
 #include <petscmat.h>
@@ -16,11 +16,13 @@ namespace cracklip
 {
 
 /// The P1 "node mesh" of a DOLFINx P1 vector function space: one node per
-/// dof block. x: (num_nodes, 2) node coordinates, cells: (num_cells, 3) node
-/// (= dof block) indices per cell in the reference vertex order. Throws
-/// unless V is a serial P1 vector space on triangles.
+/// dof block. x: (num_nodes, gdim) node coordinates, cells: (num_cells,
+/// gdim + 1) node (= dof block) indices per cell in the reference vertex
+/// order; gdim 2 (triangles) or 3 (tetrahedra). Throws unless V is a serial
+/// P1 vector space on triangles or tetrahedra.
 struct NodeMesh
 {
+  int gdim = 2;
   std::vector<double> x;
   std::vector<std::int32_t> cells;
 };

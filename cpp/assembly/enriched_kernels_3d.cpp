@@ -1,5 +1,10 @@
 #include "assembly/enriched_kernels_3d.h"
 
+#include "quadrature/front_rules_3d.h"
+#include "quadrature/rules.h"
+
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -8,11 +13,11 @@ namespace cracklip
 namespace
 {
 /// The crack (index) crossing cell c (class cut, face or front), or -1.
-int crossing_crack_3d(std::span<const CrackFields3D> cracks, std::int32_t c)
+int crossing_crack_3d(std::span<const CrackGeometry3D* const> cracks, std::int32_t c)
 {
   for (std::size_t ic = 0; ic < cracks.size(); ++ic)
   {
-    const std::int8_t cls = cracks[ic].cell_class[c];
+    const std::int8_t cls = cracks[ic]->cell_class[c];
     if (cls == 1 or cls == 2 or cls == 3)
       return static_cast<int>(ic);
   }
@@ -20,20 +25,95 @@ int crossing_crack_3d(std::span<const CrackFields3D> cracks, std::int32_t c)
 }
 } // namespace
 
-void region_sides_3d(std::span<const CrackFields3D> cracks, std::int32_t c, int crossing_side, std::vector<int>& side)
+void region_sides_3d(std::span<const CrackGeometry3D* const> cracks, std::int32_t c, int crossing_side,
+                     std::vector<int>& side)
 {
   side.resize(cracks.size());
   for (std::size_t ic = 0; ic < cracks.size(); ++ic)
   {
-    const std::int8_t cls = cracks[ic].cell_class[c];
-    side[ic] = (cls == 1 or cls == 2 or cls == 3) ? crossing_side : cracks[ic].cell_side[c];
+    const std::int8_t cls = cracks[ic]->cell_class[c];
+    side[ic] = (cls == 1 or cls == 2 or cls == 3) ? crossing_side : cracks[ic]->cell_side[c];
   }
+}
+
+void compute_enriched_cell_quadrature_3d(std::span<const double> x, std::span<const std::int32_t> cells,
+                                         const EnrichmentLayout3D& layout,
+                                         std::span<const CrackGeometry3D* const> cracks, std::int32_t c,
+                                         const QuadratureOptions3D& options, CellQuadrature3D& out)
+{
+  out.clear();
+  const int ic = crossing_crack_3d(cracks, c);
+  if (ic >= 0)
+  {
+    compute_cell_quadrature_3d(x, cells, *cracks[ic], c, options, out);
+    return;
+  }
+  // The crack whose front functions the cell carries, if any.
+  int front_crack = -1;
+  if (const std::int32_t ie = layout.cell_index.empty() ? -1 : layout.cell_index[c]; ie >= 0)
+    for (std::int32_t j = layout.cell_offsets[ie]; j < layout.cell_offsets[ie + 1] and front_crack < 0; ++j)
+      if (const std::int32_t k = layout.cell_enr[j];
+          layout.kind[k] != static_cast<std::int8_t>(EnrichmentKind::heaviside))
+        front_crack = layout.crack[k];
+  const P1Tetrahedron T(x, cells, c);
+  const double scale6 = std::abs(T.detJ);
+  auto append = [&](const quadrature::Rule& rule)
+  {
+    for (int q = 0; q < rule.size(); ++q)
+    {
+      out.ref.insert(out.ref.end(), rule.points.begin() + 3 * q, rule.points.begin() + 3 * q + 3);
+      out.weight.push_back(rule.weights[q] * scale6);
+      out.side.push_back(0);
+      out.front_vertices.push_back(0);
+    }
+  };
+  if (front_crack < 0)
+  {
+    append(quadrature::tetrahedron(options.degree));
+    return;
+  }
+  Point3 on_line, dir;
+  bool near = false;
+  if (options.front_rule == FrontQuadrature::collapsed and options.near_factor > 0.0
+      and front_line(x, cells, *cracks[front_crack], c, on_line, dir))
+  {
+    double dmin = 1e300, diam = 0.0;
+    for (int a = 0; a < 4; ++a)
+    {
+      double w[3], along = 0.0;
+      for (int i = 0; i < 3; ++i)
+        w[i] = T.xv[a][i] - on_line[i], along += w[i] * dir[i];
+      double d2 = 0.0;
+      for (int i = 0; i < 3; ++i)
+        d2 += (w[i] - along * dir[i]) * (w[i] - along * dir[i]);
+      dmin = std::min(dmin, std::sqrt(d2));
+      for (int b = a + 1; b < 4; ++b)
+      {
+        double e2 = 0.0;
+        for (int i = 0; i < 3; ++i)
+          e2 += (T.xv[a][i] - T.xv[b][i]) * (T.xv[a][i] - T.xv[b][i]);
+        diam = std::max(diam, std::sqrt(e2));
+      }
+    }
+    near = dmin < options.near_factor * diam;
+  }
+  if (near)
+  {
+    std::array<double, 12> xv;
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i)
+        xv[3 * a + i] = T.xv[a][i];
+    append(quadrature::tetrahedron_near_front(xv, on_line, dir, options.front_radial, options.front_angular,
+                                              options.front_axial));
+  }
+  else
+    append(quadrature::tetrahedron(std::max(options.degree, FRONT_FAR_DEGREE)));
 }
 
 std::int32_t assemble_enriched_stiffness_3d(const MatrixSink& sink, std::span<const double> x,
                                             std::span<const std::int32_t> cells, const EnrichmentLayout3D& layout,
-                                            std::span<const CrackFields3D> cracks, double E, double nu,
-                                            const CellRule3D& rule)
+                                            std::span<const CrackGeometry3D* const> cracks, double E, double nu,
+                                            const QuadratureOptions3D& options)
 {
   const std::array<double, 36> D = elasticity_matrix_3d(E, nu);
   CellQuadrature3D q;
@@ -41,12 +121,11 @@ std::int32_t assemble_enriched_stiffness_3d(const MatrixSink& sink, std::span<co
   std::vector<int> side;
   for (const std::int32_t c : layout.cells)
   {
-    const P1Tet cell(x, cells, c);
+    const P1Tetrahedron cell(x, cells, c);
     const CellBasis3D basis(cell, layout, c);
     const int nd = basis.num_dofs();
     Ke.assign(static_cast<std::size_t>(nd) * nd, 0.0);
-    q.clear();
-    rule(c, q);
+    compute_enriched_cell_quadrature_3d(x, cells, layout, cracks, c, options, q);
     for (int p = 0; p < q.size(); ++p)
     {
       region_sides_3d(cracks, c, q.side[p], side);
@@ -92,8 +171,9 @@ std::int32_t assemble_enriched_stiffness_3d(const MatrixSink& sink, std::span<co
 }
 
 std::vector<double> evaluate_displacement_3d(std::span<const double> x, std::span<const std::int32_t> cells,
-                                             const EnrichmentLayout3D& layout, std::span<const CrackFields3D> cracks,
-                                             std::span<const double> u, std::span<const std::int32_t> point_cells,
+                                             const EnrichmentLayout3D& layout,
+                                             std::span<const CrackGeometry3D* const> cracks, std::span<const double> u,
+                                             std::span<const std::int32_t> point_cells,
                                              std::span<const double> ref_points, std::span<const std::int8_t> sides,
                                              std::vector<double>* grad_out)
 {
@@ -112,17 +192,17 @@ std::vector<double> evaluate_displacement_3d(std::span<const double> x, std::spa
   for (std::size_t p = 0; p < n; ++p)
   {
     const std::int32_t c = point_cells[p];
-    const P1Tet cell(x, cells, c);
+    const P1Tetrahedron cell(x, cells, c);
     const CellBasis3D basis(cell, layout, c);
     const Point3 r = {ref_points[3 * p], ref_points[3 * p + 1], ref_points[3 * p + 2]};
     int s = sides[p];
     const int ic = crossing_crack_3d(cracks, c);
     if (s == 0 and ic >= 0)
     {
-      const auto N = P1Tet::shape(r);
+      const auto N = P1Tetrahedron::shape(r);
       double phi = 0.0;
       for (int a = 0; a < 4; ++a)
-        phi += N[a] * cracks[ic].phi[cell.nodes[a]];
+        phi += N[a] * cracks[ic]->phi[cell.nodes[a]];
       s = phi >= 0.0 ? 1 : -1;
     }
     region_sides_3d(cracks, c, s, side);

@@ -4,6 +4,7 @@
 #include "enrichment/dof_numbering.h"
 #include "enrichment/enrichment_layout_3d.h"
 #include "enrichment/front_functions_3d.h"
+#include "geometry/p1_tetrahedron.h"
 
 #include <array>
 #include <cmath>
@@ -16,76 +17,6 @@
 namespace cracklip
 {
 
-/// Geometry of one tetrahedron: node indices, vertex coordinates, constant
-/// P1 shape-function gradients (grad[a] = dN_a/dx) and |det J|.
-struct P1Tet
-{
-  std::array<std::int32_t, 4> nodes;
-  std::array<Point3, 4> xv;
-  std::array<Point3, 4> grad;
-  double detJ;
-
-  P1Tet(std::span<const double> x, std::span<const std::int32_t> cells, std::int32_t c)
-  {
-    for (int a = 0; a < 4; ++a)
-    {
-      nodes[a] = cells[4 * c + a];
-      xv[a] = {x[3 * nodes[a]], x[3 * nodes[a] + 1], x[3 * nodes[a] + 2]};
-    }
-    // J = [x1 - x0, x2 - x0, x3 - x0] (columns); rows of J^-1 are the
-    // gradients of the reference coordinates.
-    double J[3][3];
-    for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < 3; ++k)
-        J[i][k] = xv[k + 1][i] - xv[0][i];
-    const double det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1])
-                       - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0])
-                       + J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
-    if (!(std::abs(det) > 0.0))
-      throw std::runtime_error("cell " + std::to_string(c) + " has zero volume");
-    double inv[3][3];
-    inv[0][0] = (J[1][1] * J[2][2] - J[1][2] * J[2][1]) / det;
-    inv[0][1] = (J[0][2] * J[2][1] - J[0][1] * J[2][2]) / det;
-    inv[0][2] = (J[0][1] * J[1][2] - J[0][2] * J[1][1]) / det;
-    inv[1][0] = (J[1][2] * J[2][0] - J[1][0] * J[2][2]) / det;
-    inv[1][1] = (J[0][0] * J[2][2] - J[0][2] * J[2][0]) / det;
-    inv[1][2] = (J[0][2] * J[1][0] - J[0][0] * J[1][2]) / det;
-    inv[2][0] = (J[1][0] * J[2][1] - J[1][1] * J[2][0]) / det;
-    inv[2][1] = (J[0][1] * J[2][0] - J[0][0] * J[2][1]) / det;
-    inv[2][2] = (J[0][0] * J[1][1] - J[0][1] * J[1][0]) / det;
-    for (int k = 0; k < 3; ++k)
-      grad[k + 1] = {inv[k][0], inv[k][1], inv[k][2]};
-    grad[0] = {-inv[0][0] - inv[1][0] - inv[2][0], -inv[0][1] - inv[1][1] - inv[2][1],
-               -inv[0][2] - inv[1][2] - inv[2][2]};
-    detJ = std::abs(det);
-  }
-
-  Point3 physical(const Point3& r) const
-  {
-    Point3 p;
-    for (int i = 0; i < 3; ++i)
-      p[i] = xv[0][i] + r[0] * (xv[1][i] - xv[0][i]) + r[1] * (xv[2][i] - xv[0][i]) + r[2] * (xv[3][i] - xv[0][i]);
-    return p;
-  }
-  /// Reference coordinates of a physical point (affine inverse).
-  Point3 reference(const Point3& p) const
-  {
-    const double d[3] = {p[0] - xv[0][0], p[1] - xv[0][1], p[2] - xv[0][2]};
-    Point3 r;
-    for (int k = 0; k < 3; ++k)
-      r[k] = grad[k + 1][0] * d[0] + grad[k + 1][1] * d[1] + grad[k + 1][2] * d[2];
-    return r;
-  }
-  static std::array<double, 4> shape(const Point3& r) { return {1.0 - r[0] - r[1] - r[2], r[0], r[1], r[2]}; }
-  int local(std::int32_t node) const
-  {
-    for (int a = 0; a < 4; ++a)
-      if (nodes[a] == node)
-        return a;
-    return -1;
-  }
-};
-
 /// The basis functions of a cell: 4 standard nodes then the cell's
 /// pseudo-nodes, each with three scalar dofs (global indices in `dofs`, in
 /// that order); `enr` the pseudo-node ids, `enr_local` the local index of
@@ -97,7 +28,7 @@ struct CellBasis3D
   std::vector<std::int32_t> dofs;
   bool has_front = false;
 
-  CellBasis3D(const P1Tet& cell, const EnrichmentLayout3D& layout, std::int32_t c)
+  CellBasis3D(const P1Tetrahedron& cell, const EnrichmentLayout3D& layout, std::int32_t c)
   {
     for (int a = 0; a < 4; ++a)
       for (int d = 0; d < 3; ++d)
@@ -109,7 +40,10 @@ struct CellBasis3D
     {
       const std::int32_t k = layout.cell_enr[j];
       enr.push_back(k);
-      enr_local.push_back(cell.local(layout.node[k]));
+      int a = 0;
+      while (a < 4 and cell.nodes[a] != layout.node[k])
+        ++a;
+      enr_local.push_back(a);
       has_front = has_front or layout.kind[k] != static_cast<std::int8_t>(EnrichmentKind::heaviside);
       for (int d = 0; d < 3; ++d)
         dofs.push_back(node_dof(layout.num_std_nodes + k, d, 3));
@@ -122,8 +56,8 @@ struct CellBasis3D
 /// (every node of which has a frame for ic: the layout guarantees it on
 /// cells carrying front functions): x1 = psi, x2 = phi interpolated, their
 /// (constant) gradients, the interpolated directions and their gradients.
-inline LocalCoordinates front_coordinates(const P1Tet& cell, const EnrichmentLayout3D& layout,
-                                          const CrackFields3D& crack, std::int32_t ic, const std::array<double, 4>& N)
+inline LocalCoordinates front_coordinates(const P1Tetrahedron& cell, const EnrichmentLayout3D& layout,
+                                          const CrackGeometry3D& crack, std::int32_t ic, const std::array<double, 4>& N)
 {
   LocalCoordinates lc{};
   const double* f[4];
@@ -158,14 +92,14 @@ inline LocalCoordinates front_coordinates(const P1Tet& cell, const EnrichmentLay
 /// with reference coordinates r, where the Heaviside of crack ic (and the
 /// lip branch of its front functions) is side[ic]. Fills val (ndof, 3) and
 /// grad (ndof, 3, 3) with grad[(i * 3 + a) * 3 + b] = d val_a / d x_b.
-inline void evaluate_basis_3d(const P1Tet& cell, const CellBasis3D& basis, const EnrichmentLayout3D& layout,
-                              std::span<const CrackFields3D> cracks, std::span<const int> side, const Point3& r,
+inline void evaluate_basis_3d(const P1Tetrahedron& cell, const CellBasis3D& basis, const EnrichmentLayout3D& layout,
+                              std::span<const CrackGeometry3D* const> cracks, std::span<const int> side, const Point3& r,
                               std::vector<double>& val, std::vector<double>& grad)
 {
   const int nd = basis.num_dofs();
   val.assign(3 * nd, 0.0);
   grad.assign(9 * nd, 0.0);
-  const auto N = P1Tet::shape(r);
+  const auto N = P1Tetrahedron::shape(r);
   // Scalar function phi times e_d for dofs 3f + d.
   auto scalar = [&](int f, double phi, const Point3& g)
   {
@@ -245,7 +179,7 @@ inline void evaluate_basis_3d(const P1Tet& cell, const CellBasis3D& basis, const
     if (ic != fn_crack)
     {
       fn_crack = ic, have_vector = have_scalar = false;
-      lc = front_coordinates(cell, layout, cracks[ic], ic, N);
+      lc = front_coordinates(cell, layout, *cracks[ic], ic, N);
     }
     if (kind == EnrichmentKind::tip_scalar)
     {

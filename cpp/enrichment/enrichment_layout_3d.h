@@ -18,6 +18,7 @@
 #include "enrichment/dof_numbering.h"
 #include "enrichment/enrichment_selection.h"
 #include "enrichment/front_functions_3d.h"
+#include "geometry/crack_geometry_3d.h"
 
 #include <array>
 #include <cstdint>
@@ -26,19 +27,6 @@
 
 namespace cracklip
 {
-
-/// What the enrichment needs of one crack on a tetrahedral mesh (views of
-/// its geometry; the geometry owns the arrays).
-struct CrackFields3D
-{
-  std::span<const double> phi, psi;            ///< (num_nodes) level sets, after snapping
-  std::span<const std::int8_t> cell_class;     ///< (num_cells) 0 plain, 1 cut, 2 face, 3 front, 4 extension
-  std::span<const std::int8_t> cell_side;      ///< (num_cells) +1 / -1 for plain and face cells, else 0
-  std::span<const double> front_points;        ///< (m, 3) front points, piece after piece
-  std::span<const double> front_frames;        ///< (m, 9) e1, e2, e3 of each front point
-  std::span<const std::int32_t> front_offsets; ///< (pieces + 1) points of piece k: [off[k], off[k+1])
-  std::span<const std::int8_t> front_closed;   ///< (pieces) 1 for a closed loop
-};
 
 struct EnrichmentOptions3D
 {
@@ -83,22 +71,10 @@ struct EnrichmentLayout3D : EnrichedCells
   const double* frame(std::int32_t n, std::int32_t ic) const;
 };
 
-/// The nearest point of a crack's front to x: the point (3), the frame (9)
-/// interpolated along the front segment and made orthonormal (e2 first,
-/// then e1 orthogonal to it, e3 = e1 x e2), the piece and the distance.
-struct FrontProjection
-{
-  Point3 point;
-  std::array<double, 9> frame;
-  std::int32_t piece = -1;
-  double distance = 0.0;
-};
-FrontProjection project_on_front(const CrackFields3D& crack, const Point3& x);
-
 /// Enrichment of every crack (see the file header). x: (num_nodes, 3);
 /// cells: (num_cells, 4). Throws if one cell is crossed by two cracks.
 EnrichmentLayout3D create_enrichment_layout_3d(std::span<const double> x, std::span<const std::int32_t> cells,
-                                               std::span<const CrackFields3D> cracks,
+                                               std::span<const CrackGeometry3D* const> cracks,
                                                const EnrichmentOptions3D& options);
 
 } // namespace cracklip

@@ -35,12 +35,14 @@ void declare_geometry(py::module& m)
       [](const dolfinx::fem::FunctionSpace& V)
       {
         NodeMesh nm = extract_node_mesh(V);
-        const auto n = static_cast<py::ssize_t>(nm.x.size() / 2);
-        const auto nc = static_cast<py::ssize_t>(nm.cells.size() / 3);
-        return py::make_tuple(as_pyarray(std::move(nm.x), {n, 2}),
-                              as_pyarray(std::move(nm.cells), {nc, 3}));
+        const py::ssize_t d = nm.gdim;
+        const auto n = static_cast<py::ssize_t>(nm.x.size()) / d;
+        const auto nc = static_cast<py::ssize_t>(nm.cells.size()) / (d + 1);
+        return py::make_tuple(as_pyarray(std::move(nm.x), {n, d}),
+                              as_pyarray(std::move(nm.cells), {nc, d + 1}));
       },
-      py::arg("V"), "Node coordinates (n, 2) and cells (m, 3) of a P1 vector space.");
+      py::arg("V"), "Node coordinates (n, gdim) and cells (m, gdim + 1) of a P1 vector space "
+                    "(triangles or tetrahedra).");
 
   py::class_<CrackGeometry>(m, "CrackGeometry", "Geometry of one crack on the mesh")
       .def_property_readonly("phi", [](const CrackGeometry& g) { return carray<double>(g.phi.size(), g.phi.data()); })

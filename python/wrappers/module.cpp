@@ -10,6 +10,7 @@ void declare_fields(pybind11::module& m);
 void declare_fracture(pybind11::module& m);
 void declare_contact(pybind11::module& m);
 void declare_loads(pybind11::module& m);
+void declare_model_3d(pybind11::module& m);
 } // namespace cracklip_wrappers
 
 PYBIND11_MODULE(_cracklip, m)
@@ -22,4 +23,5 @@ PYBIND11_MODULE(_cracklip, m)
   cracklip_wrappers::declare_fracture(m);
   cracklip_wrappers::declare_contact(m);
   cracklip_wrappers::declare_loads(m);
+  cracklip_wrappers::declare_model_3d(m);
 }

@@ -1,8 +1,9 @@
 """The blocked-system recipe: one PETSc matrix over standard and enriched dofs.
 
-Order of the unknowns: the DOLFINx P1 vector dofs (node i: 2i, 2i + 1), then
-the enriched pseudo-nodes (pseudo-node k: 2 (num_nodes + k) + {0, 1}). The
-matrix has block size 2 and is preallocated with every coupling; DOLFINx
+Order of the unknowns: the DOLFINx P1 vector dofs (node i: d i + c, d the
+space dimension, c < d), then the enriched pseudo-nodes (pseudo-node k:
+d (num_nodes + k) + c). The matrix has block size d and is preallocated with
+every coupling; DOLFINx
 assembles the standard block into it on the whole mesh, the C++ kernels add
 the enriched blocks on the enriched cells only, then Dirichlet rows and
 columns are eliminated symmetrically (with lifting of the load).
@@ -24,8 +25,9 @@ from .model import XfemModel
 
 
 def elasticity_form(V, E: float, nu: float):
-    """Plane-strain stiffness form a(u, v) = int sigma(u) : eps(v) (plane
-    stress: pass Material.E_strain, Material.nu_strain)."""
+    """Stiffness form a(u, v) = int sigma(u) : eps(v): plane strain on a 2D
+    space (plane stress: pass Material.E_strain, Material.nu_strain),
+    isotropic elasticity on a 3D one."""
     u, v = ufl.TrialFunction(V), ufl.TestFunction(V)
     mu = E / (2.0 * (1.0 + nu))
     lmbda = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))
@@ -34,30 +36,39 @@ def elasticity_form(V, E: float, nu: float):
         return ufl.sym(ufl.grad(w))
 
     def sigma(w):
-        return 2.0 * mu * eps(w) + lmbda * ufl.tr(eps(w)) * ufl.Identity(2)
+        return 2.0 * mu * eps(w) + lmbda * ufl.tr(eps(w)) * ufl.Identity(V.mesh.geometry.dim)
 
     return dolfinx.fem.form(ufl.inner(sigma(u), eps(v)) * ufl.dx)
 
 
 def create_matrix(model: XfemModel) -> PETSc.Mat:
-    """Preallocated AIJ matrix (block size 2) with every standard/enriched coupling."""
-    indptr, indices = _cracklip.create_sparsity(model.cells, model.layout)
+    """Preallocated AIJ matrix (block size = the space dimension) with every
+    standard/enriched coupling."""
+    d = model.gdim
+    create = _cracklip.create_sparsity if d == 2 else _cracklip.create_sparsity_3d
+    indptr, indices = create(model.cells, model.layout)
     n = model.num_dofs
-    A = PETSc.Mat().createAIJ((n, n), bsize=2, csr=(indptr, indices), comm=PETSc.COMM_SELF)
-    lgmap = PETSc.LGMap().create(np.arange(n // 2, dtype=PETSc.IntType), bsize=2,
+    A = PETSc.Mat().createAIJ((n, n), bsize=d, csr=(indptr, indices), comm=PETSc.COMM_SELF)
+    lgmap = PETSc.LGMap().create(np.arange(n // d, dtype=PETSc.IntType), bsize=d,
                                  comm=PETSc.COMM_SELF)
     A.setLGMap(lgmap, lgmap)
     A.setOption(PETSc.Mat.Option.NEW_NONZERO_ALLOCATION_ERR, True)
     return A
 
 
+def material_constants(model: XfemModel) -> tuple[float, float]:
+    """(E, nu) of the kernels: the plane-strain pair of the material in 2D
+    (Material.E_strain, nu_strain: plane stress maps onto it), E and nu in 3D."""
+    mat = model.scene.material
+    return (mat.E_strain, mat.nu_strain) if model.gdim == 2 else (mat.E, mat.nu)
+
+
 def assemble_standard_block(model: XfemModel, A: PETSc.Mat) -> None:
     """Add the standard (uncracked P1) stiffness into A, assembled by DOLFINx;
     with MeshData.cache_standard_block the block is kept as CSR and copied
     into the next matrices of the same mesh and material (crack growth)."""
-    mat = model.scene.material
     mesh = model.scene.mesh
-    key = (mat.E_strain, mat.nu_strain)
+    key = material_constants(model)
     cached = mesh.standard_blocks.get(key) if mesh.cache_standard_block else None
     if cached is not None:
         ip, indices, data = cached
@@ -65,11 +76,11 @@ def assemble_standard_block(model: XfemModel, A: PETSc.Mat) -> None:
         ip = np.concatenate([ip, np.full(rows + 1 - len(ip), ip[-1], dtype=ip.dtype)])
         A.setValuesCSR(ip, indices, data, addv=PETSc.InsertMode.ADD_VALUES)
         return
-    a = elasticity_form(model.V, mat.E_strain, mat.nu_strain)
+    a = elasticity_form(model.V, *key)
     dolfinx.fem.petsc.assemble_matrix(A, a)
     if mesh.cache_standard_block:
         A.assemble()
-        n = 2 * model.layout.num_std_nodes
+        n = model.gdim * model.layout.num_std_nodes
         indptr, indices, data = A.getValuesCSR()
         rows = np.repeat(np.arange(len(indptr) - 1), np.diff(indptr))
         keep = (rows < n) & (indices < n)
@@ -99,7 +110,6 @@ def assemble_system_groups(model: XfemModel) -> tuple[PETSc.Mat, dict[str, np.nd
     Returns (A, {group: b_g (num_dofs,)}, timings).
     """
     timings = {}
-    mat = model.scene.material
     t0 = time.perf_counter()
     A = create_matrix(model)
     timings["sparsity"] = time.perf_counter() - t0
@@ -109,9 +119,15 @@ def assemble_system_groups(model: XfemModel) -> tuple[PETSc.Mat, dict[str, np.nd
     timings["assemble_standard"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
-    model.num_enriched_cells_integrated = _cracklip.assemble_enriched_stiffness_petsc(
-        A.handle, model.x, model.cells, model.layout, model.geometries, mat.E_strain, mat.nu_strain,
-        model.scene.options.quadrature_options())
+    E, nu = material_constants(model)
+    if model.gdim == 2:
+        model.num_enriched_cells_integrated = _cracklip.assemble_enriched_stiffness_petsc(
+            A.handle, model.x, model.cells, model.layout, model.geometries, E, nu,
+            model.scene.options.quadrature_options())
+    else:
+        model.num_enriched_cells_integrated = _cracklip.assemble_enriched_stiffness_3d_petsc(
+            A.handle, model.x, model.cells, model.layout, model.geometries, E, nu,
+            model.scene.options.quadrature_options_3d())
     A.assemble()
     timings["assemble_enriched"] = time.perf_counter() - t0
 

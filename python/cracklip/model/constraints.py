@@ -13,11 +13,6 @@ from ..errors import BoundaryConditionError
 from ..scene.scene import Scene
 
 
-def _component_dofs(nodes: np.ndarray, component: int | None) -> np.ndarray:
-    comps = [0, 1] if component is None else [component]
-    return np.sort(np.concatenate([2 * nodes + c for c in comps])).astype(np.int32)
-
-
 def _accepts_side(f) -> bool:
     try:
         params = inspect.signature(f).parameters.values()
@@ -44,6 +39,7 @@ def compute_dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tup
     """
     msh = scene.mesh.mesh
     tdim = msh.topology.dim
+    gdim = x.shape[1]
     msh.topology.create_connectivity(tdim - 1, tdim)
     # Side of every node with respect to its nearest crack (+1 without cracks).
     node_side = np.ones(x.shape[0], dtype=np.int8)
@@ -83,7 +79,10 @@ def compute_dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tup
             if facets.size == 0:
                 raise BoundaryConditionError(f"Dirichlet boundary {bc.where!r} has no facets")
             nodes = dolfinx.fem.locate_dofs_topological(V, tdim - 1, facets)
-        comps = [0, 1] if bc.component is None else [bc.component]
+        if bc.component is not None and bc.component >= gdim:
+            raise BoundaryConditionError(f"Dirichlet condition {k_bc} ({bc.where!r}): component {bc.component} "
+                                         f"does not exist in {gdim}D (0 .. {gdim - 1})")
+        comps = list(range(gdim)) if bc.component is None else [bc.component]
         with_side = callable(bc.value) and _accepts_side(bc.value)
 
         def evaluate(points, sides):
@@ -94,13 +93,13 @@ def compute_dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tup
                 raise BoundaryConditionError(
                     f"Dirichlet condition {k_bc} ({bc.where!r}): its value function returned shape "
                     f"{out.shape} for {len(points)} points; it must return ({len(points)},) for one "
-                    f"component or ({len(points)}, 2) for both")
+                    f"component or ({len(points)}, {gdim}) for {'both' if gdim == 2 else 'all'}")
             return out.reshape(len(points), len(comps))
         v = evaluate(x[nodes], node_side[nodes])
         if not np.all(np.isfinite(v)):
             raise BoundaryConditionError(f"Dirichlet values on {bc.where!r} contain NaN or infinity")
         for j, c in enumerate(comps):
-            prescribe(2 * nodes + c, v[:, j], k_bc)
+            prescribe(gdim * nodes + c, v[:, j], k_bc)
         if not is_point:
             pseudo = np.flatnonzero(np.isin(layout.node, nodes) & (layout.kind == 0))
             jump = np.zeros((len(pseudo), len(comps)))
@@ -109,7 +108,7 @@ def compute_dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tup
                 xp = x[layout.node[pseudo]]
                 jump = (evaluate(xp, -H.astype(np.int8)) - evaluate(xp, H.astype(np.int8))) / (-2.0 * H[:, None])
             for j, c in enumerate(comps):
-                prescribe(2 * (layout.num_std_nodes + pseudo) + c, jump[:, j], k_bc)
+                prescribe(gdim * (layout.num_std_nodes + pseudo) + c, jump[:, j], k_bc)
     for grp, mine in values.items():
         _check_clashes(scene, x, layout, mine, [c for c in clashes if scene.dirichlet[c[1]].group == grp])
     dofs = np.array(sorted(set().union(*values.values())), dtype=np.int32)
@@ -127,11 +126,11 @@ def _check_clashes(scene: Scene, x: np.ndarray, layout, values: dict, clashes: l
     for dof, k0, k1, a, b in clashes:
         if abs(a - b) <= 1e-10 * max(abs(a), abs(b)) or abs(a - b) <= 1e-12 * vmax:
             continue
-        node, comp = divmod(dof, 2)
-        what = f"u_{'xy'[comp]}"
+        node, comp = divmod(dof, x.shape[1])
+        what = f"u_{'xyz'[comp]}"
         if node >= layout.num_std_nodes:
             node = int(layout.node[node - layout.num_std_nodes])
-            what = f"the jump (Heaviside dof) of u_{'xy'[comp]}"
+            what = f"the jump (Heaviside dof) of u_{'xyz'[comp]}"
         w0, w1 = scene.dirichlet[k0].where, scene.dirichlet[k1].where
         raise BoundaryConditionError(
             f"Dirichlet conditions {k0} ({w0!r}) and {k1} ({w1!r}) prescribe different values to {what} "
@@ -140,8 +139,11 @@ def _check_clashes(scene: Scene, x: np.ndarray, layout, values: dict, clashes: l
 
 
 def rigid_motion_rank(x: np.ndarray, nodes: np.ndarray, comps: np.ndarray) -> tuple[int, list[str]]:
-    """How many of the three rigid motions of the plane the constraints of
-    components `comps` (0 x, 1 y) at nodes fix, and the names of those left free."""
+    """How many of the rigid motions (3 in the plane, 6 in space) the
+    constraints of components `comps` (0 x, 1 y, 2 z) at nodes fix, and the
+    names of those left free."""
+    if x.shape[1] == 3:
+        return _rigid_motion_rank_3d(x, nodes, comps)
     R = np.zeros((nodes.size, 3))
     R[comps == 0, 0] = 1.0
     R[comps == 1, 1] = 1.0
@@ -164,14 +166,36 @@ def rigid_motion_rank(x: np.ndarray, nodes: np.ndarray, comps: np.ndarray) -> tu
     return rank, free
 
 
+def _rigid_motion_rank_3d(x: np.ndarray, nodes: np.ndarray, comps: np.ndarray) -> tuple[int, list[str]]:
+    R = np.zeros((nodes.size, 6))
+    c = x.mean(axis=0)
+    scale = float(np.ptp(x, axis=0).max()) or 1.0
+    p = (x[nodes] - c) / scale
+    for k in range(3):
+        R[comps == k, k] = 1.0
+    # Rotations about z, y, x: (-y, x, 0), (z, 0, -x), (0, -z, y).
+    R[comps == 0, 3], R[comps == 1, 3] = -p[comps == 0, 1], p[comps == 1, 0]
+    R[comps == 0, 4], R[comps == 2, 4] = p[comps == 0, 2], -p[comps == 2, 0]
+    R[comps == 1, 5], R[comps == 2, 5] = -p[comps == 1, 2], p[comps == 2, 1]
+    s = np.linalg.svd(R, compute_uv=False) if R.shape[0] else np.zeros(0)
+    rank = int(np.sum(s > 1e-10 * (s.max() if s.size else 1.0)))
+    free = [f"translation in {a}" for k, a in enumerate("xyz") if not np.any(comps == k)]
+    if rank < 6 and not free:
+        free.append("rotation")
+    return rank, free
+
+
 def check_rigid_motion(x: np.ndarray, bc_dofs: np.ndarray) -> None:
-    """Raise unless the constraints remove the three rigid motions of the plane.
+    """Raise unless the constraints remove the rigid motions (3 in the plane,
+    6 in space).
 
     (A crack that cuts the part into pieces is checked piece by piece:
     checks.check_pieces.)
     """
-    rank, free = rigid_motion_rank(x, bc_dofs // 2, bc_dofs % 2)
-    if rank < 3:
+    d = x.shape[1]
+    need = 3 if d == 2 else 6
+    rank, free = rigid_motion_rank(x, bc_dofs // d, bc_dofs % d)
+    if rank < need:
         raise BoundaryConditionError(
             f"the Dirichlet conditions leave rigid motion free ({', '.join(free)}); "
-            f"{bc_dofs.size} constrained dofs fix only {rank} of the 3 rigid motions")
+            f"{bc_dofs.size} constrained dofs fix only {rank} of the {need} rigid motions")

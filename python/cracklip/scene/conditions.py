@@ -24,10 +24,12 @@ class Dirichlet:
     """Prescribed displacement.
 
     Attributes:
-        where: a boundary tag name or number, or a point (x, y) that is a mesh node.
-        component: 0 (x), 1 (y) or None (both).
-        value: a number, or a callable f(x) with x of shape (n, 2) returning
-            (n,) for one component or (n, 2) for both; a callable f(x, side)
+        where: a boundary tag name or number, or a point (x, y) (in 3D
+            (x, y, z)) that is a mesh node.
+        component: 0 (x), 1 (y), 2 (z, in 3D) or None (every component).
+        value: a number, or a callable f(x) with x of shape (n, d) (d the
+            space dimension) returning (n,) for one component or (n, d) for
+            all; a callable f(x, side)
             also receives the crack side (n,) of each point (+1 / -1) and may
             jump across a crack (an exact crack field on a cut boundary).
         group: load group whose factor (Scene.load_path) scales the value.
@@ -39,8 +41,8 @@ class Dirichlet:
 
     def __post_init__(self):
         _check_group(self.group, f"Dirichlet condition on {self.where!r}")
-        if self.component not in (None, 0, 1):
-            raise BoundaryConditionError(f"Dirichlet component must be 0 (x), 1 (y) or None (both), "
+        if self.component not in (None, 0, 1, 2):
+            raise BoundaryConditionError(f"Dirichlet component must be 0 (x), 1 (y), 2 (z, in 3D) or None (all), "
                                          f"got {self.component!r}")
 
 
@@ -71,9 +73,9 @@ class Traction:
             self.stress = as_stress_field(self.stress, f"traction on {self.where!r}")
         elif not callable(self.value):
             v = np.asarray(self.value, dtype=float)
-            if v.shape != (2,) or not np.all(np.isfinite(v)):
-                raise InputError(f"traction on {self.where!r}: a constant value must be two finite numbers "
-                                 f"(t_x, t_y), got {self.value!r}")
+            if v.shape not in ((2,), (3,)) or not np.all(np.isfinite(v)):
+                raise InputError(f"traction on {self.where!r}: a constant value must be finite numbers (t_x, t_y), "
+                                 f"or (t_x, t_y, t_z) in 3D, got {self.value!r}")
 
 
 @dataclasses.dataclass
@@ -94,9 +96,10 @@ class PointForce:
         _check_group(self.group, f"point force at {self.point!r}")
         p = np.asarray(self.point, dtype=float)
         v = np.asarray(self.value, dtype=float)
-        if p.shape != (2,) or v.shape != (2,) or not (np.all(np.isfinite(p)) and np.all(np.isfinite(v))):
-            raise InputError(f"a point force needs a point (x, y) and a value (F_x, F_y) of finite numbers, "
-                             f"got point {self.point!r}, value {self.value!r}")
+        if p.shape not in ((2,), (3,)) or v.shape != p.shape or not (np.all(np.isfinite(p))
+                                                                        and np.all(np.isfinite(v))):
+            raise InputError(f"a point force needs a point (x, y) and a value (F_x, F_y) of finite numbers (in 3D "
+                             f"(x, y, z) and (F_x, F_y, F_z)), got point {self.point!r}, value {self.value!r}")
         self.point, self.value = tuple(p.tolist()), tuple(v.tolist())
 
 

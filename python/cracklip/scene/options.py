@@ -159,3 +159,16 @@ class Options:
         q.tip_max_angle = float(self.tip_max_angle)
         q.tip_degree = int(self.quadrature_degree)
         return q
+
+    def quadrature_options_3d(self):
+        """The C++ QuadratureOptions3D of these options (tetrahedra): the
+        front rule ("collapsed": edge- and point-collapsed rules on the
+        sub-tetrahedra touching the front; "gauss": plain Gauss of degree
+        quadrature_degree there), Gauss of degree at least 2 elsewhere, the
+        collapsed rules' points at their C++ defaults (6 x 8 x 3)."""
+        from .. import _cracklip
+        q = _cracklip.QuadratureOptions3D()
+        q.degree = max(int(self.degree), 2)
+        q.front_rule = self.quadrature
+        q.front_degree = int(self.quadrature_degree)
+        return q

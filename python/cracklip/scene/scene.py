@@ -6,9 +6,10 @@ import typing
 
 import numpy as np
 
-from ..errors import BoundaryConditionError, InputError
+from ..errors import BoundaryConditionError, CrackGeometryError, InputError
 from .conditions import Dirichlet, LoadStep, PointForce, Traction
 from .crack import Crack
+from .crack_surface import EllipticalCrack, PolygonCrack, SurfaceCrack
 from .material import Material
 from .mesh import MeshData
 from .options import Options
@@ -53,13 +54,32 @@ class Scene:
                 st.name = st.name or f"step {k + 1}"
             if not self.load_path:
                 raise InputError("load_path is empty: give at least one step, or None for one step at factor 1")
+        gdim = getattr(self.mesh, "gdim", 2)
         if self.initial_stress is not None:
+            if gdim == 3:
+                raise InputError("an initial stress is not supported on 3D parts yet")
             self.initial_stress = as_stress_field(self.initial_stress, "initial stress")
         for i, c in enumerate(self.cracks):
-            if not isinstance(c, Crack):
+            if gdim == 3:
+                if not isinstance(c, (EllipticalCrack, PolygonCrack, SurfaceCrack)):
+                    raise CrackGeometryError(f"crack {i}: a 3D part takes crack surfaces (EllipticalCrack, "
+                                             f"PolygonCrack, SurfaceCrack), got {type(c).__name__}")
+                c.name = c.name or f"crack {i}"
+            elif not isinstance(c, Crack):
                 self.cracks[i] = Crack(np.asarray(c), name=f"crack {i}")
             elif not c.name:
                 c.name = f"crack {i}"
+        names = {2: "(t_x, t_y)", 3: "(t_x, t_y, t_z)"}
+        for tr in self.tractions:
+            if tr.value is not None and not callable(tr.value) and len(np.ravel(tr.value)) != gdim:
+                raise InputError(f"traction on {tr.where!r}: {len(np.ravel(tr.value))} components on a {gdim}D "
+                                 f"part; give {names[gdim]}")
+            if tr.stress is not None and gdim == 3 and not callable(tr.stress):
+                raise InputError(f"traction on {tr.where!r}: a 3D part takes the stress of a traction as a callable "
+                                 "sigma(x) returning (n, 3, 3)")
+        for pf in self.point_forces:
+            if len(pf.point) != gdim:
+                raise InputError(f"point force at {pf.point}: {len(pf.point)} coordinates on a {gdim}D part")
         if not self.dirichlet:
             raise BoundaryConditionError("the scene has no Dirichlet condition: rigid body motion "
                                          "is free; fix at least u_x and u_y somewhere and one more "

@@ -98,7 +98,7 @@ def to_solver_basis(model: "XfemModel", linear: LinearSolver, A: PETSc.Mat, rhs:
 
 def create_linear_solver(model: "XfemModel") -> LinearSolver:
     """The solver path for a model (Options.solver, choose_solver)."""
-    which = choose_solver(model.scene.options, model.num_dofs, 2 * model.layout.num_enriched)
+    which = choose_solver(model.scene.options, model.num_dofs, model.gdim * model.layout.num_enriched)
     if which == "direct":
         return DirectSolver()
     return IterativeSolver(model, fallback=model.scene.options.solver == "auto")

@@ -139,10 +139,11 @@ _prefixes = itertools.count()
 
 
 def rigid_modes(model: "XfemModel", size: int | None = None) -> np.ndarray:
-    """(size, 3) orthonormal rigid motions (two translations, one rotation)
-    on the standard dofs and the phantom (Heaviside) dofs, evaluated at the
-    base node; 0 on tip dofs and on any dof beyond the stiffness
-    (multipliers). size defaults to model.num_dofs."""
+    """(size, 3) in 2D (two translations, one rotation) or (size, 6) in 3D
+    (three translations, three rotations): orthonormal rigid motions on the
+    standard dofs and the phantom (Heaviside) dofs, evaluated at the base
+    node; 0 on tip dofs and on any dof beyond the stiffness (multipliers).
+    size defaults to model.num_dofs."""
     lay = model.layout
     n = model.num_dofs if size is None else size
     nstd = lay.num_std_nodes
@@ -150,11 +151,21 @@ def rigid_modes(model: "XfemModel", size: int | None = None) -> np.ndarray:
     nodes = np.concatenate([np.arange(nstd), nstd + heav])
     xy = np.concatenate([model.x, model.x[np.asarray(lay.node)[heav]]])
     xy = xy - model.x.mean(axis=0)
-    R = np.zeros((n, 3))
-    R[2 * nodes, 0] = 1.0
-    R[2 * nodes + 1, 1] = 1.0
-    R[2 * nodes, 2] = -xy[:, 1]
-    R[2 * nodes + 1, 2] = xy[:, 0]
+    d = model.gdim
+    if d == 2:
+        R = np.zeros((n, 3))
+        R[2 * nodes, 0] = 1.0
+        R[2 * nodes + 1, 1] = 1.0
+        R[2 * nodes, 2] = -xy[:, 1]
+        R[2 * nodes + 1, 2] = xy[:, 0]
+        return orthonormal_columns(R)
+    R = np.zeros((n, 6))
+    for c in range(3):
+        R[3 * nodes + c, c] = 1.0
+    # Rotations about z, y, x: (-y, x, 0), (z, 0, -x), (0, -z, y).
+    R[3 * nodes, 3], R[3 * nodes + 1, 3] = -xy[:, 1], xy[:, 0]
+    R[3 * nodes, 4], R[3 * nodes + 2, 4] = xy[:, 2], -xy[:, 0]
+    R[3 * nodes + 1, 5], R[3 * nodes + 2, 5] = -xy[:, 2], xy[:, 1]
     return orthonormal_columns(R)
 
 
@@ -185,8 +196,9 @@ def crack_band(model: "XfemModel", rings: int = 1) -> np.ndarray:
     for _ in range(rings):
         mark[model.cells[mark[model.cells].any(axis=1)]] = True
     ring = np.flatnonzero(mark)
-    std = (2 * ring[:, None] + np.arange(2)).ravel()
-    return np.concatenate([std, np.arange(2 * nstd, model.num_dofs)]).astype(np.int64)
+    d = model.gdim
+    std = (d * ring[:, None] + np.arange(d)).ravel()
+    return np.concatenate([std, np.arange(d * nstd, model.num_dofs)]).astype(np.int64)
 
 
 def grow_band(K: PETSc.Mat, dofs: np.ndarray, rings: int) -> np.ndarray:

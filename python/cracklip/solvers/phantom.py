@@ -40,11 +40,14 @@ class PhantomBasis:
     heaviside: np.ndarray
     touched: np.ndarray
 
+    #: The block size (the space dimension: 2 or 3).
+    bs: int = 2
+
     def petsc(self) -> PETSc.Mat:
-        """T as a PETSc AIJ matrix with block size 2 (so that T^T A T keeps
-        the block size GAMG needs)."""
+        """T as a PETSc AIJ matrix with the model's block size (so that
+        T^T A T keeps the block size GAMG needs)."""
         T = self.T
-        return PETSc.Mat().createAIJ(T.shape, bsize=2, comm=PETSc.COMM_SELF,
+        return PETSc.Mat().createAIJ(T.shape, bsize=self.bs, comm=PETSc.COMM_SELF,
                                      csr=(T.indptr.astype(PETSc.IntType), T.indices.astype(PETSc.IntType), T.data))
 
 
@@ -58,9 +61,10 @@ def phantom_basis(model: "XfemModel") -> PhantomBasis:
     heav = np.flatnonzero(kind == 0)
     base = np.asarray(lay.node, dtype=np.int64)[heav]
     side = np.asarray(lay.node_side, dtype=np.float64)[heav]  # H(x_i): +1 on the crack itself
-    e = (2 * (nstd + heav)[:, None] + np.arange(2)).ravel()
-    s = (2 * base[:, None] + np.arange(2)).ravel()
-    sgn = np.repeat(side, 2)
+    d = model.gdim
+    e = (d * (nstd + heav)[:, None] + np.arange(d)).ravel()
+    s = (d * base[:, None] + np.arange(d)).ravel()
+    sgn = np.repeat(side, d)
     eye = np.ones(n)
     eye[e] = 0.0
     diag = np.arange(n)
@@ -73,7 +77,7 @@ def phantom_basis(model: "XfemModel") -> PhantomBasis:
                           shape=(n, n))
     T.sort_indices()
     T_inv.sort_indices()
-    return PhantomBasis(T, T_inv, heav, np.union1d(s, e).astype(np.int64))
+    return PhantomBasis(T, T_inv, heav, np.union1d(s, e).astype(np.int64), d)
 
 
 def transform_system(basis: PhantomBasis, A: PETSc.Mat, b: PETSc.Vec) -> tuple[PETSc.Mat, PETSc.Vec]:

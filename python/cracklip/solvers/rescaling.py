@@ -22,8 +22,9 @@ from .checked import petsc_from_scipy
 
 
 def nodal_groups(model: XfemModel) -> tuple[np.ndarray, np.ndarray]:
-    """(group_offsets, group_dofs): per enriched mesh node, its two standard
-    dofs followed by the two dofs of each of its enriched pseudo-nodes."""
+    """(group_offsets, group_dofs): per enriched mesh node, its standard
+    dofs followed by the dofs of each of its enriched pseudo-nodes (block
+    size = the space dimension)."""
     lay = model.layout
     nstd = lay.num_std_nodes
     base = np.asarray(lay.node, dtype=np.int64)
@@ -31,16 +32,17 @@ def nodal_groups(model: XfemModel) -> tuple[np.ndarray, np.ndarray]:
         return np.zeros(1, dtype=np.int32), np.zeros(0, dtype=np.int32)
     order = np.argsort(base, kind="stable")
     nodes, start, counts = np.unique(base[order], return_index=True, return_counts=True)
-    sizes = 2 + 2 * counts
+    d = model.gdim
+    sizes = d + d * counts
     offsets = np.concatenate([[0], np.cumsum(sizes)])
     dofs = np.empty(offsets[-1], dtype=np.int64)
-    dofs[offsets[:-1]] = 2 * nodes
-    dofs[offsets[:-1] + 1] = 2 * nodes + 1
+    for c in range(d):
+        dofs[offsets[:-1] + c] = d * nodes + c
     group = np.repeat(np.arange(nodes.size), counts)
     rank = np.arange(order.size) - start[group]
-    pos = offsets[group] + 2 + 2 * rank
-    dofs[pos] = 2 * (nstd + order)
-    dofs[pos + 1] = 2 * (nstd + order) + 1
+    pos = offsets[group] + d + d * rank
+    for c in range(d):
+        dofs[pos + c] = d * (nstd + order) + c
     return offsets.astype(np.int32), dofs.astype(np.int32)
 
 
