@@ -58,8 +58,9 @@ class GrowthResult:
     k, the last one at the final geometry), the final cracks, why it stopped,
     the warnings met, each step's Solution if kept, seconds per step, the
     cycles, the solves per step (load levels solved, with the corrector's),
-    the model warning codes of each step, the criterion of the stop, and in
-    a spectrum life its summary (analysis.life.LifeRun.summary)."""
+    the model warning codes of each step, the criterion of the stop, in
+    a spectrum life its summary (analysis.life.LifeRun.summary), and the
+    beta table's rows (grow(beta_table=True); analysis.life.beta_rows)."""
     records: list[list[TipRecord]]
     cracks: list[Crack]
     stop_reason: str
@@ -72,6 +73,7 @@ class GrowthResult:
     step_warnings: list[list[str]] = dataclasses.field(default_factory=list)
     stop_criterion: str | None = None
     life: dict[str, typing.Any] | None = None
+    beta: list[dict[str, typing.Any]] = dataclasses.field(default_factory=list)
 
     @property
     def rows(self) -> list[dict[str, typing.Any]]:
@@ -205,7 +207,7 @@ class _GrowthRun:
     the stops, advance the tips. run() repeats them until a stop."""
 
     def __init__(self, scene: Scene, growth: Growth, keep_solutions: bool,
-                 on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None):
+                 on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None, beta_table: bool = False):
         from ..model.boundary import boundary_segments
         scene.mesh.cache_standard_block = True
         self.scene = scene
@@ -237,6 +239,8 @@ class _GrowthRun:
         self.stop_criterion: str | None = None
         self.k = 0
         self.t0 = 0.0
+        self.beta_table = beta_table
+        self.beta: list[dict[str, typing.Any]] = []
         self.life = None
         if growth.life:
             from .life import LifeRun
@@ -284,6 +288,22 @@ class _GrowthRun:
             self.N += dN
             for rec in m.records:  # the cycles spent to reach this geometry
                 rec.dN, rec.N = dN, self.N
+
+    def record_beta(self, m: Measured) -> int:
+        """The beta table's rows of this geometry (grow(beta_table=True)): K of
+        each load group at factor 1 (a spectrum life has them from its
+        levels; else one linear solve per group); returns the extra solves."""
+        if not self.beta_table:
+            return 0
+        from .life import basis_levels, beta_rows
+        ref = dict(self.growth.reference_stress or {})
+        if self.life is not None:
+            tips = {key: {"x": lv.x, "y": lv.y, "a": lv.a, "basis": lv.basis} for key, lv in m.levels.items()}
+            self.beta += beta_rows(self.k, tips, ref, m.levels, self.life)
+            return 0
+        tips = basis_levels(self.scene, self.cracks)
+        self.beta += beta_rows(self.k, tips, ref)
+        return len(next(iter(tips.values()))["basis"]) if tips else 0
 
     def _stop(self, reason: str, criterion: str | None = None) -> bool:
         self.stop_reason = reason
@@ -388,6 +408,7 @@ class _GrowthRun:
                 self.stops.append(self.stop_reason)
                 break
             m, extra = self.correct(m)
+            extra += self.record_beta(m)
             self.solves.append(m.solves + extra)
             self.collect_warnings(m)
             self.count_cycles(m)
@@ -410,16 +431,18 @@ class _GrowthRun:
         return GrowthResult(self.records, self.cracks, self.stop_reason, self.stops, list(dict.fromkeys(warnings)),
                             self.solutions, self.step_times, self.N, self.solves, self.step_warnings,
                             stop_criterion=self.stop_criterion,
-                            life=self.life.summary(self.records) if self.life is not None else None)
+                            life=self.life.summary(self.records) if self.life is not None else None, beta=self.beta)
 
 
 def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
-         on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None = None) -> GrowthResult:
+         on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None = None,
+         beta_table: bool = False) -> GrowthResult:
     """Grow the scene's cracks (module doc). on_step(k, records, solution) is
     called after every step's solve (progress, a ParaView file per step; in
     fatigue the solution at the maximum load); keep_solutions keeps each
-    step's Solution in the result."""
-    return _GrowthRun(scene, growth, keep_solutions, on_step).run()
+    step's Solution in the result; beta_table records K / (S sqrt(pi a)) of
+    every load group at every step (GrowthResult.beta)."""
+    return _GrowthRun(scene, growth, keep_solutions, on_step, beta_table).run()
 
 
 def _advance(cracks: list[Crack], r: TipRecord, inc: float, model, a_bnd, b_bnd, h_tip: float) -> str | None:

@@ -128,6 +128,7 @@ class TipLevels:
             factor 1.
         cycles: the counted cycles (state indices).
         x, y: the tip.
+        closed: per state, whether the lips touch there (K from contact).
     """
     key: tuple[int, int]
     a: float
@@ -144,6 +145,7 @@ class TipLevels:
     x: float
     y: float
     sigma_basis: np.ndarray | None = None
+    closed: np.ndarray | None = None
 
 
 class LifeRun:
@@ -329,7 +331,8 @@ class LifeRun:
                     sigma_net = self.F @ s_basis
                 lv = TipLevels(key, a_tip, K_lin, K_con, KI_use[:, j], KII_use[:, j], theta, ref, low,
                                {g: (float(KI[i, j]), float(KII[i, j])) for i, g in enumerate(self.groups)},
-                               sigma_net, cycles, float(r0["x"]), float(r0["y"]), s_basis)
+                               sigma_net, cycles, float(r0["x"]), float(r0["y"]), s_basis,
+                               np.isin(np.arange(nstate), closed_states))
                 levels[key] = lv
                 spread_I = float(np.abs(self.F[ref]) @ spreadI[:, j])
                 spread_II = float(np.abs(self.F[ref]) @ spreadII[:, j])
@@ -514,8 +517,9 @@ class LifeRun:
         now = m.levels
         if k > 0 and self.prev is not None and self.increments and self.failure is None:
             self._integrate(self.prev, now)
+        dN = self.N - (self.steps[-1]["cycles"] if self.steps else 0.0)
         for rec in m.records:
-            rec.N = self.N
+            rec.N, rec.dN = self.N, dN
             rec.passes = self.passes
             rec.blocks = self.passes * self.blocks_per_pass
         self.steps.append({"step": k, "cycles": self.N, "passes": self.passes,
@@ -664,6 +668,75 @@ class LifeRun:
         g = self.spec_groups[0]
         S = self.reference_stress.get(g, 1.0)
         return float(multiple * np.max(self.states[:, 0]) * S)
+
+
+def basis_levels(scene: Scene, cracks) -> dict[tuple[int, int], dict[str, typing.Any]]:
+    """K_I, K_II of every load group at factor 1 (linear: lips free) at every
+    tip of the given cracks, an initial stress as its own case
+    (RESIDUAL_GROUP): {(crack, end): {"x", "y", "a", "basis": {group: (K_I,
+    K_II)}}}. One solve per group on one assembly (the beta table of a run
+    without a spectrum)."""
+    from .load_path import LevelSolver
+    from .tips import part_length
+    groups = sorted(load_groups(scene) | {"default"})
+    if scene.initial_stress is not None:
+        scene = dataclasses.replace(scene, initial_stress_group=RESIDUAL_GROUP)
+        groups = sorted(set(groups) - {RESIDUAL_GROUP}) + [RESIDUAL_GROUP]
+        groups = [g for g in groups if g == RESIDUAL_GROUP or g in load_groups(scene) | {"default"}]
+    scene = dataclasses.replace(scene, cracks=[dataclasses.replace(c) for c in cracks],
+                                options=dataclasses.replace(scene.options, friction=0.0))
+    solver = LevelSolver(scene)
+    try:
+        unit = [{g: (1.0 if g == h else 0.0) for g in groups} for h in groups]
+        sols = solver.solve(unit, contact=scene.options.contact == "bilateral")
+        model = sols[0].model
+        sifs = [x.stress_intensity_factors(None) for x in sols]
+        lengths = [part_length(model, ci) for ci in range(len(cracks))]
+        ntips: dict[int, int] = {}
+        for r in sifs[0]:
+            ntips[r["crack"]] = ntips.get(r["crack"], 0) + 1
+        out = {}
+        for j, r in enumerate(sifs[0]):
+            ci = r["crack"]
+            end = 1 if int(np.asarray(model.geometries[ci].tip_orientation)[r["tip"]]) == 1 else 0
+            out[(ci, end)] = {"x": float(r["x"]), "y": float(r["y"]), "a": lengths[ci] / ntips[ci],
+                              "basis": {g: (float(sifs[i][j]["K_I"]), float(sifs[i][j]["K_II"]))
+                                        for i, g in enumerate(groups)}}
+        return out
+    finally:
+        solver.close()
+
+
+def beta_rows(step: int, tips: dict[tuple[int, int], dict[str, typing.Any]], reference_stress: dict[str, float],
+              levels: dict[tuple[int, int], TipLevels] | None = None, run: "LifeRun | None" = None
+              ) -> list[dict[str, typing.Any]]:
+    """One row per tip of the beta table: beta_<group> = K_I / (S sqrt(pi a))
+    of each load group at factor 1 (S its reference stress, default 1),
+    K_residual (the initial stress's K_I alone, linear), and with contact in a
+    one-group spectrum beta at every load level solved with contact,
+    beta_<group>_at_<factor> = K_I(level) / (factor S sqrt(pi a))."""
+    rows = []
+    for key, t in sorted(tips.items()):
+        a = t["a"]
+        row: dict[str, typing.Any] = {"step": step, "crack": key[0], "end": key[1], "x": t["x"], "y": t["y"], "a": a}
+        for g, (kI, kII) in t["basis"].items():
+            if g == RESIDUAL_GROUP:
+                row["K_residual"] = kI
+                continue
+            S = reference_stress.get(g, 1.0)
+            row[f"beta_{g}"] = kI / (S * math.sqrt(math.pi * a)) if a > 0 else None
+            row[f"K_I_{g}"] = kI
+            row[f"K_II_{g}"] = kII
+        if levels is not None and run is not None and run.single and key in levels:
+            lv = levels[key]
+            g = run.spec_groups[0]
+            S = reference_stress.get(g, 1.0)
+            for s in np.flatnonzero(lv.closed):
+                lam = float(run.states[s, 0])
+                if lam != 0.0:
+                    row[f"beta_{g}_at_{lam:g}"] = float(lv.K_I[s]) / (lam * S * math.sqrt(math.pi * a))
+        rows.append(row)
+    return rows
 
 
 def _ligament_stress(sol, tip: np.ndarray, r0: dict, theta: float, bnd) -> float:

@@ -65,13 +65,20 @@ class CycleTable:
 
     def unique(self) -> "CycleTable":
         """The same cycles with equal (lo, hi) pairs merged (counts added;
-        order lost): the growth per pass without sequence effects."""
+        order lost): the growth per pass without sequence effects. Kept
+        after the first call (a table is not changed in place)."""
+        cached = getattr(self, "_unique", None)
+        if cached is not None:
+            return cached
         if self.lo.size == 0:
+            self._unique = self
             return self
-        key = np.stack([self.lo, self.hi], axis=1)
-        pairs, inv = np.unique(key, axis=0, return_inverse=True)
-        counts = np.bincount(inv.ravel(), weights=self.count, minlength=len(pairs))
-        return CycleTable(pairs[:, 0], pairs[:, 1], counts)
+        n = int(max(self.lo.max(), self.hi.max())) + 1
+        keys, inv = np.unique(self.lo.astype(np.int64) * n + self.hi, return_inverse=True)
+        counts = np.bincount(inv.ravel(), weights=self.count, minlength=len(keys))
+        self._unique = CycleTable(keys // n, keys % n, counts)
+        self._unique._unique = self._unique
+        return self._unique
 
     def slice(self, i0: int, i1: int) -> "CycleTable":
         return CycleTable(self.lo[i0:i1], self.hi[i0:i1], self.count[i0:i1],
