@@ -256,7 +256,7 @@ def fresh_checkout(dest: pathlib.Path) -> None:
         dirs[:] = sorted(d for d in dirs if d != ".git" and not ignored(rel_here / d, True))
         for name in files:
             rel = rel_here / name
-            if ignored(rel, False):
+            if name == ".git" or ignored(rel, False):  # (a git worktree's .git is a file)
                 continue
             (dest / rel).parent.mkdir(parents=True, exist_ok=True)
             shutil.copy2(ROOT / rel, dest / rel)
