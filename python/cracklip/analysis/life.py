@@ -161,7 +161,7 @@ class LifeRun:
         self.law = create_law(fm)
         self.spectrum = growth.spectrum if growth.spectrum is not None else constant_amplitude_spectrum(scene, growth)
         sp = self.spectrum
-        groups = sorted(load_groups(scene) | {"default"})
+        groups = sorted(load_groups(scene)) or ["default"]  # (a group without loads has K = 0: not solved)
         unknown = sorted(set(sp.groups) - set(groups))
         if unknown:
             raise InputError(f"spectrum.groups names load group(s) {unknown} that no load belongs to; the scene's "
@@ -678,11 +678,11 @@ def basis_levels(scene: Scene, cracks) -> dict[tuple[int, int], dict[str, typing
     without a spectrum)."""
     from .load_path import LevelSolver
     from .tips import part_length
-    groups = sorted(load_groups(scene) | {"default"})
     if scene.initial_stress is not None:
         scene = dataclasses.replace(scene, initial_stress_group=RESIDUAL_GROUP)
-        groups = sorted(set(groups) - {RESIDUAL_GROUP}) + [RESIDUAL_GROUP]
-        groups = [g for g in groups if g == RESIDUAL_GROUP or g in load_groups(scene) | {"default"}]
+    groups = sorted(load_groups(scene) - {RESIDUAL_GROUP}) + ([RESIDUAL_GROUP] if scene.initial_stress is not None
+                                                              else [])
+    groups = groups or ["default"]
     scene = dataclasses.replace(scene, cracks=[dataclasses.replace(c) for c in cracks],
                                 options=dataclasses.replace(scene.options, friction=0.0))
     solver = LevelSolver(scene)

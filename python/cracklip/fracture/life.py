@@ -199,8 +199,8 @@ def grow_with_retardation(K_of_a: typing.Callable[[float], np.ndarray], passes: 
     """Grow cycle by cycle in the order they close, pass after pass, with
     retardation: passes(i) gives pass i's cycles (as state indices),
     K_of_a(a) K at every state for crack length a. A pass is taken in
-    chunks over which the crack grows at most chunk_tol times the smallest
-    plastic zone of the chunk, each chunk twice: a predictor at its start
+    chunks over which the crack grows at most chunk_tol times the largest
+    plastic zone in play (ret_zone), each chunk twice: a predictor at its start
     length gives every cycle's crack length (the growth of the cycles
     before it), the corrector takes the overload zones at those lengths and
     K at the chunk's middle (second order in the chunk's growth). Stops at
@@ -208,18 +208,19 @@ def grow_with_retardation(K_of_a: typing.Callable[[float], np.ndarray], passes: 
     st = state if state is not None else OverloadState()
     a = a0
     cycles = 0.0
+    size = None  # the last accepted chunk's length: the next one tries twice that first
     for i in range(max_passes):
         ct = passes(i)
         n = len(ct.lo)
         i0 = 0
         while i0 < n:
-            i1 = n
+            i1 = n if size is None else min(n, i0 + 2 * size)
             while True:
                 chunk = ct.slice(i0, i1)
                 K0 = K_of_a(a)
                 da1, _ = _chunk_rates(K0, chunk, law, ret, a, st)
                 total = float(np.sum(da1))
-                r = ret_zone(K0, chunk, ret)
+                r = ret_zone(K0, chunk, ret, st)
                 if not math.isfinite(total) or total <= chunk_tol * r or i1 - i0 <= 1:
                     break
                 i1 = i0 + max(1, int((i1 - i0) * chunk_tol * r / total))
@@ -236,17 +237,20 @@ def grow_with_retardation(K_of_a: typing.Callable[[float], np.ndarray], passes: 
             a += float(cum[-1])
             cycles += chunk.cycles
             st = st_new
+            size = i1 - i0
             i0 = i1
     return RetardedRun(a, cycles, float(max_passes), st, False)
 
 
-def ret_zone(K_states: np.ndarray, chunk: CycleTable, ret: Retardation) -> float:
-    """The smallest non-zero plastic zone among a chunk's cycles (the length
-    scale a chunk's growth must stay small against)."""
+def ret_zone(K_states: np.ndarray, chunk: CycleTable, ret: Retardation, state: OverloadState | None = None) -> float:
+    """The length a chunk's growth must stay small against: the largest
+    plastic zone among its cycles and the governing overload's (the zones
+    that set the retardation; each cycle's own crack length comes from the
+    predictor, so only this scale bounds the error)."""
     km = np.asarray(K_states, dtype=float)[chunk.hi]
     r = plastic_zone(km, ret.sigma_ys, ret.beta)
-    r = r[r > 0]
-    return float(r.min()) if r.size else math.inf
+    big = max(float(r.max()) if r.size else 0.0, state.r_OL if state is not None else 0.0)
+    return big if big > 0 else math.inf
 
 
 def _chunk_rates(K: np.ndarray, chunk: CycleTable, law: LifeLaw, ret: Retardation, a: np.ndarray | float,

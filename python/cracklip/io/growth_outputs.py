@@ -204,7 +204,7 @@ def write_growth_pngs(scene_file, result: GrowthResult, out: pathlib.Path, fatig
         sif_rows += [[r.step, ci, end, r.length, r.K_I, r.K_II, r.K_I_min, r.K_II_min, r.delta_K] for r in recs]
     ax.axhline(0.0, color="k", lw=0.5)
     ax.set_xlabel(label(units, "length", "crack length"))
-    ax.set_ylabel(label(units, "K", "K (maximum load), K at the minimum, Delta K_eff" if fatigue else "K"))
+    ax.set_ylabel(label(units, "K", "K"))
     ax.set_title(f"{scene_file.title}\nstress intensity factors along the growth", fontsize=10)
     ax.legend(fontsize=7)
     save_png(fig, out / "sif_history.png")
@@ -246,8 +246,8 @@ def write_growth_pngs(scene_file, result: GrowthResult, out: pathlib.Path, fatig
 
 def write_life_pngs(scene_file, result: GrowthResult, out: pathlib.Path, tips) -> list[str]:
     """dadN.png (da/dN against Delta K: the law's curves at the R of the
-    counted cycles, and per step the largest cycle and the mean growth per
-    cycle), life_K.png (K_max, K_min, Delta K_eff of each tip's largest cycle
+    largest cycles, and each step's largest cycle on them; the CSV adds the
+    mean growth per counted cycle), life_K.png (K_max, K_min, Delta K_eff of each tip's largest cycle
     against cycles), residual_strength.png (against a); each with its CSV."""
     from ..analysis.life import create_law
     units = getattr(scene_file.scene, "units", None)
@@ -272,9 +272,9 @@ def write_life_pngs(scene_file, result: GrowthResult, out: pathlib.Path, tips) -
                 r.da_per_pass / max(life["cycles_per_pass"] or 1.0, 1e-300)) for r in recs
                if r.delta_K_eff and r.K_max is not None and r.da_per_pass]
         if pts:
-            x, y, mean = zip(*pts)
-            ax.loglog(x, y, "o", ms=4, color=f"C{n}", label=f"{result.cracks[ci].name} end {end}: largest cycle")
-            ax.loglog(x, mean, "x", ms=4, color=f"C{n}", label="mean da/dN per counted cycle")
+            x, y, _ = zip(*pts)
+            ax.loglog(x, y, "o", ms=4, color=f"C{n}", label=f"{result.cracks[ci].name} end {end}: each step's "
+                      "largest counted cycle")
         rows += [[r.step, ci, end, r.a, r.delta_K_eff, r.R, r.K_max, r.K_min, r.da_per_pass,
                   r.da_per_pass / max(life["cycles_per_pass"] or 1.0, 1e-300) if r.da_per_pass else None]
                  for r in recs]
