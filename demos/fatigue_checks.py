@@ -270,7 +270,7 @@ def markdown(r: dict) -> str:
              f"| rainflow, E1049 history (range, count) | {r['rainflow']} | (3, 0.5), (4, 1.5), (6, 0.5), (8, 1), (9, 0.5) |",
              f"| rainflow, repeated history | {r['rainflow_repeated']} | full cycles 3, 4, 7, 9 |",
              f"| block life, prescribed K | {b['N_prescribed']:.6g} blocks | {b['N_exact']:.6g} (closed form) |",
-             f"| block life, cracklip's K (plate 400 mm, a 1 -> 10 mm) | {b['N']:.6g} blocks ({b['rel_error']:.2%}) | "
+             f"| block life, cracklip's K (plate 2 m wide, a 1 -> 10 mm) | {b['N']:.6g} blocks ({b['rel_error']:.2%}) | "
              f"{b['N_exact']:.6g} |",
              f"| NASGRO equation, {len(r['nasgro'])} check values | largest error "
              f"{max(x['rel_error'] for x in r['nasgro']):.1e} | notes' values |",

@@ -498,17 +498,19 @@ class LifeRun:
             return "net-section yield"
         return None
 
-    def _fail(self, criterion: str, t: float, lv: TipLevels, key, a: float | None = None) -> None:
+    def _fail(self, criterion: str, t: float, lv: TipLevels, key, a: float | None = None,
+              at: tuple[float, float] | None = None) -> None:
         what = (f"K_max reached K_c = {self.K_crit:.6g}" if criterion == "K_max >= K_c" else
                 f"the mean stress on the ligament reached the yield stress {self.yield_stress:.6g}")
         cyc = self.N
         self.failure_criterion = criterion
-        self.failure = (f"final failure: {what} at the tip near ({lv.x:.6g}, {lv.y:.6g}) of crack {key[0]}, a = "
+        x, y = at if at is not None else (lv.x, lv.y)
+        self.failure = (f"final failure: {what} at the tip near ({x:.6g}, {y:.6g}) of crack {key[0]}, a = "
                         f"{a if a is not None else lv.a:.6g}, after {cyc:.6g} cycles = {self.passes:.6g} passes = "
                         f"{self.passes * self.blocks_per_pass:.6g} {self.spectrum.block_name}s (criterion: {criterion})")
         self.failure_point = {"criterion": criterion, "a": a if a is not None else lv.a, "cycles": cyc,
                               "passes": self.passes, "blocks": self.passes * self.blocks_per_pass, "crack": key[0],
-                              "end": key[1]}
+                              "end": key[1], "x": x, "y": y}
 
     # -- count -------------------------------------------------------------------------------------------
     def count(self, m, k: int) -> float:
@@ -595,8 +597,9 @@ class LifeRun:
         self.N = self.passes * (self.cycles_per_pass or 0.0)
         if crit is not None and v1 >= 0.0:
             aa = p.a + t_end * (q.a - p.a)
-            lv = now[fkey]
-            self._fail(crit, t_end, lv, fkey, a=prev[fkey].a + t_end * (now[fkey].a - prev[fkey].a))
+            lv, lp = now[fkey], prev[fkey]
+            self._fail(crit, t_end, lv, fkey, a=lp.a + t_end * (lv.a - lp.a),
+                       at=(lp.x + t_end * (lv.x - lp.x), lp.y + t_end * (lv.y - lp.y)))
             if fkey == fast:
                 self.failure_point["a"] = aa
 
