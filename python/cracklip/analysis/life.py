@@ -214,7 +214,7 @@ class LifeRun:
         self.yield_stress = fm.yield_stress
         self.retardation = None
         if fm.retardation != "none":
-            beta = constraint_beta(fm.constraint.replace("auto", "auto"), fm.thickness, fm.K_Ic, fm.yield_stress)
+            beta = constraint_beta(fm.constraint, fm.thickness, fm.K_Ic, fm.yield_stress)
             self.retardation = Retardation(fm.retardation, fm.yield_stress, beta, fm.wheeler_exponent or 1.0,
                                            fm.shutoff_ratio or 3.0)
         self.ret_state: dict[tuple[int, int], OverloadState] = {}

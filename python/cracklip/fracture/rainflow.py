@@ -45,8 +45,8 @@ class Cycles:
         lo: index (into the reversals) of each cycle's minimum.
         hi: index of each cycle's maximum.
         count: 1.0 (full) or 0.5 (half) per cycle.
-        order: the order in which the cycles closed (0, 1, ...), the cycles
-            being stored in that order.
+    The cycles are stored in the order they close (the residue's half
+    cycles last).
     """
     lo: np.ndarray
     hi: np.ndarray
