@@ -503,3 +503,24 @@ def test_retardation_in_the_growth_loop_slows_the_life():
     res = grow(sf.scene, dataclasses.replace(sf.growth, fatigue_material=fm))
     assert res.life["retardation"] == "wheeler"
     assert res.life["passes"] > 1.2 * plain
+
+
+def test_arrest_inside_an_increment_stops_with_finite_numbers():
+    """K falling from 1.0 to 0.8 over an increment with a Paris threshold of
+    0.9 (two made-up level tables fed to the increment's integration): the
+    growth per pass vanishes inside it, so the passes would be infinite; the
+    run stops as an arrest (results.json cannot hold inf) with the cycles
+    counted so far."""
+    from cracklip.analysis.life import LifeRun, TipLevels  # the integration on two made-up tables
+    run = LifeRun.__new__(LifeRun)
+    run.contact_closure, run.retardation = False, None
+    run.K_crit, run.yield_stress = None, None
+    run.law = LifeLaw(Paris(1e-3, 3.0), "none", threshold=0.9)
+    run.passes, run.N, run.cycles_per_pass, run.blocks_per_pass = 0.0, 0.0, 1.0, 1
+    run.increments = {(0, 1): 0.1}
+    ct = CycleTable([0], [1], [1.0])
+    def table(a, k):
+        return TipLevels((0, 1), a, np.array([0.0, k]), np.array([0.0, k]), np.array([0.0, k]), np.zeros(2), 0.0, 1, 0,
+                         {}, None, ct, a, 0.0)
+    run._integrate({(0, 1): table(1.0, 1.0)}, {(0, 1): table(1.1, 0.8)})
+    assert run.failure_criterion == "arrest" and math.isfinite(run.N) and run.N == 0.0

@@ -593,6 +593,16 @@ class LifeRun:
                 passes = float(ds * (ts[1] - ts[0]) / 3.0 * np.sum(w / g))
         else:
             passes = self._retarded_passes(prev, now, keys, fast, ds, t_end, which)
+        if not math.isfinite(passes):
+            # The growth per pass vanishes inside the increment (K falls below the threshold): arrest.
+            self.failure_criterion = "arrest"
+            self.failure = (f"growth arrested: the growth per pass of the fastest tip (crack {fast[0]} end "
+                            f"{fast[1]}) falls to 0 within the increment from a = {p.a:.6g} to {q.a:.6g} (below the "
+                            f"threshold), after {self.N:.6g} cycles = {self.passes:.6g} passes")
+            self.failure_point = {"criterion": "arrest", "a": p.a, "cycles": self.N, "passes": self.passes,
+                                  "blocks": self.passes * self.blocks_per_pass, "crack": fast[0], "end": fast[1],
+                                  "x": p.x, "y": p.y}
+            return
         self.passes += passes
         self.N = self.passes * (self.cycles_per_pass or 0.0)
         if crit is not None and v1 >= 0.0:
