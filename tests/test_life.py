@@ -323,6 +323,13 @@ def test_bad_spectra_are_typed_errors():
         Spectrum([SpectrumBlock([0.0, 1.0])], counting="peaks")
     with pytest.raises(cl.InputError, match="needs the fatigue constants"):
         Growth(da=0.1, spectrum=Spectrum([SpectrumBlock([0.0, 1.0])]))
+    fm = FatigueMaterial("paris", {"C": 1e-3, "m": 3.0})
+    with pytest.raises(cl.InputError, match="material.fatigue.threshold"):
+        Growth(da=0.1, fatigue_material=fm, R=0.0, threshold=1.0)
+    with pytest.raises(cl.InputError, match="give the growth law once"):
+        Growth(da=0.1, fatigue_material=fm, R=0.0, paris_C=1e-3, paris_m=3.0)
+    with pytest.raises(cl.InputError, match="options.contact is 'none'"):  # contact closure without contact
+        grow(two_group_plate(), Growth(da=0.05, steps=1, fatigue_material=fm, R=0.0))
 
 
 def scene_file_error(tmp_path, capsys, text):

@@ -173,6 +173,10 @@ class LifeRun:
         if scene.options.friction > 0.0:
             raise InputError("the fatigue life solves each load level on its own: options.friction must be 0 "
                              "(friction makes K depend on the load path)")
+        if fm.closure == "contact" and scene.options.contact == "none":
+            raise InputError("material.fatigue.closure = 'contact' takes K_min from crack-lip contact, but "
+                             "options.contact is 'none': set options.contact = 'unilateral', or closure = 'newman' "
+                             "or 'none'")
         # The initial stress in a basis case of its own (its K is the beta table's residual column).
         self.residual_of = None
         if scene.initial_stress is not None:

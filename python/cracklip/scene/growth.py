@@ -133,6 +133,9 @@ class Growth:
                                               or self.cycle_max is not None):
                 raise InputError("give the load history once: a [spectrum] or growth.cycle_max / cycle_min / R, "
                                  "not both")
+            if self.threshold != 0.0:
+                raise InputError("growth.threshold belongs to growth.paris_C; with [material.fatigue] give "
+                                 "material.fatigue.threshold (or the law's own, e.g. NASGRO's dK1)")
             if self.walker_gamma != 1.0:
                 raise InputError("growth.walker_gamma belongs to growth.paris_C; with [material.fatigue] give "
                                  "law = 'walker' and its gamma there")
