@@ -101,7 +101,7 @@ def create_law(fm: FatigueMaterial) -> LifeLaw:
 
 def constant_amplitude_spectrum(scene: Scene, growth: Growth) -> Spectrum:
     """The cycle of growth.cycle_max / cycle_min / R as a one-block spectrum."""
-    groups = sorted(load_groups(scene) | {"default"})
+    groups = sorted(load_groups(scene)) or ["default"]
     high = dict(growth.cycle_max) if growth.cycle_max is not None else {g: 1.0 for g in groups}
     low = dict(growth.cycle_min) if growth.cycle_min is not None else {g: growth.R * f for g, f in high.items()}
     names = sorted(set(high) | set(low))
