@@ -12,8 +12,9 @@ speed benchmark at 2e4 and 2e5 dofs, the condition-number study with and
 without the nodal rescaling, K against handbook and exact values (issue
 14), Coulomb friction against its exact solutions and its cost (issue 16),
 crack growth (first kinks, straight growth, Paris law, closure, published
-paths, the cost of a step; issue 17) and the hard-case suite (not with
---quick).
+paths, the cost of a step; issue 17), the fatigue life under load histories
+(rainflow, block life, NASGRO, Wheeler, a flight spectrum with contact, beta
+tables; issue 29) and the hard-case suite (not with --quick).
 
     /usr/bin/python3 demos/paper_figures.py --out results
 """
@@ -34,6 +35,7 @@ import bench_core  # noqa: E402
 import bench_friction  # noqa: E402
 import bench_growth  # noqa: E402
 import conditioning  # noqa: E402
+import fatigue_checks  # noqa: E402
 import friction_crack  # noqa: E402
 import growth_benchmarks  # noqa: E402
 import handbook  # noqa: E402
@@ -65,13 +67,13 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     summary: dict = {}
 
-    log("[1/15] through-crack patch test")
+    log("[1/16] through-crack patch test")
     pt = patch_test.main(["--h", "0.2" if args.quick else "0.05", "--out", str(out / "patch_test")])
     summary["patch_test"] = {k: pt[k] for k in ("h", "ndofs", "enriched_dofs", "displacement_rel_error_top",
                                                  "displacement_rel_error_bottom", "opening_rel_error",
                                                  "strain_energy", "strain_energy_exact")}
 
-    log("[2/15] Westergaard mode I sweep (vector and scalar tip enrichment)")
+    log("[2/16] Westergaard mode I sweep (vector and scalar tip enrichment)")
     if args.quick:
         wg = {"runs": [westergaard.run(10, e) for e in ("vector", "scalar")], "summary": {}}
     else:
@@ -81,7 +83,7 @@ def main(argv=None) -> int:
                                                           "K_II", "cond_1norm", "cond_1norm_jacobi")}
                                        for r in wg["runs"]]}
 
-    log("[3/15] condition number vs h, with and without the nodal rescaling")
+    log("[3/16] condition number vs h, with and without the nodal rescaling")
     cond = conditioning.main(["--n", *(["10", "20", "40"] if args.quick else ["10", "20", "40", "80"]),
                               "--spectrum-n", *(["20", "40"] if args.quick else ["20", "40", "80"]),
                               "--out", str(out / "conditioning"), "--quiet"])
@@ -89,11 +91,11 @@ def main(argv=None) -> int:
                                                   "exponent_nodal")} for c in cond["configs"]]
     summary["conditioning_spectrum"] = cond["spectrum"]["rows"]
 
-    log("[4/15] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
+    log("[4/16] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
     tq = tip_quadrature.main(["--json", str(out / "tip_quadrature.json")])
     summary["tip_quadrature"] = tq["rows"]
 
-    log("[5/15] paper section 5.1: block under uniform pressure (contact)")
+    log("[5/16] paper section 5.1: block under uniform pressure (contact)")
     blk = {}
     for n in ((21,) if args.quick else (21, 42, 84)):
         for enr in ("none", "scalar", "vector"):
@@ -105,7 +107,7 @@ def main(argv=None) -> int:
         summary["inf_sup"] = fig["inf_sup"]
     summary["block"] = blk
 
-    log("[6/15] paper section 5.2: crack from a hole")
+    log("[6/16] paper section 5.2: crack from a hole")
     if args.quick:
         hole = {"runs": [hole_crack.run(0.2, enrichment="vector")[0]], "summary": {}}
     else:
@@ -114,18 +116,18 @@ def main(argv=None) -> int:
                        "runs": [{k: r[k] for k in ("enrichment", "h", "ndofs", "energy_error", "pressure_l2_error",
                                                    "K_I_normalised", "cond_1norm")} for r in hole["runs"]]}
 
-    log("[7/15] closed inclined crack, frictionless sliding")
+    log("[7/16] closed inclined crack, frictionless sliding")
     summary["sliding"] = sliding_crack.main(["--ns", *(["20"] if args.quick else ["20", "40", "80"]),
                                              "--json", str(out / "sliding_crack.json")])
 
-    log("[8/15] core benchmark (X-FEM vs plain DOLFINx P1, MUMPS)")
+    log("[8/16] core benchmark (X-FEM vs plain DOLFINx P1, MUMPS)")
     sizes = ["2e3"] if args.quick else ["2e4", "2e5"]
     bench_core.main(["--sizes", *sizes, "--repeats", "1" if args.quick else "3",
                      "--json", str(out / "bench_core.json"), "--quiet"])
     bench = json.loads((out / "bench_core.json").read_text())
     summary["bench_core"] = [{k: s[k] for k in ("ndofs", "t_xfem", "t_plain", "ratio")} for s in bench["sizes"]]
 
-    log("[9/15] stress intensity factors against handbook and exact values")
+    log("[9/16] stress intensity factors against handbook and exact values")
     hb = handbook.main(["--out", str(out / "handbook"), *(["--divisions", "20", "--cases",
                                                             "centre crack a/b = 0.5", "pressurised crack, plane stress"]
                                                            if args.quick else [])])
@@ -133,7 +135,7 @@ def main(argv=None) -> int:
         handbook.plot(hb["rows"], out / "handbook" / "handbook.png")
     summary["handbook"] = hb["rows"]
 
-    log("[10/15] Coulomb friction: closed inclined crack, load-unload cycle, inf-sup")
+    log("[10/16] Coulomb friction: closed inclined crack, load-unload cycle, inf-sup")
     fr = friction_crack.main(["--out", str(out / "friction"), "--inf-sup",
                               *(["--ns", "20", "--betas", "30", "--mus", "0", "0.5", "--no-hysteresis"]
                                 if args.quick else ["--ns", "40", "80"])])
@@ -141,22 +143,25 @@ def main(argv=None) -> int:
         friction_crack.plot(fr["rows"], out / "friction" / "friction.png")
     summary["friction"] = fr
     if not args.quick:
-        log("[11/15] cost of friction at 2e5 dofs")
+        log("[11/16] cost of friction at 2e5 dofs")
         summary["bench_friction"] = bench_friction.main(["--ns", "300", "--json", str(out / "bench_friction.json")])["rows"]
 
-    log("[12/15] crack growth: first kinks, straight mode I growth, Paris law, closure")
+    log("[12/16] crack growth: first kinks, straight mode I growth, Paris law, closure")
     summary["growth"] = growth_benchmarks.main(["--out", str(out / "growth"), *(["--quick"] if args.quick else [])])
 
-    log("[13/15] published crack paths")
+    log("[13/16] published crack paths")
     summary["growth_paths"] = growth_paths.main(["--out", str(out / "growth"), *(["--quick"] if args.quick else [])])
 
-    log("[14/15] cost of a growth step against a single solve")
+    log("[14/16] cost of a growth step against a single solve")
     summary["bench_growth"] = bench_growth.main(["--hs", *(["0.05"] if args.quick else ["0.025", "0.008"]),
                                                  "--repeats", "1" if args.quick else "3",
                                                  "--json", str(out / "bench_growth.json")])["rows"]
 
+    log("[15/16] fatigue life: rainflow, block life, NASGRO, Wheeler, a flight spectrum with contact, beta tables")
+    summary["fatigue"] = fatigue_checks.main(["--out", str(out / "fatigue"), *(["--quick"] if args.quick else [])])
+
     if not args.quick:
-        log("[15/15] hard cases (degenerate geometry, extreme parameters, contact sign changes)")
+        log("[16/16] hard cases (degenerate geometry, extreme parameters, contact sign changes)")
         hc = hard_cases.main(["--json", str(out / "hard_cases.json")])
         summary["hard_cases"] = {k: hc[k] for k in ("all_finite", "max_relative_residual", "all_converge")}
     summary["wall_time"] = time.perf_counter() - t0
@@ -277,6 +282,10 @@ def markdown(s: dict) -> str:
             lines += [f"| {b['ndofs']} | {b['t_single_solve']:.3f} | {b['t_step']:.3f} | {b['ratio']:.2f} |"
                       for b in s["bench_growth"]]
             lines += ["", "Medians of the single solves and of the steps after the first (`demos/bench_growth.py`)."]
+    if s.get("fatigue"):
+        lines += ["", "## Fatigue life under load histories (`demos/fatigue_checks.py`, docs/life.md)", "",
+                  fatigue_checks.markdown(s["fatigue"]).rstrip("\n"), "",
+                  "![block life](fatigue/block_life.png)", "", "![spectrum life](fatigue/spectrum_life.png)"]
     lines += ["", "## Speed: whole X-FEM solve vs plain DOLFINx P1 solve (same mesh, same MUMPS)", "",
               "| dofs | X-FEM (s) | plain (s) | ratio |", "|---|---|---|---|"]
     lines += [f"| {b['ndofs']} | {b['t_xfem']:.3f} | {b['t_plain']:.3f} | {b['ratio']:.3f} |"

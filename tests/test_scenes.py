@@ -33,6 +33,8 @@ SMALL = {
     "fatigue_edge_crack": ["mesh.h=0.1", "mesh.refine[0].h=0.02"],
     "wing_crack": ["mesh.h=0.2", "mesh.refine[0].h=0.03"],
     "drilled_plate": ["mesh.h=1.0", "mesh.refine[0].h=0.1", "mesh.refine[1].h=0.1"],
+    # the fatigue life under a spectrum (grown by tests/test_life.py)
+    "hole_crack_spectrum": ["mesh.h=10.0", "mesh.refine[0].h=0.5"],
 }
 
 

@@ -23,9 +23,11 @@ flows; a module imports only from its own step or earlier ones
               room around the tips, model checks, assembly
     solvers   checked linear solves: direct, phantom basis + AMG, saddle point
     contact   crack-lip contact and friction on the stable multiplier space
-    fracture  stress intensity factors, kink criteria, growth laws
+    fracture  stress intensity factors, kink criteria, growth laws, cycle
+              counting, retardation, life integration (pure functions)
     post      a solved model: Solution, fields along the crack and in the part
-    analysis  drivers that solve: one scene, a load path, crack growth
+    analysis  drivers that solve: one scene, a load path, crack growth, the
+              fatigue life's load levels
     exact     closed-form fields for demos, tests and exact boundary values
     io        scene files and output writers (JSON, CSV, VTU, PNG)
     cli       the command line
@@ -57,6 +59,9 @@ _EXPORTS = {
     "Traction": "scene.conditions",
     "LinearStress": "scene.stress_field",
     "Growth": "scene.growth",
+    "FatigueMaterial": "scene.fatigue", "Spectrum": "scene.spectrum", "SpectrumBlock": "scene.spectrum",
+    "Units": "scene.units",
+    "count_cycles": "fracture.rainflow", "rainflow": "fracture.rainflow", "LifeLaw": "fracture.life",
     "XfemModel": "model.model", "create_model": "model.model",
     "ContactError": "contact.frictionless",
     "Solution": "post.solution",

@@ -40,43 +40,16 @@ import numpy as np
 
 from ..errors import BoundaryConditionError, InputError
 from ..fracture.kink import equivalent_k, kink_angle
+from ..fracture.laws import walker_rate
 from ..scene.conditions import LoadStep
 from ..scene.crack import Crack
 from ..scene.growth import Growth
 from ..scene.scene import Scene
+from .tips import (Measured, TipRecord, closed_fraction, crack_length, distance_to_segments,  # noqa: F401
+                   part_length, segment_hit)  # noqa: F401
 
 
 logger = logging.getLogger(__name__)
-
-
-@dataclasses.dataclass
-class TipRecord:
-    """One tip at one step: where it is, its K (at the maximum load in
-    fatigue), the kink it takes, and the cycles."""
-    step: int
-    crack: int
-    end: int  # 0: the polyline's first point, 1: its last
-    x: float
-    y: float
-    length: float
-    K_I: float
-    K_II: float
-    K_I_spread: float
-    K_II_spread: float
-    kink_deg: float
-    K_eq: float
-    closed_fraction: float
-    da: float = 0.0
-    K_I_min: float | None = None
-    K_II_min: float | None = None
-    delta_K: float | None = None
-    dN: float = 0.0
-    N: float = 0.0
-    status: str = "growing"
-    sif_radius: float = 0.0
-
-    def row(self) -> dict[str, typing.Any]:
-        return dataclasses.asdict(self)
 
 
 @dataclasses.dataclass
@@ -84,8 +57,10 @@ class GrowthResult:
     """What grow returns: the tip records of every step (records[k] at step
     k, the last one at the final geometry), the final cracks, why it stopped,
     the warnings met, each step's Solution if kept, seconds per step, the
-    cycles, the solves per step (1 + the corrector's), the model warning
-    codes of each step."""
+    cycles, the solves per step (load levels solved, with the corrector's),
+    the model warning codes of each step, the criterion of the stop, in
+    a spectrum life its summary (analysis.life.LifeRun.summary), and the
+    beta table's rows (grow(beta_table=True); analysis.life.beta_rows)."""
     records: list[list[TipRecord]]
     cracks: list[Crack]
     stop_reason: str
@@ -96,40 +71,13 @@ class GrowthResult:
     cycles: float = 0.0
     step_solves: list[int] = dataclasses.field(default_factory=list)
     step_warnings: list[list[str]] = dataclasses.field(default_factory=list)
+    stop_criterion: str | None = None
+    life: dict[str, typing.Any] | None = None
+    beta: list[dict[str, typing.Any]] = dataclasses.field(default_factory=list)
 
     @property
     def rows(self) -> list[dict[str, typing.Any]]:
         return [r.row() for step in self.records for r in step]
-
-
-def _segment_hit(p: np.ndarray, q: np.ndarray, a: np.ndarray, b: np.ndarray) -> float | None:
-    """The smallest t in (0, 1] with p + t (q - p) on one of the segments a-b, or None."""
-    d = q - p
-    e = b - a
-    den = d[0] * e[:, 1] - d[1] * e[:, 0]
-    ok = np.abs(den) > 1e-300
-    w = a - p
-    t = np.where(ok, (w[:, 0] * e[:, 1] - w[:, 1] * e[:, 0]) / np.where(ok, den, 1.0), np.inf)
-    s = np.where(ok, (w[:, 0] * d[1] - w[:, 1] * d[0]) / np.where(ok, den, 1.0), np.inf)
-    hit = ok & (t > 1e-12) & (t <= 1.0) & (s >= 0.0) & (s <= 1.0)
-    return float(t[hit].min()) if np.any(hit) else None
-
-
-def _distance_to_segments(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> float:
-    d = b - a
-    dd = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
-    t = np.clip(np.einsum("ij,ij->i", p - a, d) / dd, 0.0, 1.0)
-    return float(np.linalg.norm(a + t[:, None] * d - p, axis=1).min()) if len(a) else math.inf
-
-
-def crack_length(points: np.ndarray) -> float:
-    return float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
-
-
-def part_length(model, crack: int) -> float:
-    """The length of a crack inside the part (its polyline may run beyond the boundary)."""
-    from ..model.tip_regions import lip_points
-    return float(lip_points(model, crack)["weight"].sum())
 
 
 def _cycle_scene(scene: Scene, growth: Growth) -> tuple[Scene, bool]:
@@ -146,19 +94,8 @@ def _cycle_scene(scene: Scene, growth: Growth) -> tuple[Scene, bool]:
     return dataclasses.replace(scene, load_path=path), True
 
 
-@dataclasses.dataclass
-class _Measured:
-    """One solve of a geometry: the tip records, the fatigue rates, the
-    solution at the maximum load and its model."""
-    records: list[TipRecord]
-    rates: dict[tuple[int, int], float]
-    lengths: list[float]
-    sol: typing.Any
-    model: typing.Any
-
-
 def _measure(scene: Scene, cracks: list[Crack], growth: Growth, k: int, N: float,
-             stopped: set[tuple[int, int]]) -> _Measured:
+             stopped: set[tuple[int, int]]) -> Measured:
     """Solve the scene with the given cracks (the load cycle in fatigue) and
     record every tip: K, kink, K_eq, closed fraction, Delta K and the Paris
     rate (growing tips only)."""
@@ -173,7 +110,7 @@ def _measure(scene: Scene, cracks: list[Crack], growth: Growth, k: int, N: float
     step: list[TipRecord] = []
     rates: dict[tuple[int, int], float] = {}
     lengths = [part_length(model, ci) for ci in range(len(cracks))]
-    closed = [_closed_fraction(sol_max, ci) for ci in range(len(cracks))]
+    closed = [closed_fraction(sol_max, ci) for ci in range(len(cracks))]
     for r in sifs_max:
         ci = r["crack"]
         g = model.geometries[ci]
@@ -195,16 +132,16 @@ def _measure(scene: Scene, cracks: list[Crack], growth: Growth, k: int, N: float
             keq_min = equivalent_k(rm["K_I"], rm["K_II"], theta, clamp=False)
             rec.delta_K = max(keq_max - keq_min, 0.0)
             ratio = keq_min / keq_max if keq_max > 0 else 0.0
-            dk = rec.delta_K / (1.0 - ratio) ** (1.0 - growth.walker_gamma) if ratio < 1 else rec.delta_K
             if rec.status == "growing":
                 if rec.delta_K <= growth.threshold:
                     rec.status = "below threshold"
-                else:
-                    rates[key] = growth.paris_C * dk ** growth.paris_m
+                else:  # Walker's form (gamma = 1: Paris), cracklip.fracture.laws
+                    rates[key] = float(walker_rate(rec.delta_K, ratio, growth.paris_C, growth.paris_m,
+                                                   growth.walker_gamma))
         elif rec.status == "growing" and keq < growth.threshold:
             rec.status = "below threshold"
         step.append(rec)
-    return _Measured(step, rates, lengths, sol_max, model)
+    return Measured(step, rates, lengths, sol_max, model)
 
 
 def _rotate_last_segment(crack: Crack, end: int, delta: float) -> None:
@@ -218,7 +155,8 @@ def _rotate_last_segment(crack: Crack, end: int, delta: float) -> None:
 
 
 def _correct(scene: Scene, cracks: list[Crack], growth: Growth, k: int, N: float, stopped, grown,
-             measured: _Measured) -> tuple[_Measured, dict[tuple[int, int], float], int]:
+             measured: Measured, measure: typing.Callable[[], Measured] | None = None
+             ) -> tuple[Measured, dict[tuple[int, int], float], int]:
     """The corrector: turn each tip's last increment about its start until
     the kink wanted at its end vanishes (local symmetry at the end of the
     increment, K_II = 0 there, not only at its start): secant iterations on
@@ -251,8 +189,8 @@ def _correct(scene: Scene, cracks: list[Crack], growth: Growth, k: int, N: float
             d1 = max(-math.radians(60.0), min(math.radians(60.0), d1))
             _rotate_last_segment(cracks[key[0]], key[1], d1 - d0)
             turn[key] = d1
-        cur = _measure(scene, cracks, growth, k, N, stopped)
-        solves += 1
+        cur = measure() if measure is not None else _measure(scene, cracks, growth, k, N, stopped)
+        solves += cur.solves
         errs = {(r.crack, r.end): abs(math.radians(r.kink_deg)) for r in cur.records}
         if sum(errs.get(key, 0.0) for key in grown) < sum(best_err.get(key, 0.0) for key in grown):
             best, best_err, best_turn = cur, errs, dict(turn)
@@ -262,166 +200,249 @@ def _correct(scene: Scene, cracks: list[Crack], growth: Growth, k: int, N: float
     return best, best_turn, solves
 
 
-def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
-         on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None = None) -> GrowthResult:
-    """Grow the scene's cracks (module doc). on_step(k, records, solution) is
-    called after every step's solve (progress, a ParaView file per step; in
-    fatigue the solution at the maximum load); keep_solutions keeps each
-    step's Solution in the result."""
-    from ..model.boundary import boundary_segments
-    from ..model.tip_regions import tip_element_size
-    scene.mesh.cache_standard_block = True
-    cracks = [dataclasses.replace(c, points=np.array(c.points, dtype=float)) for c in scene.cracks]
-    if not cracks:
-        raise InputError("growth needs at least one crack")
-    a_bnd, b_bnd = boundary_segments(scene.mesh)
-    records: list[list[TipRecord]] = []
-    stops: list[str] = []
-    warnings: list[str] = []
-    solutions = []
-    step_times: list[float] = []
-    solves: list[int] = []
-    stopped: set[tuple[int, int]] = set()      # (crack, end) that no longer grow
-    grown: set[tuple[int, int]] = set()        # (crack, end) advanced by the last step
-    warned: set[str] = set()                   # increment warnings given (once each)
-    warning_counts: dict[str, int] = {}        # model warnings by code, over all steps
-    step_warnings: list[list[str]] = []
-    last_kink: dict[tuple[int, int], float] = {}
-    N = 0.0
-    prev_rate: float | None = None
-    prev_da = 0.0
-    da = growth.da
-    fatigue = growth.fatigue
-    stop_reason = f"{growth.steps} steps done"
-    for k in range(growth.steps + 1):
-        t0 = time.perf_counter()
-        try:
-            m = _measure(scene, cracks, growth, k, N, stopped)
-        except BoundaryConditionError as e:
-            if k == 0 or "cut the part into" not in str(e):
-                raise
-            stop_reason = f"final separation: after step {k - 1} the cracks cut the part apart ({e})"
-            stops.append(stop_reason)
-            break
-        n_solves = 1
-        if growth.corrections and k > 0 and grown:
-            m, turns, extra = _correct(scene, cracks, growth, k, N, stopped, grown, m)
-            n_solves += extra
-            for r in records[-1]:  # the kink the last increment actually took
-                if (r.crack, r.end) in turns:
-                    r.kink_deg += math.degrees(turns[r.crack, r.end])
-                    last_kink[r.crack, r.end] = r.kink_deg
-        step, rates, lengths, sol_max, model = m.records, m.rates, m.lengths, m.sol, m.model
-        solves.append(n_solves)
-        # The model's warnings of every step (a kinked path can clip a SIF domain): the first of
-        # each code in full, the later ones counted.
-        step_warnings.append(sorted({w.code for w in sol_max.warnings}))
-        for w in sol_max.warnings:
-            if w.code not in warning_counts:
-                warnings.append(w.message if k == 0 else f"step {k}: {w.message}")
-            warning_counts[w.code] = warning_counts.get(w.code, 0) + 1
-        # The cycles of the increment just taken (trapezoid between its two ends).
-        if fatigue and k > 0 and prev_rate is not None:
-            rate_now = max(rates.values()) if rates else prev_rate
-            dN = prev_da * 0.5 * (1.0 / prev_rate + 1.0 / rate_now)
-            N += dN
-            for rec in step:  # the cycles spent to reach this geometry
-                rec.dN, rec.N = dN, N
-        records.append(step)
-        if on_step is not None:
-            on_step(k, step, sol_max)
-        if keep_solutions:
-            solutions.append(sol_max)
-        # Stops that end the run.
+class _GrowthRun:
+    """The growth loop's state and its named steps: measure the geometry
+    (solve, K per tip), correct the increment just taken (optional), collect
+    the model's warnings, count the cycles of the increment (fatigue), check
+    the stops, advance the tips. run() repeats them until a stop."""
+
+    def __init__(self, scene: Scene, growth: Growth, keep_solutions: bool,
+                 on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None, beta_table: bool = False):
+        from ..model.boundary import boundary_segments
+        scene.mesh.cache_standard_block = True
+        self.scene = scene
+        self.growth = growth
+        self.keep_solutions = keep_solutions
+        self.on_step = on_step
+        self.cracks = [dataclasses.replace(c, points=np.array(c.points, dtype=float)) for c in scene.cracks]
+        if not self.cracks:
+            raise InputError("growth needs at least one crack")
+        self.a_bnd, self.b_bnd = boundary_segments(scene.mesh)
+        self.records: list[list[TipRecord]] = []
+        self.stops: list[str] = []
+        self.warnings: list[str] = []
+        self.solutions: list = []
+        self.step_times: list[float] = []
+        self.solves: list[int] = []
+        self.stopped: set[tuple[int, int]] = set()      # (crack, end) that no longer grow
+        self.grown: set[tuple[int, int]] = set()        # (crack, end) advanced by the last step
+        self.warned: set[str] = set()                   # increment warnings given (once each)
+        self.warning_counts: dict[str, int] = {}        # model warnings by code, over all steps
+        self.step_warnings: list[list[str]] = []
+        self.last_kink: dict[tuple[int, int], float] = {}
+        self.N = 0.0
+        self.prev_rate: float | None = None             # constant amplitude: the trapezoid's last rate
+        self.prev_da = 0.0
+        self.da = growth.da
+        self.fatigue = growth.fatigue
+        self.stop_reason = f"{growth.steps} steps done"
+        self.stop_criterion: str | None = None
+        self.k = 0
+        self.t0 = 0.0
+        self.beta_table = beta_table
+        self.beta: list[dict[str, typing.Any]] = []
+        self.life = None
+        if growth.life:
+            from .life import LifeRun
+            self.life = LifeRun(scene, growth)
+
+    # -- the named steps ---------------------------------------------------------------------------------
+    def measure(self) -> Measured:
+        """Solve the current geometry and record every tip."""
+        if self.life is not None:
+            return self.life.measure(self.cracks, self.k, self.N, self.stopped)
+        return _measure(self.scene, self.cracks, self.growth, self.k, self.N, self.stopped)
+
+    def correct(self, m: Measured) -> tuple[Measured, int]:
+        """The corrector on the increment just taken (growth.corrections):
+        the measurement of the geometry kept and the extra solves."""
+        if not (self.growth.corrections and self.k > 0 and self.grown):
+            return m, 0
+        m, turns, extra = _correct(self.scene, self.cracks, self.growth, self.k, self.N, self.stopped, self.grown, m,
+                                   measure=lambda: self.measure())
+        for r in self.records[-1]:  # the kink the last increment actually took
+            if (r.crack, r.end) in turns:
+                r.kink_deg += math.degrees(turns[r.crack, r.end])
+                self.last_kink[r.crack, r.end] = r.kink_deg
+        return m, extra
+
+    def collect_warnings(self, m: Measured) -> None:
+        """The model's warnings of every step (a kinked path can clip a SIF
+        domain): the first of each code in full, the later ones counted."""
+        self.step_warnings.append(sorted({w.code for w in m.sol.warnings}))
+        for w in m.sol.warnings:
+            if w.code not in self.warning_counts:
+                self.warnings.append(w.message if self.k == 0 else f"step {self.k}: {w.message}")
+            self.warning_counts[w.code] = self.warning_counts.get(w.code, 0) + 1
+
+    def count_cycles(self, m: Measured) -> None:
+        """The cycles of the increment just taken: constant amplitude by the
+        trapezoidal rule between its two ends; a spectrum pass by pass with K
+        interpolated between them (cracklip.analysis.life)."""
+        if self.life is not None:
+            self.N = self.life.count(m, self.k)
+            return
+        if self.fatigue and self.k > 0 and self.prev_rate is not None:
+            rate_now = max(m.rates.values()) if m.rates else self.prev_rate
+            dN = self.prev_da * 0.5 * (1.0 / self.prev_rate + 1.0 / rate_now)
+            self.N += dN
+            for rec in m.records:  # the cycles spent to reach this geometry
+                rec.dN, rec.N = dN, self.N
+
+    def record_beta(self, m: Measured) -> int:
+        """The beta table's rows of this geometry (grow(beta_table=True)): K of
+        each load group at factor 1 (a spectrum life has them from its
+        levels; else one linear solve per group); returns the extra solves."""
+        if not self.beta_table:
+            return 0
+        from .life import basis_levels, beta_rows
+        ref = dict(self.growth.reference_stress or {})
+        if self.life is not None:
+            tips = {key: {"x": lv.x, "y": lv.y, "a": lv.a, "basis": lv.basis} for key, lv in m.levels.items()}
+            self.beta += beta_rows(self.k, tips, ref, m.levels, self.life)
+            return 0
+        tips = basis_levels(self.scene, self.cracks)
+        self.beta += beta_rows(self.k, tips, ref)
+        return len(next(iter(tips.values()))["basis"]) if tips else 0
+
+    def _stop(self, reason: str, criterion: str | None = None) -> bool:
+        self.stop_reason = reason
+        self.stop_criterion = criterion
+        self.stops.append(reason)
+        self.step_times.append(time.perf_counter() - self.t0)
+        return True
+
+    def check_stops(self, m: Measured) -> bool:
+        """The stops that end the run (module doc); True to stop."""
+        growth, k, step = self.growth, self.k, m.records
+        if self.life is not None and self.life.failure is not None:
+            return self._stop(self.life.failure, self.life.failure_criterion)
         if growth.K_Ic is not None:
             failing = [r for r in step if r.K_eq >= growth.K_Ic]
             if failing:
                 r = failing[0]
-                stop_reason = (f"final failure: K_eq = {r.K_eq:.6g} >= K_Ic = {growth.K_Ic:g} at the tip "
-                               f"({r.x:.6g}, {r.y:.6g}) of crack {cracks[r.crack].name!r} (step {k})")
-                stops.append(stop_reason)
-                step_times.append(time.perf_counter() - t0)
-                break
-        if growth.max_length is not None and any(v >= growth.max_length * (1.0 - 1e-9) for v in lengths):
-            stop_reason = f"a crack reached the length {growth.max_length:g} (step {k})"
-            stops.append(stop_reason)
-            step_times.append(time.perf_counter() - t0)
-            break
+                return self._stop(f"final failure: K_eq = {r.K_eq:.6g} >= K_Ic = {growth.K_Ic:g} at the tip "
+                                  f"({r.x:.6g}, {r.y:.6g}) of crack {self.cracks[r.crack].name!r} (step {k})",
+                                  "K_eq >= growth.K_Ic")
+        if growth.max_length is not None and any(v >= growth.max_length * (1.0 - 1e-9) for v in m.lengths):
+            return self._stop(f"a crack reached the length {growth.max_length:g} (step {k})", "growth.max_length")
+        if self.life is not None and self.life.passes_exceeded():
+            return self._stop(f"the life passed spectrum.max_passes = {self.life.max_passes:g} passes (step {k})",
+                              "spectrum.max_passes")
         if k == growth.steps:
-            step_times.append(time.perf_counter() - t0)
-            break
+            self.step_times.append(time.perf_counter() - self.t0)
+            self.stop_criterion = "growth.steps"
+            return True
         growing = [r for r in step if r.status == "growing"]
         if not step:
-            stop_reason = f"no crack tip is left in the part (step {k}): the cracks run through it"
-            stops.append(stop_reason)
-            step_times.append(time.perf_counter() - t0)
-            break
+            return self._stop(f"no crack tip is left in the part (step {k}): the cracks run through it",
+                              "no tip in the part")
         if not growing:
-            stop_reason = f"no tip grows any more (step {k}: " + "; ".join(
-                f"crack {cracks[r.crack].name!r} end {r.end}: {r.status}" for r in step) + ")"
-            stops.append(stop_reason)
-            step_times.append(time.perf_counter() - t0)
-            break
-        if da <= 0.0:
-            r0 = growing[0]
-            da = 3.0 * tip_element_size(model, np.array([r0.x, r0.y]))
-            growth = dataclasses.replace(growth, da=da)
-        unstable = [r for r in growing if (r.crack, r.end) in last_kink
-                    and abs(r.kink_deg - last_kink[r.crack, r.end]) > growth.max_kink_change]
+            return self._stop(f"no tip grows any more (step {k}: " + "; ".join(
+                f"crack {self.cracks[r.crack].name!r} end {r.end}: {r.status}" for r in step) + ")",
+                "no growing tip")
+        unstable = [r for r in growing if (r.crack, r.end) in self.last_kink
+                    and abs(r.kink_deg - self.last_kink[r.crack, r.end]) > growth.max_kink_change]
         if unstable:
             r = unstable[0]
-            stop_reason = (f"unstable growth: the kink at ({r.x:.6g}, {r.y:.6g}) turned from "
-                           f"{last_kink[r.crack, r.end]:.2f} to {r.kink_deg:.2f} degrees between steps "
-                           f"(more than growth.max_kink_change = {growth.max_kink_change:g})")
-            stops.append(stop_reason)
-            step_times.append(time.perf_counter() - t0)
-            break
+            return self._stop(f"unstable growth: the kink at ({r.x:.6g}, {r.y:.6g}) turned from "
+                              f"{self.last_kink[r.crack, r.end]:.2f} to {r.kink_deg:.2f} degrees between steps "
+                              f"(more than growth.max_kink_change = {growth.max_kink_change:g})",
+                              "growth.max_kink_change")
+        return False
+
+    def advance(self, m: Measured) -> None:
+        """Extend every growing tip: the fastest by da, the others (fatigue)
+        by da times their rate over the fastest one's."""
+        from ..model.tip_regions import tip_element_size
+        k, model, rates = self.k, m.model, m.rates
+        growing = [r for r in m.records if r.status == "growing"]
+        if self.da <= 0.0:
+            r0 = growing[0]
+            self.da = 3.0 * tip_element_size(model, np.array([r0.x, r0.y]))
+            self.growth = dataclasses.replace(self.growth, da=self.da)
         rate_max = max(rates.values()) if rates else None
-        # Advance every growing tip.
-        grown = set()
+        self.grown = set()
         for r in growing:
             key = (r.crack, r.end)
             if k > 0:  # the first kink leaves the initial crack, any angle: not a reference
-                last_kink[key] = r.kink_deg
-            inc = da if not fatigue else da * rates[key] / rate_max
+                self.last_kink[key] = r.kink_deg
+            inc = self.da if not self.fatigue else self.da * rates[key] / rate_max
             r.da = inc
             h_tip = tip_element_size(model, np.array([r.x, r.y]))
-            if inc < h_tip and "small" not in warned:
-                warned.add("small")
-                warnings.append(f"step {k}: the increment {inc:.3g} at ({r.x:.6g}, {r.y:.6g}) is below the element "
-                                f"size there ({h_tip:.3g}): the path follows the mesh; use a larger da or a finer mesh "
-                                "(said once)")
-            if inc > r.sif_radius and not growth.corrections and "large" not in warned:
-                warned.add("large")  # (the corrector checks the kink at the increment's end)
-                warnings.append(f"step {k}: the increment {inc:.3g} at ({r.x:.6g}, {r.y:.6g}) is larger than the SIF "
-                                f"domain there (radius {r.sif_radius:.3g}): the kink comes from the field within "
-                                "that radius and is extrapolated beyond it; use a smaller da or growth.corrections (said once)")
-            note = _advance(cracks, r, inc, model, a_bnd, b_bnd, h_tip)
+            if inc < h_tip and "small" not in self.warned:
+                self.warned.add("small")
+                self.warnings.append(f"step {k}: the increment {inc:.3g} at ({r.x:.6g}, {r.y:.6g}) is below the "
+                                     f"element size there ({h_tip:.3g}): the path follows the mesh; use a larger da or "
+                                     "a finer mesh (said once)")
+            if inc > r.sif_radius and not self.growth.corrections and "large" not in self.warned:
+                self.warned.add("large")  # (the corrector checks the kink at the increment's end)
+                self.warnings.append(f"step {k}: the increment {inc:.3g} at ({r.x:.6g}, {r.y:.6g}) is larger than the "
+                                     f"SIF domain there (radius {r.sif_radius:.3g}): the kink comes from the field "
+                                     "within that radius and is extrapolated beyond it; use a smaller da or "
+                                     "growth.corrections (said once)")
+            note = _advance(self.cracks, r, inc, model, self.a_bnd, self.b_bnd, h_tip)
             if note:
-                stops.append(f"step {k}: {note}")
-                stopped.add(key)
+                self.stops.append(f"step {k}: {note}")
+                self.stopped.add(key)
                 r.status = note.split(":")[0]
             else:
-                grown.add(key)
-        if fatigue:
-            prev_rate, prev_da = rate_max, da
-        step_times.append(time.perf_counter() - t0)
-        logger.debug("growth step %d: %s", k, "; ".join(
-            f"crack {cracks[r.crack].name!r} end {r.end}: a = {r.length:.4g}, K_I = {r.K_I:.4g}, K_II = {r.K_II:.4g}, "
-            f"kink {r.kink_deg:.1f} deg" + (f", N = {r.N:.4g}" if fatigue else "") for r in step))
-    warnings += [f"the model warning '{c}' came {n} times in all (at the steps listed in results.json per_step)"
-                 for c, n in warning_counts.items() if n > 1]
-    return GrowthResult(records, cracks, stop_reason, stops, list(dict.fromkeys(warnings)), solutions, step_times, N,
-                        solves, step_warnings)
+                self.grown.add(key)
+        if self.fatigue:
+            self.prev_rate, self.prev_da = rate_max, self.da
+        if self.life is not None:
+            self.life.advanced(m, {(r.crack, r.end): r.da for r in growing if (r.crack, r.end) in self.grown})
+
+    # -- the loop ---------------------------------------------------------------------------------------
+    def run(self) -> GrowthResult:
+        for k in range(self.growth.steps + 1):
+            self.k = k
+            self.t0 = time.perf_counter()
+            try:
+                m = self.measure()
+            except BoundaryConditionError as e:
+                if k == 0 or "cut the part into" not in str(e):
+                    raise
+                self.stop_reason = f"final separation: after step {k - 1} the cracks cut the part apart ({e})"
+                self.stop_criterion = "final separation"
+                self.stops.append(self.stop_reason)
+                break
+            m, extra = self.correct(m)
+            extra += self.record_beta(m)
+            self.solves.append(m.solves + extra)
+            self.collect_warnings(m)
+            self.count_cycles(m)
+            self.records.append(m.records)
+            if self.on_step is not None:
+                self.on_step(k, m.records, m.sol)
+            if self.keep_solutions:
+                self.solutions.append(m.sol)
+            if self.check_stops(m):
+                break
+            self.advance(m)
+            self.step_times.append(time.perf_counter() - self.t0)
+            logger.debug("growth step %d: %s", k, "; ".join(
+                f"crack {self.cracks[r.crack].name!r} end {r.end}: a = {r.length:.4g}, K_I = {r.K_I:.4g}, "
+                f"K_II = {r.K_II:.4g}, kink {r.kink_deg:.1f} deg" + (f", N = {r.N:.4g}" if self.fatigue else "")
+                for r in m.records))
+        warnings = self.warnings + [
+            f"the model warning '{c}' came {n} times in all (at the steps listed in results.json per_step)"
+            for c, n in self.warning_counts.items() if n > 1]
+        return GrowthResult(self.records, self.cracks, self.stop_reason, self.stops, list(dict.fromkeys(warnings)),
+                            self.solutions, self.step_times, self.N, self.solves, self.step_warnings,
+                            stop_criterion=self.stop_criterion,
+                            life=self.life.summary(self.records) if self.life is not None else None, beta=self.beta)
 
 
-def _closed_fraction(sol, crack: int) -> float:
-    if not sol.contact:
-        return 0.0
-    smp = sol.lip_samples(crack, 2)
-    w = smp["weight"]
-    closed = smp["state"] != "open"
-    return float(w[closed].sum() / w.sum()) if w.sum() > 0 else 0.0
+def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
+         on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None = None,
+         beta_table: bool = False) -> GrowthResult:
+    """Grow the scene's cracks (module doc). on_step(k, records, solution) is
+    called after every step's solve (progress, a ParaView file per step; in
+    fatigue the solution at the maximum load); keep_solutions keeps each
+    step's Solution in the result; beta_table records K / (S sqrt(pi a)) of
+    every load group at every step (GrowthResult.beta)."""
+    return _GrowthRun(scene, growth, keep_solutions, on_step, beta_table).run()
 
 
 def _advance(cracks: list[Crack], r: TipRecord, inc: float, model, a_bnd, b_bnd, h_tip: float) -> str | None:
@@ -443,11 +464,11 @@ def _advance(cracks: list[Crack], r: TipRecord, inc: float, model, a_bnd, b_bnd,
         if j == r.crack:
             continue
         o = other.points
-        t = _segment_hit(tip, tip + (inc + 1.5 * h_tip) * d, o[:-1], o[1:])
-        if t is not None or _distance_to_segments(new, o[:-1], o[1:]) < 1.5 * h_tip:
+        t = segment_hit(tip, tip + (inc + 1.5 * h_tip) * d, o[:-1], o[1:])
+        if t is not None or distance_to_segments(new, o[:-1], o[1:]) < 1.5 * h_tip:
             return f"reached crack {other.name!r}: the tip at ({tip[0]:.6g}, {tip[1]:.6g}) stops"
     # The boundary (or a hole) ahead: the crack runs to it and beyond.
-    t = _segment_hit(tip, tip + (inc + h_tip) * d, a_bnd, b_bnd)
+    t = segment_hit(tip, tip + (inc + h_tip) * d, a_bnd, b_bnd)
     if t is not None:
         reach = t * (inc + h_tip)
         new = tip + (reach + 0.5 * h_tip) * d

@@ -20,6 +20,7 @@ from ..contact.frictionless import contact_constant, create_contact_system, solv
 from ..model.assembly import assemble_system_groups
 from ..model.model import create_model
 from ..post.solution import Solution
+from ..errors import InputError
 from ..scene.conditions import LoadStep
 from ..scene.load_path import Increment, increments, steps
 from ..scene.scene import Scene
@@ -139,6 +140,92 @@ def _step_solution(model, unit, physical, y, T, E, info, inc: Increment, step: L
     sol.step = {"index": inc.step, "name": step.name, "factors": dict(inc.factors),
                 "increments": len(iterations) or 1}
     return sol
+
+
+class LevelSolver:
+    """A scene assembled once and solved at any number of load states: the
+    fatigue life's K against load level at one crack geometry.
+
+    solve(states, contact) solves each state (factors per load group, every
+    group not named at 0) in the order given: with contact=False linearly
+    (lips free to pass through each other: the superposition basis; exact
+    wherever the lips stay open), with contact=True with the scene's
+    frictionless contact, each state starting from the last one's active
+    set. The matrix and each group's load vector are assembled once, as in
+    solve_path; every state costs one solve (linear) or its active-set
+    iterations (contact). Friction is path-dependent and not taken here.
+    Call close() when done (the solver's PETSc objects)."""
+
+    def __init__(self, scene: Scene):
+        if scene.options.friction > 0.0:
+            raise InputError("the fatigue life's load levels need frictionless contact: set options.friction = 0 "
+                             "(friction makes K depend on the load path, not on the load level alone)")
+        self.scene = dataclasses.replace(scene, load_path=None,
+                                         options=dataclasses.replace(scene.options, load_steps=1))
+        self.model = create_model(self.scene)
+        self.E = E = self.scene.material.E
+        model = self.model
+        self.unit = dataclasses.replace(model, scene=dataclasses.replace(self.scene,
+                                                                         material=self.scene.material.scaled(1.0)),
+                                        bc_values=model.bc_values * E,
+                                        bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
+        A, rhs, self.timings = assemble_system_groups(self.unit)
+        self.linear = create_linear_solver(self.unit)
+        self.A, values, self.T, t_basis = to_solver_basis(self.unit, self.linear, A, list(rhs.values()))
+        self.rhs = dict(zip(rhs.keys(), values))
+        self.timings.update(t_basis)
+        self.has_contact = self.scene.options.contact != "none" and bool(model.cracks)
+        self.K = self.physical = self.cs = None
+        self.active = None
+        self.solves = 0
+
+    def _contact_system(self):
+        if self.cs is None:
+            self.K = self.linear.stiffness(self.A)
+            self.physical = create_contact_system(self.unit)
+            self.cs = self.physical
+            if self.T is not None:
+                self.cs = dataclasses.replace(self.physical, B=(self.physical.B @ self.T).tocsr(),
+                                              Bt=None if self.physical.Bt is None else (self.physical.Bt @ self.T).tocsr())
+        return self.cs
+
+    def solve(self, states: list[dict[str, float]], contact: bool, names: list[str] | None = None) -> list[Solution]:
+        """One Solution per state (its .factors the state's; .step its name)."""
+        opts = self.scene.options
+        contact = contact and self.has_contact
+        n = self.model.num_dofs
+        out = []
+        with record_solves() as solves:
+            for k, factors in enumerate(states):
+                inc = Increment(k, 1, dict(factors))
+                f = _combine(self.rhs, factors, n)
+                info: dict[str, typing.Any] = {}
+                if not contact:
+                    A_f = self.A.createVecRight()
+                    A_f.array[:] = f
+                    x = self.linear.solve(self.A, A_f, opts.residual_tol, what="X-FEM stiffness system")
+                    y = x.array.copy()
+                    A_f.destroy()
+                    x.destroy()
+                    physical = None
+                else:
+                    cs = self._contact_system()
+                    work = dataclasses.replace(cs, g=_combine(cs.g_groups, factors, cs.num_multipliers))
+                    y, info = solve_frictionless(self.K, f, work, opts, contact_constant(self.unit), self.active,
+                                                 self.linear)
+                    self.active = info["active"]
+                    physical = self.physical
+                name = names[k] if names else f"level {k}"
+                sol = _step_solution(self.model, self.unit, physical, y, self.T, self.E, info, inc,
+                                     LoadStep(dict(factors), name), [int(info.get("iterations", 1))], self.timings,
+                                     solves, self.linear.name)
+                out.append(sol)
+                self.solves += 1
+        return out
+
+    def close(self) -> None:
+        self.linear.destroy()
+        self.A.destroy()
 
 
 def state_names(codes: np.ndarray) -> list[str]:

@@ -2,6 +2,7 @@
 
     python3 -m cracklip run SCENE.toml --out DIR      solve, write results into DIR
     python3 -m cracklip grow SCENE.toml --out DIR     grow the cracks ([growth] table), write the path
+                                                      (--beta-table: K / (S sqrt(pi a)) along it)
     python3 -m cracklip check SCENE.toml             validate, print what will be modelled
     python3 -m cracklip reference [--update PAGE]    the scene-file reference (Markdown)
 
@@ -91,6 +92,10 @@ def build_parser() -> argparse.ArgumentParser:
     common(grow)
     grow.add_argument("--out", type=pathlib.Path, required=True, metavar="DIR",
                       help="output folder (created if missing)")
+    grow.add_argument("--beta-table", action="store_true",
+                      help="also write beta = K / (S sqrt(pi a)) of every load group along the grown path (and a "
+                           "residual-stress K, and with contact beta per load level): beta.csv and beta_afgrow.txt "
+                           "(S: growth.reference_stress, default 1)")
     grow.set_defaults(func=cmd_grow)
 
     check = sub.add_parser("check", help="validate a scene and print what will be modelled",
@@ -197,13 +202,19 @@ def cmd_grow(args) -> int:
         if series is not None:
             series.add(k, solution)
         if not args.quiet:
+            life = ""
+            if sf.growth.life and records:
+                r0 = records[0]
+                name = sf.growth.spectrum.block_name if sf.growth.spectrum is not None else "cycle"
+                life = f" | {r0.blocks:.6g} {name}s done ({r0.passes:.6g} passes), N = {r0.N:.6g} cycles"
             sys.stderr.write(f"cracklip grow: step {k}: " + "; ".join(
                 f"{sf.scene.cracks[r.crack].name} end {r.end}: a = {r.length:.5g}, K_I = {r.K_I:.5g}, "
                 f"K_II = {r.K_II:.5g}, kink {r.kink_deg:+.2f} deg"
-                + (f", N = {r.N:.5g}" if sf.growth.fatigue else "") + ("" if r.status == "growing" else f" ({r.status})")
-                for r in records) + "\n")
+                + (f", N = {r.N:.5g}" if sf.growth.fatigue and not sf.growth.life else "")
+                + ("" if r.status == "growing" else f" ({r.status})")
+                for r in records) + life + "\n")
             sys.stderr.flush()
-    result = grow(sf.scene, sf.growth, on_step=progress)
+    result = grow(sf.scene, sf.growth, on_step=progress, beta_table=args.beta_table)
     results = write_growth_outputs(sf, result, out, sf.growth, {"total": time.perf_counter() - t_start}, series)
     print_warnings(result.warnings)
     if not args.quiet:
@@ -214,6 +225,11 @@ def cmd_grow(args) -> int:
                                         f"through the part (polyline length {c['polyline_length']:.6g})"))
         if sf.growth.fatigue:
             print(f"  cycles: {result.cycles:.6g}")
+        if result.life is not None:
+            lf = result.life
+            print(f"  life: {lf['cycles']:.6g} cycles = {lf['blocks']:.6g} {lf['block_name']}s = {lf['passes']:.6g} "
+                  f"passes; closure {lf['closure']}; {lf['level_solves']} level solves"
+                  + (f"; failure ({lf['failure']['criterion']}) at a = {lf['failure']['a']:.6g}" if lf["failure"] else ""))
         print(f"results in {out}: {', '.join(results['files'][:6])}" + (" ..." if len(results["files"]) > 6 else ""))
     return 0
 

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import typing
 
 from ..errors import InputError
 
@@ -48,6 +49,16 @@ class Growth:
             zig-zag (strong compression along the crack, T << 0).
         corrector_tolerance: the kink (degrees) below which an increment
             is not corrected.
+        reference_stress: the remote stress S that factor 1 of each load
+            group stands for (beta = K / (S sqrt(pi a)) in beta tables, the
+            residual strength in stress); unset: 1 per group (beta per unit
+            factor).
+        fatigue_material: the fatigue life's growth law and constants
+            (cracklip.scene.fatigue.FatigueMaterial; [material.fatigue] in a
+            scene file); with it the life is integrated over a spectrum (or
+            the cycle of cycle_max / cycle_min / R) instead of paris_C, paris_m.
+        spectrum: the load spectrum (cracklip.scene.spectrum.Spectrum; the
+            [spectrum] table); needs fatigue_material.
     """
     criterion: str = "max_hoop"
     da: float = 0.0
@@ -64,6 +75,9 @@ class Growth:
     max_kink_change: float = 60.0
     corrections: int = 0
     corrector_tolerance: float = 1.0
+    reference_stress: dict[str, float] | None = None
+    fatigue_material: typing.Any = None
+    spectrum: typing.Any = None
 
     def __post_init__(self):
         def positive(name, v, allow_none=False, allow_zero=False):
@@ -101,6 +115,30 @@ class Growth:
             if v is not None and (not isinstance(v, dict) or not v or not all(
                     isinstance(f, (int, float)) and not isinstance(f, bool) and math.isfinite(f) for f in v.values())):
                 raise InputError(f"growth.{name} must be a table of load group = factor, got {v!r}")
+        if self.reference_stress is not None and (not isinstance(self.reference_stress, dict) or not all(
+                isinstance(f, (int, float)) and not isinstance(f, bool) and math.isfinite(f) and f > 0
+                for f in self.reference_stress.values())):
+            raise InputError(f"growth.reference_stress must be a table of load group = positive stress, got "
+                             f"{self.reference_stress!r}")
+        if self.spectrum is not None and self.fatigue_material is None:
+            raise InputError("a load spectrum needs the fatigue constants of the material: give [material.fatigue] "
+                             "(law and constants), or Growth(fatigue_material=...)")
+        if self.fatigue_material is not None:
+            if self.paris_C is not None:
+                raise InputError("give the growth law once: growth.paris_C / paris_m or [material.fatigue], not both")
+            if self.spectrum is None and self.cycle_min is None and self.R is None:
+                raise InputError("the fatigue life needs a load history: a [spectrum] table, or a constant-amplitude "
+                                 "cycle (growth.cycle_min or growth.R)")
+            if self.spectrum is not None and (self.cycle_min is not None or self.R is not None
+                                              or self.cycle_max is not None):
+                raise InputError("give the load history once: a [spectrum] or growth.cycle_max / cycle_min / R, "
+                                 "not both")
+            if self.threshold != 0.0:
+                raise InputError("growth.threshold belongs to growth.paris_C; with [material.fatigue] give "
+                                 "material.fatigue.threshold (or the law's own, e.g. NASGRO's dK1)")
+            if self.walker_gamma != 1.0:
+                raise InputError("growth.walker_gamma belongs to growth.paris_C; with [material.fatigue] give "
+                                 "law = 'walker' and its gamma there")
         if self.cycle_max is not None and self.cycle_min is not None:
             bad = [g for g in self.cycle_max if self.cycle_min.get(g, 0.0) > self.cycle_max[g]]
             if bad:
@@ -109,4 +147,12 @@ class Growth:
 
     @property
     def fatigue(self) -> bool:
-        return self.paris_C is not None
+        """Cycles are counted: growth.paris_C (constant amplitude, the
+        trapezoidal rule) or a fatigue life (fatigue_material)."""
+        return self.paris_C is not None or self.fatigue_material is not None
+
+    @property
+    def life(self) -> bool:
+        """The fatigue life of cracklip.analysis.life: a growth law of
+        cracklip.fracture.laws over a spectrum or a constant-amplitude cycle."""
+        return self.fatigue_material is not None

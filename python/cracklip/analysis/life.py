@@ -1,0 +1,789 @@
+"""The fatigue life of a growing crack under a load spectrum: K at every load
+state per growth step, without a solve per cycle.
+
+Per growth step (one crack geometry) the scene is assembled once
+(load_path.LevelSolver) and solved
+
+1. linearly for each load group at factor 1 (the superposition basis; an
+   initial stress gets a basis case of its own, the residual-stress K of the
+   beta table): K and the lip opening at any load state are then the sums
+   of the basis values times the state's factors, exact wherever the lips
+   stay open;
+2. with contact (closure "contact" only) at the load states where that
+   opening would be negative somewhere (the lips would pass through each
+   other): at most spectrum.contact_levels of them. One load group: the
+   lowest closed level and levels evenly spaced up to the closure level
+   lambda_cl (where the linear opening first touches zero, K there is the
+   linear value, exactly); K at the other closed levels is interpolated
+   piecewise linearly between these. Several groups: each closed state
+   takes K of the solved closed state nearest to it in factor space (the
+   closed states with the largest interpenetration are solved first) --
+   an approximation, reported in results.json (closed_states,
+   contact_solved).
+
+So the solves grow with growth steps x load levels, never with cycles.
+Cycles are counted once per run on the load factor (one group: the order of
+K follows the factor) or per tip and step on K itself (several groups),
+see cracklip.fracture.rainflow. Each counted cycle's K_max and K_min are
+K at its two states; the law (cracklip.fracture.life.LifeLaw) gives da/dN
+with the closure chosen.
+
+Between two growth steps the cycles of the increment are integrated with K
+interpolated: for each tip K / sqrt(a) is linear in the increment's fraction
+t (exact for K proportional to sqrt(a)), a the tip's crack length (the
+length in the part over its number of tips). Without retardation a pass
+grows the crack by the sum over its cycles (equal cycles merged) and the
+passes of the increment are the integral of da / (growth per pass),
+composite Simpson in t; with retardation the fastest tip is grown cycle by
+cycle in closing order (fracture.life.grow_with_retardation), chunk by
+chunk, and every tip keeps its own overload state. The increments
+themselves are as in constant amplitude: the fastest tip advances da, the
+others da times their growth per pass over the fastest one's.
+
+Failure: K_max of a counted cycle reaching K_c (K_c(t) of the material,
+else K_Ic, else the law's own K_crit), or the mean stress normal to the
+crack over the ligament ahead of a tip (tip to boundary) reaching the yield
+stress (net-section yield; for a centre crack in a plate of width W this
+mean is S W / (W - 2a) exactly), found inside the increment by bisection on
+the interpolated values. The residual strength of each step is the largest
+multiple of the spectrum's varying loads at its maximum state that the
+cracked part carries (steady loads held).
+"""
+from __future__ import annotations
+
+import dataclasses
+import logging
+import math
+import time
+import typing
+
+import numpy as np
+
+from ..errors import InputError
+from ..fracture.kink import equivalent_k, kink_angle
+from ..fracture.laws import (Forman, GrowthLaw, HartmanSchijve, Nasgro, NasgroConstants, Paris, RateTable, Tabular,
+                             Walker)
+from ..fracture.life import CycleTable, LifeLaw, grow_with_retardation, pass_growth
+from ..fracture.rainflow import count_cycles
+from ..fracture.retardation import OverloadState, Retardation, constraint_beta
+from ..scene.fatigue import FatigueMaterial
+from ..scene.growth import Growth
+from ..scene.scene import Scene, load_groups
+from ..scene.spectrum import Spectrum, SpectrumBlock
+
+
+logger = logging.getLogger(__name__)
+
+#: The load group an initial stress is moved to, so that its K is a basis case of its own.
+RESIDUAL_GROUP = "initial stress (residual)"
+
+
+def create_law(fm: FatigueMaterial) -> LifeLaw:
+    """The LifeLaw of a fatigue material already in the scene's units."""
+    c = fm.constants
+    K_c = fm.toughness()
+    if fm.law == "paris":
+        law: GrowthLaw = Paris(c["C"], c["m"])
+    elif fm.law == "walker":
+        law = Walker(c["C"], c["m"], c["gamma"])
+    elif fm.law == "forman":
+        law = Forman(c["C"], c["n"], c["K_f"])
+    elif fm.law == "nasgro":
+        law = Nasgro(NasgroConstants(c["C"], c["n"], c["p"], c["q"], c["dK1"], c["C_th_plus"], c["C_th_minus"],
+                                     c["alpha"], c["smax_over_flow"], c["a0"],
+                                     K_c if K_c is not None else math.inf), fm.closure == "newman")
+    elif fm.law == "hartman_schijve":
+        law = HartmanSchijve(c["D"], c["dK_thr"], c["A"], c["exponent"])
+    else:
+        law = Tabular(RateTable(tuple(fm.table_R), tuple(r[0] for r in fm.table), tuple(tuple(r[1:]) for r in fm.table)))
+    return LifeLaw(law, fm.closure, c.get("alpha", 2.0), c.get("smax_over_flow", 0.3), fm.threshold)
+
+
+def constant_amplitude_spectrum(scene: Scene, growth: Growth) -> Spectrum:
+    """The cycle of growth.cycle_max / cycle_min / R as a one-block spectrum."""
+    groups = sorted(load_groups(scene)) or ["default"]
+    high = dict(growth.cycle_max) if growth.cycle_max is not None else {g: 1.0 for g in groups}
+    low = dict(growth.cycle_min) if growth.cycle_min is not None else {g: growth.R * f for g, f in high.items()}
+    names = sorted(set(high) | set(low))
+    pts = np.array([[high.get(g, 0.0) for g in names], [low.get(g, 0.0) for g in names]])
+    steady = {g: 0.0 for g in groups if g not in names}
+    return Spectrum([SpectrumBlock(pts, 1, "cycle")], tuple(names), steady=steady, block_name="cycle")
+
+
+@dataclasses.dataclass
+class TipLevels:
+    """One tip at one geometry: K at every load state of the spectrum.
+
+    Attributes:
+        key: (crack, end).
+        a: the tip's crack length (length in the part / tips of the crack).
+        K_lin: K_eq (along theta) of the linear solution per state.
+        K_con: K_eq with contact (= K_lin where the lips are open).
+        K_I, K_II: per state, as used (contact where closed).
+        theta: the kink (radians) at the reference state.
+        ref, low: the states of the largest and smallest K.
+        basis: K_I, K_II of each load group at factor 1 (linear).
+        sigma_net: the mean normal stress on the ligament per state (None
+            without a yield stress); sigma_basis: the same per load group at
+            factor 1.
+        cycles: the counted cycles (state indices).
+        x, y: the tip.
+        closed: per state, whether the lips touch there (K from contact).
+    """
+    key: tuple[int, int]
+    a: float
+    K_lin: np.ndarray
+    K_con: np.ndarray
+    K_I: np.ndarray
+    K_II: np.ndarray
+    theta: float
+    ref: int
+    low: int
+    basis: dict[str, tuple[float, float]]
+    sigma_net: np.ndarray | None
+    cycles: CycleTable
+    x: float
+    y: float
+    sigma_basis: np.ndarray | None = None
+    closed: np.ndarray | None = None
+
+
+class LifeRun:
+    """The spectrum life of one growth run: set up once, then per step
+    measure() (the load levels), count() (the cycles of the increment just
+    taken), advanced() (the increments given) and at the end summary()."""
+
+    def __init__(self, scene: Scene, growth: Growth):
+        self.scene0 = scene
+        self.growth = growth
+        fm = growth.fatigue_material.converted(scene.units)
+        self.material = fm
+        self.law = create_law(fm)
+        self.spectrum = growth.spectrum if growth.spectrum is not None else constant_amplitude_spectrum(scene, growth)
+        sp = self.spectrum
+        groups = sorted(load_groups(scene)) or ["default"]  # (a group without loads has K = 0: not solved)
+        unknown = sorted(set(sp.groups) - set(groups))
+        if unknown:
+            raise InputError(f"spectrum.groups names load group(s) {unknown} that no load belongs to; the scene's "
+                             f"groups: {groups}")
+        unknown = sorted(set(sp.steady) - set(groups))
+        if unknown:
+            raise InputError(f"spectrum.steady names load group(s) {unknown} that no load belongs to; the scene's "
+                             f"groups: {groups}")
+        if scene.options.friction > 0.0:
+            raise InputError("the fatigue life solves each load level on its own: options.friction must be 0 "
+                             "(friction makes K depend on the load path)")
+        if fm.closure == "contact" and scene.options.contact == "none":
+            raise InputError("material.fatigue.closure = 'contact' takes K_min from crack-lip contact, but "
+                             "options.contact is 'none': set options.contact = 'unilateral', or closure = 'newman' "
+                             "or 'none'")
+        # The initial stress in a basis case of its own (its K is the beta table's residual column).
+        self.residual_of = None
+        if scene.initial_stress is not None:
+            self.residual_of = scene.initial_stress_group
+            scene = dataclasses.replace(scene, initial_stress_group=RESIDUAL_GROUP)
+        self.scene = scene
+        self.groups = groups + ([RESIDUAL_GROUP] if self.residual_of is not None else [])
+        self.spec_groups = list(sp.groups)
+        pts, owner = sp.pass_points()
+        self.states, self.point_state = np.unique(pts, axis=0, return_inverse=True)
+        self.point_state = self.point_state.ravel()
+        self.point_block = owner
+        self.points = pts
+        self.blocks_per_pass = sp.blocks_per_pass
+        # Factor of every solver group at each state: spectrum columns, steady groups (default 1).
+        F = np.zeros((len(self.states), len(self.groups)))
+        for j, g in enumerate(self.groups):
+            src = self.residual_of if g == RESIDUAL_GROUP else g
+            if src in self.spec_groups:
+                F[:, j] = self.states[:, self.spec_groups.index(src)]
+            else:
+                F[:, j] = sp.steady.get(src, 1.0)
+        self.F = F
+        self.steady = F[0].copy()
+        for j, g in enumerate(self.groups):
+            src = self.residual_of if g == RESIDUAL_GROUP else g
+            if src in self.spec_groups:
+                self.steady[j] = 0.0
+        self.single = len(self.spec_groups) == 1
+        self.cycles = None
+        if self.single:
+            ct = count_cycles(pts[:, 0], sp.counting, repeated=sp.residue == "close")
+            self.cycles = CycleTable(self.point_state[ct.lo], self.point_state[ct.hi], ct.count, owner[ct.hi])
+            self.cycles_per_pass = self.cycles.cycles
+        else:
+            self.cycles_per_pass = None
+        self.contact_closure = fm.closure == "contact" and scene.options.contact != "none"
+        self.K_crit = self._critical_k()
+        self.yield_stress = fm.yield_stress
+        self.retardation = None
+        if fm.retardation != "none":
+            beta = constraint_beta(fm.constraint, fm.thickness, fm.K_Ic, fm.yield_stress)
+            self.retardation = Retardation(fm.retardation, fm.yield_stress, beta, fm.wheeler_exponent or 1.0,
+                                           fm.shutoff_ratio or 3.0)
+        self.ret_state: dict[tuple[int, int], OverloadState] = {}
+        self.reference_stress = dict(growth.reference_stress or {})
+        self.max_passes = sp.max_passes
+        # Run state.
+        self.prev: dict[tuple[int, int], TipLevels] | None = None
+        self.increments: dict[tuple[int, int], float] = {}
+        self.passes = 0.0
+        self.N = 0.0
+        self.failure: str | None = None
+        self.failure_criterion: str | None = None
+        self.failure_point: dict[str, typing.Any] | None = None
+        self.steps: list[dict[str, typing.Any]] = []
+        self.level_solves = 0
+        self.load_levels: list[int] = []
+        self.step_seconds: list[float] = []
+        self.closure_notes: list[str] = []
+
+    # -- set-up ------------------------------------------------------------------------------------------
+    def _critical_k(self) -> float | None:
+        fm = self.material
+        k = fm.toughness()
+        if k is None:
+            k = self.law.K_crit
+        return k
+
+    def factors(self, row: np.ndarray) -> dict[str, float]:
+        return {g: float(f) for g, f in zip(self.groups, row)}
+
+    # -- measure -----------------------------------------------------------------------------------------
+    def measure(self, cracks, k: int, N: float, stopped: set[tuple[int, int]]):
+        """Solve the load levels of the current geometry (module doc) and
+        record every tip; returns tips.Measured with .levels per tip."""
+        from .tips import Measured, TipRecord, closed_fraction, part_length
+        from .load_path import LevelSolver
+        from ..post.solution import Solution
+        t0 = time.perf_counter()
+        scene = dataclasses.replace(self.scene, cracks=[dataclasses.replace(c) for c in cracks])
+        solver = LevelSolver(scene)
+        try:
+            G = len(self.groups)
+            unit = [{g: (1.0 if i == j else 0.0) for j, g in enumerate(self.groups)} for i in range(G)]
+            bilateral = scene.options.contact == "bilateral"
+            basis = solver.solve(unit, contact=bilateral, names=[f"unit {g}" for g in self.groups])
+            model = basis[0].model
+            sifs = [b.stress_intensity_factors(None) for b in basis]
+            tips = [(r["crack"], r["tip"]) for r in sifs[0]]
+            KI = np.array([[r["K_I"] for r in s] for s in sifs])      # (G, tips)
+            KII = np.array([[r["K_II"] for r in s] for s in sifs])
+            spreadI = np.array([[r["K_I_spread"] for r in s] for s in sifs])
+            spreadII = np.array([[r["K_II_spread"] for r in s] for s in sifs])
+            nstate = len(self.states)
+            self._cur_basis = (KI, KII)
+            KI_lin, KII_lin = self.F @ KI, self.F @ KII                 # (states, tips)
+            KI_use, KII_use = KI_lin.copy(), KII_lin.copy()
+            closed_states: list[int] = []
+            solved: list[int] = []
+            sol_levels: dict[int, typing.Any] = {}
+            gap_min = np.zeros(nstate)
+            if model.cracks:
+                gaps = np.array([np.concatenate([b.lip_samples(ci, 2)["gap"] for ci in range(len(model.cracks))])
+                                 for b in basis])                     # (G, points)
+                gstate = self.F @ gaps
+                scale = np.maximum(np.abs(gstate).max(axis=1), 1e-300)
+                gap_min = gstate.min(axis=1) / scale
+                if self.contact_closure and not bilateral:
+                    closed_states = [int(s) for s in np.flatnonzero(gap_min < -1e-6)]
+            if closed_states:
+                solved, lam_cl = self._contact_levels(closed_states, gaps, gap_min)
+                sols = solver.solve([self.factors(self.F[s]) for s in solved], contact=True,
+                                    names=[f"closed state {s}" for s in solved])
+                for s, sol in zip(solved, sols):
+                    sol_levels[s] = sol
+                cs = [sol.stress_intensity_factors(None) for sol in sols]
+                KI_c = np.array([[r["K_I"] for r in x] for x in cs])
+                KII_c = np.array([[r["K_II"] for r in x] for x in cs])
+                self._fill_closed(closed_states, solved, KI_c, KII_c, KI_lin, KII_lin, KI_use, KII_use, lam_cl)
+            self.level_solves += solver.solves
+            self.load_levels.append(solver.solves)
+            n_solves = solver.solves
+            # The solution at the reference (largest) state, for the ParaView series and the warnings.
+            ref_state = int(np.argmax(KI_use.max(axis=1))) if KI_use.size else 0
+            if ref_state in sol_levels:
+                sol_ref = sol_levels[ref_state]
+            else:
+                u = sum(f * b.u for f, b in zip(self.F[ref_state], basis))
+                sol_ref = Solution(model, u, dict(basis[0].timings), factors=self.factors(self.F[ref_state]))
+            lengths = [part_length(model, ci) for ci in range(len(cracks))]
+            ntips = {}
+            for ci, _ in tips:
+                ntips[ci] = ntips.get(ci, 0) + 1
+            records, rates, levels = [], {}, {}
+            from ..model.boundary import boundary_segments
+            bnd = boundary_segments(scene.mesh) if self.yield_stress is not None else None
+            for j, (ci, tip) in enumerate(tips):
+                r0 = sifs[0][j]
+                g = model.geometries[ci]
+                end = 1 if int(np.asarray(g.tip_orientation)[tip]) == 1 else 0
+                key = (ci, end)
+                mag = np.hypot(np.maximum(KI_use[:, j], 0.0), KII_use[:, j])
+                ref = int(np.argmax(mag))
+                theta = kink_angle(KI_use[ref, j], KII_use[ref, j], self.growth.criterion)
+                K_lin = np.array([equivalent_k(a, b, theta, clamp=False) for a, b in zip(KI_lin[:, j], KII_lin[:, j])])
+                K_con = np.array([equivalent_k(a, b, theta, clamp=False) for a, b in zip(KI_use[:, j], KII_use[:, j])])
+                low = int(np.argmin(K_con if self.contact_closure else K_lin))
+                a_tip = lengths[ci] / max(ntips[ci], 1)
+                K_cyc = K_con if self.contact_closure else K_lin
+                cycles = self.cycles if self.single else self._count_tip(K_cyc)
+                sigma_net = s_basis = None
+                if bnd is not None:
+                    s_basis = np.array([_ligament_stress(b, np.array([r0["x"], r0["y"]]), r0, theta, bnd)
+                                        for b in basis])
+                    sigma_net = self.F @ s_basis
+                lv = TipLevels(key, a_tip, K_lin, K_con, KI_use[:, j], KII_use[:, j], theta, ref, low,
+                               {g: (float(KI[i, j]), float(KII[i, j])) for i, g in enumerate(self.groups)},
+                               sigma_net, cycles, float(r0["x"]), float(r0["y"]), s_basis,
+                               np.isin(np.arange(nstate), closed_states))
+                levels[key] = lv
+                spread_I = float(np.abs(self.F[ref]) @ spreadI[:, j])
+                spread_II = float(np.abs(self.F[ref]) @ spreadII[:, j])
+                keq = equivalent_k(KI_use[ref, j], KII_use[ref, j], theta)
+                closed = closed_fraction(sol_levels[ref], ci) if ref in sol_levels else 0.0
+                rec = TipRecord(k, ci, end, r0["x"], r0["y"], lengths[ci], float(KI_use[ref, j]),
+                                float(KII_use[ref, j]), spread_I, spread_II, math.degrees(theta), keq, closed, N=N,
+                                sif_radius=float(r0["radius"]))
+                rec.K_I_min, rec.K_II_min = float(KI_use[low, j]), float(KII_use[low, j])
+                rec.a = a_tip
+                self._cycle_summary(rec, lv)
+                if key in stopped:
+                    rec.status = "stopped"
+                growth_per_pass = pass_growth(K_cyc, cycles.unique(), self.law, a_tip)
+                rec.da_per_pass = growth_per_pass
+                rec.residual_strength = self._residual_strength(lv)
+                if rec.status == "growing":
+                    if not growth_per_pass > 0.0:
+                        rec.status = "below threshold"
+                    else:
+                        rates[key] = growth_per_pass
+                records.append(rec)
+            self.closure_notes.append(f"step {k}: {len(closed_states)} of {nstate} load states close the lips"
+                                      + (f"; contact solved at {len(solved)}" if closed_states else ""))
+        finally:
+            solver.close()
+        self._levels_now = levels
+        self.step_seconds.append(time.perf_counter() - t0)
+        m = Measured(records, rates, lengths, sol_ref, model, solves=n_solves, levels=levels)
+        if k == 0:
+            self._check_initial_failure(levels)
+        return m
+
+    def _count_tip(self, K_states: np.ndarray) -> CycleTable:
+        """Several load groups: count the pass on this tip's K."""
+        sp = self.spectrum
+        values = np.asarray(K_states)[self.point_state]
+        if np.ptp(values) <= 0.0:
+            return CycleTable(np.zeros(0, int), np.zeros(0, int), np.zeros(0))
+        ct = count_cycles(values, sp.counting, repeated=sp.residue == "close")
+        out = CycleTable(self.point_state[ct.lo], self.point_state[ct.hi], ct.count, self.point_block[ct.hi])
+        if self.cycles_per_pass is None:
+            self.cycles_per_pass = out.cycles
+        return out
+
+    def _contact_levels(self, closed: list[int], gaps: np.ndarray, gap_min: np.ndarray
+                        ) -> tuple[list[int], float | None]:
+        """The closed states to solve with contact, and (one group) the closure level."""
+        n = self.spectrum.contact_levels
+        if not self.single:
+            order = sorted(closed, key=lambda s: gap_min[s])  # the deepest interpenetration first
+            return sorted(order[:n]), None
+        col = self.groups.index(self.spec_groups[0]) if self.spec_groups[0] in self.groups else None
+        lam = self.states[:, 0]
+        g0 = self.steady @ gaps
+        g1 = gaps[col]
+        pos = g1 > 1e-12 * max(np.abs(g1).max(), 1e-300)
+        lam_cl = float(np.max(-g0[pos] / g1[pos])) if np.any(pos) else None
+        below = [s for s in closed if lam_cl is None or lam[s] < lam_cl]
+        above = [s for s in closed if s not in below]
+        chosen: list[int] = []
+        if below:
+            lo = min(below, key=lambda s: lam[s])
+            chosen.append(lo)
+            top = lam_cl if lam_cl is not None else max(lam[s] for s in below)
+            for target in np.linspace(lam[lo], top, n + 1)[1:-1]:
+                s = min(below, key=lambda s: abs(lam[s] - target))
+                if s not in chosen:
+                    chosen.append(s)
+        chosen += [s for s in sorted(above, key=lambda s: lam[s])][:max(n - len(chosen), 0)]
+        if not chosen:
+            chosen = [closed[0]]
+        return sorted(chosen), lam_cl
+
+    def _fill_closed(self, closed, solved, KI_c, KII_c, KI_lin, KII_lin, KI_use, KII_use, lam_cl) -> None:
+        """K at every closed state from the solved ones (module doc)."""
+        for i, s in enumerate(solved):
+            KI_use[s], KII_use[s] = KI_c[i], KII_c[i]
+        rest = [s for s in closed if s not in solved]
+        if not rest:
+            return
+        if self.single:
+            lam = self.states[:, 0]
+            xs = [lam[s] for s in solved]
+            ysI, ysII = [KI_c[i] for i in range(len(solved))], [KII_c[i] for i in range(len(solved))]
+            if lam_cl is not None:
+                # The closure level: the lips just touch, K is the linear value there.
+                col = [i for i, g in enumerate(self.groups) if (self.residual_of if g == RESIDUAL_GROUP else g)
+                       in self.spec_groups]
+                row = self.steady.copy()
+                row[col] = lam_cl
+                xs.append(lam_cl)
+                ysI.append(row @ self._basis_KI)
+                ysII.append(row @ self._basis_KII)
+            order = np.argsort(xs)
+            xs = np.asarray(xs)[order]
+            YI, YII = np.asarray(ysI)[order], np.asarray(ysII)[order]
+            for s in rest:
+                for j in range(KI_use.shape[1]):
+                    KI_use[s, j] = np.interp(lam[s], xs, YI[:, j])
+                    KII_use[s, j] = np.interp(lam[s], xs, YII[:, j])
+        else:
+            P = self.F[solved]
+            for s in rest:
+                i = int(np.argmin(np.linalg.norm(P - self.F[s], axis=1)))
+                KI_use[s], KII_use[s] = KI_c[i], KII_c[i]
+
+    def _cycle_summary(self, rec, lv: TipLevels) -> None:
+        """The largest counted cycle of the tip: K_max, K_min, Delta K_eff, R."""
+        K = lv.K_con if self.contact_closure else lv.K_lin
+        ct = lv.cycles
+        if len(ct.lo) == 0:
+            rec.K_max = rec.K_min = rec.delta_K_eff = rec.R = None
+            return
+        km, kn = K[ct.hi], K[ct.lo]
+        i = int(np.argmax(km - kn))
+        dk, R = self.law.effective(km[i:i + 1], kn[i:i + 1])
+        rec.K_max, rec.K_min = float(km[i]), float(kn[i])
+        rec.delta_K_eff, rec.R = float(dk[0]), float(R[0])
+        rec.delta_K = rec.delta_K_eff
+
+    def _residual_strength(self, lv: TipLevels) -> float | None:
+        """The multiple of the varying loads at the reference state the
+        cracked part carries (module doc): min of the K and net-section ones."""
+        out = []
+        ref = lv.ref
+        K_steady = float(np.sum(self.steady * self._keq_basis(lv)))
+        K_var = float(lv.K_lin[ref]) - K_steady
+        if self.K_crit is not None and K_var > 0:
+            out.append((self.K_crit - K_steady) / K_var)
+        if lv.sigma_net is not None and self.yield_stress is not None:
+            s_steady = float(self.steady @ self._sigma_basis(lv))
+            s_var = float(lv.sigma_net[ref]) - s_steady
+            if s_var > 0:
+                out.append((self.yield_stress - s_steady) / s_var)
+        return min(out) if out else None
+
+    def _keq_basis(self, lv: TipLevels) -> np.ndarray:
+        return np.array([equivalent_k(lv.basis[g][0], lv.basis[g][1], lv.theta, clamp=False) for g in self.groups])
+
+    def _sigma_basis(self, lv: TipLevels) -> np.ndarray:
+        return lv.sigma_basis
+
+    @property
+    def _basis_KI(self) -> np.ndarray:
+        return self._cur_basis[0]
+
+    @property
+    def _basis_KII(self) -> np.ndarray:
+        return self._cur_basis[1]
+
+    def _check_initial_failure(self, levels: dict) -> None:
+        for key, lv in levels.items():
+            reason = self._fails(lv.K_con if self.contact_closure else lv.K_lin, lv.sigma_net)
+            if reason:
+                self._fail(reason, 0.0, lv, key)
+                return
+
+    def _fails(self, K: np.ndarray, sigma: np.ndarray | None) -> str | None:
+        if self.K_crit is not None and float(np.max(K)) >= self.K_crit:
+            return "K_max >= K_c"
+        if sigma is not None and self.yield_stress is not None and float(np.max(sigma)) >= self.yield_stress:
+            return "net-section yield"
+        return None
+
+    def _fail(self, criterion: str, t: float, lv: TipLevels, key, a: float | None = None,
+              at: tuple[float, float] | None = None) -> None:
+        what = (f"K_max reached K_c = {self.K_crit:.6g}" if criterion == "K_max >= K_c" else
+                f"the mean stress on the ligament reached the yield stress {self.yield_stress:.6g}")
+        cyc = self.N
+        self.failure_criterion = criterion
+        x, y = at if at is not None else (lv.x, lv.y)
+        self.failure = (f"final failure: {what} at the tip near ({x:.6g}, {y:.6g}) of crack {key[0]}, a = "
+                        f"{a if a is not None else lv.a:.6g}, after {cyc:.6g} cycles = {self.passes:.6g} passes = "
+                        f"{self.passes * self.blocks_per_pass:.6g} {self.spectrum.block_name}s (criterion: {criterion})")
+        self.failure_point = {"criterion": criterion, "a": a if a is not None else lv.a, "cycles": cyc,
+                              "passes": self.passes, "blocks": self.passes * self.blocks_per_pass, "crack": key[0],
+                              "end": key[1], "x": x, "y": y}
+
+    # -- count -------------------------------------------------------------------------------------------
+    def count(self, m, k: int) -> float:
+        """Integrate the increment from the last geometry to this one (module
+        doc); set the records' N, passes, blocks; return the cycles so far."""
+        now = m.levels
+        if k > 0 and self.prev is not None and self.increments and self.failure is None:
+            self._integrate(self.prev, now)
+        dN = self.N - (self.steps[-1]["cycles"] if self.steps else 0.0)
+        for rec in m.records:
+            rec.N, rec.dN = self.N, dN
+            rec.passes = self.passes
+            rec.blocks = self.passes * self.blocks_per_pass
+        self.steps.append({"step": k, "cycles": self.N, "passes": self.passes,
+                           "blocks": self.passes * self.blocks_per_pass,
+                           "tips": [{"crack": r.crack, "end": r.end, "a": now[(r.crack, r.end)].a if (r.crack, r.end)
+                                     in now else None, "K_max": r.K_max, "K_min": r.K_min,
+                                     "delta_K_eff": r.delta_K_eff, "R": r.R, "da_per_pass": r.da_per_pass,
+                                     "residual_strength": r.residual_strength} for r in m.records]})
+        self.prev = now
+        return self.N
+
+    def advanced(self, m, increments: dict[tuple[int, int], float]) -> None:
+        """The increments the tips were just given."""
+        self.increments = dict(increments)
+
+    def _interp(self, a: TipLevels, b: TipLevels, t: float, which: str) -> tuple[np.ndarray, float]:
+        A, B = getattr(a, which), getattr(b, which)
+        aa = a.a + t * (b.a - a.a)
+        return math.sqrt(aa) * ((1.0 - t) * A / math.sqrt(a.a) + t * B / math.sqrt(b.a)), aa
+
+    def _integrate(self, prev: dict, now: dict) -> None:
+        which = "K_con" if self.contact_closure else "K_lin"
+        keys = [key for key in self.increments if key in prev and key in now]
+        if not keys:
+            return
+        fast = max(keys, key=lambda key: self.increments[key])
+        p, q = prev[fast], now[fast]
+        ds = self.increments[fast]
+        cyc_u = p.cycles.unique()
+
+        def growth_at(t: float) -> float:
+            K, aa = self._interp(p, q, t, which)
+            return pass_growth(K, cyc_u, self.law, aa)
+
+        def excess(t: float) -> tuple[str | None, float, typing.Any]:
+            worst = (None, -math.inf, None)
+            for key in keys:
+                K, _ = self._interp(prev[key], now[key], t, which)
+                if self.K_crit is not None:
+                    v = float(np.max(K)) / self.K_crit - 1.0
+                    if v > worst[1]:
+                        worst = ("K_max >= K_c", v, key)
+                if self.yield_stress is not None and prev[key].sigma_net is not None:
+                    s = (1 - t) * prev[key].sigma_net + t * now[key].sigma_net
+                    v = float(np.max(s)) / self.yield_stress - 1.0
+                    if v > worst[1]:
+                        worst = ("net-section yield", v, key)
+            return worst
+        t_end = 1.0
+        crit, v1, fkey = excess(1.0)
+        if crit is not None and v1 >= 0.0:
+            lo, hi = 0.0, 1.0
+            for _ in range(50):
+                mid = 0.5 * (lo + hi)
+                if excess(mid)[1] >= 0.0:
+                    hi = mid
+                else:
+                    lo = mid
+            t_end = hi
+        if self.retardation is None:
+            n = 16
+            ts = np.linspace(0.0, t_end, n + 1)
+            g = np.array([growth_at(t) for t in ts])
+            if np.any(g <= 0.0):
+                passes = math.inf
+            else:
+                w = np.ones(n + 1)
+                w[1:-1:2], w[2:-1:2] = 4.0, 2.0
+                passes = float(ds * (ts[1] - ts[0]) / 3.0 * np.sum(w / g))
+        else:
+            passes = self._retarded_passes(prev, now, keys, fast, ds, t_end, which)
+        if not math.isfinite(passes):
+            # The growth per pass vanishes inside the increment (K falls below the threshold): arrest.
+            self.failure_criterion = "arrest"
+            self.failure = (f"growth arrested: the growth per pass of the fastest tip (crack {fast[0]} end "
+                            f"{fast[1]}) falls to 0 within the increment from a = {p.a:.6g} to {q.a:.6g} (below the "
+                            f"threshold), after {self.N:.6g} cycles = {self.passes:.6g} passes")
+            self.failure_point = {"criterion": "arrest", "a": p.a, "cycles": self.N, "passes": self.passes,
+                                  "blocks": self.passes * self.blocks_per_pass, "crack": fast[0], "end": fast[1],
+                                  "x": p.x, "y": p.y}
+            return
+        self.passes += passes
+        self.N = self.passes * (self.cycles_per_pass or 0.0)
+        if crit is not None and v1 >= 0.0:
+            aa = p.a + t_end * (q.a - p.a)
+            lv, lp = now[fkey], prev[fkey]
+            self._fail(crit, t_end, lv, fkey, a=lp.a + t_end * (lv.a - lp.a),
+                       at=(lp.x + t_end * (lv.x - lp.x), lp.y + t_end * (lv.y - lp.y)))
+            if fkey == fast:
+                self.failure_point["a"] = aa
+
+    def _retarded_passes(self, prev, now, keys, fast, ds, t_end, which) -> float:
+        out = None
+        for key in keys:
+            p, q = prev[key], now[key]
+            span = q.a - p.a
+            if span <= 0.0:
+                continue
+
+            def K_of_a(a: float, p=p, q=q, span=span) -> np.ndarray:
+                t = min(max((a - p.a) / span, 0.0), 1.0)
+                return self._interp(p, q, t, which)[0]
+            run = grow_with_retardation(K_of_a, lambda i, c=p.cycles: c, self.law, self.retardation, p.a,
+                                        p.a + t_end * span, self.ret_state.get(key), max_passes=10 ** 7)
+            self.ret_state[key] = run.state
+            if key == fast:
+                out = run.cycles / max(self.cycles_per_pass or 1.0, 1e-300) if run.reached else math.inf
+        return out if out is not None else 0.0
+
+    def passes_exceeded(self) -> bool:
+        return self.passes > self.max_passes
+
+    # -- the summary -------------------------------------------------------------------------------------
+    def summary(self, records) -> dict[str, typing.Any]:
+        fm = self.material
+        curve = []
+        for st, recs in zip(self.steps, records):
+            for r in recs:
+                if r.residual_strength is not None:
+                    curve.append({"step": st["step"], "crack": r.crack, "end": r.end, "a": r.a,
+                                  "multiple": r.residual_strength,
+                                  "stress": self._strength_stress(r.residual_strength)})
+        return {
+            "law": self.law.law.describe(),
+            "closure": self.law.closure,
+            "closure_note": ("elastic crack-lip contact at every load state (no plastic wake)"
+                             if self.law.closure == "contact" else
+                             "Newman's opening function f(R) on the linear K (contact not used for K)"
+                             if self.law.closure == "newman" else "none: linear K, full range"),
+            "retardation": fm.retardation,
+            "material_source": fm.source,
+            "K_crit": self.K_crit,
+            "yield_stress": self.yield_stress,
+            "counting": self.spectrum.counting,
+            "residue": self.spectrum.residue,
+            "load_states": int(len(self.states)),
+            "cycles_per_pass": self.cycles_per_pass,
+            "blocks_per_pass": self.blocks_per_pass,
+            "block_name": self.spectrum.block_name,
+            "cycles": self.N,
+            "passes": self.passes,
+            "blocks": self.passes * self.blocks_per_pass,
+            "failure": self.failure_point,
+            "level_solves": self.level_solves,
+            "load_levels_per_step": self.load_levels,
+            "measure_seconds": self.step_seconds,
+            "closure_per_step": self.closure_notes,
+            "residual_strength": curve,
+            "steps": self.steps,
+        }
+
+    def _strength_stress(self, multiple: float) -> float | None:
+        """The residual strength as a stress: the multiple times the spectrum's
+        maximum factor times the reference stress (one varying group only)."""
+        if not self.single:
+            return None
+        g = self.spec_groups[0]
+        S = self.reference_stress.get(g, 1.0)
+        return float(multiple * np.max(self.states[:, 0]) * S)
+
+
+def basis_levels(scene: Scene, cracks) -> dict[tuple[int, int], dict[str, typing.Any]]:
+    """K_I, K_II of every load group at factor 1 (linear: lips free) at every
+    tip of the given cracks, an initial stress as its own case
+    (RESIDUAL_GROUP): {(crack, end): {"x", "y", "a", "basis": {group: (K_I,
+    K_II)}}}. One solve per group on one assembly (the beta table of a run
+    without a spectrum)."""
+    from .load_path import LevelSolver
+    from .tips import part_length
+    if scene.initial_stress is not None:
+        scene = dataclasses.replace(scene, initial_stress_group=RESIDUAL_GROUP)
+    groups = sorted(load_groups(scene) - {RESIDUAL_GROUP}) + ([RESIDUAL_GROUP] if scene.initial_stress is not None
+                                                              else [])
+    groups = groups or ["default"]
+    scene = dataclasses.replace(scene, cracks=[dataclasses.replace(c) for c in cracks],
+                                options=dataclasses.replace(scene.options, friction=0.0))
+    solver = LevelSolver(scene)
+    try:
+        unit = [{g: (1.0 if g == h else 0.0) for g in groups} for h in groups]
+        sols = solver.solve(unit, contact=scene.options.contact == "bilateral")
+        model = sols[0].model
+        sifs = [x.stress_intensity_factors(None) for x in sols]
+        lengths = [part_length(model, ci) for ci in range(len(cracks))]
+        ntips: dict[int, int] = {}
+        for r in sifs[0]:
+            ntips[r["crack"]] = ntips.get(r["crack"], 0) + 1
+        out = {}
+        for j, r in enumerate(sifs[0]):
+            ci = r["crack"]
+            end = 1 if int(np.asarray(model.geometries[ci].tip_orientation)[r["tip"]]) == 1 else 0
+            out[(ci, end)] = {"x": float(r["x"]), "y": float(r["y"]), "a": lengths[ci] / ntips[ci],
+                              "basis": {g: (float(sifs[i][j]["K_I"]), float(sifs[i][j]["K_II"]))
+                                        for i, g in enumerate(groups)}}
+        return out
+    finally:
+        solver.close()
+
+
+def beta_rows(step: int, tips: dict[tuple[int, int], dict[str, typing.Any]], reference_stress: dict[str, float],
+              levels: dict[tuple[int, int], TipLevels] | None = None, run: "LifeRun | None" = None
+              ) -> list[dict[str, typing.Any]]:
+    """One row per tip of the beta table: beta_<group> = K_I / (S sqrt(pi a))
+    of each load group at factor 1 (S its reference stress, default 1),
+    K_residual (the initial stress's K_I alone, linear), and with contact in a
+    one-group spectrum beta at every load level solved with contact,
+    beta_<group>_at_<factor> = K_I(level) / (factor S sqrt(pi a))."""
+    rows = []
+    for key, t in sorted(tips.items()):
+        a = t["a"]
+        row: dict[str, typing.Any] = {"step": step, "crack": key[0], "end": key[1], "x": t["x"], "y": t["y"], "a": a}
+        for g, (kI, kII) in t["basis"].items():
+            if g == RESIDUAL_GROUP:
+                row["K_residual"] = kI
+                continue
+            S = reference_stress.get(g, 1.0)
+            row[f"beta_{g}"] = kI / (S * math.sqrt(math.pi * a)) if a > 0 else None
+            row[f"K_I_{g}"] = kI
+            row[f"K_II_{g}"] = kII
+        if levels is not None and run is not None and run.single and key in levels:
+            lv = levels[key]
+            g = run.spec_groups[0]
+            S = reference_stress.get(g, 1.0)
+            for s in np.flatnonzero(lv.closed):
+                lam = float(run.states[s, 0])
+                if lam != 0.0:
+                    row[f"beta_{g}_at_{lam:g}"] = float(lv.K_I[s]) / (lam * S * math.sqrt(math.pi * a))
+        rows.append(row)
+    return rows
+
+
+def _ligament_stress(sol, tip: np.ndarray, r0: dict, theta: float, bnd) -> float:
+    """The mean stress normal to the growth direction over the ligament ahead
+    of a tip (tip to the boundary along the kink direction), by Gauss-Legendre
+    in u with s = L u^2 (the 1/sqrt(s) of the tip field becomes smooth)."""
+    from .tips import segment_hit
+    from ..scene.material import strain, stress
+    from ..scene.stress_field import evaluate_stress
+    d0 = np.asarray(r0.get("direction", (1.0, 0.0)), dtype=float)
+    d0 = d0 / max(np.linalg.norm(d0), 1e-300)
+    c, s = math.cos(theta), math.sin(theta)
+    d = np.array([c * d0[0] - s * d0[1], s * d0[0] + c * d0[1]])
+    a, b = bnd
+    span = float(np.ptp(np.vstack([a, b]), axis=0).max()) * 4.0
+    t = segment_hit(tip, tip + span * d, a, b)
+    if t is None:
+        return 0.0
+    L = t * span
+    u, w = np.polynomial.legendre.leggauss(24)
+    u, w = 0.5 * (u + 1.0), 0.5 * w
+    pts = tip + (L * u ** 2)[:, None] * d
+    grad = sol.displacement_gradient(pts)
+    sig = stress(strain(grad), sol.model.scene.material)
+    scene = sol.model.scene
+    if scene.initial_stress is not None and sol.factor(scene.initial_stress_group) != 0.0:
+        sig = sig + sol.factor(scene.initial_stress_group) * evaluate_stress(scene.initial_stress, pts, "initial stress")
+    n = np.array([-d[1], d[0]])
+    snn = np.einsum("i,nij,j->n", n, sig, n)
+    return float(np.sum(w * snn * 2.0 * u))
+
+
+__all__ = ["RESIDUAL_GROUP", "create_law", "constant_amplitude_spectrum", "TipLevels", "LifeRun"]
