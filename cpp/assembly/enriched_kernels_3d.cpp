@@ -42,12 +42,6 @@ void compute_enriched_cell_quadrature_3d(std::span<const double> x, std::span<co
                                          const QuadratureOptions3D& options, CellQuadrature3D& out)
 {
   out.clear();
-  const int ic = crossing_crack_3d(cracks, c);
-  if (ic >= 0)
-  {
-    compute_cell_quadrature_3d(x, cells, *cracks[ic], c, options, out);
-    return;
-  }
   // The crack whose front functions the cell carries, if any.
   int front_crack = -1;
   if (const std::int32_t ie = layout.cell_index.empty() ? -1 : layout.cell_index[c]; ie >= 0)
@@ -55,6 +49,21 @@ void compute_enriched_cell_quadrature_3d(std::span<const double> x, std::span<co
       if (const std::int32_t k = layout.cell_enr[j];
           layout.kind[k] != static_cast<std::int8_t>(EnrichmentKind::heaviside))
         front_crack = layout.crack[k];
+  const int ic = crossing_crack_3d(cracks, c);
+  if (ic >= 0)
+  {
+    // Front functions are smooth but not polynomial away from the front:
+    // the sub-tetrahedra away from it get the far degree too.
+    if (front_crack >= 0 and options.degree < FRONT_FAR_DEGREE)
+    {
+      QuadratureOptions3D o = options;
+      o.degree = FRONT_FAR_DEGREE;
+      compute_cell_quadrature_3d(x, cells, *cracks[ic], c, o, out);
+    }
+    else
+      compute_cell_quadrature_3d(x, cells, *cracks[ic], c, options, out);
+    return;
+  }
   const P1Tetrahedron T(x, cells, c);
   const double scale6 = std::abs(T.detJ);
   auto append = [&](const quadrature::Rule& rule)

@@ -19,7 +19,9 @@ namespace cracklip
 constexpr int FRONT_FAR_DEGREE = 8;
 
 /// Quadrature of an enriched cell: the crack geometry's per-cell rule where
-/// a crack crosses the cell (sub-tetrahedra, collapsed at the front); in a
+/// a crack crosses the cell (sub-tetrahedra, collapsed at the front; Gauss
+/// of degree at least FRONT_FAR_DEGREE on the sub-tetrahedra away from the
+/// front when the cell carries front functions); in a
 /// cell that carries front functions without being crossed, the near-front
 /// rule (signed cones from the cell's P1 front line) when that line passes
 /// within options.near_factor diameters of its nearest vertex, else Gauss of

@@ -1,4 +1,5 @@
 #include "enrichment/enrichment_layout_3d.h"
+#include "geometry/p1_tetrahedron.h"
 
 #include <algorithm>
 #include <cmath>
@@ -28,6 +29,14 @@ const double* EnrichmentLayout3D::frame(std::int32_t n, std::int32_t ic) const
 
 namespace
 {
+/// A cut cell opens a node's Heaviside function when the side opposite the
+/// node holds at least this fraction of the cell's volume.
+constexpr double OPENING_VOLUME = 1e-9;
+
+/// A node keeps its Heaviside function when the ramp leaves at least this
+/// share of it on the opposite side of its cut cells (keep_heaviside).
+constexpr double RAMPED_SHARE = 1e-3;
+
 /// The frame (rows e1, e2, e3) of a node's nearest front point.
 std::array<double, 9> node_frame(const FrontLocator& front, std::span<const double> x, std::int32_t i)
 {
@@ -106,18 +115,103 @@ EnrichmentLayout3D create_enrichment_layout_3d(std::span<const double> x, std::s
           if (p.distance <= options.radius)
             core_tip[i] = first_piece + p.piece;
         }
-      // The nodes of the cells holding the front.
+      // The nodes of the cells holding the front, and of the extension
+      // cells that share a node with the crack's cells: a Heaviside
+      // function may not live on an extension cell unless the ramp is 1
+      // there (every node core), and a node of such a cell that also
+      // belongs to a cut cell needs its Heaviside function there (the 1 - R
+      // share of the jump). In 2D the tip cell's closure plays this part;
+      // in 3D the extension cells along the front are many, and a coarse
+      // mesh (element size near the radius) put core nodes of cut blending
+      // cells on extension cells with non-core nodes: the jump lost up to
+      // 35 % there.
+      std::vector<std::int8_t> on_crack_cell(num_nodes, 0);
       for (std::size_t c = 0; c < num_cells; ++c)
-        if (g.cell_class[c] == 3)
+        if (g.cell_class[c] == 1 or g.cell_class[c] == 2)
           for (int a = 0; a < 4; ++a)
-          {
-            const std::int32_t v = cells[4 * c + a];
-            if (core_tip[v] < 0)
-              core_tip[v] = first_piece + locator->project({x[3 * v], x[3 * v + 1], x[3 * v + 2]}).piece;
-          }
+            on_crack_cell[cells[4 * c + a]] = 1;
+      for (std::size_t c = 0; c < num_cells; ++c)
+      {
+        const std::int32_t* v = &cells[4 * c];
+        bool core_cell = g.cell_class[c] == 3;
+        if (g.cell_class[c] == 4)
+          for (int a = 0; a < 4; ++a)
+            core_cell = core_cell or on_crack_cell[v[a]];
+        if (core_cell)
+          for (int a = 0; a < 4; ++a)
+            if (core_tip[v[a]] < 0)
+              core_tip[v[a]] = first_piece + locator->project({x[3 * v[a]], x[3 * v[a] + 1], x[3 * v[a] + 2]}).piece;
+      }
     }
     auto plane_distance = [&](std::int32_t i, std::int32_t) { return std::abs(g.phi[i]); };
-    const SelectionInput input{cells, 4, g.cell_class, g.phi, core_tip, tips, plane_distance};
+    // A cut cell opens a node's Heaviside function if it has volume on the
+    // side opposite the node (slivers are dropped by the cutting).
+    auto opens = [&](std::int32_t c, std::int32_t node)
+    {
+      const std::int32_t i = g.crack_cell_index[c];
+      if (i < 0)
+        return false;
+      const CrackCell3D& cc = g.crack_cells[i];
+      const int other = g.phi[node] >= 0.0 ? -1 : 1;
+      double vol = 0.0;
+      for (int k = 0; k < cc.num_sub(); ++k)
+        if (cc.side[k] == other)
+        {
+          const double* R = &cc.sub[12 * k];
+          vol += std::abs(signed_volume({R[0], R[1], R[2]}, {R[3], R[4], R[5]}, {R[6], R[7], R[8]},
+                                        {R[9], R[10], R[11]}));
+        }
+      return vol > OPENING_VOLUME / 6.0;
+    };
+    // With corrected blending a node's Heaviside function N_i (H - H_i)
+    // (1 - R) opens where its cut cells lie on the other side of the crack
+    // and the ramp R is not 1. Where the core nodes around it make (1 - R)
+    // nearly vanish there, the ramped front functions carry the jump and the
+    // Heaviside function is left with next to nothing: int N_i^2 (1 - R)^2
+    // over the opposite side (sub-tetrahedron midpoints) below RAMPED_SHARE
+    // of int N_i^2 there drops it (kept, it made the system nearly singular:
+    // pivots 1e-16 of the largest on a penny crack). Without front
+    // functions R = 0 and nothing is dropped: the Heaviside functions keep
+    // their partition of unity (rigid pieces exact).
+    auto keep_heaviside = [&](std::int32_t node, std::span<const std::int8_t> is_core)
+    {
+      if (!options.corrected or options.front == TipEnrichment::none)
+        return true;
+      double ramped = 0.0, bare = 0.0;
+      const int other = g.phi[node] >= 0.0 ? -1 : 1;
+      for (const CrackCell3D& cc : g.crack_cells)
+      {
+        if (cc.cls != CellClass3D::cut)
+          continue;
+        const std::int32_t* v = &cells[4 * cc.cell];
+        int a = -1;
+        for (int k = 0; k < 4; ++k)
+          if (v[k] == node)
+            a = k;
+        if (a < 0)
+          continue;
+        for (int k = 0; k < cc.num_sub(); ++k)
+        {
+          if (cc.side[k] != other)
+            continue;
+          const double* R = &cc.sub[12 * k];
+          const double vol = std::abs(signed_volume({R[0], R[1], R[2]}, {R[3], R[4], R[5]}, {R[6], R[7], R[8]},
+                                                    {R[9], R[10], R[11]}));
+          const Point3 mid = {0.25 * (R[0] + R[3] + R[6] + R[9]), 0.25 * (R[1] + R[4] + R[7] + R[10]),
+                              0.25 * (R[2] + R[5] + R[8] + R[11])};
+          const auto N = P1Tetrahedron::shape(mid);
+          double ramp = 0.0;
+          for (int b = 0; b < 4; ++b)
+            ramp += is_core[v[b]] ? N[b] : 0.0;
+          bare += vol * N[a] * N[a];
+          ramped += vol * N[a] * N[a] * (1.0 - ramp) * (1.0 - ramp);
+        }
+      }
+      return ramped > RAMPED_SHARE * bare;
+    };
+    SelectionInput input{cells, 4, g.cell_class, g.phi, core_tip, tips, plane_distance};
+    input.opens = opens;
+    input.keep_heaviside = keep_heaviside;
     for (const PseudoNode& pn : select_enrichment(input, options.front, options.corrected, layout.num_enriched(),
                                                   node_pseudo))
     {

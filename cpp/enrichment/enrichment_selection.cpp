@@ -64,7 +64,8 @@ std::vector<PseudoNode> select_enrichment(const SelectionInput& in, TipEnrichmen
     // lies on it (a node off it is on the cell's own side, where it is 0).
     for (int a = 0; a < npc; ++a)
     {
-      if (cls == cut or (cls == along and in.phi[v[a]] == 0.0))
+      if ((cls == cut and (!in.opens or in.opens(static_cast<std::int32_t>(c), v[a])))
+          or (cls == along and in.phi[v[a]] == 0.0))
         split[v[a]] = 1;
       else if ((cls == front or cls == extension) and !ramp_one)
         forbidden[v[a]] = 1;
@@ -80,7 +81,9 @@ std::vector<PseudoNode> select_enrichment(const SelectionInput& in, TipEnrichmen
     if (all_core(v))
       continue;
     for (int a = 0; a < npc; ++a)
-      if (is_core[v[a]] and (cls == cut or (cls == along and in.phi[v[a]] == 0.0)))
+      if (is_core[v[a]]
+          and ((cls == cut and (!in.opens or in.opens(static_cast<std::int32_t>(c), v[a])))
+               or (cls == along and in.phi[v[a]] == 0.0)))
         blending_core[v[a]] = 1;
   }
   // Scalar branch functions under the corrected scheme: drop F_1, F_2 at
@@ -134,7 +137,7 @@ std::vector<PseudoNode> select_enrichment(const SelectionInput& in, TipEnrichmen
     // also on core nodes of blending cells, since the ramped tip functions
     // carry only the fraction R of the jump there.
     const bool heaviside_ok = !is_core[i] or (corrected and blending_core[i]);
-    if (heaviside_ok and split[i] and !forbidden[i])
+    if (heaviside_ok and split[i] and !forbidden[i] and (!in.keep_heaviside or in.keep_heaviside(i, is_core)))
       add(i, EnrichmentKind::heaviside, 0, -1, false);
   }
   return out;

@@ -75,6 +75,20 @@ struct SelectionInput
   std::span<const std::int32_t> core_tip;
   std::span<const std::int32_t> tips;
   std::function<double(std::int32_t, std::int32_t)> plane_distance;
+  /// Optional: opens(cell, node) says whether a cut cell has volume on the
+  /// side of the crack opposite the node (where the node's Heaviside
+  /// function is not zero). Without it every cut cell does (2D: snapping
+  /// leaves no sub-cell thinner than snap_tol h; in 3D a sliver below the
+  /// cutting's tolerance is dropped, and a Heaviside function living only
+  /// there would have no stiffness).
+  std::function<bool(std::int32_t, std::int32_t)> opens = nullptr;
+  /// Optional: keep_heaviside(node, is_core) says whether a node that
+  /// qualifies for a Heaviside function N_i (H - H_i) (1 - R) keeps it,
+  /// given which nodes are core: the function may be so small (the crack
+  /// passing far from the node in its cells, (1 - R) small where it opens)
+  /// that it carries next to no jump and only ruins the conditioning.
+  /// Without it every qualifying node keeps it.
+  std::function<bool(std::int32_t, std::span<const std::int8_t>)> keep_heaviside = nullptr;
 };
 
 /// The pseudo-nodes of one crack, in the order they are numbered: for each

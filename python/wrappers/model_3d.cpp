@@ -4,6 +4,7 @@
 
 #include "assembly/dolfinx_glue.h"
 #include "assembly/enriched_kernels_3d.h"
+#include "assembly/loads_3d.h"
 #include "assembly/sparsity.h"
 #include "enrichment/enrichment_layout_3d.h"
 
@@ -168,6 +169,62 @@ void declare_model_3d(py::module& m)
       },
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("cell_list"),
       py::arg("options"), "The stiffness's quadrature points of the given cells: cell, ref (n, 3), weight, side.");
+
+  m.def(
+      "compute_facet_basis_3d",
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout3D& layout,
+         const Cracks3D& cracks, const carray<std::int32_t>& facet_cells, const carray<std::int32_t>& facet_local,
+         int degree)
+      {
+        check_mesh(x, cells);
+        FacetBasis3D fb = compute_facet_basis_3d(as_span(x), as_span(cells), layout, cracks, as_span(facet_cells),
+                                                 as_span(facet_local), degree);
+        const auto np = static_cast<py::ssize_t>(fb.weights.size());
+        const auto ne = static_cast<py::ssize_t>(fb.entry_point.size());
+        py::dict d;
+        d["points"] = as_pyarray(std::move(fb.points), {np, 3});
+        d["normals"] = as_pyarray(std::move(fb.normals), {np, 3});
+        d["weights"] = as_pyarray(std::move(fb.weights));
+        d["entry_point"] = as_pyarray(std::move(fb.entry_point));
+        d["entry_dof"] = as_pyarray(std::move(fb.entry_dof));
+        d["entry_value"] = as_pyarray(std::move(fb.entry_value), {ne, 3});
+        return d;
+      },
+      py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("facet_cells"),
+      py::arg("facet_local"), py::arg("degree"),
+      "Quadrature points of boundary facets (points, normals, weights) and the basis values there (entries).");
+
+  m.def(
+      "assemble_lip_load_3d",
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout3D& layout,
+         const Cracks3D& cracks, std::int32_t crack, const carray<std::int32_t>& point_cells,
+         const carray<double>& ref, const carray<double>& weights, const carray<double>& traction)
+      {
+        check_mesh(x, cells);
+        std::vector<double> b(3 * static_cast<std::size_t>(layout.num_nodes_total()), 0.0);
+        assemble_lip_load_3d(as_span(x), as_span(cells), layout, cracks, crack, as_span(point_cells), as_span(ref),
+                             as_span(weights), as_span(traction), b);
+        return as_pyarray(std::move(b));
+      },
+      py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("crack"), py::arg("point_cells"),
+      py::arg("ref"), py::arg("weights"), py::arg("traction"),
+      "Load vector of lip tractions (n, 3) on the + lip (their opposite on the - lip).");
+
+  m.def(
+      "assemble_cell_load_3d",
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout3D& layout,
+         const Cracks3D& cracks, const carray<std::int32_t>& point_cells, const carray<double>& ref,
+         const carray<std::int8_t>& sides, const carray<double>& weights, const carray<double>& force)
+      {
+        check_mesh(x, cells);
+        std::vector<double> b(3 * static_cast<std::size_t>(layout.num_nodes_total()), 0.0);
+        assemble_cell_load_3d(as_span(x), as_span(cells), layout, cracks, as_span(point_cells), as_span(ref),
+                              as_span(sides), as_span(weights), as_span(force), b);
+        return as_pyarray(std::move(b));
+      },
+      py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("point_cells"), py::arg("ref"),
+      py::arg("sides"), py::arg("weights"), py::arg("force"),
+      "Load vector of a body force (n, 3) at the enriched cells' quadrature points (enriched dofs only).");
 }
 
 } // namespace cracklip_wrappers

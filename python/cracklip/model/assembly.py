@@ -21,6 +21,7 @@ import ufl
 
 from .. import _cracklip
 from .loads import assemble_loads
+from .loads_3d import assemble_loads_3d
 from .model import XfemModel
 
 
@@ -132,7 +133,7 @@ def assemble_system_groups(model: XfemModel) -> tuple[PETSc.Mat, dict[str, np.nd
     timings["assemble_enriched"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
-    loads = assemble_loads(model)
+    loads = assemble_loads(model) if model.gdim == 2 else assemble_loads_3d(model)
     groups = set(loads) | {g for g, v in model.bc_group_values.items() if np.any(v)}
     out: dict[str, np.ndarray] = {}
     g, Ag = A.createVecRight(), A.createVecRight()

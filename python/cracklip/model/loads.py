@@ -193,13 +193,15 @@ def assemble_initial_stress(model, field) -> np.ndarray:
 
 
 def lip_pressure(crack, x: np.ndarray) -> np.ndarray:
-    """The crack's lip pressure (n,) at points (n, 2) (> 0 pushes the lips apart)."""
+    """The crack's lip pressure (n,) at points (n, d) (> 0 pushes the lips apart)."""
     p = crack.pressure
     if callable(p):
-        v = np.asarray(p(np.asarray(x, dtype=float).reshape(-1, 2)), dtype=float).reshape(-1)
+        pts = np.asarray(x, dtype=float)
+        d = pts.shape[1] if pts.ndim == 2 else 2
+        v = np.asarray(p(pts.reshape(-1, d)), dtype=float).reshape(-1)
         if v.shape != (len(x),) or not np.all(np.isfinite(v)):
             raise InputError(f"{crack.name}: the lip pressure function must return ({len(x)},) finite "
-                             f"values for points ({len(x)}, 2), got shape {v.shape}")
+                             f"values for points ({len(x)}, {d}), got shape {v.shape}")
         return v
     return np.full(len(x), float(p))
 
