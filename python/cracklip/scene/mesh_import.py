@@ -36,10 +36,12 @@ def _serial_partitioner(comm, nparts, tdim, cells, *args):
     return dolfinx.cpp.graph.AdjacencyList_int32(np.zeros(cells.num_nodes, dtype=np.int32))
 
 
-def model_to_mesh(model, comm) -> tuple[typing.Any, typing.Any, dict[str, int]]:
+def model_to_mesh(model, comm, surfaces: typing.Sequence[int] | None = None
+                  ) -> tuple[typing.Any, typing.Any, dict[str, int]]:
     """(mesh, facet_tags, names) of the current gmsh model: the 3-node
-    triangles of its 2D elements, facet tags from its physical curves
-    (value = the physical tag, names from the physical names)."""
+    triangles of its 2D elements (of the given surfaces only, if given),
+    facet tags from its physical curves (value = the physical tag, names
+    from the physical names)."""
     import dolfinx.cpp.mesh
     import dolfinx.mesh
     from dolfinx.io import gmshio
@@ -48,7 +50,14 @@ def model_to_mesh(model, comm) -> tuple[typing.Any, typing.Any, dict[str, int]]:
     order = np.argsort(tags, kind="stable")
     sorted_tags = tags[order]
     x = np.ascontiguousarray(coords[order, :2])
-    types, _, elem_nodes = model.mesh.getElements(2)
+    if surfaces is None:
+        types, _, elem_nodes = model.mesh.getElements(2)
+    else:
+        types, elem_nodes = [], []
+        for s in surfaces:
+            t, _, n = model.mesh.getElements(2, s)
+            types += list(t)
+            elem_nodes += list(n)
     if len(types) == 0:
         raise MeshError("the gmsh model has no 2D elements")
     if any(t != 2 for t in types):
