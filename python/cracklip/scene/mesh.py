@@ -422,11 +422,20 @@ def read_msh(path: str | pathlib.Path) -> MeshData:
         _restart_gmsh()
         raise MeshError(f"{path}: gmsh cannot read this file ({e}); cracklip reads gmsh .msh files "
                         "(format 2 or 4) with a 2D triangle mesh") from None
+    groups = gmsh.model.getPhysicalGroups()
+    types = gmsh.model.mesh.getElementTypes(2) if gmsh.model.getDimension() >= 2 else []
+    if (gmsh.model.getDimension() <= 2 and len(types) == 0 and any(d == 1 for d, _ in groups)
+            and not any(d >= 2 for d, _ in groups)):
+        gmsh.model.remove()
+        raise MeshError(f"{path}: the file holds the line elements of its Physical Curves but no triangle: it has "
+                        "no Physical Surface, and once any physical group is defined gmsh saves only the elements "
+                        "of physical groups. Add Physical Surface(\"part\") = {...}; (the part's surfaces) to the "
+                        ".geo and mesh again (or set Mesh.SaveAll = 1), or give cracklip the .geo itself "
+                        "(mesh.kind = \"geometry\")")
     if gmsh.model.getDimension() != 2:
         dim = gmsh.model.getDimension()
         gmsh.model.remove()
         raise MeshError(f"{path}: cracklip needs a 2D mesh, this one has dimension {dim}")
-    types = gmsh.model.mesh.getElementTypes(2)
     if any(t != 2 for t in types) or len(types) == 0:
         names = [gmsh.model.mesh.getElementProperties(t)[0] for t in types]
         gmsh.model.remove()
@@ -438,6 +447,13 @@ def read_msh(path: str | pathlib.Path) -> MeshData:
     if unused.size:
         coord = gmsh.model.mesh.getNode(int(unused[0]))[0][:2].tolist()
         gmsh.model.remove()
+        if not groups:
+            raise MeshError(
+                f"{path}: the file has no physical groups, so gmsh saved every entity of the geometry, construction "
+                f"points too ({unused.size} node(s) in no triangle, e.g. node {int(unused[0])} at {coord}: a circle's "
+                "centre?), and no boundary has a name for the scene's conditions and loads. In the .geo add "
+                "Physical Surface(\"part\") = {...}; and a Physical Curve(\"name\") = {...}; for every boundary "
+                "you load or support, and mesh again; or give cracklip the .geo itself (mesh.kind = \"geometry\")")
         raise MeshError(f"{path}: {unused.size} node(s) belong to no triangle (e.g. node {int(unused[0])} at "
                         f"{coord}); every node must be a vertex of a triangle: remove unused nodes")
     return _to_dolfinx(gmsh, None)
