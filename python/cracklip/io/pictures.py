@@ -287,11 +287,12 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
             ax.set_title(f"displacement x{mag:g}", fontsize=9)
         ax.set_aspect("equal")
         _label_axes(ax, units)
-    fig.colorbar(coll, ax=panels, label=unit_label(units, "displacement", "|u|") if units is not None else
-                 "|u| (length units)")
+    bar = fig.colorbar(coll, ax=panels, label=unit_label(units, "displacement", "|u|") if units is not None else
+                       "|u| (length units)")
     head = ("" if window is not None else f", displacement x{mag:g}") if moving else ": no displacement (no load)"
     fig.suptitle(f"{title}\ndeformed mesh{head}", fontsize=10)
-    save_png(fig, out / "deformed.png", {"part": panels[0], **({"zoom": panels[1]} if window is not None else {})})
+    save_png(fig, out / "deformed.png", {"part": panels[0], "colorbar": bar.ax,
+                                         **({"zoom": panels[1]} if window is not None else {})})
     names.append("deformed.png")
 
     contact = bool(solution.contact)
@@ -385,14 +386,15 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
         ax.set_aspect("equal")
         _label_axes(ax, units)
     unit_text = (f"[{units.name('stress')}]" if units is not None else "(the input's stress units")
-    fig.colorbar(coll, ax=panels, extend="max" if component == "von_mises" else "both",
-                 label=f"{name} {unit_text}" + ("; " if units is None else " (")
-                       + f"scale clipped at the {STRESS_PERCENTILE:g}th percentile)")
+    bar = fig.colorbar(coll, ax=panels, extend="max" if component == "von_mises" else "both",
+                       label=f"{name} {unit_text}" + ("; " if units is None else " (")
+                             + f"scale clipped at the {STRESS_PERCENTILE:g}th percentile)")
     if window is None:
         panels[0].set_title(f"{title}\n{name}", fontsize=10)
     else:
         fig.suptitle(f"{title}\n{name}", fontsize=10)
-    save_png(fig, out / "stress.png", {"part": panels[0], **({"zoom": panels[1]} if window is not None else {})})
+    save_png(fig, out / "stress.png", {"part": panels[0], "colorbar": bar.ax,
+                                       **({"zoom": panels[1]} if window is not None else {})})
     names.append("stress.png")
     return names
 

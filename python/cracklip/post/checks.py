@@ -9,10 +9,10 @@ collects them with the model's and the SIFs' warnings.
   the warning reaches ``grow`` through the maximum load's solution.
 - ``no_load``: every load and prescribed displacement is zero (the solution
   and every K are 0).
-- ``point_supports``: the loads push against each other, as a
-  self-equilibrated set does (the pins of a C(T), both ends of a pulled
-  plate), yet point supports carry more than SUPPORT_FRACTION of them: the
-  loads do not balance and the supports act as loading points.
+- ``point_supports``: two point forces or two tractions push against each
+  other, as a self-equilibrated set does (the pins of a C(T), both ends of
+  a pulled plate), yet point supports carry more than SUPPORT_FRACTION of
+  the load: the loads do not balance and the supports act as loading points.
 - ``discretisation`` and ``accuracy``: from an error estimate
   (cracklip.analysis.accuracy), a K whose estimated error exceeds
   ERROR_WARNING of the K scale, or an accuracy target not reached.
@@ -31,6 +31,12 @@ OVERLAP_FRACTION = 1e-3
 #: Point supports carrying more than this fraction of the applied load
 #: (the sum of |nodal loads|) when the loads oppose each other are warned about.
 SUPPORT_FRACTION = 0.01
+
+
+#: Loads of one kind count as pushing against each other when each side
+#: exceeds this fraction of the applied load (a pin at 1/100 of the other
+#: is 1 % of their sum).
+OPPOSING_FRACTION = 1e-3
 
 
 #: A K whose estimated discretisation error exceeds this fraction of the K scale is warned about.
@@ -86,7 +92,12 @@ def no_load(solution) -> list[tuple[str, str]]:
 
 
 def point_supports(solution, reactions: dict | None = None) -> list[tuple[str, str]]:
-    """Point supports carrying opposing loads' imbalance (module doc)."""
+    """Point supports carrying the imbalance of loads that push against each
+    other: two point forces, or two tractions, opposed along x or y (as the
+    pins of a C(T) or both ends of a pulled plate, meant to balance), while
+    the point supports carry more than SUPPORT_FRACTION of the applied load.
+    A load that the supports are meant to carry (three-point bending, a
+    traction against a point force) is not judged."""
     if reactions is None:
         from .reactions import compute_reactions
         reactions = compute_reactions(solution)
@@ -97,24 +108,25 @@ def point_supports(solution, reactions: dict | None = None) -> list[tuple[str, s
     noise = 1e-9 * reactions["load_magnitude"]
     if gross <= noise:
         return []
-    pos = np.asarray(reactions["load_components"]["positive"])
-    neg = -np.asarray(reactions["load_components"]["negative"])
-    opposing = [k for k in range(2) if min(pos[k], neg[k]) > SUPPORT_FRACTION * gross]
     points = [r for r in reactions["conditions"] if r["kind"] == "point"]
-    if not opposing or not points:
-        return []
     carried = float(sum(np.linalg.norm(r["force"]) for r in points))
-    if carried <= max(SUPPORT_FRACTION * gross, noise):
+    if not points or carried <= max(SUPPORT_FRACTION * gross, noise):
         return []
-    k = opposing[0]
-    c = "xy"[k]
-    detail = ", ".join(f"{r['condition']} ({r['force'][0]:.4g}, {r['force'][1]:.4g})" for r in points
-                       if np.linalg.norm(r["force"]) > 0.0)
-    return [("point_supports", (
-        f"the loads push against each other (in {c}: +{pos[k]:.4g} and -{neg[k]:.4g}) as a self-equilibrated set "
-        f"does, yet the point supports carry {carried:.4g} ({100 * carried / gross:.2g} % of the applied load "
-        f"{gross:.4g}): {detail}. The loads do not balance and the supports act as loading points (one pin loaded "
-        "more than the other?); check the load values, or support the part where it really is held"))]
+    for kind in ("point force", "traction"):
+        items = [np.asarray(i["resultant"]) for i in reactions["load_items"] if i["kind"] == kind]
+        for k in range(2):
+            pos = sum(f[k] for f in items if f[k] > OPPOSING_FRACTION * gross)
+            neg = -sum(f[k] for f in items if f[k] < -OPPOSING_FRACTION * gross)
+            if pos > 0.0 and neg > 0.0:
+                detail = ", ".join(f"{r['condition']} ({r['force'][0]:.4g}, {r['force'][1]:.4g})" for r in points
+                                   if np.linalg.norm(r["force"]) > 0.0)
+                return [("point_supports", (
+                    f"the {kind}s push against each other (in {'xy'[k]}: +{pos:.4g} and -{neg:.4g}) as a set meant "
+                    f"to balance does (the pins of a C(T), both ends of a pulled plate), yet the point supports "
+                    f"carry {carried:.4g} ({100 * carried / gross:.2g} % of the applied load {gross:.4g}): {detail}. "
+                    "The loads do not balance and the supports act as loading points (one pin loaded more than "
+                    "the other?); check the load values, or support the part where it really is held"))]
+    return []
 
 
 def estimate(solution) -> list[tuple[str, str]]:

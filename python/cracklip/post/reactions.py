@@ -34,6 +34,31 @@ def _load_vector(solution) -> np.ndarray:
     return f
 
 
+def load_items(solution) -> list[dict[str, typing.Any]]:
+    """The resultant (F_x, F_y) of every point force and every traction of
+    the scene at this state's factors, with its kind ("point force",
+    "traction") and where it acts (a traction's resultant: its value at the
+    midpoints of its tag's facets times their lengths)."""
+    import dolfinx.cpp.mesh
+    from ..model.loads import _traction_values
+    m = solution.model
+    sc = m.scene
+    out = []
+    for pf in sc.point_forces:
+        out.append({"kind": "point force", "where": f"point {list(pf.point)}",
+                    "resultant": solution.factor(pf.group) * np.asarray(pf.value, dtype=float)})
+    msh = sc.mesh.mesh
+    x = msh.geometry.x[:, :2]
+    for tr in sc.tractions:
+        facets = sc.mesh.facets(tr.where)
+        g = dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, 1, facets, False)
+        a, b = x[g[:, 0]], x[g[:, 1]]
+        t = _traction_values(m, tr, 0.5 * (a + b))
+        out.append({"kind": "traction", "where": f"tag {tr.where!r}",
+                    "resultant": solution.factor(tr.group) * (t * np.linalg.norm(b - a, axis=1)[:, None]).sum(axis=0)})
+    return out
+
+
 def _load_magnitude(solution) -> float:
     """Sum of |nodal load| of every kind of load on its own (tractions, point
     forces, body force, initial stress), before they add up: the scale of
@@ -115,6 +140,7 @@ def compute_reactions(solution) -> dict[str, typing.Any]:
     moment_applied = float(np.sum(m.x[:, 0] * f_std[:, 1] - m.x[:, 1] * f_std[:, 0]))
     return {"conditions": rows, "sum": total.tolist(), "applied_load": applied.tolist(),
             "applied_moment": moment_applied, "gross_load": gross, "load_magnitude": _load_magnitude(solution),
+            "load_items": [{**item, "resultant": item["resultant"].tolist()} for item in load_items(solution)],
             "balance": float(np.linalg.norm(total + applied) / gross) if gross > 0 else float(np.linalg.norm(total)),
             "load_components": {"positive": np.maximum(f_std, 0.0).sum(axis=0).tolist(),
                                 "negative": np.minimum(f_std, 0.0).sum(axis=0).tolist()}}

@@ -97,8 +97,9 @@ def _part_surfaces(gmsh, path: pathlib.Path) -> list[int]:
         dim = gmsh.model.getDimension()
         raise MeshError(f"{path}: the geometry has dimension {dim}; cracklip is 2D: give a planar part (surfaces "
                         "in z = 0), e.g. a section of the 3D part")
-    _, _, zlo, _, _, zhi = gmsh.model.getBoundingBox(-1, -1)
-    if abs(zhi - zlo) > 1e-9 * max(1.0, abs(zhi), abs(zlo)):
+    xlo, ylo, zlo, xhi, yhi, zhi = gmsh.model.getBoundingBox(-1, -1)
+    # (OpenCASCADE pads its boxes by its tolerance, 1e-7)
+    if abs(zhi - zlo) > max(1e-6 * max(xhi - xlo, yhi - ylo), 1e-6):
         raise MeshError(f"{path}: the geometry is not flat (z from {zlo:g} to {zhi:g}); cracklip needs a planar "
                         "part in the plane z = 0")
     surfaces = [s for _, s in gmsh.model.getEntities(2)]
@@ -125,12 +126,15 @@ def _embed(gmsh, path: pathlib.Path, surfaces: list[int], points, outlines, scal
     """Make every point a mesh node: a geometry point already there, or one
     embedded in the curve or the surface holding it."""
     tol = 1e-9 * scale
-    corners = {t: np.asarray(gmsh.model.getValue(0, t, []), dtype=float)[:2] for _, t in gmsh.model.getEntities(0)}
     curves = sorted({abs(c) for _, c in gmsh.model.getBoundary([(2, s) for s in surfaces], combined=False,
                                                                  oriented=False)})
+    # The part's corners: the ends of its boundary curves (not construction
+    # points such as a circle's centre).
+    ends = {abs(t) for c in curves for _, t in gmsh.model.getBoundary([(1, c)], combined=False, oriented=False)}
+    corners = [np.asarray(gmsh.model.getValue(0, t, []), dtype=float)[:2] for t in ends]
     for p in points:
         p = np.asarray(p, dtype=float)
-        if any(np.linalg.norm(q - p) <= tol for q in corners.values()):
+        if any(np.linalg.norm(q - p) <= tol for q in corners):
             continue
         on = None
         for c in curves:
@@ -151,12 +155,34 @@ def _embed(gmsh, path: pathlib.Path, surfaces: list[int], points, outlines, scal
                             f"the part (in a hole or beyond its boundary; the nearest boundary point is "
                             f"({near[k, 0]:.6g}, {near[k, 1]:.6g}), {np.linalg.norm(near[k] - p):.3g} away); put it "
                             "on or inside the part")
+        if path.suffix.lower() != ".geo":
+            # A STEP or BREP part (OpenCASCADE, no physical groups to keep):
+            # split it at the point, which also works on a closed curve (a
+            # full circle), where gmsh 4.8 does not honour an embedding.
+            occ = gmsh.model.occ
+            occ.fragment([(2, s) for s in surfaces], [(0, occ.addPoint(float(p[0]), float(p[1]), 0.0))])
+            occ.synchronize()
+            surfaces[:] = [s for _, s in gmsh.model.getEntities(2)]
+            continue
         tag = gmsh.model.geo.addPoint(float(p[0]), float(p[1]), 0.0)
         gmsh.model.geo.synchronize()
         if on is not None:
             gmsh.model.mesh.embed(0, [tag], 1, on)
         else:
             gmsh.model.mesh.embed(0, [tag], 2, holder)
+
+
+def _check_nodes(gmsh, path: pathlib.Path, points, scale: float) -> None:
+    """Every point a mesh node, or an error saying how to make it one."""
+    if not len(points):
+        return
+    x = np.asarray(gmsh.model.mesh.getNodes()[1], dtype=float).reshape(-1, 3)[:, :2]
+    for p in points:
+        p = np.asarray(p, dtype=float)
+        if np.linalg.norm(x - p, axis=1).min() > 1e-9 * scale:
+            raise MeshError(f"{path}: the point ({p[0]:.6g}, {p[1]:.6g}) of a point support or force did not become "
+                            "a mesh node (gmsh does not embed a point in a closed curve such as a full circle): in the "
+                            ".geo, draw that curve through a Point there (e.g. the circle as arcs meeting at it)")
 
 
 def create_from_geometry(path: str | pathlib.Path, h: float,
@@ -186,8 +212,9 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
         scale = max(hi_x - lo_x, hi_y - lo_y)
         if h > scale:
             raise MeshError(f"mesh size h = {h:g} is larger than the part ({scale:g} across)")
-        _boundary_tags(gmsh, surfaces)
         _embed(gmsh, path, surfaces, embed_points, outlines, scale)
+        _boundary_tags(gmsh, surfaces)
+        outlines = [surface_outline(gmsh, s) for s in surfaces]
         given = list(refine)
         if tip_h > 0.0:
             a = np.concatenate([o[0] for o in outlines])
@@ -204,6 +231,7 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
         gmsh.option.setNumber("Mesh.SubdivisionAlgorithm", 0)
         area = sum(_area(a, b) for a, b in outlines)
         _mesh_2d(gmsh, h, refine, levels, area=area)
+        _check_nodes(gmsh, path, embed_points, scale)
         from .mesh import _to_dolfinx
         md = _to_dolfinx(gmsh, h, surfaces)
     except MeshError:
