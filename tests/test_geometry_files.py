@@ -217,3 +217,31 @@ def test_check_names_a_crack_across_a_hole_and_a_refinement_in_it(tmp_path, caps
     (w,) = [w for w in json.loads(captured.out)["warnings"] if w["code"] == "refinement"]
     assert "lies in a hole of the part" in w["message"] and "does not reach the part" in w["message"]
     assert "could not be honoured" not in w["message"]
+
+
+def test_a_geo_syntax_error_is_named_and_does_not_break_the_rest(tmp_path):
+    """gmsh 4.8's .geo parser does not recover from a syntax error (every
+    later script parses to nothing, and its meshes came out empty): the error
+    names the file, a later .geo is refused with the cause, and the built-in
+    shapes and STEP/BREP parts still mesh. In a subprocess (the parser stays
+    broken for the rest of the process)."""
+    import subprocess
+    import sys
+    bad = tmp_path / "bad.geo"
+    bad.write_text("Point(1) = {0, 0, 0;\n")
+    code = f"""
+import cracklip as cl
+from cracklip.scene.geometry_file import create_from_geometry
+for path in ({str(bad)!r}, {str(CT_GEO)!r}):
+    try:
+        create_from_geometry(path, 5.0)
+    except cl.MeshError as e:
+        print(e)
+print(cl.create_square(0.2).mesh.topology.index_map(2).size_local)
+"""
+    env = {"PYTHONPATH": str(ROOT / "python"), "PATH": "/usr/bin:/bin"}
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300,
+                         check=True).stdout.splitlines()
+    assert "bad.geo: gmsh cannot read this geometry" in out[0] and "syntax error" in out[0]
+    assert "cannot read another script in this process after the syntax error in" in out[1] and "bad.geo" in out[1]
+    assert int(out[2]) > 100

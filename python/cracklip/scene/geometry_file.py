@@ -42,11 +42,17 @@ CURVE_SAMPLES = 64
 
 
 def _open(path: pathlib.Path):
+    from . import mesh as mesh_module
+    geo = path.suffix.lower() == ".geo"
+    if geo and mesh_module._PARSER_BROKEN_BY is not None:
+        raise MeshError(f"{path}: gmsh's .geo parser cannot read another script in this process after the syntax "
+                        f"error in {mesh_module._PARSER_BROKEN_BY} (gmsh 4.8 does not recover from one); fix that "
+                        "file and start again (a new python3 / cracklip command)")
     gmsh = _gmsh()
     try:
         gmsh.open(str(path))
     except Exception as e:  # gmsh raises a bare Exception for a bad file
-        _restart_gmsh()
+        _restart_gmsh(path if geo else None)
         raise MeshError(f"{path}: gmsh cannot read this geometry ({e}); cracklip meshes gmsh .geo scripts and "
                         "STEP / BREP files (through OpenCASCADE) that describe a planar part in z = 0") from None
     gmsh.option.setNumber("General.Terminal", 0)

@@ -98,12 +98,34 @@ def _gmsh():
     return gmsh
 
 
-def _restart_gmsh() -> None:
-    """A failed parse leaves gmsh unable to mesh the next model: restart it."""
-    global _GMSH_READY
+#: The file whose syntax error broke gmsh's .geo parser in this process, if
+#: one did: gmsh 4.8's parser does not recover from a syntax error (not even
+#: across finalize / initialize: every later .geo parses to nothing), so a
+#: later .geo is refused with the cause instead of meshing an empty model.
+_PARSER_BROKEN_BY: str | None = None
+
+
+def _restart_gmsh(path=None) -> None:
+    """A failed parse leaves gmsh unable to mesh the next model: restart it
+    (the .geo parser itself stays broken: _PARSER_BROKEN_BY)."""
+    global _GMSH_READY, _PARSER_BROKEN_BY
     import gmsh
     gmsh.finalize()
     _GMSH_READY = False
+    if path is not None:
+        _PARSER_BROKEN_BY = str(path)
+
+
+def _msh_header(path: pathlib.Path) -> bool:
+    """Whether the file starts as a gmsh .msh file does ($MeshFormat). gmsh
+    parses any other file as a .geo script, and a syntax error there breaks
+    its parser for the rest of the process."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(4096).lstrip()
+    except OSError:
+        return False
+    return head.startswith(b"$MeshFormat")
 
 
 def _to_dolfinx(gmsh, h: float | None, surfaces: typing.Sequence[int] | None = None) -> MeshData:
@@ -415,6 +437,9 @@ def read_msh(path: str | pathlib.Path) -> MeshData:
     path = pathlib.Path(path)
     if not path.is_file():
         raise MeshError(f"mesh file {path} does not exist")
+    if not _msh_header(path):
+        raise MeshError(f"{path}: gmsh cannot read this file (it does not start with $MeshFormat); cracklip reads "
+                        "gmsh .msh files (format 2 or 4) with a 2D triangle mesh")
     gmsh = _gmsh()
     try:
         gmsh.open(str(path))
