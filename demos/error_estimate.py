@@ -104,7 +104,7 @@ def _handbook_case(scene, name, source, refs, kII) -> list[dict]:
 def reproductions() -> list[dict]:
     rows = []
     # C(T), W/20, no tip refinement, the default enrichment radius: the 1296.87.
-    ct = load_scene_file(SCENES / "ct_specimen.toml", ["mesh.tip_h=0.0"]).scene
+    ct = load_scene_file(SCENES / "ct_specimen.toml", ["mesh.tip_h=0.0", "options.radius=0.0"]).scene
     ct_ref = load_scene_file(SCENES / "ct_specimen.toml", ["mesh.h=0.3125", "mesh.tip_h=0.025",
                                                            "options.radius=0.25"]).scene
     k_ct = cl.solve(ct_ref).stress_intensity_factors(0)[0]["K_I"]

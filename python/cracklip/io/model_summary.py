@@ -103,6 +103,7 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
         "enriched_pseudo_nodes": int(layout.num_enriched),
         "enriched_cells": int(np.asarray(layout.cells).size),
         "enrichment": {"tip": opts.enrichment, "radius": opts.radius, "blending": opts.blending},
+        "boundary_tags": {name: int(v) for name, v in sorted(model.scene.mesh.tags.items())},
         "cracks": cracks,
         "quadrature": _describe_quadrature(model, solution),
     }
@@ -196,7 +197,8 @@ def format_model(summary: dict[str, typing.Any]) -> list[str]:
              f"dofs: {d['total']} = {d['standard']} standard + {d['enriched']} enriched "
              f"({summary['enriched_nodes']} enriched nodes, {summary['enriched_pseudo_nodes']} "
              f"enriched pseudo-nodes on {summary['enriched_cells']} cells)",
-             f"enrichment: tip {e['tip']}, radius {e['radius']:g}, {e['blending']} blending"]
+             f"enrichment: tip {e['tip']}, radius {e['radius']:g}, {e['blending']} blending",
+             "boundary tags: " + (", ".join(f"{n!r}" for n in summary["boundary_tags"]) or "none")]
     for c in summary["cracks"]:
         cells = ", ".join(f"{v} {k}" for k, v in c["cells"].items())
         tips = "; ".join(f"({t[0]:.6g}, {t[1]:.6g})" for t in c["tips"]) or "none"
