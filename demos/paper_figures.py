@@ -10,7 +10,7 @@ section 5.2 crack from a hole (energy, pressure and K_I convergence,
 conditioning, both enrichments), the frictionless sliding crack, the core
 speed benchmark at 2e4 and 2e5 dofs, the condition-number study with and
 without the nodal rescaling, K against handbook and exact values (issue
-14), Coulomb friction against its exact solutions and its cost (issue 16),
+14) and K's error estimate against its true error (issue 26), Coulomb friction against its exact solutions and its cost (issue 16),
 crack growth (first kinks, straight growth, Paris law, closure, published
 paths, the cost of a step; issue 17), the fatigue life under load histories
 (rainflow, block life, NASGRO, Wheeler, a flight spectrum with contact, beta
@@ -35,6 +35,7 @@ import bench_core  # noqa: E402
 import bench_friction  # noqa: E402
 import bench_growth  # noqa: E402
 import conditioning  # noqa: E402
+import error_estimate  # noqa: E402
 import fatigue_checks  # noqa: E402
 import friction_crack  # noqa: E402
 import growth_benchmarks  # noqa: E402
@@ -134,6 +135,9 @@ def main(argv=None) -> int:
     if not args.quick:
         handbook.plot(hb["rows"], out / "handbook" / "handbook.png")
     summary["handbook"] = hb["rows"]
+    log("[9/15] the error estimate of K against its true error (issue 26)")
+    ee = error_estimate.main(["--out", str(out / "error_estimate"), *(["--quick"] if args.quick else [])])
+    summary["error_estimate"] = ee["rows"]
 
     log("[10/16] Coulomb friction: closed inclined crack, load-unload cycle, inf-sup")
     fr = friction_crack.main(["--out", str(out / "friction"), "--inf-sup",
@@ -258,6 +262,9 @@ def markdown(s: dict) -> str:
                   "Default settings (SIF domains of 6 tip elements, three domains per tip), tip_h = 0.01, "
                   "enrichment radius 0.1; W the part's width. `demos/handbook.py`.", "",
                   handbook.markdown(s["handbook"]).rstrip("\n"), "", "Figure: `handbook/handbook.png`."]
+    if s.get("error_estimate"):
+        lines += ["", "## The error estimate of K against its true error (issue 26, `demos/error_estimate.py`)", "",
+                  error_estimate.markdown(s["error_estimate"]).rstrip("\n")]
     if s.get("friction"):
         fr = s["friction"]
         lines += ["", "## Coulomb friction: closed inclined crack under compression (a = 0.5, exact field on the boundary)",

@@ -29,6 +29,9 @@ SMALL = {
     "three_point_bending": ["mesh.h=0.1", "mesh.tip_h=0.02"],
     "residual_stress": ["mesh.h=0.1", "mesh.tip_h=0.02"],
     "frictional_crack": ["mesh.h=0.1", "mesh.tip_h=0.025"],
+    "ct_specimen": ["mesh.h=5.0", "mesh.tip_h=0.5"],
+    "brazilian_disc": ["mesh.h=8.0", "mesh.tip_h=1.0"],
+    "hole_fatigue": ["mesh.h=40.0", "mesh.refine[0].h=0.5"],
     # growth scenes (grown by tests/test_growth.py)
     "fatigue_edge_crack": ["mesh.h=0.1", "mesh.refine[0].h=0.02"],
     "wing_crack": ["mesh.h=0.2", "mesh.refine[0].h=0.03"],
@@ -478,7 +481,7 @@ def test_pictures(tmp_path, monkeypatch):
     smaller than the part, with its own scale."""
     from cracklip.io import pictures
     figures = {}
-    monkeypatch.setattr(pictures, "save_png", lambda fig, path: figures.__setitem__(path.name, fig))
+    monkeypatch.setattr(pictures, "save_png", lambda fig, path, axes=None: figures.__setitem__(path.name, fig))
     run_scene("pressurised_crack", tmp_path)
     stress = figures["stress.png"]
     bar = stress.axes[-1]

@@ -59,7 +59,10 @@ def test_refinement_in_a_large_plate():
         assert k["element_size"] <= 1.2 * 0.025
         assert k["K_I"] == pytest.approx(exact_I, rel=0.01)
         assert abs(k["K_II"]) == pytest.approx(exact_II, rel=0.01)
-    assert not sol.warnings
+    # K is 0.4-0.5 % low here, and the elements grow to 0.6 within two crack
+    # lengths of the tips (fewer than 7.5 per crack length): the tip_region
+    # rule (issue 26) says so; nothing else is warned about.
+    assert {w.code for w in sol.warnings} == {"tip_region"}
 
 
 def test_default_radius_stays_clear_of_the_other_tip():

@@ -116,6 +116,7 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
     timings["total"] = time.perf_counter() - t_start
     for sol in out:
         sol.timings = {**model.timings, **timings}
+        sol.path = out  # every state sees the path (a warning about its minimum load reaches its maximum)
     out[-1].steps = out
     return out
 

@@ -35,7 +35,22 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     With a load path (Scene.load_path) or friction (path-dependent), the
     steps are solved in order (load_path.solve_path) and the last step's
     Solution is returned; its .steps holds every step's.
+
+    With Options.accuracy > 0 the mesh is refined around the tips level by
+    level until the estimated error of every K is below it
+    (cracklip.analysis.accuracy.solve_to_accuracy); the finest level's
+    Solution is returned, its .error_estimate holds the levels.
     """
+    if scene.options.accuracy > 0.0:
+        # Refinement levels around the tips until K's estimated error is below
+        # the target (cracklip.analysis.accuracy); each level solved as usual.
+        from .accuracy import solve_to_accuracy
+        once = dataclasses.replace(scene, options=dataclasses.replace(scene.options, accuracy=0.0))
+
+        def solve_level(sc: Scene) -> Solution:
+            sol = solve(dataclasses.replace(sc, options=once.options), condition_number)
+            return sol
+        return solve_to_accuracy(once, scene.options.accuracy, scene.options.accuracy_levels, solve_level)
     if scene.load_path is not None or scene.options.friction > 0.0:
         return solve_path(scene, condition_number)[-1]
     t_start = time.perf_counter()

@@ -83,6 +83,11 @@ def build_parser() -> argparse.ArgumentParser:
                      help="output folder (created if missing)")
     run.add_argument("--condition-number", action="store_true",
                      help="also estimate the 1-norm condition number (as outputs.condition_number = true)")
+    run.add_argument("--accuracy", type=float, metavar="TARGET",
+                     help="refine around the crack tips until the estimated error of every K is below TARGET "
+                          "times the K scale, e.g. 0.01 (as options.accuracy)")
+    run.add_argument("--no-estimate", action="store_true",
+                     help="skip the error estimate of K, one solve fewer (as outputs.error_estimate = false)")
     run.set_defaults(func=cmd_run)
 
     grow = sub.add_parser("grow", help="grow a scene's cracks (its [growth] table) and write the path",
@@ -96,6 +101,9 @@ def build_parser() -> argparse.ArgumentParser:
                       help="also write beta = K / (S sqrt(pi a)) of every load group along the grown path (and a "
                            "residual-stress K, and with contact beta per load level): beta.csv and beta_afgrow.txt "
                            "(S: growth.reference_stress, default 1)")
+    grow.add_argument("--accuracy", type=float, metavar="TARGET",
+                      help="at every step, refine around the crack tips until the estimated error of every K is "
+                           "below TARGET times the K scale (as options.accuracy; several solves per step)")
     grow.set_defaults(func=cmd_grow)
 
     check = sub.add_parser("check", help="validate a scene and print what will be modelled",
@@ -122,6 +130,10 @@ def _load(args):
     doc = read_document(args.scene)
     for o in args.overrides:
         apply_override(doc, o)
+    if getattr(args, "accuracy", None) is not None:
+        apply_override(doc, f"options.accuracy={args.accuracy!r}")
+    if getattr(args, "no_estimate", False):
+        apply_override(doc, "outputs.error_estimate=false")
     parse_settings(doc)
     return doc
 
@@ -155,6 +167,10 @@ def cmd_run(args) -> int:
     cond = bool(args.condition_number or sf.outputs["condition_number"])
     logger.info("solving (%s enrichment, contact %s)", sf.scene.options.enrichment, sf.scene.options.contact)
     sol = solve(sf.scene, condition_number=cond)
+    if sf.outputs["error_estimate"] and sf.scene.options.accuracy == 0.0:
+        from ..analysis.accuracy import estimate_error
+        logger.info("estimating the discretisation error of K (one more solve, element sizes halved around the tips)")
+        estimate_error(sf.scene, sol, solve)
     phases = ", ".join(f"{k} {v:.3f} s" for k, v in sol.timings.items())
     logger.info("solve phases: %s", phases)
     if sol.contact:
@@ -170,11 +186,8 @@ def cmd_run(args) -> int:
     if not args.quiet:
         print(f"{sf.title}: {results['solution']['dofs']} dofs, strain energy "
               f"{results['solution']['strain_energy']:.6g}")
-        for r in results["sifs"]:
-            mix = "n/a (K negligible)" if r["mode_mix_deg"] is None else f"{r['mode_mix_deg']:.1f} deg"
-            print(f"  {r['crack_name']} tip ({r['x']:.6g}, {r['y']:.6g}): K_I = {r['K_I']:.6g} "
-                  f"(+- {r['K_I_spread']:.2g}), K_II = {r['K_II']:.6g} (+- {r['K_II_spread']:.2g}), "
-                  f"mode mix {mix}")
+        for line in sif_summary(results["sifs"], results.get("error_estimate"), sf.scene.units):
+            print(line)
         for c in results["cracks"]:
             line = f"  {c['name']}: closed {c['closed_fraction'] * 100:.0f} % of {c['length_in_part']:.4g}"
             if results["contact"] and "pressure" in c:
@@ -182,6 +195,39 @@ def cmd_run(args) -> int:
             print(line)
         print(f"results in {out}: {', '.join(results['files'])}")
     return 0
+
+
+def sif_summary(rows, estimate, units) -> list[str]:
+    """The run's K per tip as printed: K with its unit, the estimated
+    discretisation error (what the "+-" is), the SIF domain spread named as
+    such (it is not an error bar)."""
+    unit = "" if units is None else f" {units.name('K')}"
+    out = []
+    if estimate:
+        lv = estimate["levels"]
+        if estimate["target"] is None:
+            out.append("  K +- its estimated discretisation error (from one more solve with the element sizes halved "
+                       "around the tips; the error is at most that if K converges at least like h)")
+        else:
+            out.append(f"  accuracy target {100 * estimate['target']:.3g} %: refinement levels {lv[0]}..{lv[-1]} "
+                       f"({estimate['dofs'][0]} -> {estimate['dofs'][-1]} dofs), "
+                       + ("reached" if estimate["reached"] else "NOT reached")
+                       + f", largest estimated error {100 * estimate['largest_relative_error']:.2g} %")
+    for r in rows:
+        mix = "n/a (K negligible)" if r["mode_mix_deg"] is None else f"{r['mode_mix_deg']:.1f} deg"
+        parts = []
+        for mode in ("K_I", "K_II"):
+            text = f"{mode} = {r[mode]:.6g}"
+            if r.get(f"{mode}_error") is not None:
+                text += f" +- {r[f'{mode}_error']:.2g}"
+            if r.get(f"{mode}_extrapolated") is not None:
+                text += f" (extrapolated {r[f'{mode}_extrapolated']:.6g})"
+            parts.append(text)
+        out.append(f"  {r['crack_name']} tip ({r['x']:.6g}, {r['y']:.6g}): {', '.join(parts)}{unit}, mode mix {mix}")
+        out.append(f"    SIF domain spread (K over 3 domains; not an error bar): K_I {r['K_I_spread']:.2g}, "
+                   f"K_II {r['K_II_spread']:.2g}" + ("" if r.get("K_I_error") is not None else
+                                                     "; no error estimate (outputs.error_estimate = false)"))
+    return out
 
 
 def cmd_grow(args) -> int:

@@ -18,8 +18,8 @@ from ..analysis.growth import GrowthResult, TipRecord
 from .files import atomic_path
 from .outputs import ensure_output_dir, json_default, versions, write_csv
 from .paraview import subcell_mesh, write_mesh
-from .pictures import new_figure, save_png
 from ..scene.units import label
+from .pictures import new_figure, save_png, window_around
 
 
 PATH_COLUMNS = ["step", "crack", "tip", "x", "y", "length", "K_I", "K_II", "K_I_spread", "K_II_spread", "kink_deg",
@@ -168,18 +168,36 @@ def write_growth_pngs(scene_file, result: GrowthResult, out: pathlib.Path, fatig
     scene = scene_file.scene
     a, b = boundary_segments(scene.mesh)
     names = []
-    fig = new_figure((7, 6))
-    ax = fig.add_subplot()
-    for p, q in zip(a, b):
-        ax.plot([p[0], q[0]], [p[1], q[1]], "k-", lw=0.8)
-    for c in scene.cracks:
-        ax.plot(c.points[:, 0], c.points[:, 1], "-", color="0.5", lw=2.0)
-    for i, c in enumerate(result.cracks):
-        ax.plot(c.points[:, 0], c.points[:, 1], ".-", ms=2, lw=1.0, color=f"C{i % 10}", label=c.name)
-    ax.set_aspect("equal")
-    ax.set_title(f"{scene_file.title}\ncrack paths ({len(result.records) - 1} steps; grey: initial)", fontsize=10)
-    ax.legend(fontsize=7)
-    save_png(fig, out / "path.png")
+    # A zoom on the paths when they are small in the part (a 12 mm crack at
+    # a hole of a 400 mm plate is a dot on the whole part).
+    window = window_around([c.points for c in scene.cracks] + [c.points for c in result.cracks],
+                           np.concatenate([a, b]))
+    fig = new_figure((13, 6) if window is not None else (7, 6))
+    panels = [fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)] if window is not None else [fig.add_subplot()]
+    for k, ax in enumerate(panels):
+        for p, q in zip(a, b):
+            ax.plot([p[0], q[0]], [p[1], q[1]], "k-", lw=0.8)
+        for c in scene.cracks:
+            ax.plot(c.points[:, 0], c.points[:, 1], "-", color="0.5", lw=2.0)
+        for i, c in enumerate(result.cracks):
+            ax.plot(c.points[:, 0], c.points[:, 1], ".-", ms=2, lw=1.0, color=f"C{i % 10}", label=c.name)
+        ax.set_aspect("equal")
+        ax.set_xlabel(label(scene.units, "length", "x"))
+        ax.set_ylabel(label(scene.units, "length", "y"))
+        if k == 1:
+            ax.set_xlim(window[0][0], window[1][0])
+            ax.set_ylim(window[0][1], window[1][1])
+            ax.set_title("around the cracks", fontsize=9)
+        elif window is not None:
+            from matplotlib.patches import Rectangle
+            ax.add_patch(Rectangle(tuple(window[0]), *(window[1] - window[0]), fill=False, ec="r", lw=0.8, ls="--"))
+    title = f"{scene_file.title}\ncrack paths ({len(result.records) - 1} steps; grey: initial)"
+    if window is None:
+        panels[0].set_title(title, fontsize=10)
+    else:
+        fig.suptitle(title, fontsize=10)
+    panels[-1].legend(fontsize=7)
+    save_png(fig, out / "path.png", {"part": panels[0], **({"zoom": panels[1]} if window is not None else {})})
     names.append("path.png")
 
     units = getattr(scene, "units", None)

@@ -11,6 +11,34 @@ from ..model.model import CELL_CLASSES, XfemModel
 from ..post.solution import Solution
 
 
+def _kind(tips: int, pieces: list[dict], model: XfemModel) -> str:
+    """What a crack is in the part: through, edge or interior by its tips,
+    or, when its polyline leaves the part between its ends (a crack drawn
+    across a hole), the pieces it makes."""
+    plain = {0: "through (no tip inside)", 1: "edge (one tip)", 2: "interior (two tips)"}[tips]
+    if len(pieces) <= 1:
+        return plain
+    from ..model.boundary import boundary_loops, nearest_boundary_point
+    from ..model.tip_regions import model_boundary
+    a, b = model_boundary(model)
+    labels, outer = boundary_loops(a, b)
+
+    def edge(x) -> str:
+        return "a hole's edge" if labels[nearest_boundary_point(x, a, b)[2]] != outer else "the boundary"
+    parts = []
+    for pc in pieces:
+        if pc["start_on_boundary"] and pc["end_on_boundary"]:
+            parts.append(f"a through piece from {edge(pc['start'])} to {edge(pc['end'])}")
+        elif pc["start_on_boundary"] or pc["end_on_boundary"]:
+            parts.append(f"an edge crack from {edge(pc['start'] if pc['start_on_boundary'] else pc['end'])}")
+        else:
+            parts.append("an interior crack")
+        parts[-1] += f" ({pc['length']:.6g} long)"
+    holes = sum(1 for p, q in zip(pieces[:-1], pieces[1:]) if labels[nearest_boundary_point(p["end"], a, b)[2]] != outer)
+    across = f"it crosses {'a hole' if holes == 1 else f'{holes} holes' if holes else 'the boundary'}"
+    return f"{len(pieces)} pieces in the part ({across}): " + "; ".join(parts)
+
+
 def _tip_cells(model: XfemModel) -> np.ndarray:
     cells = [np.asarray(g.tip_cells["cell"]) for g in model.geometries]
     return np.unique(np.concatenate(cells)) if cells else np.zeros(0, dtype=np.int32)
@@ -31,6 +59,10 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
     node = np.asarray(layout.node)
     core = np.asarray(layout.core)
     cracks = []
+    from ..model.boundary import polyline_pieces
+    from ..model.tip_regions import model_boundary
+    a_bnd, b_bnd = model_boundary(model)
+    pieces = [polyline_pieces(cm.crack.points, a_bnd, b_bnd) for cm in model.cracks]
     for ci, cm in enumerate(model.cracks):
         g = cm.geometry
         cls = np.bincount(np.asarray(g.cell_class), minlength=len(CELL_CLASSES))
@@ -45,7 +77,8 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
             "name": cm.crack.name,
             "polyline_points": int(len(pts)),
             "length": float(np.linalg.norm(np.diff(pts, axis=0), axis=1).sum()),
-            "kind": {0: "through (no tip inside)", 1: "edge (one tip)", 2: "interior (two tips)"}[sum(cm.tips)],
+            "length_in_part": float(sum(pc["length"] for pc in pieces[ci])),
+            "kind": _kind(sum(cm.tips), pieces[ci], model),
             "tips": np.asarray(g.tips).tolist(),
             "tip_element_size": [d.element_size for d in domains],
             "sif_radius": [d.radius for d in domains],
@@ -70,6 +103,7 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
         "enriched_pseudo_nodes": int(layout.num_enriched),
         "enriched_cells": int(np.asarray(layout.cells).size),
         "enrichment": {"tip": opts.enrichment, "radius": opts.radius, "blending": opts.blending},
+        "boundary_tags": {name: int(v) for name, v in sorted(model.scene.mesh.tags.items())},
         "cracks": cracks,
         "quadrature": _describe_quadrature(model, solution),
     }
@@ -163,11 +197,14 @@ def format_model(summary: dict[str, typing.Any]) -> list[str]:
              f"dofs: {d['total']} = {d['standard']} standard + {d['enriched']} enriched "
              f"({summary['enriched_nodes']} enriched nodes, {summary['enriched_pseudo_nodes']} "
              f"enriched pseudo-nodes on {summary['enriched_cells']} cells)",
-             f"enrichment: tip {e['tip']}, radius {e['radius']:g}, {e['blending']} blending"]
+             f"enrichment: tip {e['tip']}, radius {e['radius']:g}, {e['blending']} blending",
+             "boundary tags: " + (", ".join(f"{n!r}" for n in summary["boundary_tags"]) or "none")]
     for c in summary["cracks"]:
         cells = ", ".join(f"{v} {k}" for k, v in c["cells"].items())
         tips = "; ".join(f"({t[0]:.6g}, {t[1]:.6g})" for t in c["tips"]) or "none"
-        lines += [f"crack {c['name']!r}: {c['kind']}, length {c['length']:.6g}, tips {tips}",
+        length = (f"length {c['length']:.6g}" if abs(c["length"] - c["length_in_part"]) <= 1e-9 * c["length"] else
+                  f"length {c['length_in_part']:.6g} in the part ({c['length']:.6g} along its polyline)")
+        lines += [f"crack {c['name']!r}: {c['kind']}, {length}, tips {tips}",
                   f"  cells: {cells}",
                   f"  Heaviside: {c['heaviside_nodes']} nodes, {c['heaviside_dofs']} dofs",
                   f"  tip: {c['tip_nodes']} nodes ({c['tip_core_nodes']} core, {c['tip_blending_nodes']} "

@@ -176,10 +176,12 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
     step_sifs = [(k, st.stress_intensity_factors(None) if st is not solution else sifs)
                  for k, (st, _, _) in enumerate(per_step)]
     write_csv(out / "sif.csv", ["step", "crack", "tip", "x", "y", "direction_x", "direction_y", "K_I", "K_II",
+                                 "K_I_error", "K_II_error", "K_I_extrapolated", "K_II_extrapolated",
                                  "K_I_spread", "K_II_spread", "mode_mix_deg", "G", "radius", "element_size",
                                  "limited_by", "domain_clear"],
                [[k, r["crack"], r["tip"], r["x"], r["y"], r["direction"][0], r["direction"][1], r["K_I"],
-                 r["K_II"], r["K_I_spread"], r["K_II_spread"], r["mode_mix_deg"], r["G"], r["radius"],
+                 r["K_II"], r["K_I_error"], r["K_II_error"], r["K_I_extrapolated"], r["K_II_extrapolated"],
+                 r["K_I_spread"], r["K_II_spread"], r["mode_mix_deg"], r["G"], r["radius"],
                  r["element_size"], r["limited_by"], int(r["domain_clear"])] for k, rows in step_sifs for r in rows])
     files += ["crack.csv", "sif.csv"]
     timings["write_csv"] = time.perf_counter() - t0
@@ -203,6 +205,13 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
 
     contact = contact_summary(solution)
     solver = getattr(solution, "solver", None) or {}
+    t0 = time.perf_counter()
+    reactions = solution.reactions() if m.scene.dirichlet else None
+    timings["reactions"] = time.perf_counter() - t0
+    units = m.scene.units
+    estimate = None
+    if solution.error_estimate:
+        estimate = {k: v for k, v in solution.error_estimate.items() if k != "tips"}
     results = {
         "title": scene_file.title,
         "scene_file": str(scene_file.path) if scene_file.path is not None else None,
@@ -212,8 +221,11 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
         "solution": {"dofs": int(m.num_dofs), "strain_energy": energy, "max_displacement": u_scale,
                      "relative_residual": solver.get("relative_residual"),
                      "solver": solver.get("solver"), "solves": solver.get("solves", [])},
+        "units": None if units is None else {q: units.name(q) for q in ("length", "force", "stress", "K", "G")},
         "warnings": warnings,
         "sifs": sifs,
+        "error_estimate": estimate,
+        "reactions": reactions,
         "cracks": crack_stats,
         "contact": contact,
         "steps": [{"step": k, "name": st.step["name"], "factors": st.step["factors"],

@@ -8,6 +8,7 @@ import pathlib
 import numpy as np
 
 from ..post.solution import Solution
+from ..scene.units import label as unit_label
 from .files import atomic_path
 from .paraview import von_mises
 
@@ -32,15 +33,40 @@ PNG_DPI = 150
 PNG_PAD_INCHES = 0.1
 
 
-def save_png(fig, path: pathlib.Path) -> None:
+#: The PNG text key under which save_png records where its named axes are.
+PNG_AXES_KEY = "cracklip:axes"
+
+
+def _axes_record(ax, height: int, r0: int, c0: int) -> dict:
+    """Where an axes is in the cropped picture: its box [left, top, right,
+    bottom] in pixels (row 0 at the top), its data limits [x0, x1, y0, y1]
+    and its axis labels."""
+    box = ax.get_window_extent()
+    return {"box": [float(box.x0 - c0), float(height - box.y1 - r0), float(box.x1 - c0), float(height - box.y0 - r0)],
+            "limits": [*map(float, ax.get_xlim()), *map(float, ax.get_ylim())],
+            "xlabel": ax.get_xlabel(), "ylabel": ax.get_ylabel(), "title": ax.get_title()}
+
+
+def read_png_axes(path: str | pathlib.Path) -> dict:
+    """The axes save_png recorded in a PNG (name -> box, limits, labels)."""
+    import json
+    from PIL import Image
+    with Image.open(path) as img:
+        return json.loads(img.text.get(PNG_AXES_KEY, "{}"))
+
+
+def save_png(fig, path: pathlib.Path, axes: dict | None = None) -> None:
     """fig as a PNG cropped to its ink (the pixels not of the face colour)
     plus PNG_PAD_INCHES on every side, drawn once: savefig(bbox_inches=
     "tight") draws every figure twice and measures the artists' boxes
     (get_tightbbox alone took 0.05 s per figure at 2e5 dofs); the ink box
-    is the same content without the few pixels of slack in the artists'
     boxes. Ink on the canvas's border may continue outside the figure (a
     title longer than the figure is wide): such a figure goes to savefig
-    (three draws then), which enlarges the picture to hold it."""
+    (three draws then), which enlarges the picture to hold it.
+
+    axes: named axes whose place in the picture (box in pixels, data
+    limits, labels) goes into the PNG's text chunk PNG_AXES_KEY, so that a
+    test reads the pixels of a panel (read_png_axes); not on savefig's path."""
     fig.set_dpi(PNG_DPI)
     canvas = fig.canvas
     canvas.draw()
@@ -66,11 +92,16 @@ def save_png(fig, path: pathlib.Path) -> None:
     crop[...] = face
     rs, cs = slice(max(r0, 0), min(r1, height)), slice(max(c0, 0), min(c1, width))
     crop[rs.start - r0:rs.stop - r0, cs.start - c0:cs.stop - c0] = rgba[rs, cs]
-    from PIL import Image
+    from PIL import Image, PngImagePlugin
+    info = None
+    if axes:
+        import json
+        info = PngImagePlugin.PngInfo()
+        info.add_text(PNG_AXES_KEY, json.dumps({name: _axes_record(ax, height, r0, c0) for name, ax in axes.items()}))
     with atomic_path(path) as tmp:
         # compress_level 1: a third of the encoding time of the default 6, files ~10 % larger.
         with open(tmp, "wb") as fh:
-            Image.fromarray(crop).save(fh, format="png", compress_level=1)
+            Image.fromarray(crop).save(fh, format="png", compress_level=1, pnginfo=info)
 
 
 def magnification(solution: Solution, fields: dict, requested: float) -> float:
@@ -80,9 +111,15 @@ def magnification(solution: Solution, fields: dict, requested: float) -> float:
         return requested
     size = float(np.ptp(solution.model.x, axis=0).max())
     umax = float(np.linalg.norm(fields["displacement"], axis=1).max()) if len(fields["displacement"]) else 0.0
-    if umax <= 0.0:
+    return _scale_for(0.05 * size, umax)
+
+
+def _scale_for(length: float, umax: float) -> float:
+    """The displacement scale that makes umax `length` long (rounded), 1
+    for no displacement (no load: nothing to magnify)."""
+    if not (umax > 1e-300 * max(length, 1e-300)) or not math.isfinite(length / umax):
         return 1.0
-    return _round_scale(0.05 * size / umax)
+    return _round_scale(length / umax)
 
 
 def _round_scale(raw: float) -> float:
@@ -108,11 +145,18 @@ def crack_window(solution: Solution) -> tuple[np.ndarray, np.ndarray] | None:
     m = solution.model
     if not m.cracks:
         return None
-    lo_part, hi_part = m.x.min(axis=0), m.x.max(axis=0)
-    pts = np.concatenate([np.clip(cm.crack.points, lo_part, hi_part) for cm in m.cracks])
+    return window_around([cm.crack.points for cm in m.cracks], m.x)
+
+
+def window_around(polylines, x: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """(lower, upper) corners of a window around polylines (each (k, 2)) in
+    a part with nodes x, or None when they are not much smaller than the
+    part (ZOOM_FRACTION)."""
+    lo_part, hi_part = x.min(axis=0), x.max(axis=0)
+    pts = np.concatenate([np.clip(np.asarray(p, dtype=float), lo_part, hi_part) for p in polylines])
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     span = float(max(np.ptp(pts, axis=0).max(), 1e-300))
-    if span > ZOOM_FRACTION * float(np.ptp(m.x, axis=0).max()):
+    if span > ZOOM_FRACTION * float(np.ptp(x, axis=0).max()):
         return None
     centre, half = 0.5 * (lo + hi), 0.5 * (hi - lo) + 0.35 * span
     return np.maximum(centre - half, lo_part), np.minimum(centre + half, hi_part)
@@ -155,15 +199,54 @@ def _draw_field(ax, tris: np.ndarray, values: np.ndarray, cmap: str, clim: tuple
                      interpolation="nearest", aspect="equal")
 
 
+def _fit(ax, points: np.ndarray) -> None:
+    """Limits around the drawn points with matplotlib's default margins, on
+    both paths of _draw_field (imshow's limits are the image's edges, so an
+    autoscale leaves the part touching the frame, its corners cut off)."""
+    pts = np.asarray(points, dtype=float).reshape(-1, 2)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    pad = np.asarray(ax.margins()) * np.maximum(hi - lo, 1e-300)
+    ax.set_xlim(lo[0] - pad[0], hi[0] + pad[0])
+    ax.set_ylim(lo[1] - pad[1], hi[1] + pad[1])
+
+
+def _data_limits(values: np.ndarray) -> tuple[float, float]:
+    """Colour limits from the data (a constant field gets a small band around its value)."""
+    if not len(values):
+        return 0.0, 1.0
+    lo, hi = float(np.min(values)), float(np.max(values))
+    if hi > lo:
+        return lo, hi
+    pad = max(abs(hi) * 1e-6, 1e-300)
+    return lo - pad, hi + pad
+
+
+def _in_window(tris: np.ndarray, window, margin: float = 0.0) -> np.ndarray:
+    """Triangles (n, 3, 2) whose bounding box meets the window [lo, hi]
+    (grown by margin times its size): every triangle that shows in it, none cut
+    off at its edges by a centroid test."""
+    lo, hi = np.asarray(window[0], dtype=float), np.asarray(window[1], dtype=float)
+    grow = margin * (hi - lo)
+    return np.all((tris.max(axis=1) >= lo - grow) & (tris.min(axis=1) <= hi + grow), axis=1)
+
+
+def _label_axes(ax, units) -> None:
+    ax.set_xlabel(unit_label(units, "length", "x"))
+    ax.set_ylabel(unit_label(units, "length", "y"))
+
+
 def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale: float,
                component: str, title: str, fields: dict | None = None) -> list[str]:
-    """deformed.png (sub-cells displaced, magnified; with a zoom on the
-    cracks when they are small in the part), crack_pressure.png (pressure
-    and gap, or opening and slip, along each crack) and stress.png (a
-    stress component on the sub-cells, colour scale clipped at the
-    STRESS_PERCENTILE area-weighted percentile). fields:
-    solution.subcell_fields() if the caller has it already."""
+    """deformed.png (sub-cells displaced, magnified, coloured by |u| between
+    its smallest and largest value; with a zoom on the cracks when they are
+    small in the part), crack_pressure.png (pressure and gap, or opening and
+    slip, along each crack) and stress.png (a stress component on the
+    sub-cells, colour scale clipped at the STRESS_PERCENTILE area-weighted
+    percentile; with the same zoom). Axes carry the scene's units
+    (Scene.units) when it has them. fields: solution.subcell_fields() if
+    the caller has it already."""
     f = solution.subcell_fields() if fields is None else fields
+    units = solution.model.scene.units
     tris = f["points"].reshape(-1, 3, 2)
     disp = f["displacement"].reshape(-1, 3, 2)
     mag = magnification(solution, f, scale)
@@ -172,38 +255,44 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
     height = float(np.clip(8.0 * extent[1] / max(extent[0], 1e-300), 3.0, 8.0))
     window = crack_window(solution)
     umag = np.linalg.norm(disp, axis=2).mean(axis=1)
+    moving = bool(np.any(umag > 0.0))
 
     fig = new_figure((15.0, height) if window is not None else (8.0, height))
     panels = [fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)] if window is not None else [fig.add_subplot()]
     for k, ax in enumerate(panels):
         zoom = k == 1
-        sel, m = slice(None), mag
+        sel, m, shift = slice(None), mag, np.zeros(2)
         if zoom:
-            c = tris.mean(axis=1)
-            span = np.ptp(window, axis=0)
-            sel = np.all((c >= window[0] - 0.1 * span) & (c <= window[1] + 0.1 * span), axis=1)
-            # Its own scale: the largest displacement in the window is 5 % of the window.
-            m = scale if scale > 0.0 else _round_scale(0.05 * float(span.max()) / max(float(umag[sel].max(initial=0.0)), 1e-300))
-        coll = _draw_field(ax, (tris + m * disp)[sel], umag[sel], "viridis",
-                           (float(umag.min(initial=0.0)), float(umag.max(initial=1.0))), edges=True)
+            sel = _in_window(tris, window, 0.25)
+            # Its own scale, of the motion relative to the window's mean (a
+            # rigid translation would hide the opening): the largest such
+            # displacement is 5 % of the window.
+            shift = disp[sel].reshape(-1, 2).mean(axis=0) if np.any(sel) else shift
+            rel = float(np.linalg.norm(disp[sel] - shift, axis=2).max(initial=0.0))
+            m = scale if scale > 0.0 else _scale_for(0.05 * float(np.ptp(window, axis=0).max()), rel)
+        coll = _draw_field(ax, (tris + m * (disp - shift))[sel], umag[sel], "viridis", _data_limits(umag), edges=True)
         for smp in samples:
             for key in ("u_plus", "u_minus"):
-                xy = smp["x"] + m * smp[key]
+                xy = smp["x"] + m * (smp[key] - shift)
                 ax.plot(xy[:, 0], xy[:, 1], "r-", lw=0.8)
-        ax.autoscale()
+        if not zoom:
+            _fit(ax, np.concatenate([(tris + m * disp).reshape(-1, 2)]
+                                    + [smp["x"] + m * smp[key] for smp in samples for key in ("u_plus", "u_minus")]))
         if zoom:
             ax.set_xlim(window[0][0], window[1][0])
             ax.set_ylim(window[0][1], window[1][1])
-            ax.set_title(f"around the cracks, displacement x{m:g}", fontsize=9)
+            ax.set_title("around the cracks, displacement relative to the window's mean, " f"x{m:g}", fontsize=9)
         elif window is not None:
             ax.add_patch(_rectangle(window))
-            ax.set_title(f"displacement x{m:g}", fontsize=9)
+            ax.set_title(f"displacement x{mag:g}", fontsize=9)
         ax.set_aspect("equal")
-        ax.set_xlabel("x")
-        ax.set_ylabel("y")
-    fig.colorbar(coll, ax=panels, label="|u| (length units)")
-    fig.suptitle(f"{title}\ndeformed mesh" + ("" if window is not None else f", displacement x{mag:g}"), fontsize=10)
-    save_png(fig, out / "deformed.png")
+        _label_axes(ax, units)
+    bar = fig.colorbar(coll, ax=panels, label=unit_label(units, "displacement", "|u|") if units is not None else
+                       "|u| (length units)")
+    head = ("" if window is not None else f", displacement x{mag:g}") if moving else ": no displacement (no load)"
+    fig.suptitle(f"{title}\ndeformed mesh{head}", fontsize=10)
+    save_png(fig, out / "deformed.png", {"part": panels[0], "colorbar": bar.ax,
+                                         **({"zoom": panels[1]} if window is not None else {})})
     names.append("deformed.png")
 
     contact = bool(solution.contact)
@@ -227,12 +316,12 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
             tail = f" (|slip| <= {SLIP_PLOT_FRACTION:g} x the opening)" if slip_small else ""
             (ax if slip_small else ax2).plot(smp["s"], smp["slip"], "x:", ms=3, lw=0.8, color=f"C{i + 3}",
                                              label=f"{label}: slip [[u]].t{tail}")
-    ax.set_xlabel("arc length along the crack (from its first point)")
-    ax.set_ylabel("contact pressure (>= 0 in compression)" if contact else
-                  "normal opening and tangential slip" if slip_small else "normal opening")
+    ax.set_xlabel(unit_label(units, "length", "arc length along the crack (from its first point)"))
+    ax.set_ylabel(unit_label(units, "stress", "contact pressure (>= 0 in compression)") if contact else
+                  unit_label(units, "length", "normal opening and tangential slip" if slip_small else "normal opening"))
     if slip_small:
         ax2.set_axis_off()
-    ax2.set_ylabel("normal gap" if contact else "tangential slip")
+    ax2.set_ylabel(unit_label(units, "length", "normal gap" if contact else "tangential slip"))
     h1, l1 = ax.get_legend_handles_labels()
     h2, l2 = ax2.get_legend_handles_labels()
     if h1 or h2:
@@ -254,20 +343,20 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
                 if np.any(on):
                     bx.plot(smp["s"][on], np.zeros(np.count_nonzero(on)), "|", color=colour, ms=6,
                             label=f"{label}: {name}" if i == 0 else None)
-        bx.set_xlabel("arc length along the crack (from its first point)")
-        bx.set_ylabel("friction traction")
-        bx2.set_ylabel("slip (accumulated)")
+        bx.set_xlabel(unit_label(units, "length", "arc length along the crack (from its first point)"))
+        bx.set_ylabel(unit_label(units, "stress", "friction traction"))
+        bx2.set_ylabel(unit_label(units, "length", "slip (accumulated)"))
         h1, l1 = bx.get_legend_handles_labels()
         h2, l2 = bx2.get_legend_handles_labels()
         bx.legend(h1 + h2, l1 + l2, fontsize=6, ncol=2)
         bx.set_title("friction: shear against its bound, slip, states (stick green, slip red, open grey)",
                      fontsize=9)
         fig.tight_layout()
-    save_png(fig, out / "crack_pressure.png")
+    save_png(fig, out / "crack_pressure.png", {"along": ax})
     names.append("crack_pressure.png")
 
-    fig = new_figure((8.0, height))
-    ax = fig.add_subplot()
+    fig = new_figure((15.0, height) if window is not None else (8.0, height))
+    panels = [fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)] if window is not None else [fig.add_subplot()]
     s = f["stress"]
     values = {"xx": s[:, 0], "yy": s[:, 1], "xy": s[:, 2]}.get(component)
     if values is None:
@@ -278,19 +367,34 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
         e1, e2 = tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]
         area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
         lim = _weighted_percentile(np.abs(values), area, STRESS_PERCENTILE) or float(np.abs(values).max()) or 1.0
-    coll = _draw_field(ax, tris, values, cmap, (0.0 if component == "von_mises" else -lim, lim), edges=False)
-    for smp in samples:
-        ax.plot(smp["x"][:, 0], smp["x"][:, 1], "k-", lw=0.8)
-    ax.autoscale()
-    ax.set_aspect("equal")
-    label = "von Mises stress" if component == "von_mises" else f"stress {component}"
-    fig.colorbar(coll, ax=ax, extend="max" if component == "von_mises" else "both",
-                 label=f"{label} (the input's stress units; scale clipped at the "
-                       f"{STRESS_PERCENTILE:g}th percentile)")
-    ax.set_title(f"{title}\n{label}", fontsize=10)
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
-    save_png(fig, out / "stress.png")
+    name = "von Mises stress" if component == "von_mises" else f"stress {component}"
+    for k, ax in enumerate(panels):
+        zoom = k == 1
+        sel = _in_window(tris, window, 0.25) if zoom else slice(None)
+        coll = _draw_field(ax, tris[sel], values[sel], cmap, (0.0 if component == "von_mises" else -lim, lim),
+                           edges=False)
+        for smp in samples:
+            ax.plot(smp["x"][:, 0], smp["x"][:, 1], "k-", lw=0.8)
+        if zoom:
+            ax.set_xlim(window[0][0], window[1][0])
+            ax.set_ylim(window[0][1], window[1][1])
+            ax.set_title("around the cracks", fontsize=9)
+        else:
+            _fit(ax, tris)
+            if window is not None:
+                ax.add_patch(_rectangle(window))
+        ax.set_aspect("equal")
+        _label_axes(ax, units)
+    unit_text = (f"[{units.name('stress')}]" if units is not None else "(the input's stress units")
+    bar = fig.colorbar(coll, ax=panels, extend="max" if component == "von_mises" else "both",
+                       label=f"{name} {unit_text}" + ("; " if units is None else " (")
+                             + f"scale clipped at the {STRESS_PERCENTILE:g}th percentile)")
+    if window is None:
+        panels[0].set_title(f"{title}\n{name}", fontsize=10)
+    else:
+        fig.suptitle(f"{title}\n{name}", fontsize=10)
+    save_png(fig, out / "stress.png", {"part": panels[0], "colorbar": bar.ax,
+                                       **({"zoom": panels[1]} if window is not None else {})})
     names.append("stress.png")
     return names
 

@@ -39,10 +39,14 @@ from ..scene.stress_field import LinearStress
 from ..scene.units import FORCES, LENGTHS, STRESSES, Units
 
 
-MESH_KINDS = ("rectangle", "plate_with_hole", "plate_with_holes", "half_annulus", "file")
+MESH_KINDS = ("rectangle", "plate_with_hole", "plate_with_holes", "half_annulus", "geometry", "file")
 
 
 GENERATED = ("rectangle", "plate_with_hole", "plate_with_holes", "half_annulus")
+
+
+#: Kinds that cracklip meshes with gmsh (mesh.h applies).
+MESHED = GENERATED + ("geometry",)
 
 
 PLATES = ("rectangle", "plate_with_hole", "plate_with_holes")
@@ -280,6 +284,12 @@ _OPTION_MEANINGS = {
     "sif_radius": "radius of the largest SIF domain at every tip (K also on 1/2 and 3/4 of it; their "
                   "spread is reported); 0: 6 element sizes at that tip; clipped to stay inside the part "
                   "and away from other tips, cracks, kinks and holes (with a warning)",
+    "accuracy": "target of the estimated discretisation error of every K, relative to the K scale (0.01: 1 %); "
+                "0: off. Refines around every tip (sizes halved within twice the crack's length, one level per "
+                "solve) until the estimate is below it; reports the levels, the estimate and the extrapolated K; "
+                "warns if not reached (docs/guide.md)",
+    "accuracy_levels": "at most this many refinement levels for options.accuracy (each about 4 times the cells "
+                       "in the refined region)",
     "solver": "linear solver: `direct` (MUMPS LDL^T), `iterative` (AMG in a phantom-node basis with a "
               "direct solve of the crack band; same checked accuracy) or `auto` (iterative from 5e4 "
               "dofs when 1-5 % of them are enriched and from 2e6 dofs always, else direct: the faster one as "
@@ -484,8 +494,10 @@ SCHEMA: tuple[Key, ...] = tuple([
     # mesh
     Key("mesh.kind", "string", "rectangle",
         "`rectangle`, `plate_with_hole`, `plate_with_holes` (a drilled plate), `half_annulus` (r between hole_radius and outer_radius, "
-        "y >= 0, centre at the origin) or `file` (a gmsh .msh file)", p_choice(*MESH_KINDS)),
-    Key("mesh.h", "float", REQUIRED, "element size", p_float(positive=True), GENERATED),
+        "y >= 0, centre at the origin), `geometry` (your part as a gmsh .geo, STEP or BREP file, meshed by cracklip "
+        "with h, tip_h and refine) or `file` (a gmsh .msh mesh, refined locally by cracklip for tip_h and refine)",
+        p_choice(*MESH_KINDS)),
+    Key("mesh.h", "float", REQUIRED, "element size", p_float(positive=True), MESHED),
     Key("mesh.domain", "[x0, y0, x1, y1]", [-1.0, -1.0, 1.0, 1.0],
         "the rectangle; tags `left`, `right`, `bottom`, `top`", p_box, PLATES),
     Key("mesh.hole_center", "[x, y]", [0.0, 0.0], "centre of the hole (tag `hole`)", p_point,
@@ -498,22 +510,26 @@ SCHEMA: tuple[Key, ...] = tuple([
         "outer radius of the half annulus (tag `outer`; `symmetry` on y = 0)", p_float(positive=True),
         ("half_annulus",)),
     Key("mesh.path", "string", REQUIRED,
-        "gmsh .msh file (relative to the scene file) with named physical curves as boundary tags",
-        p_str, ("file",)),
+        "the file, relative to the scene file: a gmsh .geo script, STEP or BREP file (kind geometry; named "
+        "physical curves are the boundary tags, without any every boundary curve N is tag `curve N`) or a gmsh "
+        ".msh mesh (kind file; named physical curves as boundary tags, a Physical Surface for the triangles)",
+        p_str, ("file", "geometry")),
     Key("mesh.tip_h", "float", 0.0,
-        "element size at crack tips inside the part; 0: no tip refinement", p_float(0.0), GENERATED),
+        "element size at crack tips inside the part; 0: no tip refinement (kind file: the file's mesh is "
+        "refined around the tips until its cells are that small)", p_float(0.0)),
     Key("mesh.tip_radius", "float", 0.0,
         "distance over which the size grows from tip_h to h beyond a plateau of 4 tip_h around the tip; "
-        "never faster than 0.25 per unit length (a shorter radius is lengthened); 0: that fastest growth",
-        p_float(0.0), GENERATED),
+        "never faster than 0.25 per unit length (a shorter radius is lengthened); 0: that fastest growth "
+        "(kind file: up to the file's own element size)",
+        p_float(0.0)),
     Key("mesh.refine[].point", "[x, y]", UNSET, "centre of a local refinement (one of point, segment)",
-        p_point, GENERATED),
+        p_point),
     Key("mesh.refine[].segment", "[[x0, y0], [x1, y1]]", UNSET, "a segment refined along its length (a band "
-        "along a crack's expected path; one of point, segment)", p_segment, GENERATED),
+        "along a crack's expected path; one of point, segment)", p_segment),
     Key("mesh.refine[].h", "float", REQUIRED, "element size at the point (and within 4 times that size of it)",
-        p_float(positive=True), GENERATED),
+        p_float(positive=True)),
     Key("mesh.refine[].radius", "float", 0.0, "distance over which the size grows back to h beyond that "
-        "plateau, never faster than 0.25 per unit length; 0: that fastest growth", p_float(0.0), GENERATED),
+        "plateau, never faster than 0.25 per unit length; 0: that fastest growth", p_float(0.0)),
     # material
     # units (optional: labels and conversions, the solve needs only consistent units)
     Key("units.length", "string", UNSET, "length unit of every coordinate and size: " + ", ".join(
@@ -609,6 +625,10 @@ SCHEMA: tuple[Key, ...] = tuple([
         "displacement scale of deformed.png; 0: largest displacement = 5 % of the part", p_float(0.0)),
     Key("outputs.stress_component", "string", "yy", "stress shown in stress.png: `xx`, `yy`, `xy` "
         "or `von_mises`", p_choice(*STRESS_COMPONENTS)),
+    Key("outputs.error_estimate", "boolean", True,
+        "estimate the discretisation error of every K with one more solve on a mesh whose element sizes are "
+        "halved within two crack lengths of each tip (about 2-4 times the dofs; results.json, sif.csv, a warning "
+        "above 1 % of the K scale); options.accuracy makes its own", p_bool),
     Key("outputs.condition_number", "boolean", False,
         "estimate the 1-norm condition number of the stiffness (results.json)", p_bool),
     Key("outputs.crack_points", "integer", 3, "sample points per crack segment in crack.csv",
@@ -751,8 +771,6 @@ def parse_settings(doc: dict) -> dict:
     kind = p_choice(*MESH_KINDS)(mesh_doc.get("kind", "rectangle"), "mesh.kind")
     s["mesh"] = _section(mesh_doc, "mesh", "mesh", kind)
     refine = _items(mesh_doc, "refine")
-    if refine and kind not in GENERATED:
-        raise InputError(f"mesh.refine applies to generated meshes only; this mesh is {kind!r}")
     s["mesh"]["refine"] = [_section(r, "mesh.refine[]", f"mesh.refine[{i}]", kind) for i, r in enumerate(refine)]
     for i, r in enumerate(s["mesh"]["refine"]):
         if ("point" in r) == ("segment" in r):
@@ -1130,13 +1148,28 @@ def _mesh(m: dict, cracks: list[Crack], base_dir: pathlib.Path, points=()) -> Me
     """The mesh of the [mesh] settings; `points` (point supports and forces)
     inside or on a generated rectangle or plate become mesh nodes."""
     kind = m["kind"]
-    if kind == "file":
-        f = pathlib.Path(m["path"])
-        return read_msh(f if f.is_absolute() else base_dir / f)
-    h = m["h"]
     refine = [(r["point"][0], r["point"][1], r["h"], r["radius"]) if "point" in r else
               (r["segment"][0][0], r["segment"][0][1], r["h"], r["radius"], r["segment"][1][0], r["segment"][1][1])
               for r in m["refine"]]
+    ends = [tuple(float(v) for v in p) for c in cracks for p in c.points[[0, -1]]]
+    if kind in ("file", "geometry"):
+        f = pathlib.Path(m["path"])
+        f = f if f.is_absolute() else base_dir / f
+        if kind == "geometry":
+            from ..scene.geometry_file import create_from_geometry
+            return create_from_geometry(f, m["h"], refine=refine, embed_points=points,
+                                        tips=ends if m["tip_h"] > 0.0 else (), tip_h=m["tip_h"],
+                                        tip_radius=m["tip_radius"])
+        if f.suffix.lower() in (".geo", ".step", ".stp", ".brep", ".brp"):
+            raise MeshError(f"mesh.path {m['path']!r} is a geometry, not a mesh: use mesh.kind = \"geometry\" with "
+                            "mesh.h (cracklip meshes it, with tip_h and refine)")
+        from ..scene.refine import inside_mesh, refine_file_mesh
+        md = read_msh(f)
+        if m["tip_h"] > 0.0:
+            refine += [(p[0], p[1], m["tip_h"], m["tip_radius"]) for p, inside in zip(ends, inside_mesh(md, ends))
+                       if inside]
+        return refine_file_mesh(md, refine, (), f"mesh file {f}")
+    h = m["h"]
     if m["tip_h"] > 0.0:
         radius = m["tip_radius"]
         for c in cracks:
@@ -1226,8 +1259,10 @@ def _dirichlet(bc: dict, i: int, mesh: MeshData, material: Material, cracks: lis
             raise BoundaryConditionError(f"{where}.box {bc['box']} holds no mesh node")
         targets = [(float(x[n, 0]), float(x[n, 1])) for n in inside]
         notes.append(f"{where}: box {bc['box']} ({inside.size} nodes), {what}")
+    label = f"{where}: " + (f"tag {bc['tag']!r}" if "tag" in bc else f"point {bc['point']}" if "point" in bc
+                            else f"box {bc['box']}")
     for target in targets:
-        out += [Dirichlet(target, c, v, group=bc["group"]) for c, v in entries]
+        out += [Dirichlet(target, c, v, group=bc["group"], label=label) for c, v in entries]
     return out
 
 

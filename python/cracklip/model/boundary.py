@@ -63,3 +63,87 @@ def boundary_normals(mesh: MeshData, where: str | int) -> typing.Callable[[np.nd
             out[s:s + step] = n[np.argmin(dist, axis=1)]
         return out
     return normals
+
+
+def boundary_loops(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, int]:
+    """The closed loop each boundary segment belongs to (labels (n,), by
+    shared end points) and the label of the outer loop (the one with the
+    largest bounding box; the others bound holes)."""
+    import scipy.sparse
+    import scipy.sparse.csgraph
+    pts = np.concatenate([a, b])
+    scale = float(np.ptp(pts, axis=0).max()) or 1.0
+    key = np.round(pts / (1e-9 * scale)).astype(np.int64)
+    _, ids = np.unique(key, axis=0, return_inverse=True)
+    ids = ids.reshape(-1)
+    n = len(a)
+    graph = scipy.sparse.coo_matrix((np.ones(n), (ids[:n], ids[n:])), shape=(ids.max() + 1,) * 2)
+    _, comp = scipy.sparse.csgraph.connected_components(graph, directed=False)
+    labels = comp[ids[:n]]
+    sizes = {int(lab): float(np.ptp(np.concatenate([a[labels == lab], b[labels == lab]]), axis=0).prod())
+             for lab in np.unique(labels)}
+    return labels, max(sizes, key=sizes.get)
+
+
+def inside_segments(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> bool:
+    """Even-odd ray casting of point p (2,) against segments a-b."""
+    straddle = (a[:, 1] > p[1]) != (b[:, 1] > p[1])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xc = a[:, 0] + (p[1] - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
+    return bool(np.count_nonzero(straddle & (xc > p[0])) % 2 == 1)
+
+
+def nearest_boundary_point(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, float, int]:
+    """(the boundary point nearest to p, its distance, its segment)."""
+    d = b - a
+    t = np.clip(np.einsum("ij,ij->i", p - a, d) / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300), 0.0, 1.0)
+    q = a + t[:, None] * d
+    dist = np.linalg.norm(q - p, axis=1)
+    k = int(np.argmin(dist))
+    return q[k], float(dist[k]), k
+
+
+def where_outside(p, a: np.ndarray, b: np.ndarray) -> str | None:
+    """None if the point lies in the part (or on its boundary), else "in a
+    hole of the part" (inside the outer boundary, outside the part) or
+    "outside the part"."""
+    p = np.asarray(p, dtype=float)
+    scale = float(np.ptp(np.concatenate([a, b]), axis=0).max()) or 1.0
+    if inside_segments(p, a, b) or nearest_boundary_point(p, a, b)[1] <= 1e-9 * scale:
+        return None
+    labels, outer = boundary_loops(a, b)
+    keep = labels == outer
+    return "in a hole of the part" if inside_segments(p, a[keep], b[keep]) else "outside the part"
+
+
+def polyline_pieces(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> list[dict]:
+    """The parts of a polyline inside the part, in order: each with its
+    start and end (2,), length, and whether each end lies on the boundary
+    (start_on_boundary, end_on_boundary)."""
+    pts = np.asarray(points, dtype=float)
+    scale = float(np.ptp(np.concatenate([a, b, pts]), axis=0).max()) or 1.0
+    cuts: list[np.ndarray] = []
+    for p, q in zip(pts[:-1], pts[1:]):
+        d, e = q - p, b - a
+        den = d[0] * e[:, 1] - d[1] * e[:, 0]
+        ok = np.abs(den) > 1e-300
+        w = a - p
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (w[:, 0] * e[:, 1] - w[:, 1] * e[:, 0]) / den
+            s = (w[:, 0] * d[1] - w[:, 1] * d[0]) / den
+        hit = ok & (t >= 0.0) & (t <= 1.0) & (s >= 0.0) & (s <= 1.0)
+        cuts.append(p)
+        cuts += [p + tt * d for tt in np.sort(t[hit])]
+    cuts.append(pts[-1])
+    pieces: list[dict] = []
+    for p, q in zip(cuts[:-1], cuts[1:]):
+        length = float(np.linalg.norm(q - p))
+        if length <= 1e-9 * scale or where_outside(0.5 * (p + q), a, b) is not None:
+            continue
+        if pieces and np.linalg.norm(pieces[-1]["end"] - p) <= 1e-9 * scale and not pieces[-1]["end_on_boundary"]:
+            pieces[-1]["end"], pieces[-1]["length"] = q, pieces[-1]["length"] + length
+        else:
+            pieces.append({"start": p, "end": q, "length": length})
+        for key, x in (("start_on_boundary", pieces[-1]["start"]), ("end_on_boundary", pieces[-1]["end"])):
+            pieces[-1][key] = nearest_boundary_point(x, a, b)[1] <= 1e-9 * scale
+    return pieces

@@ -5,8 +5,9 @@ or a solve untrustworthy, found before solving.
   the part into pieces and one of them has no Dirichlet condition fixing
   its rigid motion (the solve would fail on a singular matrix);
 - ``check_model(model)`` returns warnings: a refinement that the mesh did not
-  reach, a tip element coarser than a tenth of the crack length or than the
-  enrichment radius, a tip without tip enrichment (K only to O(sqrt(h))),
+  reach (or whose point lies in a hole or outside the part), a tip element
+  coarser than a tenth of the crack length or than the enrichment radius, a
+  region around a tip too coarse for the crack (``tip_region``), a tip without tip enrichment (K only to O(sqrt(h))),
   a tip within an element of the boundary, SIF domains
   clipped by the boundary, other tips, other cracks, kinks or holes.
 
@@ -23,6 +24,8 @@ import scipy.sparse as sp
 import scipy.sparse.csgraph
 
 from ..errors import BoundaryConditionError
+from ..scene.size_field import PLATEAU
+from .boundary import nearest_boundary_point, where_outside
 from .constraints import rigid_motion_rank
 from .tip_regions import lip_points, model_boundary, segment_distance, tip_domains, tip_element_size
 
@@ -36,8 +39,9 @@ class ModelWarning:
     """Something that makes a result less trustworthy, with the fix.
 
     Attributes:
-        code: refinement, tip_resolution, tip_enrichment, enrichment_radius,
-            tip_near_boundary, sif_domain or sif_spread.
+        code: refinement, tip_resolution, tip_region, tip_enrichment,
+            enrichment_radius, tip_near_boundary, sif_domain or sif_spread
+            (and, from a solved field, cracklip.post.checks' codes).
         message: what, where, why it matters and what to do.
         crack, tip: the crack and tip concerned (None if not one tip).
     """
@@ -57,13 +61,26 @@ def check_model(model) -> list[ModelWarning]:
     """Every model check that does not need the solution (see the module doc)."""
     out: list[ModelWarning] = []
     md = model.scene.mesh
+    a, b = model_boundary(model)
     for (x, y, size) in md.refinements:
+        outside = where_outside((x, y), a, b)
+        if outside is not None:
+            q, d, _ = nearest_boundary_point(np.array([x, y]), a, b)
+            reach = PLATEAU * size
+            got = tip_element_size(model, q)
+            out.append(ModelWarning("refinement", (
+                f"the mesh refinement at ({x:.6g}, {y:.6g}) lies {outside} ({d:.3g} from its nearest point "
+                f"({q[0]:.6g}, {q[1]:.6g})): there is no element at the point, and its size {size:.3g} holds only "
+                f"within {reach:.3g} of it, growing beyond; "
+                + ("it does not reach the part at all" if d > reach else f"the element at that nearest point is {got:.3g}")
+                + "; put the refinement's point on the part (e.g. on the hole's edge where the crack starts), or "
+                  "refine along a segment inside the part")))
+            continue
         got = tip_element_size(model, np.array([x, y]))
         if got > REFINEMENT_TOLERANCE * size:
             out.append(ModelWarning("refinement", f"the mesh refinement at ({x:.6g}, {y:.6g}) asked for elements "
                                     f"of {size:.3g} and got {got:.3g}: the size field could not be honoured "
                                     "(check mesh.tip_h / mesh.refine against mesh.h)"))
-    a, b = model_boundary(model)
     radius = model.scene.options.radius
     enrichment = model.scene.options.enrichment
     for ci, cm in enumerate(model.cracks):
@@ -101,7 +118,74 @@ def check_model(model) -> list[ModelWarning]:
                     "the mesh there", ci, j))
         for dom in tip_domains(model, ci):
             out += [ModelWarning("sif_domain", w, ci, dom.tip) for w in dom.warnings]
+            if enrichment != "none" and not any(w.code == "tip_resolution" and w.tip == dom.tip and w.crack == ci
+                                                for w in out):
+                w = _tip_region(model, ci, dom, length, radius)
+                if w is not None:
+                    out.append(w)
     return out
+
+
+#: The region around a tip is coarse when the largest element sizes there
+#: (the REGION_PERCENTILE-th percentile of the cells within REGION_EXTENT
+#: crack scales of the tip) exceed the crack scale over REGION_ELEMENTS.
+#: The crack scale is the crack's length in the part, or the distance to the
+#: nearest boundary, hole, tip or crack if shorter. Calibrated against K's
+#: error on the handbook cases, a C(T), a Brazilian disc and a crack at a
+#: hole (docs/guide.md): it fires on every case with K more than 1 % low
+#: whose enrichment reaches a few elements, never on the handbook cases at
+#: h = W/40 (0.06-0.30 % off; largest value 0.129 against 1/7.5 = 0.133).
+REGION_ELEMENTS = 7.5
+REGION_EXTENT = 2.0
+REGION_PERCENTILE = 95.0
+
+
+#: With the tip enrichment on the tip cell's nodes only (options.radius
+#: below TIP_RADIUS_ELEMENTS tip elements), K converges like h (not h^2):
+#: a tip element above the crack scale over TIP_ELEMENTS is warned about
+#: (the C(T) at h = W/20, 4.6 % low, has 9 tip elements per crack scale).
+TIP_RADIUS_ELEMENTS = 2.0
+TIP_ELEMENTS = 40.0
+
+
+def _cell_sizes(model) -> tuple[np.ndarray, np.ndarray]:
+    """(mean edge (n,), centroid (n, 2)) of every cell, computed once per model."""
+    cached = model.__dict__.get("_cell_sizes_cache")
+    if cached is None:
+        xv = model.x[model.cells]
+        cached = (np.linalg.norm(xv[:, [1, 2, 0]] - xv, axis=2).mean(axis=1), xv.mean(axis=1))
+        model._cell_sizes_cache = cached
+    return cached
+
+
+def _tip_region(model, ci: int, dom, length: float, radius: float) -> ModelWarning | None:
+    """The 'tip_region' warning of one tip, or None (the rules above)."""
+    scale = min(length, dom.clearance)
+    if not scale > 0.0:
+        return None
+    size, centroid = _cell_sizes(model)
+    near = np.linalg.norm(centroid - dom.position, axis=1) < REGION_EXTENT * scale
+    coarse = float(np.percentile(size[near], REGION_PERCENTILE)) if near.any() else dom.element_size
+    name = model.cracks[ci].crack.name
+    where = f"tip {dom.tip} of crack {name!r} at ({dom.position[0]:.6g}, {dom.position[1]:.6g})"
+    what = (f"the crack scale there is {scale:.3g} (" + ("the crack's length in the part" if scale == length else
+                                                        f"the distance to {dom.obstacle}") + ")")
+    if radius < TIP_RADIUS_ELEMENTS * dom.element_size and dom.element_size > scale / TIP_ELEMENTS:
+        return ModelWarning("tip_region", (
+            f"{where}: the tip element ({dom.element_size:.3g}) is coarse for a tip enriched on its own cell only "
+            f"(options.radius = {radius:g}); {what}: K converges only like h there and is likely more than 1 % low "
+            f"(4.6 % for a C(T) with 9 elements per crack scale). Set options.radius to a few tip elements (e.g. "
+            f"{5 * dom.element_size:.3g}) and refine the tip (mesh.tip_h <= {scale / TIP_ELEMENTS:.3g}), or let cracklip "
+            "refine: options.accuracy = 0.01"), ci, dom.tip)
+    if coarse > scale / REGION_ELEMENTS:
+        return ModelWarning("tip_region", (
+            f"{where}: the mesh around the tip is coarse for the crack: elements up to {coarse:.3g} within "
+            f"{REGION_EXTENT * scale:.3g} of it while {what}, fewer than {REGION_ELEMENTS:g} elements across it; K "
+            "converges from below and is likely 0.5-2 % low (a refined tip alone does not help: the field around "
+            f"the crack sets K). Refine the region (mesh.h, or mesh.refine around the crack with h <= "
+            f"{scale / REGION_ELEMENTS / 1.5:.3g}), or let cracklip refine: options.accuracy = 0.01 (--accuracy 0.01)"),
+            ci, dom.tip)
+    return None
 
 
 def _pieces(model) -> tuple[np.ndarray, np.ndarray]:

@@ -23,6 +23,49 @@ def _accepts_side(f) -> bool:
     return len(required) >= 2
 
 
+def is_point_condition(bc) -> bool:
+    """Whether a Dirichlet condition acts at a point (a node) rather than on a tag."""
+    return isinstance(bc.where, (tuple, list, np.ndarray))
+
+
+def condition_nodes(scene: Scene, V, x: np.ndarray, bc) -> np.ndarray:
+    """The mesh nodes a Dirichlet condition constrains: the node at its point,
+    or the nodes of its tag's facets."""
+    if is_point_condition(bc):
+        p = np.asarray(bc.where, dtype=float)
+        d = np.linalg.norm(x - p, axis=1)
+        node = int(np.argmin(d))
+        scale = float(np.ptp(x, axis=0).max())
+        if d[node] > 1e-8 * scale:
+            raise BoundaryConditionError(
+                f"Dirichlet point {p.tolist()} is not a mesh node (nearest node "
+                f"{x[node].tolist()} at distance {d[node]:.3g}); use a node or a boundary tag")
+        return np.array([node], dtype=np.int32)
+    facets = scene.mesh.facets(bc.where)
+    if facets.size == 0:
+        raise BoundaryConditionError(f"Dirichlet boundary {bc.where!r} has no facets")
+    tdim = scene.mesh.mesh.topology.dim
+    return np.asarray(dolfinx.fem.locate_dofs_topological(V, tdim - 1, facets), dtype=np.int32)
+
+
+def condition_dofs(model) -> list[np.ndarray]:
+    """The standard dofs (d node + component, d the space dimension) each
+    Dirichlet condition of the model's scene constrains, a dof shared by
+    several conditions going to the first of them (for the reactions per
+    condition)."""
+    d = model.x.shape[1]
+    taken = np.zeros(d * model.x.shape[0], dtype=bool)
+    out = []
+    for bc in model.scene.dirichlet:
+        nodes = condition_nodes(model.scene, model.V, model.x, bc)
+        comps = list(range(d)) if bc.component is None else [bc.component]
+        dofs = np.sort(np.concatenate([d * nodes + c for c in comps])).astype(np.int64)
+        dofs = dofs[~taken[dofs]]
+        taken[dofs] = True
+        out.append(dofs)
+    return out
+
+
 def compute_dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tuple[np.ndarray, np.ndarray, dict]:
     """Constrained scalar dofs, their values (every group at factor 1) and
     the values of each load group (Dirichlet.group; conditions of different
@@ -63,22 +106,8 @@ def compute_dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tup
             mine[dof] = val
             owner[grp, dof] = k
     for k_bc, bc in enumerate(scene.dirichlet):
-        is_point = isinstance(bc.where, (tuple, list, np.ndarray))
-        if is_point:
-            p = np.asarray(bc.where, dtype=float)
-            d = np.linalg.norm(x - p, axis=1)
-            node = int(np.argmin(d))
-            scale = float(np.ptp(x, axis=0).max())
-            if d[node] > 1e-8 * scale:
-                raise BoundaryConditionError(
-                    f"Dirichlet point {p.tolist()} is not a mesh node (nearest node "
-                    f"{x[node].tolist()} at distance {d[node]:.3g}); use a node or a boundary tag")
-            nodes = np.array([node], dtype=np.int32)
-        else:
-            facets = scene.mesh.facets(bc.where)
-            if facets.size == 0:
-                raise BoundaryConditionError(f"Dirichlet boundary {bc.where!r} has no facets")
-            nodes = dolfinx.fem.locate_dofs_topological(V, tdim - 1, facets)
+        is_point = is_point_condition(bc)
+        nodes = condition_nodes(scene, V, x, bc)
         if bc.component is not None and bc.component >= gdim:
             raise BoundaryConditionError(f"Dirichlet condition {k_bc} ({bc.where!r}): component {bc.component} "
                                          f"does not exist in {gdim}D (0 .. {gdim - 1})")

@@ -36,6 +36,10 @@ class Solution:
         step: on a load path, the step this state ends (index, name,
             factors, increments); steps: on the last one, every step's
             Solution in order.
+        path: on a load path, every step's Solution (on each of them).
+        error_estimate: the discretisation-error estimate of its K, when
+            one was made (cracklip.analysis.accuracy): levels, dofs, K per
+            level and the estimate per tip.
     """
     model: XfemModel
     u: np.ndarray
@@ -46,6 +50,8 @@ class Solution:
     factors: typing.Optional[dict] = None
     step: typing.Optional[dict] = None
     steps: typing.Optional[list] = dataclasses.field(default=None, repr=False)
+    path: typing.Optional[list] = dataclasses.field(default=None, repr=False, compare=False)
+    error_estimate: typing.Optional[dict] = dataclasses.field(default=None, repr=False, compare=False)
     _sif_cache: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
 
     def factor(self, group: str) -> float:
@@ -269,16 +275,40 @@ class Solution:
             if crack is not None and not 0 <= crack < len(self.model.cracks):
                 raise InputError(f"crack index {crack} out of range: the scene has {len(self.model.cracks)} cracks")
             self._sif_cache[key] = compute_sifs(self, radius, cracks)
-        return [dict(r) for r in self._sif_cache[key][0]]
+        rows = [dict(r) for r in self._sif_cache[key][0]]
+        est = self.error_estimate
+        for r in rows:
+            tip = est["tips"].get(f"{r['crack']}:{r['tip']}") if est and radius is None else None
+            for mode in ("K_I", "K_II"):
+                r[f"{mode}_error"] = None if tip is None else tip[f"{mode}_error"]
+                r[f"{mode}_extrapolated"] = None if tip is None else tip[f"{mode}_extrapolated"]
+                r[f"{mode}_levels"] = None if tip is None else list(tip[f"{mode}_levels"])
+        return rows
+
+    def reactions(self) -> dict[str, typing.Any]:
+        """Reaction forces per Dirichlet condition and point support, their
+        sum and the applied load (cracklip.post.reactions.compute_reactions;
+        computed once)."""
+        if not hasattr(self, "_reactions"):
+            from .reactions import compute_reactions
+            self._reactions = compute_reactions(self)
+        return self._reactions
 
     @property
     def warnings(self) -> list:
-        """The model checks' warnings and those of the SIFs at every tip
-        (domains clipped, K varying with the domain): model.checks.ModelWarning."""
+        """The model checks' warnings, those of the SIFs at every tip (domains
+        clipped, K varying with the domain) and of the solved field
+        (cracklip.post.checks: lips passing through each other without
+        contact, no load, point supports carrying unbalanced loads, K's
+        estimated discretisation error): model.checks.ModelWarning."""
+        from .checks import point_supports, solution_warnings
         self.stress_intensity_factors(None)
         model_messages = {w.message for w in self.model.warnings}
         extra = [ModelWarning("sif_spread", m) for m in self._sif_cache[(None, None)][1]
                  if m not in model_messages]
+        extra += [ModelWarning(code, m) for code, m in solution_warnings(self)]
+        if self.model.scene.dirichlet and np.any(self.u):
+            extra += [ModelWarning(code, m) for code, m in point_supports(self, self.reactions())]
         return list(self.model.warnings) + extra
 
     def contact_pressure(self, crack: int = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:

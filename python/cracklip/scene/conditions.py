@@ -33,11 +33,15 @@ class Dirichlet:
             also receives the crack side (n,) of each point (+1 / -1) and may
             jump across a crack (an exact crack field on a cut boundary).
         group: load group whose factor (Scene.load_path) scales the value.
+        label: the name of the condition in results.json's reactions (a scene
+            file's "dirichlet[i]"; the conditions of one label are summed);
+            default: its index and where it acts.
     """
     where: typing.Union[str, int, tuple[float, float]]
     component: typing.Optional[int] = None
     value: Value = 0.0
     group: str = "default"
+    label: str = ""
 
     def __post_init__(self):
         _check_group(self.group, f"Dirichlet condition on {self.where!r}")

@@ -7,6 +7,7 @@ has ``hole``, ``outer``, ``symmetry``.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import logging
 import math
 import pathlib
@@ -15,6 +16,8 @@ import typing
 import numpy as np
 
 from ..errors import MeshError
+from .size_field import (MAX_GROWTH, PLATEAU, refinement_expression, refinement_size,  # noqa: F401
+                         size_expression, smallest_size)
 
 if typing.TYPE_CHECKING:
     import dolfinx.mesh
@@ -39,6 +42,14 @@ class MeshData:
         cache_standard_block: keep the assembled standard stiffness block
             (the uncracked P1 stiffness) for the next solves on this mesh
             (crack growth: the cracks change, the mesh does not).
+        refine: the refine items of its size field (x, y, h_near, radius[,
+            x1, y1]; cracklip.scene.size_field).
+        levels: the refinement levels it was made with (x, y, x1, y1, D, L).
+        recipe: makes the same mesh again with more refinement:
+            recipe(levels=...) (a gmsh mesh of a known geometry); None for a
+            mesh read from a file (cracklip.scene.refine refines it instead).
+        source: where it comes from: "generated", "geometry" (a user's .geo,
+            STEP or BREP meshed by cracklip) or "file" (a .msh).
         front_refinements: in 3D, the refinements around crack fronts asked
             for (mesh_3d.FrontRefinement).
     """
@@ -49,6 +60,11 @@ class MeshData:
     refinements: list[tuple[float, float, float]] = dataclasses.field(default_factory=list)
     cache_standard_block: bool = False
     standard_blocks: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
+    refine: list = dataclasses.field(default_factory=list)
+    levels: list = dataclasses.field(default_factory=list)
+    recipe: typing.Optional[typing.Callable[..., "MeshData"]] = dataclasses.field(default=None, repr=False,
+                                                                                compare=False)
+    source: str = "generated"
     front_refinements: list = dataclasses.field(default_factory=list)
 
     @property
@@ -92,7 +108,39 @@ def _gmsh():
     return gmsh
 
 
-def _to_dolfinx(gmsh, h: float | None) -> MeshData:
+#: The file whose syntax error broke gmsh's .geo parser in this process, if
+#: one did: gmsh 4.8's parser does not recover from a syntax error (not even
+#: across finalize / initialize: every later .geo parses to nothing), so a
+#: later .geo is refused with the cause instead of meshing an empty model.
+_PARSER_BROKEN_BY: str | None = None
+
+
+def _restart_gmsh(path=None) -> None:
+    """A failed parse leaves gmsh unable to mesh the next model: restart it
+    (the .geo parser itself stays broken: _PARSER_BROKEN_BY)."""
+    global _GMSH_READY, _PARSER_BROKEN_BY
+    import gmsh
+    gmsh.finalize()
+    _GMSH_READY = False
+    if path is not None:
+        _PARSER_BROKEN_BY = str(path)
+
+
+def _msh_header(path: pathlib.Path) -> bool:
+    """Whether the file starts as a gmsh .msh file does ($MeshFormat). gmsh
+    parses any other file as a .geo script, and a syntax error there breaks
+    its parser for the rest of the process."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(4096).lstrip()
+    except OSError:
+        return False
+    return head.startswith(b"$MeshFormat")
+
+
+def _to_dolfinx(gmsh, h: float | None, surfaces: typing.Sequence[int] | None = None) -> MeshData:
+    """The current gmsh model's mesh as MeshData (its triangles, of the given
+    surfaces only if given; tags from its physical curves)."""
     names = {}
     for dim, tag in gmsh.model.getPhysicalGroups(1):
         names[gmsh.model.getPhysicalName(dim, tag) or str(tag)] = tag
@@ -100,7 +148,7 @@ def _to_dolfinx(gmsh, h: float | None) -> MeshData:
     # while another thread loads it (cracklip.prefetch).
     from mpi4py import MPI
     from .mesh_import import model_to_mesh
-    msh, facet_tags, _ = model_to_mesh(gmsh.model, MPI.COMM_WORLD)
+    msh, facet_tags, _ = model_to_mesh(gmsh.model, MPI.COMM_WORLD, surfaces)
     gmsh.model.remove()
     check_mesh(msh)
     return MeshData(msh, facet_tags, names, h)
@@ -163,7 +211,8 @@ def _box_sides(gmsh, x0: float, y0: float, x1: float, y1: float, eps: float) -> 
     return groups
 
 
-def _finish(gmsh, classify: typing.Callable[[], dict[str, list[int]]], h: float, refine) -> MeshData:
+def _finish(gmsh, classify: typing.Callable[[], dict[str, list[int]]], h: float, refine, levels=(),
+            recipe=None) -> MeshData:
     """Cut a large domain into strips (_cut_into_strips), sort its boundary
     curves into named groups (classify(), by geometry: the cuts renumber
     the curves), name them as physical tags 1, 2, ... (in order), mesh,
@@ -175,9 +224,12 @@ def _finish(gmsh, classify: typing.Callable[[], dict[str, list[int]]], h: float,
     for tag, (name, curves) in enumerate(curve_groups.items(), start=1):
         gmsh.model.addPhysicalGroup(1, curves, tag)
         gmsh.model.setPhysicalName(1, tag, name)
-    _mesh_2d(gmsh, h, refine)
+    _mesh_2d(gmsh, h, refine, levels)
     md = _to_dolfinx(gmsh, h)
     md.refinements = [(float(r[0]), float(r[1]), float(r[2])) for r in refine]
+    md.refine = [tuple(float(v) for v in r) for r in refine]
+    md.levels = [tuple(v) for v in levels]
+    md.recipe = recipe
     return md
 
 
@@ -256,7 +308,7 @@ def _on_cut(gmsh, curve: int, cuts: tuple[int, list[float]]) -> bool:
 def create_rectangle(x0: float, y0: float, x1: float, y1: float, h: float,
                      refine: typing.Sequence[tuple[float, float, float, float]] = (),
                      embed_lines: typing.Sequence[tuple[tuple[float, float], tuple[float, float]]] = (),
-                     embed_points: typing.Sequence[tuple[float, float]] = ()) -> MeshData:
+                     embed_points: typing.Sequence[tuple[float, float]] = (), levels=()) -> MeshData:
     """Unstructured triangles of [x0, x1] x [y0, y1] with size h.
 
     refine: optional (x, y, h_near, radius) local refinements around points
@@ -267,7 +319,9 @@ def create_rectangle(x0: float, y0: float, x1: float, y1: float, h: float,
     segment (x, y)-(x1, y1) alike (a band along a crack's expected path).
     embed_lines / embed_points: segments and points the mesh must conform to
     (mesh edges along the segments, nodes at the points), inside the domain.
-    Tags: left, right, bottom, top.
+    levels: (x, y, x1, y1, D, L) items dividing the size by 2^L within D of
+    a point or segment (cracklip.scene.size_field). Tags: left, right,
+    bottom, top.
     """
     _check_box(x0, y0, x1, y1, h)
     gmsh = _gmsh()
@@ -285,7 +339,9 @@ def create_rectangle(x0: float, y0: float, x1: float, y1: float, h: float,
         groups = _box_sides(gmsh, x0, y0, x1, y1, 1e-9 * max(x1 - x0, y1 - y0))
         del groups["other"]  # embedded lines
         return groups
-    return _finish(gmsh, classify, h, refine)
+    recipe = functools.partial(create_rectangle, x0, y0, x1, y1, h, refine=refine, embed_lines=embed_lines,
+                               embed_points=embed_points)
+    return _finish(gmsh, classify, h, refine, levels, recipe)
 
 
 def create_square(h: float, half_width: float = 1.0, **kwargs) -> MeshData:
@@ -294,7 +350,7 @@ def create_square(h: float, half_width: float = 1.0, **kwargs) -> MeshData:
 
 
 def create_half_annulus(h: float, radius: float = 1.0, outer_radius: float = 3.0,
-                        refine: typing.Sequence[tuple[float, float, float, float]] = ()) -> MeshData:
+                        refine: typing.Sequence[tuple[float, float, float, float]] = (), levels=()) -> MeshData:
     """Half annulus radius <= r <= outer_radius, y >= 0 (paper section 5.2).
 
     Tags: hole (r = radius), outer (r = outer_radius), symmetry (y = 0). The
@@ -332,32 +388,8 @@ def create_half_annulus(h: float, radius: float = 1.0, outer_radius: float = 3.0
                 groups["outer"].append(c)
             # (else: a cut line inside the ring)
         return groups
-    return _finish(gmsh, classify, h, refine)
-
-
-#: Largest growth rate of the element size away from a refinement point
-#: (size increase per unit distance). A steeper size field cannot be
-#: realised by the mesher: with the size growing from 0.005 to 0.2 over 0.1
-#: gmsh left a 0.11 element at the point. At 0.25 the size at the point is
-#: reached to a few per cent (measured over 20 random points and 5 size
-#: ratios up to 200).
-MAX_GROWTH = 0.25
-
-
-#: The size is h_near within PLATEAU * h_near of a refinement point, so that
-#: the cells around it (a crack tip's cell and its neighbours) all have it.
-PLATEAU = 4.0
-
-
-def refinement_size(h: float, h_near: float, radius: float) -> tuple[float, float]:
-    """The (plateau, growth) of a refinement's size field: the size is
-    h_near up to `plateau` from the point and then grows linearly by
-    `growth` per unit distance until it reaches h. The growth is
-    (h - h_near) / radius, at most MAX_GROWTH: a radius too short for the
-    mesher to honour is lengthened (to (h - h_near) / MAX_GROWTH)."""
-    plateau = PLATEAU * h_near
-    growth = (h - h_near) / radius if radius > 0.0 else MAX_GROWTH
-    return plateau, min(growth, MAX_GROWTH)
+    recipe = functools.partial(create_half_annulus, h, radius, outer_radius, refine=refine)
+    return _finish(gmsh, classify, h, refine, levels, recipe)
 
 
 #: gmsh's smoothing pass after meshing (Mesh.Smoothing = 1) runs while the
@@ -381,38 +413,28 @@ def _expected_nodes(gmsh, h: float) -> float:
     return NODES_PER_AREA_H2 * area / h ** 2
 
 
-def _mesh_2d(gmsh, h: float, refine) -> None:
-    smoothing = 1 if _expected_nodes(gmsh, h) <= SMOOTHING_MAX_NODES else 0
+def _mesh_2d(gmsh, h: float, refine, levels=(), area: float | None = None) -> None:
+    """Mesh the model's surfaces with the size field of h, refine and levels
+    (cracklip.scene.size_field): one MathEval field per refinement and their
+    minimum, or with levels the whole field as one expression. area: the
+    part's area if the model is not OpenCASCADE's (for the smoothing rule)."""
+    nodes = _expected_nodes(gmsh, h) if area is None else NODES_PER_AREA_H2 * area / h ** 2
+    smoothing = 1 if nodes <= SMOOTHING_MAX_NODES else 0
     gmsh.option.setNumber("Mesh.Smoothing", smoothing)
     gmsh.option.setNumber("Mesh.MeshSizeMax", h)
-    gmsh.option.setNumber("Mesh.MeshSizeMin", min([h] + [r[2] for r in refine]))
+    gmsh.option.setNumber("Mesh.MeshSizeMin", smallest_size(h, refine, levels))
     gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
     gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
     gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
-    if refine:
+    if any(int(v[5]) > 0 for v in levels):
+        f = gmsh.model.mesh.field.add("MathEval")
+        gmsh.model.mesh.field.setString(f, "F", size_expression(h, refine, levels))
+        gmsh.model.mesh.field.setAsBackgroundMesh(f)
+    elif refine:
         fields = []
         for item in refine:
-            x, y, h_near, radius = item[:4]
-            x1, y1 = item[4:6] if len(item) >= 6 else (x, y)
-            if not (0.0 < h_near and radius >= 0.0):
-                raise MeshError(f"refinement at ({x:g}, {y:g}): need a size > 0 and a radius >= 0, got "
-                                f"size {h_near!r}, radius {radius!r}")
-            plateau, growth = refinement_size(h, h_near, radius)
             f = gmsh.model.mesh.field.add("MathEval")
-            # Distance to the point, or to the segment (x, y)-(x1, y1). Every
-            # number in parentheses: "x--0.5" (a negative centre) makes gmsh's
-            # expression parser abort the process.
-            dx, dy = float(x1) - float(x), float(y1) - float(y)
-            if dx == 0.0 and dy == 0.0:
-                dist = "Sqrt((x - ({0!r}))^2 + (y - ({1!r}))^2)".format(float(x), float(y))
-            else:
-                t = "Max(0, Min(1, ((x - ({0!r})) * ({2!r}) + (y - ({1!r})) * ({3!r})) / ({4!r})))".format(
-                    float(x), float(y), dx, dy, dx * dx + dy * dy)
-                dist = "Sqrt((x - ({0!r}) - {2} * ({3!r}))^2 + (y - ({1!r}) - {2} * ({4!r}))^2)".format(
-                    float(x), float(y), t, dx, dy)
-            gmsh.model.mesh.field.setString(
-                f, "F", "Min(({0!r}), ({1!r}) + ({2!r}) * Max(0, {3} - ({4!r})))"
-                .format(float(h), float(h_near), float(growth), dist, float(plateau)))
+            gmsh.model.mesh.field.setString(f, "F", refinement_expression(h, item))
             fields.append(f)
         fmin = gmsh.model.mesh.field.add("Min")
         gmsh.model.mesh.field.setNumbers(fmin, "FieldsList", fields)
@@ -425,21 +447,30 @@ def read_msh(path: str | pathlib.Path) -> MeshData:
     path = pathlib.Path(path)
     if not path.is_file():
         raise MeshError(f"mesh file {path} does not exist")
+    if not _msh_header(path):
+        raise MeshError(f"{path}: gmsh cannot read this file (it does not start with $MeshFormat); cracklip reads "
+                        "gmsh .msh files (format 2 or 4) with a 2D triangle mesh")
     gmsh = _gmsh()
     try:
         gmsh.open(str(path))
     except Exception as e:  # gmsh raises a bare Exception for an unreadable file
-        # A failed parse leaves gmsh unable to mesh the next model: restart it.
-        global _GMSH_READY
-        gmsh.finalize()
-        _GMSH_READY = False
+        _restart_gmsh()
         raise MeshError(f"{path}: gmsh cannot read this file ({e}); cracklip reads gmsh .msh files "
                         "(format 2 or 4) with a 2D triangle mesh") from None
+    groups = gmsh.model.getPhysicalGroups()
+    types = gmsh.model.mesh.getElementTypes(2) if gmsh.model.getDimension() >= 2 else []
+    if (gmsh.model.getDimension() <= 2 and len(types) == 0 and any(d == 1 for d, _ in groups)
+            and not any(d >= 2 for d, _ in groups)):
+        gmsh.model.remove()
+        raise MeshError(f"{path}: the file holds the line elements of its Physical Curves but no triangle: it has "
+                        "no Physical Surface, and once any physical group is defined gmsh saves only the elements "
+                        "of physical groups. Add Physical Surface(\"part\") = {...}; (the part's surfaces) to the "
+                        ".geo and mesh again (or set Mesh.SaveAll = 1), or give cracklip the .geo itself "
+                        "(mesh.kind = \"geometry\")")
     if gmsh.model.getDimension() != 2:
         dim = gmsh.model.getDimension()
         gmsh.model.remove()
         raise MeshError(f"{path}: cracklip needs a 2D mesh, this one has dimension {dim}")
-    types = gmsh.model.mesh.getElementTypes(2)
     if any(t != 2 for t in types) or len(types) == 0:
         names = [gmsh.model.mesh.getElementProperties(t)[0] for t in types]
         gmsh.model.remove()
@@ -451,6 +482,13 @@ def read_msh(path: str | pathlib.Path) -> MeshData:
     if unused.size:
         coord = gmsh.model.mesh.getNode(int(unused[0]))[0][:2].tolist()
         gmsh.model.remove()
+        if not groups:
+            raise MeshError(
+                f"{path}: the file has no physical groups, so gmsh saved every entity of the geometry, construction "
+                f"points too ({unused.size} node(s) in no triangle, e.g. node {int(unused[0])} at {coord}: a circle's "
+                "centre?), and no boundary has a name for the scene's conditions and loads. In the .geo add "
+                "Physical Surface(\"part\") = {...}; and a Physical Curve(\"name\") = {...}; for every boundary "
+                "you load or support, and mesh again; or give cracklip the .geo itself (mesh.kind = \"geometry\")")
         raise MeshError(f"{path}: {unused.size} node(s) belong to no triangle (e.g. node {int(unused[0])} at "
                         f"{coord}); every node must be a vertex of a triangle: remove unused nodes")
     return _to_dolfinx(gmsh, None)
@@ -459,7 +497,7 @@ def read_msh(path: str | pathlib.Path) -> MeshData:
 def create_plate_with_hole(x0: float, y0: float, x1: float, y1: float, h: float,
                            center: tuple[float, float], radius: float,
                            refine: typing.Sequence[tuple[float, float, float, float]] = (),
-                           embed_points: typing.Sequence[tuple[float, float]] = ()) -> MeshData:
+                           embed_points: typing.Sequence[tuple[float, float]] = (), levels=()) -> MeshData:
     """Rectangle [x0, x1] x [y0, y1] with a circular hole, triangles of size h.
 
     The hole (centre, radius) must lie strictly inside the rectangle.
@@ -467,13 +505,13 @@ def create_plate_with_hole(x0: float, y0: float, x1: float, y1: float, h: float,
     create_rectangle); embed_points: points that must be mesh nodes (point
     supports, point forces). Tags: left, right, bottom, top, hole.
     """
-    return create_plate_with_holes(x0, y0, x1, y1, h, [(center[0], center[1], radius)], refine, embed_points)
+    return create_plate_with_holes(x0, y0, x1, y1, h, [(center[0], center[1], radius)], refine, embed_points, levels)
 
 
 def create_plate_with_holes(x0: float, y0: float, x1: float, y1: float, h: float,
                             holes: typing.Sequence[tuple[float, float, float]],
                             refine: typing.Sequence[tuple[float, float, float, float]] = (),
-                            embed_points: typing.Sequence[tuple[float, float]] = ()) -> MeshData:
+                            embed_points: typing.Sequence[tuple[float, float]] = (), levels=()) -> MeshData:
     """Rectangle [x0, x1] x [y0, y1] with circular holes (x, y, radius),
     each strictly inside the rectangle and apart from the others (a drilled
     plate). refine, embed_points: as create_plate_with_hole. Tags: left,
@@ -505,4 +543,6 @@ def create_plate_with_holes(x0: float, y0: float, x1: float, y1: float, h: float
         groups = _box_sides(gmsh, x0, y0, x1, y1, 1e-7 * max(x1 - x0, y1 - y0))
         groups["hole"] = groups.pop("other")
         return groups
-    return _finish(gmsh, classify, h, refine)
+    recipe = functools.partial(create_plate_with_holes, x0, y0, x1, y1, h, holes, refine=refine,
+                               embed_points=embed_points)
+    return _finish(gmsh, classify, h, refine, levels, recipe)

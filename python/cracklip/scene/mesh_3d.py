@@ -21,7 +21,8 @@ import typing
 import numpy as np
 
 from ..errors import MeshError
-from .mesh import MAX_GROWTH, PLATEAU, MeshData, _gmsh
+from .mesh import MeshData, _gmsh
+from .size_field import refinement_size
 
 #: Tetrahedra per unit volume of gmsh's mesh of size h: about 6 / h^3 (each
 #: node ~1 / (0.95 h^3)); used to say how big a mesh will be before making it.
@@ -109,8 +110,7 @@ def _size_fields(gmsh, h: float, fronts: typing.Sequence[FrontRefinement]) -> No
         gmsh.model.occ.synchronize()
         dist = gmsh.model.mesh.field.add("Distance")
         gmsh.model.mesh.field.setNumbers(dist, "PointsList", tags)
-        plateau = PLATEAU * fr.h_front
-        growth = min((h - fr.h_front) / fr.radius if fr.radius > 0.0 else MAX_GROWTH, MAX_GROWTH)
+        plateau, growth = refinement_size(h, fr.h_front, fr.radius)
         f = gmsh.model.mesh.field.add("MathEval")
         gmsh.model.mesh.field.setString(
             f, "F", "Min(({0!r}), ({1!r}) + ({2!r}) * Max(0, F{3} - ({4!r})))".format(

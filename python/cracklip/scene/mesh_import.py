@@ -44,11 +44,13 @@ _GMSH_TYPES = {2: (2, 3, 1, 2, "3-node triangles", "2-node boundary lines", "cur
                3: (4, 4, 2, 3, "4-node tetrahedra", "3-node boundary triangles", "surfaces")}
 
 
-def model_to_mesh(model, comm, dim: int = 2) -> tuple[typing.Any, typing.Any, dict[str, int]]:
+def model_to_mesh(model, comm, surfaces: typing.Sequence[int] | None = None, dim: int = 2
+                  ) -> tuple[typing.Any, typing.Any, dict[str, int]]:
     """(mesh, facet_tags, names) of the current gmsh model: its first-order
-    cells of dimension dim (triangles in 2D, tetrahedra in 3D), facet tags
-    from its physical groups of dimension dim - 1 (curves in 2D, surfaces in
-    3D; value = the physical tag, names from the physical names)."""
+    cells of dimension dim (triangles in 2D, tetrahedra in 3D; of the given
+    entities of that dimension only, `surfaces`, if given), facet tags from
+    its physical groups of dimension dim - 1 (curves in 2D, surfaces in 3D;
+    value = the physical tag, names from the physical names)."""
     import dolfinx.cpp.mesh
     import dolfinx.mesh
     from dolfinx.io import gmshio
@@ -60,7 +62,14 @@ def model_to_mesh(model, comm, dim: int = 2) -> tuple[typing.Any, typing.Any, di
     order = np.argsort(tags, kind="stable")
     sorted_tags = tags[order]
     x = np.ascontiguousarray(coords[order, :dim])
-    types, _, elem_nodes = model.mesh.getElements(dim)
+    if surfaces is None:
+        types, _, elem_nodes = model.mesh.getElements(dim)
+    else:
+        types, elem_nodes = [], []
+        for s in surfaces:
+            t, _, n = model.mesh.getElements(dim, s)
+            types += list(t)
+            elem_nodes += list(n)
     if len(types) == 0:
         raise MeshError(f"the gmsh model has no {dim}D elements")
     if any(t != cell_type for t in types):

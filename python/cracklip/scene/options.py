@@ -15,7 +15,7 @@ ENRICHMENTS = ("none", "scalar", "vector")
 #: point counts beyond these cost time without adding accuracy).
 INTEGER_OPTIONS = {"quadrature_degree": 60, "degree": 60, "facet_degree": 60, "tip_radial": 60,
                    "tip_angular": 60, "contact_points": 60, "max_active_set_iterations": 10000,
-                   "load_steps": 10000}
+                   "load_steps": 10000, "accuracy_levels": 6}
 
 
 TIP_QUADRATURES = ("collapsed", "gauss")
@@ -81,6 +81,12 @@ class Options:
             phantom-node basis, a direct solve of the crack band; same
             checked accuracy) or "auto" (chosen by size and enriched
             fraction as measured: cracklip.solvers.choose_solver).
+        accuracy: target of the estimated discretisation error of every K,
+            relative to the K scale (0.01: 1 %); 0: off. The mesh is refined
+            around every tip (element sizes halved within twice the crack's
+            length of it, one level per solve) until the estimate is below
+            it (cracklip.analysis.accuracy); a warning if not reached.
+        accuracy_levels: at most this many refinement levels for accuracy.
     """
     enrichment: str = "vector"
     radius: float = 0.0
@@ -104,6 +110,8 @@ class Options:
     friction: float = 0.0
     load_steps: int = 1
     solver: str = "auto"
+    accuracy: float = 0.0
+    accuracy_levels: int = 3
 
     def __post_init__(self):
         if self.enrichment not in ENRICHMENTS:
@@ -145,6 +153,10 @@ class Options:
         if self.friction > 0.0 and self.contact == "none":
             raise InputError(f"friction = {self.friction:g} needs contact = 'bilateral' or 'unilateral' (the "
                              "lips must be able to touch to rub)")
+        if isinstance(self.accuracy, bool) or not (isinstance(self.accuracy, numbers.Real)
+                                                   and 0.0 <= self.accuracy < 1.0):
+            raise InputError(f"accuracy must be a number in [0, 1) (the target of K's estimated error relative to "
+                             f"the K scale, e.g. 0.01 for 1 %; 0: off), got {self.accuracy!r}")
         if not (0.05 <= self.tip_max_angle <= 3.2):
             raise InputError(f"tip_max_angle must lie in [0.05, 3.2] radians, got {self.tip_max_angle}")
 

@@ -1,0 +1,167 @@
+"""Checks of a solved field: what the solve accepted silently and a user
+must hear about. Each returns (code, message) pairs; Solution.warnings
+collects them with the model's and the SIFs' warnings.
+
+- ``interpenetration``: without contact (options.contact = "none") the lips
+  are traction-free and a compressive load pushes them through each other:
+  a negative K_I, and in fatigue a K_min below zero that inflates Delta K.
+  Checked at every state of a load path (a fatigue cycle's minimum too), so
+  the warning reaches ``grow`` through the maximum load's solution.
+- ``no_load``: every load and prescribed displacement is zero (the solution
+  and every K are 0).
+- ``point_supports``: two point forces or two tractions push against each
+  other, as a self-equilibrated set does (the pins of a C(T), both ends of
+  a pulled plate), yet point supports carry more than SUPPORT_FRACTION of
+  the load: the loads do not balance and the supports act as loading points.
+- ``discretisation`` and ``accuracy``: from an error estimate
+  (cracklip.analysis.accuracy), a K whose estimated error exceeds
+  ERROR_WARNING of the K scale, or an accuracy target not reached.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+#: Overlap of the lips (largest -gap) above this fraction of the largest
+#: |jump| of a crack is interpenetration (below it: round-off of a crack
+#: loaded in shear).
+OVERLAP_FRACTION = 1e-3
+
+
+#: Point supports carrying more than this fraction of the applied load
+#: (the sum of |nodal loads|) when the loads oppose each other are warned about.
+SUPPORT_FRACTION = 0.01
+
+
+#: Loads of one kind count as pushing against each other when each side
+#: exceeds this fraction of the applied load (a pin at 1/100 of the other
+#: is 1 % of their sum).
+OPPOSING_FRACTION = 1e-3
+
+
+#: A K whose estimated discretisation error exceeds this fraction of the K scale is warned about.
+ERROR_WARNING = 0.01
+
+
+def _states(solution) -> list:
+    return getattr(solution, "path", None) or [solution]
+
+
+def interpenetration(solution) -> list[tuple[str, str]]:
+    """Lips passing through each other without contact (module doc)."""
+    m = solution.model
+    if m.scene.options.contact != "none" or not m.cracks:
+        return []
+    out = []
+    states = _states(solution)
+    for ci, cm in enumerate(m.cracks):
+        worst = None
+        for st in states:
+            smp = st.lip_samples(ci, 2)
+            if not len(smp["gap"]):
+                continue
+            jump = float(np.linalg.norm(smp["jump"], axis=1).max())
+            overlap = float(max(0.0, -smp["gap"].min()))
+            if jump > 0.0 and overlap > OVERLAP_FRACTION * jump:
+                w = smp["weight"]
+                frac = float(w[smp["gap"] < -OVERLAP_FRACTION * jump].sum() / w.sum())
+                if worst is None or overlap > worst[1]:
+                    worst = (st, overlap, frac)
+        if worst is None:
+            continue
+        st, overlap, frac = worst
+        kis = [r for r in st.stress_intensity_factors(ci) if r["K_I"] < 0.0]
+        at = f" at {st.step['name']!r}" if getattr(st, "step", None) and len(states) > 1 else ""
+        k_text = "; ".join(f"K_I = {r['K_I']:.4g} at the tip ({r['x']:.6g}, {r['y']:.6g})" for r in kis)
+        out.append(("interpenetration", (
+            f"crack {cm.crack.name!r}{at}: the lips pass through each other over {100 * frac:.0f} % of its length "
+            f"(largest overlap {overlap:.3g}" + (f"; {k_text}" if k_text else "") + "): contact is off "
+            "(options.contact = \"none\"), so nothing stops them; the K_I < 0 of overlapping lips is not physical, "
+            "and in fatigue it makes K_min negative and Delta K too large (life too short). Set "
+            "options.contact = \"unilateral\": the lips then touch and carry the pressure")))
+    return out
+
+
+def no_load(solution) -> list[tuple[str, str]]:
+    """Every state's displacement exactly zero: no load at all."""
+    if any(np.any(st.u) for st in _states(solution)):
+        return []
+    return [("no_load", "every load and prescribed displacement of the scene is zero (tractions, pressures, point "
+                        "forces, body force, lip pressures, initial stress, Dirichlet values): the displacement and "
+                        "every K are 0; give the part a load")]
+
+
+def point_supports(solution, reactions: dict | None = None) -> list[tuple[str, str]]:
+    """Point supports carrying the imbalance of loads that push against each
+    other: two point forces, or two tractions, opposed along x or y (as the
+    pins of a C(T) or both ends of a pulled plate, meant to balance), while
+    the point supports carry more than SUPPORT_FRACTION of the applied load.
+    A load that the supports are meant to carry (three-point bending, a
+    traction against a point force) is not judged."""
+    if reactions is None:
+        from .reactions import compute_reactions
+        reactions = compute_reactions(solution)
+    gross = reactions["gross_load"]
+    # Loads that cancel node by node (an initial stress against the tractions
+    # it puts on the boundary) leave round-off: measured against the loads'
+    # own size before they add up.
+    noise = 1e-9 * reactions["load_magnitude"]
+    if gross <= noise:
+        return []
+    points = [r for r in reactions["conditions"] if r["kind"] == "point"]
+    carried = float(sum(np.linalg.norm(r["force"]) for r in points))
+    if not points or carried <= max(SUPPORT_FRACTION * gross, noise):
+        return []
+    for kind in ("point force", "traction"):
+        items = [np.asarray(i["resultant"]) for i in reactions["load_items"] if i["kind"] == kind]
+        for k in range(2):
+            pos = sum(f[k] for f in items if f[k] > OPPOSING_FRACTION * gross)
+            neg = -sum(f[k] for f in items if f[k] < -OPPOSING_FRACTION * gross)
+            if pos > 0.0 and neg > 0.0:
+                detail = ", ".join(f"{r['condition']} ({r['force'][0]:.4g}, {r['force'][1]:.4g})" for r in points
+                                   if np.linalg.norm(r["force"]) > 0.0)
+                return [("point_supports", (
+                    f"the {kind}s push against each other (in {'xy'[k]}: +{pos:.4g} and -{neg:.4g}) as a set meant "
+                    f"to balance does (the pins of a C(T), both ends of a pulled plate), yet the point supports "
+                    f"carry {carried:.4g} ({100 * carried / gross:.2g} % of the applied load {gross:.4g}): {detail}. "
+                    "The loads do not balance and the supports act as loading points (one pin loaded more than "
+                    "the other?); check the load values, or support the part where it really is held"))]
+    return []
+
+
+def estimate(solution) -> list[tuple[str, str]]:
+    """Warnings of an error estimate (cracklip.analysis.accuracy)."""
+    est = getattr(solution, "error_estimate", None)
+    if not est:
+        return []
+    out = []
+    scale = est["K_scale"]
+    names = [cm.crack.name for cm in solution.model.cracks]
+    sifs = {(r["crack"], r["tip"]): r for r in solution.stress_intensity_factors(None)}
+    for key, row in est["tips"].items():
+        c, t = (int(v) for v in key.split(":"))
+        r = sifs.get((c, t))
+        if r is None or est["target"] is not None:
+            continue
+        mode = "K_I" if row["K_I_error"] >= row["K_II_error"] else "K_II"
+        if row[f"{mode}_error"] <= ERROR_WARNING * scale:
+            continue
+        finer = row[f"{mode}_levels"][-1]
+        out.append(("discretisation", (
+            f"tip {t} of crack {names[c]!r} at ({r['x']:.6g}, {r['y']:.6g}): {mode} = {r[mode]:.6g} has an estimated "
+            f"discretisation error of {row[f'{mode}_error']:.3g} ({100 * row[f'{mode}_error'] / scale:.2g} % of the "
+            f"K scale {scale:.4g}; with the element sizes halved around the tip it is {finer:.6g}): the mesh is too "
+            "coarse for this crack; refine it (mesh.h around the crack, mesh.tip_h, options.radius of a few tip "
+            "elements) or let cracklip refine it: options.accuracy = 0.01 (command line --accuracy 0.01)")))
+    if est["target"] is not None and not est["reached"]:
+        out.append(("accuracy", (
+            f"the accuracy target {100 * est['target']:.3g} % was not reached in {est['levels'][-1]} refinement "
+            f"level(s) ({est['dofs'][-1]} dofs): the largest estimated error of K is "
+            f"{100 * est['largest_relative_error']:.3g} % of the K scale; raise options.accuracy_levels, or start "
+            "from a finer mesh (mesh.h, mesh.tip_h)")))
+    return out
+
+
+def solution_warnings(solution) -> list[tuple[str, str]]:
+    """Every check of this module that needs no reactions (those are in the outputs)."""
+    return interpenetration(solution) + no_load(solution) + estimate(solution)
