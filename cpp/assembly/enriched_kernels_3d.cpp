@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -53,15 +54,10 @@ void compute_enriched_cell_quadrature_3d(std::span<const double> x, std::span<co
   if (ic >= 0)
   {
     // Front functions are smooth but not polynomial away from the front:
-    // the sub-tetrahedra away from it get the far degree too.
-    if (front_crack >= 0 and options.degree < FRONT_FAR_DEGREE)
-    {
-      QuadratureOptions3D o = options;
-      o.degree = FRONT_FAR_DEGREE;
-      compute_cell_quadrature_3d(x, cells, *cracks[ic], c, o, out);
-    }
-    else
-      compute_cell_quadrature_3d(x, cells, *cracks[ic], c, options, out);
+    // the sub-tetrahedra away from it get a degree graded by the distance.
+    QuadratureOptions3D o = options;
+    o.front_functions = front_crack >= 0;
+    compute_cell_quadrature_3d(x, cells, *cracks[ic], c, o, out);
     return;
   }
   const P1Tetrahedron T(x, cells, c);
@@ -116,7 +112,24 @@ void compute_enriched_cell_quadrature_3d(std::span<const double> x, std::span<co
                                               options.front_axial));
   }
   else
-    append(quadrature::tetrahedron(std::max(options.degree, FRONT_FAR_DEGREE)));
+  {
+    // Gauss graded by the distance of the nearest vertex to the front (its
+    // level sets' distance at the vertices).
+    const CrackGeometry3D& g = *cracks[front_crack];
+    double rmin = std::numeric_limits<double>::infinity(), diam = 0.0;
+    for (int a = 0; a < 4; ++a)
+    {
+      rmin = std::min(rmin, std::hypot(g.phi[T.nodes[a]], g.psi[T.nodes[a]]));
+      for (int b = a + 1; b < 4; ++b)
+      {
+        double e2 = 0.0;
+        for (int i = 0; i < 3; ++i)
+          e2 += (T.xv[a][i] - T.xv[b][i]) * (T.xv[a][i] - T.xv[b][i]);
+        diam = std::max(diam, std::sqrt(e2));
+      }
+    }
+    append(quadrature::tetrahedron(front_function_degree(options, rmin / diam)));
+  }
 }
 
 std::int32_t assemble_enriched_stiffness_3d(const MatrixSink& sink, std::span<const double> x,

@@ -14,19 +14,15 @@
 namespace cracklip
 {
 
-/// Gauss degree in enriched cells that carry front functions but are not
-/// near the front (a smooth, non-polynomial integrand).
-constexpr int FRONT_FAR_DEGREE = 8;
-
 /// Quadrature of an enriched cell: the crack geometry's per-cell rule where
 /// a crack crosses the cell (sub-tetrahedra, collapsed at the front; Gauss
-/// of degree at least FRONT_FAR_DEGREE on the sub-tetrahedra away from the
+/// graded by the distance (front_function_degree) on the sub-tetrahedra away from the
 /// front when the cell carries front functions); in a
 /// cell that carries front functions without being crossed, the near-front
 /// rule (signed cones from the cell's P1 front line) when that line passes
 /// within options.near_factor diameters of its nearest vertex, else Gauss of
-/// degree max(options.degree, FRONT_FAR_DEGREE); Gauss of options.degree
-/// otherwise. Sides: the crossing crack's sub-tetrahedra, else 0.
+/// front_function_degree (graded by the distance to the front); Gauss of
+/// options.degree otherwise. Sides: the crossing crack's sub-tetrahedra, else 0.
 void compute_enriched_cell_quadrature_3d(std::span<const double> x, std::span<const std::int32_t> cells,
                                          const EnrichmentLayout3D& layout,
                                          std::span<const CrackGeometry3D* const> cracks, std::int32_t c,

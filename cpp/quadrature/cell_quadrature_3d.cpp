@@ -4,6 +4,9 @@
 #include "geometry/vec3.h"
 #include "quadrature/front_rules_3d.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -47,6 +50,12 @@ bool front_line(std::span<const double> x, std::span<const std::int32_t> cells, 
   return true;
 }
 
+int front_function_degree(const QuadratureOptions3D& options, double rho)
+{
+  const int drop = rho < 1.0 ? 0 : rho < 2.0 ? 2 : rho < 4.0 ? 4 : 5;
+  return std::max(options.degree, options.far_degree - drop);
+}
+
 void compute_cell_quadrature_3d(std::span<const double> x, std::span<const std::int32_t> cells,
                                 const CrackGeometry3D& g, std::int32_t c, const QuadratureOptions3D& options,
                                 CellQuadrature3D& out)
@@ -82,7 +91,16 @@ void compute_cell_quadrature_3d(std::span<const double> x, std::span<const std::
     return;
   }
   const CrackCell3D& cc = g.crack_cells[i];
-  const quadrature::Rule smooth = quadrature::tetrahedron(options.degree);
+  // Gauss rules by degree, made when first needed.
+  std::array<quadrature::Rule, 24> gauss;
+  auto gauss_rule = [&](int degree) -> const quadrature::Rule&
+  {
+    if (degree >= static_cast<int>(gauss.size()))
+      throw std::invalid_argument("compute_cell_quadrature_3d: degree " + std::to_string(degree) + " above 23");
+    if (gauss[degree].weights.empty())
+      gauss[degree] = quadrature::tetrahedron(degree);
+    return gauss[degree];
+  };
   const bool collapsed = options.front_rule == FrontQuadrature::collapsed;
   const quadrature::Rule front_gauss = quadrature::tetrahedron(options.front_degree);
   Point3 dir = {0, 0, 0}, on_line = {0, 0, 0};
@@ -119,8 +137,24 @@ void compute_cell_quadrature_3d(std::span<const double> x, std::span<const std::
         append(quadrature::tetrahedron_near_front(xv, on_line, dir, options.front_radial, options.front_angular,
                                                   options.front_axial),
                R, cc.side[k], 0);
+      else if (options.front_functions)
+      {
+        // Distance to the front from the P1 level sets at the vertices.
+        double rmin = std::numeric_limits<double>::infinity(), diam = 0.0;
+        for (int a = 0; a < 4; ++a)
+        {
+          const auto N = P1Tetrahedron::shape({R[3 * a], R[3 * a + 1], R[3 * a + 2]});
+          double f = 0.0, p = 0.0;
+          for (int b = 0; b < 4; ++b)
+            f += N[b] * g.phi[T.nodes[b]], p += N[b] * g.psi[T.nodes[b]];
+          rmin = std::min(rmin, std::hypot(f, p));
+          for (int b = a + 1; b < 4; ++b)
+            diam = std::max(diam, dist(X[a], X[b]));
+        }
+        append(gauss_rule(front_function_degree(options, rmin / diam)), R, cc.side[k], 0);
+      }
       else
-        append(smooth, R, cc.side[k], 0);
+        append(gauss_rule(options.degree), R, cc.side[k], 0);
       continue;
     }
     if (!collapsed)
@@ -135,9 +169,16 @@ void compute_cell_quadrature_3d(std::span<const double> x, std::span<const std::
              R, cc.side[k], nf);
       continue;
     }
-    // Without a front line (P1 psi vanishing on the crossing) collapse onto
-    // the vertex plainly: a direction parallel to the opposite face.
-    const Point3 d = has_line ? dir : Point3{xv[6] - xv[3], xv[7] - xv[4], xv[8] - xv[5]};
+    if (!options.signed_point_rule or !has_line)
+    {
+      // The plain collapse onto the vertex (also without a front line: P1
+      // psi vanishing on the crossing).
+      append(quadrature::tetrahedron_vertex_collapsed(options.front_radial,
+                                                      std::max(options.front_angular, options.front_axial)),
+             R, cc.side[k], nf);
+      continue;
+    }
+    const Point3 d = dir;
     append(quadrature::tetrahedron_point_collapsed(xv, d, options.front_radial, options.front_angular,
                                                    options.front_axial),
            R, cc.side[k], nf);

@@ -13,7 +13,7 @@ namespace cracklip
 using namespace vec3;
 
 LipPoints3D compute_lip_points_3d(std::span<const double> x, std::span<const std::int32_t> cells,
-                                  const CrackGeometry3D& g, int n, double near_factor)
+                                  const CrackGeometry3D& g, int n, double near_factor, bool signed_point_rule)
 {
   if (n < 1)
     throw std::invalid_argument("compute_lip_points_3d: need at least one point per direction");
@@ -43,13 +43,10 @@ LipPoints3D compute_lip_points_3d(std::span<const double> x, std::span<const std
       quadrature::Rule rule;
       if (nf == 2)
         rule = edge;
+      else if (nf == 1 and signed_point_rule and has_line)
+        rule = quadrature::triangle_point_collapsed(xv, dir, n, n);
       else if (nf == 1)
-      {
-        // Without a front line, the plain fan from the vertex (a direction
-        // parallel to the opposite edge never meets it).
-        const Point3 d = has_line ? dir : sub(X[2], X[1]);
-        rule = quadrature::triangle_point_collapsed(xv, d, n, n);
-      }
+        rule = quadrature::tip_fan(n, n); // the plain fan from the front vertex
       else
       {
         bool near = false;

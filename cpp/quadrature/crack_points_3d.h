@@ -33,11 +33,16 @@ struct LipPoints3D
 };
 
 /// n points per direction: Gauss of degree 2 n - 1 on facets away from the
-/// front, n x n collapsed points on facets touching it, and the near-front
-/// rule (signed fans from the cell's front line, triangle_near_front) on
-/// facets whose nearest vertex is within near_factor times their diameter
-/// of that line (0: never).
+/// front, n x n collapsed points on facets touching it (with a vertex on
+/// it: the plain fan from that vertex, points inside and weights positive,
+/// or with signed_point_rule the signed decomposition of
+/// triangle_point_collapsed, exact for r^(-1/2) however close the front
+/// passes but with points outside the facet), and the near-front rule
+/// (signed fans from the cell's front line, triangle_near_front) on facets
+/// whose nearest vertex is within near_factor times their diameter of that
+/// line (0: never).
 LipPoints3D compute_lip_points_3d(std::span<const double> x, std::span<const std::int32_t> cells,
-                                  const CrackGeometry3D& g, int n, double near_factor = 1.0);
+                                  const CrackGeometry3D& g, int n, double near_factor = 0.0,
+                                  bool signed_point_rule = false);
 
 } // namespace cracklip

@@ -118,9 +118,18 @@ Rule tetrahedron_point_collapsed(std::span<const double, 12> xv, std::span<const
       return rule;
     }
   }
-  // Far: x = A + rho ((1 - s1 - s2) (B - A) + s1 (C - A) + s2 (D - A)),
+  // Far: the plain collapse onto A.
+  return tetrahedron_vertex_collapsed(n_tau, std::max(n_eta, n_t));
+}
+
+Rule tetrahedron_vertex_collapsed(int n_tau, int n)
+{
+  check_points(n_tau, n, 1, "tetrahedron_vertex_collapsed");
+  // x = A + rho ((1 - s1 - s2) (B - A) + s1 (C - A) + s2 (D - A)),
   // dV = rho^2 drho dsigma (in the reference measure), rho = tau^2.
-  const Rule gt = gauss_legendre(n_tau), tri = triangle_product(std::max(n_eta, n_t));
+  const Rule gt = gauss_legendre(n_tau), tri = triangle_product(n);
+  Rule rule;
+  rule.dim = 3;
   for (int i = 0; i < n_tau; ++i)
   {
     const double tau = gt.points[i], rho = tau * tau;

@@ -59,6 +59,15 @@ Rule tetrahedron_edge_collapsed(std::span<const double, 12> xv, int n_tau, int n
 Rule tetrahedron_point_collapsed(std::span<const double, 12> xv, std::span<const double, 3> front, int n_tau,
                                  int n_eta, int n_t);
 
+/// The plain collapse of the tetrahedron ABCD onto its vertex A:
+/// x = A + rho Q(sigma) over the triangle BCD, rho = tau^2 (weight 2 tau^5),
+/// sigma by an n x n conical rule. Weights positive, points inside: a
+/// positive semi-definite integrand gets a positive semi-definite sum. For
+/// a front through A that stays away from BCD, r^(-1) becomes rho^(-1)
+/// times a smooth function of sigma (nearly singular if the front passes
+/// close to BCD: then the signed decomposition above is exact).
+Rule tetrahedron_vertex_collapsed(int n_tau, int n);
+
 /// Edge-collapsed rule on the triangle ABC with the edge AB on the front:
 /// beta = tau^2, alpha = (1 - beta) t, weight 2 tau (1 - tau^2); r = beta
 /// dist(C, AB), so r^(1/2) and r^(-1/2) times polynomials are polynomial.

@@ -122,7 +122,8 @@ py::dict front_dict(const CrackFront3D& f)
 }
 
 QuadratureOptions3D quadrature_options(int degree, const std::string& front_rule, int front_radial,
-                                       int front_angular, int front_axial, int front_degree, double near_factor)
+                                       int front_angular, int front_axial, int front_degree, double near_factor,
+                                       bool signed_point_rule)
 {
   QuadratureOptions3D o;
   o.degree = degree;
@@ -137,6 +138,7 @@ QuadratureOptions3D quadrature_options(int degree, const std::string& front_rule
   o.front_axial = front_axial;
   o.front_degree = front_degree;
   o.near_factor = near_factor;
+  o.signed_point_rule = signed_point_rule;
   if (degree < 0 or front_degree < 0 or front_radial < 1 or front_angular < 1 or front_axial < 1 or near_factor < 0)
     throw std::invalid_argument("quadrature options: degrees must be >= 0, numbers of points >= 1 and "
                                 "near_factor >= 0");
@@ -314,12 +316,12 @@ void declare_geometry_3d(py::module& m)
       "compute_cell_quadrature_3d",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const CrackGeometry3D& g, std::int32_t cell,
          int degree, const std::string& front_rule, int front_radial, int front_angular, int front_axial,
-         int front_degree, double near_factor)
+         int front_degree, double near_factor, bool signed_point_rule)
       {
         require_shape(x, 3, "x (node coordinates)");
         require_shape(cells, 4, "cells (node indices per tetrahedron)");
         const QuadratureOptions3D o = quadrature_options(degree, front_rule, front_radial, front_angular,
-                                                         front_axial, front_degree, near_factor);
+                                                         front_axial, front_degree, near_factor, signed_point_rule);
         CellQuadrature3D q;
         compute_cell_quadrature_3d(as_span(x), as_span(cells), g, cell, o, q);
         const py::ssize_t nq = q.size();
@@ -331,17 +333,19 @@ void declare_geometry_3d(py::module& m)
         return d;
       },
       py::arg("x"), py::arg("cells"), py::arg("geometry"), py::arg("cell"), py::arg("degree") = 2,
-      py::arg("front_rule") = "collapsed", py::arg("front_radial") = 6, py::arg("front_angular") = 8,
-      py::arg("front_axial") = 3, py::arg("front_degree") = 5, py::arg("near_factor") = 1.0,
-      "Quadrature points of one cell: ref (n, 3), weight (n), side (n), front_vertices (n).");
+      py::arg("front_rule") = "collapsed", py::arg("front_radial") = 4, py::arg("front_angular") = 6,
+      py::arg("front_axial") = 2, py::arg("front_degree") = 5, py::arg("near_factor") = 0.0,
+      py::arg("signed_point_rule") = false,
+      "Quadrature points of one cell (defaults: QuadratureOptions3D's): ref (n, 3), weight (n), side (n), "
+      "front_vertices (n).");
   m.def(
       "compute_lip_points_3d",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const CrackGeometry3D& g, int npts,
-         double near_factor)
+         double near_factor, bool signed_point_rule)
       {
         require_shape(x, 3, "x (node coordinates)");
         require_shape(cells, 4, "cells (node indices per tetrahedron)");
-        LipPoints3D lp = compute_lip_points_3d(as_span(x), as_span(cells), g, npts, near_factor);
+        LipPoints3D lp = compute_lip_points_3d(as_span(x), as_span(cells), g, npts, near_factor, signed_point_rule);
         const py::ssize_t nq = n(lp.weight.size());
         py::dict d;
         d["cell"] = as_pyarray(std::move(lp.cell));
@@ -352,7 +356,8 @@ void declare_geometry_3d(py::module& m)
         d["front_vertices"] = as_pyarray(std::move(lp.front_vertices));
         return d;
       },
-      py::arg("x"), py::arg("cells"), py::arg("geometry"), py::arg("n") = 6, py::arg("near_factor") = 1.0,
+      py::arg("x"), py::arg("cells"), py::arg("geometry"), py::arg("n") = 6, py::arg("near_factor") = 0.0,
+      py::arg("signed_point_rule") = false,
       "Quadrature points on the lip facets: cell, ref (n, 3), x (n, 3), weight, normal (n, 3), front_vertices.");
   m.def(
       "tetrahedron_rule", [](int degree) { return rule_dict(quadrature::tetrahedron(degree)); }, py::arg("degree"),

@@ -47,7 +47,10 @@ void declare_model_3d(py::module& m)
       .def_readwrite("front_angular", &QuadratureOptions3D::front_angular)
       .def_readwrite("front_axial", &QuadratureOptions3D::front_axial)
       .def_readwrite("front_degree", &QuadratureOptions3D::front_degree)
-      .def_readwrite("near_factor", &QuadratureOptions3D::near_factor);
+      .def_readwrite("near_factor", &QuadratureOptions3D::near_factor)
+      .def_readwrite("far_degree", &QuadratureOptions3D::far_degree)
+      .def_readwrite("signed_point_rule", &QuadratureOptions3D::signed_point_rule)
+      .def_readwrite("front_functions", &QuadratureOptions3D::front_functions);
 
   py::class_<EnrichmentLayout3D>(m, "EnrichmentLayout3D", "Enriched pseudo-nodes of a tetrahedral mesh")
       .def_property_readonly("num_std_nodes", [](const EnrichmentLayout3D& l) { return l.num_std_nodes; })

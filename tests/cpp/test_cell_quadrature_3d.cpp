@@ -44,7 +44,19 @@ double cubic(const Point3& p) { return 1.0 + p[0] * p[0] * p[1] - 2.0 * p[2] * p
 TEST(CellQuadrature3D, VolumesAndPolynomialsOnEveryCell)
 {
   const PennyMesh m(8);
+  // The signed rules with their exact settings, then the defaults (plain
+  // vertex collapse with 4 radial points, exact to degree 7 in tau: a cubic
+  // is degree 11 there; 6 sinh-mapped angular points instead of 8 leave
+  // 3e-11 of the volume).
+  for (const bool defaults : {false, true})
+  {
   QuadratureOptions3D opt;
+  if (!defaults)
+  {
+    opt.signed_point_rule = true;
+    opt.near_factor = 1.0;
+    opt.front_radial = 6, opt.front_angular = 8, opt.front_axial = 3;
+  }
   opt.degree = 3;
   const quadrature::Rule whole = quadrature::tetrahedron(3);
   CellQuadrature3D q;
@@ -67,11 +79,12 @@ TEST(CellQuadrature3D, VolumesAndPolynomialsOnEveryCell)
     worst_poly = std::max(worst_poly, std::abs(poly - exact) / std::abs(exact));
     front_cells += m.g.cell_class[c] == static_cast<std::int8_t>(CellClass3D::front);
   }
-  std::printf("cell quadrature: %d front cells; worst relative volume error %.2e, cubic %.2e\n", front_cells,
-              worst_vol, worst_poly);
+  std::printf("cell quadrature (%s): %d front cells; worst relative volume error %.2e, cubic %.2e\n",
+              defaults ? "defaults" : "signed, 6x8x3, near 1", front_cells, worst_vol, worst_poly);
   EXPECT_GT(front_cells, 20);
-  EXPECT_LT(worst_vol, 1e-12);
-  EXPECT_LT(worst_poly, 1e-10);
+  EXPECT_LT(worst_vol, defaults ? 1e-10 : 1e-12);
+  EXPECT_LT(worst_poly, defaults ? 1e-4 : 1e-10);
+  }
 }
 
 // The singular integrals over whole front cells: int_cell g / r and
@@ -150,6 +163,9 @@ TEST(CellQuadrature3D, SingularIntegralsOverFrontCells)
         return std::abs(s - ref) / std::abs(ref);
       };
       QuadratureOptions3D opt;
+      opt.signed_point_rule = true;
+      opt.near_factor = 1.0;
+      opt.front_radial = 6, opt.front_angular = 8, opt.front_axial = 3;
       worst_default = std::max(worst_default, integrate(opt));
       opt.near_factor = 3.0;
       worst_fine = std::max(worst_fine, integrate(opt));
@@ -190,9 +206,12 @@ TEST(LipPoints3D, AreaAndInverseSquareRootOnAStraightFront)
   const double exact = J * std::pow(c2, 0.25) * 4 * (std::pow(x0 + k, 1.5) - std::pow(x0, 1.5)) / (3 * k);
   const Point3 A = {x0, 0, z0 + ax * x0}, B = {x0 + k, 1, z0 + ax * (x0 + k) + ay};
   const Point3 e = unit(sub(B, A));
+  // The signed and near-front rules (exact), then the defaults (plain fans,
+  // Gauss near the front: 8.6e-5 at n = 4, 1.3e-6 at n = 8).
+  for (const bool defaults : {false, true})
   for (const int n : {4, 6, 8})
   {
-    const LipPoints3D lp = compute_lip_points_3d(x, cells, g, n);
+    const LipPoints3D lp = defaults ? compute_lip_points_3d(x, cells, g, n) : compute_lip_points_3d(x, cells, g, n, 1.0, true);
     double area = 0.0, s = 0.0, s_touch = 0.0, s_near = 0.0;
     for (std::size_t q = 0; q < lp.weight.size(); ++q)
     {
@@ -203,11 +222,14 @@ TEST(LipPoints3D, AreaAndInverseSquareRootOnAStraightFront)
       s += lp.weight[q] / std::sqrt(r);
       (lp.front_vertices[q] > 0 ? s_touch : s_near) += lp.weight[q] / std::sqrt(r);
     }
-    std::printf("lip points n=%d: area error %.2e, int r^-1/2 relative error %.2e (facets on the front %.4f, "
-                "others %.4f)\n",
-                n, std::abs(area - (x0 + k / 2) * J), std::abs(s - exact) / exact, s_touch, s_near);
+    std::printf("lip points (%s) n=%d: area error %.2e, int r^-1/2 relative error %.2e (facets on the front "
+                "%.4f, others %.4f)\n",
+                defaults ? "defaults" : "signed, near 1", n, std::abs(area - (x0 + k / 2) * J),
+                std::abs(s - exact) / exact, s_touch, s_near);
     EXPECT_NEAR(area, (x0 + k / 2) * J, 1e-12);
     if (n == 8)
-      EXPECT_LT(std::abs(s - exact) / exact, 1e-10);
+      EXPECT_LT(std::abs(s - exact) / exact, defaults ? 1e-5 : 1e-10);
+    if (n == 4 and defaults)
+      EXPECT_LT(std::abs(s - exact) / exact, 1e-4);
   }
 }

@@ -255,7 +255,7 @@ class LifeRun:
         record every tip; returns tips.Measured with .levels per tip."""
         from .tips import Measured, TipRecord, closed_fraction, part_length
         from .load_path import LevelSolver
-        from ..post.solution import Solution
+        from ..post.solution_3d import create_solution
         t0 = time.perf_counter()
         scene = dataclasses.replace(self.scene, cracks=[dataclasses.replace(c) for c in cracks])
         solver = LevelSolver(scene)
@@ -306,7 +306,7 @@ class LifeRun:
                 sol_ref = sol_levels[ref_state]
             else:
                 u = sum(f * b.u for f, b in zip(self.F[ref_state], basis))
-                sol_ref = Solution(model, u, dict(basis[0].timings), factors=self.factors(self.F[ref_state]))
+                sol_ref = create_solution(model, u, dict(basis[0].timings), factors=self.factors(self.F[ref_state]))
             lengths = [part_length(model, ci) for ci in range(len(cracks))]
             ntips = {}
             for ci, _ in tips:

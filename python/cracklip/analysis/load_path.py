@@ -20,6 +20,7 @@ from ..contact.frictionless import contact_constant, create_contact_system, solv
 from ..model.assembly import assemble_system_groups
 from ..model.model import create_model
 from ..post.solution import Solution
+from ..post.solution_3d import create_solution
 from ..errors import InputError
 from ..scene.conditions import LoadStep
 from ..scene.load_path import Increment, increments, steps
@@ -136,7 +137,7 @@ def _step_solution(model, unit, physical, y, T, E, info, inc: Increment, step: L
         contact["iterations"] = int(sum(iterations))
     solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None, "solver": solver_name,
               "solves": list(solves)}
-    sol = Solution(model, u, dict(timings), {}, contact, solver)
+    sol = create_solution(model, u, dict(timings), {}, contact, solver)
     sol.factors = dict(inc.factors)
     sol.step = {"index": inc.step, "name": step.name, "factors": dict(inc.factors),
                 "increments": len(iterations) or 1}

@@ -17,6 +17,7 @@ from ..errors import InputError, SolverError
 from ..model.assembly import assemble_system, elasticity_form
 from ..model.model import create_model
 from ..post.solution import Solution
+from ..post.solution_3d import create_solution
 from ..scene.scene import Scene
 from ..solvers.checked import condition_number_1norm, record_solves, solve_checked
 from ..solvers.choice import create_linear_solver, to_solver_basis
@@ -106,8 +107,8 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     timings = {**model.timings, **timings}
     timings["total"] = time.perf_counter() - t_start
     logger.info("solved %d dofs (%d enriched) in %.3f s", model.num_dofs,
-                2 * model.layout.num_enriched, timings["total"])
-    return Solution(model, u, timings, condition, contact, solver)
+                model.gdim * model.layout.num_enriched, timings["total"])
+    return create_solution(model, u, timings, condition, contact, solver)
 
 
 def _contact_singularity(scene: Scene, A, b, error: SolverError) -> SolverError:

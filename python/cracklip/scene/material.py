@@ -80,13 +80,15 @@ class Material:
 
 
 def strain(grad: np.ndarray) -> np.ndarray:
-    """Symmetric part of gradients (n, 2, 2)."""
+    """Symmetric part of gradients (n, d, d)."""
     return 0.5 * (grad + np.swapaxes(grad, 1, 2))
 
 
 def stress(eps: np.ndarray, material) -> np.ndarray:
-    """In-plane stress (n, 2, 2) of strains (n, 2, 2) (plane strain or stress)."""
+    """Stress (n, d, d) of strains (n, d, d): in-plane (plane strain or
+    stress) for d = 2, plain elasticity for d = 3 (plane is "strain" there)."""
     E, nu = material.E_strain, material.nu_strain
     lmbda = E * nu / ((1 + nu) * (1 - 2 * nu))
-    tr = eps[:, 0, 0] + eps[:, 1, 1]
-    return 2 * material.mu * eps + lmbda * tr[:, None, None] * np.eye(2)[None]
+    d = eps.shape[1]
+    tr = np.trace(eps, axis1=1, axis2=2)
+    return 2 * material.mu * eps + lmbda * tr[:, None, None] * np.eye(d)[None]

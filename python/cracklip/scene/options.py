@@ -177,7 +177,7 @@ class Options:
         front rule ("collapsed": edge- and point-collapsed rules on the
         sub-tetrahedra touching the front; "gauss": plain Gauss of degree
         quadrature_degree there), Gauss of degree at least 2 elsewhere, the
-        collapsed rules' points at their C++ defaults (6 x 8 x 3)."""
+        collapsed rules' points at their C++ defaults (4 x 6 x 2)."""
         from .. import _cracklip
         q = _cracklip.QuadratureOptions3D()
         q.degree = max(int(self.degree), 2)
