@@ -94,7 +94,24 @@ def front_sampling(h_front: float) -> float:
     return 0.5 * h_front
 
 
-def _size_fields(gmsh, h: float, fronts: typing.Sequence[FrontRefinement]) -> None:
+def crack_refinements(cracks: typing.Sequence, h: float, h_front: float, radius: float = 0.0,
+                      h_surface: float = 0.0) -> list[FrontRefinement]:
+    """The refinements around 3D cracks: h_front along each crack's front
+    (its front_points every front_sampling(h_front)), and if h_surface > 0,
+    h_surface over each crack's surface (its surface_points every
+    h_surface / 2); the size grows back to h over `radius` (0: as fast as
+    the mesher honours, MAX_GROWTH). Front points outside the part (a
+    surface crack's ellipse) cost nothing but a few distance evaluations."""
+    out = []
+    for c in cracks:
+        if h_front > 0.0:
+            out.append(FrontRefinement(c.front_points(front_sampling(h_front)), h_front, radius))
+        if h_surface > 0.0:
+            out.append(FrontRefinement(c.surface_points(0.5 * h_surface), h_surface, radius))
+    return out
+
+
+def _size_fields(gmsh, h: float, fronts: typing.Sequence[FrontRefinement], kernel: str = "occ") -> None:
     gmsh.option.setNumber("Mesh.MeshSizeMax", h)
     gmsh.option.setNumber("Mesh.MeshSizeMin", min([h] + [f.h_front for f in fronts]))
     gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
@@ -103,11 +120,14 @@ def _size_fields(gmsh, h: float, fronts: typing.Sequence[FrontRefinement]) -> No
     if not fronts:
         return
     fields = []
+    # The points in the kernel of the part's own model (occ for the
+    # generated shapes and OpenCASCADE files, geo for a built-in .geo): the
+    # other kernel's numbering would reuse the tags of the part's own
+    # points, and synchronizing would replace them.
+    factory = getattr(gmsh.model, kernel)
     for fr in fronts:
-        # Points of the OCC kernel (the part's): geo points would reuse the
-        # tags of the part's own corners.
-        tags = [gmsh.model.occ.addPoint(*map(float, p)) for p in fr.points]
-        gmsh.model.occ.synchronize()
+        tags = [factory.addPoint(*map(float, p)) for p in fr.points]
+        factory.synchronize()
         dist = gmsh.model.mesh.field.add("Distance")
         gmsh.model.mesh.field.setNumbers(dist, "PointsList", tags)
         plateau, growth = refinement_size(h, fr.h_front, fr.radius)
@@ -135,13 +155,15 @@ def _finish(gmsh, groups: dict[str, list[int]], h: float, fronts) -> MeshData:
     return _to_dolfinx_3d(gmsh, h, fronts)
 
 
-def _to_dolfinx_3d(gmsh, h: float | None, fronts=()) -> MeshData:
+def _to_dolfinx_3d(gmsh, h: float | None, fronts=(), volumes: typing.Sequence[int] | None = None) -> MeshData:
+    """The DOLFINx mesh of gmsh's current model (the tetrahedra of `volumes`
+    only if given), its physical surfaces as boundary tags; removes the model."""
     names = {}
     for dim, tag in gmsh.model.getPhysicalGroups(2):
         names[gmsh.model.getPhysicalName(dim, tag) or str(tag)] = tag
     from mpi4py import MPI
     from .mesh_import import model_to_mesh
-    msh, facet_tags, _ = model_to_mesh(gmsh.model, MPI.COMM_WORLD, dim=3)
+    msh, facet_tags, _ = model_to_mesh(gmsh.model, MPI.COMM_WORLD, volumes, dim=3)
     gmsh.model.remove()
     check_mesh_3d(msh)
     return MeshData(msh, facet_tags, names, h, front_refinements=list(fronts))
@@ -229,5 +251,5 @@ def expected_cells(volume: float, h: float) -> float:
 
 
 __all__ = ["FrontRefinement", "check_mesh_3d", "create_box", "create_cylinder", "read_msh_3d", "front_sampling",
-           "expected_cells"]
+           "expected_cells", "crack_refinements"]
 
