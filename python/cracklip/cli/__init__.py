@@ -240,6 +240,10 @@ def sif_summary(rows, estimate, units) -> list[str]:
                 text += f" (extrapolated {r[f'{mode}_extrapolated']:.6g})"
             parts.append(text)
         out.append(f"  {r['crack_name']} tip ({r['x']:.6g}, {r['y']:.6g}): {', '.join(parts)}{unit}, mode mix {mix}")
+        if r.get("inner_radius") is not None:
+            out.append(f"    SIF ring [{r['inner_radius']:.4g}, {r['radius']:.4g}] (options.sif_ring: one domain, "
+                       "no spread)" + ("" if r["domain_clear"] else f"; it reaches {r['limited_by']}: NOT reliable"))
+            continue
         out.append(f"    SIF domain spread (K over 3 domains; not an error bar): K_I {r['K_I_spread']:.2g}, "
                    f"K_II {r['K_II_spread']:.2g}" + ("" if r.get("K_I_error") is not None else
                                                      "; no error estimate (outputs.error_estimate = false)"))

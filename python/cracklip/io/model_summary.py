@@ -123,6 +123,7 @@ def _describe_cracks_2d(model: XfemModel) -> list[dict[str, typing.Any]]:
             "tips": np.asarray(g.tips).tolist(),
             "tip_element_size": [d.element_size for d in domains],
             "sif_radius": [d.radius for d in domains],
+            "sif_inner_radius": [d.inner_radius for d in domains],
             "sif_limited_by": [d.obstacle if d.limited or not d.clear else None for d in domains],
             "lip_pressure": "function" if callable(cm.crack.pressure) else float(cm.crack.pressure),
             "cells": {name: int(cls[v]) for name, v in CELL_CLASSES.items() if name != "plain"},
@@ -343,7 +344,12 @@ def format_model(summary: dict[str, typing.Any]) -> list[str]:
                   f"  tip: {c['tip_nodes']} nodes ({c['tip_core_nodes']} core, {c['tip_blending_nodes']} "
                   f"blending), {c['tip_dofs']} dofs"
                   + (f"; {c['snapped_nodes']} node(s) snapped onto the crack" if c["snapped_nodes"] else "")]
-        for t, h, r, lim in zip(c["tips"], c["tip_element_size"], c["sif_radius"], c["sif_limited_by"]):
+        for t, h, r, ri, lim in zip(c["tips"], c["tip_element_size"], c["sif_radius"], c["sif_inner_radius"],
+                                    c["sif_limited_by"]):
+            if ri is not None:  # options.sif_ring: one ring, as given
+                lines.append(f"  tip ({t[0]:.6g}, {t[1]:.6g}): element size {h:.4g}, SIF ring [{ri:.4g}, {r:.4g}] "
+                             "(options.sif_ring, not clipped)" + (f" (reaches {lim})" if lim else ""))
+                continue
             lines.append(f"  tip ({t[0]:.6g}, {t[1]:.6g}): element size {h:.4g}, SIF domains of radius "
                          f"{0.5 * r:.4g}, {0.75 * r:.4g}, {r:.4g}" + (f" (limited by {lim})" if lim else ""))
         if c["lip_pressure"] != 0.0:

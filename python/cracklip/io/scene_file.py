@@ -341,6 +341,10 @@ _OPTION_MEANINGS = {
     "sif_radius": "radius of the largest SIF domain at every tip (K also on 1/2 and 3/4 of it; their "
                   "spread is reported); 0: 6 element sizes at that tip; clipped to stay inside the part "
                   "and away from other tips, cracks, kinks and holes (with a warning)",
+    "sif_ring": "K on one ring as another code defines it: q = 1 within r_in, 0 beyond r_out, linear between "
+                "(code_aster's R_INF / R_SUP, MOOSE's rings; r_in = r_out: the plateau of that radius); NOT clipped: "
+                "a ring reaching a hole, kink, tip or the boundary warns and its K is marked unreliable; no spread; "
+                "overrides sif_radius (a ring through a hole: docs/growth.md)",
     "accuracy": "target of the estimated discretisation error of every K, relative to the K scale (0.01: 1 %); "
                 "0: off. Refines around every tip (sizes halved within twice the crack's length, one level per "
                 "solve) until the estimate is below it; reports the levels, the estimate and the extrapolated K; "
@@ -391,6 +395,9 @@ def _option_keys() -> list[Key]:
         meaning = _OPTION_MEANINGS.get(f.name) or documented.get(f.name, f.name.replace("_", " "))
         if f.name in _OPTION_CHOICES:
             keys.append(Key(f"options.{f.name}", "string", default, meaning, p_choice(*_OPTION_CHOICES[f.name])))
+        elif f.name == "sif_ring":
+            keys.append(Key(f"options.{f.name}", "[r_in, r_out]", UNSET, meaning,
+                            p_numbers(2, "two radii [r_in, r_out]")))
         elif isinstance(default, bool):
             keys.append(Key(f"options.{f.name}", "boolean", default, meaning, p_bool))
         elif isinstance(default, int):

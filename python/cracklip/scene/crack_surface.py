@@ -118,6 +118,15 @@ class EllipticalCrack:
         m = max(16, int(math.ceil(2 * math.pi * max(self.a, self.b) / spacing)))
         return self.point(np.linspace(0.0, 2 * math.pi, m, endpoint=False))
 
+    def surface_points(self, spacing: float) -> np.ndarray:
+        """Points (m, 3) covering the crack's surface on a grid `spacing`
+        apart (for refining a mesh over it)."""
+        u = np.arange(-self.a, self.a + 0.5 * spacing, spacing)
+        v = np.arange(-self.b, self.b + 0.5 * spacing, spacing)
+        U, V = (w.ravel() for w in np.meshgrid(u, v))
+        inside = (U / self.a) ** 2 + (V / self.b) ** 2 <= 1.0
+        return (self.center[None] + U[inside, None] * self.axis[None] + V[inside, None] * self.axis2[None])
+
     @property
     def area(self) -> float:
         return math.pi * self.a * self.b
@@ -186,6 +195,27 @@ class PolygonCrack:
             t = np.arange(m) / m
             out.append(a[None] + t[:, None] * (b - a)[None])
         return np.concatenate(out)
+
+    def surface_points(self, spacing: float) -> np.ndarray:
+        """Points (m, 3) covering the polygon on a grid `spacing` apart in
+        its plane (even-odd rule), and its vertices."""
+        t1 = self.points[1] - self.points[0]
+        t1 /= np.linalg.norm(t1)
+        t2 = np.cross(self.normal, t1)
+        q = (self.points - self.points[0]) @ np.column_stack([t1, t2])
+        lo, hi = q.min(axis=0), q.max(axis=0)
+        u = np.arange(lo[0], hi[0] + 0.5 * spacing, spacing)
+        v = np.arange(lo[1], hi[1] + 0.5 * spacing, spacing)
+        U, V = (w.ravel() for w in np.meshgrid(u, v))
+        inside = np.zeros(len(U), dtype=bool)
+        for i in range(len(q)):
+            (x0, y0), (x1, y1) = q[i], q[(i + 1) % len(q)]
+            crosses = (y0 > V) != (y1 > V)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                xc = x0 + (V - y0) * (x1 - x0) / (y1 - y0)
+            inside ^= crosses & (U < xc)
+        grid = self.points[0][None] + U[inside, None] * t1[None] + V[inside, None] * t2[None]
+        return np.concatenate([grid, self.points])
 
     @property
     def area(self) -> float:
@@ -273,6 +303,23 @@ class SurfaceCrack:
             m = max(1, int(math.ceil(np.linalg.norm(pb - pa) / spacing)))
             out.append(pa[None] + (np.arange(m + 1) / m)[:, None] * (pb - pa)[None])
         return np.concatenate(out) if out else np.zeros((0, 3))
+
+    def surface_points(self, spacing: float) -> np.ndarray:
+        """Points (m, 3) covering the triangles: each subdivided into a
+        barycentric grid of step at most `spacing`."""
+        v, t = self.vertices, self.triangles
+        out = [v]
+        for tri in t:
+            P = v[tri]
+            m = int(math.ceil(max(np.linalg.norm(P[1] - P[0]), np.linalg.norm(P[2] - P[1]),
+                                  np.linalg.norm(P[0] - P[2])) / spacing))
+            if m < 2:
+                continue
+            i, j = np.meshgrid(np.arange(m + 1), np.arange(m + 1))
+            keep = (i + j <= m).ravel()
+            b1, b2 = i.ravel()[keep] / m, j.ravel()[keep] / m
+            out.append(P[0][None] + b1[:, None] * (P[1] - P[0])[None] + b2[:, None] * (P[2] - P[0])[None])
+        return np.unique(np.concatenate(out), axis=0)
 
     @property
     def area(self) -> float:
