@@ -186,5 +186,19 @@ def main(argv=None) -> dict:
     return out
 
 
+def markdown(out: dict) -> str:
+    """The COD table of a main() result (README and results.md)."""
+    lines = ["| a/h at the front | dofs | opening L2 error | max error (r <= 0.9 a) | energy error | solve (s) |",
+             "|---|---|---|---|---|---|"]
+    for r in out["rows"]:
+        lines.append(f"| {A / r['h_front']:.0f} | {r['ndofs']} | {100 * r['cod_l2_rel']:.2f} % | "
+                     f"{100 * r['cod_max_rel']:.2f} % | {100 * r['energy_error']:.2f} % | {r['t_solve']:.1f} |")
+    if "energy_rate" in out:
+        lines += ["", f"Energy-error rate {out['energy_rate']:.2f} over the last two meshes"
+                  + (f", {out['energy_rate_extrapolated']:.2f} over three (Aitken)"
+                     if "energy_rate_extrapolated" in out else "") + "."]
+    return "\n".join(lines) + "\n"
+
+
 if __name__ == "__main__":
     main()
