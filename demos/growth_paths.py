@@ -35,6 +35,7 @@ beam with da = 0.025 and the corrector (within 0.003 of the finest run of
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import logging
 import math
 import pathlib
@@ -86,19 +87,33 @@ def path_distance(reference: np.ndarray, path: np.ndarray) -> dict:
 
 
 # ----------------------------------------------------------------------------------------------- drilled plate
-def drilled_plate(h_band: float) -> dict:
-    """The scene file with its refinement band at h_band, grown 35 steps."""
+def drilled_plate_holes() -> list[list[float]]:
+    """The plate's holes [[cx, cy, r], ...] (bottom, middle, top)."""
+    return read_document(DRILLED_PLATE)["mesh"]["holes"]
+
+
+def hole_edge_distances(p, holes: list[list[float]]) -> list[float]:
+    """Distance from the point p to each hole's edge."""
+    return [float(math.hypot(p[0] - cx, p[1] - cy) - r) for cx, cy, r in holes]
+
+
+def drilled_plate(h_band: float, on_step=None, **options) -> dict:
+    """The scene file with its refinement band at h_band, grown 35 steps.
+    on_step(k, records, solution) is called after every step's solve (see
+    cracklip.analysis.growth.grow); options: Options fields to override
+    (sif_ring=(0.1, 0.2): K at every step on code_aster's ring)."""
     doc = read_document(DRILLED_PLATE)
     for r in doc["mesh"]["refine"]:
         r["h"] = h_band
     sf = build_scene(doc, base_dir=DRILLED_PLATE.parent, path=DRILLED_PLATE)
+    scene = dataclasses.replace(sf.scene, options=dataclasses.replace(sf.scene.options, **options))
     t0 = time.perf_counter()
-    res = grow(sf.scene, sf.growth)
+    res = grow(scene, sf.growth, on_step=on_step)
     t = time.perf_counter() - t0
     pts = res.cracks[0].points
     tip = pts[-1]
     holes = doc["mesh"]["holes"]
-    gaps = [float(math.hypot(tip[0] - cx, tip[1] - cy) - r) for cx, cy, r in holes]
+    gaps = hole_edge_distances(tip, holes)
     # closest approach of the path to each hole's edge (beyond the initial crack)
     grown = pts[pts[:, 1] > 1.5]
     passing = [float(np.min(np.hypot(grown[:, 0] - cx, grown[:, 1] - cy)) - r) for cx, cy, r in holes]
@@ -111,9 +126,10 @@ def drilled_plate(h_band: float) -> dict:
 
 
 # ----------------------------------------------------------------------------------------------- DCB
-def dcb_scene(h: float, h_tip: float) -> cl.Scene:
+def dcb_scene(h: float, h_tip: float, **options) -> cl.Scene:
     """The beam with an element size h, refined to h_tip along the expected
-    path (a band from the kink up to (5.2, 1.1))."""
+    path (a band from the kink up to (5.2, 1.1)); options: Options fields to
+    set (sif_ring=(0.1, 0.3): K on MOOSE's ring instead of cracklip's domains)."""
     band = [(3.9, 0.0, h_tip, 1.0, 4.6, 0.15), (4.6, 0.15, h_tip, 1.0, 5.2, 1.1)]
     md = cl.create_rectangle(0.0, -DCB_HALF_W, DCB_L, DCB_HALF_W, h, refine=band,
                              embed_points=[(DCB_LOADED, DCB_HALF_W), (DCB_LOADED, -DCB_HALF_W)])
@@ -124,24 +140,27 @@ def dcb_scene(h: float, h_tip: float) -> cl.Scene:
     return cl.Scene(md, cl.Material(3e7, 0.3), cracks=[cl.Crack(DCB_CRACK, name="DCB crack")],
                     dirichlet=[cl.Dirichlet("right", None, 0.0)],
                     tractions=[cl.Traction("top", end_load(1.0)), cl.Traction("bottom", end_load(-1.0))],
-                    options=cl.Options(radius=max(0.05, 3 * h_tip)))
+                    options=cl.Options(radius=max(0.05, 3 * h_tip), **options))
 
 
-def dcb(h: float, h_tip: float, da: float, corrections: int) -> dict:
+def dcb(h: float, h_tip: float, da: float, corrections: int, **options) -> dict:
     """The beam's crack grown by da to 1.25 beyond its initial tip, compared
-    with the Belytschko-Black markers and MOOSE's path."""
+    with the Belytschko-Black markers and MOOSE's path (options: see dcb_scene)."""
     _, bb = read_data("dcb_belytschko_black_path.csv")
     _, moose = read_data("dcb_moose_path.csv")
     bb, moose = bb[:, 1:], moose[:, 1:]
     t0 = time.perf_counter()
-    res = grow(dcb_scene(h, h_tip), Growth(da=da, steps=int(round(DCB_GROWTH_LENGTH / da)), corrections=corrections))
+    res = grow(dcb_scene(h, h_tip, **options), Growth(da=da, steps=int(round(DCB_GROWTH_LENGTH / da)),
+                                                     corrections=corrections))
     t = time.perf_counter() - t0
     pts = res.cracks[0].points
     path = pts[pts[:, 0] >= 3.94 - 1e-9]
     first = res.records[0][0]
     return {"h": h, "h_tip": h_tip, "da": da, "corrections": corrections, "steps": len(res.records) - 1,
             "path": path.tolist(), "K_I_initial": first.K_I, "K_II_initial": first.K_II,
-            "kink_initial_deg": first.kink_deg, "to_belytschko_black": path_distance(bb[1:], path),
+            "kink_initial_deg": first.kink_deg, "K_I": [st[0].K_I for st in res.records],
+            "K_II": [st[0].K_II for st in res.records], "sif_radius": [st[0].sif_radius for st in res.records],
+            "to_belytschko_black": path_distance(bb[1:], path),
             "moose_to_belytschko_black": path_distance(bb[1:], moose), "t_total": t,
             "solves": int(sum(res.step_solves))}
 

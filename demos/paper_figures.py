@@ -12,7 +12,7 @@ speed benchmark at 2e4 and 2e5 dofs, the condition-number study with and
 without the nodal rescaling, K against handbook and exact values (issue
 14) and K's error estimate against its true error (issue 26), Coulomb friction against its exact solutions and its cost (issue 16),
 crack growth (first kinks, straight growth, Paris law, closure, published
-paths, the cost of a step; issue 17), the fatigue life under load histories
+paths and the SIF rings of their peers, the cost of a step; issue 17), the fatigue life under load histories
 (rainflow, block life, NASGRO, Wheeler, a flight spectrum with contact, beta
 tables; issue 29) and the hard-case suite (not with --quick).
 
@@ -45,6 +45,7 @@ import hard_cases  # noqa: E402
 import block_uniform_pressure  # noqa: E402
 import hole_crack  # noqa: E402
 import patch_test  # noqa: E402
+import ring_study  # noqa: E402
 import sliding_crack  # noqa: E402
 import tip_quadrature  # noqa: E402
 import westergaard  # noqa: E402
@@ -155,6 +156,9 @@ def main(argv=None) -> int:
 
     log("[13/16] published crack paths")
     summary["growth_paths"] = growth_paths.main(["--out", str(out / "growth"), *(["--quick"] if args.quick else [])])
+    log("[13/16] SIF rings at the drilled plate's final tip (the DCB's rings: demos/ring_study.py without --no-dcb)")
+    summary["ring_study"] = ring_study.main(["--out", str(out / "growth"), "--no-dcb",
+                                             *(["--quick"] if args.quick else [])])
 
     log("[14/16] cost of a growth step against a single solve")
     summary["bench_growth"] = bench_growth.main(["--hs", *(["0.05"] if args.quick else ["0.025", "0.008"]),
@@ -284,6 +288,9 @@ def markdown(s: dict) -> str:
         if s.get("growth_paths"):
             lines += ["", growth_paths.markdown(s["growth_paths"]).rstrip("\n"), "",
                       "![drilled plate](growth/drilled_plate_path.png)", "", "![DCB](growth/dcb_path.png)"]
+        if s.get("ring_study"):
+            lines += ["", ring_study.markdown(s["ring_study"]).rstrip("\n"), "",
+                      "![K_I against the SIF ring](growth/ring_study.png)"]
         if s.get("bench_growth"):
             lines += ["", "| dofs | single solve (s) | growth step (s) | ratio |", "|---|---|---|---|"]
             lines += [f"| {b['ndofs']} | {b['t_single_solve']:.3f} | {b['t_step']:.3f} | {b['ratio']:.2f} |"

@@ -44,6 +44,30 @@ def test_bad_cracks_are_typed_errors():
         SurfaceCrack([[0, 0, 0], [1, 0, 0], [2, 0, 0]], [[0, 1, 2]])
 
 
+def test_surface_points_cover_each_crack():
+    """surface_points (for refining a mesh over a crack): inside the crack,
+    on its plane, covering it at the spacing (every point of the crack
+    within ~spacing of a sample)."""
+    rng = np.random.default_rng(3)
+    e = EllipticalCrack((1, 2, 3), (0.2, 0.1, 1), a=1.0, b=0.4, axis=(1, 0, 0))
+    p = e.surface_points(0.1)
+    d = p - e.center
+    assert np.abs(d @ e.normal).max() < 1e-12
+    assert ((d @ e.axis) ** 2 + (d @ e.axis2 / 0.4) ** 2).max() <= 1.0 + 1e-12
+    t = rng.uniform(0, 2 * np.pi, 200)
+    s = np.sqrt(rng.uniform(0, 0.9, 200))
+    q = e.center + (s * np.cos(t))[:, None] * e.axis + (0.4 * s * np.sin(t))[:, None] * e.axis2
+    assert np.linalg.norm(q[:, None] - p[None], axis=2).min(axis=1).max() < 0.1
+    sq = PolygonCrack([[0, 0, 0], [2, 0, 0], [2, 1, 0], [1, 1, 0], [1, 2, 0], [0, 2, 0]])  # an L
+    p = sq.surface_points(0.1)
+    assert np.abs(p[:, 2]).max() == 0.0 and not np.any((p[:, 0] > 1 + 1e-9) & (p[:, 1] > 1 + 1e-9))
+    assert len(p) > 0.8 * sq.area / 0.01
+    tri = SurfaceCrack([[0, 0, 0], [1, 0, 0], [0, 1, 0.5]], [[0, 1, 2]])
+    p = tri.surface_points(0.1)
+    n = np.cross([1, 0, 0], [0, 1, 0.5])
+    assert np.abs(p @ n).max() < 1e-12 and len(p) >= 66  # m = ceil(1.414 / 0.1) = 15: 136 points
+
+
 def test_stl_round_trip(tmp_path):
     path = tmp_path / "crack.stl"
     tri = [[[0, 0, 0], [1, 0, 0], [1, 1, 0.2]], [[0, 0, 0], [1, 1, 0.2], [0, 1, 0.2]]]

@@ -79,3 +79,20 @@ def test_fatigue_checks_demo(tmp_path):
         assert key in sp
     assert set(sp["life_passes"]) == {"contact", "newman", "none"} and sp["cycles_per_pass"] >= 1e5
     assert (tmp_path / "fatigue_checks.md").exists() and (tmp_path / "block_life.png").stat().st_size > 10000
+
+
+def test_ring_study_demo(tmp_path):
+    """demos/ring_study.py --quick (band 0.03, a coarse DCB): the JSON, the
+    sweep's CSV and the figures; at the plate's final tip the clear domains
+    agree and code_aster's ring, through the middle hole, is lower."""
+    out = tmp_path / "rings.json"
+    run_demo("ring_study.py", "--quick", "--json", str(out), "--out", str(tmp_path))
+    res = json.loads(out.read_text())
+    p = res["drilled_plate"]
+    assert p["hole_distance"] < 0.2 and p["code_aster_ring"]["K_I"] < 0.95 * p["default"]["K_I"]
+    lo, hi = p["clear_sweep_K_I_range"]
+    assert hi - lo < 0.02 * p["default"]["K_I"]
+    assert set(res["dcb"]["runs"]) == {"default", "moose_ring", "radius_0.3_clipped", "plateau_0.3_forced"}
+    assert len((tmp_path / "ring_sweep.csv").read_text().splitlines()) == len(p["sweep"]) + 1
+    for name in ("ring_study.png", "dcb_rings.png"):
+        assert (tmp_path / name).stat().st_size > 10000

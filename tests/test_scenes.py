@@ -13,6 +13,7 @@ from cracklip import cli
 from cracklip.io import scene_file
 from cracklip.io.scene_file import (SCHEMA, apply_override, build_scene, check_keys, load_scene_file,
                                     parse_settings, reference_markdown, reference_rows)
+from test_scenes_3d import SMALL_3D
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 SCENES = ROOT / "demos" / "scenes"
@@ -38,6 +39,8 @@ SMALL = {
     "drilled_plate": ["mesh.h=1.0", "mesh.refine[0].h=0.1", "mesh.refine[1].h=0.1"],
     # the fatigue life under a spectrum (grown by tests/test_life.py)
     "hole_crack_spectrum": ["mesh.h=10.0", "mesh.refine[0].h=0.5"],
+    # 3D parts (run by tests/test_scenes_3d.py)
+    **SMALL_3D,
 }
 
 

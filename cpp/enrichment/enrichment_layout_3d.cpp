@@ -35,8 +35,12 @@ constexpr double OPENING_VOLUME = 1e-9;
 
 /// A node keeps its Heaviside function when the ramp leaves at least this
 /// share of it (int N_i^2 (1 - R)^2 on the other side against int N_i^2
-/// over its cut cells; keep_heaviside).
+/// over its cut cells; keep_heaviside) ...
 constexpr double RAMPED_SHARE = 1e-8;
+
+/// ... or at least this share of the jump on its cells' lip facets
+/// (max N_i (1 - R) there).
+constexpr double JUMP_SHARE = 1e-3;
 
 /// The frame (rows e1, e2, e3) of a node's nearest front point.
 std::array<double, 9> node_frame(const FrontLocator& front, std::span<const double> x, std::int32_t i)
@@ -167,31 +171,35 @@ EnrichmentLayout3D create_enrichment_layout_3d(std::span<const double> x, std::s
     // With corrected blending a node's Heaviside function N_i (H - H_i)
     // (1 - R) opens where its cut cells lie on the other side of the crack
     // and the ramp R is not 1. Where the core nodes around it make (1 - R)
-    // vanish there, the ramped front functions carry the jump and nothing is
-    // left of it: int N_i^2 (1 - R)^2 over the opposite side (sub-
-    // tetrahedron midpoints) below RAMPED_SHARE of int N_i^2 over the
-    // node's cut cells drops it (kept, it made the system singular: pivots
-    // of 1e-16 on a penny crack). A small function that still carries its
-    // share of the jump stays (dropping those at 1e-3 lost 6 % of the
-    // opening in blending cells). Without front functions R = 0 and nothing
-    // is dropped: the Heaviside functions keep their partition of unity.
-    auto keep_heaviside = [&](std::int32_t node, std::span<const std::int8_t> is_core)
+    // vanish, the ramped front functions carry the jump and nothing is left
+    // of it (kept, it made the system singular: pivots of 1e-16 on a penny
+    // crack). It is dropped when both its share of the jump on the lips,
+    // max N_i (1 - R) over its cells' lip facets, is below JUMP_SHARE and
+    // int N_i^2 (1 - R)^2 over the other side (sub-tetrahedron midpoints)
+    // is below RAMPED_SHARE of int N_i^2 over its cut cells. The first
+    // keeps the functions of nodes whose cells the crack only grazes (other
+    // side 1e-6 of the cell; volume alone dropped them, and the jump lost
+    // their N_i there: 1.4 % dips of a penny's opening in the middle of the
+    // crack); the second those that still carry the field beside the lips.
+    // Without front functions R = 0 and nothing is dropped: the Heaviside
+    // functions keep their partition of unity. Computed in one pass over
+    // the cut cells, when selection first asks.
+    std::vector<double> bare, ramped, jump_share;
+    auto measure_shares = [&](std::span<const std::int8_t> is_core)
     {
-      if (!options.corrected or options.front == TipEnrichment::none)
-        return true;
-      double ramped = 0.0, bare = 0.0;
-      const int other = g.phi[node] >= 0.0 ? -1 : 1;
+      bare.assign(num_nodes, 0.0), ramped.assign(num_nodes, 0.0), jump_share.assign(num_nodes, 0.0);
       for (const CrackCell3D& cc : g.crack_cells)
       {
         if (cc.cls != CellClass3D::cut)
           continue;
         const std::int32_t* v = &cells[4 * cc.cell];
-        int a = -1;
-        for (int k = 0; k < 4; ++k)
-          if (v[k] == node)
-            a = k;
-        if (a < 0)
-          continue;
+        auto ramp_at = [&](const std::array<double, 4>& N)
+        {
+          double ramp = 0.0;
+          for (int b = 0; b < 4; ++b)
+            ramp += is_core[v[b]] ? N[b] : 0.0;
+          return ramp;
+        };
         for (int k = 0; k < cc.num_sub(); ++k)
         {
           const double* R = &cc.sub[12 * k];
@@ -200,15 +208,40 @@ EnrichmentLayout3D create_enrichment_layout_3d(std::span<const double> x, std::s
           const Point3 mid = {0.25 * (R[0] + R[3] + R[6] + R[9]), 0.25 * (R[1] + R[4] + R[7] + R[10]),
                               0.25 * (R[2] + R[5] + R[8] + R[11])};
           const auto N = P1Tetrahedron::shape(mid);
-          double ramp = 0.0;
-          for (int b = 0; b < 4; ++b)
-            ramp += is_core[v[b]] ? N[b] : 0.0;
-          bare += vol * N[a] * N[a];
-          if (cc.side[k] == other)
-            ramped += vol * N[a] * N[a] * (1.0 - ramp) * (1.0 - ramp);
+          const double ramp = ramp_at(N);
+          for (int a = 0; a < 4; ++a)
+          {
+            bare[v[a]] += vol * N[a] * N[a];
+            if (cc.side[k] == (g.phi[v[a]] >= 0.0 ? -1 : 1))
+              ramped[v[a]] += vol * N[a] * N[a] * (1.0 - ramp) * (1.0 - ramp);
+          }
+        }
+        // N_i (1 - R) is quadratic on a facet: sampled at its vertices, edge
+        // midpoints and centroid.
+        static constexpr double samples[7][3]
+            = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}, {1. / 3, 1. / 3, 1. / 3}};
+        for (int f = 0; f < cc.num_facets(); ++f)
+        {
+          const double* T = &cc.facets[9 * f];
+          for (const auto& b : samples)
+          {
+            const Point3 r = {b[0] * T[0] + b[1] * T[3] + b[2] * T[6], b[0] * T[1] + b[1] * T[4] + b[2] * T[7],
+                              b[0] * T[2] + b[1] * T[5] + b[2] * T[8]};
+            const auto N = P1Tetrahedron::shape(r);
+            const double open = 1.0 - ramp_at(N);
+            for (int a = 0; a < 4; ++a)
+              jump_share[v[a]] = std::max(jump_share[v[a]], N[a] * open);
+          }
         }
       }
-      return ramped > RAMPED_SHARE * bare;
+    };
+    auto keep_heaviside = [&](std::int32_t node, std::span<const std::int8_t> is_core)
+    {
+      if (!options.corrected or options.front == TipEnrichment::none)
+        return true;
+      if (bare.empty())
+        measure_shares(is_core);
+      return jump_share[node] > JUMP_SHARE or ramped[node] > RAMPED_SHARE * bare[node];
     };
     SelectionInput input{cells, 4, g.cell_class, g.phi, core_tip, tips, plane_distance};
     input.opens = opens;

@@ -69,14 +69,28 @@ std::array<double, 2> interaction_integral(const TipFrame& tip, double E, double
   return I;
 }
 
+double domain_q(double distance, double radius, std::optional<double> inner_radius)
+{
+  if (!inner_radius or *inner_radius >= radius)
+    return distance < radius ? 1.0 : 0.0;
+  if (distance <= *inner_radius)
+    return 1.0;
+  if (distance >= radius)
+    return 0.0;
+  return (radius - distance) / (radius - *inner_radius);
+}
+
 DomainPoints compute_domain_points(std::span<const double> x, std::span<const std::int32_t> cells,
                                    const EnrichmentLayout& layout,
                                    std::span<const CrackGeometry* const> cracks,
                                    const TipFrame& tip, double radius,
-                                   const QuadratureOptions& options, bool interior)
+                                   const QuadratureOptions& options, bool interior,
+                                   std::optional<double> inner_radius)
 {
   if (!(radius > 0.0))
     throw std::invalid_argument("interaction integral: the domain radius must be positive");
+  if (inner_radius and !(*inner_radius >= 0.0 and *inner_radius <= radius))
+    throw std::invalid_argument("interaction integral: the inner radius of a ring must lie in [0, radius]");
   const std::size_t num_cells = cells.size() / 3;
   DomainPoints out;
   CellQuadrature qp;
@@ -86,7 +100,7 @@ DomainPoints compute_domain_points(std::span<const double> x, std::span<const st
     const std::int32_t* v = &cells[3 * c];
     double q[3];
     for (int a = 0; a < 3; ++a)
-      q[a] = std::hypot(x[2 * v[a]] - tip.tip[0], x[2 * v[a] + 1] - tip.tip[1]) < radius ? 1.0 : 0.0;
+      q[a] = domain_q(std::hypot(x[2 * v[a]] - tip.tip[0], x[2 * v[a] + 1] - tip.tip[1]), radius, inner_radius);
     if (q[0] == q[1] and q[1] == q[2] and (!interior or q[0] == 0.0))
       continue;
     const auto ci = static_cast<std::int32_t>(c);

@@ -9,8 +9,11 @@
 //   - (sigma : eps_aux) (e1 . grad q).
 // q is the plateau function: 1 at the nodes within the domain radius, 0
 // outside, interpolated by P1, so grad q lives on the ring of cells the
-// circle crosses. Lip tractions and body forces add terms that the caller
-// integrates (python/cracklip/sif.py).
+// circle crosses. With an inner radius r_in < r_out, q is the ring function
+// of code_aster (R_INF, R_SUP) and MOOSE's geometric rings instead: 1 at the
+// nodes within r_in, 0 beyond r_out, linear in the distance between, so
+// grad q lives on the annulus. Lip tractions and body forces add terms that
+// the caller integrates (python/cracklip/fracture/sif.py).
 #pragma once
 
 #include "quadrature/cell_quadrature_2d.h"
@@ -20,6 +23,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -36,11 +40,17 @@ std::array<double, 2> interaction_integral(const TipFrame& tip, double E, double
                                            std::span<const double> grad_u,
                                            std::span<const std::int8_t> sides);
 
-/// Quadrature points of the ring of cells where grad q != 0, for the
-/// plateau q of radius `radius` around the tip (with `interior`, of every
-/// cell where q != 0, for domain terms weighted by q such as body forces):
-/// cell (n), reference (n, 2) and physical points (n, 2), weights (n),
-/// sides (n), q (n), grad_q (n, 2).
+/// q at a node `distance` from the tip: the plateau (1 below `radius`, else
+/// 0) without an inner radius or with inner_radius >= radius; else the ring
+/// function 1 up to inner_radius, 0 from radius on, linear between.
+double domain_q(double distance, double radius, std::optional<double> inner_radius = std::nullopt);
+
+/// Quadrature points of the ring of cells where grad q != 0, for the q of
+/// `radius` (and `inner_radius`, see domain_q) around the tip, interpolated
+/// by P1 from its nodal values (with `interior`, of every cell where q != 0,
+/// for domain terms weighted by q such as body forces): cell (n), reference
+/// (n, 2) and physical points (n, 2), weights (n), sides (n), q (n),
+/// grad_q (n, 2).
 struct DomainPoints
 {
   std::vector<std::int32_t> cell;
@@ -51,6 +61,7 @@ DomainPoints compute_domain_points(std::span<const double> x, std::span<const st
                                    const EnrichmentLayout& layout,
                                    std::span<const CrackGeometry* const> cracks,
                                    const TipFrame& tip, double radius,
-                                   const QuadratureOptions& options, bool interior = false);
+                                   const QuadratureOptions& options, bool interior = false,
+                                   std::optional<double> inner_radius = std::nullopt);
 
 } // namespace cracklip

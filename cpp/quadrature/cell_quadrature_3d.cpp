@@ -87,22 +87,13 @@ void compute_cell_quadrature_3d(std::span<const double> x, std::span<const std::
   if (i < 0)
   {
     static constexpr double whole[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
-    append(quadrature::tetrahedron(options.degree), whole, 0, 0);
+    append(quadrature::tetrahedron_cached(options.degree), whole, 0, 0);
     return;
   }
   const CrackCell3D& cc = g.crack_cells[i];
-  // Gauss rules by degree, made when first needed.
-  std::array<quadrature::Rule, 24> gauss;
-  auto gauss_rule = [&](int degree) -> const quadrature::Rule&
-  {
-    if (degree >= static_cast<int>(gauss.size()))
-      throw std::invalid_argument("compute_cell_quadrature_3d: degree " + std::to_string(degree) + " above 23");
-    if (gauss[degree].weights.empty())
-      gauss[degree] = quadrature::tetrahedron(degree);
-    return gauss[degree];
-  };
+  auto gauss_rule = [](int degree) -> const quadrature::Rule& { return quadrature::tetrahedron_cached(degree); };
   const bool collapsed = options.front_rule == FrontQuadrature::collapsed;
-  const quadrature::Rule front_gauss = quadrature::tetrahedron(options.front_degree);
+  const quadrature::Rule& front_gauss = quadrature::tetrahedron_cached(options.front_degree);
   Point3 dir = {0, 0, 0}, on_line = {0, 0, 0};
   const bool has_line = collapsed and front_line(x, cells, g, c, on_line, dir);
   for (int k = 0; k < cc.num_sub(); ++k)

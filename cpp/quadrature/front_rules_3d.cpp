@@ -44,7 +44,7 @@ Rule tetrahedron_edge_collapsed(std::span<const double, 12> xv, int n_tau, int n
   // sinh substitution unless degenerate (a flat tetrahedron: h0 ~ 0).
   const bool sinh_map = L > 0.0 and h0 > 1e-14 * L;
   const double u0 = sinh_map ? std::asinh(s0 / h0) : 0.0, u1 = sinh_map ? std::asinh((s0 + L) / h0) : 1.0;
-  const Rule gt = gauss_legendre(n_tau), gu = gauss_legendre(n_eta), ga = gauss_legendre(n_t);
+  const Rule &gt = gauss_legendre_cached(n_tau), &gu = gauss_legendre_cached(n_eta), &ga = gauss_legendre_cached(n_t);
   Rule rule;
   rule.dim = 3;
   rule.points.reserve(3 * n_tau * n_eta * n_t);
@@ -127,7 +127,8 @@ Rule tetrahedron_vertex_collapsed(int n_tau, int n)
   check_points(n_tau, n, 1, "tetrahedron_vertex_collapsed");
   // x = A + rho ((1 - s1 - s2) (B - A) + s1 (C - A) + s2 (D - A)),
   // dV = rho^2 drho dsigma (in the reference measure), rho = tau^2.
-  const Rule gt = gauss_legendre(n_tau), tri = triangle_product(n);
+  const Rule& gt = gauss_legendre_cached(n_tau);
+  const Rule tri = triangle_product(n);
   Rule rule;
   rule.dim = 3;
   for (int i = 0; i < n_tau; ++i)
@@ -146,7 +147,7 @@ Rule tetrahedron_vertex_collapsed(int n_tau, int n)
 Rule triangle_edge_collapsed(int n_tau, int n_t)
 {
   check_points(n_tau, n_t, 1, "triangle_edge_collapsed");
-  const Rule gt = gauss_legendre(n_tau), ga = gauss_legendre(n_t);
+  const Rule &gt = gauss_legendre_cached(n_tau), &ga = gauss_legendre_cached(n_t);
   Rule rule;
   rule.dim = 2;
   for (int i = 0; i < n_tau; ++i)

@@ -1,6 +1,7 @@
 #include "quadrature/rules.h"
 
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -15,8 +16,14 @@ namespace
 Rule conical_product(int nu, int nv);
 } // namespace
 
-Rule gauss_legendre(int n)
+Rule gauss_legendre(int n) { return gauss_legendre_cached(n); }
+
+const Rule& gauss_legendre_cached(int n)
 {
+  // Rules by n, computed once (single-threaded, as the kernels that call it).
+  static std::vector<std::unique_ptr<Rule>> cache;
+  if (n >= 1 and n < static_cast<int>(cache.size()) and cache[n])
+    return *cache[n];
   if (n < 1)
     throw std::invalid_argument("gauss_legendre: n must be >= 1, got "
                                 + std::to_string(n));
@@ -60,7 +67,10 @@ Rule gauss_legendre(int n)
     rule.points[i] = 0.5 * (1.0 - x);
     rule.weights[i] = 1.0 / ((1.0 - x * x) * dp * dp);
   }
-  return rule;
+  if (static_cast<int>(cache.size()) <= n)
+    cache.resize(n + 1);
+  cache[n] = std::make_unique<Rule>(std::move(rule));
+  return *cache[n];
 }
 
 namespace
@@ -123,7 +133,9 @@ Rule triangle(int degree)
   return conical_product((degree + 3) / 2, (degree + 2) / 2);
 }
 
-Rule tetrahedron(int degree)
+namespace
+{
+Rule make_tetrahedron(int degree)
 {
   if (degree < 0)
     throw std::invalid_argument("tetrahedron quadrature: degree must be >= 0, got "
@@ -150,6 +162,21 @@ Rule tetrahedron(int degree)
                                * (1.0 - v));
       }
   return rule;
+}
+} // namespace
+
+Rule tetrahedron(int degree) { return tetrahedron_cached(degree); }
+
+const Rule& tetrahedron_cached(int degree)
+{
+  static std::vector<std::unique_ptr<Rule>> cache;
+  if (degree >= 0 and degree < static_cast<int>(cache.size()) and cache[degree])
+    return *cache[degree];
+  Rule rule = make_tetrahedron(degree);
+  if (static_cast<int>(cache.size()) <= degree)
+    cache.resize(degree + 1);
+  cache[degree] = std::make_unique<Rule>(std::move(rule));
+  return *cache[degree];
 }
 
 Rule triangle_product(int n)

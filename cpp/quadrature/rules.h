@@ -19,6 +19,9 @@ struct Rule
 /// Gauss-Legendre rule with n points on [0, 1] (exact to degree 2n - 1).
 Rule gauss_legendre(int n);
 
+/// The same, computed once per n and kept (single-threaded callers).
+const Rule& gauss_legendre_cached(int n);
+
 /// Gauss-Legendre rule with n points on [0, 1] (a segment P-Q, t = 0 at P)
 /// in the variable rho = sqrt(r), where r is the distance from a point (a
 /// crack tip) on the segment's line, r0 at P and r1 at Q (r linear in t):
@@ -46,6 +49,9 @@ Rule triangle_product(int n);
 /// (degree + 2) / 2 points in u, v, w; weights sum to 1/6). Degree 1 returns
 /// the one-point centroid rule.
 Rule tetrahedron(int degree);
+
+/// The same, computed once per degree and kept (single-threaded callers).
+const Rule& tetrahedron_cached(int degree);
 
 /// Quasi-polar rule for integrands with a 1/r (and sqrt(r)) singularity at
 /// vertex 0 of the reference triangle: x = rho ((1 - eta), eta) with

@@ -112,10 +112,10 @@ void declare_fracture(py::module& m)
       "compute_domain_points",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
          const Cracks& cracks, std::array<double, 2> tip, std::array<double, 2> e1, double radius,
-         const QuadratureOptions& options, bool interior)
+         const QuadratureOptions& options, bool interior, std::optional<double> inner_radius)
       {
         DomainPoints d = compute_domain_points(as_span(x), as_span(cells), layout, cracks,
-                                               frame(tip, e1, 1), radius, options, interior);
+                                               frame(tip, e1, 1), radius, options, interior, inner_radius);
         const py::ssize_t n = d.weight.size();
         py::dict out;
         out["cell"] = as_pyarray(std::move(d.cell));
@@ -129,8 +129,10 @@ void declare_fracture(py::module& m)
       },
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("tip"),
       py::arg("e1"), py::arg("radius"), py::arg("options"), py::arg("interior") = false,
-      "Quadrature points of the ring where the plateau q of `radius` has a gradient (interior: "
-      "of every cell where q != 0).");
+      py::arg("inner_radius") = py::none(),
+      "Quadrature points of the ring where q has a gradient (interior: of every cell where q != 0): "
+      "the plateau q of `radius`, or with inner_radius < radius the ring q (1 within inner_radius, "
+      "0 beyond radius, linear between).");
 
   m.def(
       "auxiliary_fields_3d",

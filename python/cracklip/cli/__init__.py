@@ -142,8 +142,9 @@ def _build(args, doc):
     from ..io.scene_file import build_scene
     sf = build_scene(doc, base_dir=args.scene.parent, path=args.scene)
     msh = sf.scene.mesh.mesh
-    logger.info("mesh: %d nodes, %d cells (%.2f s)", msh.geometry.x.shape[0],
-                msh.topology.index_map(2).size_local, sf.timings["mesh"])
+    logger.info("mesh: %d nodes, %d %s (%.2f s)", msh.geometry.x.shape[0],
+                msh.topology.index_map(msh.topology.dim).size_local,
+                "tetrahedra" if msh.topology.dim == 3 else "cells", sf.timings["mesh"])
     return sf
 
 
@@ -167,7 +168,10 @@ def cmd_run(args) -> int:
     cond = bool(args.condition_number or sf.outputs["condition_number"])
     logger.info("solving (%s enrichment, contact %s)", sf.scene.options.enrichment, sf.scene.options.contact)
     sol = solve(sf.scene, condition_number=cond)
-    if sf.outputs["error_estimate"] and sf.scene.options.accuracy == 0.0:
+    three_d = sol.model.gdim == 3
+    if three_d:
+        logger.info("3D part: no error estimate (it is that of K, not computed along 3D fronts yet)")
+    elif sf.outputs["error_estimate"] and sf.scene.options.accuracy == 0.0:
         from ..analysis.accuracy import estimate_error
         logger.info("estimating the discretisation error of K (one more solve, element sizes halved around the tips)")
         estimate_error(sf.scene, sol, solve)
@@ -183,7 +187,19 @@ def cmd_run(args) -> int:
     print_warnings(w["message"] for w in results["warnings"])
     logger.info("outputs written (%.2f s); total %.2f s", time.perf_counter() - t0,
                 time.perf_counter() - t_start)
-    if not args.quiet:
+    if not args.quiet and three_d:
+        print(f"{sf.title}: {results['solution']['dofs']} dofs, strain energy "
+              f"{results['solution']['strain_energy']:.6g}")
+        unit = "" if sf.scene.units is None else f" {sf.scene.units.name('length')}"
+        for c in results["cracks"]:
+            fr = c["front"]
+            shape = ", ".join("closed" if p["closed"] else f"open ({p['ends_on_boundary']} ends on the boundary)"
+                              for p in fr["pieces"])
+            print(f"  {c['name']}: area {c['area_in_part']:.4g} in the part, opening up to {c['gap_max']:.4g}{unit} "
+                  f"(mean {c['gap_mean']:.4g}), opened volume {c['opening_volume']:.4g}; front {fr['points']} "
+                  f"points, length {fr['length']:.4g}: {shape}")
+        print(f"results in {out}: {', '.join(results['files'])}")
+    elif not args.quiet:
         print(f"{sf.title}: {results['solution']['dofs']} dofs, strain energy "
               f"{results['solution']['strain_energy']:.6g}")
         for line in sif_summary(results["sifs"], results.get("error_estimate"), sf.scene.units):
@@ -224,6 +240,10 @@ def sif_summary(rows, estimate, units) -> list[str]:
                 text += f" (extrapolated {r[f'{mode}_extrapolated']:.6g})"
             parts.append(text)
         out.append(f"  {r['crack_name']} tip ({r['x']:.6g}, {r['y']:.6g}): {', '.join(parts)}{unit}, mode mix {mix}")
+        if r.get("inner_radius") is not None:
+            out.append(f"    SIF ring [{r['inner_radius']:.4g}, {r['radius']:.4g}] (options.sif_ring: one domain, "
+                       "no spread)" + ("" if r["domain_clear"] else f"; it reaches {r['limited_by']}: NOT reliable"))
+            continue
         out.append(f"    SIF domain spread (K over 3 domains; not an error bar): K_I {r['K_I_spread']:.2g}, "
                    f"K_II {r['K_II_spread']:.2g}" + ("" if r.get("K_I_error") is not None else
                                                      "; no error estimate (outputs.error_estimate = false)"))
@@ -303,18 +323,24 @@ def cmd_check(args) -> int:
         return 0
     mat = scene.material
     o = sf.outputs
+    three_d = model.gdim == 3
     lines = [f"scene {args.scene} ({sf.title!r}): valid" + (f", {len(model.warnings)} warning(s) on stderr"
                                                             if model.warnings else ""),
-             f"material: E = {mat.E:g}, nu = {mat.nu:g} (plane {mat.plane})"]
+             f"material: E = {mat.E:g}, nu = {mat.nu:g} " + ("(3D elasticity)" if three_d else f"(plane {mat.plane})")]
     lines += sf.notes
     lines += format_model(summary)
-    files = ["results.json", "crack.csv", "sif.csv"] + (["solution.vtu", "crack_lips.vtu"] if o["vtu"] else []) \
-        + (["deformed.png", "crack_pressure.png", "stress.png"] if o["png"] else [])
+    if three_d:
+        files = ["results.json", "crack_opening.csv"] + (["solution.vtu", "crack_surface.vtu", "crack_front.vtu"]
+                                                         if o["vtu"] else []) \
+            + (["crack_opening.png"] if o["png"] and model.cracks else [])
+    else:
+        files = ["results.json", "crack.csv", "sif.csv"] + (["solution.vtu", "crack_lips.vtu"] if o["vtu"] else []) \
+            + (["deformed.png", "crack_pressure.png", "stress.png"] if o["png"] else [])
     lines.append(f"run writes: {', '.join(files)}")
     if nodes is not None:
         names = [c.crack.name for c in model.cracks]
         lines.append(f"enriched nodes ({len(nodes)}):")
-        lines += [f"  node {n['node']} ({n['x']:.6g}, {n['y']:.6g}): "
+        lines += [f"  node {n['node']} ({n['x']:.6g}, {n['y']:.6g}" + (f", {n['z']:.6g}" if "z" in n else "") + "): "
                   + ", ".join(f"{what} ({names[c]})" for c, what in n["enrichment"]) for n in nodes]
     print("\n".join(lines))
     return 0

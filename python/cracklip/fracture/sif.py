@@ -15,7 +15,12 @@ For every tip this module
   (DOMAIN_FRACTIONS of the radius) with the lip term (tractions on the lips:
   contact pressure, lip pressure, an initial stress's sigma_0 n) and the
   body-force term (body force and div sigma_0), and reports K on the largest
-  domain with the spread (max - min) over the three.
+  domain with the spread (max - min) over the three;
+- or, with a ring (Options.sif_ring, or compute_sifs(ring=...)), computes K
+  on that one annulus as another code defines it (q = 1 within r_in, 0
+  beyond r_out, linear between: code_aster's R_INF / R_SUP, MOOSE's rings),
+  not clipped: what it reaches is warned about (docs/growth.md shows what a
+  ring through a hole does to K).
 
 Conventions (docs/sifs.md, "Conventions"): the tip frame has e1 along the crack's
 extension and e2 = e1 turned by +90 degrees; K_I > 0 opens the crack; K_II > 0
@@ -66,9 +71,20 @@ def _aux_derivative(material, domain: TipDomain, x: np.ndarray, sides: np.ndarra
     return scale * np.einsum("nmij,j->nmi", dU, domain.direction)
 
 
-def _q_at(model, dist: np.ndarray, radius: float, cells: np.ndarray, ref: np.ndarray) -> np.ndarray:
-    """The plateau q (1 at nodes closer than radius, P1) at points (cell, ref)."""
-    qn = (dist < radius).astype(float)[model.cells[cells]]
+def nodal_q(dist: np.ndarray, radius: float, inner_radius: float | None = None) -> np.ndarray:
+    """q at nodes at distances dist from the tip, as the C++ domain_q: the
+    plateau (1 closer than radius, else 0) without inner_radius (or with
+    inner_radius >= radius), else the ring (1 within inner_radius, 0 from
+    radius on, linear between)."""
+    if inner_radius is None or inner_radius >= radius:
+        return (dist < radius).astype(float)
+    return np.clip((radius - dist) / (radius - inner_radius), 0.0, 1.0)
+
+
+def _q_at(model, dist: np.ndarray, radius: float, cells: np.ndarray, ref: np.ndarray,
+          inner_radius: float | None = None) -> np.ndarray:
+    """q (nodal_q, interpolated by P1) at points (cell, ref)."""
+    qn = nodal_q(dist, radius, inner_radius)[model.cells[cells]]
     N = np.stack([1.0 - ref[:, 0] - ref[:, 1], ref[:, 0], ref[:, 1]], axis=1)
     return np.einsum("na,na->n", N, qn)
 
@@ -108,14 +124,15 @@ def lip_traction(solution, crack: int, points: dict[str, np.ndarray]) -> np.ndar
 
 
 def interaction_integrals(solution, domain: TipDomain, radius: float) -> np.ndarray:
-    """(I_I, I_II) on the domain of one radius: domain, lip and body-force terms."""
+    """(I_I, I_II) on the domain of one radius (a ring from domain.inner_radius
+    to it if the domain has one): domain, lip and body-force terms."""
     m = solution.model
     mat = m.scene.material
     q_opts = m.scene.options.quadrature_options()
     q_opts.degree = max(q_opts.degree, SIF_DEGREE)
     body = _body_force(solution)
     d = _cracklip.compute_domain_points(m.x, m.cells, m.layout, m.geometries, domain.position,
-                                        domain.direction, radius, q_opts, body is not None)
+                                        domain.direction, radius, q_opts, body is not None, domain.inner_radius)
     if not np.any(d["grad_q"]):
         raise InputError(f"no cell crosses the SIF domain circle of radius {radius:.4g} around tip "
                          f"{domain.position.tolist()}: the q-function is constant; use a larger radius")
@@ -130,7 +147,7 @@ def interaction_integrals(solution, domain: TipDomain, radius: float) -> np.ndar
         I = I - np.einsum("n,n,nmi,ni->m", d["weight"], d["q"], daux, b)
     pts = lip_points(m, domain.crack)
     dist = node_distances(m, domain.position)
-    q = _q_at(m, dist, radius, pts["cell"], pts["ref"])
+    q = _q_at(m, dist, radius, pts["cell"], pts["ref"], domain.inner_radius)
     on = q > 0.0
     if np.any(on):
         sub = {k: v[on] for k, v in pts.items()}
@@ -190,22 +207,25 @@ def k_scale(solution, ks: list[tuple[float, float]]) -> float:
     return max([math.hypot(*k) for k in ks] + [1e-3 * natural_k(solution), 1e-300])
 
 
-def compute_sifs(solution, radius: float | None = None, cracks: typing.Sequence[int] | None = None
-                 ) -> tuple[list[dict[str, typing.Any]], list[str]]:
+def compute_sifs(solution, radius: float | None = None, cracks: typing.Sequence[int] | None = None,
+                 ring: tuple[float, float] | None = None) -> tuple[list[dict[str, typing.Any]], list[str]]:
     """K_I, K_II with their spreads at every tip of the given cracks (all by
     default), and the warnings about them (domains clipped, spreads above
     SPREAD_WARNING of the K scale). radius: the largest domain's radius,
-    overriding Options.sif_radius. Each row holds the keys of results.json's
-    "sifs": crack, crack_name, tip, x, y, direction, K_I, K_II, K_I_spread,
-    K_II_spread, mode_mix_deg, G, radius, radii, element_size, limited_by,
-    domain_clear."""
+    overriding Options.sif_radius and sif_ring; ring: (r_in, r_out), K on
+    that one ring, not clipped (Options.sif_ring; spreads 0: one domain).
+    Each row holds the keys of results.json's "sifs": crack, crack_name,
+    tip, x, y, direction, K_I, K_II, K_I_spread, K_II_spread, mode_mix_deg,
+    G, radius, radii, inner_radius (a ring's r_in, else None),
+    element_size, limited_by, domain_clear."""
     m = solution.model
     mat = m.scene.material
     cracks = range(len(m.cracks)) if cracks is None else cracks
     rows, warnings, raw = [], [], []
     for ci in cracks:
-        doms = tip_domains(m, ci, radius)
-        if radius is not None:  # a caller's radius: say what became of it (the model checks did the default)
+        doms = tip_domains(m, ci, radius, ring)
+        if radius is not None or ring is not None:  # a caller's domain: say what became of it (the model
+            # checks did the default)
             for dom in doms:
                 for w in dom.warnings:
                     logger.warning("%s", w)
@@ -233,7 +253,8 @@ def compute_sifs(solution, radius: float | None = None, cracks: typing.Sequence[
                      "direction": dom.direction.tolist(), "K_I": kI, "K_II": kII,
                      "K_I_spread": float(spread[0]), "K_II_spread": float(spread[1]),
                      "mode_mix_deg": mix, "G": (kI ** 2 + kII ** 2) / mat.E_star,
-                     "radius": dom.radius, "radii": list(dom.radii), "element_size": dom.element_size,
+                     "radius": dom.radius, "radii": list(dom.radii), "inner_radius": dom.inner_radius,
+                     "element_size": dom.element_size,
                      "limited_by": dom.obstacle if dom.limited or not dom.clear else None,
                      "domain_clear": dom.clear})
     return rows, warnings

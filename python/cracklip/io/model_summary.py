@@ -1,5 +1,10 @@
 """The model summary that ``cracklip check`` prints and results.json records: the
-counts come from the same model and contact system objects the solver uses."""
+counts come from the same model and contact system objects the solver uses.
+
+One summary for both dimensions: the mesh, dofs, enriched nodes, boundary
+tags and quadrature groups alike; per crack a polyline's tips in 2D, a
+surface's cut cells, front (pieces, points, length, boundary ends) and the
+element size reached along it in 3D."""
 from __future__ import annotations
 
 import typing
@@ -54,6 +59,42 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
     give the counts (computed otherwise)."""
     layout = model.layout
     opts = model.scene.options
+    node = np.asarray(layout.node)
+    d = model.gdim
+    cracks = _describe_cracks_3d(model) if d == 3 else _describe_cracks_2d(model)
+    out: dict[str, typing.Any] = {
+        "nodes": int(layout.num_std_nodes),
+        "cells": int(model.cells.shape[0]),
+        "mean_edge": model.h,
+        "dofs": {"standard": int(d * layout.num_std_nodes), "enriched": int(d * layout.num_enriched),
+                 "total": int(model.num_dofs)},
+        "enriched_nodes": int(np.unique(node).size),
+        "enriched_pseudo_nodes": int(layout.num_enriched),
+        "enriched_cells": int(np.asarray(layout.cells).size),
+        "enrichment": {"tip": opts.enrichment, "radius": opts.radius, "blending": opts.blending},
+        "boundary_tags": {name: int(v) for name, v in sorted(model.scene.mesh.tags.items())},
+        "cracks": cracks,
+        "quadrature": _describe_quadrature_3d(model) if d == 3 else _describe_quadrature(model, solution),
+    }
+    if d == 3:
+        out["dimension"] = 3
+    if contact_system is None:
+        out["contact"] = {"law": "none" if not model.cracks else opts.contact, "multipliers": 0}
+    else:
+        space = contact_system.space
+        out["contact"] = {
+            "law": opts.contact, "space": opts.multipliers,
+            "multipliers": int(contact_system.num_multipliers),
+            "full_multipliers": int(space.num_full),
+            "p0_multipliers": int(np.count_nonzero(np.asarray(space.full_node) < 0)),
+            "segments": int(space.num_segments), "points_per_segment": int(opts.contact_points),
+        }
+    return out
+
+
+def _describe_cracks_2d(model: XfemModel) -> list[dict[str, typing.Any]]:
+    """Per polyline crack: its kind, length, tips, cells, enriched nodes, SIF domains."""
+    layout = model.layout
     kind = np.asarray(layout.kind)
     crack_of = np.asarray(layout.crack)
     node = np.asarray(layout.node)
@@ -82,6 +123,7 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
             "tips": np.asarray(g.tips).tolist(),
             "tip_element_size": [d.element_size for d in domains],
             "sif_radius": [d.radius for d in domains],
+            "sif_inner_radius": [d.inner_radius for d in domains],
             "sif_limited_by": [d.obstacle if d.limited or not d.clear else None for d in domains],
             "lip_pressure": "function" if callable(cm.crack.pressure) else float(cm.crack.pressure),
             "cells": {name: int(cls[v]) for name, v in CELL_CLASSES.items() if name != "plain"},
@@ -93,37 +135,78 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
             "tip_dofs": int(2 * np.count_nonzero(tip)),
             "snapped_nodes": int(g.num_snapped),
         })
-    out: dict[str, typing.Any] = {
-        "nodes": int(layout.num_std_nodes),
-        "cells": int(model.cells.shape[0]),
-        "mean_edge": model.h,
-        "dofs": {"standard": int(2 * layout.num_std_nodes), "enriched": int(2 * layout.num_enriched),
-                 "total": int(model.num_dofs)},
-        "enriched_nodes": int(np.unique(node).size),
-        "enriched_pseudo_nodes": int(layout.num_enriched),
-        "enriched_cells": int(np.asarray(layout.cells).size),
-        "enrichment": {"tip": opts.enrichment, "radius": opts.radius, "blending": opts.blending},
-        "boundary_tags": {name: int(v) for name, v in sorted(model.scene.mesh.tags.items())},
-        "cracks": cracks,
-        "quadrature": _describe_quadrature(model, solution),
-    }
-    if contact_system is None:
-        out["contact"] = {"law": "none" if not model.cracks else opts.contact, "multipliers": 0}
-    else:
-        space = contact_system.space
-        out["contact"] = {
-            "law": opts.contact, "space": opts.multipliers,
-            "multipliers": int(contact_system.num_multipliers),
-            "full_multipliers": int(space.num_full),
-            "p0_multipliers": int(np.count_nonzero(np.asarray(space.full_node) < 0)),
-            "segments": int(space.num_segments), "points_per_segment": int(opts.contact_points),
-        }
+    return cracks
+
+
+#: Cell classes of CrackGeometry3D.cell_class (cpp/geometry/crack_geometry_3d.h).
+CELL_CLASSES_3D = {"plain": 0, "cut": 1, "face": 2, "front": 3, "extension": 4}
+
+
+def _describe_cracks_3d(model: XfemModel) -> list[dict[str, typing.Any]]:
+    """Per crack surface: what it is, its area in the part, its cells, its
+    enriched nodes, its front (pieces, points, length, boundary ends) and the
+    element size reached along the front."""
+    from ..model.checks_3d import front_element_sizes
+    from .scene_file_3d import describe_crack
+    layout = model.layout
+    kind = np.asarray(layout.kind)
+    crack_of = np.asarray(layout.crack)
+    node = np.asarray(layout.node)
+    core = np.asarray(layout.core)
+    out = []
+    for ci, cm in enumerate(model.cracks):
+        g = cm.geometry
+        cls = np.bincount(np.asarray(g.cell_class), minlength=len(CELL_CLASSES_3D))
+        heav = (crack_of == ci) & (kind == 0)
+        front_fn = (crack_of == ci) & (kind != 0)
+        front_nodes = np.unique(node[front_fn])
+        core_nodes = np.unique(node[front_fn & (core == 1)])
+        fr = g.front
+        offsets = np.asarray(fr["piece_offsets"])
+        x = np.asarray(fr["x"]).reshape(-1, 3)
+        seg = np.asarray(fr["segments"]).reshape(-1, 2)
+        on = np.asarray(fr["on_boundary"])
+        s_arc = np.asarray(fr["s"])
+        pieces = []
+        for k, closed in enumerate(np.asarray(fr["closed"])):
+            first, last = int(offsets[k]), int(offsets[k + 1]) - 1
+            length = float(s_arc[last]) if last >= first else 0.0
+            if closed:  # and its closing segment
+                length += float(np.linalg.norm(x[last] - x[first]))
+            pieces.append({"points": last - first + 1, "closed": bool(closed), "length": length,
+                           "ends_on_boundary": 0 if closed else int(on[first]) + int(on[last])})
+        sizes = front_element_sizes(model, ci)
+        area = float(np.asarray(g.crack_cells["facet_area"]).sum())
+        out.append({
+            "name": cm.crack.name,
+            "kind": {"EllipticalCrack": "ellipse", "PolygonCrack": "polygon"}.get(type(cm.crack).__name__,
+                                                                                    "triangulated surface"),
+            "description": describe_crack(cm.crack),
+            "area": float(cm.crack.area),
+            "area_in_part": area,
+            "lip_pressure": "function" if callable(cm.crack.pressure) else float(cm.crack.pressure),
+            "cells": {name: int(cls[v]) for name, v in CELL_CLASSES_3D.items() if name != "plain"},
+            "heaviside_nodes": int(np.unique(node[heav]).size),
+            "heaviside_dofs": int(3 * np.count_nonzero(heav)),
+            "front_nodes": int(front_nodes.size),
+            "front_core_nodes": int(core_nodes.size),
+            "front_blending_nodes": int(front_nodes.size - core_nodes.size),
+            "front_dofs": int(3 * np.count_nonzero(front_fn)),
+            "front": {"points": int(len(x)), "segments": int(len(seg)), "pieces": pieces,
+                      "length": float(sum(p["length"] for p in pieces)),
+                      "branch_points": int(fr["num_branch_points"])},
+            "front_element_size": ({"mean": float(sizes.mean()), "min": float(sizes.min()), "max": float(sizes.max()),
+                                    "cells": int(sizes.size)} if sizes.size else None),
+            "snapped_nodes": int(g.num_snapped),
+            "degenerate_front_cells": int(g.num_degenerate_front_cells),
+        })
     return out
 
 
 def enriched_nodes(model: XfemModel) -> list[dict[str, typing.Any]]:
-    """Every enriched node with its enrichments: node index, x, y and a list
-    of (crack, kind) with kind "heaviside", "tip core" or "tip blending"."""
+    """Every enriched node with its enrichments: node index, x, y (and z in
+    3D) and a list of (crack, kind) with kind "heaviside", "tip core" or "tip
+    blending" ("front core", "front blending" in 3D)."""
     layout = model.layout
     node = np.asarray(layout.node)
     kind = np.asarray(layout.kind)
@@ -133,8 +216,9 @@ def enriched_nodes(model: XfemModel) -> list[dict[str, typing.Any]]:
     for k in np.argsort(node, kind="stable"):
         n = int(node[k])
         entry = out.setdefault(n, {"node": n, "x": float(model.x[n, 0]), "y": float(model.x[n, 1]),
-                                   "enrichment": []})
-        what = "heaviside" if kind[k] == 0 else ("tip core" if core[k] else "tip blending")
+                                   **({"z": float(model.x[n, 2])} if model.gdim == 3 else {}), "enrichment": []})
+        fn = "front" if model.gdim == 3 else "tip"
+        what = "heaviside" if kind[k] == 0 else (f"{fn} core" if core[k] else f"{fn} blending")
         item = [int(crack[k]), what]
         if item not in entry["enrichment"]:
             entry["enrichment"].append(item)
@@ -189,10 +273,60 @@ def _describe_quadrature(model: XfemModel, solution: Solution | None = None) -> 
     return groups
 
 
+def _describe_quadrature_3d(model: XfemModel) -> list[dict[str, typing.Any]]:
+    """Cells of each quadrature kind of a tetrahedral model with their rule and point counts."""
+    layout = model.layout
+    opts = model.scene.options
+    ncells = model.cells.shape[0]
+    enr_cells = np.asarray(layout.cells, dtype=np.int32)
+    groups = [{"cells": "plain cells (standard block only)", "count": int(ncells - enr_cells.size),
+               "rule": "DOLFINx's rule for the P1 stiffness", "points": None}]
+    if enr_cells.size == 0:
+        return groups
+    q = _cracklip.compute_enriched_cell_quadrature_3d(model.x, model.cells, layout, model.geometries, enr_cells,
+                                                      opts.quadrature_options_3d())
+    per_cell = np.bincount(q["cell"], minlength=ncells)
+    offsets = np.asarray(layout.cell_offsets)
+    kinds = np.asarray(layout.kind)[np.asarray(layout.cell_enr)]
+    has_front = np.zeros(ncells, dtype=bool)
+    has_front[enr_cells] = np.add.reduceat((kinds != 0).astype(int), offsets[:-1]) > 0 if kinds.size else False
+    crossed = np.zeros(ncells, dtype=bool)
+    front = np.zeros(ncells, dtype=bool)
+    for g in model.geometries:
+        cls = np.asarray(g.cell_class)
+        crossed |= (cls == CELL_CLASSES_3D["cut"]) | (cls == CELL_CLASSES_3D["face"])
+        front |= cls == CELL_CLASSES_3D["front"]
+    enriched = np.zeros(ncells, dtype=bool)
+    enriched[enr_cells] = True
+    if opts.quadrature == "collapsed":
+        front_rule = ("sub-tetrahedra split by the crack and the front: edge- and point-collapsed rules on those "
+                      "touching the front, Gauss graded by the distance to it elsewhere")
+    else:
+        front_rule = f"Gauss degree {opts.quadrature_degree} on the sub-tetrahedra"
+    q3 = opts.quadrature_options_3d()
+    for label, mask, rule in [
+            ("front cells", enriched & front, front_rule),
+            ("cut cells with front functions", enriched & crossed & has_front & ~front,
+             "sub-tetrahedra, Gauss graded by the distance to the front"),
+            ("other cells with front functions", enriched & has_front & ~crossed & ~front,
+             "Gauss graded by the distance to the front"),
+            ("cut or face cells, Heaviside only", enriched & crossed & ~has_front & ~front,
+             f"Gauss degree {q3.degree} on each sub-tetrahedron"),
+            ("uncut cells with Heaviside nodes", enriched & ~crossed & ~has_front & ~front,
+             f"Gauss degree {q3.degree}")]:
+        n = per_cell[mask]
+        if n.size:
+            groups.append({"cells": label, "count": int(n.size), "rule": rule, "points": int(n.sum()),
+                           "points_per_cell": [int(n.min()), int(n.max())]})
+    return groups
+
+
 def format_model(summary: dict[str, typing.Any]) -> list[str]:
     """Human-readable lines of describe_model's summary (for `cracklip check`)."""
     d = summary["dofs"]
     e = summary["enrichment"]
+    if summary.get("dimension") == 3:
+        return _format_model_3d(summary)
     lines = [f"mesh: {summary['nodes']} nodes, {summary['cells']} cells, mean edge {summary['mean_edge']:.4g}",
              f"dofs: {d['total']} = {d['standard']} standard + {d['enriched']} enriched "
              f"({summary['enriched_nodes']} enriched nodes, {summary['enriched_pseudo_nodes']} "
@@ -210,7 +344,12 @@ def format_model(summary: dict[str, typing.Any]) -> list[str]:
                   f"  tip: {c['tip_nodes']} nodes ({c['tip_core_nodes']} core, {c['tip_blending_nodes']} "
                   f"blending), {c['tip_dofs']} dofs"
                   + (f"; {c['snapped_nodes']} node(s) snapped onto the crack" if c["snapped_nodes"] else "")]
-        for t, h, r, lim in zip(c["tips"], c["tip_element_size"], c["sif_radius"], c["sif_limited_by"]):
+        for t, h, r, ri, lim in zip(c["tips"], c["tip_element_size"], c["sif_radius"], c["sif_inner_radius"],
+                                    c["sif_limited_by"]):
+            if ri is not None:  # options.sif_ring: one ring, as given
+                lines.append(f"  tip ({t[0]:.6g}, {t[1]:.6g}): element size {h:.4g}, SIF ring [{ri:.4g}, {r:.4g}] "
+                             "(options.sif_ring, not clipped)" + (f" (reaches {lim})" if lim else ""))
+                continue
             lines.append(f"  tip ({t[0]:.6g}, {t[1]:.6g}): element size {h:.4g}, SIF domains of radius "
                          f"{0.5 * r:.4g}, {0.75 * r:.4g}, {r:.4g}" + (f" (limited by {lim})" if lim else ""))
         if c["lip_pressure"] != 0.0:
@@ -227,4 +366,42 @@ def format_model(summary: dict[str, typing.Any]) -> list[str]:
         lines.append(f"contact: {c['law']}, {c['space']} space: {c['multipliers']} multipliers "
                      f"({c['full_multipliers']} full, {c['p0_multipliers']} P0 in tip cells) on "
                      f"{c['segments']} crack segments x {c['points_per_segment']} points")
+    return lines
+
+
+def _format_model_3d(summary: dict[str, typing.Any]) -> list[str]:
+    """format_model's lines for a tetrahedral model."""
+    d = summary["dofs"]
+    e = summary["enrichment"]
+    lines = [f"mesh: {summary['nodes']} nodes, {summary['cells']} tetrahedra, mean edge {summary['mean_edge']:.4g}",
+             f"dofs: {d['total']} = {d['standard']} standard + {d['enriched']} enriched "
+             f"({summary['enriched_nodes']} enriched nodes, {summary['enriched_pseudo_nodes']} "
+             f"enriched pseudo-nodes on {summary['enriched_cells']} cells)",
+             f"enrichment: front {e['tip']}, radius {e['radius']:g}, {e['blending']} blending",
+             "boundary tags: " + (", ".join(f"{n!r}" for n in summary["boundary_tags"]) or "none")]
+    for c in summary["cracks"]:
+        cells = ", ".join(f"{v} {k}" for k, v in c["cells"].items())
+        fr = c["front"]
+        pieces = "; ".join(("closed" if p["closed"] else f"open, {p['ends_on_boundary']} of 2 ends on the boundary")
+                           + f", {p['points']} points, length {p['length']:.4g}" for p in fr["pieces"]) or "none"
+        lines += [f"crack {c['description']}",
+                  f"  area in the part {c['area_in_part']:.6g} (of {c['area']:.6g})",
+                  f"  cells: {cells}",
+                  f"  Heaviside: {c['heaviside_nodes']} nodes, {c['heaviside_dofs']} dofs",
+                  f"  front functions: {c['front_nodes']} nodes ({c['front_core_nodes']} core, "
+                  f"{c['front_blending_nodes']} blending), {c['front_dofs']} dofs"
+                  + (f"; {c['snapped_nodes']} node(s) snapped onto the crack" if c["snapped_nodes"] else ""),
+                  f"  front: {fr['points']} points in {len(fr['pieces'])} piece(s): {pieces}"]
+        if c["front_element_size"]:
+            fs = c["front_element_size"]
+            lines.append(f"  element size at the front: {fs['mean']:.4g} (from {fs['min']:.4g} to {fs['max']:.4g} "
+                         f"over {fs['cells']} front cells)")
+        if c["lip_pressure"] != 0.0:
+            lines.append(f"  lip pressure: {c['lip_pressure']}")
+    lines.append("quadrature:")
+    for q in summary["quadrature"]:
+        pts = "" if q["points"] is None else (f", {q['points']} points "
+                                              f"({q['points_per_cell'][0]}-{q['points_per_cell'][1]} per cell)")
+        lines.append(f"  {q['count']} {q['cells']}: {q['rule']}{pts}")
+    lines.append("contact: none (traction-free lips)")
     return lines

@@ -9,33 +9,25 @@ contact system objects the solver uses.
 """
 from __future__ import annotations
 
-import csv
 import json
 import logging
 import pathlib
-import platform
-import tempfile
 import time
 import typing
 
 import numpy as np
 
-from .. import __version__
 from ..contact.friction import STATE_NAMES
-from ..errors import CracklipError, SolverError
+from ..errors import SolverError
 from ..post.solution import Solution
-from ..solvers.checked import blas_library
 from .files import atomic_path
+from .results import OutputError, check_finite, ensure_output_dir, json_default, versions, write_csv  # noqa: F401
 from .model_summary import describe_model
 from .paraview import crack_lips_mesh, subcell_mesh, write_mesh
 from .pictures import write_pngs
 
 
 logger = logging.getLogger(__name__)
-
-
-class OutputError(CracklipError, OSError):
-    """An output folder or file cannot be written."""
 
 
 def crack_samples(solution: Solution, crack: int, points_per_segment: int = 3) -> dict[str, np.ndarray]:
@@ -97,15 +89,6 @@ def _ranges(s: np.ndarray, mask: np.ndarray) -> list[list[float]]:
     return out
 
 
-def versions() -> dict[str, str]:
-    import dolfinx
-    import petsc4py
-    import scipy
-    return {"cracklip": __version__, "dolfinx": dolfinx.__version__, "petsc4py": petsc4py.__version__,
-            "numpy": np.__version__, "scipy": scipy.__version__,
-            "python": platform.python_version(), "blas": blas_library()}
-
-
 def sif_rows(solution: Solution) -> list[dict[str, typing.Any]]:
     """K_I, K_II with their domain spread, mode mix (degrees, atan2(K_II,
     K_I); None where K is negligible) and energy release rate G = (K_I^2 +
@@ -113,29 +96,13 @@ def sif_rows(solution: Solution) -> list[dict[str, typing.Any]]:
     return solution.stress_intensity_factors(None)
 
 
-def ensure_output_dir(path: str | pathlib.Path) -> pathlib.Path:
-    """Create the output folder and check that files can be written in it
-    (before a long solve); OutputError naming the folder otherwise."""
-    path = pathlib.Path(path)
-    try:
-        path.mkdir(parents=True, exist_ok=True)
-        with tempfile.NamedTemporaryFile(dir=path, prefix=".cracklip-write-test"):
-            pass
-    except OSError as e:
-        raise OutputError(f"cannot write to the output folder {path}: {e.strerror or e}") from None
-    return path
-
-
-def _finite(name: str, *arrays) -> None:
-    for a in arrays:
-        if not np.all(np.isfinite(np.asarray(a, dtype=float))):
-            raise SolverError(f"{name} holds NaN or infinity: the solution is not usable")
-
-
 def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
                   timings: dict[str, float] | None = None) -> dict[str, typing.Any]:
     """Write every output of a solved scene file into out_dir and return the
-    results (what results.json holds)."""
+    results (what results.json holds); a tetrahedral part's: outputs_3d."""
+    if solution.model.gdim == 3:
+        from .outputs_3d import write_outputs_3d
+        return write_outputs_3d(scene_file, solution, out_dir, timings)
     t_outputs = time.perf_counter()
     out = ensure_output_dir(out_dir)
     timings = dict(timings or {})
@@ -158,13 +125,13 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
         shut = [closed_points(smp, law, gap_tol) for smp in smps]
         per_step.append((st, smps, shut))
         for smp in smps:
-            _finite("the crack samples", smp["pressure"], smp["gap"], smp["slip"], smp["shear"])
+            check_finite("the crack samples", smp["pressure"], smp["gap"], smp["slip"], smp["shear"])
     _, samples, closed = per_step[-1]
     crack_stats = [{"crack": i, "name": m.cracks[i].crack.name, **crack_statistics(smp, closed[i], gap_tol, law)}
                    for i, smp in enumerate(samples)]
     energy = solution.strain_energy()
     timings["crack_post"] = time.perf_counter() - t0
-    _finite("the displacement", solution.u)
+    check_finite("the displacement", solution.u)
 
     t0 = time.perf_counter()
     write_csv(out / "crack.csv", ["step", "crack", "s", "x", "y", "pressure", "shear", "gap", "slip", "state",
@@ -276,21 +243,3 @@ def contact_summary(solution: Solution) -> dict[str, typing.Any] | None:
     if "increment_iterations" in c:
         out["increment_iterations"] = c["increment_iterations"]
     return out
-
-
-def json_default(value):
-    if isinstance(value, np.generic):
-        return value.item()
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    raise TypeError(f"cannot write {type(value).__name__} to JSON")
-
-
-def write_csv(path: pathlib.Path, header: list[str], rows: list[list]) -> None:
-    with atomic_path(path) as tmp:
-        with tmp.open("w", newline="") as f:
-            w = csv.writer(f)
-            w.writerow(header)
-            for r in rows:
-                w.writerow(["" if v is None else f"{v:.12g}" if isinstance(v, (float, np.floating)) else v
-                            for v in r])

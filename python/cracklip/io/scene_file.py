@@ -37,16 +37,26 @@ from ..scene.options import ENRICHMENTS, Options, SOLVERS, TIP_QUADRATURES
 from ..scene.scene import Scene
 from ..scene.stress_field import LinearStress
 from ..scene.units import FORCES, LENGTHS, STRESSES, Units
+from .scene_file_3d import CRACK_KINDS, check_dimension, scene_dimension
 
 
-MESH_KINDS = ("rectangle", "plate_with_hole", "plate_with_holes", "half_annulus", "geometry", "file")
+MESH_KINDS = ("rectangle", "plate_with_hole", "plate_with_holes", "half_annulus", "box", "cylinder", "geometry",
+              "file")
 
 
 GENERATED = ("rectangle", "plate_with_hole", "plate_with_holes", "half_annulus")
 
 
+#: Generated 3D parts (tetrahedra).
+SOLIDS = ("box", "cylinder")
+
+
 #: Kinds that cracklip meshes with gmsh (mesh.h applies).
-MESHED = GENERATED + ("geometry",)
+MESHED = GENERATED + SOLIDS + ("geometry",)
+
+
+#: Kinds whose mesh can be 3D (crack surfaces, front refinement).
+KINDS_3D = SOLIDS + ("geometry", "file")
 
 
 PLATES = ("rectangle", "plate_with_hole", "plate_with_holes")
@@ -149,6 +159,44 @@ p_vector = p_numbers(2, "a vector [x, y]")
 p_stress = p_numbers(3, "a stress [sigma_xx, sigma_yy, sigma_xy]")
 
 
+p_point3 = p_numbers(3, "a point [x, y, z]")
+
+
+p_vector3 = p_numbers(3, "a vector [x, y, z]")
+
+
+def p_coords(what: str, counts: tuple[int, ...] = (2, 3)):
+    """A list of 2 or 3 numbers (a 2D or 3D point or vector; the scene's
+    dimension is checked once it is known: scene_file_3d.check_dimension)."""
+    def parse(value, path):
+        if not isinstance(value, list) or len(value) not in counts:
+            raise _type_error(path, what, value)
+        return [_number(v, f"{path}[{i}]") for i, v in enumerate(value)]
+    return parse
+
+
+p_point_any = p_coords("a point [x, y] (3D: [x, y, z])")
+
+
+p_vector_any = p_coords("a vector [x, y] (3D: [x, y, z])")
+
+
+p_stress_any = p_coords("a stress [sxx, syy, sxy] (3D: [sxx, syy, szz, syz, sxz, sxy])", (3, 6))
+
+
+def p_solid_box(value, path):
+    x0, y0, z0, x1, y1, z1 = p_numbers(6, "a box [x0, y0, z0, x1, y1, z1]")(value, path)
+    if not (x1 > x0 and y1 > y0 and z1 > z0):
+        raise InputError(f"{path} = {value} is empty: need x0 < x1, y0 < y1 and z0 < z1")
+    return [x0, y0, z0, x1, y1, z1]
+
+
+def p_polygon(value, path):
+    if not isinstance(value, list) or len(value) < 3:
+        raise _type_error(path, "a list of at least three points [[x, y, z], ...]", value)
+    return [p_point3(v, f"{path}[{i}]") for i, v in enumerate(value)]
+
+
 p_angles = p_numbers(2, "two angles [start, end] in degrees")
 
 
@@ -179,8 +227,14 @@ def p_holes(value, path):
 
 
 def p_region(value, path):
-    """A box that may be flat (x0 = x1 or y0 = y1: the nodes on a line)."""
-    x0, y0, x1, y1 = p_numbers(4, "a box [x0, y0, x1, y1]")(value, path)
+    """A box that may be flat (x0 = x1 or y0 = y1: the nodes on a line; in
+    3D [x0, y0, z0, x1, y1, z1], flat: the nodes on a plane or a line)."""
+    if isinstance(value, list) and len(value) == 6:
+        v = p_numbers(6, "a box [x0, y0, z0, x1, y1, z1]")(value, path)
+        if not all(v[3 + d] >= v[d] for d in range(3)):
+            raise InputError(f"{path} = {value}: need x0 <= x1, y0 <= y1 and z0 <= z1")
+        return v
+    x0, y0, x1, y1 = p_numbers(4, "a box [x0, y0, x1, y1] (3D: [x0, y0, z0, x1, y1, z1])")(value, path)
     if not (x1 >= x0 and y1 >= y0):
         raise InputError(f"{path} = {value}: need x0 <= x1 and y0 <= y1")
     return [x0, y0, x1, y1]
@@ -199,9 +253,12 @@ def p_tag(value, path):
 
 
 def p_segment(value, path):
-    pts = p_polyline(value, path)
-    if len(pts) != 2:
-        raise _type_error(path, "a segment [[x0, y0], [x1, y1]]", value)
+    what = "a segment [[x0, y0], [x1, y1]] (3D: [[x0, y0, z0], [x1, y1, z1]])"
+    if not isinstance(value, list) or len(value) != 2:
+        raise _type_error(path, what, value)
+    pts = [p_point_any(v, f"{path}[{i}]") for i, v in enumerate(value)]
+    if len(pts[0]) != len(pts[1]):
+        raise _type_error(path, what, value)
     return pts
 
 
@@ -219,7 +276,7 @@ def p_factors(value, path):
 
 def p_value(value, path):
     if isinstance(value, list):
-        return p_vector(value, path)
+        return p_vector_any(value, path)
     return _number(value, path)
 
 
@@ -284,6 +341,10 @@ _OPTION_MEANINGS = {
     "sif_radius": "radius of the largest SIF domain at every tip (K also on 1/2 and 3/4 of it; their "
                   "spread is reported); 0: 6 element sizes at that tip; clipped to stay inside the part "
                   "and away from other tips, cracks, kinks and holes (with a warning)",
+    "sif_ring": "K on one ring as another code defines it: q = 1 within r_in, 0 beyond r_out, linear between "
+                "(code_aster's R_INF / R_SUP, MOOSE's rings; r_in = r_out: the plateau of that radius); NOT clipped: "
+                "a ring reaching a hole, kink, tip or the boundary warns and its K is marked unreliable; no spread; "
+                "overrides sif_radius (a ring through a hole: docs/growth.md)",
     "accuracy": "target of the estimated discretisation error of every K, relative to the K scale (0.01: 1 %); "
                 "0: off. Refines around every tip (sizes halved within twice the crack's length, one level per "
                 "solve) until the estimate is below it; reports the levels, the estimate and the extrapolated K; "
@@ -334,6 +395,9 @@ def _option_keys() -> list[Key]:
         meaning = _OPTION_MEANINGS.get(f.name) or documented.get(f.name, f.name.replace("_", " "))
         if f.name in _OPTION_CHOICES:
             keys.append(Key(f"options.{f.name}", "string", default, meaning, p_choice(*_OPTION_CHOICES[f.name])))
+        elif f.name == "sif_ring":
+            keys.append(Key(f"options.{f.name}", "[r_in, r_out]", UNSET, meaning,
+                            p_numbers(2, "two radii [r_in, r_out]")))
         elif isinstance(default, bool):
             keys.append(Key(f"options.{f.name}", "boolean", default, meaning, p_bool))
         elif isinstance(default, int):
@@ -494,10 +558,21 @@ SCHEMA: tuple[Key, ...] = tuple([
     # mesh
     Key("mesh.kind", "string", "rectangle",
         "`rectangle`, `plate_with_hole`, `plate_with_holes` (a drilled plate), `half_annulus` (r between hole_radius and outer_radius, "
-        "y >= 0, centre at the origin), `geometry` (your part as a gmsh .geo, STEP or BREP file, meshed by cracklip "
-        "with h, tip_h and refine) or `file` (a gmsh .msh mesh, refined locally by cracklip for tip_h and refine)",
+        "y >= 0, centre at the origin), 3D: `box`, `cylinder` (tetrahedra, refined along the crack fronts), "
+        "`geometry` (your part as a gmsh .geo, STEP or BREP file, meshed by cracklip "
+        "with h, tip_h and refine; a solid is meshed in tetrahedra) or `file` (a gmsh .msh mesh, refined locally "
+        "by cracklip for tip_h and refine; 3D: tetrahedra, used as they are)",
         p_choice(*MESH_KINDS)),
     Key("mesh.h", "float", REQUIRED, "element size", p_float(positive=True), MESHED),
+    Key("mesh.box", "[x0, y0, z0, x1, y1, z1]", REQUIRED,
+        "the box (3D); tags `xmin`, `xmax`, `ymin`, `ymax`, `zmin`, `zmax`", p_solid_box, ("box",)),
+    Key("mesh.center", "[x, y, z]", REQUIRED, "centre of the cylinder's bottom face (tag `bottom`)", p_point3,
+        ("cylinder",)),
+    Key("mesh.axis", "[x, y, z]", [0.0, 0.0, 1.0], "direction from the cylinder's bottom face to its top face "
+        "(tag `top`; the curved face is `side`)", p_vector3, ("cylinder",)),
+    Key("mesh.radius", "float", REQUIRED, "radius of the cylinder", p_float(positive=True), ("cylinder",)),
+    Key("mesh.length", "float", REQUIRED, "length of the cylinder along its axis", p_float(positive=True),
+        ("cylinder",)),
     Key("mesh.domain", "[x0, y0, x1, y1]", [-1.0, -1.0, 1.0, 1.0],
         "the rectangle; tags `left`, `right`, `bottom`, `top`", p_box, PLATES),
     Key("mesh.hole_center", "[x, y]", [0.0, 0.0], "centre of the hole (tag `hole`)", p_point,
@@ -511,21 +586,27 @@ SCHEMA: tuple[Key, ...] = tuple([
         ("half_annulus",)),
     Key("mesh.path", "string", REQUIRED,
         "the file, relative to the scene file: a gmsh .geo script, STEP or BREP file (kind geometry; named "
-        "physical curves are the boundary tags, without any every boundary curve N is tag `curve N`) or a gmsh "
-        ".msh mesh (kind file; named physical curves as boundary tags, a Physical Surface for the triangles)",
+        "physical curves are the boundary tags, without any every boundary curve N is tag `curve N`; a solid: "
+        "named physical surfaces, else `surface N`) or a gmsh "
+        ".msh mesh (kind file; named physical curves as boundary tags, a Physical Surface for the triangles; 3D: "
+        "named physical surfaces as boundary tags, a Physical Volume for the tetrahedra)",
         p_str, ("file", "geometry")),
     Key("mesh.tip_h", "float", 0.0,
-        "element size at crack tips inside the part; 0: no tip refinement (kind file: the file's mesh is "
-        "refined around the tips until its cells are that small)", p_float(0.0)),
-    Key("mesh.tip_radius", "float", 0.0,
-        "distance over which the size grows from tip_h to h beyond a plateau of 4 tip_h around the tip; "
-        "never faster than 0.25 per unit length (a shorter radius is lengthened); 0: that fastest growth "
-        "(kind file: up to the file's own element size)",
+        "element size at crack tips inside the part (3D: along the crack fronts); 0: no tip refinement (kind "
+        "file: the file's mesh is refined around the tips until its cells are that small; not for 3D files)",
         p_float(0.0)),
-    Key("mesh.refine[].point", "[x, y]", UNSET, "centre of a local refinement (one of point, segment)",
-        p_point),
+    Key("mesh.tip_radius", "float", 0.0,
+        "distance over which the size grows from tip_h to h beyond a plateau of 4 tip_h around the tip (3D: "
+        "the front); never faster than 0.25 per unit length (a shorter radius is lengthened); 0: that fastest "
+        "growth (kind file: up to the file's own element size)",
+        p_float(0.0)),
+    Key("mesh.crack_h", "float", 0.0,
+        "3D: element size over the crack surfaces (within 4 crack_h of them), growing back to h as from the "
+        "front; 0: no refinement beyond the front's", p_float(0.0), SOLIDS + ("geometry",)),
+    Key("mesh.refine[].point", "[x, y] or [x, y, z]", UNSET, "centre of a local refinement (one of point, "
+        "segment)", p_point_any),
     Key("mesh.refine[].segment", "[[x0, y0], [x1, y1]]", UNSET, "a segment refined along its length (a band "
-        "along a crack's expected path; one of point, segment)", p_segment),
+        "along a crack's expected path; one of point, segment; 3D: [[x0, y0, z0], [x1, y1, z1]])", p_segment),
     Key("mesh.refine[].h", "float", REQUIRED, "element size at the point (and within 4 times that size of it)",
         p_float(positive=True)),
     Key("mesh.refine[].radius", "float", 0.0, "distance over which the size grows back to h beyond that "
@@ -542,12 +623,12 @@ SCHEMA: tuple[Key, ...] = tuple([
     Key("material.E", "float", REQUIRED, "Young's modulus", p_float(positive=True)),
     Key("material.nu", "float", REQUIRED, "Poisson's ratio, -1 < nu < 0.5 (plane stress: <= 0.5)", p_float()),
     Key("material.plane", "string", "strain", "`strain` (thick part, eps_zz = 0) or `stress` (thin plate, "
-        "sigma_zz = 0; K from G with E' = E)", p_choice("strain", "stress")),
+        "sigma_zz = 0; K from G with E' = E); 2D only", p_choice("strain", "stress")),
 ] + _fatigue_keys() + [
     # cracks
     Key("cracks[].name", "string", "", "label in messages and outputs (default: crack i)", p_str),
     Key("cracks[].points", "[[x, y], ...]", UNSET,
-        "polyline; an end inside the part is a tip, an end on or outside the boundary makes an "
+        "2D: polyline; an end inside the part is a tip, an end on or outside the boundary makes an "
         "edge crack", p_polyline),
     Key("cracks[].arc.center", "[x, y]", REQUIRED, "circular-arc crack: centre", p_point),
     Key("cracks[].arc.radius", "float", REQUIRED, "circular-arc crack: radius", p_float(positive=True)),
@@ -555,6 +636,21 @@ SCHEMA: tuple[Key, ...] = tuple([
         "circular-arc crack: polar angles of its ends, degrees (counter-clockwise if end > start)",
         p_angles),
     Key("cracks[].arc.segments", "integer", 24, "circular-arc crack: polyline segments", p_int(1)),
+    Key("cracks[].ellipse.center", "[x, y, z]", REQUIRED, "3D elliptical (or circular) planar crack: centre; "
+        "on a face of the part it is a surface crack, on an edge a corner crack (the part's boundary cuts it)",
+        p_point3),
+    Key("cracks[].ellipse.normal", "[x, y, z]", REQUIRED, "elliptical crack: normal of its plane (points to the "
+        "+ lip)", p_vector3),
+    Key("cracks[].ellipse.a", "float", REQUIRED, "elliptical crack: semi-axis along `a_direction`", p_float(positive=True)),
+    Key("cracks[].ellipse.b", "float", UNSET, "elliptical crack: the other semi-axis, along normal x a_direction "
+        "(unset: b = a, a circle)", p_float(positive=True)),
+    Key("cracks[].ellipse.a_direction", "[x, y, z]", UNSET, "elliptical crack: direction of the semi-axis a (projected "
+        "onto the plane; unset: any direction in it, fine for a circle)", p_vector3),
+    Key("cracks[].polygon", "[[x, y, z], ...]", UNSET, "3D planar crack bounded by a polygon (vertices in order; "
+        "its normal by the right-hand rule)", p_polygon),
+    Key("cracks[].surface", "string", UNSET, "3D crack given as a triangulated surface: an STL or gmsh .msh "
+        "file of consistently oriented triangles, relative to the scene file (its boundary inside the part "
+        "is the front)", p_str),
     Key("cracks[].pressure", "float", 0.0, "pressure on both lips (> 0 pushes them apart: a pressurised "
         "crack); with contact it acts besides the contact pressure", p_float()),
     Key("cracks[].pressure_group", "string", "default", "load group of the lip pressure (see load_path)", p_group),
@@ -563,26 +659,29 @@ SCHEMA: tuple[Key, ...] = tuple([
         "boundary tag the displacement is prescribed on (one of tag, box, point)", p_tag),
     Key("dirichlet[].box", "[x0, y0, x1, y1]", UNSET,
         "every mesh node inside the box, edges included; it may be flat (x0 = x1: the nodes on a "
-        "line); standard dofs only, like a point", p_region),
-    Key("dirichlet[].point", "[x, y]", UNSET,
-        "the mesh node nearest to the point (within one mean edge length); a generated rectangle or "
-        "plate has a node there", p_point),
-    Key("dirichlet[].component", "string", "both", "`x`, `y` or `both`", p_choice("x", "y", "both")),
+        "line); standard dofs only, like a point (3D: [x0, y0, z0, x1, y1, z1])", p_region),
+    Key("dirichlet[].point", "[x, y] or [x, y, z]", UNSET,
+        "the mesh node nearest to the point (within one mean edge length); a generated rectangle, "
+        "plate or box has a node at its corners", p_point_any),
+    Key("dirichlet[].component", "string", "all", "`x`, `y`, `z` (3D) or `all` (`both` in 2D means all)",
+        p_choice("x", "y", "z", "all", "both")),
     Key("dirichlet[].value", "float or [x, y]", 0.0,
-        "prescribed displacement ([x, y] with component = both)", p_value),
+        "prescribed displacement ([x, y], 3D [x, y, z], with component = all)", p_value),
     Key("dirichlet[].group", "string", "default", "load group of the prescribed value (see load_path); the "
         "values of conditions of different groups on one node add up", p_group),
 ] + [Key(f"dirichlet[].williams.{n}", t, d, m + " (displacement prescribed; replaces value)", p)
      for n, t, d, m, p in _WILLIAMS] + [
     # loads
-    Key("loads.body_force", "[x, y]", [0.0, 0.0], "constant body force, force per unit area", p_vector),
+    Key("loads.body_force", "[x, y] or [x, y, z]", [0.0, 0.0], "constant body force, force per unit area "
+        "(3D: per unit volume)", p_vector_any),
     Key("loads.body_force_group", "string", "default", "load group of the body force (see load_path)", p_group),
     Key("loads.tractions[].tag", "string or integer", REQUIRED, "boundary tag loaded", p_tag),
     Key("loads.tractions[].group", "string", "default", "load group (see load_path)", p_group),
-    Key("loads.tractions[].value", "[x, y]", UNSET, "constant traction, force per unit length "
-        "(one of value, stress, williams, kirsch)", p_vector),
+    Key("loads.tractions[].value", "[x, y] or [x, y, z]", UNSET, "constant traction, force per unit length "
+        "(3D: per unit area) (one of value, stress, williams, kirsch)", p_vector_any),
     Key("loads.tractions[].stress", "[sxx, syy, sxy]", UNSET,
-        "stress at `origin`: the traction is sigma n on the tag (n the outward facet normal)", p_stress),
+        "stress at `origin`: the traction is sigma n on the tag (n the outward facet normal); 3D: a uniform "
+        "[sxx, syy, szz, syz, sxz, sxy]", p_stress_any),
     Key("loads.tractions[].stress_gradient", "[[3 numbers], [3 numbers]]", UNSET,
         "with stress: d(sxx, syy, sxy)/dx and d(sxx, syy, sxy)/dy of a linear stress field "
         "sigma(x) = stress + (x - origin) gradient (bending: sxx varying with y)", p_gradient),
@@ -599,10 +698,11 @@ SCHEMA: tuple[Key, ...] = tuple([
     Key("loads.pressures[].group", "string", "default", "load group (see load_path)", p_group),
     Key("loads.pressures[].value", "float", REQUIRED,
         "pressure (> 0 pushes on the part): traction -p n", p_float()),
-    Key("loads.point_forces[].point", "[x, y]", REQUIRED,
+    Key("loads.point_forces[].point", "[x, y] or [x, y, z]", REQUIRED,
         "a concentrated force at the mesh node nearest to the point (within one element); a generated "
-        "rectangle or plate has a node there", p_point),
-    Key("loads.point_forces[].value", "[x, y]", REQUIRED, "the force (per unit thickness)", p_vector),
+        "rectangle or plate has a node there", p_point_any),
+    Key("loads.point_forces[].value", "[x, y] or [x, y, z]", REQUIRED, "the force (per unit thickness in 2D)",
+        p_vector_any),
     Key("loads.point_forces[].group", "string", "default", "load group (see load_path)", p_group),
     Key("loads.initial_stress.value", "[sxx, syy, sxy]", REQUIRED,
         "initial (residual) stress sigma_0 at `origin`: the stress is C eps(u) + sigma_0, its "
@@ -619,8 +719,10 @@ SCHEMA: tuple[Key, ...] = tuple([
         "group to 1", p_factors),
 ] + _option_keys() + _growth_keys() + _spectrum_keys() + [
     # outputs
-    Key("outputs.vtu", "boolean", True, "write ParaView files solution.vtu and crack_lips.vtu", p_bool),
-    Key("outputs.png", "boolean", True, "write deformed.png, crack_pressure.png and stress.png", p_bool),
+    Key("outputs.vtu", "boolean", True, "write ParaView files solution.vtu and crack_lips.vtu (3D: "
+        "solution.vtu, crack_surface.vtu and crack_front.vtu)", p_bool),
+    Key("outputs.png", "boolean", True, "write deformed.png, crack_pressure.png and stress.png (3D: "
+        "crack_opening.png)", p_bool),
     Key("outputs.magnification", "float", 0.0,
         "displacement scale of deformed.png; 0: largest displacement = 5 % of the part", p_float(0.0)),
     Key("outputs.stress_component", "string", "yy", "stress shown in stress.png: `xx`, `yy`, `xy` "
@@ -631,8 +733,8 @@ SCHEMA: tuple[Key, ...] = tuple([
         "above 1 % of the K scale); options.accuracy makes its own", p_bool),
     Key("outputs.condition_number", "boolean", False,
         "estimate the 1-norm condition number of the stiffness (results.json)", p_bool),
-    Key("outputs.crack_points", "integer", 3, "sample points per crack segment in crack.csv",
-        p_int(1)),
+    Key("outputs.crack_points", "integer", 3, "sample points per crack segment in crack.csv (3D: per "
+        "direction of each lip facet, for the statistics of results.json)", p_int(1)),
 ])
 
 
@@ -789,10 +891,14 @@ def parse_settings(doc: dict) -> dict:
     for i, c in enumerate(_items(doc, "cracks")):
         where = f"cracks[{i}]"
         crack = _section(c, "cracks[]", where)
-        if ("points" in c) == ("arc" in c):
-            raise InputError(f"{where} needs exactly one of points (a polyline) or arc (a circular arc)")
-        if "arc" in c:
-            crack["arc"] = _section(c["arc"], "cracks[].arc", f"{where}.arc")
+        given = [k for k in CRACK_KINDS[2] + CRACK_KINDS[3] if k in c]
+        if len(given) != 1:
+            raise InputError(f"{where} needs exactly one of points (a polyline) or arc (a circular arc) in 2D, or "
+                             f"ellipse, polygon or surface (a crack surface) in 3D; got "
+                             f"{', '.join(given) if given else 'none'}")
+        for sub in ("arc", "ellipse"):
+            if sub in c:
+                crack[sub] = _section(c[sub], f"cracks[].{sub}", f"{where}.{sub}")
         s["cracks"].append(crack)
     s["dirichlet"] = []
     for i, d in enumerate(_items(doc, "dirichlet")):
@@ -806,7 +912,7 @@ def parse_settings(doc: dict) -> dict:
             if "value" in d:
                 raise InputError(f"{where}: give value or williams, not both")
             bc["williams"] = _section(d["williams"], "dirichlet[].williams", f"{where}.williams")
-        elif isinstance(bc["value"], list) and bc["component"] != "both":
+        elif isinstance(bc["value"], list) and bc["component"] not in ("both", "all"):
             raise InputError(f"{where}.value is a vector but component is {bc['component']!r}: "
                              "give one number for one component")
         s["dirichlet"].append(bc)
@@ -848,6 +954,9 @@ def parse_settings(doc: dict) -> dict:
                 raise InputError(f"spectrum.blocks[{i}] needs exactly one of points or file")
     s["options"] = _section(doc.get("options", {}), "options", "options")
     s["outputs"] = _section(doc.get("outputs", {}), "outputs", "outputs")
+    dim, why = scene_dimension(s)
+    if dim is not None:
+        check_dimension(doc, s, dim, why)
     return s
 
 
@@ -950,24 +1059,51 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
         material = Material(s["material"]["E"], s["material"]["nu"], s["material"]["plane"])
     except InputError as e:
         raise type(e)(f"material: {e}") from None
-    cracks = [_crack(c, i) for i, c in enumerate(s["cracks"])]
+    dim, why = scene_dimension(s)
+    base_dir = pathlib.Path(base_dir)
+    if dim == 3:
+        from .scene_file_3d import crack_surface
+        cracks = [crack_surface(c, i, base_dir) for i, c in enumerate(s["cracks"])]
+    else:
+        cracks = [_crack(c, i) for i, c in enumerate(s["cracks"])]
     t0 = time.perf_counter()
     points = [bc["point"] for bc in s["dirichlet"] if "point" in bc] + \
         [pf["point"] for pf in s["loads"]["point_forces"]]
-    mesh = _mesh(s["mesh"], cracks, pathlib.Path(base_dir), points)
+    mesh = _mesh(s["mesh"], cracks, base_dir, points, dim)
     t_mesh = time.perf_counter() - t0
+    gdim = mesh.gdim
+    if dim is None:
+        check_dimension(doc, s, gdim, f"mesh.path {s['mesh']['path']!r} holds a {'solid' if gdim == 3 else 'planar part'}")
+    elif gdim != dim:
+        raise MeshError(f"mesh.path {s['mesh']['path']!r} holds a {gdim}D part ({'tetrahedra' if gdim == 3 else 'triangles'}) "
+                        f"but {why}: the scene is {dim}D; give "
+                        + ("crack surfaces (ellipse, polygon, surface)" if gdim == 3 else "2D cracks (points, arc)")
+                        + " or the matching part")
     notes: list[str] = []
+    if gdim == 3:
+        from .scene_file_3d import describe_crack
+        notes += [f"cracks[{i}] {describe_crack(c)}" for i, c in enumerate(cracks)]
     dirichlet = []
     for i, bc in enumerate(s["dirichlet"]):
         dirichlet += _dirichlet(bc, i, mesh, material, cracks, notes)
     tractions = []
     for i, tr in enumerate(s["loads"]["tractions"]):
-        tractions.append(_traction(tr, i, mesh, material, cracks, notes))
+        if gdim == 3:
+            from .scene_file_3d import traction_3d
+            _check_tag(mesh, tr["tag"], f"loads.tractions[{i}]")
+            tractions.append(traction_3d(tr, i, mesh, notes))
+        else:
+            tractions.append(_traction(tr, i, mesh, material, cracks, notes))
     for i, p in enumerate(s["loads"]["pressures"]):
-        tractions.append(_pressure(p, i, mesh, notes))
+        if gdim == 3:
+            from .scene_file_3d import pressure_3d
+            _check_tag(mesh, p["tag"], f"loads.pressures[{i}]")
+            tractions.append(pressure_3d(p, i, mesh, notes))
+        else:
+            tractions.append(_pressure(p, i, mesh, notes))
     body_force = s["loads"]["body_force"]
     if any(body_force):
-        notes.append(f"loads.body_force: {body_force} per unit area")
+        notes.append(f"loads.body_force: {body_force} per unit {'volume' if gdim == 3 else 'area'}")
     else:
         body_force = None
     point_forces = []
@@ -1144,10 +1280,19 @@ def _holes(m: dict) -> list[tuple[float, float, float]]:
     return []
 
 
-def _mesh(m: dict, cracks: list[Crack], base_dir: pathlib.Path, points=()) -> MeshData:
+def _mesh(m: dict, cracks: list, base_dir: pathlib.Path, points=(), dim: int | None = 2) -> MeshData:
     """The mesh of the [mesh] settings; `points` (point supports and forces)
-    inside or on a generated rectangle or plate become mesh nodes."""
+    inside or on a generated rectangle or plate become mesh nodes. dim: the
+    scene's dimension if known (3: scene_file_3d.mesh_3d; None: a geometry
+    or .msh file without cracks, whose own dimension decides)."""
     kind = m["kind"]
+    if dim is None and kind == "file":
+        from .scene_file_3d import mesh_file_dimension
+        f = pathlib.Path(m["path"])
+        dim = mesh_file_dimension(f if f.is_absolute() else base_dir / f)
+    if dim == 3:
+        from .scene_file_3d import mesh_3d
+        return mesh_3d(m, cracks, base_dir)
     refine = [(r["point"][0], r["point"][1], r["h"], r["radius"]) if "point" in r else
               (r["segment"][0][0], r["segment"][0][1], r["h"], r["radius"], r["segment"][1][0], r["segment"][1][1])
               for r in m["refine"]]
@@ -1219,7 +1364,7 @@ def _williams(w: dict, material: Material, cracks: list[Crack], where: str):
                          e1=(math.cos(a), math.sin(a)), orientation=orientation)
 
 
-_COMPONENT = {"x": 0, "y": 1, "both": None}
+_COMPONENT = {"x": 0, "y": 1, "z": 2, "both": None, "all": None}
 
 
 def _dirichlet(bc: dict, i: int, mesh: MeshData, material: Material, cracks: list[Crack],
@@ -1235,12 +1380,13 @@ def _dirichlet(bc: dict, i: int, mesh: MeshData, material: Material, cracks: lis
         entries = [(comp, value)]
         what = f"Williams field K_I = {field.K_I:g}, K_II = {field.K_II:g}"
     elif isinstance(bc["value"], list):
-        entries = [(0, bc["value"][0]), (1, bc["value"][1])]
+        entries = list(enumerate(bc["value"]))
         what = f"u = {bc['value']}"
     else:
         entries = [(comp, bc["value"])]
         what = f"u_{bc['component']} = {bc['value']:g}" if comp is not None else f"u = {bc['value']:g}"
-    x = mesh.mesh.geometry.x[:, :2]
+    gdim = mesh.gdim
+    x = mesh.mesh.geometry.x[:, :gdim]
     out: list[Dirichlet] = []
     if "tag" in bc:
         _check_tag(mesh, bc["tag"], where)
@@ -1249,15 +1395,14 @@ def _dirichlet(bc: dict, i: int, mesh: MeshData, material: Material, cracks: lis
     elif "point" in bc:
         node = _nearest_node(mesh, bc["point"], f"{where}.point")
         targets = [node]
-        notes.append(f"{where}: point {bc['point']} -> node ({node[0]:.6g}, {node[1]:.6g}), {what}")
+        notes.append(f"{where}: point {bc['point']} -> node ({', '.join(f'{v:.6g}' for v in node)}), {what}")
     else:
-        x0, y0, x1, y1 = bc["box"]
+        lo, hi = np.asarray(bc["box"][:gdim]), np.asarray(bc["box"][gdim:])
         tol = 1e-9 * float(np.ptp(x, axis=0).max())
-        inside = np.flatnonzero((x[:, 0] >= x0 - tol) & (x[:, 0] <= x1 + tol)
-                                & (x[:, 1] >= y0 - tol) & (x[:, 1] <= y1 + tol))
+        inside = np.flatnonzero(np.all((x >= lo - tol) & (x <= hi + tol), axis=1))
         if inside.size == 0:
             raise BoundaryConditionError(f"{where}.box {bc['box']} holds no mesh node")
-        targets = [(float(x[n, 0]), float(x[n, 1])) for n in inside]
+        targets = [tuple(float(v) for v in x[n]) for n in inside]
         notes.append(f"{where}: box {bc['box']} ({inside.size} nodes), {what}")
     label = f"{where}: " + (f"tag {bc['tag']!r}" if "tag" in bc else f"point {bc['point']}" if "point" in bc
                             else f"box {bc['box']}")
@@ -1268,6 +1413,13 @@ def _dirichlet(bc: dict, i: int, mesh: MeshData, material: Material, cracks: lis
 
 def _mean_edge(mesh: MeshData) -> float:
     msh = mesh.mesh
+    if mesh.gdim == 3:  # the six edges of every tetrahedron, a chunk of cells at a time
+        x = msh.geometry.x
+        cells = msh.geometry.dofmap.array.reshape(-1, 4)
+        a, b = [0, 0, 0, 1, 1, 2], [1, 2, 3, 2, 3, 3]
+        total = sum(float(np.linalg.norm(x[c[:, b]] - x[c[:, a]], axis=2).sum())
+                    for c in np.array_split(cells, max(1, len(cells) // 200_000)))
+        return total / (6 * len(cells))
     x = msh.geometry.x[:, :2]
     cells = msh.geometry.dofmap.array.reshape(-1, 3)
     e = x[cells[:, [1, 2, 0]]] - x[cells]
@@ -1307,10 +1459,10 @@ def _traction(tr: dict, i: int, mesh: MeshData, material: Material, cracks: list
     return Traction(tag, kirsch_traction, group=tr["group"])
 
 
-def _nearest_node(mesh: MeshData, point, where: str) -> tuple[float, float]:
+def _nearest_node(mesh: MeshData, point, where: str) -> tuple[float, ...]:
     """The mesh node nearest to a point given in a scene file; an error
     naming the key if it is more than a mean edge length away."""
-    x = mesh.mesh.geometry.x[:, :2]
+    x = mesh.mesh.geometry.x[:, :mesh.gdim]
     p = np.asarray(point)
     d = np.linalg.norm(x - p, axis=1)
     node = int(np.argmin(d))
@@ -1319,13 +1471,13 @@ def _nearest_node(mesh: MeshData, point, where: str) -> tuple[float, float]:
         raise BoundaryConditionError(
             f"{where} {p.tolist()}: the nearest mesh node {x[node].tolist()} is {d[node]:.3g} away, more than "
             f"the mean edge length {edge:.3g}; put the point on the part")
-    return float(x[node, 0]), float(x[node, 1])
+    return tuple(float(v) for v in x[node])
 
 
 def _point_force(pf: dict, i: int, mesh: MeshData, notes: list[str]) -> PointForce:
     where = f"loads.point_forces[{i}]"
     node = _nearest_node(mesh, pf["point"], f"{where}.point")
-    notes.append(f"{where}: force {pf['value']} at node ({node[0]:.6g}, {node[1]:.6g})")
+    notes.append(f"{where}: force {pf['value']} at node ({', '.join(f'{v:.6g}' for v in node)})")
     return PointForce(node, tuple(pf["value"]), group=pf["group"])
 
 

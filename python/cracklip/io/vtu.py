@@ -16,7 +16,7 @@ import numpy as np
 
 
 #: VTK cell type ids.
-CELL_TYPES = {"line": 3, "triangle": 5}
+CELL_TYPES = {"line": 3, "triangle": 5, "tetra": 10}
 
 
 _VTK_TYPES = {np.dtype(np.float64): "Float64", np.dtype(np.float32): "Float32", np.dtype(np.int64): "Int64",
@@ -28,7 +28,7 @@ class VtuMesh:
     """One cell type's mesh with point and cell data (arrays of one row per
     point / cell; vectors as (n, 3))."""
     points: np.ndarray                    # (n, 3)
-    cell_type: str                        # "triangle" or "line"
+    cell_type: str                        # "triangle", "line" or "tetra"
     connectivity: np.ndarray              # (m, nodes per cell)
     point_data: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
     cell_data: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)

@@ -20,6 +20,7 @@ from ..errors import CrackGeometryError, InputError
 from ..scene.crack_surface import EllipticalCrack, PolygonCrack, SurfaceCrack
 from ..scene.mesh_3d import check_mesh_3d
 from ..scene.scene import Scene
+from .checks_3d import check_model_3d
 from .constraints import check_rigid_motion, compute_dirichlet
 from .xfem_model import CrackModel, XfemModel
 
@@ -54,10 +55,6 @@ def _crack_model(scene: Scene, crack, x: np.ndarray, cells: np.ndarray) -> Crack
     if geometry.num_snapped:
         logger.info("%s: %d nodes snapped onto the crack (snap_tol=%g)", crack.name, geometry.num_snapped,
                     scene.options.snap_tol)
-    if geometry.num_degenerate_front_cells:
-        logger.warning("%s: %d front cells where the P1 front is not a line (a corner of the crack on a mesh node); "
-                       "move the crack off the nodes by a fraction of the element size", crack.name,
-                       geometry.num_degenerate_front_cells)
     return CrackModel(crack, (), geometry)
 
 
@@ -90,8 +87,14 @@ def create_model_3d(scene: Scene) -> XfemModel:
     bc_dofs, bc_values, bc_group_values = compute_dirichlet(scene, V, x, layout, [c.geometry for c in cracks])
     check_rigid_motion(x, bc_dofs[bc_dofs < 3 * x.shape[0]])
     timings["constraints"] = time.perf_counter() - t0
-    return XfemModel(scene, V, x, cells, cracks, layout, bc_dofs, bc_values, timings,
-                     bc_group_values=bc_group_values)
+    model = XfemModel(scene, V, x, cells, cracks, layout, bc_dofs, bc_values, timings,
+                      bc_group_values=bc_group_values)
+    t0 = time.perf_counter()
+    model.warnings = check_model_3d(model)  # raises on a broken front or a radius that reaches no node
+    for w in model.warnings:
+        logger.warning("%s", w.message)
+    timings["checks"] = time.perf_counter() - t0
+    return model
 
 
 __all__ = ["create_model_3d", "crack_surface"]

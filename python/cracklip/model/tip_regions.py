@@ -12,7 +12,10 @@ For every tip:
 - the largest radius whose domain (every cell with a node inside the
   radius) stays clear of all of that, and the requested radius
   (Options.sif_radius, default DEFAULT_ELEMENTS element sizes) clipped to it;
-  K is computed on DOMAIN_FRACTIONS of it (cracklip.fracture.sif).
+  K is computed on DOMAIN_FRACTIONS of it (cracklip.fracture.sif);
+- or, for a ring as another code defines it (Options.sif_ring: q = 1
+  within r_in, 0 beyond r_out), that one ring as given, not clipped, with
+  a warning when it reaches what a domain must stay clear of.
 """
 from __future__ import annotations
 
@@ -23,6 +26,7 @@ import numpy as np
 
 from .. import _cracklip
 from ..errors import InputError
+from ..scene.options import check_ring
 from .boundary import boundary_segments
 
 
@@ -59,8 +63,12 @@ class TipDomain:
         radii: the radii of the domains, increasing.
         requested: Options.sif_radius (or a caller's radius), None for the default.
         clear: False when no domain of at least one element fits (K is then
-            computed on the smallest domain around the tip and is not reliable).
+            computed on the smallest domain around the tip and is not reliable),
+            or when a ring reaches the obstacle.
         warnings: messages about this tip's domains.
+        inner_radius: None for cracklip's plateau q (1 within the radius); for
+            a ring (Options.sif_ring) its r_in: q = 1 within it, 0 beyond
+            radius (= r_out, the only entry of radii), linear between.
     """
     crack: int
     tip: int
@@ -76,6 +84,7 @@ class TipDomain:
     requested: float | None
     clear: bool
     warnings: list[str] = dataclasses.field(default_factory=list)
+    inner_radius: float | None = None
 
     @property
     def limited(self) -> bool:
@@ -155,7 +164,7 @@ def tip_element_size(model, p: np.ndarray, dist: np.ndarray | None = None) -> fl
     return float(np.linalg.norm(e, axis=2).mean())
 
 
-def _admissible(model, dist: np.ndarray, clearance: float) -> float:
+def admissible_radius(model, dist: np.ndarray, clearance: float) -> float:
     """Largest radius r such that every cell with a node closer than r to the
     tip has all its nodes closer than `clearance` (the domain's cells stay
     clear of the obstacle)."""
@@ -169,13 +178,22 @@ def _admissible(model, dist: np.ndarray, clearance: float) -> float:
     return float(dmin[order][bad[0]]) if bad.size else float(clearance)
 
 
-def tip_domains(model, crack: int, requested: float | None = None) -> list[TipDomain]:
+def tip_domains(model, crack: int, requested: float | None = None,
+                ring: tuple[float, float] | None = None) -> list[TipDomain]:
     """The SIF domains of every tip of a crack. requested: the largest
     domain's radius (None or 0: Options.sif_radius, else DEFAULT_ELEMENTS
-    element sizes)."""
+    element sizes). ring: (r_in, r_out), one ring taken as given (not
+    clipped; see Options.sif_ring); without requested or ring,
+    Options.sif_ring if set."""
     if requested is not None and not (isinstance(requested, (int, float, np.floating))
                                       and math.isfinite(requested) and requested > 0.0):
         raise InputError(f"the SIF domain radius must be a finite number > 0, got {requested!r}")
+    if requested is not None and ring is not None:
+        raise InputError("give a SIF domain radius or a ring (r_in, r_out), not both")
+    if requested is None and ring is None:
+        ring = model.scene.options.sif_ring
+    if ring is not None:
+        ring = check_ring(ring, "the SIF ring")
     if requested is None:
         requested = model.scene.options.sif_radius or None
     g = model.geometries[crack]
@@ -187,10 +205,22 @@ def tip_domains(model, crack: int, requested: float | None = None) -> list[TipDo
         h = tip_element_size(model, p, dist)
         obstacles = _obstacles(model, crack, j)
         clearance, obstacle = min(obstacles, key=lambda o: o[0])
-        admissible = _admissible(model, dist, clearance)
+        admissible = admissible_radius(model, dist, clearance)
         wanted = float(requested) if requested else DEFAULT_ELEMENTS * h
         where = f"tip {j} of crack {name!r} at ({p[0]:.6g}, {p[1]:.6g})"
         warnings = []
+        if ring is not None:
+            r_in, r_out = ring
+            clear = r_out <= admissible
+            if not clear:
+                warnings.append(
+                    f"{where}: the SIF ring [{r_in:.4g}, {r_out:.4g}] reaches {obstacle} ({clearance:.3g} away; "
+                    f"domains up to radius {admissible:.3g} stay clear of it); K on this ring is taken as asked "
+                    "and is NOT reliable: a smaller ring, or options.sif_ring unset (cracklip's domains)")
+            out.append(TipDomain(crack, j, p.copy(), np.asarray(g.tip_tangents).reshape(-1, 2)[j].copy(),
+                                 int(np.asarray(g.tip_orientation)[j]), h, clearance, obstacle, admissible,
+                                 r_out, (r_out,), r_out, clear, warnings, r_in))
+            continue
         # The smallest usable radius: one element, and the smallest domain
         # (DOMAIN_FRACTIONS[0] of it) must hold the node nearest to the tip.
         least = max(h, 1.01 * float(dist.min()) / DOMAIN_FRACTIONS[0])

@@ -257,8 +257,8 @@ class Solution:
             ref2 += float(np.sum(f["weight"] * np.einsum("nij,nij->n", stress(eex, mat), eex)))
         return float(np.sqrt(err2)), float(np.sqrt(err2 / ref2))
 
-    def stress_intensity_factors(self, crack: int | None = 0, radius: float | None = None
-                                 ) -> list[dict[str, typing.Any]]:
+    def stress_intensity_factors(self, crack: int | None = 0, radius: float | None = None,
+                                 ring: tuple[float, float] | None = None) -> list[dict[str, typing.Any]]:
         """K_I, K_II at every tip of a crack (crack=None: of every crack) by the
         domain interaction integral on three domains per tip (see cracklip.fracture.sif):
         one dict per tip with the keys of results.json's "sifs" (crack,
@@ -268,17 +268,21 @@ class Solution:
         radius: the largest domain's radius (default Options.sif_radius, 0:
         6 element sizes at the tip); clipped to keep the domain inside the
         part and clear of other tips, cracks, kinks and holes.
+        ring: (r_in, r_out), K on that one ring as another code defines it
+        (q = 1 within r_in, 0 beyond r_out, linear between; r_in = r_out:
+        the plateau of that radius), NOT clipped (default Options.sif_ring);
+        a ring that reaches an obstacle is warned about, domain_clear false.
         """
-        key = (crack, radius)
+        key = (crack, radius, None if ring is None else tuple(float(v) for v in ring))
         if key not in self._sif_cache:
             cracks = None if crack is None else [crack]
             if crack is not None and not 0 <= crack < len(self.model.cracks):
                 raise InputError(f"crack index {crack} out of range: the scene has {len(self.model.cracks)} cracks")
-            self._sif_cache[key] = compute_sifs(self, radius, cracks)
+            self._sif_cache[key] = compute_sifs(self, radius, cracks, ring)
         rows = [dict(r) for r in self._sif_cache[key][0]]
         est = self.error_estimate
         for r in rows:
-            tip = est["tips"].get(f"{r['crack']}:{r['tip']}") if est and radius is None else None
+            tip = est["tips"].get(f"{r['crack']}:{r['tip']}") if est and radius is None and ring is None else None
             for mode in ("K_I", "K_II"):
                 r[f"{mode}_error"] = None if tip is None else tip[f"{mode}_error"]
                 r[f"{mode}_extrapolated"] = None if tip is None else tip[f"{mode}_extrapolated"]
@@ -304,7 +308,7 @@ class Solution:
         from .checks import point_supports, solution_warnings
         self.stress_intensity_factors(None)
         model_messages = {w.message for w in self.model.warnings}
-        extra = [ModelWarning("sif_spread", m) for m in self._sif_cache[(None, None)][1]
+        extra = [ModelWarning("sif_spread", m) for m in self._sif_cache[(None, None, None)][1]
                  if m not in model_messages]
         extra += [ModelWarning(code, m) for code, m in solution_warnings(self)]
         if self.model.scene.dirichlet and np.any(self.u):

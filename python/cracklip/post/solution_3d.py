@@ -96,6 +96,12 @@ class Solution3D(Solution):
         smp = self.lip_samples(crack)
         return float(np.sum(smp["weight"] * smp["gap"]))
 
+    def subcell_fields(self) -> dict[str, typing.Any]:
+        """The sub-tetrahedral mesh with displacement and stress
+        (post.subcells_3d.subcell_fields_3d)."""
+        from .subcells_3d import subcell_fields_3d
+        return subcell_fields_3d(self)
+
     # -- whole-field quantities --------------------------------------------
     def field_points(self, cells: np.ndarray | None = None, degree: int | None = None
                      ) -> dict[str, np.ndarray]:

@@ -13,7 +13,9 @@
 Every crack has a + side (the side its normal points to; for a triangulated
 surface, the side of the triangles' right-handed normals) and a front: the
 boundary of the surface inside the part. ``front_points(spacing)`` samples
-the front (before meshing: the mesh is refined around it).
+the front (before meshing: the mesh is refined around it),
+``surface_points(spacing)`` covers the whole surface (a refinement over the
+crack), ``plane()`` gives in-plane coordinates (pictures of the opening).
 """
 from __future__ import annotations
 
@@ -116,9 +118,33 @@ class EllipticalCrack:
         m = max(16, int(math.ceil(2 * math.pi * max(self.a, self.b) / spacing)))
         return self.point(np.linspace(0.0, 2 * math.pi, m, endpoint=False))
 
+    def surface_points(self, spacing: float) -> np.ndarray:
+        """Points (m, 3) covering the crack's surface on a grid `spacing`
+        apart (for refining a mesh over it)."""
+        u = np.arange(-self.a, self.a + 0.5 * spacing, spacing)
+        v = np.arange(-self.b, self.b + 0.5 * spacing, spacing)
+        U, V = (w.ravel() for w in np.meshgrid(u, v))
+        inside = (U / self.a) ** 2 + (V / self.b) ** 2 <= 1.0
+        return (self.center[None] + U[inside, None] * self.axis[None] + V[inside, None] * self.axis2[None])
+
     @property
     def area(self) -> float:
         return math.pi * self.a * self.b
+
+    def plane(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(origin, e1, e2): the centre and the directions of the semi-axes
+        a and b (pictures of the crack are drawn in these coordinates)."""
+        return self.center, self.axis, self.axis2
+
+    def surface_points(self, spacing: float) -> np.ndarray:
+        """Points (m, 3) covering the crack (the whole ellipse) on a square
+        grid of the given spacing in its plane, the front's points included."""
+        g1 = np.arange(-self.a, self.a + 1e-9 * spacing, spacing)
+        g2 = np.arange(-self.b, self.b + 1e-9 * spacing, spacing)
+        U, W = (v.ravel() for v in np.meshgrid(g1, g2))
+        keep = (U / self.a) ** 2 + (W / self.b) ** 2 <= 1.0
+        inner = self.center + U[keep, None] * self.axis + W[keep, None] * self.axis2
+        return np.concatenate([inner, self.front_points(spacing)])
 
 
 @dataclasses.dataclass
@@ -170,11 +196,57 @@ class PolygonCrack:
             out.append(a[None] + t[:, None] * (b - a)[None])
         return np.concatenate(out)
 
+    def surface_points(self, spacing: float) -> np.ndarray:
+        """Points (m, 3) covering the polygon on a grid `spacing` apart in
+        its plane (even-odd rule), and its vertices."""
+        t1 = self.points[1] - self.points[0]
+        t1 /= np.linalg.norm(t1)
+        t2 = np.cross(self.normal, t1)
+        q = (self.points - self.points[0]) @ np.column_stack([t1, t2])
+        lo, hi = q.min(axis=0), q.max(axis=0)
+        u = np.arange(lo[0], hi[0] + 0.5 * spacing, spacing)
+        v = np.arange(lo[1], hi[1] + 0.5 * spacing, spacing)
+        U, V = (w.ravel() for w in np.meshgrid(u, v))
+        inside = np.zeros(len(U), dtype=bool)
+        for i in range(len(q)):
+            (x0, y0), (x1, y1) = q[i], q[(i + 1) % len(q)]
+            crosses = (y0 > V) != (y1 > V)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                xc = x0 + (V - y0) * (x1 - x0) / (y1 - y0)
+            inside ^= crosses & (U < xc)
+        grid = self.points[0][None] + U[inside, None] * t1[None] + V[inside, None] * t2[None]
+        return np.concatenate([grid, self.points])
+
     @property
     def area(self) -> float:
         c = self.points.mean(axis=0)
         return 0.5 * float(sum(np.dot(np.cross(self.points[i] - c, self.points[(i + 1) % len(self.points)] - c),
                                       self.normal) for i in range(len(self.points))))
+
+    def plane(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(origin, e1, e2): the vertices' centroid, the direction of the first
+        edge and normal x e1 (a right-handed frame with the normal)."""
+        e1 = self.points[1] - self.points[0]
+        e1 = e1 - np.dot(e1, self.normal) * self.normal
+        e1 /= np.linalg.norm(e1)
+        return self.points.mean(axis=0), e1, np.cross(self.normal, e1)
+
+    def surface_points(self, spacing: float) -> np.ndarray:
+        """Points (m, 3) covering the polygon on a square grid of the given
+        spacing in its plane (even-odd inside test), its edges' points included."""
+        origin, e1, e2 = self.plane()
+        uv = np.column_stack([(self.points - origin) @ e1, (self.points - origin) @ e2])
+        lo, hi = uv.min(axis=0), uv.max(axis=0)
+        U, W = (v.ravel() for v in np.meshgrid(np.arange(lo[0], hi[0] + 1e-9 * spacing, spacing),
+                                                np.arange(lo[1], hi[1] + 1e-9 * spacing, spacing)))
+        a, b = uv, np.roll(uv, -1, axis=0)
+        straddle = (a[None, :, 1] > W[:, None]) != (b[None, :, 1] > W[:, None])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xc = a[None, :, 0] + (W[:, None] - a[None, :, 1]) * (b[None, :, 0] - a[None, :, 0]) / (b[None, :, 1]
+                                                                                                   - a[None, :, 1])
+        keep = np.count_nonzero(straddle & (xc > U[:, None]), axis=1) % 2 == 1
+        inner = origin + U[keep, None] * e1 + W[keep, None] * e2
+        return np.concatenate([inner, self.front_points(spacing)])
 
 
 @dataclasses.dataclass
@@ -232,10 +304,58 @@ class SurfaceCrack:
             out.append(pa[None] + (np.arange(m + 1) / m)[:, None] * (pb - pa)[None])
         return np.concatenate(out) if out else np.zeros((0, 3))
 
+    def surface_points(self, spacing: float) -> np.ndarray:
+        """Points (m, 3) covering the triangles: each subdivided into a
+        barycentric grid of step at most `spacing`."""
+        v, t = self.vertices, self.triangles
+        out = [v]
+        for tri in t:
+            P = v[tri]
+            m = int(math.ceil(max(np.linalg.norm(P[1] - P[0]), np.linalg.norm(P[2] - P[1]),
+                                  np.linalg.norm(P[0] - P[2])) / spacing))
+            if m < 2:
+                continue
+            i, j = np.meshgrid(np.arange(m + 1), np.arange(m + 1))
+            keep = (i + j <= m).ravel()
+            b1, b2 = i.ravel()[keep] / m, j.ravel()[keep] / m
+            out.append(P[0][None] + b1[:, None] * (P[1] - P[0])[None] + b2[:, None] * (P[2] - P[0])[None])
+        return np.unique(np.concatenate(out), axis=0)
+
     @property
     def area(self) -> float:
         v, t = self.vertices, self.triangles
         return 0.5 * float(np.linalg.norm(np.cross(v[t[:, 1]] - v[t[:, 0]], v[t[:, 2]] - v[t[:, 0]]), axis=1).sum())
+
+    def plane(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(origin, e1, e2): the best-fitting plane of the vertices (their
+        centroid and the two leading principal directions, e1 x e2 along the
+        triangles' mean normal), onto which pictures project the surface."""
+        v, t = self.vertices, self.triangles
+        origin = v.mean(axis=0)
+        _, _, vt = np.linalg.svd(v - origin, full_matrices=False)
+        e1, e2 = vt[0], vt[1]
+        mean_normal = np.cross(v[t[:, 1]] - v[t[:, 0]], v[t[:, 2]] - v[t[:, 0]]).sum(axis=0)
+        if np.dot(np.cross(e1, e2), mean_normal) < 0.0:
+            e2 = -e2
+        return origin, e1, e2
+
+    def surface_points(self, spacing: float) -> np.ndarray:
+        """Points (m, 3) covering the surface: on every triangle a barycentric
+        grid at most `spacing` apart (its vertices and edges included)."""
+        v, t = self.vertices, self.triangles
+        out = []
+        for tri in t:
+            p = v[tri]
+            m = max(1, int(math.ceil(max(np.linalg.norm(p[1] - p[0]), np.linalg.norm(p[2] - p[1]),
+                                         np.linalg.norm(p[0] - p[2])) / spacing)))
+            i, j = np.meshgrid(np.arange(m + 1), np.arange(m + 1), indexing="ij")
+            keep = (i + j <= m).ravel()
+            li, lj = i.ravel()[keep] / m, j.ravel()[keep] / m
+            out.append(p[0] + li[:, None] * (p[1] - p[0]) + lj[:, None] * (p[2] - p[0]))
+        pts = np.concatenate(out)
+        scale = float(np.ptp(v, axis=0).max()) or 1.0
+        _, first = np.unique(np.round(pts / (1e-9 * scale)).astype(np.int64), axis=0, return_index=True)
+        return pts[np.sort(first)]
 
 
 def read_crack_surface(path: str | pathlib.Path, name: str = "") -> SurfaceCrack:

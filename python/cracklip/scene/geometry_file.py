@@ -17,10 +17,18 @@ without, every surface.
 Points that must be mesh nodes (point supports and point forces) are
 embedded in the surface or the boundary curve that holds them; a point
 outside the part is an error that says where the part's boundary is.
+
+A geometry with volumes is a 3D part (``_create_3d``): tetrahedra of size
+h, refined around the crack fronts (and surfaces) given as
+mesh_3d.FrontRefinement items; boundary tags are its named physical
+surfaces (without any, every boundary surface N is tag ``surface N``), the
+part its physical volumes (without any, every volume). Point conditions in
+3D take the nearest mesh node (no embedding).
 """
 from __future__ import annotations
 
 import functools
+import logging
 import math
 import pathlib
 import typing
@@ -29,6 +37,9 @@ import numpy as np
 
 from ..errors import MeshError
 from .mesh import MeshData, _gmsh, _mesh_2d, _restart_gmsh, check_mesh
+
+
+logger = logging.getLogger(__name__)
 
 
 #: File endings meshed here (gmsh reads STEP and BREP with OpenCASCADE).
@@ -54,7 +65,8 @@ def _open(path: pathlib.Path):
     except Exception as e:  # gmsh raises a bare Exception for a bad file
         _restart_gmsh(path if geo else None)
         raise MeshError(f"{path}: gmsh cannot read this geometry ({e}); cracklip meshes gmsh .geo scripts and "
-                        "STEP / BREP files (through OpenCASCADE) that describe a planar part in z = 0") from None
+                        "STEP / BREP files (through OpenCASCADE) that describe a planar part in z = 0 or a "
+                        "solid") from None
     gmsh.option.setNumber("General.Terminal", 0)
     return gmsh
 
@@ -101,8 +113,8 @@ def _area(a: np.ndarray, b: np.ndarray) -> float:
 def _part_surfaces(gmsh, path: pathlib.Path) -> list[int]:
     if gmsh.model.getDimension() != 2:
         dim = gmsh.model.getDimension()
-        raise MeshError(f"{path}: the geometry has dimension {dim}; cracklip is 2D: give a planar part (surfaces "
-                        "in z = 0), e.g. a section of the 3D part")
+        raise MeshError(f"{path}: the geometry has dimension {dim}; give a planar part (surfaces in z = 0) or a "
+                        "solid (volumes)")
     xlo, ylo, zlo, xhi, yhi, zhi = gmsh.model.getBoundingBox(-1, -1)
     # (OpenCASCADE pads its boxes by its tolerance, 1e-7)
     if abs(zhi - zlo) > max(1e-6 * max(xhi - xlo, yhi - ylo), 1e-6):
@@ -191,17 +203,58 @@ def _check_nodes(gmsh, path: pathlib.Path, points, scale: float) -> None:
                             ".geo, draw that curve through a Point there (e.g. the circle as arcs meeting at it)")
 
 
+def _volumes(gmsh) -> list[int]:
+    physical = [v for dim, tag in gmsh.model.getPhysicalGroups(3) for v in gmsh.model.getEntitiesForPhysicalGroup(dim, tag)]
+    return sorted(set(physical)) if physical else [v for _, v in gmsh.model.getEntities(3)]
+
+
+def _create_3d(gmsh, path: pathlib.Path, h: float, fronts) -> MeshData:
+    """Tetrahedra of a 3D part (module doc); gmsh holds the opened file."""
+    from .mesh_3d import _size_fields, _to_dolfinx_3d, expected_cells
+    volumes = _volumes(gmsh)
+    lo_x, lo_y, lo_z, hi_x, hi_y, hi_z = gmsh.model.getBoundingBox(-1, -1)
+    scale = max(hi_x - lo_x, hi_y - lo_y, hi_z - lo_z)
+    if h > scale:
+        raise MeshError(f"mesh size h = {h:g} is larger than the part ({scale:g} across)")
+    if not gmsh.model.getPhysicalGroups(2):
+        surfaces = sorted({abs(s) for _, s in gmsh.model.getBoundary([(3, v) for v in volumes], combined=True,
+                                                                      oriented=False)})
+        for s in surfaces:
+            gmsh.model.addPhysicalGroup(2, [s], s)
+            gmsh.model.setPhysicalName(2, s, f"surface {s}")
+    volume = sum(gmsh.model.occ.getMass(3, v) for v in volumes) if gmsh.model.occ.getEntities(3) else None
+    if volume is not None:
+        logger.info("%s: about %.3g tetrahedra at h = %g before the front refinement", path.name,
+                    expected_cells(volume, h), h)
+    gmsh.model.mesh.clear()
+    gmsh.option.setNumber("Mesh.ElementOrder", 1)
+    gmsh.option.setNumber("Mesh.RecombineAll", 0)
+    gmsh.option.setNumber("Mesh.SubdivisionAlgorithm", 0)
+    gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay, as the generated shapes
+    # The points of the size field in the kernel the part was built with.
+    _size_fields(gmsh, h, fronts, kernel="occ" if gmsh.model.occ.getEntities(3) else "geo")
+    gmsh.model.mesh.generate(3)
+    md = _to_dolfinx_3d(gmsh, h, fronts, volumes)
+    md.source = "geometry"
+    return md
+
+
 def create_from_geometry(path: str | pathlib.Path, h: float,
                          refine: typing.Sequence[typing.Sequence[float]] = (),
                          embed_points: typing.Sequence[tuple[float, float]] = (),
                          levels: typing.Sequence[typing.Sequence[float]] = (),
                          tips: typing.Sequence[tuple[float, float]] = (), tip_h: float = 0.0,
-                         tip_radius: float = 0.0) -> MeshData:
+                         tip_radius: float = 0.0, fronts: typing.Sequence = ()) -> MeshData:
     """Triangles of size h (with the refinements and levels of
     cracklip.scene.size_field) of the part a .geo, STEP or BREP file
     describes; embed_points become mesh nodes; each of `tips` inside the
     part (a crack end off the boundary) is refined to tip_h over
-    tip_radius. Tags: the physical curves' names (see the module doc)."""
+    tip_radius. Tags: the physical curves' names (see the module doc).
+
+    A geometry with volumes is meshed in tetrahedra instead, refined by
+    `fronts` (mesh_3d.FrontRefinement items, e.g. mesh_3d.crack_refinements
+    of the cracks); refine, levels, tips and embed_points are 2D settings
+    and must be empty then."""
     path = pathlib.Path(path)
     if not path.is_file():
         raise MeshError(f"geometry file {path} does not exist")
@@ -211,6 +264,21 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
     if not (isinstance(h, (int, float)) and math.isfinite(h) and h > 0.0):
         raise MeshError(f"mesh size h = {h!r} must be a positive number")
     gmsh = _open(path)
+    if gmsh.model.getDimension() == 3:
+        if refine or levels or tips:
+            gmsh.model.remove()
+            raise MeshError(f"{path} is a 3D part: refine it around its cracks' fronts (fronts; in a scene file "
+                            "mesh.tip_h, mesh.crack_h), not with 2D refinement points or tips")
+        try:
+            return _create_3d(gmsh, path, h, fronts)
+        except MeshError:
+            if gmsh.model.list():
+                gmsh.model.remove()
+            raise
+        except Exception as e:  # gmsh's own errors while meshing
+            if gmsh.model.list():
+                gmsh.model.remove()
+            raise MeshError(f"{path}: gmsh could not mesh the 3D geometry ({e})") from None
     try:
         surfaces = _part_surfaces(gmsh, path)
         outlines = [surface_outline(gmsh, s) for s in surfaces]

@@ -24,6 +24,16 @@ TIP_QUADRATURES = ("collapsed", "gauss")
 SOLVERS = ("auto", "direct", "iterative")
 
 
+def check_ring(ring, what: str = "ring") -> tuple[float, float]:
+    """A SIF ring (r_in, r_out) as two floats with 0 <= r_in <= r_out, r_out > 0."""
+    ok = (isinstance(ring, (list, tuple)) and len(ring) == 2
+          and all(isinstance(v, numbers.Real) and not isinstance(v, bool) and math.isfinite(v) for v in ring))
+    if not ok or not (0.0 <= ring[0] <= ring[1] and ring[1] > 0.0):
+        raise InputError(f"{what} must be two radii [r_in, r_out] with 0 <= r_in <= r_out and r_out > 0 (q = 1 "
+                         f"within r_in, 0 beyond r_out, linear between), got {ring!r}")
+    return float(ring[0]), float(ring[1])
+
+
 @dataclasses.dataclass
 class Options:
     """Numerical options.
@@ -70,6 +80,14 @@ class Options:
             at that tip. Either way it is clipped to stay inside the part and
             away from other tips, other cracks, kinks of the crack and holes
             (a warning says so).
+        sif_ring: the SIF domain as another code defines it, (r_in, r_out):
+            K on that one annulus, q = 1 within r_in, 0 beyond r_out, linear
+            between (code_aster's R_INF / R_SUP, MOOSE's geometric rings;
+            r_in = r_out: cracklip's plateau q of that radius). Taken as
+            given, NOT clipped: a ring that reaches a hole, a kink, another
+            tip or the boundary warns (sif_domain) and its K is marked
+            unreliable (domain_clear false); one domain, so no spread.
+            Overrides sif_radius. None: cracklip's domains.
         friction: Coulomb friction coefficient mu of the crack lips (0:
             frictionless); needs contact "bilateral" or "unilateral". Each
             contact multiplier is then open, stick or slip (semi-smooth
@@ -107,6 +125,7 @@ class Options:
     residual_tol: float = 1e-8
     rescale: str = "none"
     sif_radius: float = 0.0
+    sif_ring: tuple[float, float] | None = None
     friction: float = 0.0
     load_steps: int = 1
     solver: str = "auto"
@@ -146,6 +165,8 @@ class Options:
                 and self.sif_radius >= 0.0):
             raise InputError(f"sif_radius must be a finite number >= 0 (0: chosen per tip), got "
                              f"{self.sif_radius!r}")
+        if self.sif_ring is not None:
+            self.sif_ring = check_ring(self.sif_ring, "sif_ring")
         if isinstance(self.friction, bool) or not (isinstance(self.friction, numbers.Real)
                                                    and math.isfinite(self.friction) and self.friction >= 0.0):
             raise InputError(f"friction must be a finite number >= 0 (the Coulomb coefficient mu; 0: "

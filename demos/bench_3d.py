@@ -1,0 +1,214 @@
+"""Benchmark of the 3D X-FEM iterative path (issue 27): the penny scene of
+demos/penny_crack.py at about 1e5, 5e5 and 1e6 dofs, against plain DOLFINx
+P1 tetrahedral elasticity on the same mesh without the crack, by CG + GAMG
+(six rigid modes as near-nullspace, the iterative path's GAMG options and
+Krylov tolerance).
+
+One subprocess per size (peak_rss_gb is that whole run's ru_maxrss: mesh,
+model, assembly and solves). In it, --repeats pairs: the plain solve, then
+the X-FEM solve, one after the other (the VM's speed drifts 20-30 % between
+processes), after a warm-up on a small mesh. Rows: medians of the pairs'
+times and ratios.
+
+t_solve: the solver's own work (X-FEM: phantom transform, GAMG and crack
+band set-up, CG; plain: GAMG set-up and CG). t_total: X-FEM model,
+assembly (standard + enriched), loads and solve; plain: DOLFINx assembly
+and solve (the mesh is made once, outside both).
+
+    /usr/bin/python3 demos/bench_3d.py --json results/bench_3d.json
+    /usr/bin/python3 demos/bench_3d.py --sizes 1e5 --repeats 1 --json /tmp/b.json
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import pathlib
+import platform
+import statistics
+import subprocess
+import sys
+import time
+
+HERE = pathlib.Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parents[0] / "python"))
+sys.path.insert(0, str(HERE))
+
+#: dofs of the penny family at a/h = 20 (demos/penny_crack.py): the size
+#: scales as (a/h)^3.
+DOFS_AT_20 = 3.25e5
+
+
+def divisions_for(ndofs: float) -> int:
+    return max(6, int(round(20.0 * (ndofs / DOFS_AT_20) ** (1.0 / 3.0))))
+
+
+def _plain(scene) -> dict:
+    """Plain DOLFINx P1 elasticity of the scene without its crack: DOLFINx
+    assembles the form and the tractions, the point supports become
+    Dirichlet rows; CG + GAMG."""
+    import numpy as np
+    import ufl
+    from petsc4py import PETSc
+    import dolfinx.fem
+    import dolfinx.fem.petsc
+    from cracklip.model.assembly import elasticity_form
+    from cracklip.solvers import iterative
+    t0 = time.perf_counter()
+    md = scene.mesh
+    msh = md.mesh
+    V = dolfinx.fem.VectorFunctionSpace(msh, ("Lagrange", 1))
+    bcs = []
+    for bc in scene.dirichlet:
+        p = np.asarray(bc.where, dtype=float)
+        dofs = dolfinx.fem.locate_dofs_geometrical(
+            (V.sub(bc.component), V.sub(bc.component).collapse()[0]) if bc.component is not None else V,
+            lambda x, p=p: np.linalg.norm(x.T - p[None], axis=1) < 1e-9)
+        if bc.component is None:
+            bcs.append(dolfinx.fem.dirichletbc(np.zeros(3, dtype=PETSc.ScalarType), dofs, V))
+        else:
+            zero = dolfinx.fem.Function(V.sub(bc.component).collapse()[0])
+            bcs.append(dolfinx.fem.dirichletbc(zero, dofs, V.sub(bc.component)))
+    v = ufl.TestFunction(V)
+    ds = ufl.Measure("ds", domain=msh, subdomain_data=md.facet_tags)
+    L = sum(ufl.inner(dolfinx.fem.Constant(msh, PETSc.ScalarType(tuple(tr.value))), v) * ds(md.tags[tr.where])
+            for tr in scene.tractions)
+    L = dolfinx.fem.form(L)
+    a = elasticity_form(V, scene.material.E, scene.material.nu)
+    A = dolfinx.fem.petsc.assemble_matrix(a, bcs=bcs)
+    A.assemble()
+    b = dolfinx.fem.petsc.assemble_vector(L)
+    dolfinx.fem.petsc.apply_lifting(b, [a], bcs=[bcs])
+    b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+    dolfinx.fem.petsc.set_bc(b, bcs)
+    t_assemble = time.perf_counter() - t0
+    t1 = time.perf_counter()
+    x3 = V.tabulate_dof_coordinates()
+    x3 = x3 - x3.mean(axis=0)
+    n = A.getSize()[0]
+    R = np.zeros((n, 6))
+    for c in range(3):
+        R[c::3, c] = 1.0
+    R[0::3, 3], R[1::3, 3] = -x3[:, 1], x3[:, 0]
+    R[0::3, 4], R[2::3, 4] = x3[:, 2], -x3[:, 0]
+    R[1::3, 5], R[2::3, 5] = -x3[:, 2], x3[:, 1]
+    Q = iterative.orthonormal_columns(R)
+    vecs = []
+    for j in range(6):
+        w = A.createVecRight()
+        w.array[:] = Q[:, j]
+        vecs.append(w)
+    A.setNearNullSpace(PETSc.NullSpace().create(vectors=vecs))
+    A.setOption(PETSc.Mat.Option.SPD, True)
+    opts = PETSc.Options()
+    for k, val in iterative.GAMG_OPTIONS.items():
+        opts["plain3d_" + k] = val
+    ksp = PETSc.KSP().create(PETSc.COMM_SELF)
+    ksp.setOptionsPrefix("plain3d_")
+    ksp.setOperators(A)
+    ksp.setType("cg")
+    ksp.setTolerances(rtol=iterative.KRYLOV_RTOL, atol=0.0, max_it=iterative.MAX_ITERATIONS)
+    ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
+    ksp.setFromOptions()
+    t2 = time.perf_counter()
+    ksp.setUp()
+    t_setup = time.perf_counter() - t2
+    x = A.createVecRight()
+    ksp.solve(b, x)
+    its = ksp.getIterationNumber()
+    r = b.duplicate()
+    A.mult(x, r)
+    r.axpy(-1.0, b)
+    rel = r.norm() / b.norm()
+    if not rel <= 1e-8:
+        raise RuntimeError(f"plain CG + GAMG did not converge: relative residual {rel:.3g}")
+    t_solve = time.perf_counter() - t1
+    ksp.destroy()
+    for obj in (A, b, x, r, *vecs):
+        obj.destroy()
+    return {"ndofs": int(n), "t_solve": t_solve, "t_setup": t_setup, "t_total": t_assemble + t_solve,
+            "iterations": int(its), "relative_residual": float(rel)}
+
+
+def _xfem(scene) -> dict:
+    import cracklip as cl
+    t0 = time.perf_counter()
+    sol = cl.solve(scene)
+    t_total = time.perf_counter() - t0
+    tm = sol.timings
+    s = sol.solver["solves"][-1]
+    return {"ndofs": int(sol.model.num_dofs), "enriched_dofs": int(3 * sol.model.layout.num_enriched),
+            "t_solve": tm.get("phantom_transform", 0.0) + tm["solve"], "t_setup": s.get("t_setup"),
+            "t_total": t_total, "t_assemble_enriched": tm["assemble_enriched"],
+            "t_assemble_standard": tm["assemble_standard"], "iterations": int(s["iterations"]),
+            "band": s.get("band"), "relative_residual": float(s["relative_residual"]), "method": s["method"]}
+
+
+def worker(spec: dict) -> dict:
+    import resource
+    import penny_crack
+    penny_crack.penny_scene(6)  # warm-up: gmsh, forms, libraries
+    _plain(penny_crack.penny_scene(6))
+    _xfem(penny_crack.penny_scene(6))
+    t0 = time.perf_counter()
+    n = spec["n"]
+    radius = penny_crack.RADIUS if spec["radius_in_h"] is None else spec["radius_in_h"] / n
+    scene = penny_crack.penny_scene(n, solver="iterative", radius=radius)
+    t_mesh = time.perf_counter() - t0
+    pairs = []
+    for _ in range(spec["repeats"]):
+        p = _plain(scene)
+        x = _xfem(scene)
+        pairs.append((p, x))
+    med = lambda key, which: statistics.median(pr[which][key] for pr in pairs)  # noqa: E731
+    p_last, x_last = pairs[-1]
+    return {"a_over_h": spec["n"], "radius": radius, "ndofs": x_last["ndofs"], "plain_ndofs": p_last["ndofs"],
+            "cells": int(scene.mesh.mesh.topology.index_map(3).size_local), "t_mesh": t_mesh,
+            "enriched_dofs": x_last["enriched_dofs"], "band": x_last["band"],
+            "t_solve_xfem": med("t_solve", 1), "t_solve_plain": med("t_solve", 0),
+            "t_setup_xfem": med("t_setup", 1), "t_setup_plain": med("t_setup", 0),
+            "t_total_xfem": med("t_total", 1), "t_total_plain": med("t_total", 0),
+            "t_assemble_enriched": med("t_assemble_enriched", 1),
+            "ratio_solve": statistics.median(x["t_solve"] / p["t_solve"] for p, x in pairs),
+            "ratio_total": statistics.median(x["t_total"] / p["t_total"] for p, x in pairs),
+            "ratios_solve": [x["t_solve"] / p["t_solve"] for p, x in pairs],
+            "iterations_xfem": x_last["iterations"], "iterations_plain": p_last["iterations"],
+            "repeats": spec["repeats"],
+            "peak_rss_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6}
+
+
+def main(argv=None) -> dict:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--sizes", nargs="+", default=["1e5", "5e5", "1e6"], help="target X-FEM dofs")
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--radius-in-h", type=float, default=None,
+                    help="front enrichment radius in front element sizes (default: penny_crack's 0.25 a)")
+    ap.add_argument("--json", type=pathlib.Path, default=pathlib.Path("results/bench_3d.json"))
+    ap.add_argument("--worker", help=argparse.SUPPRESS)
+    args = ap.parse_args(argv)
+    if args.worker:
+        print(json.dumps(worker(json.loads(args.worker))))
+        return {}
+    rows = []
+    for size in args.sizes:
+        spec = {"n": divisions_for(float(size)), "repeats": args.repeats, "radius_in_h": args.radius_in_h}
+        proc = subprocess.run([sys.executable, __file__, "--worker", json.dumps(spec)], capture_output=True,
+                              text=True)
+        if proc.returncode != 0:
+            rows.append({"target_dofs": float(size), "status": f"failed: {proc.stderr.strip()[-400:]}"})
+        else:
+            row = json.loads(proc.stdout.strip().splitlines()[-1])
+            row["target_dofs"] = float(size)
+            rows.append(row)
+            print(f"{row['ndofs']} dofs: X-FEM solve {row['t_solve_xfem']:.1f} s ({row['iterations_xfem']} its), "
+                  f"plain {row['t_solve_plain']:.1f} s ({row['iterations_plain']} its): ratio "
+                  f"{row['ratio_solve']:.2f}; totals {row['t_total_xfem']:.1f} / {row['t_total_plain']:.1f} s; "
+                  f"peak {row['peak_rss_gb']:.2f} GB", flush=True)
+    out = {"machine": platform.node(), "python": platform.python_version(), "rows": rows}
+    args.json.parent.mkdir(parents=True, exist_ok=True)
+    from cracklip.io.files import write_json
+    write_json(args.json, out)
+    return out
+
+
+if __name__ == "__main__":
+    main()

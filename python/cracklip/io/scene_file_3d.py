@@ -1,0 +1,299 @@
+"""3D parts in scene files: which keys a 2D or a 3D scene takes, and the
+tetrahedral mesh, crack surfaces and loads of a 3D scene.
+
+A scene is 3D when its part is a solid: mesh.kind ``box`` or ``cylinder``,
+or a geometry (.geo, STEP, BREP) or .msh file holding volumes. Before the
+file is read, a geometry or file scene is taken to be 3D when its cracks
+are crack surfaces (``ellipse``, ``polygon``, ``surface``) and 2D when they
+are polylines (``points``, ``arc``); the mesh made must agree.
+
+``check_dimension`` names the first key that does not fit the scene's
+dimension (a 2D key in a 3D scene, a 3D one in a 2D scene, a point or
+vector with the wrong number of components) and says what to give
+instead. It runs on the parsed settings, before any meshing when the
+dimension is known from mesh.kind or the cracks, else right after.
+
+The builders here are those where 3D differs from 2D: the mesh (gmsh,
+refined along every crack's front and optionally over its surface:
+mesh_3d.crack_refinements), the crack surfaces, tractions (a uniform 3D
+stress) and pressures (-p n on the faces, as sigma = -p I). Dirichlet
+conditions and point forces share the 2D builders (scene_file, by the
+mesh's dimension).
+"""
+from __future__ import annotations
+
+import pathlib
+import typing
+
+import numpy as np
+
+from ..errors import CrackGeometryError, InputError, MeshError
+from ..scene.conditions import Traction
+from ..scene.crack_surface import EllipticalCrack, PolygonCrack, SurfaceCrack, read_crack_surface
+from ..scene.mesh import MeshData
+from ..scene.stress_field import UniformStress3D
+
+
+#: Crack keys of each dimension (one of them per [[cracks]] entry).
+CRACK_KINDS = {2: ("points", "arc"), 3: ("ellipse", "polygon", "surface")}
+
+
+#: mesh.kind values that fix the dimension.
+KIND_DIMENSION = {"rectangle": 2, "plate_with_hole": 2, "plate_with_holes": 2, "half_annulus": 2, "box": 3,
+                  "cylinder": 3}
+
+
+#: What a 3D scene cannot have yet (key -> why), checked when given.
+NOT_YET_3D = {
+    "loads.initial_stress": "an initial (residual) stress is not supported on 3D parts yet",
+    "load_path": "load paths are not supported on 3D parts yet: give the loads at factor 1",
+    "growth": "crack growth is 2D only for now (stress intensity factors along 3D fronts come first)",
+    "spectrum": "fatigue spectra are 2D only for now (stress intensity factors along 3D fronts come first)",
+    "material.fatigue": "fatigue constants are read by `cracklip grow`, which is 2D only for now",
+}
+
+
+def _parts(doc: dict, path: str):
+    """The values of a dotted path in the raw document (arrays of tables
+    expanded), as (where, value) pairs: ('loads.tractions[1].stress', ...)."""
+    out = [("", doc)]
+    for part in path.split("."):
+        nxt = []
+        for where, node in out:
+            if not isinstance(node, dict) or part not in node:
+                continue
+            v = node[part]
+            sub = f"{where}.{part}" if where else part
+            if isinstance(v, list) and v and all(isinstance(e, dict) for e in v):
+                nxt += [(f"{sub}[{i}]", e) for i, e in enumerate(v)]
+            else:
+                nxt.append((sub, v))
+        out = nxt
+    return out
+
+
+def scene_dimension(settings: dict) -> tuple[int | None, str]:
+    """(dimension, why) of parsed settings before meshing: from mesh.kind,
+    else from the cracks' kinds (None when neither tells: a geometry or
+    .msh file without cracks, read to know)."""
+    kind = settings["mesh"]["kind"]
+    if kind in KIND_DIMENSION:
+        return KIND_DIMENSION[kind], f"mesh.kind = {kind!r}"
+    found = {2: [], 3: []}
+    for i, c in enumerate(settings["cracks"]):
+        for d, keys in CRACK_KINDS.items():
+            found[d] += [f"cracks[{i}].{k}" for k in keys if k in c]
+    if found[2] and found[3]:
+        raise InputError(f"{found[3][0]} is a 3D crack surface but {found[2][0]} is a 2D crack (a polyline): a scene "
+                         "is 2D (points, arc) or 3D (ellipse, polygon, surface), not both")
+    for d in (3, 2):
+        if found[d]:
+            return d, f"{found[d][0]} is a {'crack surface' if d == 3 else '2D crack'}"
+    return None, ""
+
+
+def _length(value) -> int | None:
+    return len(value) if isinstance(value, list) else None
+
+
+def check_dimension(doc: dict, settings: dict, dim: int, why: str) -> None:
+    """Raise InputError at the first key that does not fit a `dim`-D scene
+    (module doc); `why` says what makes the scene that dimension."""
+    other = 5 - dim
+    part = f"the part is {dim}D ({why})"
+    s = settings
+
+    def wrong(where: str, value, what2: str, what3: str) -> InputError:
+        n = _length(value)
+        return InputError(f"{where} = {value} has {n} components but {part}: give {what3 if dim == 3 else what2}")
+
+    # Cracks of the other dimension.
+    for i, c in enumerate(s["cracks"]):
+        for k in CRACK_KINDS[other]:
+            if k in c:
+                if dim == 3:
+                    raise InputError(f"cracks[{i}].{k} is a 2D crack (a polyline) but {part}: give cracks[{i}].ellipse "
+                                     f"(center, normal, a, b, a_direction), cracks[{i}].polygon or cracks[{i}].surface")
+                raise InputError(f"cracks[{i}].{k} is a 3D crack surface but {part}: give cracks[{i}].points (a "
+                                 f"polyline) or cracks[{i}].arc, or make the part a solid (mesh.kind 'box', "
+                                 "'cylinder', or a geometry or .msh file with volumes)")
+    coords = "[x, y, z]" if dim == 3 else "[x, y]"
+    checks: list[tuple[str, typing.Any]] = []
+    checks += [(w, v) for w, v in _parts(doc, "mesh.refine.point")]
+    checks += [(w, v) for w, v in _parts(doc, "dirichlet.point")]
+    checks += [(w, v) for w, v in _parts(doc, "loads.point_forces.point")]
+    checks += [(w, v) for w, v in _parts(doc, "loads.point_forces.value")]
+    checks += [(w, v) for w, v in _parts(doc, "loads.body_force")]
+    checks += [(w, v) for w, v in _parts(doc, "loads.tractions.value")]
+    checks += [(w, v) for w, v in _parts(doc, "dirichlet.value") if isinstance(v, list)]
+    for where, v in checks:
+        if _length(v) != dim:
+            raise wrong(where, v, "[x, y]", "[x, y, z]")
+    for where, v in _parts(doc, "mesh.refine.segment"):
+        if isinstance(v, list) and any(_length(p) != dim for p in v):
+            raise InputError(f"{where} = {v}: {part}: give its ends as {coords}")
+    for where, v in _parts(doc, "dirichlet.box"):
+        if _length(v) != 2 * dim:
+            raise wrong(where, v, "[x0, y0, x1, y1]", "[x0, y0, z0, x1, y1, z1]")
+    for where, v in _parts(doc, "loads.tractions.stress"):
+        if _length(v) != (6 if dim == 3 else 3):
+            raise wrong(where, v, "[sxx, syy, sxy]", "the uniform stress [sxx, syy, szz, syz, sxz, sxy]")
+    for where, v in _parts(doc, "dirichlet.component"):
+        if dim == 3 and v == "both":
+            raise InputError(f"{where} = 'both' names the two components of a 2D part but {part}: give 'all' (x, "
+                             "y and z) or one of 'x', 'y', 'z'")
+        if dim == 2 and v == "z":
+            raise InputError(f"{where} = 'z': {part}, it has components 'x' and 'y' only")
+    if dim == 2:
+        for where, _ in _parts(doc, "mesh.crack_h"):
+            raise InputError(f"{where} refines over 3D crack surfaces but {part}: use mesh.refine or mesh.tip_h")
+        return
+    # dim == 3: the 2D-only keys.
+    two_d = {
+        "material.plane": "plane strain or stress is the setting of a 2D section; a 3D part is plain 3D "
+                          "elasticity: remove it",
+        "dirichlet.williams": "the Williams field is the 2D field of a straight tip; prescribe values or use a "
+                              "2D part",
+        "loads.tractions.williams": "the Williams field is the 2D field of a straight tip",
+        "loads.tractions.kirsch": "the Kirsch field is the 2D field of a hole in a plate",
+        "loads.tractions.stress_gradient": "a 3D traction takes a uniform stress only",
+        "loads.tractions.origin": "a 3D traction takes a uniform stress only (no origin)",
+        "outputs.magnification": "deformed.png is a 2D picture; in 3D warp solution.vtu by `displacement` in "
+                                 "ParaView (Warp By Vector)",
+        "outputs.stress_component": "stress.png is a 2D picture; in 3D color solution.vtu by a stress_* array "
+                                    "in ParaView",
+    }
+    for key, text in two_d.items():
+        for where, _ in _parts(doc, key):
+            raise InputError(f"{where} is a 2D setting but {part}: {text}")
+    for key, text in NOT_YET_3D.items():
+        for where, _ in _parts(doc, key):
+            raise InputError(f"{where}: {text} ({part})")
+    o = s["options"]
+    if o["contact"] != "none" or o["friction"] != 0.0:
+        raise InputError(f"options.contact = {o['contact']!r}, friction = {o['friction']:g}: crack-lip contact is "
+                         f"not available on 3D parts yet ({part}); remove it (the lips are then traction-free)")
+    if o["accuracy"] != 0.0:
+        raise InputError(f"options.accuracy = {o['accuracy']:g} targets the error of K, which 3D parts do not "
+                         f"compute yet ({part}); remove it and set mesh.tip_h instead")
+    if s["mesh"]["kind"] == "file":
+        for key in ("tip_h", "crack_h"):
+            if s["mesh"].get(key, 0.0) > 0.0:
+                raise InputError(f"mesh.{key} = {s['mesh'][key]:g}: a 3D .msh file is used as it is ({part}); "
+                                 "refine it in gmsh, or give the part as a geometry (mesh.kind = 'geometry' with a "
+                                 ".geo, STEP or BREP file) that cracklip meshes with tip_h and crack_h")
+        if s["mesh"]["refine"]:
+            raise InputError(f"mesh.refine: a 3D .msh file is used as it is ({part}); refine it in gmsh, or give "
+                             "the part as a geometry (mesh.kind = 'geometry')")
+
+
+def crack_surface(c: dict, i: int, base_dir: pathlib.Path):
+    """The crack surface of a parsed [[cracks]] entry (ellipse, polygon or surface)."""
+    name = c["name"] or f"crack {i}"
+    kw = {"name": name, "pressure": c["pressure"], "pressure_group": c["pressure_group"]}
+    where = f"cracks[{i}]"
+    try:
+        if "ellipse" in c:
+            e = c["ellipse"]
+            return EllipticalCrack(e["center"], e["normal"], e["a"], e.get("b"), e.get("a_direction"), **kw)
+        if "polygon" in c:
+            return PolygonCrack(np.asarray(c["polygon"], dtype=float), **kw)
+        f = pathlib.Path(c["surface"])
+        f = f if f.is_absolute() else base_dir / f
+        sc = read_crack_surface(f, name=name)
+        return SurfaceCrack(sc.vertices, sc.triangles, **kw)
+    except CrackGeometryError as e:
+        raise CrackGeometryError(f"{where}: {e}") from None
+
+
+def describe_crack(crack) -> str:
+    """One line of a crack surface (the notes of a scene)."""
+    def v(a) -> str:
+        return "[" + ", ".join(f"{x:.6g}" for x in np.asarray(a, dtype=float)) + "]"
+    if isinstance(crack, EllipticalCrack):
+        shape = (f"circle, radius {crack.a:.6g}" if crack.a == crack.b else
+                 f"ellipse, semi-axes a = {crack.a:.6g} along {v(crack.axis)}, b = {crack.b:.6g}")
+        return f"{crack.name}: {shape}, centre {v(crack.center)}, normal {v(crack.normal)}"
+    if isinstance(crack, PolygonCrack):
+        return f"{crack.name}: polygon of {len(crack.points)} vertices, normal {v(crack.normal)}, area {crack.area:.6g}"
+    return (f"{crack.name}: triangulated surface, {len(crack.vertices)} vertices, {len(crack.triangles)} triangles, "
+            f"area {crack.area:.6g}")
+
+
+def _refine_items(m: dict, h: float) -> list:
+    """mesh.refine items of a 3D scene as front refinements (a point, or a
+    segment sampled every h_near / 2)."""
+    from ..scene.mesh_3d import FrontRefinement
+    out = []
+    for r in m["refine"]:
+        if "point" in r:
+            pts = np.asarray([r["point"]], dtype=float)
+        else:
+            a, b = (np.asarray(p, dtype=float) for p in r["segment"])
+            k = max(1, int(np.ceil(np.linalg.norm(b - a) / (0.5 * r["h"]))))
+            pts = a + np.linspace(0.0, 1.0, k + 1)[:, None] * (b - a)
+        out.append(FrontRefinement(pts, min(r["h"], h), r["radius"]))
+    return out
+
+
+def mesh_3d(m: dict, cracks: list, base_dir: pathlib.Path) -> MeshData:
+    """The tetrahedral mesh of [mesh] settings: box, cylinder, a solid
+    geometry file (all refined to tip_h along the cracks' fronts, crack_h
+    over their surfaces, and the refine items), or a .msh file as it is."""
+    from ..scene import mesh_3d as m3
+    kind = m["kind"]
+    if kind == "file":
+        f = pathlib.Path(m["path"])
+        return m3.read_msh_3d(f if f.is_absolute() else base_dir / f)
+    h = m["h"]
+    fronts = m3.crack_refinements(cracks, h, m["tip_h"] if m["tip_h"] > 0.0 else 0.0, m["tip_radius"],
+                                  m.get("crack_h", 0.0))
+    fronts += _refine_items(m, h)
+    if kind == "box":
+        return m3.create_box(*m["box"], h, fronts=fronts)
+    if kind == "cylinder":
+        return m3.create_cylinder(m["center"], m["axis"], m["radius"], m["length"], h, fronts=fronts)
+    from ..scene.geometry_file import create_from_geometry
+    f = pathlib.Path(m["path"])
+    return create_from_geometry(f if f.is_absolute() else base_dir / f, h, fronts=fronts)
+
+
+def mesh_file_dimension(path: pathlib.Path) -> int:
+    """The dimension of the mesh in a .msh file (2: triangles, 3: tetrahedra)."""
+    from ..scene.mesh import _gmsh, _msh_header
+    if not path.is_file():
+        raise MeshError(f"mesh file {path} does not exist")
+    if not _msh_header(path):
+        return 2  # read_msh names the problem
+    gmsh = _gmsh()
+    try:
+        gmsh.open(str(path))
+    except Exception as e:  # gmsh raises a bare Exception for an unreadable file
+        raise MeshError(f"{path}: gmsh cannot read this file ({e})") from None
+    try:
+        return 3 if gmsh.model.getDimension() == 3 else 2
+    finally:
+        gmsh.model.remove()
+
+
+def traction_3d(tr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
+    where = f"loads.tractions[{i}]"
+    tag = tr["tag"]
+    nf = mesh.facets(tag).size
+    if "value" in tr:
+        notes.append(f"{where}: tag {tag!r} ({nf} facets), traction {tr['value']}")
+        return Traction(tag, tuple(tr["value"]), group=tr["group"])
+    notes.append(f"{where}: tag {tag!r} ({nf} facets), traction sigma n, uniform sigma = {tr['stress']} "
+                 "(xx, yy, zz, yz, xz, xy)")
+    return Traction(tag, stress=UniformStress3D(tuple(tr["stress"])), group=tr["group"])
+
+
+def pressure_3d(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
+    """-p n on a tag (the facets' own normals: sigma = -p I)."""
+    p = pr["value"]
+    notes.append(f"loads.pressures[{i}]: tag {pr['tag']!r} ({mesh.facets(pr['tag']).size} facets), pressure {p:g}")
+    return Traction(pr["tag"], stress=UniformStress3D.pressure(p), group=pr["group"])
+
+
+__all__ = ["scene_dimension", "check_dimension", "crack_surface", "describe_crack", "mesh_3d", "mesh_file_dimension",
+           "traction_3d", "pressure_3d", "CRACK_KINDS"]

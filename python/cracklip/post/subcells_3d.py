@@ -1,0 +1,208 @@
+"""Fields of a solved tetrahedral model on meshes that show the crack: the
+sub-tetrahedral mesh of the part and the lip facets of each crack.
+
+Sub-tetrahedral mesh (``subcell_fields_3d``): the cells the crack touches
+(cut, face and front cells) split into their sub-tetrahedra, each with its
+own four vertices, the displacement there evaluated on the sub-tetrahedron's
+own side of the crack (so a warp by the displacement opens the crack); the
+other cells whole. Cells without enriched nodes share the mesh's nodes,
+whose displacement is the standard dofs (every enriched function is
+shifted: it vanishes at its own node, and a node of a cell without enriched
+nodes carries none); whole cells with enriched nodes get their own four
+vertices (near the crack the field is not P1, and a node on the crack
+belongs to both lips). Stress at each cell's (sub-tetrahedron's) centroid.
+
+Work: numpy over the mesh a chunk of CHUNK cells at a time; the C++
+evaluation only on the enriched cells' points, so it grows with the cells
+near the crack, not with the mesh.
+
+Lip facets (``lip_facets_3d``): each crack's lip triangles (three vertices
+each, physical coordinates) with both lips' displacements at the vertices,
+the opening [[u]] = u+ - u-, its normal part (the gap, > 0 open) and the
+size of its tangential part (slip).
+"""
+from __future__ import annotations
+
+import typing
+
+import numpy as np
+
+from ..errors import InputError
+from ..scene.material import strain, stress
+
+#: Cells per chunk of the whole-mesh loops (bounded memory at 1e6 cells).
+CHUNK = 200_000
+
+#: Points per chunk of the C++ evaluations.
+POINT_CHUNK = 400_000
+
+#: Reference vertices of the tetrahedron.
+REF_VERTICES = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+
+#: Voigt order of the stress columns.
+VOIGT = ("xx", "yy", "zz", "yz", "xz", "xy")
+
+
+def to_voigt(s: np.ndarray) -> np.ndarray:
+    """(n, 3, 3) -> (n, 6) xx, yy, zz, yz, xz, xy."""
+    return np.stack([s[:, 0, 0], s[:, 1, 1], s[:, 2, 2], s[:, 1, 2], s[:, 0, 2], s[:, 0, 1]], axis=1)
+
+
+def von_mises_3d(s: np.ndarray) -> np.ndarray:
+    """von Mises stress of (n, 6) Voigt stresses."""
+    xx, yy, zz, yz, xz, xy = s.T
+    return np.sqrt(0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2) + 3.0 * (yz ** 2 + xz ** 2 + xy ** 2))
+
+
+def _evaluate(solution, cells, ref, sides, gradient: bool = False):
+    """solution._evaluate in chunks of POINT_CHUNK points."""
+    n = len(cells)
+    if n == 0:
+        return (np.zeros((0, 3)), np.zeros((0, 3, 3))) if gradient else np.zeros((0, 3))
+    parts = [solution._evaluate(cells[i:i + POINT_CHUNK], ref[i:i + POINT_CHUNK], sides[i:i + POINT_CHUNK],
+                                gradient=gradient) for i in range(0, n, POINT_CHUNK)]
+    if gradient:
+        return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
+    return np.concatenate(parts)
+
+
+def p1_gradients(x: np.ndarray, cells: np.ndarray, u_nodes: np.ndarray) -> np.ndarray:
+    """grad u (c, 3, 3) (grad[c, i, j] = d u_i / d x_j) of the P1 field with
+    nodal values u_nodes (num_nodes, 3) on tetrahedra cells (c, 4)."""
+    xv = x[cells]                                          # (c, 4, 3)
+    J = np.transpose(xv[:, 1:] - xv[:, :1], (0, 2, 1))     # J[:, i, a] = d x_i / d ref_a
+    dN = np.array([[-1.0, -1.0, -1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+    G = np.einsum("ab,cbi->cai", dN, np.linalg.inv(J))    # (c, 4, 3) grad N_a
+    return np.einsum("cai,caj->cij", u_nodes[cells], G)
+
+
+def crack_subcells(model) -> dict[str, np.ndarray]:
+    """The sub-tetrahedra of every crack's cut, face and front cells: cell
+    (N,), sub (N, 4, 3) reference coordinates, side (N,) int8, crack (N,)."""
+    cells, subs, sides, crack = [], [], [], []
+    for ci, g in enumerate(model.geometries):
+        cc = g.crack_cells
+        counts = np.diff(np.asarray(cc["sub_offsets"]))
+        cells.append(np.repeat(np.asarray(cc["cell"], dtype=np.int32), counts))
+        subs.append(np.asarray(cc["sub"]).reshape(-1, 4, 3))
+        sides.append(np.asarray(cc["side"], dtype=np.int8))
+        crack.append(np.full(int(counts.sum()), ci, dtype=np.int32))
+    if not cells:
+        return {"cell": np.zeros(0, np.int32), "sub": np.zeros((0, 4, 3)), "side": np.zeros(0, np.int8),
+                "crack": np.zeros(0, np.int32)}
+    return {"cell": np.concatenate(cells), "sub": np.concatenate(subs), "side": np.concatenate(sides),
+            "crack": np.concatenate(crack)}
+
+
+def subcell_fields_3d(solution) -> dict[str, typing.Any]:
+    """The sub-tetrahedral mesh with its fields (module doc): points (P, 3),
+    displacement (P, 3), cells (C, 4) into points, stress (C, 6) Voigt
+    (VOIGT), von_mises (C,), side (C,) int8 (the sub-tetrahedron's side, 0
+    for a whole cell), parent (C,) the mesh cell, crack (C,) the crack that
+    splits it (-1 for a whole cell), and the counts: num_nodes (the mesh
+    nodes, the first points), num_whole_enriched, num_sub."""
+    m = solution.model
+    mat = m.scene.material
+    x, cells = m.x, m.cells
+    ncells = cells.shape[0]
+    enriched = np.zeros(ncells, dtype=bool)
+    enriched[np.asarray(m.layout.cells, dtype=np.int32)] = True
+    sub = crack_subcells(m)
+    split = np.zeros(ncells, dtype=bool)
+    split[sub["cell"]] = True
+
+    # Cells without enriched nodes: the mesh's nodes, P1 stress per cell.
+    plain = np.flatnonzero(~enriched & ~split).astype(np.int32)
+    u_nodes = solution.standard_displacement
+    plain_stress = np.empty((plain.size, 6))
+    for k in range(0, plain.size, CHUNK):
+        c = plain[k:k + CHUNK]
+        plain_stress[k:k + CHUNK] = to_voigt(stress(strain(p1_gradients(x, cells[c], u_nodes)), mat))
+
+    # Whole cells with enriched nodes: their own four vertices.
+    whole = np.flatnonzero(enriched & ~split).astype(np.int32)
+    w_cells = np.repeat(whole, 4)
+    w_ref = np.tile(REF_VERTICES, (whole.size, 1))
+    w_u = _evaluate(solution, w_cells, w_ref, np.zeros(w_cells.size, dtype=np.int8))
+    _, w_grad = _evaluate(solution, whole, np.full((whole.size, 3), 0.25), np.zeros(whole.size, dtype=np.int8),
+                          gradient=True)
+
+    # Sub-tetrahedra: their four vertices on their own side.
+    nsub = len(sub["cell"])
+    s_cells = np.repeat(sub["cell"], 4)
+    s_ref = sub["sub"].reshape(-1, 3)
+    s_u = _evaluate(solution, s_cells, s_ref, np.repeat(sub["side"], 4))
+    _, s_grad = _evaluate(solution, sub["cell"], sub["sub"].mean(axis=1), sub["side"], gradient=True)
+
+    def physical(c: np.ndarray, ref: np.ndarray) -> np.ndarray:
+        N = np.column_stack([1.0 - ref.sum(axis=1), ref])
+        return np.einsum("na,nai->ni", N, x[cells[c]])
+
+    nn = x.shape[0]
+    points = np.concatenate([x, physical(w_cells, w_ref), physical(s_cells, s_ref)])
+    displacement = np.concatenate([u_nodes, w_u, s_u])
+    conn = np.concatenate([cells[plain].astype(np.int64),
+                           nn + np.arange(4 * whole.size, dtype=np.int64).reshape(-1, 4),
+                           nn + 4 * whole.size + np.arange(4 * nsub, dtype=np.int64).reshape(-1, 4)])
+    st = np.concatenate([plain_stress, to_voigt(stress(strain(w_grad), mat)) if whole.size else np.zeros((0, 6)),
+                         to_voigt(stress(strain(s_grad), mat)) if nsub else np.zeros((0, 6))])
+    return {"points": points, "displacement": displacement, "cells": conn, "stress": st,
+            "von_mises": von_mises_3d(st),
+            "side": np.concatenate([np.zeros(plain.size + whole.size, np.int8), sub["side"]]),
+            "parent": np.concatenate([plain, whole, sub["cell"]]).astype(np.int32),
+            "crack": np.concatenate([np.full(plain.size + whole.size, -1, np.int32), sub["crack"]]),
+            "num_nodes": int(nn), "num_whole_enriched": int(whole.size), "num_sub": int(nsub)}
+
+
+def subdivide_triangles(tri: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Each triangle (F, 3, d) split into n^2 equal ones: (F n^2, 3, d) and
+    the parent of each (F n^2,)."""
+    local = []
+    for i in range(n):
+        for j in range(n - i):
+            local.append([(i, j), (i + 1, j), (i, j + 1)])
+            if i + j < n - 1:
+                local.append([(i + 1, j), (i + 1, j + 1), (i, j + 1)])
+    bary = np.array([[[1.0 - (a + b) / n, a / n, b / n] for a, b in t] for t in local])   # (n^2, 3, 3)
+    out = np.einsum("svk,fkd->fsvd", bary, tri).reshape(-1, 3, tri.shape[2])
+    return out, np.repeat(np.arange(len(tri)), len(local))
+
+
+def lip_facets_3d(solution, crack: int = 0, subdivide: int = 1) -> dict[str, np.ndarray]:
+    """A crack's lip facets (F triangles) with the opening at their vertices:
+    x (F, 3, 3) physical vertices, cell (F,), normal (F, 3) unit, into the +
+    lip, area (F,), num_front (F,) vertices on the front (of the parent
+    facet), u_plus, u_minus, jump (F, 3, 3) (vertex, component), gap (F, 3)
+    = [[u]].n (> 0 open), slip (F, 3) = |[[u]] - gap n|. subdivide: each
+    lip facet split into subdivide^2 triangles (finer samples of the
+    sqrt(r) opening near the front; a lip facet is flat in its cell, so the
+    pieces are exact)."""
+    m = solution.model
+    if not 0 <= crack < len(m.cracks):
+        raise InputError(f"crack index {crack} out of range: the scene has {len(m.cracks)} cracks")
+    cc = m.geometries[crack].crack_cells
+    counts = np.diff(np.asarray(cc["facet_offsets"]))
+    cell = np.repeat(np.asarray(cc["cell"], dtype=np.int32), counts)
+    ref = np.asarray(cc["facets"]).reshape(-1, 3, 3)
+    normal = np.asarray(cc["facet_normal"]).reshape(-1, 3)
+    area = np.asarray(cc["facet_area"])
+    num_front = np.asarray(cc["facet_num_front"])
+    if subdivide > 1:
+        ref, parent = subdivide_triangles(ref, int(subdivide))
+        cell, normal, num_front = cell[parent], normal[parent], num_front[parent]
+        area = area[parent] / subdivide ** 2
+    nf = len(cell)
+    pc, pr = np.repeat(cell, 3), ref.reshape(-1, 3)
+    up = _evaluate(solution, pc, pr, np.ones(3 * nf, dtype=np.int8)).reshape(nf, 3, 3)
+    um = _evaluate(solution, pc, pr, -np.ones(3 * nf, dtype=np.int8)).reshape(nf, 3, 3)
+    N = np.column_stack([1.0 - pr.sum(axis=1), pr])
+    xp = np.einsum("na,nai->ni", N, m.x[m.cells[pc]]).reshape(nf, 3, 3)
+    jump = up - um
+    gap = np.einsum("fvi,fi->fv", jump, normal)
+    slip = np.linalg.norm(jump - gap[:, :, None] * normal[:, None, :], axis=2)
+    return {"x": xp, "cell": cell, "normal": normal, "area": area, "num_front": num_front, "u_plus": up,
+            "u_minus": um, "jump": jump, "gap": gap, "slip": slip}
+
+
+__all__ = ["subcell_fields_3d", "lip_facets_3d", "subdivide_triangles", "crack_subcells", "p1_gradients", "to_voigt", "von_mises_3d",
+           "VOIGT"]
