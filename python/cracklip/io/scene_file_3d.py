@@ -246,8 +246,14 @@ def mesh_3d(m: dict, cracks: list, base_dir: pathlib.Path) -> MeshData:
         f = pathlib.Path(m["path"])
         return m3.read_msh_3d(f if f.is_absolute() else base_dir / f)
     h = m["h"]
-    fronts = m3.crack_refinements(cracks, h, m["tip_h"] if m["tip_h"] > 0.0 else 0.0, m["tip_radius"],
-                                  m.get("crack_h", 0.0))
+    fronts = []
+    if m["tip_h"] > 0.0 and cracks:
+        # tip_radius: the distance over which the size grows from tip_h to h,
+        # never faster than 0.25 per unit length (0: that fastest growth).
+        growth = 0.25 if m["tip_radius"] <= 0.0 else min(0.25, (h - m["tip_h"]) / m["tip_radius"])
+        crack_h = m.get("crack_h", 0.0)
+        fronts = m3.crack_refinements(cracks, m["tip_h"], h, growth=max(growth, 1e-6),
+                                      h_surface=crack_h if crack_h > 0.0 else h)
     fronts += _refine_items(m, h)
     if kind == "box":
         return m3.create_box(*m["box"], h, fronts=fronts)
