@@ -15,7 +15,7 @@ dimension is known from mesh.kind or the cracks, else right after.
 
 The builders here are those where 3D differs from 2D: the mesh (gmsh,
 refined along every crack's front and optionally over its surface:
-mesh_3d.crack_refinements), the crack surfaces, tractions (a uniform 3D
+mesh_3d.crack_refinements, with tip_radius as in 2D), the crack surfaces, tractions (a uniform 3D
 stress) and pressures (-p n on the faces, as sigma = -p I). Dirichlet
 conditions and point forces share the 2D builders (scene_file, by the
 mesh's dimension).
@@ -31,6 +31,7 @@ from ..errors import CrackGeometryError, InputError, MeshError
 from ..scene.conditions import Traction
 from ..scene.crack_surface import EllipticalCrack, PolygonCrack, SurfaceCrack, read_crack_surface
 from ..scene.mesh import MeshData
+from ..scene.size_field import MAX_GROWTH
 from ..scene.stress_field import UniformStress3D
 
 
@@ -248,12 +249,15 @@ def mesh_3d(m: dict, cracks: list, base_dir: pathlib.Path) -> MeshData:
     h = m["h"]
     fronts = []
     if m["tip_h"] > 0.0 and cracks:
-        # tip_radius: the distance over which the size grows from tip_h to h,
-        # never faster than 0.25 per unit length (0: that fastest growth).
-        growth = 0.25 if m["tip_radius"] <= 0.0 else min(0.25, (h - m["tip_h"]) / m["tip_radius"])
-        crack_h = m.get("crack_h", 0.0)
-        fronts = m3.crack_refinements(cracks, m["tip_h"], h, growth=max(growth, 1e-6),
-                                      h_surface=crack_h if crack_h > 0.0 else h)
+        # tip_radius as in 2D: the distance over which the size grows back to
+        # h (0: the fastest growth the mesher honours, MAX_GROWTH); no
+        # refinement over the surfaces unless crack_h asks (h_surface = h).
+        growth = (h - m["tip_h"]) / m["tip_radius"] if m["tip_radius"] > 0.0 else MAX_GROWTH
+        fronts = m3.crack_refinements(cracks, m["tip_h"], h, growth=max(growth, 1e-12),
+                                      h_surface=m["crack_h"] if m.get("crack_h", 0.0) > 0.0 else h)
+    elif m.get("crack_h", 0.0) > 0.0:
+        fronts = [m3.FrontRefinement(c.surface_points(0.5 * m["crack_h"]), m["crack_h"], m["tip_radius"])
+                  for c in cracks]
     fronts += _refine_items(m, h)
     if kind == "box":
         return m3.create_box(*m["box"], h, fronts=fronts)

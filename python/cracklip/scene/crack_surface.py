@@ -136,16 +136,6 @@ class EllipticalCrack:
         a and b (pictures of the crack are drawn in these coordinates)."""
         return self.center, self.axis, self.axis2
 
-    def surface_points(self, spacing: float) -> np.ndarray:
-        """Points (m, 3) covering the crack (the whole ellipse) on a square
-        grid of the given spacing in its plane, the front's points included."""
-        g1 = np.arange(-self.a, self.a + 1e-9 * spacing, spacing)
-        g2 = np.arange(-self.b, self.b + 1e-9 * spacing, spacing)
-        U, W = (v.ravel() for v in np.meshgrid(g1, g2))
-        keep = (U / self.a) ** 2 + (W / self.b) ** 2 <= 1.0
-        inner = self.center + U[keep, None] * self.axis + W[keep, None] * self.axis2
-        return np.concatenate([inner, self.front_points(spacing)])
-
 
 @dataclasses.dataclass
 class PolygonCrack:
@@ -230,23 +220,6 @@ class PolygonCrack:
         e1 = e1 - np.dot(e1, self.normal) * self.normal
         e1 /= np.linalg.norm(e1)
         return self.points.mean(axis=0), e1, np.cross(self.normal, e1)
-
-    def surface_points(self, spacing: float) -> np.ndarray:
-        """Points (m, 3) covering the polygon on a square grid of the given
-        spacing in its plane (even-odd inside test), its edges' points included."""
-        origin, e1, e2 = self.plane()
-        uv = np.column_stack([(self.points - origin) @ e1, (self.points - origin) @ e2])
-        lo, hi = uv.min(axis=0), uv.max(axis=0)
-        U, W = (v.ravel() for v in np.meshgrid(np.arange(lo[0], hi[0] + 1e-9 * spacing, spacing),
-                                                np.arange(lo[1], hi[1] + 1e-9 * spacing, spacing)))
-        a, b = uv, np.roll(uv, -1, axis=0)
-        straddle = (a[None, :, 1] > W[:, None]) != (b[None, :, 1] > W[:, None])
-        with np.errstate(divide="ignore", invalid="ignore"):
-            xc = a[None, :, 0] + (W[:, None] - a[None, :, 1]) * (b[None, :, 0] - a[None, :, 0]) / (b[None, :, 1]
-                                                                                                   - a[None, :, 1])
-        keep = np.count_nonzero(straddle & (xc > U[:, None]), axis=1) % 2 == 1
-        inner = origin + U[keep, None] * e1 + W[keep, None] * e2
-        return np.concatenate([inner, self.front_points(spacing)])
 
 
 @dataclasses.dataclass
@@ -338,24 +311,6 @@ class SurfaceCrack:
         if np.dot(np.cross(e1, e2), mean_normal) < 0.0:
             e2 = -e2
         return origin, e1, e2
-
-    def surface_points(self, spacing: float) -> np.ndarray:
-        """Points (m, 3) covering the surface: on every triangle a barycentric
-        grid at most `spacing` apart (its vertices and edges included)."""
-        v, t = self.vertices, self.triangles
-        out = []
-        for tri in t:
-            p = v[tri]
-            m = max(1, int(math.ceil(max(np.linalg.norm(p[1] - p[0]), np.linalg.norm(p[2] - p[1]),
-                                         np.linalg.norm(p[0] - p[2])) / spacing)))
-            i, j = np.meshgrid(np.arange(m + 1), np.arange(m + 1), indexing="ij")
-            keep = (i + j <= m).ravel()
-            li, lj = i.ravel()[keep] / m, j.ravel()[keep] / m
-            out.append(p[0] + li[:, None] * (p[1] - p[0]) + lj[:, None] * (p[2] - p[0]))
-        pts = np.concatenate(out)
-        scale = float(np.ptp(v, axis=0).max()) or 1.0
-        _, first = np.unique(np.round(pts / (1e-9 * scale)).astype(np.int64), axis=0, return_index=True)
-        return pts[np.sort(first)]
 
 
 def read_crack_surface(path: str | pathlib.Path, name: str = "") -> SurfaceCrack:
