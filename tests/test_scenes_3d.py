@@ -29,7 +29,7 @@ SMALL_3D = {
 }
 
 FILES_3D = {"results.json", "solution.vtu", "crack_surface.vtu", "crack_front.vtu", "crack_opening.png",
-            "crack_opening.csv"}
+            "crack_opening.csv", "front.csv", "front_sifs.png", "front_sifs.vtu"}
 
 
 def run_3d(name, out, *extra):
@@ -47,7 +47,8 @@ def _common_checks(results, rows, out):
     """What every 3D run's outputs must satisfy."""
     assert {p.name for p in out.iterdir() if not p.name.startswith(".")} == FILES_3D
     assert set(results["files"]) == FILES_3D
-    assert results["dimension"] == 3 and results["sifs"] == []
+    assert results["dimension"] == 3 and results["sifs"]
+    assert all({"K_I", "K_II", "K_III", "K_I_spread", "free_surface"} <= set(r) for r in results["sifs"])
     model = results["model"]
     assert model["dofs"]["total"] == results["solution"]["dofs"] == model["dofs"]["standard"] + model["dofs"]["enriched"]
     assert model["dofs"]["standard"] == 3 * model["nodes"]

@@ -3,7 +3,10 @@
 
 #include "quadrature/cell_quadrature_2d.h"
 #include "fracture/interaction_integral_2d.h"
+#include "fracture/interaction_integral_3d.h"
 #include <pybind11/stl.h>
+
+#include <optional>
 #include "enrichment/tip_functions_2d.h"
 
 namespace cracklip_wrappers
@@ -130,6 +133,45 @@ void declare_fracture(py::module& m)
       "Quadrature points of the ring where q has a gradient (interior: of every cell where q != 0): "
       "the plateau q of `radius`, or with inner_radius < radius the ring q (1 within inner_radius, "
       "0 beyond radius, linear between).");
+
+  m.def(
+      "auxiliary_fields_3d",
+      [](double E, double nu, const carray<double>& frames, const carray<double>& curvature, const carray<double>& x,
+         const carray<std::int8_t>& sides)
+      {
+        const py::ssize_t n = sides.size();
+        std::vector<double> U(9 * n), G(27 * n), local(9 * n), div(9 * n);
+        auxiliary_fields_3d(E, nu, as_span(frames), as_span(curvature), as_span(x), as_span(sides), U, G, local, div);
+        py::dict d;
+        d["U"] = as_pyarray(std::move(U), {n, 3, 3});
+        d["G"] = as_pyarray(std::move(G), {n, 3, 3, 3});
+        d["local"] = as_pyarray(std::move(local), {n, 3, 3});
+        d["div_sigma"] = as_pyarray(std::move(div), {n, 3, 3});
+        return d;
+      },
+      py::arg("E"), py::arg("nu"), py::arg("frames"), py::arg("curvature"), py::arg("x"), py::arg("sides"),
+      "Unit-K auxiliary fields of curved fronts at points: U (n, mode, i), true gradient G (n, mode, i, j), "
+      "local components (n, mode, k) along e1, e2, e3, stress divergence (n, mode, i). frames (n, 12): origin, "
+      "e1, e2, e3 of each point's nearest front point; curvature (n) of the front there.");
+
+  m.def(
+      "interaction_integrand_3d",
+      [](double E, double nu, const carray<double>& frames, const carray<double>& curvature, const carray<double>& x,
+         const carray<double>& grad_u, const carray<std::int8_t>& sides, std::optional<std::array<double, 3>> body)
+      {
+        const py::ssize_t n = sides.size();
+        std::vector<double> T(27 * n), D(9 * n);
+        std::vector<double> b;
+        if (body)
+          b.assign(body->begin(), body->end());
+        interaction_integrand_3d(E, nu, as_span(frames), as_span(curvature), as_span(x), as_span(grad_u),
+                                 as_span(sides), b, T, D);
+        return py::make_tuple(as_pyarray(std::move(T), {n, 3, 3, 3}), as_pyarray(std::move(D), {n, 3, 3}));
+      },
+      py::arg("E"), py::arg("nu"), py::arg("frames"), py::arg("curvature"), py::arg("x"), py::arg("grad_u"),
+      py::arg("sides"), py::arg("body") = py::none(),
+      "Integrands of the curved-front interaction integral: T (n, mode, j, l), D (n, mode, l); "
+      "I_m int q_s (e1.d) ds = sum w (grad q . T_m d + q D_m . d) + lip terms.");
 }
 
 } // namespace cracklip_wrappers

@@ -12,8 +12,10 @@ crack_opening.csv.
 - ``results.json``: the model summary (describe_model), the solution's
   dofs, energy and solver, per crack its area in the part, opened volume,
   opening and slip statistics and its front, warnings, timings, files, and
-  ``sifs``: ``front_rows(solution)``, the hook of the stress intensity
-  factors along the fronts.
+  ``sifs``: ``front_rows(solution)``, the stress intensity factors at every
+  front point (io.front_outputs);
+- ``front.csv``, ``front_sifs.png``, ``front_sifs.vtu``: the same K along
+  the fronts as a table, a plot and a ParaView polyline (io.front_outputs).
 
 Files go through atomic_path (never half-written), as in 2D.
 """
@@ -30,6 +32,7 @@ import numpy as np
 from ..errors import SolverError
 from ..post.subcells_3d import lip_facets_3d, subcell_fields_3d
 from .files import atomic_path
+from .front_outputs import FRONT_COLUMNS, csv_rows, front_rows, front_sif_mesh, write_front_png
 from .model_summary import describe_model
 from .results import check_finite, ensure_output_dir, json_default, versions, write_csv
 from .paraview import write_mesh
@@ -44,15 +47,6 @@ logger = logging.getLogger(__name__)
 #: per side (4 per facet): the sqrt(r) opening of the facets touching the
 #: front is drawn without dark slivers.
 OPENING_SUBDIVISION = 2
-
-
-def front_rows(solution) -> list[dict[str, typing.Any]]:
-    """The rows of results.json's "sifs" for a 3D solution: one per front
-    point of every crack with its stress intensity factors (K_I, K_II,
-    K_III, their domain spreads, G), to come from the interaction integral
-    along 3D fronts (cracklip.fracture; Solution3D.stress_intensity_factors).
-    That is not computed yet, so there are no rows: connect it here."""
-    return []
 
 
 def crack_statistics_3d(facets: dict, samples: dict) -> dict[str, typing.Any]:
@@ -121,6 +115,9 @@ def write_outputs_3d(scene_file, solution, out_dir: str | pathlib.Path,
     write_csv(out / "crack_opening.csv", ["crack", "facet", "vertex", "x", "y", "z", "p1", "p2", "weight", "gap",
                                            "slip", "jump_x", "jump_y", "jump_z"], opening_rows(cracks, fine))
     files.append("crack_opening.csv")
+    if sifs:
+        write_csv(out / "front.csv", FRONT_COLUMNS, csv_rows(sifs))
+        files.append("front.csv")
     timings["write_csv"] = time.perf_counter() - t0
     if cfg["vtu"]:
         t0 = time.perf_counter()
@@ -132,6 +129,9 @@ def write_outputs_3d(scene_file, solution, out_dir: str | pathlib.Path,
         write_mesh(crack_surface_mesh(facets), out / "crack_surface.vtu")
         write_mesh(front_mesh(fronts), out / "crack_front.vtu")
         files += ["solution.vtu", "crack_surface.vtu", "crack_front.vtu"]
+        if sifs:
+            write_mesh(front_sif_mesh(sifs), out / "front_sifs.vtu")
+            files.append("front_sifs.vtu")
         timings["write_vtu"] = time.perf_counter() - t0
         logger.info("wrote ParaView files solution.vtu (%d points, %d cells: %d sub-tetrahedra), crack_surface.vtu, "
                     "crack_front.vtu", len(fields["points"]), len(fields["cells"]), fields["num_sub"])
@@ -141,6 +141,10 @@ def write_outputs_3d(scene_file, solution, out_dir: str | pathlib.Path,
         files.append("crack_opening.png")
         timings["write_png"] = time.perf_counter() - t0
         logger.info("wrote crack_opening.png")
+        if sifs:
+            write_front_png(sifs, out / "front_sifs.png", scene_file.title,
+                            None if m.scene.units is None else m.scene.units.name("K"))
+            files.append("front_sifs.png")
 
     solver = getattr(solution, "solver", None) or {}
     units = m.scene.units

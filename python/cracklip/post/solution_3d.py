@@ -17,6 +17,8 @@ import dolfinx.geometry
 
 from .. import _cracklip
 from ..errors import InputError
+from ..fracture.sif_3d import compute_front_sifs
+from ..model.checks import ModelWarning
 from ..scene.material import strain, stress
 from .solution import Solution, _tree
 
@@ -193,13 +195,35 @@ class Solution3D(Solution):
 
     def stress_intensity_factors(self, crack: int | None = 0, radius: float | None = None
                                  ) -> list[dict[str, typing.Any]]:
-        """K_I, K_II, K_III along a crack's front: not yet for tetrahedra."""
-        raise InputError("stress intensity factors along 3D fronts are not available yet")
+        """K_I, K_II, K_III at the front points of a crack (crack=None: of every
+        crack) by the domain interaction integral on three domains per point
+        (cracklip.fracture.sif_3d): one dict per front point with crack,
+        crack_name, point, piece, s (arc length), x, y, z, parametric_angle
+        (elliptical cracks), K_I, K_II, K_III and their spreads, G,
+        mode_mix_deg, radius, radii, element_size, hat, curvature, limited_by,
+        free_surface, domain_clear, direction (e1), normal (e2).
+
+        radius: the largest domain's radius (default Options.sif_radius, 0:
+        DEFAULT_ELEMENTS element sizes at each point); clipped to keep the
+        domain inside the part, clear of other cracks and within the front's
+        curvature.
+        """
+        key = (crack, radius)
+        cache = self.__dict__.setdefault("_sif3d", {})
+        if key not in cache:
+            if crack is not None and not 0 <= crack < len(self.model.cracks):
+                raise InputError(f"crack index {crack} out of range: the scene has {len(self.model.cracks)} cracks")
+            cache[key] = compute_front_sifs(self, radius, None if crack is None else [crack])
+        return [dict(r) for r in cache[key][0]]
 
     @property
     def warnings(self) -> list:
-        """The model checks' warnings."""
-        return list(self.model.warnings)
+        """The model checks' warnings and those of the SIFs along every front
+        (domains clipped, K varying with the domain): model.checks.ModelWarning."""
+        self.stress_intensity_factors(None)
+        model_messages = {w.message for w in self.model.warnings}
+        extra = [ModelWarning("sif_spread", msg) for msg in self._sif3d[(None, None)][1] if msg not in model_messages]
+        return list(self.model.warnings) + extra
 
     @property
     def standard_displacement(self) -> np.ndarray:

@@ -1,0 +1,780 @@
+"""Stress intensity factors K_I, K_II, K_III along 3D crack fronts: front
+points, domains chosen per point, the domain interaction integral on three
+domains per point, and their spread.
+
+Front points. Each piece of a crack's front (a closed loop, or an open
+polyline between two points of the part's boundary) carries front points at
+equal arc-length steps of about HAT_ELEMENTS element sizes (a loop: n equal
+steps; an open piece: both ends included). The front is the P1 polyline of
+the crack's level sets (CrackGeometry3D.front); a point's frame (e1
+propagation, e2 normal, e3 tangent) is interpolated along it.
+
+The virtual crack extension of front point k is q_k(x) d_k, d_k = e1 of the
+point, with q_k = q_s(s) q_r(r) at the mesh nodes (s, r the arc length of
+the node's nearest front point and its distance to the front) interpolated
+by P1 (so that its gradient is constant on a cell and the integrals below
+are the quadrature's of cell-wise smooth integrands):
+
+- q_s the hat along the front between the neighbouring front points
+  (1 at point k, 0 at k - 1 and k + 1);
+- q_r = 1 for r <= R_IN_FRACTION R, linear to 0 at the domain radius R.
+
+The auxiliary fields of a quadrature point follow the front (the unit-K
+Williams fields in the frame of its nearest front point) with their true
+gradient, and the integral keeps the terms of the front's curvature in the
+crack's plane (cpp/fracture/interaction_integral_3d.h): the hoop part of the
+gradient, the divergence of the auxiliary stress and its traction on the
+lips. Not kept: the rate of change of the curvature along the front and the
+curvature of the crack surface (a non-planar crack). Then
+
+    I_m int q_s (e1 . d) ds = int_V (grad q . T_m d + q D_m . d) dV
+                              - int_lips (t . [grad u_aux d] + t_aux . grad u d) q dA,
+
+T, D from the C++ kernel (interaction_integrand_3d, body force included), t
+the lip pressure's traction, and K_I = E' I_I / 2, K_II = E' I_II / 2,
+K_III = mu I_III, E' = E / (1 - nu^2). The normalisation is the integral of
+the P1 q along the front polyline.
+
+Domains. The radius of the largest domain is sif_radius, else
+DEFAULT_ELEMENTS element sizes at the point (the mean edge of the front's
+cells within the hat), clipped so that the domain stays clear of the part's
+boundary (except, at a point where the front meets the boundary, the free
+surface it meets: K there is reported and flagged free_surface, since the
+singularity is no longer the square root of the Williams fields), of other
+cracks and of the front itself where it comes back (a thin crack), and
+within half the front's radius of curvature. K is computed on
+DOMAIN_FRACTIONS of that radius; the largest gives K, the three their
+spread, and a spread above SPREAD_WARNING of the K scale is warned about.
+
+Conventions (cracklip.exact.embedded_cracks): K_I > 0 opens the crack,
+K_II > 0 when the + side moves along +e1 relative to the - side, K_III > 0
+when it moves along +e3 (e3 = e1 x e2).
+"""
+from __future__ import annotations
+
+import dataclasses
+import logging
+import math
+import typing
+
+import numpy as np
+import scipy.spatial
+
+from .. import _cracklip
+from ..errors import InputError
+from ..model.loads import lip_pressure
+from ..scene.crack_surface import EllipticalCrack
+
+logger = logging.getLogger(__name__)
+
+#: Default radius of the largest domain, in element sizes at the front point.
+DEFAULT_ELEMENTS = 4.0
+
+#: The domains' radii as fractions of the largest.
+DOMAIN_FRACTIONS = (0.5, 0.75, 1.0)
+
+#: q_r is 1 up to this fraction of the domain radius, then linear to 0
+#: (0: linear from the front; on a penny crack at a/h = 20 it halved the
+#: scatter of K_II against 0.5).
+R_IN_FRACTION = 0.0
+
+#: Distance between neighbouring front points (the hat's half-width), in
+#: element sizes at the front (mean edges of the front's cells). Penny crack
+#: at a/h = 20: scatter of K_I along the front +-0.6 % with 1, +-0.2 % with
+#: 2, +-0.08 % with 3; K_II, K_III 4.8e-3, 1.2e-3, 8.6e-4 of K.
+HAT_ELEMENTS = 3.0
+
+#: K on the hat is the hat's average of K along the front, K + K'' l^2 / 12
+#: (l the hat's half-width); the second difference of the neighbours'
+#: averages removes that term (K_k - (K_k+1 - 2 K_k + K_k-1) / 12) where
+#: both neighbours exist and are not free-surface points.
+HAT_CORRECTION = True
+
+#: At least this many front points on a closed front.
+MIN_POINTS_CLOSED = 8
+
+#: A domain's radius stays below this fraction of the front's radius of
+#: curvature (the curvature terms hold for 1 + kappa x1 > 0; the change of
+#: the curvature along the front is not kept).
+CURVATURE_FRACTION = 0.75
+
+#: Spread above this fraction of the K scale is warned about.
+SPREAD_WARNING = 0.01
+
+#: Gauss degree of the integrand in cells without enriched nodes, by the
+#: distance of the cell's nearest node to the front in cell diameters
+#: (below 1, below 2, beyond): the auxiliary fields vary on the scale of
+#: that distance.
+PLAIN_DEGREES = (6, 4, 3)
+
+#: Gauss degree in enriched cells away from the front (the stiffness's rule
+#: is raised to it; front cells keep their collapsed rules).
+ENRICHED_DEGREE = 4
+
+#: Gauss degree of the pieces of enriched cells within a diameter of the
+#: front that do not touch it (QuadratureOptions3D.far_degree; graded down
+#: with the distance). The near-front rule (signed cones from the cell's
+#: front line, near_factor) is not used: on a straight front it halved the
+#: quadrature error of an exact field, on a penny crack (a/h = 8) it made K
+#: scatter by 15 % (cones from cells' front lines that are not the front).
+FAR_DEGREE = 6
+
+#: Gauss points per lip facet direction for the lip terms.
+LIP_POINTS = 6
+
+#: Keep the terms of the front's curvature (module doc); False drops them
+#: (straight-front auxiliary fields in each point's frame), for measuring
+#: their effect.
+CURVATURE_TERMS = True
+
+#: Quadrature points per chunk of front points (bounds the memory).
+CHUNK_POINTS = 400_000
+
+
+@dataclasses.dataclass
+class FrontPoint:
+    """A point of a crack's front where K is computed, with its domains.
+
+    Attributes:
+        crack, index: crack index, index of the point along the crack's front
+            (piece after piece).
+        piece: the front piece (CrackGeometry3D.front piece_offsets).
+        closed: whether the piece is a loop.
+        s: arc length from the start of the piece; length: the piece's length.
+        x: (3,) the point, on the front polyline.
+        frame: (3, 3) rows e1 (propagation), e2 (normal), e3 (tangent).
+        hat: distance to the neighbouring front points (the hat's half-width).
+        curvature: the front's curvature there (1/a on a penny of radius a).
+        element_size: mean edge of the front's cells within the hat.
+        free_surface: the point is an end of an open piece on the part's
+            boundary (a surface crack meeting a free face).
+        clearance, obstacle: distance to what the domain must avoid and what.
+        radius, radii: the largest domain's radius, all radii (increasing).
+        requested: the radius asked for (None: the default).
+        clear: False when no domain of one element fits.
+        warnings: messages about this point's domains.
+    """
+    crack: int
+    index: int
+    piece: int
+    closed: bool
+    s: float
+    length: float
+    x: np.ndarray
+    frame: np.ndarray
+    hat: float
+    curvature: float
+    element_size: float
+    free_surface: bool
+    clearance: float
+    obstacle: str
+    radius: float
+    radii: tuple[float, ...]
+    requested: float | None
+    clear: bool
+    warnings: list[str] = dataclasses.field(default_factory=list)
+
+    @property
+    def limited(self) -> bool:
+        wanted = self.requested if self.requested else DEFAULT_ELEMENTS * self.element_size
+        return self.radius < wanted * (1.0 - 1e-12)
+
+
+# -- mesh helpers (cached on the model) -------------------------------------
+def _cache(model) -> dict:
+    return model.__dict__.setdefault("_sif3d_cache", {})
+
+
+def node_tree(model) -> scipy.spatial.cKDTree:
+    c = _cache(model)
+    if "tree" not in c:
+        c["tree"] = scipy.spatial.cKDTree(model.x)
+    return c["tree"]
+
+
+def node_cells(model) -> tuple[np.ndarray, np.ndarray]:
+    """(offsets, cells): the cells around each node, CSR."""
+    c = _cache(model)
+    if "node_cells" not in c:
+        flat = model.cells.ravel()
+        order = np.argsort(flat, kind="stable")
+        counts = np.bincount(flat, minlength=model.x.shape[0])
+        c["node_cells"] = (np.concatenate([[0], np.cumsum(counts)]), (order // 4).astype(np.int32))
+    return c["node_cells"]
+
+
+def cells_of_nodes(model, nodes: np.ndarray) -> np.ndarray:
+    off, cl = node_cells(model)
+    nodes = np.asarray(nodes, dtype=np.int64)
+    if nodes.size == 0:
+        return np.zeros(0, dtype=np.int32)
+    idx = np.concatenate([np.arange(off[n], off[n + 1]) for n in nodes])
+    return np.unique(cl[idx])
+
+
+def boundary_nodes(model) -> np.ndarray:
+    """Nodes on the part's boundary (faces held by one tetrahedron)."""
+    c = _cache(model)
+    if "boundary_nodes" not in c:
+        cells = model.cells
+        faces = np.sort(np.concatenate([cells[:, [1, 2, 3]], cells[:, [0, 2, 3]], cells[:, [0, 1, 3]],
+                                        cells[:, [0, 1, 2]]]), axis=1)
+        _, idx, counts = np.unique(faces, axis=0, return_index=True, return_counts=True)
+        c["boundary_nodes"] = np.unique(faces[idx[counts == 1]])
+    return c["boundary_nodes"]
+
+
+def cell_sizes(model, cells: np.ndarray) -> np.ndarray:
+    """Mean edge length of cells."""
+    xv = model.x[model.cells[cells]]
+    e = [xv[:, j] - xv[:, i] for i, j in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))]
+    return np.mean([np.linalg.norm(v, axis=1) for v in e], axis=0)
+
+
+def lip_points(model, crack: int) -> dict:
+    c = _cache(model).setdefault("lips", {})
+    if crack not in c:
+        c[crack] = _cracklip.compute_lip_points_3d(model.x, model.cells, model.geometries[crack], LIP_POINTS)
+    return c[crack]
+
+
+# -- the front --------------------------------------------------------------
+@dataclasses.dataclass
+class Front:
+    """A crack's front polyline as arrays: vertices x (n, 3), s (n,), frame
+    (n, 3, 3), piece (n,), segments (m, 2), segment_cell (m,), per piece:
+    offsets, closed, length; curvature (n,) at the vertices, segment sizes
+    (m,) (mean edge of the segment's cell)."""
+    x: np.ndarray
+    s: np.ndarray
+    frame: np.ndarray
+    piece: np.ndarray
+    offsets: np.ndarray
+    closed: np.ndarray
+    length: np.ndarray
+    segments: np.ndarray
+    segment_cell: np.ndarray
+    segment_size: np.ndarray
+    curvature: np.ndarray
+    on_boundary: np.ndarray
+
+
+def crack_front(model, crack: int) -> Front:
+    c = _cache(model).setdefault("fronts", {})
+    if crack in c:
+        return c[crack]
+    f = model.geometries[crack].front
+    x, s, frame = np.asarray(f["x"]), np.asarray(f["s"]), np.asarray(f["frame"])
+    off = np.asarray(f["piece_offsets"])
+    closed = np.asarray(f["closed"]).astype(bool)
+    piece = np.repeat(np.arange(len(closed)), np.diff(off))
+    length = np.array([s[off[k + 1] - 1] + (np.linalg.norm(x[off[k + 1] - 1] - x[off[k]]) if closed[k] else 0.0)
+                       for k in range(len(closed))])
+    segs = np.asarray(f["segments"]).reshape(-1, 2)
+    scell = np.asarray(f["segment_cell"])
+    ssize = cell_sizes(model, scell) if len(scell) else np.zeros(0)
+    h = float(np.median(ssize)) if len(ssize) else 0.0
+    curv = np.zeros(len(s))
+    for k in range(len(closed)):
+        idx = np.arange(off[k], off[k + 1])
+        if len(idx) < 3:
+            continue
+        sp, e1, e3 = s[idx], frame[idx, 0], frame[idx, 2]
+        if closed[k]:  # unroll the loop once on each side
+            L = length[k]
+            sp = np.concatenate([sp - L, sp, sp + L])
+            e1, e3 = np.concatenate([e1] * 3), np.concatenate([e3] * 3)
+            mid = np.arange(len(idx), 2 * len(idx))
+        else:
+            mid = np.arange(len(idx))
+        w = max(h, 1e-12)
+        ahead = np.clip(np.searchsorted(sp, sp[mid] + w, side="right") - 1, mid + 1, len(sp) - 1)
+        behind = np.clip(np.searchsorted(sp, sp[mid] - w, side="left"), 0, mid - 1)
+        ahead = np.where(ahead <= mid, np.minimum(mid + 1, len(sp) - 1), ahead)
+        behind = np.where(behind >= mid, np.maximum(mid - 1, 0), behind)
+        ds = sp[ahead] - sp[behind]
+        de3 = e3[ahead] - e3[behind]
+        curv[idx] = np.where(ds > 0, -np.einsum("ij,ij->i", de3, e1[mid]) / np.maximum(ds, 1e-300), 0.0)
+    out = Front(x, s, frame, piece, off, closed, length, segs, scell, ssize, curv,
+                np.asarray(f["on_boundary"]).astype(bool))
+    c[crack] = out
+    return out
+
+
+def _wrap(ds: np.ndarray, length: float, closed: bool) -> np.ndarray:
+    return (ds + 0.5 * length) % length - 0.5 * length if closed else ds
+
+
+def project(model, crack: int, points: np.ndarray) -> dict[str, np.ndarray]:
+    """Nearest front point of points (n, 3): s, piece, distance, x (n, 3),
+    frame (n, 3, 3), curvature (n,)."""
+    fr = crack_front(model, crack)
+    p = _cracklip.compute_front_projection_3d(model.geometries[crack], np.ascontiguousarray(points, dtype=float))
+    seg = fr.segments[p["segment"]]
+    t = p["t"]
+    kap = ((1.0 - t) * fr.curvature[seg[:, 0]] + t * fr.curvature[seg[:, 1]]) if CURVATURE_TERMS \
+        else np.zeros(len(t))
+    # A point beyond its front point's centre of curvature (a domain too large
+    # for the curvature; the domains are clipped to avoid it) gets the
+    # curvature that puts it at a tenth of the way: the kernel needs
+    # 1 + kappa x1 > 0.
+    x1 = np.einsum("ni,ni->n", np.asarray(points, dtype=float) - p["x"], p["frame"][:, 0])
+    bad = 1.0 + kap * x1 < 0.1
+    kap[bad] = -0.9 / x1[bad]
+    p["curvature"] = kap
+    p["curvature_clamped"] = bad
+    return p
+
+
+def _stations(model, crack: int, spacing: float | None) -> list[dict]:
+    """Front points along every piece: crack, piece, s, closed, length, hat."""
+    fr = crack_front(model, crack)
+    h = float(np.median(fr.segment_size)) if len(fr.segment_size) else 0.0
+    step = spacing if spacing else HAT_ELEMENTS * h
+    out = []
+    for k in range(len(fr.closed)):
+        L = float(fr.length[k])
+        if L <= 0.0:
+            continue
+        if fr.closed[k]:
+            n = max(MIN_POINTS_CLOSED, int(round(L / step)))
+            svals = np.arange(n) * (L / n)
+        else:
+            n = max(1, int(round(L / step)))
+            svals = np.linspace(0.0, L, n + 1)
+        hat = L / n
+        for j, sv in enumerate(svals):
+            out.append({"piece": k, "s": float(sv), "closed": bool(fr.closed[k]), "length": L, "hat": hat,
+                        "end": (not fr.closed[k]) and (j == 0 or j == len(svals) - 1),
+                        "end_on_boundary": (not fr.closed[k]) and (
+                            (j == 0 and fr.on_boundary[fr.offsets[k]]) or
+                            (j == len(svals) - 1 and fr.on_boundary[fr.offsets[k + 1] - 1]))})
+    return out
+
+
+def _point_at(fr: Front, piece: int, s: float) -> np.ndarray:
+    idx = np.arange(fr.offsets[piece], fr.offsets[piece + 1])
+    xs, ss = fr.x[idx], fr.s[idx]
+    if fr.closed[piece]:
+        xs = np.vstack([xs, xs[:1]])
+        ss = np.concatenate([ss, [fr.length[piece]]])
+    return np.array([np.interp(s, ss, xs[:, i]) for i in range(3)])
+
+
+def front_points(model, crack: int, requested: float | None = None, spacing: float | None = None
+                 ) -> list[FrontPoint]:
+    """The front points of a crack and their SIF domains (module doc).
+    requested: the largest domain's radius (None or 0: Options.sif_radius,
+    else DEFAULT_ELEMENTS element sizes at each point); spacing: distance
+    between front points (default HAT_ELEMENTS element sizes)."""
+    if requested is not None and not (isinstance(requested, (int, float, np.floating))
+                                      and math.isfinite(requested) and requested > 0.0):
+        raise InputError(f"the SIF domain radius must be a finite number > 0, got {requested!r}")
+    if requested is None:
+        requested = model.scene.options.sif_radius or None
+    fr = crack_front(model, crack)
+    if fr.segments.size == 0:
+        return []
+    name = model.cracks[crack].crack.name
+    st = _stations(model, crack, spacing)
+    xs = np.array([_point_at(fr, d["piece"], d["s"]) for d in st])
+    pr = project(model, crack, xs)
+    # The front's own segments within each hat: element size and curvature.
+    seg_mid_s = 0.5 * (fr.s[fr.segments[:, 0]] + fr.s[fr.segments[:, 1]])
+    seg_len = np.linalg.norm(fr.x[fr.segments[:, 1]] - fr.x[fr.segments[:, 0]], axis=1)
+    # closing segment of a loop: its middle arc length
+    for k in np.flatnonzero(fr.closed):
+        last = fr.offsets[k + 1] - 1
+        closing = np.flatnonzero((fr.segments[:, 0] == last) & (fr.segments[:, 1] == fr.offsets[k]))
+        seg_mid_s[closing] = fr.s[last] + 0.5 * seg_len[closing]
+    seg_piece = fr.piece[fr.segments[:, 0]]
+    # Obstacles: boundary nodes near the front, other cracks' lip points.
+    wanted_max = max(requested or 0.0, DEFAULT_ELEMENTS * float(fr.segment_size.max()))
+    reach = wanted_max + 2.0 * max(d["hat"] for d in st) + float(fr.segment_size.max())
+    bnodes = boundary_nodes(model)
+    near_b = np.unique(np.concatenate([np.asarray(i, dtype=np.int64) for i in
+                                       scipy.spatial.cKDTree(model.x[bnodes]).query_ball_point(fr.x, reach)]
+                                      + [np.zeros(0, np.int64)]))
+    bpr = project(model, crack, model.x[bnodes[near_b]]) if near_b.size else None
+    others = [ci for ci in range(len(model.cracks)) if ci != crack]
+    other_pts = [(ci, np.vstack([lip_points(model, ci)["x"], np.asarray(model.geometries[ci].front["x"])]))
+                 for ci in others]
+    out = []
+    for k, d in enumerate(st):
+        piece, s0, hat, L = d["piece"], d["s"], d["hat"], d["length"]
+        xk = pr["x"][k]
+        where = f"front point {k} of crack {name!r} at ({xk[0]:.6g}, {xk[1]:.6g}, {xk[2]:.6g})"
+        in_hat = (seg_piece == piece) & (np.abs(_wrap(seg_mid_s - s0, L, d["closed"])) <= hat + 0.5 * seg_len)
+        if not np.any(in_hat):
+            in_hat = seg_piece == piece
+        h = float(np.mean(fr.segment_size[in_hat]))
+        wanted = float(requested) if requested else DEFAULT_ELEMENTS * h
+        # The curvature of the front wherever the domain's points may project:
+        # the front within its reach (the hat, the radius, an element).
+        near = fr.piece == piece
+        near &= np.linalg.norm(fr.x - xk, axis=1) <= hat + wanted + 2.0 * h
+        kap = float(np.abs(fr.curvature[near]).max()) if np.any(near) else 0.0
+        obstacles = []
+        if kap > 0:
+            obstacles.append((min(CURVATURE_FRACTION / kap, 0.95 / kap - h),
+                              f"{CURVATURE_FRACTION:g} of the front's radius of curvature ({1 / kap:.3g})"))
+        if bpr is not None:
+            same = bpr["piece"] == piece
+            ds = _wrap(bpr["s"] - s0, L, d["closed"])
+            weight = np.clip(1.0 - np.abs(ds) / hat, 0.0, 1.0)
+            hit = same & (weight >= 0.05)
+            if d["end_on_boundary"]:  # the free surface the front meets is not an obstacle
+                end_s = 0.0 if s0 == 0.0 else L
+                hit &= np.abs(bpr["s"] - end_s) > h
+            if np.any(hit):
+                obstacles.append((float(bpr["distance"][hit].min()) - h, "the boundary of the part"))
+        for ci, pts in other_pts:
+            dist = float(np.linalg.norm(pts - xk, axis=1).min())
+            obstacles.append((dist - hat - h, f"crack {model.cracks[ci].crack.name!r}"))
+        # The own front where it comes back (a thin crack): front vertices
+        # off the hat whose distance is less than their arc-length distance.
+        own = fr.piece == piece
+        dso = np.abs(_wrap(fr.s[own] - s0, L, d["closed"]))
+        dxo = np.linalg.norm(fr.x[own] - xk, axis=1)
+        back = dso > hat + 2.0 * dxo
+        if np.any(back):
+            obstacles.append((0.5 * (float(dxo[back].min()) - hat), f"the opposite part of the front of crack {name!r}"))
+        clearance, obstacle = min(obstacles, key=lambda o: o[0]) if obstacles else (math.inf, "")
+        least = 2.0 * h  # the smallest domain (half the largest) spans an element
+        warnings: list[str] = []
+        clear = clearance >= least
+        if not clear:
+            radius = least
+            warnings.append(f"{where}: no SIF domain of at least one element ({h:.3g}) fits between the front and "
+                            f"{obstacle} ({clearance:.3g} away); K there is computed on a domain of radius "
+                            f"{radius:.3g} that reaches it and is NOT reliable: refine the mesh at the front")
+        elif wanted < least:
+            radius = least
+            warnings.append(f"{where}: sif_radius {wanted:.3g} is below two elements ({h:.3g}) there; K uses "
+                            f"domains up to radius {radius:.3g}")
+        else:
+            radius = min(wanted, clearance)
+        radii = tuple(float(f * radius) for f in DOMAIN_FRACTIONS)
+        out.append(FrontPoint(crack, k, piece, d["closed"], s0, L, xk.copy(), pr["frame"][k].copy(), hat,
+                              float(pr["curvature"][k]), h, bool(d["end_on_boundary"]), float(clearance),
+                              obstacle, float(radius), radii, float(requested) if requested else None, clear,
+                              warnings))
+    return out
+
+
+# -- the integrals ----------------------------------------------------------
+def _plain_rules() -> dict[int, tuple[np.ndarray, np.ndarray]]:
+    return {d: (lambda r: (r["points"], r["weights"]))(_cracklip.tetrahedron_rule(d)) for d in set(PLAIN_DEGREES)}
+
+
+def _quadrature(solution, crack: int, cells: np.ndarray, node_r: np.ndarray) -> dict[str, np.ndarray]:
+    """Quadrature points of cells: cell, ref, x, weight, side."""
+    m = solution.model
+    enriched = np.zeros(m.cells.shape[0], dtype=bool)
+    enriched[np.asarray(m.layout.cells, dtype=np.int32)] = True
+    parts = []
+    ec = cells[enriched[cells]]
+    if ec.size:
+        opts = m.scene.options.quadrature_options_3d()
+        opts.degree = max(opts.degree, ENRICHED_DEGREE)
+        opts.far_degree = max(opts.far_degree, FAR_DEGREE)
+        q = _cracklip.compute_enriched_cell_quadrature_3d(m.x, m.cells, m.layout, m.geometries, ec, opts)
+        parts.append({"cell": q["cell"], "ref": q["ref"], "weight": q["weight"], "side": q["side"]})
+    pc = cells[~enriched[cells]]
+    if pc.size:
+        xv = m.x[m.cells[pc]]
+        diam = cell_sizes(m, pc) * 1.5
+        rho = node_r[m.cells[pc]].min(axis=1) / diam
+        level = np.where(rho < 1.0, 0, np.where(rho < 2.0, 1, 2))
+        rules = _plain_rules()
+        for lv, deg in enumerate(PLAIN_DEGREES):
+            sel = level == lv
+            if not np.any(sel):
+                continue
+            ref, w = rules[deg]
+            c = pc[sel]
+            e = xv[sel, 1:] - xv[sel, :1]
+            detJ = np.abs(np.einsum("ci,ci->c", e[:, 0], np.cross(e[:, 1], e[:, 2])))
+            parts.append({"cell": np.repeat(c, len(w)).astype(np.int32), "ref": np.tile(ref, (len(c), 1)),
+                          "weight": (detJ[:, None] * w[None, :]).ravel(),
+                          "side": np.zeros(len(c) * len(w), dtype=np.int8)})
+    out = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+    N = np.column_stack([1.0 - out["ref"].sum(axis=1), out["ref"]])
+    out["x"] = np.einsum("na,nai->ni", N, m.x[m.cells[out["cell"]]])
+    return out
+
+
+def _frames12(pr: dict) -> np.ndarray:
+    return np.ascontiguousarray(np.concatenate([pr["x"], pr["frame"].reshape(-1, 9)], axis=1))
+
+
+def _shape_gradients(model, cells: np.ndarray) -> np.ndarray:
+    """(c, 4, 3) gradients of the P1 shape functions of cells."""
+    xv = model.x[model.cells[cells]]
+    J = np.transpose(xv[:, 1:] - xv[:, :1], (0, 2, 1))
+    dN = np.array([[-1.0, -1.0, -1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+    return np.einsum("ab,cbi->cai", dN, np.linalg.inv(J))
+
+
+def _body_force(solution) -> np.ndarray | None:
+    scene = solution.model.scene
+    if scene.body_force is None or not np.any(scene.body_force):
+        return None
+    f = solution.factor(scene.body_force_group) * np.asarray(scene.body_force, dtype=float).reshape(3)
+    return f if np.any(f) else None
+
+
+def _node_q(nd: dict, fp: FrontPoint, radius: float) -> np.ndarray:
+    """q of a front point's domain of one radius at the tube's nodes."""
+    ds = _wrap(nd["s"] - fp.s, fp.length, fp.closed)
+    qs = np.clip(1.0 - np.abs(ds) / fp.hat, 0.0, 1.0) * (nd["piece"] == fp.piece)
+    r_in = R_IN_FRACTION * radius
+    qr = np.clip((radius - nd["r"]) / (radius - r_in), 0.0, 1.0)
+    return qs * qr
+
+
+def _front_normalisation(model, fr: Front, fp: FrontPoint, qnode_full: typing.Callable[[np.ndarray], np.ndarray]
+                         ) -> float:
+    """int q (e1 . d) ds along the front polyline (3 Gauss points per segment)."""
+    seg = fr.segments[fr.piece[fr.segments[:, 0]] == fp.piece]
+    a, b = fr.x[seg[:, 0]], fr.x[seg[:, 1]]
+    g = np.array([0.5 - math.sqrt(15) / 10, 0.5, 0.5 + math.sqrt(15) / 10])
+    wg = np.array([5.0, 8.0, 5.0]) / 18.0
+    cells = fr.segment_cell[fr.piece[fr.segments[:, 0]] == fp.piece]
+    pts = (a[:, None, :] * (1 - g)[None, :, None] + b[:, None, :] * g[None, :, None]).reshape(-1, 3)
+    e1 = (fr.frame[seg[:, 0], 0][:, None, :] * (1 - g)[None, :, None]
+          + fr.frame[seg[:, 1], 0][:, None, :] * g[None, :, None]).reshape(-1, 3)
+    e1 /= np.linalg.norm(e1, axis=1)[:, None]
+    c = np.repeat(cells, 3)
+    xv = model.x[model.cells[c]]
+    J = np.transpose(xv[:, 1:] - xv[:, :1], (0, 2, 1))
+    ref = np.linalg.solve(J, (pts - xv[:, 0])[:, :, None])[:, :, 0]
+    N = np.column_stack([1.0 - ref.sum(axis=1), ref])
+    q = np.einsum("na,na->n", N, qnode_full(model.cells[c]))
+    w = (np.linalg.norm(b - a, axis=1)[:, None] * wg[None, :]).ravel()
+    return float(np.sum(w * q * (e1 @ fp.frame[0])))
+
+
+def crack_front_sifs(solution, crack: int, radius: float | None = None) -> tuple[list[FrontPoint], np.ndarray]:
+    """K (num_points, num_domains, 3) at every front point of a crack on every
+    domain, with the front points."""
+    m = solution.model
+    mat = m.scene.material
+    E, nu = mat.E, mat.nu
+    lam = E * nu / ((1 + nu) * (1 - 2 * nu))
+    mu = E / (2 * (1 + nu))
+    Ep = E / (1 - nu * nu)
+    fps = front_points(m, crack, radius)
+    if not fps:
+        return fps, np.zeros((0, len(DOMAIN_FRACTIONS), 3))
+    fr = crack_front(m, crack)
+    # The tube: nodes within the largest radius of the front (+ an element).
+    rmax = max(fp.radius for fp in fps) + float(fr.segment_size.max())
+    tree = node_tree(m)
+    samples = fr.x
+    seg_len = np.linalg.norm(fr.x[fr.segments[:, 1]] - fr.x[fr.segments[:, 0]], axis=1)
+    reach = rmax + 0.5 * float(seg_len.max())
+    nodes = np.unique(np.concatenate([np.asarray(i, dtype=np.int64) for i in tree.query_ball_point(samples, reach)]))
+    npr = project(m, crack, m.x[nodes])
+    tube_index = -np.ones(m.x.shape[0], dtype=np.int64)
+    tube_index[nodes] = np.arange(len(nodes))
+    nd = {"s": npr["s"], "piece": npr["piece"], "r": npr["distance"]}
+    node_r = np.full(m.x.shape[0], np.inf)
+    node_r[nodes] = npr["distance"]
+    body = _body_force(solution)
+    crk = m.cracks[crack].crack
+    pressure = (callable(crk.pressure) or crk.pressure != 0.0) and solution.factor(crk.pressure_group) != 0.0
+    lips = lip_points(m, crack)
+    K = np.zeros((len(fps), len(DOMAIN_FRACTIONS), 3))
+    # Per front point: its nodal q (one column per domain) and its cells.
+    qn, cells_of = [], []
+    for fp in fps:
+        q = np.stack([_node_q(nd, fp, r) for r in fp.radii], axis=1)
+        qn.append(q)
+        cells_of.append(cells_of_nodes(m, nodes[q[:, -1] > 0.0]))
+    # Chunks of consecutive front points, bounded by their cells.
+    order = list(range(len(fps)))
+    chunk: list[int] = []
+    est = 0
+
+    def run(chunk: list[int]) -> None:
+        cells = np.unique(np.concatenate([cells_of[i] for i in chunk]))
+        qp = _quadrature(solution, crack, cells, node_r)
+        _, grad = solution._evaluate(qp["cell"], qp["ref"], qp["side"], gradient=True)
+        pr = project(m, crack, qp["x"])
+        T, D = _cracklip.interaction_integrand_3d(E, nu, _frames12(pr), np.ascontiguousarray(pr["curvature"]),
+                                                  np.ascontiguousarray(qp["x"]), np.ascontiguousarray(grad),
+                                                  np.ascontiguousarray(qp["side"], dtype=np.int8),
+                                                  None if body is None else tuple(body))
+        pc = np.searchsorted(cells, qp["cell"])
+        dN = _shape_gradients(m, cells)                                    # (c, 4, 3)
+        Nq = np.column_stack([1.0 - qp["ref"].sum(axis=1), qp["ref"]])     # (n, 4)
+        conn = tube_index[m.cells[cells]]                                   # (c, 4), -1 outside the tube
+        # Lip points in these cells.
+        lip_on = np.isin(lips["cell"], cells)
+        lp = {k: v[lip_on] for k, v in lips.items()}
+        lip_terms = None
+        if len(lp["weight"]):
+            lip_terms = _lip_terms(solution, crack, lp, E, nu, lam, mu, pressure)
+            lpc = np.searchsorted(cells, lp["cell"])
+            Nl = np.column_stack([1.0 - lp["ref"].sum(axis=1), lp["ref"]])
+        for i in chunk:
+            fp = fps[i]
+            d = fp.frame[0]
+            mine = np.zeros(len(cells), dtype=bool)
+            mine[np.searchsorted(cells, cells_of[i])] = True
+            sel = mine[pc]
+            qc = np.where(conn[:, :, None] >= 0, qn[i][np.maximum(conn, 0)], 0.0)   # (c, 4, domains)
+            gq_cell = np.einsum("cad,cai->cdi", qc, dN)                                # (c, domains, 3)
+            gq = gq_cell[pc[sel]]                                                     # (p, domains, 3)
+            qv = np.einsum("pa,pad->pd", Nq[sel], qc[pc[sel]])                        # (p, domains)
+            Td = np.einsum("pmjl,l->pmj", T[sel], d)
+            Dd = np.einsum("pml,l->pm", D[sel], d)
+            w = qp["weight"][sel]
+            I = np.einsum("p,pdj,pmj->dm", w, gq, Td) + np.einsum("p,pd,pm->dm", w, qv, Dd)
+            if lip_terms is not None:
+                ql = np.einsum("pa,pad->pd", Nl, qc[lpc])                             # (l, domains)
+                I -= np.einsum("p,pd,pml,l->dm", lp["weight"], ql, lip_terms, d)
+            Q = np.array([_front_normalisation(m, fr, fp, lambda cn, i=i, j=j: np.where(
+                tube_index[cn] >= 0, qn[i][np.maximum(tube_index[cn], 0), j], 0.0)) for j in range(len(fp.radii))])
+            if np.any(Q <= 0.0):
+                raise InputError(f"front point {fp.index} of crack {crk.name!r}: its q-function vanishes along the "
+                                 "front (no mesh node within its hat); use a larger spacing")
+            K[i, :, 0] = 0.5 * Ep * I[:, 0] / Q
+            K[i, :, 1] = 0.5 * Ep * I[:, 1] / Q
+            K[i, :, 2] = mu * I[:, 2] / Q
+
+    for i in order:
+        n_est = len(cells_of[i]) * 60
+        if chunk and est + n_est > CHUNK_POINTS:
+            run(chunk)
+            chunk, est = [], 0
+        chunk.append(i)
+        est += n_est
+    if chunk:
+        run(chunk)
+    if HAT_CORRECTION:
+        K = _hat_correction(fps, K)
+    return fps, K
+
+
+def _hat_correction(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
+    """K_k - (K_k+1 - 2 K_k + K_k-1) / 12 along each piece (HAT_CORRECTION)."""
+    out = K.copy()
+    pieces = np.array([fp.piece for fp in fps])
+    for p in np.unique(pieces):
+        idx = np.flatnonzero(pieces == p)
+        n = len(idx)
+        closed = fps[idx[0]].closed
+        if n < 3:
+            continue
+        for j in range(n):
+            if not closed and (j == 0 or j == n - 1):
+                continue
+            a, b = idx[(j - 1) % n], idx[(j + 1) % n]
+            if fps[a].free_surface or fps[b].free_surface:
+                continue
+            out[idx[j]] = K[idx[j]] - (K[a] - 2.0 * K[idx[j]] + K[b]) / 12.0
+    return out
+
+
+def _lip_terms(solution, crack: int, lp: dict, E: float, nu: float, lam: float, mu: float, pressure: bool
+               ) -> np.ndarray:
+    """Per lip point (n, mode, l): the lip integrand per unit q and
+    virtual-extension direction d_l, t . [grad u_aux]_l + sum_lips t_aux .
+    grad u_l (subtracted by the caller)."""
+    m = solution.model
+    n = len(lp["weight"])
+    pr = project(m, crack, lp["x"])
+    fr12, curv = _frames12(pr), np.ascontiguousarray(pr["curvature"])
+    out = np.zeros((n, 3, 3))
+    normal = lp["normal"]
+    p = None
+    if pressure:
+        crk = m.cracks[crack].crack
+        p = solution.factor(crk.pressure_group) * lip_pressure(crk, lp["x"])
+    for side in (1, -1):
+        sides = np.full(n, side, dtype=np.int8)
+        aux = _cracklip.auxiliary_fields_3d(E, nu, fr12, curv, np.ascontiguousarray(lp["x"]), sides)
+        G = aux["G"]                                              # (n, mode, i, l)
+        n_out = -side * normal                                     # outward normal of the side's material
+        if p is not None:  # the pressure's traction on this lip: -p n_out
+            t = -p[:, None] * n_out
+            out += np.einsum("ni,nmil->nml", t, G)
+        # the auxiliary field's traction on this lip (curvature terms) times grad u there
+        _, g = solution._evaluate(lp["cell"], lp["ref"], sides, gradient=True)
+        eps = 0.5 * (G + np.swapaxes(G, 2, 3))
+        tr = np.trace(eps, axis1=2, axis2=3)
+        sig = 2 * mu * eps + lam * tr[:, :, None, None] * np.eye(3)
+        ta = np.einsum("nmij,nj->nmi", sig, n_out)
+        out += np.einsum("nmi,nil->nml", ta, g)
+    return out
+
+
+def natural_k(solution) -> float:
+    """A K that the loads could make: E' max|u| / sqrt(L) (L the part's size)."""
+    m = solution.model
+    size = float(np.ptp(m.x, axis=0).max())
+    return m.scene.material.E_star * float(np.abs(solution.standard_displacement).max()) / math.sqrt(size)
+
+
+def compute_front_sifs(solution, radius: float | None = None, cracks: typing.Sequence[int] | None = None
+                       ) -> tuple[list[dict[str, typing.Any]], list[str]]:
+    """K_I, K_II, K_III with their spreads at every front point of the given
+    cracks (all by default), and the warnings about them. Each row: crack,
+    crack_name, point, piece, s, x, y, z, parametric_angle (elliptical
+    cracks, else None), K_I, K_II, K_III, K_I_spread, K_II_spread,
+    K_III_spread, G, mode_mix_deg, radius, radii, element_size, hat,
+    curvature, limited_by, free_surface, domain_clear, direction, normal."""
+    m = solution.model
+    mat = m.scene.material
+    Ep, mu = mat.E / (1 - mat.nu ** 2), mat.E / (2 * (1 + mat.nu))
+    cracks = range(len(m.cracks)) if cracks is None else cracks
+    raw = []
+    for ci in cracks:
+        fps, K = crack_front_sifs(solution, ci, radius)
+        raw.append((ci, fps, K))
+    norms = [float(np.linalg.norm(K[:, -1], axis=1).max()) for _, _, K in raw if len(K)]
+    nat = natural_k(solution)
+    scale = max(norms + [1e-3 * nat, 1e-300])
+    rows, warnings = [], []
+    for ci, fps, K in raw:
+        crk = m.cracks[ci].crack
+        spreads = np.ptp(K, axis=1) if len(K) else np.zeros((0, 3))
+        bad = [i for i, fp in enumerate(fps) if fp.clear and spreads[i].max() > SPREAD_WARNING * scale]
+        for fp in fps:
+            warnings += fp.warnings
+        if bad:
+            worst = max(bad, key=lambda i: spreads[i].max())
+            fp = fps[worst]
+            warnings.append(
+                f"crack {crk.name!r}: K varies with the SIF domain by more than {SPREAD_WARNING * 100:g} % of the K "
+                f"scale {scale:.4g} at {len(bad)} of {len(fps)} front points, up to {spreads[worst].max() / scale * 100:.2g} "
+                f"% at front point {worst} (s = {fp.s:.4g}, x = ({fp.x[0]:.4g}, {fp.x[1]:.4g}, {fp.x[2]:.4g}); K_I "
+                f"{', '.join(f'{v:.5g}' for v in K[worst, :, 0])} on radii "
+                f"{', '.join(f'{r:.3g}' for r in fp.radii)}): the field near the front is not resolved (element "
+                f"{fp.element_size:.3g}); refine the mesh at the front (FrontRefinement h_front) or enlarge the "
+                "enrichment radius")
+        for i, fp in enumerate(fps):
+            kI, kII, kIII = (float(v) for v in K[i, -1])
+            shear = math.hypot(kII, kIII)
+            mix = math.degrees(math.atan2(shear, kI)) if math.hypot(kI, shear) > 1e-6 * nat else None
+            rows.append({
+                "crack": ci, "crack_name": crk.name, "point": fp.index, "piece": fp.piece, "s": fp.s,
+                "x": float(fp.x[0]), "y": float(fp.x[1]), "z": float(fp.x[2]),
+                "parametric_angle": (float(crk.parametric_angle(fp.x[None])[0])
+                                     if isinstance(crk, EllipticalCrack) else None),
+                "K_I": kI, "K_II": kII, "K_III": kIII,
+                "K_I_spread": float(spreads[i, 0]), "K_II_spread": float(spreads[i, 1]),
+                "K_III_spread": float(spreads[i, 2]),
+                "G": kI ** 2 / Ep + kII ** 2 / Ep + kIII ** 2 / (2 * mu), "mode_mix_deg": mix,
+                "radius": fp.radius, "radii": list(fp.radii), "element_size": fp.element_size, "hat": fp.hat,
+                "curvature": fp.curvature,
+                "limited_by": fp.obstacle if fp.limited or not fp.clear else None,
+                "free_surface": fp.free_surface, "domain_clear": fp.clear,
+                "direction": fp.frame[0].tolist(), "normal": fp.frame[1].tolist()})
+    return rows, warnings
+
+
+__all__ = ["FrontPoint", "front_points", "crack_front_sifs", "compute_front_sifs", "DEFAULT_ELEMENTS",
+           "DOMAIN_FRACTIONS", "SPREAD_WARNING"]

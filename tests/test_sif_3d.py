@@ -1,0 +1,135 @@
+"""K_I, K_II, K_III along 3D crack fronts (issue 28) on small meshes.
+
+A penny crack of radius 1 in a box of half-width 4 (E = 1, nu = 0.3),
+a / h_front = 6, sizes growing by 0.1 per unit distance up to 1, vector
+front functions within 0.25 of the front: 3.6e4 dofs, 9 front points.
+Measured there (remote tension 1): K_I +0.63 % above 2 sigma sqrt(a/pi) on
+average (RMS 0.65 %, max 0.91 %: the box of half-width 4 raises K by about
+that much; demos/front_sifs.py converges the penny to 0.15 % RMS at a/h = 20
+in a box of half-width 10), |K_II| <= 1.6e-3 and |K_III| <= 0.7e-3 of K.
+A wrong method (no curvature terms, a wrong normalisation, a wrong sign)
+moves K by several per cent.
+"""
+from __future__ import annotations
+
+import csv
+import json
+import math
+import pathlib
+
+import numpy as np
+import pytest
+
+import cracklip as cl
+from cracklip import cli
+from cracklip.exact.embedded_cracks import inclined_penny_k, penny_k
+from cracklip.io.front_outputs import FRONT_COLUMNS
+from cracklip.scene.crack_surface import EllipticalCrack
+from cracklip.scene.mesh_3d import create_box, crack_refinements
+
+L, H_FAR, N = 4.0, 1.0, 6
+K0 = penny_k(1.0, 1.0)
+SCENES = pathlib.Path(__file__).resolve().parents[1] / "demos" / "scenes"
+
+
+def penny(beta: float = 90.0, pressure: float = 0.0, tension: float = 1.0) -> cl.Scene:
+    b = math.radians(beta)
+    normal = (0.0, 0.0, 1.0) if beta == 90.0 else (math.cos(b), 0.0, math.sin(b))
+    crack = EllipticalCrack((0.0, 0.0, 0.0), normal, 1.0, axis=(0.0, 1.0, 0.0), name="penny", pressure=pressure)
+    mesh = create_box(-L, -L, -L, L, L, L, H_FAR, fronts=crack_refinements([crack], 1.0 / N, H_FAR, growth=0.1))
+    tractions = [cl.Traction("zmax", (0.0, 0.0, tension)), cl.Traction("zmin", (0.0, 0.0, -tension))] if tension \
+        else []
+    return cl.Scene(mesh, cl.Material(1.0, 0.3), cracks=[crack],
+                    dirichlet=[cl.Dirichlet((-L, -L, -L)), cl.Dirichlet((L, -L, -L), 1),
+                               cl.Dirichlet((L, -L, -L), 2), cl.Dirichlet((-L, L, -L), 2)],
+                    tractions=tractions, options=cl.Options(enrichment="vector", radius=0.25, solver="iterative"))
+
+
+def sifs(scene) -> tuple[list[dict], np.ndarray]:
+    rows = cl.solve(scene).stress_intensity_factors(0)
+    return rows, np.array([[r["K_I"], r["K_II"], r["K_III"]] for r in rows])
+
+
+@pytest.fixture(scope="module")
+def tension():
+    return sifs(penny())
+
+
+def test_penny_tension(tension):
+    """K_I at every front point near 2 sigma sqrt(a/pi) (measured +0.63 % on
+    average, 0.91 % at worst: asserted within [0.2, 1.2] %), K_II, K_III
+    below 2.5e-3 of K, each K with its three domains' spread below 1 %."""
+    rows, K = tension
+    assert len(rows) >= 8
+    e = K[:, 0] / K0 - 1.0
+    assert 0.002 < e.mean() < 0.010, e
+    assert np.abs(e).max() < 0.012, e
+    assert np.abs(K[:, 1:]).max() < 2.5e-3 * K0
+    for r in rows:
+        assert r["K_I_spread"] < 0.01 * K0 and r["K_II_spread"] >= 0.0 and r["K_III_spread"] >= 0.0
+        assert not r["free_surface"] and r["domain_clear"]
+        assert r["G"] == pytest.approx((1 - 0.09) * (r["K_I"] ** 2 + r["K_II"] ** 2) + 1.3 * r["K_III"] ** 2)
+
+
+def test_lip_pressure_equals_remote_tension(tension):
+    """Superposition: a pressure 1 on the lips with no remote load gives the
+    K of remote tension 1 (measured within 0.05 %; asserted 0.5 %)."""
+    _, K_t = tension
+    _, K_p = sifs(penny(pressure=1.0, tension=0.0))
+    assert np.abs(K_p[:, 0] - K_t[:, 0]).max() < 0.005 * K0
+    assert np.abs(K_p[:, 1:]).max() < 2.5e-3 * K0
+
+
+def test_inclined_penny_modes():
+    """beta = 45 degrees: K_II follows cos(omega) and K_III sin(omega) with
+    the closed form's signs (omega from the shear direction s towards n x s),
+    each within 2 % of the K scale on this mesh; a sign or mode mix-up would
+    be off by the whole amplitude."""
+    beta = math.radians(45.0)
+    n = np.array([math.cos(beta), 0.0, math.sin(beta)])
+    rows, K = sifs(penny(beta=45.0))
+    z = np.array([0.0, 0.0, 1.0])
+    s = z - (z @ n) * n
+    s /= np.linalg.norm(s)
+    t = np.cross(n, s)
+    x = np.array([[r["x"], r["y"], r["z"]] for r in rows])
+    omega = np.arctan2(x @ t, x @ s)
+    Kx = np.column_stack(inclined_penny_k(1.0, beta, 1.0, 0.3, omega))
+    scale = np.linalg.norm(Kx, axis=1).max()
+    # The shapes: least-squares amplitudes of cos and sin.
+    a_II = np.sum(K[:, 1] * np.cos(omega)) / np.sum(np.cos(omega) ** 2)
+    a_III = np.sum(K[:, 2] * np.sin(omega)) / np.sum(np.sin(omega) ** 2)
+    assert a_II == pytest.approx(4 * 0.5 * math.sqrt(1 / math.pi) / 1.7, rel=0.03)
+    assert a_III == pytest.approx(4 * 0.7 * 0.5 * math.sqrt(1 / math.pi) / 1.7, rel=0.03)
+    assert np.abs(K - Kx).max() < 0.02 * scale
+
+
+def test_surface_crack_front_outputs(tmp_path):
+    """The shipped surface-crack scene on a coarse mesh: front.csv with its
+    columns, results.json's sifs with spreads, the points where the front
+    meets the free face flagged, and the coarse front warned about."""
+    args = ["run", str(SCENES / "surface_crack_plate.toml"), "--out", str(tmp_path), "--quiet"]
+    for o in ("mesh.h=8.0", "mesh.tip_h=0.6", "mesh.crack_h=0.0", "options.radius=1.2"):
+        args += ["--set", o]
+    assert cli.main(args) == 0
+    with (tmp_path / "front.csv").open() as f:
+        reader = csv.DictReader(f)
+        assert reader.fieldnames == FRONT_COLUMNS
+        rows = list(reader)
+    res = json.loads((tmp_path / "results.json").read_text())
+    assert len(res["sifs"]) == len(rows) >= 5
+    for key in ("front_sifs.png", "front_sifs.vtu", "front.csv"):
+        assert key in res["files"] and (tmp_path / key).exists()
+    free = [int(r["free_surface"]) for r in rows]
+    assert free[0] == 1 and free[-1] == 1 and sum(free) == 2
+    for r in res["sifs"]:
+        assert {"K_I_spread", "K_II_spread", "K_III_spread"} <= set(r)
+        assert r["parametric_angle"] is not None
+    # The deepest front point: K_I within 10 % of Newman-Raju's at its
+    # angle on this coarse mesh (a / h_front = 5).
+    from cracklip.exact.newman_raju import surface_crack_k
+    deep = min(res["sifs"], key=lambda r: r["y"])
+    phi = math.atan2(abs(math.sin(deep["parametric_angle"])), abs(math.cos(deep["parametric_angle"])))
+    assert deep["K_I"] == pytest.approx(float(surface_crack_k(100.0, 3.0, 5.0, 10.0, 20.0, phi)), rel=0.10)
+    codes = [w for w in res["warnings"] if "SIF domain" in w["message"] or "K varies" in w["message"]]
+    assert codes, res["warnings"]
