@@ -4,8 +4,9 @@ domains per point, and their spread.
 
 Front points. Each piece of a crack's front (a closed loop, or an open
 polyline between two points of the part's boundary) carries front points at
-equal arc-length steps of about HAT_ELEMENTS element sizes (a loop: n equal
-steps; an open piece: both ends included). The front is the P1 polyline of
+arc-length steps of about HAT_ELEMENTS element sizes, shortened to the
+front's radius of curvature where that is smaller (HAT_CURVATURE; a loop: n
+steps round it; an open piece: both ends included). The front is the P1 polyline of
 the crack's level sets (CrackGeometry3D.front); a point's frame (e1
 propagation, e2 normal, e3 tangent) is interpolated along it.
 
@@ -16,7 +17,7 @@ by P1 (so that its gradient is constant on a cell and the integrals below
 are the quadrature's of cell-wise smooth integrands):
 
 - q_s the hat along the front between the neighbouring front points
-  (1 at point k, 0 at k - 1 and k + 1);
+  (1 at point k, 0 at k - 1 and k + 1; asymmetric where the steps differ);
 - q_r = 1 for r <= R_IN_FRACTION R, linear to 0 at the domain radius R.
 
 The auxiliary fields of a quadrature point follow the front (the unit-K
@@ -84,11 +85,29 @@ R_IN_FRACTION = 0.0
 #: 2, +-0.08 % with 3; K_II, K_III 4.8e-3, 1.2e-3, 8.6e-4 of K.
 HAT_ELEMENTS = 3.0
 
-#: K on the hat is the hat's average of K along the front, K + K'' l^2 / 12
-#: (l the hat's half-width); the second difference of the neighbours'
-#: averages removes that term (K_k - (K_k+1 - 2 K_k + K_k-1) / 12) where
-#: both neighbours exist and are not free-surface points.
+#: K on the hat is the hat's average of K along the front: with half-widths
+#: l- behind and l+ ahead, K + K' (l+ - l-) / 3 + K'' (l+^2 - l+ l- + l-^2)
+#: / 12 (equal l: K + K'' l^2 / 12); K' and K'' from the neighbours'
+#: averages (non-uniform differences) remove those terms (equal l: K_k -
+#: (K_k+1 - 2 K_k + K_k-1) / 12) where both neighbours exist and are not
+#: free-surface points.
 HAT_CORRECTION = True
+
+#: Where the front curves strongly the hat's half-width also stays below
+#: HAT_CURVATURE radii of curvature rho of the front (rho from the largest
+#: |kappa| within the element-size hat of the point), but not below
+#: MIN_HAT_ELEMENTS element sizes: the front points are spaced by the local
+#: half-width l(s) = clip(HAT_CURVATURE rho, MIN_HAT_ELEMENTS h,
+#: HAT_ELEMENTS h) (equal steps of the integral of ds / l), so that K does
+#: not vary much more across a hat than the K'' correction can remove.
+#: Irwin ellipse b/a = 0.25 (rho = b^2/a at the ends of the major axis, 2.5
+#: elements at h = b/10, 3.5 at b/14; there the fixed hat spans 40 degrees of
+#: parametric angle where K falls by a quarter): max error 2.00 % -> 1.16 %
+#: at b/10, 1.08 % -> 0.77 % at b/14; a fraction 0.75 gave 1.29 % / 0.82 %,
+#: 0.5 gave 1.79 % at b/10 (K_II, K_III scatter 0.8-1 % on hats of 1.25
+#: elements). Fronts with rho >= HAT_ELEMENTS h everywhere keep equal steps.
+HAT_CURVATURE = 1.0
+MIN_HAT_ELEMENTS = 1.0
 
 #: At least this many front points on a closed front.
 MIN_POINTS_CLOSED = 8
@@ -143,7 +162,9 @@ class FrontPoint:
         s: arc length from the start of the piece; length: the piece's length.
         x: (3,) the point, on the front polyline.
         frame: (3, 3) rows e1 (propagation), e2 (normal), e3 (tangent).
-        hat: distance to the neighbouring front points (the hat's half-width).
+        hat: the larger distance to the neighbouring front points (the hat's
+            half-width); hat_before, hat_after: the distances to the previous
+            and the next one (the hat is 1 at the point, 0 at both).
         curvature: the front's curvature there (1/a on a penny of radius a).
         element_size: mean edge of the front's cells within the hat.
         free_surface: the point is an end of an open piece on the part's
@@ -173,6 +194,12 @@ class FrontPoint:
     requested: float | None
     clear: bool
     warnings: list[str] = dataclasses.field(default_factory=list)
+    hat_before: float = 0.0
+    hat_after: float = 0.0
+
+    def __post_init__(self):
+        self.hat_before = self.hat_before or self.hat
+        self.hat_after = self.hat_after or self.hat
 
     @property
     def limited(self) -> bool:
@@ -326,8 +353,49 @@ def project(model, crack: int, points: np.ndarray) -> dict[str, np.ndarray]:
     return p
 
 
+def hat_lengths(curvature: np.ndarray, h: float) -> np.ndarray:
+    """The hat's half-width wanted where the front has these curvatures
+    (element size h): HAT_CURVATURE / |kappa| clipped to [MIN_HAT_ELEMENTS h,
+    HAT_ELEMENTS h]."""
+    kap = np.abs(np.asarray(curvature, dtype=float))
+    rho = np.where(kap > 0.0, HAT_CURVATURE / np.maximum(kap, 1e-300), np.inf)
+    return np.clip(rho, MIN_HAT_ELEMENTS * h, HAT_ELEMENTS * h)
+
+
+def wanted_hats(s: np.ndarray, curvature: np.ndarray, h: float, length: float, closed: bool) -> np.ndarray:
+    """hat_lengths at vertices s of a piece from the largest |curvature|
+    within HAT_ELEMENTS h of each (the hat a point there would span)."""
+    s, kv = np.asarray(s, dtype=float), np.abs(np.asarray(curvature, dtype=float))
+    ds = np.abs(s[:, None] - s[None, :])
+    if closed:
+        ds = np.minimum(ds, length - ds)
+    kmax = np.where(ds <= HAT_ELEMENTS * h, kv[None, :], 0.0).max(axis=1)
+    return hat_lengths(kmax, h)
+
+
+def station_positions(s: np.ndarray, l: np.ndarray, length: float, closed: bool, minimum: int = 1) -> np.ndarray:
+    """Arc lengths of front points along a piece whose vertices at s (from
+    0, increasing) want half-widths l: equal steps of int ds / l (a loop
+    from s = 0 round to length, an open piece with both ends)."""
+    s, l = np.asarray(s, dtype=float), np.asarray(l, dtype=float)
+    if closed:
+        s, l = np.append(s, length), np.append(l, l[0])
+    dens = 1.0 / l
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (dens[1:] + dens[:-1]) * np.diff(s))])
+    if not closed and s[-1] < length:  # the last vertex short of the end
+        cum = np.append(cum, cum[-1] + dens[-1] * (length - s[-1]))
+        s = np.append(s, length)
+    n = max(minimum, int(round(cum[-1])))
+    targets = np.arange(n) * (cum[-1] / n) if closed else np.linspace(0.0, cum[-1], n + 1)
+    out = np.interp(targets, cum, s)
+    if not closed:
+        out[0], out[-1] = 0.0, length
+    return out
+
+
 def _stations(model, crack: int, spacing: float | None) -> list[dict]:
-    """Front points along every piece: crack, piece, s, closed, length, hat."""
+    """Front points along every piece: crack, piece, s, closed, length, hat,
+    hat_before, hat_after."""
     fr = crack_front(model, crack)
     h = float(np.median(fr.segment_size)) if len(fr.segment_size) else 0.0
     step = spacing if spacing else HAT_ELEMENTS * h
@@ -336,19 +404,37 @@ def _stations(model, crack: int, spacing: float | None) -> list[dict]:
         L = float(fr.length[k])
         if L <= 0.0:
             continue
-        if fr.closed[k]:
-            n = max(MIN_POINTS_CLOSED, int(round(L / step)))
-            svals = np.arange(n) * (L / n)
+        closed = bool(fr.closed[k])
+        idx = np.arange(fr.offsets[k], fr.offsets[k + 1])
+        if spacing or HAT_CURVATURE <= 0.0 or len(idx) < 3:
+            if closed:
+                n = max(MIN_POINTS_CLOSED, int(round(L / step)))
+                svals = np.arange(n) * (L / n)
+            else:
+                n = max(1, int(round(L / step)))
+                svals = np.linspace(0.0, L, n + 1)
         else:
-            n = max(1, int(round(L / step)))
-            svals = np.linspace(0.0, L, n + 1)
-        hat = L / n
-        for j, sv in enumerate(svals):
-            out.append({"piece": k, "s": float(sv), "closed": bool(fr.closed[k]), "length": L, "hat": hat,
-                        "end": (not fr.closed[k]) and (j == 0 or j == len(svals) - 1),
-                        "end_on_boundary": (not fr.closed[k]) and (
+            sv = fr.s[idx]
+            svals = station_positions(sv, wanted_hats(sv, fr.curvature[idx], h, L, closed), L, closed,
+                                      MIN_POINTS_CLOSED if closed else 1)
+        n = len(svals)
+        if closed:
+            before = (svals - np.roll(svals, 1)) % L
+            after = (np.roll(svals, -1) - svals) % L
+            if n == 1:
+                before = after = np.array([L])
+        else:
+            gaps = np.diff(svals)
+            before = np.concatenate([gaps[:1], gaps])
+            after = np.concatenate([gaps, gaps[-1:]])
+        for j, sv_ in enumerate(svals):
+            out.append({"piece": k, "s": float(sv_), "closed": closed, "length": L,
+                        "hat": float(max(before[j], after[j])), "hat_before": float(before[j]),
+                        "hat_after": float(after[j]),
+                        "end": (not closed) and (j == 0 or j == n - 1),
+                        "end_on_boundary": (not closed) and (
                             (j == 0 and fr.on_boundary[fr.offsets[k]]) or
-                            (j == len(svals) - 1 and fr.on_boundary[fr.offsets[k + 1] - 1]))})
+                            (j == n - 1 and fr.on_boundary[fr.offsets[k + 1] - 1]))})
     return out
 
 
@@ -458,7 +544,7 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
         out.append(FrontPoint(crack, k, piece, d["closed"], s0, L, xk.copy(), pr["frame"][k].copy(), hat,
                               float(pr["curvature"][k]), h, bool(d["end_on_boundary"]), float(clearance),
                               obstacle, float(radius), radii, float(requested) if requested else None, clear,
-                              warnings))
+                              warnings, d["hat_before"], d["hat_after"]))
     return out
 
 
@@ -527,7 +613,8 @@ def _body_force(solution) -> np.ndarray | None:
 def _node_q(nd: dict, fp: FrontPoint, radius: float) -> np.ndarray:
     """q of a front point's domain of one radius at the tube's nodes."""
     ds = _wrap(nd["s"] - fp.s, fp.length, fp.closed)
-    qs = np.clip(1.0 - np.abs(ds) / fp.hat, 0.0, 1.0) * (nd["piece"] == fp.piece)
+    qs = np.clip(1.0 - np.abs(ds) / np.where(ds < 0.0, fp.hat_before, fp.hat_after), 0.0, 1.0) \
+        * (nd["piece"] == fp.piece)
     r_in = R_IN_FRACTION * radius
     qr = np.clip((radius - nd["r"]) / (radius - r_in), 0.0, 1.0)
     return qs * qr
@@ -659,7 +746,9 @@ def crack_front_sifs(solution, crack: int, radius: float | None = None) -> tuple
 
 
 def _hat_correction(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
-    """K_k - (K_k+1 - 2 K_k + K_k-1) / 12 along each piece (HAT_CORRECTION)."""
+    """K from the hat averages along each piece (HAT_CORRECTION,
+    hat_deconvolve); points at open ends and next to free-surface points keep
+    their averages."""
     out = K.copy()
     pieces = np.array([fp.piece for fp in fps])
     for p in np.unique(pieces):
@@ -668,14 +757,47 @@ def _hat_correction(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
         closed = fps[idx[0]].closed
         if n < 3:
             continue
+        keep = np.zeros(n, dtype=bool)
         for j in range(n):
             if not closed and (j == 0 or j == n - 1):
-                continue
-            a, b = idx[(j - 1) % n], idx[(j + 1) % n]
-            if fps[a].free_surface or fps[b].free_surface:
-                continue
-            out[idx[j]] = K[idx[j]] - (K[a] - 2.0 * K[idx[j]] + K[b]) / 12.0
+                keep[j] = True
+            elif fps[idx[(j - 1) % n]].free_surface or fps[idx[(j + 1) % n]].free_surface:
+                keep[j] = True
+        lm = np.array([fps[i].hat_before for i in idx])
+        lp = np.array([fps[i].hat_after for i in idx])
+        out[idx] = hat_deconvolve(K[idx], lm, lp, closed, keep)
     return out
+
+
+def hat_deconvolve(A: np.ndarray, lm: np.ndarray, lp: np.ndarray, closed: bool, keep: np.ndarray | None = None
+                   ) -> np.ndarray:
+    """K at the front points of a piece from their hat averages A (n, ...):
+    the hat of point k (half-widths lm behind, lp ahead) averages K to K_k +
+    K'_k (lp - lm) / 3 + K''_k (lp^2 - lp lm + lm^2) / 12, K' and K'' the
+    differences of K at k - 1, k, k + 1 on the unequal steps; solved for K
+    (one linear system per piece; equal steps l: (K_k+1 + 10 K_k + K_k-1) /
+    12 = A_k, i.e. K_k = A_k - (A_k+1 - 2 A_k + A_k-1) / 12 to O(l^4)).
+    Points with keep (open ends, next to free-surface points) keep K = A."""
+    n = len(A)
+    keep = np.zeros(n, dtype=bool) if keep is None else np.asarray(keep, dtype=bool)
+    M = np.eye(n)
+    for k in range(n):
+        if keep[k] or (not closed and (k == 0 or k == n - 1)):
+            continue
+        a, c = (k - 1) % n, (k + 1) % n
+        m_, p_ = lm[k], lp[k]
+        c1 = (p_ - m_) / 3.0
+        c2 = (p_ * p_ - p_ * m_ + m_ * m_) / 12.0
+        # K' ~ (m^2 (K_c - K_k) + p^2 (K_k - K_a)) / (m p (m + p)),
+        # K'' ~ 2 ((K_c - K_k) / p - (K_k - K_a) / m) / (m + p)
+        d1 = np.array([-p_ * p_, p_ * p_ - m_ * m_, m_ * m_]) / (m_ * p_ * (m_ + p_))
+        d2 = 2.0 * np.array([1.0 / m_, -1.0 / m_ - 1.0 / p_, 1.0 / p_]) / (m_ + p_)
+        row = c1 * d1 + c2 * d2
+        M[k, a] += row[0]
+        M[k, k] += row[1]
+        M[k, c] += row[2]
+    flat = np.asarray(A, dtype=float).reshape(n, -1)
+    return np.linalg.solve(M, flat).reshape(np.shape(A))
 
 
 def _lip_terms(solution, crack: int, lp: dict, E: float, nu: float, lam: float, mu: float, pressure: bool
