@@ -33,13 +33,16 @@ HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[0] / "python"))
 sys.path.insert(0, str(HERE))
 
-#: dofs of the penny family at a/h = 20 (demos/penny_crack.py): the size
-#: scales as (a/h)^3.
-DOFS_AT_20 = 3.25e5
+#: dofs of the penny family at a/h = 20 (demos/penny_crack.py) with its
+#: enrichment radius 0.25 a, and with a radius of 2 h_front: the size grows
+#: as (a/h)^2.67 (measured between a/h = 20 and 28-29: the far size is fixed).
+DOFS_AT_20 = {None: 3.25e5, "in_h": 3.06e5}
+DOFS_EXPONENT = 2.67
 
 
-def divisions_for(ndofs: float) -> int:
-    return max(6, int(round(20.0 * (ndofs / DOFS_AT_20) ** (1.0 / 3.0))))
+def divisions_for(ndofs: float, radius_in_h: float | None = None) -> int:
+    n20 = DOFS_AT_20[None if radius_in_h is None else "in_h"]
+    return max(6, int(round(20.0 * (ndofs / n20) ** (1.0 / DOFS_EXPONENT))))
 
 
 def _plain(scene) -> dict:
@@ -190,7 +193,7 @@ def main(argv=None) -> dict:
         return {}
     rows = []
     for size in args.sizes:
-        spec = {"n": divisions_for(float(size)), "repeats": args.repeats, "radius_in_h": args.radius_in_h}
+        spec = {"n": divisions_for(float(size), args.radius_in_h), "repeats": args.repeats, "radius_in_h": args.radius_in_h}
         proc = subprocess.run([sys.executable, __file__, "--worker", json.dumps(spec)], capture_output=True,
                               text=True)
         if proc.returncode != 0:
