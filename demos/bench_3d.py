@@ -15,7 +15,8 @@ band set-up, CG; plain: GAMG set-up and CG). t_total: X-FEM model,
 assembly (standard + enriched), loads and solve; plain: DOLFINx assembly
 and solve (the mesh is made once, outside both).
 
-    /usr/bin/python3 demos/bench_3d.py --json results/bench_3d.json
+    /usr/bin/python3 demos/bench_3d.py --json results/bench_3d.json          # radius 2 h_front
+    /usr/bin/python3 demos/bench_3d.py --geometric --json results/b.json    # radius 0.25 a
     /usr/bin/python3 demos/bench_3d.py --sizes 1e5 --repeats 1 --json /tmp/b.json
 """
 from __future__ import annotations
@@ -183,14 +184,19 @@ def main(argv=None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--sizes", nargs="+", default=["1e5", "5e5", "1e6"], help="target X-FEM dofs")
     ap.add_argument("--repeats", type=int, default=3)
-    ap.add_argument("--radius-in-h", type=float, default=None,
-                    help="front enrichment radius in front element sizes (default: penny_crack's 0.25 a)")
+    ap.add_argument("--radius-in-h", type=float, default=2.0,
+                    help="front enrichment radius in front element sizes (default 2)")
+    ap.add_argument("--geometric", action="store_true",
+                    help="penny_crack's fixed radius 0.25 a instead (7.5 front elements at 1e6 dofs: the band's "
+                         "3D torus costs 2.2x plain and 6 GB there, docs/speed.md)")
     ap.add_argument("--json", type=pathlib.Path, default=pathlib.Path("results/bench_3d.json"))
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.worker:
         print(json.dumps(worker(json.loads(args.worker))))
         return {}
+    if args.geometric:
+        args.radius_in_h = None
     rows = []
     for size in args.sizes:
         spec = {"n": divisions_for(float(size), args.radius_in_h), "repeats": args.repeats, "radius_in_h": args.radius_in_h}
