@@ -62,7 +62,7 @@ import numpy as np
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
-from cracklip.exact.embedded_cracks import inclined_penny_k, irwin_k, penny_k  # noqa: E402
+from cracklip.exact.embedded_cracks import inclined_penny_k, irwin_k  # noqa: E402
 from cracklip.exact.newman_raju import surface_crack_k  # noqa: E402
 from cracklip.io.files import write_json  # noqa: E402
 from cracklip.scene.crack_surface import EllipticalCrack  # noqa: E402

@@ -14,7 +14,6 @@ import pathlib
 import sys
 
 import cracklip as cl
-import numpy as np
 import pytest
 from cracklip import cli
 from cracklip.analysis.accuracy import ASSUMED_RATE, SAFETY, Level, estimate, estimate_error

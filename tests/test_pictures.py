@@ -13,7 +13,6 @@ import pathlib
 
 import cracklip as cl
 import numpy as np
-import pytest
 from cracklip import cli
 from cracklip.io.growth_outputs import write_growth_pngs
 from cracklip.io.pictures import RASTER_MIN_TRIANGLES, read_png_axes

@@ -23,7 +23,6 @@ from cracklip.io.scene_file import load_scene_file
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 SCENES = ROOT / "demos" / "scenes"
 sys.path.insert(0, str(ROOT / "demos"))
-from handbook import plate_scene  # noqa: E402
 
 PRESSED = """
 title = "centre crack pressed shut"
