@@ -225,6 +225,35 @@ def enriched_nodes(model: XfemModel) -> list[dict[str, typing.Any]]:
     return list(out.values())
 
 
+def _plain_group(ncells: int, enr_cells: np.ndarray) -> dict[str, typing.Any]:
+    return {"cells": "plain cells (standard block only)", "count": int(ncells - enr_cells.size),
+            "rule": "DOLFINx's rule for the P1 stiffness", "points": None}
+
+
+def _enriched_flags(layout, ncells: int) -> tuple[np.ndarray, np.ndarray]:
+    """(enriched, has_tip): cells with enriched nodes, and those among them
+    with tip (2D) or front (3D) functions, as masks over the mesh's cells."""
+    enr_cells = np.asarray(layout.cells, dtype=np.int32)
+    offsets = np.asarray(layout.cell_offsets)
+    kinds = np.asarray(layout.kind)[np.asarray(layout.cell_enr)]
+    has_tip = np.zeros(ncells, dtype=bool)
+    has_tip[enr_cells] = np.add.reduceat((kinds != 0).astype(int), offsets[:-1]) > 0 if kinds.size else False
+    enriched = np.zeros(ncells, dtype=bool)
+    enriched[enr_cells] = True
+    return enriched, has_tip
+
+
+def _rule_groups(per_cell: np.ndarray, rows: list[tuple[str, np.ndarray, str]]) -> list[dict[str, typing.Any]]:
+    """One group per (label, cell mask, rule) holding cells: count, points and their range per cell."""
+    groups = []
+    for label, mask, rule in rows:
+        n = per_cell[mask]
+        if n.size:
+            groups.append({"cells": label, "count": int(n.size), "rule": rule, "points": int(n.sum()),
+                           "points_per_cell": [int(n.min()), int(n.max())]})
+    return groups
+
+
 def _describe_quadrature(model: XfemModel, solution: Solution | None = None) -> list[dict[str, typing.Any]]:
     """Cells of each quadrature kind with their rule and point counts (the
     points of solution.enriched_field_points() if given)."""
@@ -232,26 +261,20 @@ def _describe_quadrature(model: XfemModel, solution: Solution | None = None) -> 
     opts = model.scene.options
     ncells = model.cells.shape[0]
     enr_cells = np.asarray(layout.cells, dtype=np.int32)
-    groups = [{"cells": "plain cells (standard block only)", "count": int(ncells - enr_cells.size),
-               "rule": "DOLFINx's rule for the P1 stiffness", "points": None}]
+    groups = [_plain_group(ncells, enr_cells)]
     if enr_cells.size == 0:
         return groups
     fp = solution.enriched_field_points() if solution is not None else _cracklip.compute_field_points(
         model.x, model.cells, layout, model.geometries, np.zeros(model.num_dofs), enr_cells,
         opts.quadrature_options())
     per_cell = np.bincount(fp["cell"], minlength=ncells)
-    offsets = np.asarray(layout.cell_offsets)
-    kinds = np.asarray(layout.kind)[np.asarray(layout.cell_enr)]
-    has_tip = np.zeros(ncells, dtype=bool)
-    has_tip[enr_cells] = np.add.reduceat((kinds != 0).astype(int), offsets[:-1]) > 0 if kinds.size else False
+    enriched, has_tip = _enriched_flags(layout, ncells)
     crossed = np.zeros(ncells, dtype=bool)
     for g in model.geometries:
         cls = np.asarray(g.cell_class)
         crossed |= (cls == CELL_CLASSES["cut"]) | (cls == CELL_CLASSES["edge"])
     is_tip = np.zeros(ncells, dtype=bool)
     is_tip[_tip_cells(model)] = True
-    enriched = np.zeros(ncells, dtype=bool)
-    enriched[enr_cells] = True
     if opts.quadrature == "collapsed":
         tip_rule = (f"quasi-polar fan from the tip, {opts.tip_radial} x {opts.tip_angular} points per fan "
                     f"triangle (apex angle <= {opts.tip_max_angle:g})")
@@ -259,18 +282,13 @@ def _describe_quadrature(model: XfemModel, solution: Solution | None = None) -> 
     else:
         tip_rule = f"Gauss degree {opts.quadrature_degree} on fan triangles from the tip (paper's rule)"
         near_rule = f"Gauss degree {opts.quadrature_degree} on sub-triangles (paper's rule)"
-    for label, mask, rule in [
+    return groups + _rule_groups(per_cell, [
             ("tip cells", enriched & is_tip, tip_rule),
             ("other cells with tip functions", enriched & has_tip & ~is_tip, near_rule),
             ("cut or edge cells, Heaviside only", enriched & crossed & ~has_tip & ~is_tip,
              f"Gauss degree {opts.degree} on each sub-triangle"),
             ("uncut cells with Heaviside nodes", enriched & ~crossed & ~has_tip & ~is_tip,
-             f"Gauss degree {opts.degree}")]:
-        n = per_cell[mask]
-        if n.size:
-            groups.append({"cells": label, "count": int(n.size), "rule": rule, "points": int(n.sum()),
-                           "points_per_cell": [int(n.min()), int(n.max())]})
-    return groups
+             f"Gauss degree {opts.degree}")])
 
 
 def _describe_quadrature_3d(model: XfemModel) -> list[dict[str, typing.Any]]:
@@ -279,32 +297,26 @@ def _describe_quadrature_3d(model: XfemModel) -> list[dict[str, typing.Any]]:
     opts = model.scene.options
     ncells = model.cells.shape[0]
     enr_cells = np.asarray(layout.cells, dtype=np.int32)
-    groups = [{"cells": "plain cells (standard block only)", "count": int(ncells - enr_cells.size),
-               "rule": "DOLFINx's rule for the P1 stiffness", "points": None}]
+    groups = [_plain_group(ncells, enr_cells)]
     if enr_cells.size == 0:
         return groups
     q = _cracklip.compute_enriched_cell_quadrature_3d(model.x, model.cells, layout, model.geometries, enr_cells,
                                                       opts.quadrature_options_3d())
     per_cell = np.bincount(q["cell"], minlength=ncells)
-    offsets = np.asarray(layout.cell_offsets)
-    kinds = np.asarray(layout.kind)[np.asarray(layout.cell_enr)]
-    has_front = np.zeros(ncells, dtype=bool)
-    has_front[enr_cells] = np.add.reduceat((kinds != 0).astype(int), offsets[:-1]) > 0 if kinds.size else False
+    enriched, has_front = _enriched_flags(layout, ncells)
     crossed = np.zeros(ncells, dtype=bool)
     front = np.zeros(ncells, dtype=bool)
     for g in model.geometries:
         cls = np.asarray(g.cell_class)
         crossed |= (cls == CELL_CLASSES_3D["cut"]) | (cls == CELL_CLASSES_3D["face"])
         front |= cls == CELL_CLASSES_3D["front"]
-    enriched = np.zeros(ncells, dtype=bool)
-    enriched[enr_cells] = True
     if opts.quadrature == "collapsed":
         front_rule = ("sub-tetrahedra split by the crack and the front: edge- and point-collapsed rules on those "
                       "touching the front, Gauss graded by the distance to it elsewhere")
     else:
         front_rule = f"Gauss degree {opts.quadrature_degree} on the sub-tetrahedra"
     q3 = opts.quadrature_options_3d()
-    for label, mask, rule in [
+    return groups + _rule_groups(per_cell, [
             ("front cells", enriched & front, front_rule),
             ("cut cells with front functions", enriched & crossed & has_front & ~front,
              "sub-tetrahedra, Gauss graded by the distance to the front"),
@@ -313,12 +325,7 @@ def _describe_quadrature_3d(model: XfemModel) -> list[dict[str, typing.Any]]:
             ("cut or face cells, Heaviside only", enriched & crossed & ~has_front & ~front,
              f"Gauss degree {q3.degree} on each sub-tetrahedron"),
             ("uncut cells with Heaviside nodes", enriched & ~crossed & ~has_front & ~front,
-             f"Gauss degree {q3.degree}")]:
-        n = per_cell[mask]
-        if n.size:
-            groups.append({"cells": label, "count": int(n.size), "rule": rule, "points": int(n.sum()),
-                           "points_per_cell": [int(n.min()), int(n.max())]})
-    return groups
+             f"Gauss degree {q3.degree}")])
 
 
 def format_model(summary: dict[str, typing.Any]) -> list[str]:
