@@ -30,22 +30,32 @@ from .boundary import boundary_normals
 from .tip_regions import LIP_POINTS
 
 
-def _traction_values(model, tr, points: np.ndarray) -> np.ndarray:
-    """t (n, 2) of a Traction at boundary points."""
+def traction_values(tr, points: np.ndarray, stress: typing.Callable[[np.ndarray], np.ndarray],
+                    normals: typing.Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+    """t (n, d) of a Traction at boundary points (n, d), in 2D and 3D: sigma n
+    if it is given by a stress (`stress(points)`: its checked sigma (n, d, d);
+    `normals(points)`: the outward unit normals, only called then), else its
+    value, a function of the points or a constant vector."""
+    d = points.shape[1]
     if tr.stress is not None:
-        sig = evaluate_stress(tr.stress, points, f"traction on {tr.where!r}")
-        normals = _normals(model, tr.where)
-        t = np.einsum("nij,nj->ni", sig, normals(points))
+        t = np.einsum("nij,nj->ni", stress(points), normals(points))
     elif callable(tr.value):
         t = np.asarray(tr.value(points), dtype=float)
-        if t.shape != (len(points), 2):
+        if t.shape != (len(points), d):
             raise InputError(f"traction on {tr.where!r}: its value function returned shape {t.shape} "
-                             f"for points of shape {points.shape}; it must return (n, 2) (t_x, t_y)")
+                             f"for points of shape {points.shape}; it must return (n, {d}) "
+                             f"({', '.join(('t_x', 't_y', 't_z')[:d])})")
     else:
-        t = np.broadcast_to(np.asarray(tr.value, dtype=float).reshape(1, 2), (len(points), 2))
+        t = np.broadcast_to(np.asarray(tr.value, dtype=float).reshape(1, d), (len(points), d))
     if not np.all(np.isfinite(t)):
         raise InputError(f"traction on {tr.where!r} evaluates to NaN or infinity")
     return t
+
+
+def _traction_values(model, tr, points: np.ndarray) -> np.ndarray:
+    """t (n, 2) of a Traction at boundary points of a 2D part."""
+    return traction_values(tr, points, lambda p: evaluate_stress(tr.stress, p, f"traction on {tr.where!r}"),
+                           _normals(model, tr.where))
 
 
 def _normals(model, where):

@@ -17,7 +17,7 @@ import numpy as np
 
 from .. import _cracklip
 from ..errors import InputError
-from .loads import lip_pressure
+from .loads import lip_pressure, traction_values
 
 #: Gauss degree of the lip points (points per facet of the collapsed rules).
 LIP_POINTS_3D = 6
@@ -38,23 +38,13 @@ def _facets(model, where) -> tuple[np.ndarray, np.ndarray]:
     return fcells, flocal
 
 
-def _traction_values(tr, points: np.ndarray, normals: np.ndarray) -> np.ndarray:
-    if tr.stress is not None:
-        sig = np.asarray(tr.stress(points), dtype=float)
-        if sig.shape != (len(points), 3, 3):
-            raise InputError(f"traction on {tr.where!r}: its stress function returned shape {sig.shape} for points "
-                             f"of shape {points.shape}; it must return (n, 3, 3)")
-        t = np.einsum("nij,nj->ni", sig, normals)
-    elif callable(tr.value):
-        t = np.asarray(tr.value(points), dtype=float)
-        if t.shape != (len(points), 3):
-            raise InputError(f"traction on {tr.where!r}: its value function returned shape {t.shape} for points of "
-                             f"shape {points.shape}; it must return (n, 3) (t_x, t_y, t_z)")
-    else:
-        t = np.broadcast_to(np.asarray(tr.value, dtype=float).reshape(1, 3), (len(points), 3))
-    if not np.all(np.isfinite(t)):
-        raise InputError(f"traction on {tr.where!r} evaluates to NaN or infinity")
-    return t
+def _stress_3d(tr, points: np.ndarray) -> np.ndarray:
+    """sigma (n, 3, 3) of a Traction given by a stress, checked."""
+    sig = np.asarray(tr.stress(points), dtype=float)
+    if sig.shape != (len(points), 3, 3):
+        raise InputError(f"traction on {tr.where!r}: its stress function returned shape {sig.shape} for points "
+                         f"of shape {points.shape}; it must return (n, 3, 3)")
+    return sig
 
 
 def assemble_tractions_3d(model, group: str | None = None) -> np.ndarray:
@@ -66,7 +56,7 @@ def assemble_tractions_3d(model, group: str | None = None) -> np.ndarray:
         fcells, flocal = _facets(model, tr.where)
         fb = _cracklip.compute_facet_basis_3d(model.x, model.cells, model.layout, model.geometries, fcells, flocal,
                                               model.scene.options.facet_degree)
-        t = _traction_values(tr, fb["points"], fb["normals"])
+        t = traction_values(tr, fb["points"], lambda p: _stress_3d(tr, p), lambda p: fb["normals"])
         q = fb["entry_point"]
         np.add.at(b, fb["entry_dof"], fb["weights"][q] * np.einsum("ij,ij->i", fb["entry_value"], t[q]))
     return b
