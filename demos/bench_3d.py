@@ -56,7 +56,6 @@ def _plain(scene) -> dict:
     import dolfinx.fem
     import dolfinx.fem.petsc
     from cracklip.model.assembly import elasticity_form
-    from cracklip.solvers import iterative
     t0 = time.perf_counter()
     md = scene.mesh
     msh = md.mesh
@@ -86,51 +85,14 @@ def _plain(scene) -> dict:
     dolfinx.fem.petsc.set_bc(b, bcs)
     t_assemble = time.perf_counter() - t0
     t1 = time.perf_counter()
-    x3 = V.tabulate_dof_coordinates()
-    x3 = x3 - x3.mean(axis=0)
     n = A.getSize()[0]
-    R = np.zeros((n, 6))
-    for c in range(3):
-        R[c::3, c] = 1.0
-    R[0::3, 3], R[1::3, 3] = -x3[:, 1], x3[:, 0]
-    R[0::3, 4], R[2::3, 4] = x3[:, 2], -x3[:, 0]
-    R[1::3, 5], R[2::3, 5] = -x3[:, 2], x3[:, 1]
-    Q = iterative.orthonormal_columns(R)
-    vecs = []
-    for j in range(6):
-        w = A.createVecRight()
-        w.array[:] = Q[:, j]
-        vecs.append(w)
-    A.setNearNullSpace(PETSc.NullSpace().create(vectors=vecs))
-    A.setOption(PETSc.Mat.Option.SPD, True)
-    opts = PETSc.Options()
-    for k, val in iterative.GAMG_OPTIONS.items():
-        opts["plain3d_" + k] = val
-    ksp = PETSc.KSP().create(PETSc.COMM_SELF)
-    ksp.setOptionsPrefix("plain3d_")
-    ksp.setOperators(A)
-    ksp.setType("cg")
-    ksp.setTolerances(rtol=iterative.KRYLOV_RTOL, atol=0.0, max_it=iterative.MAX_ITERATIONS)
-    ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
-    ksp.setFromOptions()
-    t2 = time.perf_counter()
-    ksp.setUp()
-    t_setup = time.perf_counter() - t2
-    x = A.createVecRight()
-    ksp.solve(b, x)
-    its = ksp.getIterationNumber()
-    r = b.duplicate()
-    A.mult(x, r)
-    r.axpy(-1.0, b)
-    rel = r.norm() / b.norm()
-    if not rel <= 1e-8:
-        raise RuntimeError(f"plain CG + GAMG did not converge: relative residual {rel:.3g}")
+    import bench_solvers
+    x, its, rel, t_setup = bench_solvers.plain_cg_gamg(A, b, V.tabulate_dof_coordinates(), "plain3d_")
     t_solve = time.perf_counter() - t1
-    ksp.destroy()
-    for obj in (A, b, x, r, *vecs):
+    for obj in (A, b, x):
         obj.destroy()
     return {"ndofs": int(n), "t_solve": t_solve, "t_setup": t_setup, "t_total": t_assemble + t_solve,
-            "iterations": int(its), "relative_residual": float(rel)}
+            "iterations": its, "relative_residual": rel}
 
 
 def _xfem(scene) -> dict:

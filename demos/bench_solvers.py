@@ -102,6 +102,53 @@ def _xfem(md, case: str, solver: str) -> dict:
             "energy": sol.strain_energy()}
 
 
+def plain_cg_gamg(A, b, x_nodes, prefix: str) -> tuple:
+    """CG + GAMG on a plain P1 elasticity system A x = b (blocked dofs, one
+    node per row of x_nodes (m, d)): the nodes' rigid motions as
+    near-nullspace, the iterative path's GAMG options and Krylov tolerance
+    (options under `prefix`). (x, iterations, relative residual, GAMG set-up
+    seconds); raises unless the residual is below 1e-8. The baseline of
+    bench_solvers and bench_3d."""
+    import numpy as np
+    from petsc4py import PETSc
+    from cracklip.solvers import iterative
+    n = A.getSize()[0]
+    Q = iterative.rigid_motions(x_nodes - x_nodes.mean(axis=0), np.arange(len(x_nodes)), n)
+    vecs = []
+    for j in range(Q.shape[1]):
+        w = A.createVecRight()
+        w.array[:] = Q[:, j]
+        vecs.append(w)
+    A.setNearNullSpace(PETSc.NullSpace().create(vectors=vecs))
+    A.setOption(PETSc.Mat.Option.SPD, True)
+    opts = PETSc.Options()
+    for k, val in iterative.GAMG_OPTIONS.items():
+        opts[prefix + k] = val
+    ksp = PETSc.KSP().create(PETSc.COMM_SELF)
+    ksp.setOptionsPrefix(prefix)
+    ksp.setOperators(A)
+    ksp.setType("cg")
+    ksp.setTolerances(rtol=iterative.KRYLOV_RTOL, atol=0.0, max_it=iterative.MAX_ITERATIONS)
+    ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
+    ksp.setFromOptions()
+    t0 = time.perf_counter()
+    ksp.setUp()
+    t_setup = time.perf_counter() - t0
+    x = A.createVecRight()
+    ksp.solve(b, x)
+    its = ksp.getIterationNumber()
+    r = b.duplicate()
+    A.mult(x, r)
+    r.axpy(-1.0, b)
+    rel = r.norm() / b.norm()
+    ksp.destroy()
+    for obj in (r, *vecs):
+        obj.destroy()
+    if not rel <= 1e-8:
+        raise RuntimeError(f"plain CG + GAMG did not converge: relative residual {rel:.3g}")
+    return x, int(its), float(rel), t_setup
+
+
 def _plain(md, solver: str) -> dict:
     """Plain DOLFINx P1 elasticity on the mesh (no crack): DOLFINx assembles
     with its Dirichlet conditions; CG + GAMG (rigid-mode near-nullspace, the
@@ -112,7 +159,6 @@ def _plain(md, solver: str) -> dict:
     import dolfinx.fem
     import dolfinx.fem.petsc
     from cracklip.model.assembly import elasticity_form
-    from cracklip.solvers import iterative
     from cracklip.solvers.checked import solve_checked
     t0 = time.perf_counter()
     msh = md.mesh
@@ -135,40 +181,7 @@ def _plain(md, solver: str) -> dict:
         x = solve_checked(A, b, 1e-8, what="plain P1 system", symmetric=True)
         its, rel = 1, None
     else:
-        xy = V.tabulate_dof_coordinates()[:, :2]
-        R = np.zeros((A.getSize()[0], 3))
-        R[0::2, 0] = 1.0
-        R[1::2, 1] = 1.0
-        R[0::2, 2], R[1::2, 2] = -xy[:, 1], xy[:, 0]
-        q, _ = np.linalg.qr(R)
-        vecs = []
-        for j in range(3):
-            w = A.createVecRight()
-            w.array[:] = q[:, j]
-            vecs.append(w)
-        A.setNearNullSpace(PETSc.NullSpace().create(vectors=vecs))
-        A.setOption(PETSc.Mat.Option.SPD, True)
-        opts = PETSc.Options()
-        for k, val in iterative.GAMG_OPTIONS.items():
-            opts["plain_" + k] = val
-        ksp = PETSc.KSP().create(PETSc.COMM_SELF)
-        ksp.setOptionsPrefix("plain_")
-        ksp.setOperators(A)
-        ksp.setType("cg")
-        ksp.setTolerances(rtol=iterative.KRYLOV_RTOL, atol=0.0, max_it=iterative.MAX_ITERATIONS)
-        ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
-        ksp.setFromOptions()
-        ksp.setUp()
-        x = A.createVecRight()
-        ksp.solve(b, x)
-        its = ksp.getIterationNumber()
-        r = b.duplicate()
-        A.mult(x, r)
-        r.axpy(-1.0, b)
-        rel = r.norm() / b.norm()
-        if not rel <= 1e-8:
-            raise RuntimeError(f"plain CG + GAMG did not converge: relative residual {rel:.3g}")
-        ksp.destroy()
+        x, its, rel, _ = plain_cg_gamg(A, b, V.tabulate_dof_coordinates()[:, :2], "plain_")
     t_solve = time.perf_counter() - t1
     A.destroy()
     return {"ndofs": int(b.getSize()), "t_solve": t_solve, "t_total": t_assemble + t_solve,

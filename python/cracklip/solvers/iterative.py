@@ -161,22 +161,28 @@ def rigid_modes(model: "XfemModel", size: int | None = None) -> np.ndarray:
     heav = np.flatnonzero(np.asarray(lay.kind) == 0)
     nodes = np.concatenate([np.arange(nstd), nstd + heav])
     xy = np.concatenate([model.x, model.x[np.asarray(lay.node)[heav]]])
-    xy = xy - model.x.mean(axis=0)
-    d = model.gdim
+    return rigid_motions(xy - model.x.mean(axis=0), nodes, n)
+
+
+def rigid_motions(x: np.ndarray, nodes: np.ndarray, n: int) -> np.ndarray:
+    """(n, 3) in 2D or (n, 6) in 3D: the rigid motions of the points x
+    (m, d), carried by the blocked dofs d nodes + c, orthonormalised; 0 on
+    every other dof (x centred by the caller: the rotations are about 0)."""
+    d = x.shape[1]
     if d == 2:
         R = np.zeros((n, 3))
         R[2 * nodes, 0] = 1.0
         R[2 * nodes + 1, 1] = 1.0
-        R[2 * nodes, 2] = -xy[:, 1]
-        R[2 * nodes + 1, 2] = xy[:, 0]
+        R[2 * nodes, 2] = -x[:, 1]
+        R[2 * nodes + 1, 2] = x[:, 0]
         return orthonormal_columns(R)
     R = np.zeros((n, 6))
     for c in range(3):
         R[3 * nodes + c, c] = 1.0
     # Rotations about z, y, x: (-y, x, 0), (z, 0, -x), (0, -z, y).
-    R[3 * nodes, 3], R[3 * nodes + 1, 3] = -xy[:, 1], xy[:, 0]
-    R[3 * nodes, 4], R[3 * nodes + 2, 4] = xy[:, 2], -xy[:, 0]
-    R[3 * nodes + 1, 5], R[3 * nodes + 2, 5] = -xy[:, 2], xy[:, 1]
+    R[3 * nodes, 3], R[3 * nodes + 1, 3] = -x[:, 1], x[:, 0]
+    R[3 * nodes, 4], R[3 * nodes + 2, 4] = x[:, 2], -x[:, 0]
+    R[3 * nodes + 1, 5], R[3 * nodes + 2, 5] = -x[:, 2], x[:, 1]
     return orthonormal_columns(R)
 
 
