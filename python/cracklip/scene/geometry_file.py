@@ -27,6 +27,7 @@ part its physical volumes (without any, every volume). Point conditions in
 """
 from __future__ import annotations
 
+import contextlib
 import functools
 import logging
 import math
@@ -239,6 +240,23 @@ def _create_3d(gmsh, path: pathlib.Path, h: float, fronts) -> MeshData:
     return md
 
 
+@contextlib.contextmanager
+def _gmsh_errors(gmsh, message: str):
+    """Meshing in gmsh: on any error its model is removed (the next part
+    starts clean); a MeshError passes as it is, gmsh's own errors become a
+    MeshError `message (gmsh's words)`."""
+    try:
+        yield
+    except MeshError:
+        if gmsh.model.list():
+            gmsh.model.remove()
+        raise
+    except Exception as e:  # gmsh's own errors while meshing
+        if gmsh.model.list():
+            gmsh.model.remove()
+        raise MeshError(f"{message} ({e})") from None
+
+
 def create_from_geometry(path: str | pathlib.Path, h: float,
                          refine: typing.Sequence[typing.Sequence[float]] = (),
                          embed_points: typing.Sequence[tuple[float, float]] = (),
@@ -269,17 +287,9 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
             gmsh.model.remove()
             raise MeshError(f"{path} is a 3D part: refine it around its cracks' fronts (fronts; in a scene file "
                             "mesh.tip_h, mesh.crack_h), not with 2D refinement points or tips")
-        try:
+        with _gmsh_errors(gmsh, f"{path}: gmsh could not mesh the 3D geometry"):
             return _create_3d(gmsh, path, h, fronts)
-        except MeshError:
-            if gmsh.model.list():
-                gmsh.model.remove()
-            raise
-        except Exception as e:  # gmsh's own errors while meshing
-            if gmsh.model.list():
-                gmsh.model.remove()
-            raise MeshError(f"{path}: gmsh could not mesh the 3D geometry ({e})") from None
-    try:
+    with _gmsh_errors(gmsh, f"{path}: gmsh could not mesh the geometry"):
         surfaces = _part_surfaces(gmsh, path)
         outlines = [surface_outline(gmsh, s) for s in surfaces]
         lo_x, lo_y, _, hi_x, hi_y, _ = gmsh.model.getBoundingBox(-1, -1)
@@ -308,14 +318,6 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
         _check_nodes(gmsh, path, embed_points, scale)
         from .mesh import _to_dolfinx
         md = _to_dolfinx(gmsh, h, surfaces)
-    except MeshError:
-        if gmsh.model.list():
-            gmsh.model.remove()
-        raise
-    except Exception as e:  # gmsh's own errors while meshing
-        if gmsh.model.list():
-            gmsh.model.remove()
-        raise MeshError(f"{path}: gmsh could not mesh the geometry ({e})") from None
     check_mesh(md.mesh)
     md.refinements = [(float(r[0]), float(r[1]), float(r[2])) for r in refine]
     md.refine = [tuple(float(v) for v in r) for r in refine]
