@@ -92,13 +92,32 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
     return out
 
 
-def _describe_cracks_2d(model: XfemModel) -> list[dict[str, typing.Any]]:
-    """Per polyline crack: its kind, length, tips, cells, enriched nodes, SIF domains."""
-    layout = model.layout
+def _enriched_counts(layout, ci: int, cell_class: np.ndarray, classes: dict[str, int], prefix: str,
+                     d: int) -> dict[str, typing.Any]:
+    """Cells of each class, and Heaviside and tip/front nodes and dofs of
+    crack ci (keys `<prefix>_nodes`, ...: "tip" in 2D, "front" in 3D; d
+    dofs per pseudo-node)."""
     kind = np.asarray(layout.kind)
     crack_of = np.asarray(layout.crack)
     node = np.asarray(layout.node)
     core = np.asarray(layout.core)
+    cls = np.bincount(np.asarray(cell_class), minlength=len(classes))
+    heav = (crack_of == ci) & (kind == 0)
+    tip = (crack_of == ci) & (kind != 0)
+    tip_nodes = np.unique(node[tip])
+    core_nodes = np.unique(node[tip & (core == 1)])
+    return {"cells": {name: int(cls[v]) for name, v in classes.items() if name != "plain"},
+            "heaviside_nodes": int(np.unique(node[heav]).size),
+            "heaviside_dofs": int(d * np.count_nonzero(heav)),
+            f"{prefix}_nodes": int(tip_nodes.size),
+            f"{prefix}_core_nodes": int(core_nodes.size),
+            f"{prefix}_blending_nodes": int(tip_nodes.size - core_nodes.size),
+            f"{prefix}_dofs": int(d * np.count_nonzero(tip))}
+
+
+def _describe_cracks_2d(model: XfemModel) -> list[dict[str, typing.Any]]:
+    """Per polyline crack: its kind, length, tips, cells, enriched nodes, SIF domains."""
+    layout = model.layout
     cracks = []
     from ..model.boundary import polyline_pieces
     from ..model.tip_regions import model_boundary
@@ -106,11 +125,6 @@ def _describe_cracks_2d(model: XfemModel) -> list[dict[str, typing.Any]]:
     pieces = [polyline_pieces(cm.crack.points, a_bnd, b_bnd) for cm in model.cracks]
     for ci, cm in enumerate(model.cracks):
         g = cm.geometry
-        cls = np.bincount(np.asarray(g.cell_class), minlength=len(CELL_CLASSES))
-        heav = (crack_of == ci) & (kind == 0)
-        tip = (crack_of == ci) & (kind != 0)
-        tip_nodes = np.unique(node[tip])
-        core_nodes = np.unique(node[tip & (core == 1)])
         pts = cm.crack.points
         from ..model.tip_regions import tip_domains
         domains = tip_domains(model, ci)
@@ -126,13 +140,7 @@ def _describe_cracks_2d(model: XfemModel) -> list[dict[str, typing.Any]]:
             "sif_inner_radius": [d.inner_radius for d in domains],
             "sif_limited_by": [d.obstacle if d.limited or not d.clear else None for d in domains],
             "lip_pressure": "function" if callable(cm.crack.pressure) else float(cm.crack.pressure),
-            "cells": {name: int(cls[v]) for name, v in CELL_CLASSES.items() if name != "plain"},
-            "heaviside_nodes": int(np.unique(node[heav]).size),
-            "heaviside_dofs": int(2 * np.count_nonzero(heav)),
-            "tip_nodes": int(tip_nodes.size),
-            "tip_core_nodes": int(core_nodes.size),
-            "tip_blending_nodes": int(tip_nodes.size - core_nodes.size),
-            "tip_dofs": int(2 * np.count_nonzero(tip)),
+            **_enriched_counts(layout, ci, g.cell_class, CELL_CLASSES, "tip", 2),
             "snapped_nodes": int(g.num_snapped),
         })
     return cracks
@@ -149,18 +157,9 @@ def _describe_cracks_3d(model: XfemModel) -> list[dict[str, typing.Any]]:
     from ..model.checks_3d import front_element_sizes
     from .scene_file_3d import describe_crack
     layout = model.layout
-    kind = np.asarray(layout.kind)
-    crack_of = np.asarray(layout.crack)
-    node = np.asarray(layout.node)
-    core = np.asarray(layout.core)
     out = []
     for ci, cm in enumerate(model.cracks):
         g = cm.geometry
-        cls = np.bincount(np.asarray(g.cell_class), minlength=len(CELL_CLASSES_3D))
-        heav = (crack_of == ci) & (kind == 0)
-        front_fn = (crack_of == ci) & (kind != 0)
-        front_nodes = np.unique(node[front_fn])
-        core_nodes = np.unique(node[front_fn & (core == 1)])
         fr = g.front
         offsets = np.asarray(fr["piece_offsets"])
         x = np.asarray(fr["x"]).reshape(-1, 3)
@@ -185,13 +184,7 @@ def _describe_cracks_3d(model: XfemModel) -> list[dict[str, typing.Any]]:
             "area": float(cm.crack.area),
             "area_in_part": area,
             "lip_pressure": "function" if callable(cm.crack.pressure) else float(cm.crack.pressure),
-            "cells": {name: int(cls[v]) for name, v in CELL_CLASSES_3D.items() if name != "plain"},
-            "heaviside_nodes": int(np.unique(node[heav]).size),
-            "heaviside_dofs": int(3 * np.count_nonzero(heav)),
-            "front_nodes": int(front_nodes.size),
-            "front_core_nodes": int(core_nodes.size),
-            "front_blending_nodes": int(front_nodes.size - core_nodes.size),
-            "front_dofs": int(3 * np.count_nonzero(front_fn)),
+            **_enriched_counts(layout, ci, g.cell_class, CELL_CLASSES_3D, "front", 3),
             "front": {"points": int(len(x)), "segments": int(len(seg)), "pieces": pieces,
                       "length": float(sum(p["length"] for p in pieces)),
                       "branch_points": int(fr["num_branch_points"])},
