@@ -10,7 +10,7 @@ import pytest
 import cracklip as cl
 from cracklip.analysis.solve import solve
 from cracklip.exact.embedded_cracks import penny_opening
-from cracklip.post.solution_3d import Solution3D
+from cracklip.post.solution import Solution as Solution3D
 from cracklip.scene.crack_surface import EllipticalCrack, PolygonCrack
 from cracklip.scene.mesh_3d import FrontRefinement, create_box, front_sampling
 

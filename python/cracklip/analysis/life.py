@@ -255,7 +255,7 @@ class LifeRun:
         record every tip; returns tips.Measured with .levels per tip."""
         from .tips import Measured, TipRecord, closed_fraction, part_length
         from .load_path import LevelSolver
-        from ..post.solution_3d import create_solution
+        from ..post.solution import create_solution
         t0 = time.perf_counter()
         scene = dataclasses.replace(self.scene, cracks=[dataclasses.replace(c) for c in cracks])
         solver = LevelSolver(scene)

@@ -19,8 +19,7 @@ from ..contact.friction import STATE_NAMES, solve_friction
 from ..contact.frictionless import contact_constant, create_contact_system, solve_frictionless
 from ..model.assembly import assemble_system_groups
 from ..model.model import create_model
-from ..post.solution import Solution
-from ..post.solution_3d import create_solution
+from ..post.solution import Solution, create_solution
 from ..errors import InputError
 from ..scene.conditions import LoadStep
 from ..scene.load_path import Increment, increments, steps

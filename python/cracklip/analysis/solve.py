@@ -16,8 +16,7 @@ from ..contact.frictionless import solve_contact
 from ..errors import InputError, SolverError
 from ..model.assembly import assemble_system, elasticity_form
 from ..model.model import create_model
-from ..post.solution import Solution
-from ..post.solution_3d import create_solution
+from ..post.solution import Solution, create_solution
 from ..scene.scene import Scene
 from ..solvers.checked import condition_number_1norm, record_solves, solve_checked
 from ..solvers.choice import create_linear_solver, to_solver_basis

@@ -1,4 +1,7 @@
-"""Stress intensity factors: a domain chosen per tip, K on three domains, and their spread.
+"""Stress intensity factors at the tips of 2D cracks: a domain chosen per tip,
+K on three domains, and their spread (sif_3d.py does the fronts of 3D cracks:
+the geometry differs, a disc around one point against hats along a curved
+front; both give rows of one schema, SIF_KEYS).
 
 For every tip this module
 
@@ -61,6 +64,23 @@ SPREAD_WARNING = 0.01
 #: the integrand (smooth, non-polynomial auxiliary fields) needs more than
 #: the stiffness's rule.
 SIF_DEGREE = 8
+
+
+#: The keys of every SIF row (results.json "sifs"), tips and front points
+#: alike: a 2D tip is a front of one point (piece = tip, s = 0), with None
+#: where a key does not apply (K_III, z, hat, curvature, parametric_angle in
+#: 2D; tip, inner_radius and the error estimates in 3D).
+SIF_KEYS = ("crack", "crack_name", "point", "tip", "piece", "s", "position", "x", "y", "z", "direction", "normal",
+            "frame", "K_I", "K_II", "K_III", "K_I_spread", "K_II_spread", "K_III_spread", "K_I_error", "K_II_error",
+            "K_I_extrapolated", "K_II_extrapolated", "K_I_levels", "K_II_levels", "mode_mix_deg", "G", "radius",
+            "radii", "radius_min", "inner_radius", "element_size", "hat", "curvature", "parametric_angle",
+            "limited_by", "free_surface", "domain_clear")
+
+
+def complete_rows(rows: list[dict[str, typing.Any]]) -> list[dict[str, typing.Any]]:
+    """The rows with every key of SIF_KEYS (None where it does not apply),
+    in that order."""
+    return [{**{k: r.get(k) for k in SIF_KEYS}, **r} for r in rows]
 
 
 def _aux_derivative(material, domain: TipDomain, x: np.ndarray, sides: np.ndarray) -> np.ndarray:
@@ -214,10 +234,13 @@ def compute_sifs(solution, radius: float | None = None, cracks: typing.Sequence[
     SPREAD_WARNING of the K scale). radius: the largest domain's radius,
     overriding Options.sif_radius and sif_ring; ring: (r_in, r_out), K on
     that one ring, not clipped (Options.sif_ring; spreads 0: one domain).
-    Each row holds the keys of results.json's "sifs": crack, crack_name,
-    tip, x, y, direction, K_I, K_II, K_I_spread, K_II_spread, mode_mix_deg,
-    G, radius, radii, inner_radius (a ring's r_in, else None),
-    element_size, limited_by, domain_clear."""
+    Each row holds the keys of results.json's "sifs" (SIF_KEYS): crack,
+    crack_name, point = tip = piece (a tip is a front of one point), s = 0,
+    position, x, y, direction (e1), normal (e2 = e1 turned by +90
+    degrees), frame [e1, e2], K_I, K_II, K_I_spread, K_II_spread,
+    mode_mix_deg, G, radius, radii, radius_min, inner_radius (a ring's
+    r_in, else None), element_size, limited_by, free_surface (False),
+    domain_clear; the 3D keys None."""
     m = solution.model
     mat = m.scene.material
     cracks = range(len(m.cracks)) if cracks is None else cracks
@@ -248,13 +271,16 @@ def compute_sifs(solution, radius: float | None = None, cracks: typing.Sequence[
                 f"(element {dom.element_size:.3g}); refine the mesh at the tip (mesh.tip_h) or enlarge the "
                 "enrichment radius")
         mix = math.degrees(math.atan2(kII, kI)) if math.hypot(kI, kII) > negligible else None
-        rows.append({"crack": dom.crack, "crack_name": name, "tip": dom.tip,
+        e1 = dom.direction.tolist()
+        e2 = [-e1[1], e1[0]]
+        rows.append({"crack": dom.crack, "crack_name": name, "point": dom.tip, "tip": dom.tip, "piece": dom.tip,
+                     "s": 0.0, "position": dom.position.tolist(),
                      "x": float(dom.position[0]), "y": float(dom.position[1]),
-                     "direction": dom.direction.tolist(), "K_I": kI, "K_II": kII,
+                     "direction": e1, "normal": e2, "frame": [e1, e2], "K_I": kI, "K_II": kII,
                      "K_I_spread": float(spread[0]), "K_II_spread": float(spread[1]),
                      "mode_mix_deg": mix, "G": (kI ** 2 + kII ** 2) / mat.E_star,
-                     "radius": dom.radius, "radii": list(dom.radii), "inner_radius": dom.inner_radius,
-                     "element_size": dom.element_size,
+                     "radius": dom.radius, "radii": list(dom.radii), "radius_min": float(min(dom.radii)),
+                     "inner_radius": dom.inner_radius, "element_size": dom.element_size,
                      "limited_by": dom.obstacle if dom.limited or not dom.clear else None,
-                     "domain_clear": dom.clear})
-    return rows, warnings
+                     "free_surface": False, "domain_clear": dom.clear})
+    return complete_rows(rows), warnings

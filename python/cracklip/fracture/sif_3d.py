@@ -1,6 +1,8 @@
 """Stress intensity factors K_I, K_II, K_III along 3D crack fronts: front
 points, domains chosen per point, the domain interaction integral on three
-domains per point, and their spread.
+domains per point, and their spread (sif.py does the tips of 2D cracks: the
+geometry differs, hats along a curved front against a disc around one
+point; both give rows of one schema, sif.SIF_KEYS).
 
 Front points. Each piece of a crack's front (a closed loop, or an open
 polyline between two points of the part's boundary) carries front points at
@@ -63,8 +65,10 @@ import scipy.spatial
 
 from .. import _cracklip
 from ..errors import InputError
+from ..model.cracks.surface import split_enriched
 from ..model.loads import lip_pressure
 from ..scene.crack_surface import EllipticalCrack
+from .sif import complete_rows
 
 logger = logging.getLogger(__name__)
 
@@ -263,10 +267,8 @@ def cell_sizes(model, cells: np.ndarray) -> np.ndarray:
 
 
 def lip_points(model, crack: int) -> dict:
-    c = _cache(model).setdefault("lips", {})
-    if crack not in c:
-        c[crack] = _cracklip.compute_lip_points_3d(model.x, model.cells, model.geometries[crack], LIP_POINTS)
-    return c[crack]
+    """The crack's lip points of the lip terms (LIP_POINTS per facet direction), computed once."""
+    return model.cracks[crack].lip_points(model, LIP_POINTS)
 
 
 # -- the front --------------------------------------------------------------
@@ -504,10 +506,12 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
         near = fr.piece == piece
         near &= np.linalg.norm(fr.x - xk, axis=1) <= hat + wanted + 2.0 * h
         kap = float(np.abs(fr.curvature[near]).max()) if np.any(near) else 0.0
+        # (clearance: the largest radius clear of it, what, its distance)
         obstacles = []
         if kap > 0:
-            obstacles.append((min(CURVATURE_FRACTION / kap, 0.95 / kap - h),
-                              f"{CURVATURE_FRACTION:g} of the front's radius of curvature ({1 / kap:.3g})"))
+            room = min(CURVATURE_FRACTION / kap, 0.95 / kap - h)
+            obstacles.append((room, f"{CURVATURE_FRACTION:g} of the front's radius of curvature ({1 / kap:.3g})",
+                              room))
         if bpr is not None:
             same = bpr["piece"] == piece
             ds = _wrap(bpr["s"] - s0, L, d["closed"])
@@ -517,10 +521,11 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
                 end_s = 0.0 if s0 == 0.0 else L
                 hit &= np.abs(bpr["s"] - end_s) > h
             if np.any(hit):
-                obstacles.append((float(bpr["distance"][hit].min()) - h, "the boundary of the part"))
+                dist = float(bpr["distance"][hit].min())
+                obstacles.append((dist - h, "the boundary of the part", dist))
         for ci, pts in other_pts:
             dist = float(np.linalg.norm(pts - xk, axis=1).min())
-            obstacles.append((dist - hat - h, f"crack {model.cracks[ci].crack.name!r}"))
+            obstacles.append((dist - hat - h, f"crack {model.cracks[ci].crack.name!r}", dist))
         # The own front where it comes back (a thin crack): front vertices
         # off the hat whose distance is less than their arc-length distance.
         own = fr.piece == piece
@@ -528,15 +533,16 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
         dxo = np.linalg.norm(fr.x[own] - xk, axis=1)
         back = dso > hat + 2.0 * dxo
         if np.any(back):
-            obstacles.append((0.5 * (float(dxo[back].min()) - hat), f"the opposite part of the front of crack {name!r}"))
-        clearance, obstacle = min(obstacles, key=lambda o: o[0]) if obstacles else (math.inf, "")
+            dist = float(dxo[back].min())
+            obstacles.append((0.5 * (dist - hat), f"the opposite part of the front of crack {name!r}", dist))
+        clearance, obstacle, distance = min(obstacles, key=lambda o: o[0]) if obstacles else (math.inf, "", math.inf)
         least = 2.0 * h  # the smallest domain (half the largest) spans an element
         warnings: list[str] = []
         clear = clearance >= least
         if not clear:
             radius = least
             warnings.append(f"{where}: no SIF domain of at least one element ({h:.3g}) fits between the front and "
-                            f"{obstacle} ({clearance:.3g} away); K there is computed on a domain of radius "
+                            f"{obstacle} ({distance:.3g} away); K there is computed on a domain of radius "
                             f"{radius:.3g} that reaches it and is NOT reliable: refine the mesh at the front")
         elif wanted < least:
             radius = least
@@ -560,17 +566,14 @@ def _plain_rules() -> dict[int, tuple[np.ndarray, np.ndarray]]:
 def _quadrature(solution, crack: int, cells: np.ndarray, node_r: np.ndarray) -> dict[str, np.ndarray]:
     """Quadrature points of cells: cell, ref, x, weight, side."""
     m = solution.model
-    enriched = np.zeros(m.cells.shape[0], dtype=bool)
-    enriched[np.asarray(m.layout.cells, dtype=np.int32)] = True
+    ec, pc = split_enriched(m, cells)
     parts = []
-    ec = cells[enriched[cells]]
     if ec.size:
         opts = m.scene.options.quadrature_options_3d()
         opts.degree = max(opts.degree, ENRICHED_DEGREE)
         opts.far_degree = max(opts.far_degree, FAR_DEGREE)
         q = _cracklip.compute_enriched_cell_quadrature_3d(m.x, m.cells, m.layout, m.geometries, ec, opts)
         parts.append({"cell": q["cell"], "ref": q["ref"], "weight": q["weight"], "side": q["side"]})
-    pc = cells[~enriched[cells]]
     if pc.size:
         xv = m.x[m.cells[pc]]
         diam = cell_sizes(m, pc) * 1.5
@@ -856,11 +859,13 @@ def natural_k(solution) -> float:
 def compute_front_sifs(solution, radius: float | None = None, cracks: typing.Sequence[int] | None = None
                        ) -> tuple[list[dict[str, typing.Any]], list[str]]:
     """K_I, K_II, K_III with their spreads at every front point of the given
-    cracks (all by default), and the warnings about them. Each row: crack,
-    crack_name, point, piece, s, x, y, z, parametric_angle (elliptical
-    cracks, else None), K_I, K_II, K_III, K_I_spread, K_II_spread,
-    K_III_spread, G, mode_mix_deg, radius, radii, element_size, hat,
-    curvature, limited_by, free_surface, domain_clear, direction, normal."""
+    cracks (all by default), and the warnings about them. Each row has the
+    keys of sif.SIF_KEYS: crack, crack_name, point, piece, s, position, x,
+    y, z, parametric_angle (elliptical cracks, else None), K_I, K_II,
+    K_III, K_I_spread, K_II_spread, K_III_spread, G, mode_mix_deg, radius,
+    radii, radius_min, element_size, hat, curvature, limited_by,
+    free_surface, domain_clear, direction (e1), normal (e2), frame [e1, e2,
+    e3]; tip, inner_radius and the error estimates None."""
     m = solution.model
     mat = m.scene.material
     Ep, mu = mat.E / (1 - mat.nu ** 2), mat.E / (2 * (1 + mat.nu))
@@ -888,7 +893,7 @@ def compute_front_sifs(solution, radius: float | None = None, cracks: typing.Seq
                 f"% at front point {worst} (s = {fp.s:.4g}, x = ({fp.x[0]:.4g}, {fp.x[1]:.4g}, {fp.x[2]:.4g}); K_I "
                 f"{', '.join(f'{v:.5g}' for v in K[worst, :, 0])} on radii "
                 f"{', '.join(f'{r:.3g}' for r in fp.radii)}): the field near the front is not resolved (element "
-                f"{fp.element_size:.3g}); refine the mesh at the front (FrontRefinement h_front) or enlarge the "
+                f"{fp.element_size:.3g}); refine the mesh at the front (mesh.tip_h) or enlarge the "
                 "enrichment radius")
         for i, fp in enumerate(fps):
             kI, kII, kIII = (float(v) for v in K[i, -1])
@@ -896,19 +901,20 @@ def compute_front_sifs(solution, radius: float | None = None, cracks: typing.Seq
             mix = math.degrees(math.atan2(shear, kI)) if math.hypot(kI, shear) > 1e-6 * nat else None
             rows.append({
                 "crack": ci, "crack_name": crk.name, "point": fp.index, "piece": fp.piece, "s": fp.s,
-                "x": float(fp.x[0]), "y": float(fp.x[1]), "z": float(fp.x[2]),
+                "position": fp.x.tolist(), "x": float(fp.x[0]), "y": float(fp.x[1]), "z": float(fp.x[2]),
                 "parametric_angle": (float(crk.parametric_angle(fp.x[None])[0])
                                      if isinstance(crk, EllipticalCrack) else None),
                 "K_I": kI, "K_II": kII, "K_III": kIII,
                 "K_I_spread": float(spreads[i, 0]), "K_II_spread": float(spreads[i, 1]),
                 "K_III_spread": float(spreads[i, 2]),
                 "G": kI ** 2 / Ep + kII ** 2 / Ep + kIII ** 2 / (2 * mu), "mode_mix_deg": mix,
-                "radius": fp.radius, "radii": list(fp.radii), "element_size": fp.element_size, "hat": fp.hat,
+                "radius": fp.radius, "radii": list(fp.radii), "radius_min": float(min(fp.radii)),
+                "element_size": fp.element_size, "hat": fp.hat,
                 "curvature": fp.curvature,
                 "limited_by": fp.obstacle if fp.limited or not fp.clear else None,
                 "free_surface": fp.free_surface, "domain_clear": fp.clear,
-                "direction": fp.frame[0].tolist(), "normal": fp.frame[1].tolist()})
-    return rows, warnings
+                "direction": fp.frame[0].tolist(), "normal": fp.frame[1].tolist(), "frame": fp.frame.tolist()})
+    return complete_rows(rows), warnings
 
 
 __all__ = ["FrontPoint", "front_points", "crack_front_sifs", "compute_front_sifs", "DEFAULT_ELEMENTS",

@@ -19,10 +19,8 @@ import dolfinx.fem
 import dolfinx.fem.petsc
 import ufl
 
-from .. import _cracklip
 from .loads import assemble_loads
-from .loads_3d import assemble_loads_3d
-from .model import XfemModel
+from .xfem_model import XfemModel
 
 
 def elasticity_form(V, E: float, nu: float):
@@ -46,8 +44,7 @@ def create_matrix(model: XfemModel) -> PETSc.Mat:
     """Preallocated AIJ matrix (block size = the space dimension) with every
     standard/enriched coupling."""
     d = model.gdim
-    create = _cracklip.create_sparsity if d == 2 else _cracklip.create_sparsity_3d
-    indptr, indices = create(model.cells, model.layout)
+    indptr, indices = model.crack_type.sparsity(model.cells, model.layout)
     n = model.num_dofs
     A = PETSc.Mat().createAIJ((n, n), bsize=d, csr=(indptr, indices), comm=PETSc.COMM_SELF)
     lgmap = PETSc.LGMap().create(np.arange(n // d, dtype=PETSc.IntType), bsize=d,
@@ -58,10 +55,11 @@ def create_matrix(model: XfemModel) -> PETSc.Mat:
 
 
 def material_constants(model: XfemModel) -> tuple[float, float]:
-    """(E, nu) of the kernels: the plane-strain pair of the material in 2D
-    (Material.E_strain, nu_strain: plane stress maps onto it), E and nu in 3D."""
+    """(E, nu) of the kernels: the plane-strain pair of the material
+    (Material.E_strain, nu_strain: plane stress maps onto it in 2D; a 3D
+    part is in "plane strain", the pair is its E and nu)."""
     mat = model.scene.material
-    return (mat.E_strain, mat.nu_strain) if model.gdim == 2 else (mat.E, mat.nu)
+    return mat.E_strain, mat.nu_strain
 
 
 def assemble_standard_block(model: XfemModel, A: PETSc.Mat) -> None:
@@ -121,19 +119,12 @@ def assemble_system_groups(model: XfemModel) -> tuple[PETSc.Mat, dict[str, np.nd
 
     t0 = time.perf_counter()
     E, nu = material_constants(model)
-    if model.gdim == 2:
-        model.num_enriched_cells_integrated = _cracklip.assemble_enriched_stiffness_petsc(
-            A.handle, model.x, model.cells, model.layout, model.geometries, E, nu,
-            model.scene.options.quadrature_options())
-    else:
-        model.num_enriched_cells_integrated = _cracklip.assemble_enriched_stiffness_3d_petsc(
-            A.handle, model.x, model.cells, model.layout, model.geometries, E, nu,
-            model.scene.options.quadrature_options_3d())
+    model.num_enriched_cells_integrated = model.crack_type.assemble_stiffness(A, model, E, nu)
     A.assemble()
     timings["assemble_enriched"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
-    loads = assemble_loads(model) if model.gdim == 2 else assemble_loads_3d(model)
+    loads = assemble_loads(model)
     groups = set(loads) | {g for g, v in model.bc_group_values.items() if np.any(v)}
     out: dict[str, np.ndarray] = {}
     g, Ag = A.createVecRight(), A.createVecRight()

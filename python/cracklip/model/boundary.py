@@ -1,4 +1,6 @@
-"""The boundary of the part: its facets as segments, and outward normals on a tag."""
+"""The boundary of the part: its facets as segments (2D), the facets of a tag
+with their outward normals (2D and 3D), and outward normals on a tag at any
+point (2D)."""
 from __future__ import annotations
 
 import typing
@@ -24,31 +26,15 @@ def boundary_segments(mesh) -> tuple[np.ndarray, np.ndarray]:
 
 
 def boundary_normals(mesh: MeshData, where: str | int) -> typing.Callable[[np.ndarray], np.ndarray]:
-    """Outward unit normal of a tagged boundary as a function of points (n, 2) -> (n, 2).
+    """Outward unit normal of a tagged boundary of a planar part as a
+    function of points (n, 2) -> (n, 2).
 
     Each point takes the normal of the nearest facet of the tag: exact on a
     polygonal boundary, the facet normal on a meshed curve.
     """
-    facets = mesh.facets(where)
-    if facets.size == 0:
-        raise InputError(f"boundary {where!r} has no facets")
-    msh = mesh.mesh
-    tdim = msh.topology.dim
-    msh.topology.create_connectivity(tdim - 1, tdim)
-    msh.topology.create_connectivity(tdim, 0)
-    verts = dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, tdim - 1, facets, False)
-    x = msh.geometry.x[:, :2]
-    a, b = x[verts[:, 0]], x[verts[:, 1]]
-    # The cell of each boundary facet; its third vertex lies inside.
-    f2c = msh.topology.connectivity(tdim - 1, tdim)
-    cells = f2c.array[f2c.offsets[facets]]
-    cell_geo = dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, tdim, cells.astype(np.int32), False)
-    centroid = x[cell_geo].mean(axis=1)
+    verts, _, n = _tag_facets(mesh, where)
+    a, b = verts[:, 0], verts[:, 1]
     d = b - a
-    n = np.stack([d[:, 1], -d[:, 0]], axis=1)
-    n /= np.linalg.norm(n, axis=1)[:, None]
-    flip = np.einsum("ij,ij->i", centroid - a, n) > 0.0
-    n[flip] *= -1.0
     dd = np.einsum("ij,ij->i", d, d)
 
     def normals(points: np.ndarray) -> np.ndarray:
@@ -63,6 +49,41 @@ def boundary_normals(mesh: MeshData, where: str | int) -> typing.Callable[[np.nd
             out[s:s + step] = n[np.argmin(dist, axis=1)]
         return out
     return normals
+
+
+def tag_facets(mesh: MeshData, where: str | int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The facets of a tag (segments in 2D, triangles in 3D): centroids (n,
+    d), lengths or areas (n,), outward unit normals (n, d)."""
+    verts, size, n = _tag_facets(mesh, where)
+    return verts.mean(axis=1), size, n
+
+
+def _tag_facets(mesh: MeshData, where: str | int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The facets of a tag: vertices (n, d, d), lengths or areas (n,),
+    outward unit normals (n, d) (pointing away from the facet's cell)."""
+    facets = mesh.facets(where)
+    if facets.size == 0:
+        raise InputError(f"boundary {where!r} has no facets")
+    msh = mesh.mesh
+    tdim = msh.topology.dim
+    msh.topology.create_connectivity(tdim - 1, tdim)
+    x = msh.geometry.x[:, :tdim]
+    verts = x[dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, tdim - 1, facets, False)]   # (n, d, d)
+    edges = verts[:, 1:] - verts[:, :1]
+    if tdim == 2:  # a segment's normal: its direction turned by -90 degrees
+        n = np.stack([edges[:, 0, 1], -edges[:, 0, 0]], axis=1)
+        size = np.linalg.norm(edges[:, 0], axis=1)
+    else:  # a triangle's: the cross product of two edges
+        n = np.cross(edges[:, 0], edges[:, 1])
+        size = 0.5 * np.linalg.norm(n, axis=1)
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    # The cell of each boundary facet: its other vertices lie inside.
+    f2c = msh.topology.connectivity(tdim - 1, tdim)
+    cells = f2c.array[f2c.offsets[facets]]
+    centroid = x[dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, tdim, cells.astype(np.int32), False)].mean(axis=1)
+    flip = np.einsum("ij,ij->i", centroid - verts[:, 0], n) > 0.0
+    n[flip] *= -1.0
+    return verts, size, n
 
 
 def boundary_loops(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, int]:

@@ -167,49 +167,30 @@ def _check_clashes(scene: Scene, x: np.ndarray, layout, values: dict, clashes: l
             "meeting at a corner, a point on a tagged side) must prescribe the same value there")
 
 
+#: The rotations of the plane and of space as pairs (i, j): the motion
+#: -x_j e_i + x_i e_j (about z; in space also about y and x).
+ROTATIONS = {2: ((0, 1),), 3: ((0, 1), (2, 0), (1, 2))}
+
+
 def rigid_motion_rank(x: np.ndarray, nodes: np.ndarray, comps: np.ndarray) -> tuple[int, list[str]]:
     """How many of the rigid motions (3 in the plane, 6 in space) the
     constraints of components `comps` (0 x, 1 y, 2 z) at nodes fix, and the
     names of those left free."""
-    if x.shape[1] == 3:
-        return _rigid_motion_rank_3d(x, nodes, comps)
-    R = np.zeros((nodes.size, 3))
-    R[comps == 0, 0] = 1.0
-    R[comps == 1, 1] = 1.0
-    # rotation about the centroid: u = (-(y - yc), x - xc)
-    c = x.mean(axis=0)
-    R[comps == 0, 2] = -(x[nodes[comps == 0], 1] - c[1])
-    R[comps == 1, 2] = x[nodes[comps == 1], 0] - c[0]
-    scale = float(np.ptp(x, axis=0).max()) or 1.0
-    R[:, 2] /= scale
-    s = np.linalg.svd(R, compute_uv=False) if R.shape[0] else np.zeros(0)
-    rank = int(np.sum(s > 1e-10 * (s.max() if s.size else 1.0)))
-    free = []
-    if rank < 3:
-        if not np.any(comps == 0):
-            free.append("translation in x")
-        if not np.any(comps == 1):
-            free.append("translation in y")
-        if not free:
-            free.append("rotation")
-    return rank, free
-
-
-def _rigid_motion_rank_3d(x: np.ndarray, nodes: np.ndarray, comps: np.ndarray) -> tuple[int, list[str]]:
-    R = np.zeros((nodes.size, 6))
+    d = x.shape[1]
+    rotations = ROTATIONS[d]
+    R = np.zeros((nodes.size, d + len(rotations)))
     c = x.mean(axis=0)
     scale = float(np.ptp(x, axis=0).max()) or 1.0
     p = (x[nodes] - c) / scale
-    for k in range(3):
+    for k in range(d):
         R[comps == k, k] = 1.0
-    # Rotations about z, y, x: (-y, x, 0), (z, 0, -x), (0, -z, y).
-    R[comps == 0, 3], R[comps == 1, 3] = -p[comps == 0, 1], p[comps == 1, 0]
-    R[comps == 0, 4], R[comps == 2, 4] = p[comps == 0, 2], -p[comps == 2, 0]
-    R[comps == 1, 5], R[comps == 2, 5] = -p[comps == 1, 2], p[comps == 2, 1]
+    for r, (i, j) in enumerate(rotations):
+        R[comps == i, d + r] = -p[comps == i, j]
+        R[comps == j, d + r] = p[comps == j, i]
     s = np.linalg.svd(R, compute_uv=False) if R.shape[0] else np.zeros(0)
     rank = int(np.sum(s > 1e-10 * (s.max() if s.size else 1.0)))
-    free = [f"translation in {a}" for k, a in enumerate("xyz") if not np.any(comps == k)]
-    if rank < 6 and not free:
+    free = [f"translation in {a}" for k, a in enumerate("xyz"[:d]) if not np.any(comps == k)]
+    if rank < R.shape[1] and not free:
         free.append("rotation")
     return rank, free
 
@@ -222,7 +203,7 @@ def check_rigid_motion(x: np.ndarray, bc_dofs: np.ndarray) -> None:
     checks.check_pieces.)
     """
     d = x.shape[1]
-    need = 3 if d == 2 else 6
+    need = d + len(ROTATIONS[d])
     rank, free = rigid_motion_rank(x, bc_dofs // d, bc_dofs % d)
     if rank < need:
         raise BoundaryConditionError(

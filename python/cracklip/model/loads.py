@@ -1,21 +1,24 @@
-"""The load vector of a model: every load of a scene against every basis function.
+"""The load vector of a model: every load of a scene against every basis
+function, on triangles and tetrahedra alike (the kernels of the cells
+through model.crack_type, cracklip.model.cracks).
 
 - ``assemble_load(model)``: boundary tractions (constant, f(x), or sigma n
-  of a stress field), point forces, a body force, an initial stress and
-  pressures on the crack lips, on standard and enriched dofs.
-- ``boundary_normals(mesh, where)`` gives the outward unit normal of a tagged
-  boundary at any point on it (the normal of the nearest boundary facet), so
-  that a pressure p becomes the traction -p n and a stress field sigma(x)
-  the traction sigma(x) n.
+  of a stress field), point forces, a body force, an initial stress (2D)
+  and pressures on the crack lips, on standard and enriched dofs.
+- Tractions: one facet quadrature for standard and enriched dofs, the
+  facets split where a crack crosses them; a stress field's traction is
+  sigma(x) n with the outward unit normal n of the boundary (2D: of the
+  nearest boundary facet, ``boundary_normals``; 3D: of the facet itself).
 - ``assemble_body_force(model, force)`` and ``assemble_initial_stress(model,
   field)``: int f . phi_j and -int sigma_0 : eps(phi_j) over the cracked
   part. Standard dofs: per cell, exactly for a linear sigma_0 (a 6-point
   degree-4 rule for a callable); enriched dofs: the stiffness's quadrature
   in the enriched cells, at least degree 4 (C++ assemble_cell_load). The lips need no term of
   their own: the enriched functions jump there, so -int sigma_0 : eps(phi_j)
-  already holds the lip traction sigma_0 n.
+  already holds the lip traction sigma_0 n. An initial stress is not
+  supported on 3D parts yet (the scene refuses it).
 - ``lip_pressure(crack, x)`` and ``assemble_lip_pressure(model, crack)``: a
-  pressure p on both lips, the load int p [[phi_j]] . n ds.
+  pressure p on both lips, the load int p [[phi_j]] . n over the lips.
 """
 from __future__ import annotations
 
@@ -23,11 +26,8 @@ import typing
 
 import numpy as np
 
-from .. import _cracklip
 from ..errors import InputError
 from ..scene.stress_field import LinearStress, evaluate_stress, tensor_to_voigt
-from .boundary import boundary_normals
-from .tip_regions import LIP_POINTS
 
 
 def traction_values(tr, points: np.ndarray, stress: typing.Callable[[np.ndarray], np.ndarray],
@@ -52,43 +52,36 @@ def traction_values(tr, points: np.ndarray, stress: typing.Callable[[np.ndarray]
     return t
 
 
-def _traction_values(model, tr, points: np.ndarray) -> np.ndarray:
-    """t (n, 2) of a Traction at boundary points of a 2D part."""
-    return traction_values(tr, points, lambda p: evaluate_stress(tr.stress, p, f"traction on {tr.where!r}"),
-                           _normals(model, tr.where))
-
-
-def _normals(model, where):
-    cache = model.__dict__.setdefault("_normals_cache", {})
-    if where not in cache:
-        cache[where] = boundary_normals(model.scene.mesh, where)
-    return cache[where]
-
-
-def assemble_tractions(model, group: str | None = None) -> np.ndarray:
-    """int t . phi_j ds over the loaded boundaries (one facet quadrature for
-    standard and enriched dofs, split where a crack crosses a facet); only
-    the tractions of `group` if given."""
-    scene = model.scene
-    b = np.zeros(model.num_dofs)
-    tractions = [t for t in scene.tractions if group is None or t.group == group]
-    if not tractions:
-        return b
-    msh = scene.mesh.mesh
+def _boundary_facets(model, where) -> tuple[np.ndarray, np.ndarray]:
+    """(cells, local facet indices) of the boundary facets of a tag."""
+    msh = model.scene.mesh.mesh
     tdim = msh.topology.dim
+    facets = model.scene.mesh.facets(where)
+    if facets.size == 0:
+        raise InputError(f"traction boundary {where!r} has no facets")
     msh.topology.create_connectivity(tdim - 1, tdim)
     msh.topology.create_connectivity(tdim, tdim - 1)
     f2c = msh.topology.connectivity(tdim - 1, tdim)
-    c2f = msh.topology.connectivity(tdim, tdim - 1).array.reshape(-1, 3)
-    for tr in tractions:
-        facets = scene.mesh.facets(tr.where)
-        if facets.size == 0:
-            raise InputError(f"traction boundary {tr.where!r} has no facets")
-        fcells = f2c.array[f2c.offsets[facets]].astype(np.int32)
-        flocal = np.argmax(c2f[fcells] == facets[:, None], axis=1).astype(np.int32)
-        fb = _cracklip.compute_facet_basis(model.x, model.cells, model.layout, model.geometries,
-                                           fcells, flocal, scene.options.facet_degree)
-        t = _traction_values(model, tr, fb["points"])
+    c2f = msh.topology.connectivity(tdim, tdim - 1).array.reshape(-1, tdim + 1)
+    fcells = f2c.array[f2c.offsets[facets]].astype(np.int32)
+    flocal = np.argmax(c2f[fcells] == facets[:, None], axis=1).astype(np.int32)
+    return fcells, flocal
+
+
+def assemble_tractions(model, group: str | None = None) -> np.ndarray:
+    """int t . phi_j over the loaded boundaries (one facet quadrature for
+    standard and enriched dofs, split where a crack crosses a facet); only
+    the tractions of `group` if given."""
+    scene = model.scene
+    kind = model.crack_type
+    b = np.zeros(model.num_dofs)
+    for tr in scene.tractions:
+        if group is not None and tr.group != group:
+            continue
+        fcells, flocal = _boundary_facets(model, tr.where)
+        fb = kind.facet_basis(model, fcells, flocal, scene.options.facet_degree)
+        t = traction_values(tr, fb["points"], lambda p: evaluate_stress(tr.stress, p, f"traction on {tr.where!r}"),
+                            lambda p: kind.facet_normals(model, tr.where, fb))
         q, dof, val = fb["entry_point"], fb["entry_dof"], fb["entry_value"]
         np.add.at(b, dof, fb["weights"][q] * np.einsum("ij,ij->i", val, t[q]))
     return b
@@ -101,18 +94,20 @@ def assemble_point_forces(model, group: str | None = None) -> np.ndarray:
     b = np.zeros(model.num_dofs)
     if not model.scene.point_forces:
         return b
+    d = model.gdim
     scale = float(np.ptp(model.x, axis=0).max())
+    ea, eb = (list(v) for v in zip(*model.crack_type.EDGES))
     for k, pf in enumerate(model.scene.point_forces):
         if group is not None and pf.group != group:
             continue
-        d = np.linalg.norm(model.x - np.asarray(pf.point), axis=1)
-        node = int(np.argmin(d))
+        dist = np.linalg.norm(model.x - np.asarray(pf.point), axis=1)
+        node = int(np.argmin(dist))
         cells = model.cells[np.any(model.cells == node, axis=1)]
-        edge = float(np.linalg.norm(model.x[cells[:, [1, 2, 0]]] - model.x[cells], axis=2).max())
-        if d[node] > max(edge, 1e-12 * scale):
+        edge = float(np.linalg.norm(model.x[cells[:, eb]] - model.x[cells[:, ea]], axis=2).max())
+        if dist[node] > max(edge, 1e-12 * scale):
             raise InputError(f"point force {k} at {list(pf.point)}: the nearest mesh node {model.x[node].tolist()} "
-                             f"is {d[node]:.3g} away, more than an element ({edge:.3g}); put the point on the part")
-        b[2 * node:2 * node + 2] += pf.value
+                             f"is {dist[node]:.3g} away, more than an element ({edge:.3g}); put the point on the part")
+        b[d * node:d * node + d] += pf.value
     return b
 
 
@@ -139,10 +134,8 @@ def _enriched_points(model) -> dict:
     the stiffness's rules, at least degree LOAD_DEGREE."""
     cache = model.__dict__.get("_enriched_points_cache")
     if cache is None:
-        q = model.scene.options.quadrature_options()
-        q.degree = max(q.degree, LOAD_DEGREE)
-        cache = _cracklip.compute_field_points(model.x, model.cells, model.layout, model.geometries,
-                                               np.zeros(model.num_dofs), np.asarray(model.layout.cells, dtype=np.int32), q)
+        cache = model.crack_type.enriched_cell_points(model, np.asarray(model.layout.cells, dtype=np.int32),
+                                                      LOAD_DEGREE)
         model._enriched_points_cache = cache
     return cache
 
@@ -151,45 +144,54 @@ def _cell_loads(model, force: np.ndarray | None, stress_field) -> np.ndarray:
     """int f . phi_j - int sigma_0 : eps(phi_j) for every dof (standard:
     per cell in numpy; enriched: C++ on the enriched cells' quadrature)."""
     b = np.zeros(model.num_dofs)
-    xv = model.x[model.cells]
-    e1, e2 = xv[:, 1] - xv[:, 0], xv[:, 2] - xv[:, 0]
-    det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
-    area = 0.5 * np.abs(det)
+    d = model.gdim
+    nv = d + 1
     if force is not None:
-        for d in (0, 1):
-            np.add.at(b, 2 * model.cells.ravel() + d, np.repeat(force[d] * area / 3.0, 3))
+        measure = model.crack_type.cell_measures(model.x, model.cells)
+        for c in range(d):
+            np.add.at(b, d * model.cells.ravel() + c, np.repeat(force[c] * measure / nv, nv))
     if stress_field is not None:
-        bary, w = _cell_rule(1 if isinstance(stress_field, LinearStress) else 4)
-        mean = np.zeros((len(area), 3))
-        for k in range(len(w)):
-            pts = np.einsum("a,cai->ci", bary[k], xv)
-            mean += w[k] * tensor_to_voigt(evaluate_stress(stress_field, pts, "initial stress"))
-        # grad N_a per cell: rows of J^-T.
-        inv = np.stack([np.stack([e2[:, 1], -e2[:, 0]], axis=1), np.stack([-e1[:, 1], e1[:, 0]], axis=1)],
-                       axis=1) / det[:, None, None]  # (c, 2 (xi, eta), 2 (x, y))
-        grads = np.stack([-inv[:, 0] - inv[:, 1], inv[:, 0], inv[:, 1]], axis=1)  # (c, 3, 2)
-        # -int sigma : eps(N_a e_d) = -area (sigma_dx dN_a/dx + sigma_dy dN_a/dy)
-        sxx, syy, sxy = mean[:, 0], mean[:, 1], mean[:, 2]
-        fx = -(sxx[:, None] * grads[:, :, 0] + sxy[:, None] * grads[:, :, 1]) * area[:, None]
-        fy = -(sxy[:, None] * grads[:, :, 0] + syy[:, None] * grads[:, :, 1]) * area[:, None]
-        np.add.at(b, 2 * model.cells.ravel(), fx.ravel())
-        np.add.at(b, 2 * model.cells.ravel() + 1, fy.ravel())
+        _add_initial_stress_standard(b, model, stress_field)
     if model.layout.num_enriched == 0:
         return b
     fp = _enriched_points(model)
     n = len(fp["weight"])
-    f_at = np.zeros((n, 2)) if force is None else np.broadcast_to(force, (n, 2)).copy()
-    s_at = np.zeros((n, 3))
+    f_at = np.zeros((n, d)) if force is None else np.broadcast_to(force, (n, d)).copy()
+    s_at = None
     if stress_field is not None:
         s_at = tensor_to_voigt(evaluate_stress(stress_field, fp["x"], "initial stress"))
-    b += _cracklip.assemble_cell_load(model.x, model.cells, model.layout, model.geometries, fp["cell"],
-                                      fp["ref"], fp["side"], fp["weight"], f_at, s_at)
+    b += model.crack_type.assemble_cell_load(model, fp, f_at, s_at)
     return b
+
+
+def _add_initial_stress_standard(b: np.ndarray, model, stress_field) -> None:
+    """Add -int sigma_0 : eps(N_a e_d) on the standard dofs of triangles to
+    b: the mean of sigma_0 per cell (exact for a LinearStress, a degree-4
+    rule else) against the P1 gradients (initial stresses are 2D only)."""
+    xv = model.x[model.cells]
+    e1, e2 = xv[:, 1] - xv[:, 0], xv[:, 2] - xv[:, 0]
+    det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+    area = 0.5 * np.abs(det)
+    bary, w = _cell_rule(1 if isinstance(stress_field, LinearStress) else 4)
+    mean = np.zeros((len(area), 3))
+    for k in range(len(w)):
+        pts = np.einsum("a,cai->ci", bary[k], xv)
+        mean += w[k] * tensor_to_voigt(evaluate_stress(stress_field, pts, "initial stress"))
+    # grad N_a per cell: rows of J^-T.
+    inv = np.stack([np.stack([e2[:, 1], -e2[:, 0]], axis=1), np.stack([-e1[:, 1], e1[:, 0]], axis=1)],
+                   axis=1) / det[:, None, None]  # (c, 2 (xi, eta), 2 (x, y))
+    grads = np.stack([-inv[:, 0] - inv[:, 1], inv[:, 0], inv[:, 1]], axis=1)  # (c, 3, 2)
+    # -int sigma : eps(N_a e_d) = -area (sigma_dx dN_a/dx + sigma_dy dN_a/dy)
+    sxx, syy, sxy = mean[:, 0], mean[:, 1], mean[:, 2]
+    fx = -(sxx[:, None] * grads[:, :, 0] + sxy[:, None] * grads[:, :, 1]) * area[:, None]
+    fy = -(sxy[:, None] * grads[:, :, 0] + syy[:, None] * grads[:, :, 1]) * area[:, None]
+    np.add.at(b, 2 * model.cells.ravel(), fx.ravel())
+    np.add.at(b, 2 * model.cells.ravel() + 1, fy.ravel())
 
 
 def assemble_body_force(model, force: typing.Sequence[float]) -> np.ndarray:
     """Load vector (num_dofs,) of a constant body force f: int f . phi_j dx for every dof j."""
-    f = np.asarray(force, dtype=float).reshape(2)
+    f = np.asarray(force, dtype=float).reshape(model.gdim)
     if not np.all(np.isfinite(f)):
         raise InputError(f"body force {f.tolist()} contains NaN or infinity")
     if not np.any(f):
@@ -217,18 +219,18 @@ def lip_pressure(crack, x: np.ndarray) -> np.ndarray:
 
 
 def assemble_lip_pressure(model, crack: int) -> np.ndarray:
-    """int p [[phi_j]] . n ds over a crack's segments: the pressure p pushes
+    """int p [[phi_j]] . n over a crack's lips: the pressure p pushes
     the + lip along n (into the + side) and the - lip along -n."""
-    pts = _cracklip.compute_crack_points(model.x, model.cells, model.geometries[crack], LIP_POINTS)
-    t = lip_pressure(model.cracks[crack].crack, pts["x"])[:, None] * pts["normal"]
-    return _cracklip.assemble_lip_load(model.x, model.cells, model.layout, model.geometries, crack,
-                                       pts["cell"], pts["ref"], pts["weight"], t)
+    cm = model.cracks[crack]
+    pts = cm.lip_points(model, cm.LIP_POINTS)
+    t = lip_pressure(cm.crack, pts["x"])[:, None] * pts["normal"]
+    return model.crack_type.assemble_lip_load(model, crack, pts, t)
 
 
 def assemble_loads(model) -> dict[str, np.ndarray]:
     """The load vector (num_dofs,) of each load group (Scene.load_path scales them)."""
     scene = model.scene
-    force = None if scene.body_force is None else np.asarray(scene.body_force, dtype=float).reshape(2)
+    force = None if scene.body_force is None else np.asarray(scene.body_force, dtype=float).reshape(model.gdim)
     if force is not None and not np.all(np.isfinite(force)):
         raise InputError(f"body force {force.tolist()} contains NaN or infinity")
     if force is not None and not np.any(force):

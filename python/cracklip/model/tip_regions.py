@@ -24,7 +24,6 @@ import math
 
 import numpy as np
 
-from .. import _cracklip
 from ..errors import InputError
 from ..scene.options import check_ring
 from .boundary import boundary_segments
@@ -254,9 +253,5 @@ def tip_domains(model, crack: int, requested: float | None = None,
 
 
 def lip_points(model, crack: int):
-    cache = getattr(model, "_lip_points_cache", None)
-    if cache is None:
-        cache = model._lip_points_cache = {}
-    if crack not in cache:
-        cache[crack] = _cracklip.compute_crack_points(model.x, model.cells, model.geometries[crack], LIP_POINTS)
-    return cache[crack]
+    """The crack's lip points of the SIFs' lip terms (LIP_POINTS per segment), computed once."""
+    return model.cracks[crack].lip_points(model, LIP_POINTS)

@@ -1,6 +1,6 @@
 """The discrete X-FEM model of a scene as data: the spaces, the cracks on the
-mesh, the enrichment layout and the constraints (2D and 3D alike; model.py
-and model_3d.py build it)."""
+mesh, the enrichment layout and the constraints (2D and 3D alike;
+model.create_model builds it)."""
 from __future__ import annotations
 
 import dataclasses
@@ -12,20 +12,7 @@ import numpy as np
 import dolfinx.fem
 
 from ..scene.scene import Scene
-
-
-#: Cell classes of CrackGeometry.cell_class (see cpp/geometry/crack_geometry_2d.h).
-CELL_CLASSES = {"plain": 0, "cut": 1, "edge": 2, "tip": 3, "extension": 4}
-
-
-@dataclasses.dataclass
-class CrackModel:
-    """One crack on the mesh: its description (a polyline in 2D, a surface in
-    3D), which ends are tips (2D; empty in 3D), its geometry
-    (_cracklip.CrackGeometry or CrackGeometry3D)."""
-    crack: typing.Any
-    tips: tuple[bool, ...]
-    geometry: typing.Any
+from .cracks import CrackModel, crack_model_type
 
 
 @dataclasses.dataclass
@@ -34,10 +21,10 @@ class XfemModel:
 
     Attributes:
         scene: the input scene.
-        V: DOLFINx P1 vector space (standard dofs, block size 2).
-        x: (num_nodes, 2) node (dof block) coordinates.
-        cells: (num_cells, 3) node indices per cell.
-        cracks: per-crack geometry.
+        V: DOLFINx P1 vector space (standard dofs, block size d = 2 or 3).
+        x: (num_nodes, d) node (dof block) coordinates.
+        cells: (num_cells, d + 1) node indices per cell.
+        cracks: every crack on the mesh (cracks.CrackModel, of crack_type).
         layout: enriched pseudo-nodes and cells (_cracklip.EnrichmentLayout).
         bc_dofs: constrained scalar dofs (standard dofs only), sorted.
         bc_values: prescribed values at bc_dofs.
@@ -64,6 +51,12 @@ class XfemModel:
         return self.x.shape[1]
 
     @property
+    def crack_type(self) -> type[CrackModel]:
+        """The CrackModel implementation of the mesh's dimension: the crack
+        geometry and the kernels of its cells (also without cracks)."""
+        return crack_model_type(self.gdim)
+
+    @property
     def num_dofs(self) -> int:
         return self.gdim * self.layout.num_nodes_total
 
@@ -75,14 +68,4 @@ class XfemModel:
     def h(self) -> float:
         """Mean edge length of the mesh (every cell's edges; computed once per
         model: 0.05 s at 2e6 triangles)."""
-        if self.gdim == 2:  # as before, bit for bit
-            x, y = np.ascontiguousarray(self.x[:, 0]), np.ascontiguousarray(self.x[:, 1])
-            total = 0.0
-            for a, b in ((0, 1), (1, 2), (2, 0)):
-                i, j = self.cells[:, a], self.cells[:, b]
-                total += float(np.hypot(x[j] - x[i], y[j] - y[i]).sum())
-            return total / (3 * len(self.cells)) if len(self.cells) else 0.0
-        pairs = [(a, b) for a in range(4) for b in range(a + 1, 4)]
-        total = sum(float(np.linalg.norm(self.x[self.cells[:, b]] - self.x[self.cells[:, a]], axis=1).sum())
-                    for a, b in pairs)
-        return total / (len(pairs) * len(self.cells)) if len(self.cells) else 0.0
+        return self.crack_type.mean_edge(self.x, self.cells)

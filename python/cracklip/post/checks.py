@@ -72,7 +72,8 @@ def interpenetration(solution) -> list[tuple[str, str]]:
         st, overlap, frac = worst
         kis = [r for r in st.stress_intensity_factors(ci) if r["K_I"] < 0.0]
         at = f" at {st.step['name']!r}" if getattr(st, "step", None) and len(states) > 1 else ""
-        k_text = "; ".join(f"K_I = {r['K_I']:.4g} at the tip ({r['x']:.6g}, {r['y']:.6g})" for r in kis)
+        k_text = "; ".join(f"K_I = {r['K_I']:.4g} at the {cm.END} ({', '.join(f'{v:.6g}' for v in r['position'])})"
+                           for r in kis)
         out.append(("interpenetration", (
             f"crack {cm.crack.name!r}{at}: the lips pass through each other over {100 * frac:.0f} % of its length "
             f"(largest overlap {overlap:.3g}" + (f"; {k_text}" if k_text else "") + "): contact is off "
@@ -114,14 +115,14 @@ def point_supports(solution, reactions: dict | None = None) -> list[tuple[str, s
         return []
     for kind in ("point force", "traction"):
         items = [np.asarray(i["resultant"]) for i in reactions["load_items"] if i["kind"] == kind]
-        for k in range(2):
+        for k in range(solution.model.gdim):
             pos = sum(f[k] for f in items if f[k] > OPPOSING_FRACTION * gross)
             neg = -sum(f[k] for f in items if f[k] < -OPPOSING_FRACTION * gross)
             if pos > 0.0 and neg > 0.0:
-                detail = ", ".join(f"{r['condition']} ({r['force'][0]:.4g}, {r['force'][1]:.4g})" for r in points
+                detail = ", ".join(f"{r['condition']} ({', '.join(f'{v:.4g}' for v in r['force'])})" for r in points
                                    if np.linalg.norm(r["force"]) > 0.0)
                 return [("point_supports", (
-                    f"the {kind}s push against each other (in {'xy'[k]}: +{pos:.4g} and -{neg:.4g}) as a set meant "
+                    f"the {kind}s push against each other (in {'xyz'[k]}: +{pos:.4g} and -{neg:.4g}) as a set meant "
                     f"to balance does (the pins of a C(T), both ends of a pulled plate), yet the point supports "
                     f"carry {carried:.4g} ({100 * carried / gross:.2g} % of the applied load {gross:.4g}): {detail}. "
                     "The loads do not balance and the supports act as loading points (one pin loaded more than "

@@ -11,7 +11,7 @@ internal and drop out). Only cells around constrained nodes are touched.
 Each condition gets its own dofs (a dof shared by two conditions, a corner
 of two tagged sides, goes to the first); conditions with the same label
 (the nodes of a scene file's box) are summed. The moment is about the
-origin (z component, x R_y - y R_x).
+origin: in 2D its z component x R_y - y R_x, in 3D the vector x x R.
 """
 from __future__ import annotations
 
@@ -19,10 +19,12 @@ import typing
 
 import numpy as np
 
+from ..model.boundary import tag_facets
 from ..model.constraints import condition_dofs, is_point_condition
 from ..model.loads import (assemble_body_force, assemble_initial_stress, assemble_loads, assemble_point_forces,
-                           assemble_tractions)
+                           assemble_tractions, traction_values)
 from ..scene.material import strain, stress
+from ..scene.stress_field import evaluate_stress
 
 
 def _load_vector(solution) -> np.ndarray:
@@ -35,27 +37,22 @@ def _load_vector(solution) -> np.ndarray:
 
 
 def load_items(solution) -> list[dict[str, typing.Any]]:
-    """The resultant (F_x, F_y) of every point force and every traction of
-    the scene at this state's factors, with its kind ("point force",
-    "traction") and where it acts (a traction's resultant: its value at the
-    midpoints of its tag's facets times their lengths)."""
-    import dolfinx.cpp.mesh
-    from ..model.loads import _traction_values
+    """The resultant (F_x, F_y[, F_z]) of every point force and every
+    traction of the scene at this state's factors, with its kind ("point
+    force", "traction") and where it acts (a traction's resultant: its value
+    at the centroids of its tag's facets times their lengths or areas)."""
     m = solution.model
     sc = m.scene
     out = []
     for pf in sc.point_forces:
         out.append({"kind": "point force", "where": f"point {list(pf.point)}",
                     "resultant": solution.factor(pf.group) * np.asarray(pf.value, dtype=float)})
-    msh = sc.mesh.mesh
-    x = msh.geometry.x[:, :2]
     for tr in sc.tractions:
-        facets = sc.mesh.facets(tr.where)
-        g = dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, 1, facets, False)
-        a, b = x[g[:, 0]], x[g[:, 1]]
-        t = _traction_values(m, tr, 0.5 * (a + b))
+        centroid, size, normal = tag_facets(sc.mesh, tr.where)
+        t = traction_values(tr, centroid, lambda p: evaluate_stress(tr.stress, p, f"traction on {tr.where!r}"),
+                            lambda p: normal)
         out.append({"kind": "traction", "where": f"tag {tr.where!r}",
-                    "resultant": solution.factor(tr.group) * (t * np.linalg.norm(b - a, axis=1)[:, None]).sum(axis=0)})
+                    "resultant": solution.factor(tr.group) * (t * size[:, None]).sum(axis=0)})
     return out
 
 
@@ -66,7 +63,7 @@ def _load_magnitude(solution) -> float:
     the tractions it puts on the boundary)."""
     m = solution.model
     sc = m.scene
-    N = m.x.shape[0]
+    N, d = m.x.shape
     parts = []
     for group in {t.group for t in sc.tractions} | {p.group for p in sc.point_forces}:
         parts.append(solution.factor(group) * (assemble_tractions(m, group) + assemble_point_forces(m, group)))
@@ -74,47 +71,54 @@ def _load_magnitude(solution) -> float:
         parts.append(solution.factor(sc.body_force_group) * assemble_body_force(m, sc.body_force))
     if sc.initial_stress is not None:
         parts.append(solution.factor(sc.initial_stress_group) * assemble_initial_stress(m, sc.initial_stress))
-    return float(sum(np.linalg.norm(b[: 2 * N].reshape(N, 2), axis=1).sum() for b in parts))
+    return float(sum(np.linalg.norm(b[: d * N].reshape(N, d), axis=1).sum() for b in parts))
 
 
 def _stiffness_rows(solution, dofs: np.ndarray) -> np.ndarray:
     """(K u)_i at standard dofs i: int sigma(u_h) : eps(N_i) over the cells
     around their nodes."""
     m = solution.model
-    nodes = np.unique(dofs // 2)
+    d = m.gdim
+    nodes = np.unique(dofs // d)
     touched = np.flatnonzero(np.isin(m.cells, nodes).any(axis=1)).astype(np.int32)
-    out = np.zeros(2 * m.x.shape[0])
+    out = np.zeros(d * m.x.shape[0])
     if touched.size == 0:
         return out[dofs]
     f = solution.field_points(touched)
-    sig = stress(strain(f["grad_u"]), m.scene.material)            # (q, 2, 2)
-    cells = m.cells[f["cell"]]                                        # (q, 3)
-    xv = m.x[cells]
-    e1, e2 = xv[:, 1] - xv[:, 0], xv[:, 2] - xv[:, 0]
-    det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
-    inv = np.stack([np.stack([e2[:, 1], -e2[:, 0]], axis=1), np.stack([-e1[:, 1], e1[:, 0]], axis=1)],
-                   axis=1) / det[:, None, None]
-    grads = np.stack([-inv[:, 0] - inv[:, 1], inv[:, 0], inv[:, 1]], axis=1)   # (q, 3 nodes, 2)
-    # int sigma : eps(N_a e_d) = int sigma_dj dN_a/dx_j
-    contrib = np.einsum("q,qdj,qaj->qad", f["weight"], sig, grads)   # (q, 3, 2)
-    np.add.at(out, (2 * cells[:, :, None] + np.arange(2)[None, None, :]).ravel(), contrib.ravel())
+    sig = stress(strain(f["grad_u"]), m.scene.material)            # (q, d, d)
+    cells = m.cells[f["cell"]]                                        # (q, d + 1)
+    grads = m.crack_type.shape_gradients(m.x, cells)                  # (q, d + 1 nodes, d)
+    # int sigma : eps(N_a e_c) = int sigma_cj dN_a/dx_j
+    contrib = np.einsum("q,qdj,qaj->qad", f["weight"], sig, grads)   # (q, d + 1, d)
+    np.add.at(out, (d * cells[:, :, None] + np.arange(d)[None, None, :]).ravel(), contrib.ravel())
     return out[dofs]
+
+
+def _moment(x: np.ndarray, comps: np.ndarray, forces: np.ndarray):
+    """The moment about the origin of the forces (n,) along components
+    `comps` at points x (n, d): in 2D its z component (a float), in 3D the
+    vector (3,)."""
+    if x.shape[1] == 2:
+        return float(np.sum(np.where(comps == 1, x[:, 0] * forces, -x[:, 1] * forces)))
+    f = np.zeros_like(x)
+    f[np.arange(len(comps)), comps] = forces
+    return np.cross(x, f).sum(axis=0)
 
 
 def compute_reactions(solution) -> dict[str, typing.Any]:
     """Reactions per condition (label, kind: tag, point or box, nodes,
-    force [R_x, R_y], moment about the origin), their sum, the applied load
+    force [R_x, R_y(, R_z)], moment about the origin), their sum, the applied load
     (the sum of every load on the standard dofs: tractions, point forces,
     body force; lip pressures and initial stresses are self-equilibrated)
     and the balance |sum + applied| / (sum of |nodal loads|); gross_load is
     that sum of |nodal loads|, load_magnitude the same of every kind of load
     on its own (before they add up)."""
     m = solution.model
+    N, d = m.x.shape
     per = condition_dofs(m)
     every = np.unique(np.concatenate(per)) if per else np.zeros(0, dtype=np.int64)
     f = _load_vector(solution)
-    N = m.x.shape[0]
-    r = np.zeros(2 * N)
+    r = np.zeros(d * N)
     if every.size:
         r[every] = _stiffness_rows(solution, every) - f[every]
     groups: dict[str, dict[str, typing.Any]] = {}
@@ -122,22 +126,25 @@ def compute_reactions(solution) -> dict[str, typing.Any]:
         label = bc.label or f"condition {k}: " + (f"tag {bc.where!r}" if not is_point_condition(bc)
                                                    else f"point {list(bc.where)}")
         g = groups.setdefault(label, {"condition": label, "kind": "point" if is_point_condition(bc) else "tag",
-                                      "nodes": set(), "force": np.zeros(2), "moment": 0.0})
-        nodes, comps = dofs // 2, dofs % 2
+                                      "nodes": set(), "force": np.zeros(d),
+                                      "moment": _moment(np.zeros((0, d)), np.zeros(0, int), np.zeros(0))})
+        nodes, comps = dofs // d, dofs % d
         g["nodes"].update(int(n) for n in nodes)
         np.add.at(g["force"], comps, r[dofs])
-        xy = m.x[nodes]
-        g["moment"] += float(np.sum(np.where(comps == 1, xy[:, 0] * r[dofs], -xy[:, 1] * r[dofs])))
-    f_std = f[: 2 * N].reshape(N, 2)
+        g["moment"] = g["moment"] + _moment(m.x[nodes], comps, r[dofs])
+    f_std = f[: d * N].reshape(N, d)
     applied = f_std.sum(axis=0)
-    total = np.sum([g["force"] for g in groups.values()], axis=0) if groups else np.zeros(2)
+    total = np.sum([g["force"] for g in groups.values()], axis=0) if groups else np.zeros(d)
     gross = float(np.linalg.norm(f_std, axis=1).sum())
     for g in groups.values():  # several nodes under one label of point conditions: a scene file's box
         if g["kind"] == "point" and len(g["nodes"]) > 1:
             g["kind"] = "box"
     rows = [{"condition": g["condition"], "kind": g["kind"], "nodes": len(g["nodes"]),
-             "force": g["force"].tolist(), "moment": g["moment"]} for g in groups.values()]
-    moment_applied = float(np.sum(m.x[:, 0] * f_std[:, 1] - m.x[:, 1] * f_std[:, 0]))
+             "force": g["force"].tolist(), "moment": np.asarray(g["moment"]).tolist()} for g in groups.values()]
+    if d == 2:  # the z component in the plane
+        moment_applied = float(np.sum(m.x[:, 0] * f_std[:, 1] - m.x[:, 1] * f_std[:, 0]))
+    else:
+        moment_applied = np.cross(m.x, f_std).sum(axis=0).tolist()
     return {"conditions": rows, "sum": total.tolist(), "applied_load": applied.tolist(),
             "applied_moment": moment_applied, "gross_load": gross, "load_magnitude": _load_magnitude(solution),
             "load_items": [{**item, "resultant": item["resultant"].tolist()} for item in load_items(solution)],

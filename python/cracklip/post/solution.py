@@ -1,4 +1,13 @@
-"""Post-processing of a solved X-FEM model: point values, crack opening, sub-cell fields."""
+"""Post-processing of a solved X-FEM model, planar or solid: point values,
+the crack's lips and opening, quadrature-point and sub-cell fields,
+energies, stress intensity factors.
+
+One ``Solution`` for both dimensions: what differs (the cells' kernels, the
+lip points of a curve or a surface, the sub-cell mesh) comes from the
+model's crack type (cracklip.model.cracks), the SIFs from the tips
+(cracklip.fracture.sif) or the fronts (cracklip.fracture.sif_3d) in one row
+schema.
+"""
 from __future__ import annotations
 
 import dataclasses
@@ -10,11 +19,19 @@ import dolfinx.geometry
 
 from .. import _cracklip
 from ..errors import InputError
-from ..fracture.sif import compute_sifs
+from ..fracture.sif import compute_sifs, complete_rows
+from ..fracture.sif_3d import compute_front_sifs
 from ..model.checks import ModelWarning
 from ..model.model import XfemModel
 from ..scene.material import strain, stress
-from ..scene.stress_field import evaluate_stress, tensor_to_voigt
+
+#: Cells per chunk of the whole-mesh field loops (bounded memory at 1e6 cells).
+CHUNK = 200_000
+
+#: Gauss degree of the energy error in cells without crack functions: 6 on
+#: triangles, 4 on tetrahedra (a degree-6 tetrahedron rule has several times
+#: the points).
+ERROR_DEGREE = {2: 6, 3: 4}
 
 
 @dataclasses.dataclass
@@ -60,80 +77,79 @@ class Solution:
 
     # -- point values -------------------------------------------------------
     def locate(self, points: np.ndarray, prefer_crossed: bool = True) -> tuple[np.ndarray, np.ndarray]:
-        """Cell and reference coordinates of each point (n, 2).
+        """Cell and reference coordinates of each point (n, d).
 
         A point on a cell boundary goes to a cell crossed by a crack if there
         is one (so that both lips can be evaluated there).
         """
-        pts = np.asarray(points, dtype=float).reshape(-1, 2)
-        msh = self.model.scene.mesh.mesh
+        m = self.model
+        d = m.gdim
+        pts = np.asarray(points, dtype=float).reshape(-1, d)
+        msh = m.scene.mesh.mesh
         p3 = np.zeros((len(pts), 3))
-        p3[:, :2] = pts
-        tree = _tree(self.model)
-        cand = dolfinx.geometry.compute_collisions(tree, p3)
+        p3[:, :d] = pts
+        cand = dolfinx.geometry.compute_collisions(_tree(m), p3)
         coll = dolfinx.geometry.compute_colliding_cells(msh, cand, p3)
-        crossed = np.zeros(self.model.cells.shape[0], dtype=bool)
-        for g in self.model.geometries:
-            crossed[g.cell_class == 1] = True
-            crossed[g.cell_class == 2] = True
+        crossed = np.zeros(m.cells.shape[0], dtype=bool)
+        for cm in m.cracks:
+            crossed |= cm.crossed()
         cells = np.empty(len(pts), dtype=np.int32)
         for i in range(len(pts)):
             links = coll.links(i)
             if len(links) == 0:
                 raise InputError(f"point {pts[i].tolist()} is outside the mesh")
-            pick = links[0]
-            if prefer_crossed:
-                for c in links:
-                    if crossed[c]:
-                        pick = c
-                        break
-            cells[i] = pick
-        xv = self.model.x[self.model.cells[cells]]
-        J = np.stack([xv[:, 1] - xv[:, 0], xv[:, 2] - xv[:, 0]], axis=2)
+            hit = links[crossed[links]] if prefer_crossed else links[:0]
+            cells[i] = hit[0] if len(hit) else links[0]
+        xv = m.x[m.cells[cells]]
+        J = np.stack([xv[:, k] - xv[:, 0] for k in range(1, d + 1)], axis=2)
         ref = np.linalg.solve(J, (pts - xv[:, 0])[:, :, None])[:, :, 0]
         return cells, np.clip(ref, 0.0, 1.0)
 
     def displacement(self, points: np.ndarray, side: int = 0) -> np.ndarray:
-        """Displacement (n, 2) at points; side +1 / -1 picks a lip of a crack
+        """Displacement (n, d) at points; side +1 / -1 picks a lip of a crack
         crossing the point's cell, 0 the side the point lies on."""
         cells, ref = self.locate(points)
         sides = np.full(len(cells), side, dtype=np.int8)
         return self._evaluate(cells, ref, sides)
 
     def displacement_gradient(self, points: np.ndarray, side: int = 0) -> np.ndarray:
-        """Displacement gradient (n, 2, 2), [p, i, j] = d u_i / d x_j, at points."""
+        """Displacement gradient (n, d, d), [p, i, j] = d u_i / d x_j, at points."""
         cells, ref = self.locate(points)
         sides = np.full(len(cells), side, dtype=np.int8)
         return self._evaluate(cells, ref, sides, gradient=True)[1]
 
+    def _physical(self, cells: np.ndarray, ref: np.ndarray) -> np.ndarray:
+        """Physical points (n, d) of reference points (cell (n,), ref (n, d))."""
+        N = np.column_stack([1.0 - ref.sum(axis=1), ref])
+        return np.einsum("na,nai->ni", N, self.model.x[self.model.cells[cells]])
+
     def _evaluate(self, cells, ref, sides, gradient: bool = False):
-        m = self.model
-        u, grad = _cracklip.evaluate_displacement(m.x, m.cells, m.layout, m.geometries, self.u,
-                                                  cells, ref, sides)
+        u, grad = self.model.crack_type.evaluate(self.model, self.u, cells, ref, sides)
         return (u, grad) if gradient else u
 
-    # -- along the crack ----------------------------------------------------
+    # -- on the crack -------------------------------------------------------
     def lip_samples(self, crack: int = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
-        """Points along a crack (points_per_segment Gauss points on its segment
-        in every cell it crosses, tau^2-graded toward a tip), sorted by s:
+        """Points on a crack's lips (points_per_segment Gauss points per crack
+        segment, tau^2-graded toward a tip, in 2D; per direction of each lip
+        facet, collapsed at the front, in 3D) with what the lips do there:
 
-        s (n,) arc length from the crack's first point, x (n, 2), weight (n,)
-        (the length each point stands for), normal (n, 2) into the + side,
-        u_plus, u_minus (n, 2) the displacement of each lip, jump (n, 2) =
-        u_plus - u_minus, gap (n,) = [[u]].n (> 0 open), slip (n,) = [[u]].t
-        (t = n turned by -90 degrees), pressure (n,) the contact pressure
-        (>= 0 in compression; 0 without contact), cell (n,), ref (n, 2).
-        Without tip enrichment the tip cell holds no crack (the discrete
-        crack ends at its edge) and is left out.
+        x (n, d), weight (n,) (the length or area each point stands for; a
+        point-collapsed facet may give negative weights), normal (n, d) into
+        the + side, u_plus, u_minus (n, d) the displacement of each lip,
+        jump (n, d) = u_plus - u_minus, gap (n,) = [[u]].n (> 0 open), slip
+        the tangential part of the jump (2D: (n,) [[u]].t, t = n turned by
+        -90 degrees; 3D: (n, 3)), pressure (n,) the contact pressure (>= 0
+        in compression; 0 without contact), shear (n,) the friction traction
+        along t, state (n,) "open", "stick" or "slip", cell (n,), ref (n,
+        d); in 2D sorted by s (n,) the arc length from the crack's first
+        point (without tip enrichment the tip cell holds no crack and is
+        left out), in 3D facet by facet with front_vertices (n,).
         """
         m = self.model
         if not 0 <= crack < len(m.cracks):
             raise InputError(f"crack index {crack} out of range: the scene has {len(m.cracks)} cracks")
-        g = m.geometries[crack]
-        pts = _cracklip.compute_crack_points(m.x, m.cells, g, int(points_per_segment))
-        if m.scene.options.enrichment == "none":
-            keep = ~np.isin(pts["cell"], np.asarray(g.tip_cells["cell"]))
-            pts = {k: v[keep] for k, v in pts.items()}
+        cm = m.cracks[crack]
+        pts = cm.lip_samples(m, int(points_per_segment))
         cells, ref, normal = pts["cell"], pts["ref"], pts["normal"]
         pressure, shear = np.zeros(len(cells)), np.zeros(len(cells))
         if self.contact:
@@ -144,14 +160,11 @@ class Solution:
         up = self._evaluate(cells, ref, np.ones(len(cells), dtype=np.int8))
         um = self._evaluate(cells, ref, -np.ones(len(cells), dtype=np.int8))
         jump = up - um
-        tangent = np.stack([normal[:, 1], -normal[:, 0]], axis=1)
-        s = arc_length(m.cracks[crack].crack.points, pts["x"]) if len(cells) else np.zeros(0)
-        o = np.argsort(s, kind="stable")
-        return {"s": s[o], "x": pts["x"][o], "weight": pts["weight"][o], "normal": normal[o],
-                "u_plus": up[o], "u_minus": um[o], "jump": jump[o],
-                "gap": np.einsum("ij,ij->i", jump, normal)[o], "slip": np.einsum("ij,ij->i", jump, tangent)[o],
-                "pressure": pressure[o], "shear": shear[o], "state": self._lip_states(pressure, shear)[o],
-                "cell": cells[o], "ref": ref[o]}
+        out = {"x": pts["x"], "weight": pts["weight"], "normal": normal, "u_plus": up, "u_minus": um, "jump": jump,
+               "gap": np.einsum("ij,ij->i", jump, normal), "slip": cm.slip(jump, normal), "pressure": pressure,
+               "shear": shear, "state": self._lip_states(pressure, shear), "cell": cells, "ref": ref}
+        out.update({k: pts[k] for k in ("s", "front_vertices") if k in pts})
+        return out
 
     def _lip_states(self, pressure: np.ndarray, shear: np.ndarray) -> np.ndarray:
         """Per point "open", "stick" or "slip" from the lip tractions: open
@@ -170,150 +183,24 @@ class Solution:
         return out
 
     def crack_opening(self, crack: int = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
-        """Jump [[u]] = u(+) - u(-) along a crack (see lip_samples): x (n, 2),
-        s (n,) arc length, jump (n, 2), normal (n,) = [[u]].n (n the + side
-        normal, positive = opening), tangential (n,) = [[u]].t."""
+        """Jump [[u]] = u(+) - u(-) over a crack (see lip_samples): x (n, d),
+        weight (n,), jump (n, d), normal (n,) = [[u]].n (n the + side
+        normal, positive = opening), tangential (n,) = [[u]].t in 2D, the
+        size of the tangential part of [[u]] in 3D; s (n,) the arc length in
+        2D."""
         smp = self.lip_samples(crack, points_per_segment)
-        return {"x": smp["x"], "s": smp["s"], "jump": smp["jump"], "normal": smp["gap"],
-                "tangential": smp["slip"]}
+        slip = smp["slip"]
+        out = {"x": smp["x"], "weight": smp["weight"], "jump": smp["jump"], "normal": smp["gap"],
+               "tangential": slip if slip.ndim == 1 else np.linalg.norm(slip, axis=1)}
+        if "s" in smp:
+            out["s"] = smp["s"]
+        return out
 
-    # -- whole-field quantities --------------------------------------------
-    def subcell_fields(self) -> dict[str, typing.Any]:
-        """Displacement and stress (xx, yy, xy at each sub-triangle's centroid;
-        the total stress C eps(u) + sigma_0 with an initial stress) on the
-        sub-cell mesh (see cracklip.io.paraview.write_vtu)."""
-        m = self.model
-        mat = m.scene.material
-        f = _cracklip.compute_subcell_fields(m.x, m.cells, m.layout, m.geometries, self.u,
-                                             mat.E_strain, mat.nu_strain)
-        if m.scene.initial_stress is not None and self.factor(m.scene.initial_stress_group) != 0.0:
-            centroids = f["points"].reshape(-1, 3, 2).mean(axis=1)
-            f["stress"] = f["stress"] + self.factor(m.scene.initial_stress_group) * tensor_to_voigt(
-                evaluate_stress(m.scene.initial_stress, centroids, "initial stress"))
-        return f
-
-    def field_points(self, cells: np.ndarray | None = None, degree: int | None = None
-                     ) -> dict[str, np.ndarray]:
-        """Quadrature points of the stiffness rules on `cells` (all cells by
-        default) with grad u there: cell, x (n, 2), weight, side, grad_u (n, 2, 2).
-        degree: Gauss degree in cells without tip functions (default: the
-        stiffness's)."""
-        m = self.model
-        cell_list = np.zeros(0, dtype=np.int32) if cells is None else np.asarray(cells, dtype=np.int32)
-        return _cracklip.compute_field_points(m.x, m.cells, m.layout, m.geometries, self.u, cell_list,
-                                              self._quadrature(degree))
-
-    def enriched_field_points(self) -> dict[str, np.ndarray] | None:
-        """field_points() on the enriched cells, computed once (the strain
-        energy and results.json's quadrature counts both need them; None
-        without enriched cells)."""
-        if not hasattr(self, "_enriched_points"):
-            enriched = np.asarray(self.model.layout.cells, dtype=np.int32)
-            self._enriched_points = self.field_points(enriched) if enriched.size else None
-        return self._enriched_points
-
-    def _quadrature(self, degree: int | None):
-        q = self.model.scene.options.quadrature_options()
-        if degree is not None:
-            q.degree = max(q.degree, int(degree))
-        return q
-
-    def strain_energy(self) -> float:
-        """1/2 int sigma : eps over the domain (the stiffness quadrature; the
-        enriched cells' points are enriched_field_points(), shared with
-        results.json's quadrature counts)."""
-        m = self.model
-        plain = np.ones(m.cells.shape[0], dtype=bool)
-        plain[np.asarray(m.layout.cells, dtype=np.int32)] = False
-        parts = [self.enriched_field_points()]
-        if plain.any():
-            parts.append(self.field_points(np.flatnonzero(plain)))
-        energy = 0.0
-        for f in parts:
-            if f is not None:
-                eps = strain(f["grad_u"])
-                energy += float(0.5 * np.sum(f["weight"] * np.einsum("nij,nij->n", stress(eps, m.scene.material),
-                                                                     eps)))
-        return energy
-
-    def energy_error(self, exact_gradient: typing.Callable[[np.ndarray, np.ndarray], np.ndarray]
-                     ) -> tuple[float, float]:
-        """Energy norm of u - u_exact, absolute and relative to the exact field's.
-
-        exact_gradient(x (n, 2), side (n,)) returns grad u_exact (n, 2, 2);
-        side is +1 / -1 on a crack's lips region (0 elsewhere), for fields
-        that jump across the crack.
-        """
-        mat = self.model.scene.material
-        err2 = ref2 = 0.0
-        # In chunks of cells, so that memory stays bounded on large meshes.
-        ncells = self.model.cells.shape[0]
-        for chunk in np.array_split(np.arange(ncells, dtype=np.int32), max(1, ncells // 100_000)):
-            f = self.field_points(chunk, degree=6)
-            g_ex = np.asarray(exact_gradient(f["x"], f["side"]), dtype=float)
-            e = strain(f["grad_u"] - g_ex)
-            eex = strain(g_ex)
-            err2 += float(np.sum(f["weight"] * np.einsum("nij,nij->n", stress(e, mat), e)))
-            ref2 += float(np.sum(f["weight"] * np.einsum("nij,nij->n", stress(eex, mat), eex)))
-        return float(np.sqrt(err2)), float(np.sqrt(err2 / ref2))
-
-    def stress_intensity_factors(self, crack: int | None = 0, radius: float | None = None,
-                                 ring: tuple[float, float] | None = None) -> list[dict[str, typing.Any]]:
-        """K_I, K_II at every tip of a crack (crack=None: of every crack) by the
-        domain interaction integral on three domains per tip (see cracklip.fracture.sif):
-        one dict per tip with the keys of results.json's "sifs" (crack,
-        crack_name, tip, x, y, direction, K_I, K_II, K_I_spread, K_II_spread,
-        mode_mix_deg, G, radius, radii, element_size, limited_by, domain_clear).
-
-        radius: the largest domain's radius (default Options.sif_radius, 0:
-        6 element sizes at the tip); clipped to keep the domain inside the
-        part and clear of other tips, cracks, kinks and holes.
-        ring: (r_in, r_out), K on that one ring as another code defines it
-        (q = 1 within r_in, 0 beyond r_out, linear between; r_in = r_out:
-        the plateau of that radius), NOT clipped (default Options.sif_ring);
-        a ring that reaches an obstacle is warned about, domain_clear false.
-        """
-        key = (crack, radius, None if ring is None else tuple(float(v) for v in ring))
-        if key not in self._sif_cache:
-            cracks = None if crack is None else [crack]
-            if crack is not None and not 0 <= crack < len(self.model.cracks):
-                raise InputError(f"crack index {crack} out of range: the scene has {len(self.model.cracks)} cracks")
-            self._sif_cache[key] = compute_sifs(self, radius, cracks, ring)
-        rows = [dict(r) for r in self._sif_cache[key][0]]
-        est = self.error_estimate
-        for r in rows:
-            tip = est["tips"].get(f"{r['crack']}:{r['tip']}") if est and radius is None and ring is None else None
-            for mode in ("K_I", "K_II"):
-                r[f"{mode}_error"] = None if tip is None else tip[f"{mode}_error"]
-                r[f"{mode}_extrapolated"] = None if tip is None else tip[f"{mode}_extrapolated"]
-                r[f"{mode}_levels"] = None if tip is None else list(tip[f"{mode}_levels"])
-        return rows
-
-    def reactions(self) -> dict[str, typing.Any]:
-        """Reaction forces per Dirichlet condition and point support, their
-        sum and the applied load (cracklip.post.reactions.compute_reactions;
-        computed once)."""
-        if not hasattr(self, "_reactions"):
-            from .reactions import compute_reactions
-            self._reactions = compute_reactions(self)
-        return self._reactions
-
-    @property
-    def warnings(self) -> list:
-        """The model checks' warnings, those of the SIFs at every tip (domains
-        clipped, K varying with the domain) and of the solved field
-        (cracklip.post.checks: lips passing through each other without
-        contact, no load, point supports carrying unbalanced loads, K's
-        estimated discretisation error): model.checks.ModelWarning."""
-        from .checks import point_supports, solution_warnings
-        self.stress_intensity_factors(None)
-        model_messages = {w.message for w in self.model.warnings}
-        extra = [ModelWarning("sif_spread", m) for m in self._sif_cache[(None, None, None)][1]
-                 if m not in model_messages]
-        extra += [ModelWarning(code, m) for code, m in solution_warnings(self)]
-        if self.model.scene.dirichlet and np.any(self.u):
-            extra += [ModelWarning(code, m) for code, m in point_supports(self, self.reactions())]
-        return list(self.model.warnings) + extra
+    def opening_volume(self, crack: int = 0) -> float:
+        """int [[u]].n over a crack's lips: the area (2D, per unit thickness)
+        or the volume (3D) the crack opens."""
+        smp = self.lip_samples(crack)
+        return float(np.sum(smp["weight"] * smp["gap"]))
 
     def contact_pressure(self, crack: int = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
         """Contact pressure p = -lambda (>= 0 in compression) and normal gap
@@ -328,11 +215,159 @@ class Solution:
         smp = self.lip_samples(crack, points_per_segment)
         return {k: smp[k] for k in ("x", "s", "pressure", "gap", "weight", "shear", "slip", "state")}
 
+    # -- whole-field quantities --------------------------------------------
+    def subcell_fields(self) -> dict[str, typing.Any]:
+        """The solution on the sub-cell mesh: the cells a crack splits cut into
+        their sub-cells, with vertices not shared across a crack (a warp by
+        the displacement opens it): points, displacement, stress (Voigt: xx,
+        yy, xy in 2D, the total stress with an initial stress; xx, yy, zz,
+        yz, xz, xy in 3D), side, parent (see the crack type's
+        subcell_fields; cracklip.io.paraview writes them)."""
+        return self.model.crack_type.subcell_fields(self)
+
+    def field_points(self, cells: np.ndarray | None = None, degree: int | None = None
+                     ) -> dict[str, np.ndarray]:
+        """Quadrature points of the stiffness rules on `cells` (all cells by
+        default) with grad u there: cell, x (n, d), weight, side, grad_u (n,
+        d, d). degree: Gauss degree in cells without tip or front functions
+        (default: the stiffness's)."""
+        return self.model.crack_type.field_points(self.model, self.u, cells, degree)
+
+    def enriched_field_points(self) -> dict[str, np.ndarray] | None:
+        """field_points() on the enriched cells, computed once (the strain
+        energy and results.json's quadrature counts both need them; None
+        without enriched cells)."""
+        if not hasattr(self, "_enriched_points"):
+            enriched = np.asarray(self.model.layout.cells, dtype=np.int32)
+            self._enriched_points = self.field_points(enriched) if enriched.size else None
+        return self._enriched_points
+
+    def _plain_chunks(self) -> list[np.ndarray]:
+        """The cells without enriched nodes, in chunks of at most CHUNK."""
+        m = self.model
+        plain = np.ones(m.cells.shape[0], dtype=bool)
+        plain[np.asarray(m.layout.cells, dtype=np.int32)] = False
+        cells = np.flatnonzero(plain).astype(np.int32)
+        return np.array_split(cells, max(1, -(-len(cells) // CHUNK))) if len(cells) else []
+
+    def strain_energy(self) -> float:
+        """1/2 int sigma : eps over the domain (the stiffness quadrature; the
+        enriched cells' points are enriched_field_points(), shared with
+        results.json's quadrature counts)."""
+        m = self.model
+        parts = [self.enriched_field_points()] + [self.field_points(c) for c in self._plain_chunks()]
+        energy = 0.0
+        for f in parts:
+            if f is not None:
+                eps = strain(f["grad_u"])
+                energy += float(0.5 * np.sum(f["weight"] * np.einsum("nij,nij->n", stress(eps, m.scene.material),
+                                                                     eps)))
+        return energy
+
+    def energy_error(self, exact_gradient: typing.Callable[[np.ndarray, np.ndarray], np.ndarray],
+                     degree: int | None = None) -> tuple[float, float]:
+        """Energy norm of u - u_exact, absolute and relative to the exact field's.
+
+        exact_gradient(x (n, d), side (n,)) returns grad u_exact (n, d, d);
+        side is +1 / -1 on a crack's lips region (0 elsewhere), for fields
+        that jump across the crack. degree: Gauss degree in cells away from
+        the crack's functions (default ERROR_DEGREE).
+        """
+        m = self.model
+        mat = m.scene.material
+        degree = ERROR_DEGREE[m.gdim] if degree is None else int(degree)
+        err2 = ref2 = 0.0
+        # In chunks of cells, so that memory stays bounded on large meshes.
+        ncells = m.cells.shape[0]
+        for chunk in np.array_split(np.arange(ncells, dtype=np.int32), max(1, -(-ncells // CHUNK))):
+            f = self.field_points(chunk, degree=degree)
+            g_ex = np.asarray(exact_gradient(f["x"], f["side"]), dtype=float)
+            e = strain(f["grad_u"] - g_ex)
+            eex = strain(g_ex)
+            err2 += float(np.sum(f["weight"] * np.einsum("nij,nij->n", stress(e, mat), e)))
+            ref2 += float(np.sum(f["weight"] * np.einsum("nij,nij->n", stress(eex, mat), eex)))
+        return float(np.sqrt(err2)), float(np.sqrt(err2 / ref2))
+
+    def stress_intensity_factors(self, crack: int | None = 0, radius: float | None = None,
+                                 ring: tuple[float, float] | None = None) -> list[dict[str, typing.Any]]:
+        """K at every tip (2D) or front point (3D) of a crack (crack=None: of
+        every crack) by the domain interaction integral on three domains per
+        point: one dict per point with the keys of results.json's "sifs"
+        (cracklip.fracture.sif.SIF_KEYS: crack, crack_name, point, tip,
+        piece, s, position, x, y, z, direction, normal, frame, K_I, K_II,
+        K_III (None in 2D), their spreads and error estimates, mode_mix_deg,
+        G, radius, radii, radius_min, inner_radius, element_size, hat,
+        curvature, parametric_angle, limited_by, free_surface,
+        domain_clear).
+
+        radius: the largest domain's radius (default Options.sif_radius, 0:
+        a few element sizes at the point); clipped to keep the domain inside
+        the part and clear of other tips, cracks, kinks, holes (and within
+        a front's curvature).
+        ring: 2D only, (r_in, r_out), K on that one ring as another code
+        defines it (q = 1 within r_in, 0 beyond r_out, linear between; r_in
+        = r_out: the plateau of that radius), NOT clipped (default
+        Options.sif_ring); a ring that reaches an obstacle is warned about,
+        domain_clear false.
+        """
+        key = (crack, radius, None if ring is None else tuple(float(v) for v in ring))
+        if key not in self._sif_cache:
+            cracks = None if crack is None else [crack]
+            if crack is not None and not 0 <= crack < len(self.model.cracks):
+                raise InputError(f"crack index {crack} out of range: the scene has {len(self.model.cracks)} cracks")
+            if self.model.crack_type.END == "front":
+                if ring is not None:
+                    raise InputError("a SIF ring (options.sif_ring) is a 2D setting: 3D fronts take sif_radius")
+                self._sif_cache[key] = compute_front_sifs(self, radius, cracks)
+            else:
+                self._sif_cache[key] = compute_sifs(self, radius, cracks, ring)
+        rows = [dict(r) for r in self._sif_cache[key][0]]
+        est = self.error_estimate
+        for r in rows:
+            tip = est["tips"].get(f"{r['crack']}:{r['tip']}") if est and radius is None and ring is None else None
+            for mode in ("K_I", "K_II"):
+                r[f"{mode}_error"] = None if tip is None else tip[f"{mode}_error"]
+                r[f"{mode}_extrapolated"] = None if tip is None else tip[f"{mode}_extrapolated"]
+                r[f"{mode}_levels"] = None if tip is None else list(tip[f"{mode}_levels"])
+        return complete_rows(rows)
+
+    def reactions(self) -> dict[str, typing.Any]:
+        """Reaction forces per Dirichlet condition and point support, their
+        sum and the applied load (cracklip.post.reactions.compute_reactions;
+        computed once)."""
+        if not hasattr(self, "_reactions"):
+            from .reactions import compute_reactions
+            self._reactions = compute_reactions(self)
+        return self._reactions
+
+    @property
+    def warnings(self) -> list:
+        """The model checks' warnings, those of the SIFs at every tip or front
+        point (domains clipped, K varying with the domain) and of the solved
+        field (cracklip.post.checks: lips passing through each other without
+        contact, no load, point supports carrying unbalanced loads, K's
+        estimated discretisation error): model.checks.ModelWarning."""
+        from .checks import point_supports, solution_warnings
+        self.stress_intensity_factors(None)
+        model_messages = {w.message for w in self.model.warnings}
+        extra = [ModelWarning("sif_spread", m) for m in self._sif_cache[(None, None, None)][1]
+                 if m not in model_messages]
+        extra += [ModelWarning(code, m) for code, m in solution_warnings(self)]
+        if self.model.scene.dirichlet and np.any(self.u):
+            extra += [ModelWarning(code, m) for code, m in point_supports(self, self.reactions())]
+        return list(self.model.warnings) + extra
+
     @property
     def standard_displacement(self) -> np.ndarray:
-        """(num_nodes, 2) standard dofs = displacement at the nodes (shifted enrichment)."""
+        """(num_nodes, d) standard dofs = displacement at the nodes (shifted enrichment)."""
         n = self.model.layout.num_std_nodes
-        return self.u[: 2 * n].reshape(n, 2)
+        d = self.model.gdim
+        return self.u[: d * n].reshape(n, d)
+
+
+def create_solution(model, u: np.ndarray, timings: dict, *args, **kwargs) -> Solution:
+    """The Solution of a model (planar or solid)."""
+    return Solution(model, u, timings, *args, **kwargs)
 
 
 def _tree(model: XfemModel):
@@ -344,14 +379,4 @@ def _tree(model: XfemModel):
     return tree
 
 
-def arc_length(points: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """Arc length along a polyline (k, 2), from its first point, of the
-    projections of points x (n, 2) onto it."""
-    d = np.diff(points, axis=0)
-    L = np.linalg.norm(d, axis=1)
-    cum = np.concatenate([[0.0], np.cumsum(L)])
-    rel = x[:, None, :] - points[None, :-1, :]
-    t = np.clip(np.einsum("nki,ki->nk", rel, d) / (L ** 2)[None], 0.0, 1.0)
-    dist = np.linalg.norm(rel - t[..., None] * d[None], axis=2)
-    k = np.argmin(dist, axis=1)
-    return cum[k] + t[np.arange(len(x)), k] * L[k]
+__all__ = ["Solution", "create_solution"]

@@ -172,7 +172,8 @@ class PolygonCrack:
         if off.max() > 1e-9 * scale:
             k = int(np.argmax(off))
             raise CrackGeometryError(f"{label}: vertex {k} {p[k].tolist()} lies {off[k]:.3g} off the polygon's plane; "
-                                     "a polygon crack must be planar (use a SurfaceCrack for a curved one)")
+                                     "a polygon crack must be planar (give a curved crack as a triangulated "
+                                     "surface: cracks[].surface)")
         self.points = p
         self.normal = n
         _check_pressure(self.pressure, label)

@@ -37,7 +37,7 @@ import typing
 import numpy as np
 
 from ..errors import MeshError
-from .mesh import MeshData, _gmsh, _mesh_2d, _restart_gmsh, check_mesh
+from .mesh import MeshData, _gmsh, _mesh_2d, _restart_gmsh, check_mesh, to_dolfinx
 
 
 logger = logging.getLogger(__name__)
@@ -211,7 +211,7 @@ def _volumes(gmsh) -> list[int]:
 
 def _create_3d(gmsh, path: pathlib.Path, h: float, fronts) -> MeshData:
     """Tetrahedra of a 3D part (module doc); gmsh holds the opened file."""
-    from .mesh_3d import _size_fields, _to_dolfinx_3d, expected_cells
+    from .mesh_3d import _size_fields, expected_cells
     volumes = _volumes(gmsh)
     lo_x, lo_y, lo_z, hi_x, hi_y, hi_z = gmsh.model.getBoundingBox(-1, -1)
     scale = max(hi_x - lo_x, hi_y - lo_y, hi_z - lo_z)
@@ -235,7 +235,7 @@ def _create_3d(gmsh, path: pathlib.Path, h: float, fronts) -> MeshData:
     # The points of the size field in the kernel the part was built with.
     _size_fields(gmsh, h, fronts, kernel="occ" if gmsh.model.occ.getEntities(3) else "geo")
     gmsh.model.mesh.generate(3)
-    md = _to_dolfinx_3d(gmsh, h, fronts, volumes)
+    md = to_dolfinx(gmsh, h, volumes, dim=3, fronts=fronts)
     md.source = "geometry"
     return md
 
@@ -316,8 +316,7 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
         area = sum(_area(a, b) for a, b in outlines)
         _mesh_2d(gmsh, h, refine, levels, area=area)
         _check_nodes(gmsh, path, embed_points, scale)
-        from .mesh import _to_dolfinx
-        md = _to_dolfinx(gmsh, h, surfaces)
+        md = to_dolfinx(gmsh, h, surfaces)
     check_mesh(md.mesh)
     md.refinements = [(float(r[0]), float(r[1]), float(r[2])) for r in refine]
     md.refine = [tuple(float(v) for v in r) for r in refine]

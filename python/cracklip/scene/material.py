@@ -16,11 +16,13 @@ PLANES = ("strain", "stress")
 
 @dataclasses.dataclass(frozen=True)
 class Material:
-    """Linear elastic, isotropic, in plane strain (default) or plane stress.
+    """Linear elastic, isotropic; a planar part in plane strain (default) or
+    plane stress, a 3D part plain 3D elasticity (plane stays "strain").
 
     Attributes:
         E: Young's modulus (> 0).
-        nu: Poisson's ratio (-1 < nu < 0.5 in plane strain, <= 0.5 in plane stress).
+        nu: Poisson's ratio (-1 < nu < 0.5 in plane strain and in 3D, <= 0.5 in
+            plane stress).
         plane: "strain" (thick parts: eps_zz = 0) or "stress" (thin plates:
             sigma_zz = 0).
 
@@ -41,7 +43,7 @@ class Material:
         ok = isinstance(self.nu, numbers.Real) and math.isfinite(self.nu) and -1.0 < self.nu <= 0.5
         if not ok or (self.plane == "strain" and self.nu == 0.5):
             raise MaterialError(
-                f"Poisson's ratio nu must lie in (-1, 0.5) for plane strain, got {self.nu} (nu = 0.5 is "
+                f"Poisson's ratio nu must lie in (-1, 0.5) (plane strain, or a 3D part), got {self.nu} (nu = 0.5 is "
                 "incompressible: not supported)" if self.plane == "strain" else
                 f"Poisson's ratio nu must lie in (-1, 0.5] for plane stress, got {self.nu}")
 

@@ -1,4 +1,7 @@
-"""Triangle meshes from gmsh: the paper's domains at a given size, or a .msh file.
+"""Meshes of parts: ``MeshData`` (a DOLFINx mesh with named boundary tags)
+and its checks (``check_mesh``) for triangles and tetrahedra alike, and the
+triangle meshes of planar parts from gmsh: the paper's domains at a given
+size, or a .msh file (mesh_3d.py meshes solids: the geometry differs).
 
 Every mesh comes with named boundary tags (``MeshData.tags``): the square has
 ``left``, ``right``, ``bottom``, ``top``; the half annulus of the hole problem
@@ -138,43 +141,55 @@ def _msh_header(path: pathlib.Path) -> bool:
     return head.startswith(b"$MeshFormat")
 
 
-def _to_dolfinx(gmsh, h: float | None, surfaces: typing.Sequence[int] | None = None) -> MeshData:
-    """The current gmsh model's mesh as MeshData (its triangles, of the given
-    surfaces only if given; tags from its physical curves)."""
+def to_dolfinx(gmsh, h: float | None, entities: typing.Sequence[int] | None = None, dim: int = 2,
+               fronts=()) -> MeshData:
+    """The current gmsh model's mesh as MeshData: its cells of dimension dim
+    (triangles of the given surfaces, tetrahedra of the given volumes, all
+    if None), tags from its physical groups of dimension dim - 1 (curves,
+    surfaces); removes the model. fronts: the front refinements asked for
+    (3D; MeshData.front_refinements)."""
     names = {}
-    for dim, tag in gmsh.model.getPhysicalGroups(1):
-        names[gmsh.model.getPhysicalName(dim, tag) or str(tag)] = tag
+    for gd, tag in gmsh.model.getPhysicalGroups(dim - 1):
+        names[gmsh.model.getPhysicalName(gd, tag) or str(tag)] = tag
     # DOLFINx is imported here, not at the top: the command line meshes
     # while another thread loads it (cracklip.prefetch).
     from mpi4py import MPI
     from .mesh_import import model_to_mesh
-    msh, facet_tags, _ = model_to_mesh(gmsh.model, MPI.COMM_WORLD, surfaces)
+    msh, facet_tags, _ = model_to_mesh(gmsh.model, MPI.COMM_WORLD, entities, dim=dim)
     gmsh.model.remove()
     check_mesh(msh)
-    return MeshData(msh, facet_tags, names, h)
+    return MeshData(msh, facet_tags, names, h, front_refinements=list(fronts))
+
+
+#: Per cell kind: the dimension, what a cell's measure is called and what makes it non-zero.
+_CELLS = {"triangle": (2, "area", "every triangle must have three distinct, non-collinear vertices"),
+          "tetrahedron": (3, "volume", "every tetrahedron must have four non-coplanar vertices")}
 
 
 def check_mesh(msh: dolfinx.mesh.Mesh) -> None:
-    """Raise MeshError unless msh is a serial 2D triangle mesh."""
-    import dolfinx.mesh
-    if msh.topology.cell_type != dolfinx.mesh.CellType.triangle:
-        raise MeshError(f"cracklip needs triangles, the mesh has {msh.topology.cell_type.name} "
+    """Raise MeshError unless msh is a serial first-order mesh of triangles
+    (a planar part, z = 0) or of tetrahedra (a solid), with finite, unique
+    nodes and cells of non-zero area (volume)."""
+    name = msh.topology.cell_type.name
+    if name not in _CELLS:
+        raise MeshError(f"cracklip needs triangles (a planar part) or tetrahedra (a solid), the mesh has {name} "
                         "cells; mesh with gmsh without recombination")
-    if msh.geometry.dim != 2 and not np.allclose(msh.geometry.x[:, 2], 0.0):
+    d, measure, fix = _CELLS[name]
+    if d == 2 and msh.geometry.dim != 2 and not np.allclose(msh.geometry.x[:, 2], 0.0):
         raise MeshError("cracklip needs a planar mesh (z = 0)")
     if msh.geometry.cmap.degree != 1:
-        raise MeshError("cracklip needs straight (first-order) triangles")
+        raise MeshError(f"cracklip needs straight (first-order) {name}s")
     if msh.comm.size != 1:
         raise MeshError("cracklip runs in serial; start it without mpirun")
-    x = msh.geometry.x[:, :2]
-    cells = msh.geometry.dofmap.array.reshape(-1, 3)
+    x = msh.geometry.x[:, :d]
+    cells = msh.geometry.dofmap.array.reshape(-1, d + 1)
     if not np.all(np.isfinite(x)):
         i = int(np.flatnonzero(~np.all(np.isfinite(x), axis=1))[0])
         raise MeshError(f"mesh node {i} has coordinates {x[i].tolist()}; node coordinates must be finite")
     scale = float(np.ptp(x, axis=0).max()) if len(x) else 1.0
     # Duplicated vertices: two nodes at one place leave the cells on either
     # side unconnected (a hidden slit).
-    order = np.lexsort((x[:, 1], x[:, 0]))
+    order = np.lexsort(x.T[::-1])
     same = np.all(np.abs(np.diff(x[order], axis=0)) <= 1e-12 * scale, axis=1)
     if same.any():
         k = int(np.flatnonzero(same)[0])
@@ -182,14 +197,14 @@ def check_mesh(msh: dolfinx.mesh.Mesh) -> None:
         raise MeshError(f"mesh nodes {i} and {j} both lie at {x[i].tolist()} ({int(same.sum())} duplicated "
                         "node(s)): the cells on either side are not connected; every node must be unique "
                         "(merge duplicates, e.g. gmsh's Coherence Mesh / removeDuplicateNodes)")
-    e1, e2 = x[cells[:, 1]] - x[cells[:, 0]], x[cells[:, 2]] - x[cells[:, 0]]
-    det = np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
-    longest = np.max(np.linalg.norm(x[cells[:, [1, 2, 0]]] - x[cells], axis=2), axis=1)
-    flat = np.flatnonzero(det <= 1e-12 * longest ** 2)
+    e = x[cells[:, 1:]] - x[cells[:, :1]]                       # (c, d, d): the edges from vertex 0
+    size = np.abs(np.linalg.det(e))                              # d! times the area (volume)
+    longest = np.linalg.norm(e, axis=2).max(axis=1)
+    flat = np.flatnonzero(size <= 1e-12 * longest ** d)
     if flat.size:
         c = int(flat[0])
-        raise MeshError(f"mesh cell {c} with vertices {x[cells[c]].tolist()} has zero area ({flat.size} such "
-                        "cell(s)); every triangle must have three distinct, non-collinear vertices")
+        raise MeshError(f"mesh cell {c} with vertices {x[cells[c]].tolist()} has zero {measure} ({flat.size} such "
+                        f"cell(s)); {fix}")
 
 
 def _check_box(x0: float, y0: float, x1: float, y1: float, h: float) -> None:
@@ -225,7 +240,7 @@ def _finish(gmsh, classify: typing.Callable[[], dict[str, list[int]]], h: float,
         gmsh.model.addPhysicalGroup(1, curves, tag)
         gmsh.model.setPhysicalName(1, tag, name)
     _mesh_2d(gmsh, h, refine, levels)
-    md = _to_dolfinx(gmsh, h)
+    md = to_dolfinx(gmsh, h)
     md.refinements = [(float(r[0]), float(r[1]), float(r[2])) for r in refine]
     md.refine = [tuple(float(v) for v in r) for r in refine]
     md.levels = [tuple(v) for v in levels]
@@ -491,7 +506,7 @@ def read_msh(path: str | pathlib.Path) -> MeshData:
                 "you load or support, and mesh again; or give cracklip the .geo itself (mesh.kind = \"geometry\")")
         raise MeshError(f"{path}: {unused.size} node(s) belong to no triangle (e.g. node {int(unused[0])} at "
                         f"{coord}); every node must be a vertex of a triangle: remove unused nodes")
-    return _to_dolfinx(gmsh, None)
+    return to_dolfinx(gmsh, None)
 
 
 def create_plate_with_hole(x0: float, y0: float, x1: float, y1: float, h: float,

@@ -1,5 +1,8 @@
 """Tetrahedral meshes from gmsh: boxes and cylinders at a given size, refined
-around crack fronts, or a user's .msh file.
+around crack fronts, or a user's .msh file (a pair with mesh.py, the
+planar parts, because the geometry differs: a solid is meshed in volumes
+and refined along crack fronts rather than around tips; MeshData, the mesh
+checks and the conversion to DOLFINx are mesh.py's, for both).
 
 Every mesh comes with named boundary tags on its faces (``MeshData.tags``):
 the box has ``xmin``, ``xmax``, ``ymin``, ``ymax``, ``zmin``, ``zmax``; the
@@ -21,7 +24,7 @@ import typing
 import numpy as np
 
 from ..errors import MeshError
-from .mesh import MeshData, _gmsh
+from .mesh import MeshData, _gmsh, to_dolfinx
 from .size_field import refinement_size
 
 #: Tetrahedra per unit volume of gmsh's mesh of size h: about 6 / h^3 (each
@@ -81,40 +84,6 @@ def crack_refinements(cracks, h_front: float, h: float, growth: float = GROWTH,
     return out
 
 
-def check_mesh_3d(msh) -> None:
-    """Raise MeshError unless msh is a serial first-order tetrahedral mesh
-    with finite, unique nodes and cells of non-zero volume."""
-    import dolfinx.mesh
-    if msh.topology.cell_type != dolfinx.mesh.CellType.tetrahedron:
-        raise MeshError(f"a 3D part needs tetrahedra, the mesh has {msh.topology.cell_type.name} cells; mesh "
-                        "with gmsh without recombination")
-    if msh.geometry.cmap.degree != 1:
-        raise MeshError("cracklip needs straight (first-order) tetrahedra")
-    if msh.comm.size != 1:
-        raise MeshError("cracklip runs in serial; start it without mpirun")
-    x = msh.geometry.x
-    cells = msh.geometry.dofmap.array.reshape(-1, 4)
-    if not np.all(np.isfinite(x)):
-        i = int(np.flatnonzero(~np.all(np.isfinite(x), axis=1))[0])
-        raise MeshError(f"mesh node {i} has coordinates {x[i].tolist()}; node coordinates must be finite")
-    scale = float(np.ptp(x, axis=0).max()) if len(x) else 1.0
-    order = np.lexsort((x[:, 2], x[:, 1], x[:, 0]))
-    same = np.all(np.abs(np.diff(x[order], axis=0)) <= 1e-12 * scale, axis=1)
-    if same.any():
-        k = int(np.flatnonzero(same)[0])
-        i, j = sorted((int(order[k]), int(order[k + 1])))
-        raise MeshError(f"mesh nodes {i} and {j} both lie at {x[i].tolist()} ({int(same.sum())} duplicated "
-                        "node(s)): the cells on either side are not connected; merge duplicate nodes")
-    e = x[cells[:, 1:]] - x[cells[:, :1]]
-    vol = np.abs(np.einsum("ci,ci->c", e[:, 0], np.cross(e[:, 1], e[:, 2]))) / 6.0
-    longest = np.linalg.norm(e, axis=2).max(axis=1)
-    flat = np.flatnonzero(vol <= 1e-12 * longest ** 3)
-    if flat.size:
-        c = int(flat[0])
-        raise MeshError(f"mesh cell {c} with vertices {x[cells[c]].tolist()} has zero volume ({flat.size} such "
-                        "cell(s)); every tetrahedron must have four non-coplanar vertices")
-
-
 def front_sampling(h_front: float) -> float:
     """The largest spacing of the points of a front refinement: h_front / 2
     (the Distance field then errs by at most h_front / 8 near the front)."""
@@ -162,21 +131,7 @@ def _finish(gmsh, groups: dict[str, list[int]], h: float, fronts) -> MeshData:
     _size_fields(gmsh, h, fronts)
     gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay: robust, deterministic in serial
     gmsh.model.mesh.generate(3)
-    return _to_dolfinx_3d(gmsh, h, fronts)
-
-
-def _to_dolfinx_3d(gmsh, h: float | None, fronts=(), volumes: typing.Sequence[int] | None = None) -> MeshData:
-    """The DOLFINx mesh of gmsh's current model (the tetrahedra of `volumes`
-    only if given), its physical surfaces as boundary tags; removes the model."""
-    names = {}
-    for dim, tag in gmsh.model.getPhysicalGroups(2):
-        names[gmsh.model.getPhysicalName(dim, tag) or str(tag)] = tag
-    from mpi4py import MPI
-    from .mesh_import import model_to_mesh
-    msh, facet_tags, _ = model_to_mesh(gmsh.model, MPI.COMM_WORLD, volumes, dim=3)
-    gmsh.model.remove()
-    check_mesh_3d(msh)
-    return MeshData(msh, facet_tags, names, h, front_refinements=list(fronts))
+    return to_dolfinx(gmsh, h, dim=3, fronts=fronts)
 
 
 def create_box(x0: float, y0: float, z0: float, x1: float, y1: float, z1: float, h: float,
@@ -252,7 +207,7 @@ def read_msh_3d(path: str | pathlib.Path) -> MeshData:
         raise MeshError(f"{path}: the mesh has no Physical Volume: gmsh then saves only the elements of physical "
                         "groups (or none of the tetrahedra); add `Physical Volume(\"part\") = {...};` (and a "
                         "Physical Surface for every face that carries a load or a support)")
-    return _to_dolfinx_3d(gmsh, None)
+    return to_dolfinx(gmsh, None, dim=3)
 
 
 def expected_cells(volume: float, h: float) -> float:
@@ -260,6 +215,6 @@ def expected_cells(volume: float, h: float) -> float:
     return TETS_PER_VOLUME_H3 * volume / h ** 3
 
 
-__all__ = ["FrontRefinement", "crack_refinements", "check_mesh_3d", "create_box", "create_cylinder", "read_msh_3d",
+__all__ = ["FrontRefinement", "crack_refinements", "create_box", "create_cylinder", "read_msh_3d",
            "front_sampling", "expected_cells"]
 

@@ -7,8 +7,8 @@ mesh that is about half of its 0.4 s. Here the triangles and nodes go straight
 to dolfinx.mesh.create_mesh, and the physical curves' line elements are
 matched to the mesh's facets by their two vertices (original node indices,
 through geometry.input_global_indices). Serial only, first-order
-triangles in 2D or tetrahedra in 3D (cracklip's meshes; mesh.check_mesh and
-mesh_3d.check_mesh_3d enforce it); in 3D the physical surfaces' triangles
+triangles in 2D or tetrahedra in 3D (cracklip's meshes; mesh.check_mesh
+enforces it); in 3D the physical surfaces' triangles
 tag the facets.
 """
 from __future__ import annotations

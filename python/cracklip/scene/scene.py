@@ -62,8 +62,8 @@ class Scene:
         for i, c in enumerate(self.cracks):
             if gdim == 3:
                 if not isinstance(c, (EllipticalCrack, PolygonCrack, SurfaceCrack)):
-                    raise CrackGeometryError(f"crack {i}: a 3D part takes crack surfaces (EllipticalCrack, "
-                                             f"PolygonCrack, SurfaceCrack), got {type(c).__name__}")
+                    raise CrackGeometryError(f"crack {i}: a 3D part takes crack surfaces (cracks[].ellipse, polygon "
+                                             f"or surface), not a 2D crack (a polyline, cracks[].points)")
                 c.name = c.name or f"crack {i}"
             elif not isinstance(c, Crack):
                 self.cracks[i] = Crack(np.asarray(c), name=f"crack {i}")
@@ -81,9 +81,16 @@ class Scene:
             if len(pf.point) != gdim:
                 raise InputError(f"point force at {pf.point}: {len(pf.point)} coordinates on a {gdim}D part")
         if not self.dirichlet:
-            raise BoundaryConditionError("the scene has no Dirichlet condition: rigid body motion "
-                                         "is free; fix at least u_x and u_y somewhere and one more "
-                                         "component elsewhere")
+            raise BoundaryConditionError(f"the scene has no Dirichlet condition: rigid body motion is free; "
+                                         f"{rigid_motion_hint(gdim)}")
+
+
+def rigid_motion_hint(gdim: int) -> str:
+    """What to constrain so that a part of dimension gdim cannot move rigidly."""
+    if gdim == 3:
+        return ("fix at least u_x, u_y and u_z at one point, two more components at a second point and one more "
+                "at a third (or a whole face)")
+    return "fix at least u_x and u_y somewhere and one more component elsewhere"
 
 
 def load_groups(scene) -> set[str]:

@@ -3,8 +3,8 @@
 A stress field is used three ways: as the traction sigma n on a boundary
 (``Traction(where, stress=...)``), as an initial (residual) stress of the
 part (``Scene(initial_stress=...)``), and, through its divergence, as the
-equivalent body force of that initial stress. ``stress_function`` turns
-every accepted form into one callable x (n, 2) -> sigma (n, 2, 2).
+equivalent body force of that initial stress. ``evaluate_stress`` evaluates
+every accepted form at points x (n, d) -> sigma (n, d, d).
 """
 from __future__ import annotations
 
@@ -128,17 +128,31 @@ def as_stress_field(value: StressLike, what: str) -> typing.Union[LinearStress, 
 
 
 def evaluate_stress(field, x: np.ndarray, what: str) -> np.ndarray:
-    """sigma (n, 2, 2) of a stress field at points (n, 2), checked."""
-    x = np.asarray(x, dtype=float).reshape(-1, 2)
+    """sigma (n, d, d) of a stress field at points (n, d), checked; the
+    field may return Voigt components instead: (n, 3) xx, yy, xy in 2D,
+    (n, 6) xx, yy, zz, yz, xz, xy in 3D."""
+    x = np.asarray(x, dtype=float)
+    d = 3 if x.ndim == 2 and x.shape[1] == 3 else 2
+    x = x.reshape(-1, d)
     s = np.asarray(field(x), dtype=float)
-    if s.shape == (len(x), 3):
-        s = voigt_to_tensor(s)
-    if s.shape != (len(x), 2, 2):
+    voigt = 3 if d == 2 else 6
+    if s.shape == (len(x), voigt):
+        s = voigt_to_tensor(s) if d == 2 else voigt6_to_tensor(s)
+    if s.shape != (len(x), d, d):
+        names = "xx, yy, xy" if d == 2 else "xx, yy, zz, yz, xz, xy"
         raise InputError(f"{what}: the stress function returned shape {s.shape} for points of shape "
-                         f"{x.shape}; it must return ({len(x)}, 2, 2) or ({len(x)}, 3) (xx, yy, xy)")
+                         f"{x.shape}; it must return ({len(x)}, {d}, {d}) or ({len(x)}, {voigt}) ({names})")
     if not np.all(np.isfinite(s)):
         raise InputError(f"{what}: the stress evaluates to NaN or infinity")
     return s
+
+
+def voigt6_to_tensor(s: np.ndarray) -> np.ndarray:
+    """(n, 6) xx, yy, zz, yz, xz, xy -> (n, 3, 3)."""
+    out = np.empty((len(s), 3, 3))
+    for k, (i, j) in enumerate(((0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1))):
+        out[:, i, j] = out[:, j, i] = s[:, k]
+    return out
 
 
 def divergence(field, x: np.ndarray, scale: float, what: str) -> np.ndarray:

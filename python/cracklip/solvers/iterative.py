@@ -51,6 +51,7 @@ import scipy.sparse as sp
 from petsc4py import PETSc
 
 from ..errors import SolverError
+from ..model.constraints import ROTATIONS
 from .checked import record_solve, solve_checked
 if typing.TYPE_CHECKING:
     from ..model.model import XfemModel
@@ -167,22 +168,17 @@ def rigid_modes(model: "XfemModel", size: int | None = None) -> np.ndarray:
 def rigid_motions(x: np.ndarray, nodes: np.ndarray, n: int) -> np.ndarray:
     """(n, 3) in 2D or (n, 6) in 3D: the rigid motions of the points x
     (m, d), carried by the blocked dofs d nodes + c, orthonormalised; 0 on
-    every other dof (x centred by the caller: the rotations are about 0)."""
+    every other dof (x centred by the caller: the rotations are about 0).
+    Columns: the translations along x, y(, z), then the rotations of
+    model.constraints.ROTATIONS."""
     d = x.shape[1]
-    if d == 2:
-        R = np.zeros((n, 3))
-        R[2 * nodes, 0] = 1.0
-        R[2 * nodes + 1, 1] = 1.0
-        R[2 * nodes, 2] = -x[:, 1]
-        R[2 * nodes + 1, 2] = x[:, 0]
-        return orthonormal_columns(R)
-    R = np.zeros((n, 6))
-    for c in range(3):
-        R[3 * nodes + c, c] = 1.0
-    # Rotations about z, y, x: (-y, x, 0), (z, 0, -x), (0, -z, y).
-    R[3 * nodes, 3], R[3 * nodes + 1, 3] = -x[:, 1], x[:, 0]
-    R[3 * nodes, 4], R[3 * nodes + 2, 4] = x[:, 2], -x[:, 0]
-    R[3 * nodes + 1, 5], R[3 * nodes + 2, 5] = -x[:, 2], x[:, 1]
+    rotations = ROTATIONS[d]
+    R = np.zeros((n, d + len(rotations)))
+    for c in range(d):
+        R[d * nodes + c, c] = 1.0
+    for r, (i, j) in enumerate(rotations):  # -x_j e_i + x_i e_j
+        R[d * nodes + i, d + r] = -x[:, j]
+        R[d * nodes + j, d + r] = x[:, i]
     return orthonormal_columns(R)
 
 

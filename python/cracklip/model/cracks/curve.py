@@ -1,0 +1,239 @@
+"""A 2D crack on a triangle mesh: a polyline (scene.crack.Crack) whose ends
+inside the part are tips, each a front of one point (the CrackModel of a
+planar part).
+
+The level sets, cell classes (plain, cut, edge: along mesh edges, tip,
+extension), sub-triangles and crack segments come from the C++ kernels
+(cpp/geometry/crack_geometry_2d); nothing here loops over the mesh in
+Python. An end point is a tip when it lies inside the part, off its
+boundary (ray casting against the boundary facets: cost proportional to
+the boundary).
+"""
+from __future__ import annotations
+
+import logging
+import typing
+
+import numpy as np
+
+from ... import _cracklip
+from ...errors import CrackGeometryError
+from ...scene.options import Options
+from ...scene.stress_field import evaluate_stress, tensor_to_voigt
+from ..boundary import boundary_normals, boundary_segments
+from . import CrackModel
+
+logger = logging.getLogger(__name__)
+
+
+class CurveCrackModel(CrackModel):
+    """A polyline crack on triangles, with its tips (module doc)."""
+
+    DIM = 2
+    #: cpp/geometry/crack_geometry_2d.h CellClass.
+    CELL_CLASSES = {"plain": 0, "cut": 1, "edge": 2, "tip": 3, "extension": 4}
+    CROSSED = (1, 2)
+    END = "tip"
+    EDGES = ((0, 1), (1, 2), (2, 0))
+    #: The C++ entry points of triangles.
+    KERNELS = {"sparsity": _cracklip.create_sparsity, "stiffness": _cracklip.assemble_enriched_stiffness_petsc,
+               "layout": _cracklip.create_enrichment_layout, "facet_basis": _cracklip.compute_facet_basis,
+               "lip_points": _cracklip.compute_crack_points, "lip_load": _cracklip.assemble_lip_load,
+               "evaluate": _cracklip.evaluate_displacement,
+               "quadrature": Options.quadrature_options}
+    VOIGT = ("xx", "yy", "xy")
+    #: Gauss points per crack segment of the lip loads and the SIFs' lip terms.
+    LIP_POINTS = 8
+
+    # -- the crack ------------------------------------------------------------
+    def lip_samples(self, model, points: int) -> dict[str, np.ndarray]:
+        """lip_points sorted by the arc length s from the crack's first point.
+        Without tip enrichment the tip cell holds no crack (the discrete
+        crack ends at its edge) and is left out."""
+        pts = dict(self.KERNELS["lip_points"](model.x, model.cells, self.geometry, int(points)))
+        if model.scene.options.enrichment == "none":
+            keep = ~np.isin(pts["cell"], np.asarray(self.geometry.tip_cells["cell"]))
+            pts = {k: v[keep] for k, v in pts.items()}
+        s = arc_length(self.crack.points, pts["x"]) if len(pts["cell"]) else np.zeros(0)
+        o = np.argsort(s, kind="stable")
+        out = {k: v[o] for k, v in pts.items()}
+        out["s"] = s[o]
+        return out
+
+    @staticmethod
+    def slip(jump: np.ndarray, normal: np.ndarray) -> np.ndarray:
+        tangent = np.stack([normal[:, 1], -normal[:, 0]], axis=1)
+        return np.einsum("ij,ij->i", jump, tangent)
+
+    # -- construction ---------------------------------------------------------
+    @classmethod
+    def check_scene(cls, scene) -> None:
+        return None
+
+    @classmethod
+    def create(cls, scene, crack, x: np.ndarray, cells: np.ndarray) -> "CurveCrackModel":
+        tips = tip_flags(scene, crack)
+        try:
+            geometry = _cracklip.compute_crack_geometry(x, cells, crack.points, tips, scene.options.snap_tol)
+        except (RuntimeError, ValueError) as e:
+            raise CrackGeometryError(f"{crack.name}: {e}") from None
+        classes = geometry.cell_class
+        C = cls.CELL_CLASSES
+        crossed = np.count_nonzero((classes == C["cut"]) | (classes == C["edge"]) | (classes == C["tip"]))
+        if crossed == 0:
+            lo, hi = x.min(axis=0), x.max(axis=0)
+            raise CrackGeometryError(
+                f"{crack.name} (points {crack.points.tolist()}) does not cross any cell of the mesh "
+                f"(mesh bounding box [{lo[0]:g}, {hi[0]:g}] x [{lo[1]:g}, {hi[1]:g}]); "
+                "check its coordinates")
+        _check_off_boundary(crack, geometry, x, cells)
+        if geometry.num_snapped:
+            logger.info("%s: %d nodes snapped onto the crack (snap_tol=%g)", crack.name,
+                        geometry.num_snapped, scene.options.snap_tol)
+        return cls(crack, tips, geometry)
+
+    @classmethod
+    def check_model(cls, model) -> list:
+        from ..checks import check_pieces, check_tips
+        check_pieces(model)
+        return check_tips(model)
+
+    # -- the kernels of triangles ---------------------------------------------
+    @classmethod
+    def mean_edge(cls, x: np.ndarray, cells: np.ndarray) -> float:
+        xs, ys = np.ascontiguousarray(x[:, 0]), np.ascontiguousarray(x[:, 1])
+        total = 0.0
+        for a, b in cls.EDGES:
+            i, j = cells[:, a], cells[:, b]
+            total += float(np.hypot(xs[j] - xs[i], ys[j] - ys[i]).sum())
+        return total / (3 * len(cells)) if len(cells) else 0.0
+
+    @classmethod
+    def cell_measures(cls, x: np.ndarray, cells: np.ndarray) -> np.ndarray:
+        xv = x[cells]
+        e1, e2 = xv[:, 1] - xv[:, 0], xv[:, 2] - xv[:, 0]
+        return 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+
+    @classmethod
+    def shape_gradients(cls, x: np.ndarray, cells: np.ndarray) -> np.ndarray:
+        xv = x[cells]
+        e1, e2 = xv[:, 1] - xv[:, 0], xv[:, 2] - xv[:, 0]
+        det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+        inv = np.stack([np.stack([e2[:, 1], -e2[:, 0]], axis=1), np.stack([-e1[:, 1], e1[:, 0]], axis=1)],
+                       axis=1) / det[:, None, None]  # rows of J^-T: (c, 2 (xi, eta), 2 (x, y))
+        return np.stack([-inv[:, 0] - inv[:, 1], inv[:, 0], inv[:, 1]], axis=1)
+
+    @classmethod
+    def facet_normals(cls, model, where, basis: dict) -> np.ndarray:
+        """Outward unit normals at a facet basis' points of a tag (the
+        nearest facet's: model.boundary.boundary_normals)."""
+        cache = model.__dict__.setdefault("_normals_cache", {})
+        if where not in cache:
+            cache[where] = boundary_normals(model.scene.mesh, where)
+        return cache[where](basis["points"])
+
+    @classmethod
+    def enriched_cell_points(cls, model, cells: np.ndarray, degree: int) -> dict[str, np.ndarray]:
+        return cls.field_points(model, np.zeros(model.num_dofs), cells, degree)
+
+    @classmethod
+    def assemble_cell_load(cls, model, points: dict, force: np.ndarray, stress: np.ndarray | None) -> np.ndarray:
+        s_at = np.zeros((len(points["weight"]), 3)) if stress is None else stress
+        return _cracklip.assemble_cell_load(model.x, model.cells, model.layout, model.geometries, points["cell"],
+                                            points["ref"], points["side"], points["weight"], force, s_at)
+
+    @classmethod
+    def field_points(cls, model, u: np.ndarray, cells: np.ndarray | None, degree: int | None) -> dict[str, np.ndarray]:
+        """The stiffness's rules on the cells (C++ compute_field_points; no
+        cells: all), Gauss degree at least `degree` in cells without tip
+        functions."""
+        cell_list = np.zeros(0, dtype=np.int32) if cells is None else np.asarray(cells, dtype=np.int32)
+        return _cracklip.compute_field_points(model.x, model.cells, model.layout, model.geometries, u, cell_list,
+                                              cls.quadrature_options(model.scene.options, degree))
+
+    @classmethod
+    def subcell_fields(cls, solution) -> dict[str, typing.Any]:
+        """Sub-triangles (points (3 C, 2), three per sub-triangle: cells =
+        (C, 3) consecutive) with the displacement at their vertices on their
+        own side and the stress xx, yy, xy at their centroids (the total
+        stress C eps(u) + sigma_0 with an initial stress; von_mises with
+        sigma_zz = Material.sigma_zz_ratio (xx + yy)), side, parent (C++
+        compute_subcell_fields)."""
+        m = solution.model
+        mat = m.scene.material
+        f = _cracklip.compute_subcell_fields(m.x, m.cells, m.layout, m.geometries, solution.u,
+                                             mat.E_strain, mat.nu_strain)
+        if m.scene.initial_stress is not None and solution.factor(m.scene.initial_stress_group) != 0.0:
+            centroids = f["points"].reshape(-1, 3, 2).mean(axis=1)
+            f["stress"] = f["stress"] + solution.factor(m.scene.initial_stress_group) * tensor_to_voigt(
+                evaluate_stress(m.scene.initial_stress, centroids, "initial stress"))
+        f["cells"] = np.arange(f["points"].shape[0], dtype=np.int64).reshape(-1, 3)
+        f["von_mises"] = von_mises(f["stress"], mat.sigma_zz_ratio)
+        return f
+
+
+def von_mises(stress: np.ndarray, zz_ratio: float) -> np.ndarray:
+    """von Mises stress of (n, 3) xx, yy, xy stresses with sigma_zz = zz_ratio
+    (xx + yy) (Material.sigma_zz_ratio: nu in plane strain, 0 in plane stress)."""
+    sxx, syy, sxy = stress[:, 0], stress[:, 1], stress[:, 2]
+    szz = zz_ratio * (sxx + syy)
+    return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxy ** 2)
+
+
+def arc_length(points: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Arc length along a polyline (k, 2), from its first point, of the
+    projections of points x (n, 2) onto it."""
+    d = np.diff(points, axis=0)
+    L = np.linalg.norm(d, axis=1)
+    cum = np.concatenate([[0.0], np.cumsum(L)])
+    rel = x[:, None, :] - points[None, :-1, :]
+    t = np.clip(np.einsum("nki,ki->nk", rel, d) / (L ** 2)[None], 0.0, 1.0)
+    dist = np.linalg.norm(rel - t[..., None] * d[None], axis=2)
+    k = np.argmin(dist, axis=1)
+    return cum[k] + t[np.arange(len(x)), k] * L[k]
+
+
+def _check_off_boundary(crack, geometry, x: np.ndarray, cells: np.ndarray) -> None:
+    """Raise if the crack runs along a boundary facet: its crack edge (the
+    two nodes on the crack of an 'edge' cell) then belongs to one cell only."""
+    edge_cells = np.flatnonzero(geometry.cell_class == CurveCrackModel.CELL_CLASSES["edge"])
+    if edge_cells.size == 0:
+        return
+    cc = cells[edge_cells]
+    on = geometry.phi[cc] == 0.0
+    pairs = np.sort(np.where(on, cc, -1), axis=1)[:, 1:]  # the two nodes with phi = 0
+    near = cells[np.count_nonzero(np.isin(cells, np.unique(pairs)), axis=1) >= 2]
+    count: dict[tuple[int, int], int] = {}
+    for e in np.sort(near[:, [[0, 1], [1, 2], [2, 0]]], axis=2).reshape(-1, 2).tolist():
+        count[tuple(e)] = count.get(tuple(e), 0) + 1
+    for a, b in pairs.tolist():
+        if count.get((a, b), 0) == 1:
+            raise CrackGeometryError(
+                f"{crack.name} runs along the domain boundary from {x[a].tolist()} to {x[b].tolist()} "
+                "(a boundary facet); a crack must lie inside the domain: move it off the boundary or "
+                "shorten it")
+
+
+def tip_flags(scene, crack) -> tuple[bool, bool]:
+    """An end point is a tip when it lies inside the domain, off the boundary.
+
+    Inside-ness is decided by ray casting against the boundary facets, so the
+    cost is proportional to the boundary, not to the mesh.
+    """
+    a, b = boundary_segments(scene.mesh)
+    scale = float(max(np.ptp(a, axis=0).max(), np.ptp(b, axis=0).max()))
+    d = b - a
+    flags = []
+    for p in crack.points[[0, -1]]:
+        t = np.clip(np.einsum("ij,ij->i", p - a, d) / np.einsum("ij,ij->i", d, d), 0.0, 1.0)
+        dist = np.linalg.norm(a + t[:, None] * d - p, axis=1).min()
+        # Horizontal ray to +x: count facets straddling y = p_y right of p.
+        straddle = (a[:, 1] > p[1]) != (b[:, 1] > p[1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xc = a[:, 0] + (p[1] - a[:, 1]) * d[:, 0] / d[:, 1]
+        inside = np.count_nonzero(straddle & (xc > p[0])) % 2 == 1
+        flags.append(bool(inside and dist > 1e-9 * scale))
+    return flags[0], flags[1]
+
+
+__all__ = ["CurveCrackModel", "arc_length", "tip_flags", "von_mises"]
