@@ -23,7 +23,7 @@ import pytest
 import cracklip as cl
 from cracklip import cli
 from cracklip.exact.embedded_cracks import inclined_penny_k, penny_k
-from cracklip.io.front_outputs import FRONT_COLUMNS
+from cracklip.io.outputs import FRONT_COLUMNS
 from cracklip.scene.crack_surface import EllipticalCrack
 from cracklip.scene.mesh_3d import create_box, crack_refinements
 

@@ -11,8 +11,7 @@ import typing
 
 import numpy as np
 
-from .. import _cracklip
-from ..model.model import CELL_CLASSES, XfemModel
+from ..model.model import XfemModel
 from ..post.solution import Solution
 
 
@@ -61,8 +60,9 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
     opts = model.scene.options
     node = np.asarray(layout.node)
     d = model.gdim
-    cracks = _describe_cracks_3d(model) if d == 3 else _describe_cracks_2d(model)
+    describe_cracks = _DESCRIBE[model.crack_type.END]
     out: dict[str, typing.Any] = {
+        "dimension": d,
         "nodes": int(layout.num_std_nodes),
         "cells": int(model.cells.shape[0]),
         "mean_edge": model.h,
@@ -73,11 +73,9 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
         "enriched_cells": int(np.asarray(layout.cells).size),
         "enrichment": {"tip": opts.enrichment, "radius": opts.radius, "blending": opts.blending},
         "boundary_tags": {name: int(v) for name, v in sorted(model.scene.mesh.tags.items())},
-        "cracks": cracks,
-        "quadrature": _describe_quadrature_3d(model) if d == 3 else _describe_quadrature(model, solution),
+        "cracks": describe_cracks(model),
+        "quadrature": _describe_quadrature(model, solution),
     }
-    if d == 3:
-        out["dimension"] = 3
     if contact_system is None:
         out["contact"] = {"law": "none" if not model.cracks else opts.contact, "multipliers": 0}
     else:
@@ -140,22 +138,18 @@ def _describe_cracks_2d(model: XfemModel) -> list[dict[str, typing.Any]]:
             "sif_inner_radius": [d.inner_radius for d in domains],
             "sif_limited_by": [d.obstacle if d.limited or not d.clear else None for d in domains],
             "lip_pressure": "function" if callable(cm.crack.pressure) else float(cm.crack.pressure),
-            **_enriched_counts(layout, ci, g.cell_class, CELL_CLASSES, "tip", 2),
+            **_enriched_counts(layout, ci, g.cell_class, cm.CELL_CLASSES, "tip", 2),
             "snapped_nodes": int(g.num_snapped),
         })
     return cracks
-
-
-#: Cell classes of CrackGeometry3D.cell_class (cpp/geometry/crack_geometry_3d.h).
-CELL_CLASSES_3D = {"plain": 0, "cut": 1, "face": 2, "front": 3, "extension": 4}
 
 
 def _describe_cracks_3d(model: XfemModel) -> list[dict[str, typing.Any]]:
     """Per crack surface: what it is, its area in the part, its cells, its
     enriched nodes, its front (pieces, points, length, boundary ends) and the
     element size reached along the front."""
-    from ..model.checks_3d import front_element_sizes
-    from .scene_file_3d import describe_crack
+    from ..model.checks import front_element_sizes
+    from .scene_file.cracks import describe_crack
     layout = model.layout
     out = []
     for ci, cm in enumerate(model.cracks):
@@ -184,7 +178,7 @@ def _describe_cracks_3d(model: XfemModel) -> list[dict[str, typing.Any]]:
             "area": float(cm.crack.area),
             "area_in_part": area,
             "lip_pressure": "function" if callable(cm.crack.pressure) else float(cm.crack.pressure),
-            **_enriched_counts(layout, ci, g.cell_class, CELL_CLASSES_3D, "front", 3),
+            **_enriched_counts(layout, ci, g.cell_class, cm.CELL_CLASSES, "front", 3),
             "front": {"points": int(len(x)), "segments": int(len(seg)), "pieces": pieces,
                       "length": float(sum(p["length"] for p in pieces)),
                       "branch_points": int(fr["num_branch_points"])},
@@ -249,24 +243,32 @@ def _rule_groups(per_cell: np.ndarray, rows: list[tuple[str, np.ndarray, str]]) 
 
 def _describe_quadrature(model: XfemModel, solution: Solution | None = None) -> list[dict[str, typing.Any]]:
     """Cells of each quadrature kind with their rule and point counts (the
-    points of solution.enriched_field_points() if given)."""
+    points of solution.enriched_field_points() if given, else the same
+    stiffness rules computed here): the plain cells, then the enriched
+    ones by kind (_RULES of the crack's end, tips or fronts)."""
     layout = model.layout
-    opts = model.scene.options
     ncells = model.cells.shape[0]
     enr_cells = np.asarray(layout.cells, dtype=np.int32)
     groups = [_plain_group(ncells, enr_cells)]
     if enr_cells.size == 0:
         return groups
-    fp = solution.enriched_field_points() if solution is not None else _cracklip.compute_field_points(
-        model.x, model.cells, layout, model.geometries, np.zeros(model.num_dofs), enr_cells,
-        opts.quadrature_options())
+    fp = solution.enriched_field_points() if solution is not None else model.crack_type.field_points(
+        model, np.zeros(model.num_dofs), enr_cells, None)
     per_cell = np.bincount(fp["cell"], minlength=ncells)
     enriched, has_tip = _enriched_flags(layout, ncells)
-    crossed = np.zeros(ncells, dtype=bool)
+    classes = model.crack_type.CELL_CLASSES
+    cls = {name: np.zeros(ncells, dtype=bool) for name in classes}
     for g in model.geometries:
-        cls = np.asarray(g.cell_class)
-        crossed |= (cls == CELL_CLASSES["cut"]) | (cls == CELL_CLASSES["edge"])
-    is_tip = np.zeros(ncells, dtype=bool)
+        for name, code in classes.items():
+            cls[name] |= np.asarray(g.cell_class) == code
+    return groups + _rule_groups(per_cell, _RULES[model.crack_type.END](model, enriched, has_tip, cls))
+
+
+def _tip_rules(model: XfemModel, enriched: np.ndarray, has_tip: np.ndarray, cls: dict) -> list:
+    """(label, cells, rule) of the enriched cells of a planar part."""
+    opts = model.scene.options
+    crossed = cls["cut"] | cls["edge"]
+    is_tip = np.zeros(len(enriched), dtype=bool)
     is_tip[_tip_cells(model)] = True
     if opts.quadrature == "collapsed":
         tip_rule = (f"quasi-polar fan from the tip, {opts.tip_radial} x {opts.tip_angular} points per fan "
@@ -275,83 +277,58 @@ def _describe_quadrature(model: XfemModel, solution: Solution | None = None) -> 
     else:
         tip_rule = f"Gauss degree {opts.quadrature_degree} on fan triangles from the tip (paper's rule)"
         near_rule = f"Gauss degree {opts.quadrature_degree} on sub-triangles (paper's rule)"
-    return groups + _rule_groups(per_cell, [
-            ("tip cells", enriched & is_tip, tip_rule),
+    return [("tip cells", enriched & is_tip, tip_rule),
             ("other cells with tip functions", enriched & has_tip & ~is_tip, near_rule),
             ("cut or edge cells, Heaviside only", enriched & crossed & ~has_tip & ~is_tip,
              f"Gauss degree {opts.degree} on each sub-triangle"),
             ("uncut cells with Heaviside nodes", enriched & ~crossed & ~has_tip & ~is_tip,
-             f"Gauss degree {opts.degree}")])
+             f"Gauss degree {opts.degree}")]
 
 
-def _describe_quadrature_3d(model: XfemModel) -> list[dict[str, typing.Any]]:
-    """Cells of each quadrature kind of a tetrahedral model with their rule and point counts."""
-    layout = model.layout
+def _front_rules(model: XfemModel, enriched: np.ndarray, has_front: np.ndarray, cls: dict) -> list:
+    """(label, cells, rule) of the enriched cells of a solid."""
     opts = model.scene.options
-    ncells = model.cells.shape[0]
-    enr_cells = np.asarray(layout.cells, dtype=np.int32)
-    groups = [_plain_group(ncells, enr_cells)]
-    if enr_cells.size == 0:
-        return groups
-    q = _cracklip.compute_enriched_cell_quadrature_3d(model.x, model.cells, layout, model.geometries, enr_cells,
-                                                      opts.quadrature_options_3d())
-    per_cell = np.bincount(q["cell"], minlength=ncells)
-    enriched, has_front = _enriched_flags(layout, ncells)
-    crossed = np.zeros(ncells, dtype=bool)
-    front = np.zeros(ncells, dtype=bool)
-    for g in model.geometries:
-        cls = np.asarray(g.cell_class)
-        crossed |= (cls == CELL_CLASSES_3D["cut"]) | (cls == CELL_CLASSES_3D["face"])
-        front |= cls == CELL_CLASSES_3D["front"]
+    crossed, front = cls["cut"] | cls["face"], cls["front"]
     if opts.quadrature == "collapsed":
         front_rule = ("sub-tetrahedra split by the crack and the front: edge- and point-collapsed rules on those "
                       "touching the front, Gauss graded by the distance to it elsewhere")
     else:
         front_rule = f"Gauss degree {opts.quadrature_degree} on the sub-tetrahedra"
-    q3 = opts.quadrature_options_3d()
-    return groups + _rule_groups(per_cell, [
-            ("front cells", enriched & front, front_rule),
+    degree = model.crack_type.quadrature_options(opts).degree
+    return [("front cells", enriched & front, front_rule),
             ("cut cells with front functions", enriched & crossed & has_front & ~front,
              "sub-tetrahedra, Gauss graded by the distance to the front"),
             ("other cells with front functions", enriched & has_front & ~crossed & ~front,
              "Gauss graded by the distance to the front"),
             ("cut or face cells, Heaviside only", enriched & crossed & ~has_front & ~front,
-             f"Gauss degree {q3.degree} on each sub-tetrahedron"),
+             f"Gauss degree {degree} on each sub-tetrahedron"),
             ("uncut cells with Heaviside nodes", enriched & ~crossed & ~has_front & ~front,
-             f"Gauss degree {q3.degree}")])
+             f"Gauss degree {degree}")]
+
+
+#: The enriched cells' quadrature kinds by what the cracks end at (CrackModel.END).
+_RULES = {"tip": _tip_rules, "front": _front_rules}
+
+
+#: How the cracks are described, by what they end at (CrackModel.END): a
+#: curve's tips, a surface's fronts.
+_DESCRIBE = {"tip": _describe_cracks_2d, "front": _describe_cracks_3d}
 
 
 def format_model(summary: dict[str, typing.Any]) -> list[str]:
     """Human-readable lines of describe_model's summary (for `cracklip check`)."""
     d = summary["dofs"]
     e = summary["enrichment"]
-    if summary.get("dimension") == 3:
-        return _format_model_3d(summary)
-    lines = [f"mesh: {summary['nodes']} nodes, {summary['cells']} cells, mean edge {summary['mean_edge']:.4g}",
+    solid = summary.get("dimension") == 3
+    lines = [f"mesh: {summary['nodes']} nodes, {summary['cells']} {'tetrahedra' if solid else 'cells'}, mean edge "
+             f"{summary['mean_edge']:.4g}",
              f"dofs: {d['total']} = {d['standard']} standard + {d['enriched']} enriched "
              f"({summary['enriched_nodes']} enriched nodes, {summary['enriched_pseudo_nodes']} "
              f"enriched pseudo-nodes on {summary['enriched_cells']} cells)",
-             f"enrichment: tip {e['tip']}, radius {e['radius']:g}, {e['blending']} blending",
+             f"enrichment: {'front' if solid else 'tip'} {e['tip']}, radius {e['radius']:g}, {e['blending']} blending",
              "boundary tags: " + (", ".join(f"{n!r}" for n in summary["boundary_tags"]) or "none")]
     for c in summary["cracks"]:
-        cells = ", ".join(f"{v} {k}" for k, v in c["cells"].items())
-        tips = "; ".join(f"({t[0]:.6g}, {t[1]:.6g})" for t in c["tips"]) or "none"
-        length = (f"length {c['length']:.6g}" if abs(c["length"] - c["length_in_part"]) <= 1e-9 * c["length"] else
-                  f"length {c['length_in_part']:.6g} in the part ({c['length']:.6g} along its polyline)")
-        lines += [f"crack {c['name']!r}: {c['kind']}, {length}, tips {tips}",
-                  f"  cells: {cells}",
-                  f"  Heaviside: {c['heaviside_nodes']} nodes, {c['heaviside_dofs']} dofs",
-                  f"  tip: {c['tip_nodes']} nodes ({c['tip_core_nodes']} core, {c['tip_blending_nodes']} "
-                  f"blending), {c['tip_dofs']} dofs"
-                  + (f"; {c['snapped_nodes']} node(s) snapped onto the crack" if c["snapped_nodes"] else "")]
-        for t, h, r, ri, lim in zip(c["tips"], c["tip_element_size"], c["sif_radius"], c["sif_inner_radius"],
-                                    c["sif_limited_by"]):
-            if ri is not None:  # options.sif_ring: one ring, as given
-                lines.append(f"  tip ({t[0]:.6g}, {t[1]:.6g}): element size {h:.4g}, SIF ring [{ri:.4g}, {r:.4g}] "
-                             "(options.sif_ring, not clipped)" + (f" (reaches {lim})" if lim else ""))
-                continue
-            lines.append(f"  tip ({t[0]:.6g}, {t[1]:.6g}): element size {h:.4g}, SIF domains of radius "
-                         f"{0.5 * r:.4g}, {0.75 * r:.4g}, {r:.4g}" + (f" (limited by {lim})" if lim else ""))
+        lines += (_format_surface if solid else _format_curve)(c)
         if c["lip_pressure"] != 0.0:
             lines.append(f"  lip pressure: {c['lip_pressure']}")
     lines.append("quadrature:")
@@ -369,39 +346,47 @@ def format_model(summary: dict[str, typing.Any]) -> list[str]:
     return lines
 
 
-def _format_model_3d(summary: dict[str, typing.Any]) -> list[str]:
-    """format_model's lines for a tetrahedral model."""
-    d = summary["dofs"]
-    e = summary["enrichment"]
-    lines = [f"mesh: {summary['nodes']} nodes, {summary['cells']} tetrahedra, mean edge {summary['mean_edge']:.4g}",
-             f"dofs: {d['total']} = {d['standard']} standard + {d['enriched']} enriched "
-             f"({summary['enriched_nodes']} enriched nodes, {summary['enriched_pseudo_nodes']} "
-             f"enriched pseudo-nodes on {summary['enriched_cells']} cells)",
-             f"enrichment: front {e['tip']}, radius {e['radius']:g}, {e['blending']} blending",
-             "boundary tags: " + (", ".join(f"{n!r}" for n in summary["boundary_tags"]) or "none")]
-    for c in summary["cracks"]:
-        cells = ", ".join(f"{v} {k}" for k, v in c["cells"].items())
-        fr = c["front"]
-        pieces = "; ".join(("closed" if p["closed"] else f"open, {p['ends_on_boundary']} of 2 ends on the boundary")
-                           + f", {p['points']} points, length {p['length']:.4g}" for p in fr["pieces"]) or "none"
-        lines += [f"crack {c['description']}",
-                  f"  area in the part {c['area_in_part']:.6g} (of {c['area']:.6g})",
-                  f"  cells: {cells}",
-                  f"  Heaviside: {c['heaviside_nodes']} nodes, {c['heaviside_dofs']} dofs",
-                  f"  front functions: {c['front_nodes']} nodes ({c['front_core_nodes']} core, "
-                  f"{c['front_blending_nodes']} blending), {c['front_dofs']} dofs"
-                  + (f"; {c['snapped_nodes']} node(s) snapped onto the crack" if c["snapped_nodes"] else ""),
-                  f"  front: {fr['points']} points in {len(fr['pieces'])} piece(s): {pieces}"]
-        if c["front_element_size"]:
-            fs = c["front_element_size"]
-            lines.append(f"  element size at the front: {fs['mean']:.4g} (from {fs['min']:.4g} to {fs['max']:.4g} "
-                         f"over {fs['cells']} front cells)")
-        if c["lip_pressure"] != 0.0:
-            lines.append(f"  lip pressure: {c['lip_pressure']}")
-    lines.append("quadrature:")
-    for q in summary["quadrature"]:
-        pts = "" if q["points"] is None else (f", {q['points']} points "
-                                              f"({q['points_per_cell'][0]}-{q['points_per_cell'][1]} per cell)")
-        lines.append(f"  {q['count']} {q['cells']}: {q['rule']}{pts}")
-    lines.append("contact: none (traction-free lips)")
+def _format_curve(c: dict[str, typing.Any]) -> list[str]:
+    """format_model's lines of a 2D crack: its kind, length, tips, cells,
+    enriched nodes and SIF domains."""
+    cells = ", ".join(f"{v} {k}" for k, v in c["cells"].items())
+    tips = "; ".join(f"({t[0]:.6g}, {t[1]:.6g})" for t in c["tips"]) or "none"
+    length = (f"length {c['length']:.6g}" if abs(c["length"] - c["length_in_part"]) <= 1e-9 * c["length"] else
+              f"length {c['length_in_part']:.6g} in the part ({c['length']:.6g} along its polyline)")
+    lines = [f"crack {c['name']!r}: {c['kind']}, {length}, tips {tips}",
+             f"  cells: {cells}",
+             f"  Heaviside: {c['heaviside_nodes']} nodes, {c['heaviside_dofs']} dofs",
+             f"  tip: {c['tip_nodes']} nodes ({c['tip_core_nodes']} core, {c['tip_blending_nodes']} "
+             f"blending), {c['tip_dofs']} dofs"
+             + (f"; {c['snapped_nodes']} node(s) snapped onto the crack" if c["snapped_nodes"] else "")]
+    for t, h, r, ri, lim in zip(c["tips"], c["tip_element_size"], c["sif_radius"], c["sif_inner_radius"],
+                                c["sif_limited_by"]):
+        if ri is not None:  # options.sif_ring: one ring, as given
+            lines.append(f"  tip ({t[0]:.6g}, {t[1]:.6g}): element size {h:.4g}, SIF ring [{ri:.4g}, {r:.4g}] "
+                         "(options.sif_ring, not clipped)" + (f" (reaches {lim})" if lim else ""))
+            continue
+        lines.append(f"  tip ({t[0]:.6g}, {t[1]:.6g}): element size {h:.4g}, SIF domains of radius "
+                     f"{0.5 * r:.4g}, {0.75 * r:.4g}, {r:.4g}" + (f" (limited by {lim})" if lim else ""))
+    return lines
+
+
+def _format_surface(c: dict[str, typing.Any]) -> list[str]:
+    """format_model's lines of a 3D crack: what it is, its area, cells,
+    enriched nodes, front and the element size along it."""
+    cells = ", ".join(f"{v} {k}" for k, v in c["cells"].items())
+    fr = c["front"]
+    pieces = "; ".join(("closed" if p["closed"] else f"open, {p['ends_on_boundary']} of 2 ends on the boundary")
+                       + f", {p['points']} points, length {p['length']:.4g}" for p in fr["pieces"]) or "none"
+    lines = [f"crack {c['description']}",
+             f"  area in the part {c['area_in_part']:.6g} (of {c['area']:.6g})",
+             f"  cells: {cells}",
+             f"  Heaviside: {c['heaviside_nodes']} nodes, {c['heaviside_dofs']} dofs",
+             f"  front functions: {c['front_nodes']} nodes ({c['front_core_nodes']} core, "
+             f"{c['front_blending_nodes']} blending), {c['front_dofs']} dofs"
+             + (f"; {c['snapped_nodes']} node(s) snapped onto the crack" if c["snapped_nodes"] else ""),
+             f"  front: {fr['points']} points in {len(fr['pieces'])} piece(s): {pieces}"]
+    if c["front_element_size"]:
+        fs = c["front_element_size"]
+        lines.append(f"  element size at the front: {fs['mean']:.4g} (from {fs['min']:.4g} to {fs['max']:.4g} "
+                     f"over {fs['cells']} front cells)")
     return lines

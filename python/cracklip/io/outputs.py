@@ -1,11 +1,32 @@
-"""What a run writes: results.json, crack.csv, sif.csv, ParaView files and PNGs.
+"""What a run writes, planar or solid: results.json, the crack's tables, the
+ParaView files and the PNGs.
 
-Every file is written under a temporary name in the output folder and
-renamed when complete (``cracklip.io.files.atomic_path``), so a folder never holds a
-half-written output; a folder that cannot be written raises ``OutputError``
-naming it. ``describe_model`` is the model summary that ``cracklip check``
-prints and results.json records: the counts come from the same model and
-contact system objects the solver uses.
+One results.json for both dimensions: title, scene file, dimension,
+versions, the model summary (describe_model), boundary conditions and
+loads, the solution (dofs, strain energy, largest displacement, solver),
+units, warnings, ``sifs`` (one row schema for a 2D tip and a 3D front point:
+cracklip.fracture.sif.SIF_KEYS), the error estimate of K, reactions,
+per crack its statistics, contact, load-path steps, condition number,
+timings and the files written. What differs is the crack's geometry:
+
+- a 2D crack (a curve): crack.csv (samples along each crack: pressure,
+  shear, gap, slip, state, per load step), sif.csv (K per tip and step),
+  crack_lips.vtu, and the PNGs deformed.png, crack_pressure.png, stress.png;
+  per crack its length in the part, closed / open extent, pressure;
+- a 3D crack (a surface): crack_opening.csv and crack_opening.png (the
+  normal opening at the vertices of the lip facets, each split in
+  OPENING_SUBDIVISION^2 triangles, the same samples in both), front.csv,
+  front_sifs.png and front_sifs.vtu (K along the fronts: FRONT_COLUMNS),
+  crack_surface.vtu, crack_front.vtu; per crack its area in the part,
+  opened volume, opening and slip, and its front.
+
+``output_files`` lists what a run of a model writes (``cracklip check``
+prints it). Every file is written under a temporary name in the output
+folder and renamed when complete (``cracklip.io.files.atomic_path``), so a
+folder never holds a half-written output; a folder that cannot be written
+raises ``OutputError`` naming it. ``describe_model`` is the model summary
+that ``cracklip check`` prints and results.json records: the counts come
+from the same model and contact system objects the solver uses.
 """
 from __future__ import annotations
 
@@ -23,12 +44,51 @@ from ..post.solution import Solution
 from .files import atomic_path
 from .results import OutputError, check_finite, ensure_output_dir, json_default, versions, write_csv  # noqa: F401
 from .model_summary import describe_model
-from .paraview import crack_lips_mesh, subcell_mesh, write_mesh
-from .pictures import write_pngs
+from .paraview import crack_lips_mesh, crack_surface_mesh, front_mesh, front_sif_mesh, subcell_mesh, write_mesh
+from .pictures import plane_coordinates, write_crack_opening_png, write_front_png, write_pngs
 
 
 logger = logging.getLogger(__name__)
 
+
+#: crack_opening.png and .csv sample each lip facet on this many triangles
+#: per side (4 per facet): the sqrt(r) opening of the facets touching the
+#: front is drawn without dark slivers.
+OPENING_SUBDIVISION = 2
+
+
+#: front.csv's columns (keys of the SIF rows): one line per front point (the
+#: parametric angle only for elliptical fronts, limited_by empty when the
+#: domain was not clipped, free_surface 1 where the front meets the part's
+#: boundary: K there is not the square-root singularity's and is flagged).
+FRONT_COLUMNS = ["crack", "crack_name", "point", "piece", "s", "x", "y", "z", "parametric_angle", "K_I", "K_II",
+                 "K_III", "K_I_spread", "K_II_spread", "K_III_spread", "G", "mode_mix_deg", "radius", "radius_min",
+                 "element_size", "hat", "curvature", "limited_by", "free_surface", "domain_clear"]
+
+
+#: sif.csv's columns (2D tips, one line per tip and load step).
+SIF_COLUMNS = ["step", "crack", "tip", "x", "y", "direction_x", "direction_y", "K_I", "K_II", "K_I_error",
+               "K_II_error", "K_I_extrapolated", "K_II_extrapolated", "K_I_spread", "K_II_spread", "mode_mix_deg", "G",
+               "radius", "element_size", "limited_by", "domain_clear"]
+
+
+def output_files(model, outputs: dict) -> list[str]:
+    """The files a run of the model writes with the [outputs] settings
+    (results.json first)."""
+    vtu, png = outputs["vtu"], outputs["png"]
+    if model.crack_type.END == "front":
+        fronts = any(len(cm.geometry.front["x"]) for cm in model.cracks)
+        files = ["crack_opening.csv"] + (["front.csv"] if fronts else [])
+        files += (["solution.vtu", "crack_surface.vtu", "crack_front.vtu"] + (["front_sifs.vtu"] if fronts else [])
+                  if vtu else [])
+        files += (["crack_opening.png"] + (["front_sifs.png"] if fronts else []) if png and model.cracks else [])
+    else:
+        files = ["crack.csv", "sif.csv"] + (["solution.vtu", "crack_lips.vtu"] if vtu else []) \
+            + (["deformed.png", "crack_pressure.png", "stress.png"] if png else [])
+    return ["results.json"] + files
+
+
+# -- 2D: the lips along each crack ------------------------------------------------------------------
 
 def crack_samples(solution: Solution, crack: int, points_per_segment: int = 3) -> dict[str, np.ndarray]:
     """Points along a crack with the lips' displacements, gap, slip and
@@ -42,7 +102,7 @@ def closed_points(samples: dict[str, np.ndarray], contact: str, gap_tol: float) 
     with unilateral contact, those whose normal gap is at most gap_tol
     (touching or interpenetrating) without contact."""
     if contact == "bilateral":
-        return np.ones(len(samples["s"]), dtype=bool)
+        return np.ones(len(samples["gap"]), dtype=bool)
     if contact == "unilateral":
         p = samples["pressure"]
         return p > 1e-12 * max(float(np.abs(p).max(initial=0.0)), 1e-300)
@@ -89,32 +149,12 @@ def _ranges(s: np.ndarray, mask: np.ndarray) -> list[list[float]]:
     return out
 
 
-def sif_rows(solution: Solution) -> list[dict[str, typing.Any]]:
-    """K_I, K_II with their domain spread, mode mix (degrees, atan2(K_II,
-    K_I); None where K is negligible) and energy release rate G = (K_I^2 +
-    K_II^2) / E* at every tip of every crack (Solution.stress_intensity_factors)."""
-    return solution.stress_intensity_factors(None)
-
-
-def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
-                  timings: dict[str, float] | None = None) -> dict[str, typing.Any]:
-    """Write every output of a solved scene file into out_dir and return the
-    results (what results.json holds); a tetrahedral part's: outputs_3d."""
-    if solution.model.gdim == 3:
-        from .outputs_3d import write_outputs_3d
-        return write_outputs_3d(scene_file, solution, out_dir, timings)
-    t_outputs = time.perf_counter()
-    out = ensure_output_dir(out_dir)
-    timings = dict(timings or {})
+def _curve_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: list[dict], summary: dict,
+                   timings: dict, files: list[str]) -> dict[str, typing.Any]:
+    """The files of 2D cracks (module doc) and their part of results.json."""
     cfg = scene_file.outputs
     m = solution.model
-    files: list[str] = []
-
     states = solution.steps or [solution]
-    t0 = time.perf_counter()
-    sifs = sif_rows(solution)
-    warnings = [w.as_dict() for w in solution.warnings]
-    timings["sif"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     u_scale = float(np.abs(solution.standard_displacement).max()) if m.num_dofs else 0.0
     gap_tol = 1e-6 * max(u_scale, 1e-300)
@@ -129,27 +169,22 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
     _, samples, closed = per_step[-1]
     crack_stats = [{"crack": i, "name": m.cracks[i].crack.name, **crack_statistics(smp, closed[i], gap_tol, law)}
                    for i, smp in enumerate(samples)]
-    energy = solution.strain_energy()
     timings["crack_post"] = time.perf_counter() - t0
-    check_finite("the displacement", solution.u)
 
     t0 = time.perf_counter()
     write_csv(out / "crack.csv", ["step", "crack", "s", "x", "y", "pressure", "shear", "gap", "slip", "state",
                                    "closed"],
-               [[k, i, smp["s"][j], smp["x"][j, 0], smp["x"][j, 1], smp["pressure"][j], smp["shear"][j],
-                 smp["gap"][j], smp["slip"][j], smp["state"][j], int(shut[i][j])]
-                for k, (_, smps, shut) in enumerate(per_step) for i, smp in enumerate(smps)
-                for j in range(len(smp["s"]))])
+              [[k, i, smp["s"][j], smp["x"][j, 0], smp["x"][j, 1], smp["pressure"][j], smp["shear"][j],
+                smp["gap"][j], smp["slip"][j], smp["state"][j], int(shut[i][j])]
+               for k, (_, smps, shut) in enumerate(per_step) for i, smp in enumerate(smps)
+               for j in range(len(smp["s"]))])
     step_sifs = [(k, st.stress_intensity_factors(None) if st is not solution else sifs)
                  for k, (st, _, _) in enumerate(per_step)]
-    write_csv(out / "sif.csv", ["step", "crack", "tip", "x", "y", "direction_x", "direction_y", "K_I", "K_II",
-                                 "K_I_error", "K_II_error", "K_I_extrapolated", "K_II_extrapolated",
-                                 "K_I_spread", "K_II_spread", "mode_mix_deg", "G", "radius", "element_size",
-                                 "limited_by", "domain_clear"],
-               [[k, r["crack"], r["tip"], r["x"], r["y"], r["direction"][0], r["direction"][1], r["K_I"],
-                 r["K_II"], r["K_I_error"], r["K_II_error"], r["K_I_extrapolated"], r["K_II_extrapolated"],
-                 r["K_I_spread"], r["K_II_spread"], r["mode_mix_deg"], r["G"], r["radius"],
-                 r["element_size"], r["limited_by"], int(r["domain_clear"])] for k, rows in step_sifs for r in rows])
+    write_csv(out / "sif.csv", SIF_COLUMNS,
+              [[k, r["crack"], r["tip"], r["x"], r["y"], r["direction"][0], r["direction"][1], r["K_I"],
+                r["K_II"], r["K_I_error"], r["K_II_error"], r["K_I_extrapolated"], r["K_II_extrapolated"],
+                r["K_I_spread"], r["K_II_spread"], r["mode_mix_deg"], r["G"], r["radius"],
+                r["element_size"], r["limited_by"], int(r["domain_clear"])] for k, rows in step_sifs for r in rows])
     files += ["crack.csv", "sif.csv"]
     timings["write_csv"] = time.perf_counter() - t0
     # The sub-cell fields, shared by the ParaView file and the PNGs.
@@ -169,6 +204,141 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
                             scene_file.title, fields)
         timings["write_png"] = time.perf_counter() - t0
         logger.info("wrote PNGs")
+    steps = None
+    if solution.steps:
+        steps = [{"step": k, "name": st.step["name"], "factors": st.step["factors"],
+                  "increments": st.step["increments"], "contact": contact_summary(st),
+                  "sifs": [{key: r[key] for key in ("crack", "tip", "K_I", "K_II", "K_I_spread", "K_II_spread")}
+                           for r in rows],
+                  "cracks": [{"crack": i, **{key: v for key, v in crack_statistics(smp, shut[i], gap_tol, law).items()
+                                              if key in ("closed_fraction", "stick_length", "slip_length",
+                                                         "open_length", "slip_max_abs")}}
+                             for i, smp in enumerate(smps)]}
+                 for k, ((st, smps, shut), (_, rows)) in enumerate(zip(per_step, step_sifs))]
+    return {"cracks": crack_stats, "steps": steps}
+
+
+# -- 3D: the lip surfaces and the fronts ------------------------------------------------------------
+
+def crack_statistics_3d(facets: dict, samples: dict) -> dict[str, typing.Any]:
+    """Per crack: area in the part, opened volume int [[u]].n dA and the
+    area-weighted mean opening (on the lip quadrature samples), the largest
+    opening, slip and interpenetration (on the facet vertices and samples)."""
+    w, gap = samples["weight"], samples["gap"]
+    area = float(np.sum(facets["area"]))
+    volume = float(np.sum(w * gap))
+    gv = facets["gap"].reshape(-1)
+    slip = np.concatenate([facets["slip"].reshape(-1), np.linalg.norm(samples["slip"], axis=1)])
+    return {"area_in_part": area, "facets": int(len(facets["area"])), "points": int(len(w)),
+            "opening_volume": volume, "gap_mean": volume / area if area > 0 else 0.0,
+            "gap_max": float(max(gv.max(initial=0.0), gap.max(initial=0.0))),
+            "interpenetration_max": float(max(0.0, -min(gv.min(initial=0.0), gap.min(initial=0.0)))),
+            "slip_max": float(slip.max(initial=0.0))}
+
+
+def opening_rows(cracks: typing.Sequence, facets: typing.Sequence[dict]) -> list[list]:
+    """crack_opening.csv's rows: every vertex of every lip facet."""
+    rows = []
+    for c, (crack, f) in enumerate(zip(cracks, facets)):
+        x = f["x"].reshape(-1, 3)
+        uv = plane_coordinates(crack, x)
+        nf = len(f["cell"])
+        facet = np.repeat(np.arange(nf), 3)
+        vertex = np.tile(np.arange(3), nf)
+        weight = np.repeat(f["area"] / 3.0, 3)
+        jump = f["jump"].reshape(-1, 3)
+        gap, slip = f["gap"].reshape(-1), f["slip"].reshape(-1)
+        for i in range(len(x)):
+            rows.append([c, int(facet[i]), int(vertex[i]), x[i, 0], x[i, 1], x[i, 2], uv[i, 0], uv[i, 1], weight[i],
+                         gap[i], slip[i], jump[i, 0], jump[i, 1], jump[i, 2]])
+    return rows
+
+
+def front_csv_rows(rows: typing.Sequence[dict]) -> list[list]:
+    """front.csv's rows (FRONT_COLUMNS; flags as 0 / 1)."""
+    return [[int(v) if isinstance(v, bool) else v for v in (r.get(k) for k in FRONT_COLUMNS)] for r in rows]
+
+
+def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: list[dict], summary: dict,
+                     timings: dict, files: list[str]) -> dict[str, typing.Any]:
+    """The files of 3D cracks (module doc) and their part of results.json."""
+    cfg = scene_file.outputs
+    m = solution.model
+    t0 = time.perf_counter()
+    facets = [cm.lip_facets(solution, i) for i, cm in enumerate(m.cracks)]
+    fine = [cm.lip_facets(solution, i, OPENING_SUBDIVISION) for i, cm in enumerate(m.cracks)]
+    samples = [solution.lip_samples(i, cfg["crack_points"]) for i in range(len(m.cracks))]
+    for f, g, smp in zip(facets, fine, samples):
+        check_finite("the crack opening", f["jump"], g["jump"], smp["jump"])
+    fronts = [g.front for g in m.geometries]
+    crack_stats = [{"crack": i, "name": cm.crack.name, **crack_statistics_3d(facets[i], samples[i]),
+                    "front": summary["cracks"][i]["front"]} for i, cm in enumerate(m.cracks)]
+    timings["crack_post"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    cracks = [cm.crack for cm in m.cracks]
+    write_csv(out / "crack_opening.csv", ["crack", "facet", "vertex", "x", "y", "z", "p1", "p2", "weight", "gap",
+                                           "slip", "jump_x", "jump_y", "jump_z"], opening_rows(cracks, fine))
+    files.append("crack_opening.csv")
+    if sifs:
+        write_csv(out / "front.csv", FRONT_COLUMNS, front_csv_rows(sifs))
+        files.append("front.csv")
+    timings["write_csv"] = time.perf_counter() - t0
+    if cfg["vtu"]:
+        t0 = time.perf_counter()
+        fields = solution.subcell_fields()
+        check_finite("the sub-tetrahedral fields", fields["displacement"], fields["stress"])
+        timings["subcell_fields"] = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        write_mesh(subcell_mesh(solution, fields), out / "solution.vtu")
+        write_mesh(crack_surface_mesh(facets), out / "crack_surface.vtu")
+        write_mesh(front_mesh(fronts), out / "crack_front.vtu")
+        files += ["solution.vtu", "crack_surface.vtu", "crack_front.vtu"]
+        if sifs:
+            write_mesh(front_sif_mesh(sifs), out / "front_sifs.vtu")
+            files.append("front_sifs.vtu")
+        timings["write_vtu"] = time.perf_counter() - t0
+        logger.info("wrote ParaView files solution.vtu (%d points, %d cells: %d sub-tetrahedra), crack_surface.vtu, "
+                    "crack_front.vtu", len(fields["points"]), len(fields["cells"]), fields["num_sub"])
+    if cfg["png"] and cracks:
+        t0 = time.perf_counter()
+        write_crack_opening_png(cracks, fine, fronts, out / "crack_opening.png", scene_file.title, m.scene.units)
+        files.append("crack_opening.png")
+        if sifs:
+            write_front_png(sifs, out / "front_sifs.png", scene_file.title,
+                            None if m.scene.units is None else m.scene.units.name("K"))
+            files.append("front_sifs.png")
+        timings["write_png"] = time.perf_counter() - t0
+        logger.info("wrote crack_opening.png" + (", front_sifs.png" if sifs else ""))
+    return {"cracks": crack_stats, "steps": None}
+
+
+#: The crack files of each kind of crack end (CrackModel.END): a curve's
+#: tips, a surface's fronts.
+CRACK_OUTPUTS = {"tip": _curve_outputs, "front": _surface_outputs}
+
+
+def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
+                  timings: dict[str, float] | None = None) -> dict[str, typing.Any]:
+    """Write every output of a solved scene file into out_dir and return the
+    results (what results.json holds). timings: phases measured by the
+    caller (a "sif" phase there is the K already computed)."""
+    t_outputs = time.perf_counter()
+    out = ensure_output_dir(out_dir)
+    timings = dict(timings or {})
+    m = solution.model
+    files: list[str] = []
+    check_finite("the displacement", solution.u)
+
+    t0 = time.perf_counter()
+    sifs = solution.stress_intensity_factors(None)
+    warnings = [w.as_dict() for w in solution.warnings]
+    timings.setdefault("sif", time.perf_counter() - t0)
+    summary = describe_model(m, solution.contact.get("system") if solution.contact else None, solution)
+    part = CRACK_OUTPUTS[m.crack_type.END](scene_file, solution, out, sifs, summary, timings, files)
+    t0 = time.perf_counter()
+    energy = solution.strain_energy()
+    timings["strain_energy"] = time.perf_counter() - t0
 
     contact = contact_summary(solution)
     solver = getattr(solution, "solver", None) or {}
@@ -176,14 +346,16 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
     reactions = solution.reactions() if m.scene.dirichlet else None
     timings["reactions"] = time.perf_counter() - t0
     units = m.scene.units
+    u_scale = float(np.abs(solution.standard_displacement).max()) if m.num_dofs else 0.0
     estimate = None
     if solution.error_estimate:
         estimate = {k: v for k, v in solution.error_estimate.items() if k != "tips"}
     results = {
         "title": scene_file.title,
         "scene_file": str(scene_file.path) if scene_file.path is not None else None,
+        "dimension": m.gdim,
         "versions": versions(),
-        "model": describe_model(m, solution.contact.get("system") if solution.contact else None, solution),
+        "model": summary,
         "boundary_conditions_and_loads": scene_file.notes,
         "solution": {"dofs": int(m.num_dofs), "strain_energy": energy, "max_displacement": u_scale,
                      "relative_residual": solver.get("relative_residual"),
@@ -193,18 +365,9 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
         "sifs": sifs,
         "error_estimate": estimate,
         "reactions": reactions,
-        "cracks": crack_stats,
+        "cracks": part["cracks"],
         "contact": contact,
-        "steps": [{"step": k, "name": st.step["name"], "factors": st.step["factors"],
-                   "increments": st.step["increments"], "contact": contact_summary(st),
-                   "sifs": [{key: r[key] for key in ("crack", "tip", "K_I", "K_II", "K_I_spread", "K_II_spread")}
-                            for r in rows],
-                   "cracks": [{"crack": i, **{key: v for key, v in crack_statistics(smp, shut[i], gap_tol, law).items()
-                                               if key in ("closed_fraction", "stick_length", "slip_length",
-                                                          "open_length", "slip_max_abs")}}
-                              for i, smp in enumerate(smps)]}
-                  for k, ((st, smps, shut), (_, rows)) in enumerate(zip(per_step, step_sifs))]
-        if solution.steps else None,
+        "steps": part["steps"],
         "condition_number": dict(solution.condition) if solution.condition else None,
         "timings": {},
         "files": files + ["results.json"],

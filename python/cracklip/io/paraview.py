@@ -1,7 +1,26 @@
-"""ParaView files of a solution: the sub-cell mesh (crack opening visible) and the
-crack lips as a line mesh."""
+"""ParaView files of a solution (VTU: cracklip.io.vtu), planar or solid.
+
+- ``subcell_mesh``: the sub-cell mesh (Solution.subcell_fields): the cells
+  a crack splits cut into sub-triangles or sub-tetrahedra whose vertices
+  carry their own side's displacement (Warp By Vector with
+  ``displacement`` opens the crack), whole cells elsewhere; point data
+  displacement (3 components); cell data the stress components
+  (``stress_xx`` ...), ``stress_von_mises``, side (+1 / -1 on the
+  sub-cells, 0 on whole cells), parent cell, and in 3D the crack splitting
+  each sub-cell (-1 on whole cells).
+- the crack: ``crack_lips_mesh`` (2D): both lips of every crack as
+  polylines through the crack samples, with the lip's displacement, contact
+  pressure, shear, gap, slip and state; ``crack_surface_mesh`` (3D): both
+  lips of every crack as triangles (each lip facet twice), with the lip's
+  displacement, the opening [[u]] (``jump``), its normal part ``gap`` and
+  the size of its tangential part ``slip``.
+- the fronts (3D): ``front_mesh``, every crack's front as polylines with
+  the arc length ``s``, the frame ``e1``, ``e2``, ``e3`` and ``on_boundary``;
+  ``front_sif_mesh``, the SIF points along them carrying K.
+"""
 from __future__ import annotations
 
+import math
 import pathlib
 import typing
 
@@ -11,40 +30,38 @@ from ..post.solution import Solution
 from .files import atomic_path
 from .vtu import VtuMesh, write_vtu as _write_vtu_file
 
+#: The VTK cell of a sub-cell mesh of each dimension.
+CELL_TYPES = {2: "triangle", 3: "tetra"}
 
-def von_mises(stress: np.ndarray, zz_ratio: float) -> np.ndarray:
-    """von Mises stress of (n, 3) xx, yy, xy stresses with sigma_zz = zz_ratio
-    (xx + yy) (Material.sigma_zz_ratio: nu in plane strain, 0 in plane stress)."""
-    sxx, syy, sxy = stress[:, 0], stress[:, 1], stress[:, 2]
-    szz = zz_ratio * (sxx + syy)
-    return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxy ** 2)
+
+def _in_3d(a: np.ndarray) -> np.ndarray:
+    """Points or vectors (n, d) as (n, 3) (ParaView's vectors have 3 components)."""
+    a = np.asarray(a, dtype=float)
+    if a.shape[1] == 3:
+        return a
+    out = np.zeros((len(a), 3))
+    out[:, :a.shape[1]] = a
+    return out
 
 
 def subcell_mesh(solution: Solution, fields: dict | None = None) -> VtuMesh:
-    """The solution on the sub-cell mesh (vertices not shared across a crack):
-    displacement (point data, 3 components for ParaView's Warp By Vector),
-    stress components, von Mises stress, crack side and parent cell (cell data).
-    fields: solution.subcell_fields() if the caller has it already."""
+    """The solution on the sub-cell mesh (module doc). fields:
+    solution.subcell_fields() if the caller has it already."""
     f = solution.subcell_fields() if fields is None else fields
-    npts = f["points"].shape[0]
-    points = np.zeros((npts, 3))
-    points[:, :2] = f["points"]
-    disp = np.zeros((npts, 3))
-    disp[:, :2] = f["displacement"]
-    conn = np.arange(npts, dtype=np.int64).reshape(-1, 3)
     s = f["stress"]
-    return VtuMesh(
-        points, "triangle", conn,
-        point_data={"displacement": disp},
-        cell_data={"stress_xx": s[:, 0], "stress_yy": s[:, 1], "stress_xy": s[:, 2],
-                   "stress_von_mises": von_mises(s, solution.model.scene.material.sigma_zz_ratio),
-                   "side": f["side"].astype(np.int32), "parent_cell": f["parent"]})
+    cell_data = {f"stress_{c}": s[:, k] for k, c in enumerate(solution.model.crack_type.VOIGT)}
+    cell_data.update({"stress_von_mises": f["von_mises"], "side": f["side"].astype(np.int32),
+                      "parent_cell": f["parent"]})
+    if "crack" in f:
+        cell_data["crack"] = f["crack"]
+    return VtuMesh(_in_3d(f["points"]), CELL_TYPES[solution.model.gdim], f["cells"],
+                   point_data={"displacement": _in_3d(f["displacement"])}, cell_data=cell_data)
 
 
 def crack_lips_mesh(samples: typing.Sequence[dict]) -> VtuMesh:
-    """The lips of every crack as two polylines (+ and - lip) through the
-    crack sample points (see outputs.crack_samples), each point carrying
-    the displacement of its lip, pressure, shear (friction), normal gap,
+    """The lips of every 2D crack as two polylines (+ and - lip) through the
+    crack sample points (Solution.lip_samples), each point carrying the
+    displacement of its lip, pressure, shear (friction), normal gap,
     tangential slip, state (0 open, 1 stick, 2 slip); cell data: crack index
     and lip (+1 / -1)."""
     pts, disp, conn, crack_id, lip = [], [], [], [], []
@@ -69,14 +86,95 @@ def crack_lips_mesh(samples: typing.Sequence[dict]) -> VtuMesh:
             offset += n
     if not pts:
         return VtuMesh(np.zeros((0, 3)), "line", np.zeros((0, 2), dtype=np.int64))
-    x = np.concatenate(pts)
-    points = np.zeros((len(x), 3))
-    points[:, :2] = x
-    u = np.zeros((len(x), 3))
-    u[:, :2] = np.concatenate(disp)
-    point_data = {"displacement": u, **{k: np.concatenate(v) for k, v in data.items()}}
-    return VtuMesh(points, "line", np.concatenate(conn).astype(np.int64), point_data=point_data,
+    point_data = {"displacement": _in_3d(np.concatenate(disp)), **{k: np.concatenate(v) for k, v in data.items()}}
+    return VtuMesh(_in_3d(np.concatenate(pts)), "line", np.concatenate(conn).astype(np.int64), point_data=point_data,
                    cell_data={"crack": np.concatenate(crack_id), "lip": np.concatenate(lip)})
+
+
+def crack_surface_mesh(facets: typing.Sequence[dict]) -> VtuMesh:
+    """Both lips of every 3D crack (SurfaceCrackModel.lip_facets per crack)."""
+    pts, disp, jump, gap, slip, crack, lip, normal = [], [], [], [], [], [], [], []
+    for c, f in enumerate(facets):
+        nf = len(f["cell"])
+        if nf == 0:
+            continue
+        for sign, key in ((1, "u_plus"), (-1, "u_minus")):
+            pts.append(f["x"].reshape(-1, 3))
+            disp.append(f[key].reshape(-1, 3))
+            jump.append(f["jump"].reshape(-1, 3))
+            gap.append(f["gap"].reshape(-1))
+            slip.append(f["slip"].reshape(-1))
+            crack.append(np.full(nf, c, dtype=np.int32))
+            lip.append(np.full(nf, sign, dtype=np.int32))
+            normal.append(f["normal"])
+    if not pts:
+        return VtuMesh(np.zeros((0, 3)), "triangle", np.zeros((0, 3), dtype=np.int64))
+    x = np.concatenate(pts)
+    return VtuMesh(x, "triangle", np.arange(len(x), dtype=np.int64).reshape(-1, 3),
+                   point_data={"displacement": np.concatenate(disp), "jump": np.concatenate(jump),
+                               "gap": np.concatenate(gap), "slip": np.concatenate(slip)},
+                   cell_data={"crack": np.concatenate(crack), "lip": np.concatenate(lip),
+                              "normal": np.concatenate(normal)})
+
+
+def front_mesh(fronts: typing.Sequence[dict]) -> VtuMesh:
+    """The fronts (CrackGeometry3D.front of each crack) as polylines."""
+    pts, conn, data = [], [], {"s": [], "e1": [], "e2": [], "e3": [], "on_boundary": [], "crack": [], "piece": []}
+    offset = 0
+    for c, fr in enumerate(fronts):
+        x = np.asarray(fr["x"]).reshape(-1, 3)
+        if not len(x):
+            continue
+        frame = np.asarray(fr["frame"]).reshape(-1, 3, 3)
+        offsets = np.asarray(fr["piece_offsets"])
+        pts.append(x)
+        conn.append(offset + np.asarray(fr["segments"], dtype=np.int64).reshape(-1, 2))
+        data["s"].append(np.asarray(fr["s"]))
+        for k in range(3):
+            data[f"e{k + 1}"].append(frame[:, k])
+        data["on_boundary"].append(np.asarray(fr["on_boundary"], dtype=np.int32))
+        data["crack"].append(np.full(len(x), c, dtype=np.int32))
+        data["piece"].append(np.repeat(np.arange(len(offsets) - 1, dtype=np.int32), np.diff(offsets)))
+        offset += len(x)
+    if not pts:
+        return VtuMesh(np.zeros((0, 3)), "line", np.zeros((0, 2), dtype=np.int64))
+    return VtuMesh(np.concatenate(pts), "line", np.concatenate(conn),
+                   point_data={k: np.concatenate(v) for k, v in data.items()})
+
+
+def _pieces(rows: typing.Sequence[dict]) -> dict[tuple[int, int], list[int]]:
+    groups: dict[tuple[int, int], list[int]] = {}
+    for i, r in enumerate(rows):
+        groups.setdefault((int(r["crack"]), int(r["piece"])), []).append(i)
+    for idx in groups.values():
+        idx.sort(key=lambda i: rows[i]["s"])
+    return groups
+
+
+def front_sif_mesh(rows: typing.Sequence[dict], closed: typing.Callable[[int, int], bool] | None = None) -> VtuMesh:
+    """The SIF points of 3D fronts (results.json's "sifs") as polylines per
+    front piece (a closed loop closes; closed(crack, piece): whether the
+    piece is a loop, default: a piece without free-surface points), carrying
+    K_I, K_II, K_III, the spreads, G, the mode mix, the domain radius, the
+    free-surface flag and the local frame, to colour the front in ParaView."""
+    if not rows:
+        return VtuMesh(np.zeros((0, 3)), "line", np.zeros((0, 2), dtype=np.int64))
+    x = np.array([[r["x"], r["y"], r["z"]] for r in rows], dtype=float)
+    conn = []
+    for (c, p), idx in _pieces(rows).items():
+        conn += [(a, b) for a, b in zip(idx[:-1], idx[1:])]
+        loop = closed(c, p) if closed is not None else not any(rows[i]["free_surface"] for i in idx)
+        if loop and len(idx) > 2:
+            conn.append((idx[-1], idx[0]))
+    data = {k: np.array([float(r[k]) if r[k] is not None else math.nan for r in rows])
+            for k in ("s", "K_I", "K_II", "K_III", "K_I_spread", "K_II_spread", "K_III_spread", "G", "mode_mix_deg",
+                      "radius", "element_size")}
+    data["mode_mix_deg"] = np.nan_to_num(data["mode_mix_deg"], nan=0.0)
+    data["free_surface"] = np.array([int(r["free_surface"]) for r in rows], dtype=np.int32)
+    data["crack"] = np.array([int(r["crack"]) for r in rows], dtype=np.int32)
+    data["e1"] = np.array([r["direction"] for r in rows], dtype=float)
+    data["e2"] = np.array([r["normal"] for r in rows], dtype=float)
+    return VtuMesh(x, "line", np.array(conn, dtype=np.int64).reshape(-1, 2), point_data=data)
 
 
 def write_mesh(mesh: VtuMesh, path: str | pathlib.Path) -> pathlib.Path:
@@ -93,3 +191,7 @@ def write_vtu(solution: Solution, path: str | pathlib.Path) -> pathlib.Path:
     path = pathlib.Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     return write_mesh(subcell_mesh(solution), path)
+
+
+__all__ = ["subcell_mesh", "crack_lips_mesh", "crack_surface_mesh", "front_mesh", "front_sif_mesh", "write_mesh",
+           "write_vtu", "CELL_TYPES"]

@@ -1,16 +1,33 @@
-"""The PNGs of a run: the deformed part (with a zoom on small cracks), the crack
-pressure and opening, the stress; cropped to their ink."""
+"""The PNGs of a run, cropped to their ink; the plots that differ by dimension
+are functions here side by side.
+
+- A planar part (``write_pngs``): deformed.png (the deformed part, with a
+  zoom on small cracks), crack_pressure.png (pressure and gap, or opening
+  and slip, along each crack), stress.png.
+- A solid (``write_crack_opening_png``): crack_opening.png, one panel per
+  crack, the normal opening [[u]].n at the vertices of the lip facets
+  (SurfaceCrackModel.lip_facets) drawn over the facets in the crack's own
+  plane coordinates (from the crack's plane() origin, along its directions:
+  the semi-axes of an ellipse, a polygon's first edge, the principal
+  directions of a triangulated surface, onto which it is projected), with
+  the front in black and a labelled colour bar (in the scene's units when
+  it gives them); the same samples go to crack_opening.csv.
+- K along 3D fronts (``write_front_png``): front_sifs.png, K_I, K_II, K_III
+  against the arc length (against the parametric angle for elliptical
+  fronts) per crack, with the spread of the three domains as error bars and
+  the free-surface points marked.
+"""
 from __future__ import annotations
 
 import math
 import pathlib
+import typing
 
 import numpy as np
 
 from ..post.solution import Solution
 from ..scene.units import label as unit_label
 from .files import atomic_path
-from .paraview import von_mises
 
 
 #: crack_pressure.png draws an open crack's tangential slip on the opening's
@@ -360,7 +377,7 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
     s = f["stress"]
     values = {"xx": s[:, 0], "yy": s[:, 1], "xy": s[:, 2]}.get(component)
     if values is None:
-        values = von_mises(s, solution.model.scene.material.sigma_zz_ratio)
+        values = f["von_mises"]
     cmap = "viridis" if component == "von_mises" else "coolwarm"
     lim = 1.0
     if len(values):
@@ -403,3 +420,95 @@ def _rectangle(window):
     from matplotlib.patches import Rectangle
     (x0, y0), (x1, y1) = window
     return Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, ec="r", lw=0.8, ls="--")
+
+
+def axis_text(v: np.ndarray) -> str:
+    """'x', '-z' for a coordinate direction, else 'along [0.6, 0.8, 0]'."""
+    v = np.where(np.abs(v) < 1e-12, 0.0, np.asarray(v, dtype=float))
+    k = int(np.argmax(np.abs(v)))
+    if abs(abs(v[k]) - 1.0) < 1e-9:
+        return ("-" if v[k] < 0 else "") + "xyz"[k]
+    return "along [" + ", ".join(f"{c:.3g}" for c in v) + "]"
+
+
+def plane_coordinates(crack, x: np.ndarray) -> np.ndarray:
+    """In-plane coordinates (n, 2) of points (n, 3) in the crack's plane()."""
+    origin, e1, e2 = crack.plane()
+    d = np.asarray(x, dtype=float).reshape(-1, 3) - origin
+    return np.column_stack([d @ e1, d @ e2])
+
+
+def write_crack_opening_png(cracks: typing.Sequence, facets: typing.Sequence[dict], fronts: typing.Sequence[dict],
+                            path: pathlib.Path, title: str = "", units=None) -> pathlib.Path:
+    """crack_opening.png (module doc): cracks (the scene's crack surfaces),
+    facets (lip facets per crack), fronts (CrackGeometry3D.front per crack)."""
+    from matplotlib.collections import LineCollection
+    from matplotlib.tri import Triangulation
+    from mpl_toolkits.axes_grid1 import make_axes_locatable
+    n = len(cracks)
+    uvs = [plane_coordinates(c, f["x"]) for c, f in zip(cracks, facets)]
+    # Panel height from the widest crack's aspect ratio (a colour bar as tall as each picture).
+    aspect = max([float(np.ptp(uv[:, 1]) / max(np.ptp(uv[:, 0]), 1e-300)) for uv in uvs if len(uv)] or [1.0])
+    fig = new_figure((6.0 * n, 1.6 + 4.2 * min(max(aspect, 0.35), 1.4)))
+    axes = {}
+    for k, (crack, f, fr, uv) in enumerate(zip(cracks, facets, fronts, uvs)):
+        ax = fig.add_subplot(1, n, k + 1)
+        gap = f["gap"].reshape(-1)
+        if len(gap):
+            tri = Triangulation(uv[:, 0], uv[:, 1], np.arange(len(uv)).reshape(-1, 3))
+            lo, hi = min(0.0, float(gap.min())), float(gap.max())
+            coll = ax.tripcolor(tri, gap, shading="gouraud", cmap="viridis", vmin=lo, vmax=hi if hi > lo else lo + 1.0)
+            cax = make_axes_locatable(ax).append_axes("right", size="4%", pad=0.12)
+            bar = fig.colorbar(coll, cax=cax)
+            bar.set_label(unit_label(units, "displacement", "normal opening [[u]].n"))
+        fx = np.asarray(fr["x"]).reshape(-1, 3)
+        if len(fx):
+            q = plane_coordinates(crack, fx)
+            seg = np.asarray(fr["segments"]).reshape(-1, 2)
+            ax.add_collection(LineCollection(q[seg], colors="k", linewidths=1.2, label="front"))
+        origin, e1, e2 = crack.plane()
+        ax.set_xlabel(unit_label(units, "length", axis_text(e1)))
+        ax.set_ylabel(unit_label(units, "length", axis_text(e2)))
+        ax.set_aspect("equal")
+        ax.autoscale_view()
+        vmax = float(gap.max()) if len(gap) else 0.0
+        ax.set_title(f"{crack.name}: max opening {vmax:.3g}" + (f" {units.name('displacement')}" if units else "")
+                     + "\ncoordinates from its centre (" + ", ".join(f"{c:.4g}" for c in origin) + ")", fontsize=10)
+        axes[f"crack {k}"] = ax
+    if title:
+        fig.suptitle(title)
+    save_png(fig, path, axes)
+    return path
+
+
+def write_front_png(rows: typing.Sequence[dict], path: pathlib.Path, title: str = "", k_unit: str | None = None
+                    ) -> None:
+    """front_sifs.png: K_I, K_II, K_III along each crack's front (module doc)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    cracks = sorted({int(r["crack"]) for r in rows})
+    fig, axes = plt.subplots(len(cracks), 1, figsize=(7, 3.2 * len(cracks)), squeeze=False)
+    for ax, c in zip(axes[:, 0], cracks):
+        mine = [r for r in rows if int(r["crack"]) == c]
+        angle = all(r["parametric_angle"] is not None for r in mine)
+        t = np.array([math.degrees(r["parametric_angle"]) if angle else r["s"] for r in mine])
+        o = np.argsort(t)
+        free = np.array([bool(r["free_surface"]) for r in mine])
+        for name, col in (("K_I", "C0"), ("K_II", "C1"), ("K_III", "C2")):
+            k = np.array([r[name] for r in mine])
+            sp = np.array([r[f"{name}_spread"] for r in mine])
+            ax.errorbar(t[o], k[o], yerr=0.5 * sp[o], fmt="o-", color=col, ms=3, lw=1, capsize=2, label=name)
+            if free.any():
+                ax.plot(t[free], k[free], "kx", ms=8)
+        if free.any():
+            ax.plot([], [], "kx", label="free surface (flagged)")
+        ax.axhline(0.0, color="0.7", lw=0.5)
+        ax.set_xlabel("parametric angle [deg]" if angle else "arc length along the front")
+        ax.set_ylabel(f"K [{k_unit}]" if k_unit else "K")
+        ax.set_title(f"{title}{': ' if title else ''}crack {mine[0]['crack_name'] or c}", fontsize=9)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

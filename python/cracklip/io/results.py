@@ -1,4 +1,4 @@
-"""What every results writer shares (outputs, outputs_3d, growth_outputs):
+"""What every results writer shares (outputs, growth_outputs):
 the output folder's check, the versions record of results.json, the check
 that no NaN reaches a file, JSON values of numpy types, CSV rows."""
 from __future__ import annotations
