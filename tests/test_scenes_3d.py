@@ -277,7 +277,7 @@ def test_msh_file_and_builtin_geo(tmp_path):
     assert build_scene(doc).scene.mesh.gdim == 3
     geo = _box_msh(tmp_path / "box.geo", builtin=True)
     sf = build_scene(_doc({"kind": "geometry", "path": str(geo), "h": 0.5, "tip_h": 0.1}))
-    from cracklip.model.checks_3d import front_element_sizes
+    from cracklip.model.checks import front_element_sizes
     sizes = front_element_sizes(cl.create_model(sf.scene), 0)
     assert sizes.mean() < 0.16, sizes.mean()
 
@@ -307,7 +307,7 @@ def test_3d_keys_build_the_scene():
     assert isinstance(sc.cracks[0], PolygonCrack) and sc.cracks[0].pressure == 0.5
     # The pressure is -p n on the side: its load is that of the traction
     # -p n(x) with the cylinder's outward normal, to the faceting.
-    from cracklip.model.loads_3d import assemble_tractions_3d
+    from cracklip.model.loads import assemble_tractions as assemble_tractions_3d
     b_pressure = assemble_tractions_3d(cl.create_model(_with(sc, [sc.tractions[1]])))
 
     def normal(p):
@@ -337,7 +337,7 @@ def _with(scene, tractions):
 def test_lip_facet_subdivision_and_plane():
     """The pieces of the opening picture: subdivided facets cover their
     parent exactly; the plane coordinates of each crack kind."""
-    from cracklip.post.subcells_3d import subdivide_triangles
+    from cracklip.model.cracks.surface import subdivide_triangles
     rng = np.random.default_rng(3)
     tri = rng.normal(size=(5, 3, 3))
     sub, parent = subdivide_triangles(tri, 3)
@@ -463,7 +463,7 @@ def test_radius_that_enriches_no_node():
 def test_front_that_ends_inside_the_part():
     """A front piece that ends off the boundary (a P1 front touching itself)
     is an error naming the crack, the point and the fixes."""
-    from cracklip.model.checks_3d import check_front_ends
+    from cracklip.model.checks import check_front_ends
     front = {"x": np.array([[0, 0, 0], [1, 0, 0], [2, 0.5, 0]], float), "piece_offsets": np.array([0, 3]),
              "closed": np.array([0], np.int8), "on_boundary": np.array([1, 0, 0], np.int8), "num_branch_points": 1}
     with pytest.raises(cl.CrackGeometryError, match=r"crack A: the front \(piece 0 of 1\) ends at \(2, 0\.5, 0\) "

@@ -1,5 +1,4 @@
-"""3D parts in scene files: which keys a 2D or a 3D scene takes, and the
-tetrahedral mesh, crack surfaces and loads of a 3D scene.
+"""Planar part or solid: which keys a 2D or a 3D scene takes.
 
 A scene is 3D when its part is a solid: mesh.kind ``box`` or ``cylinder``,
 or a geometry (.geo, STEP, BREP) or .msh file holding volumes. Before the
@@ -12,31 +11,13 @@ dimension (a 2D key in a 3D scene, a 3D one in a 2D scene, a point or
 vector with the wrong number of components) and says what to give
 instead. It runs on the parsed settings, before any meshing when the
 dimension is known from mesh.kind or the cracks, else right after.
-
-The builders here are those where 3D differs from 2D: the mesh (gmsh,
-refined along every crack's front and optionally over its surface:
-mesh_3d.crack_refinements, with tip_radius as in 2D), the crack surfaces, tractions (a uniform 3D
-stress) and pressures (-p n on the faces, as sigma = -p I). Dirichlet
-conditions and point forces share the 2D builders (scene_file, by the
-mesh's dimension).
 """
 from __future__ import annotations
 
-import pathlib
 import typing
 
-import numpy as np
-
-from ..errors import CrackGeometryError, InputError, MeshError
-from ..scene.conditions import Traction
-from ..scene.crack_surface import EllipticalCrack, PolygonCrack, SurfaceCrack, read_crack_surface
-from ..scene.mesh import MeshData
-from ..scene.size_field import MAX_GROWTH
-from ..scene.stress_field import UniformStress3D
-
-
-#: Crack keys of each dimension (one of them per [[cracks]] entry).
-CRACK_KINDS = {2: ("points", "arc"), 3: ("ellipse", "polygon", "surface")}
+from ...errors import InputError
+from .cracks import CRACK_KINDS
 
 
 #: mesh.kind values that fix the dimension.
@@ -48,9 +29,12 @@ KIND_DIMENSION = {"rectangle": 2, "plate_with_hole": 2, "plate_with_holes": 2, "
 NOT_YET_3D = {
     "loads.initial_stress": "an initial (residual) stress is not supported on 3D parts yet",
     "load_path": "load paths are not supported on 3D parts yet: give the loads at factor 1",
-    "growth": "crack growth is 2D only for now (stress intensity factors along 3D fronts come first)",
-    "spectrum": "fatigue spectra are 2D only for now (stress intensity factors along 3D fronts come first)",
-    "material.fatigue": "fatigue constants are read by `cracklip grow`, which is 2D only for now",
+    "growth": "crack growth is 2D only for now: growing a 3D crack is not available in this version (`cracklip "
+              "run` gives K along its fronts)",
+    "spectrum": "fatigue spectra are read by `cracklip grow`, and growing a 3D crack is not available in this "
+                "version",
+    "material.fatigue": "fatigue constants are read by `cracklip grow`, and growing a 3D crack is not available in "
+                        "this version",
 }
 
 
@@ -175,8 +159,8 @@ def check_dimension(doc: dict, settings: dict, dim: int, why: str) -> None:
         raise InputError(f"options.contact = {o['contact']!r}, friction = {o['friction']:g}: crack-lip contact is "
                          f"not available on 3D parts yet ({part}); remove it (the lips are then traction-free)")
     if o["accuracy"] != 0.0:
-        raise InputError(f"options.accuracy = {o['accuracy']:g} targets the error of K, which 3D parts do not "
-                         f"compute yet ({part}); remove it and set mesh.tip_h instead")
+        raise InputError(f"options.accuracy = {o['accuracy']:g} targets the estimated error of K, which is estimated "
+                         f"on 2D parts only in this version ({part}); remove it and set mesh.tip_h instead")
     if s["mesh"]["kind"] == "file":
         for key in ("tip_h", "crack_h"):
             if s["mesh"].get(key, 0.0) > 0.0:
@@ -188,122 +172,3 @@ def check_dimension(doc: dict, settings: dict, dim: int, why: str) -> None:
                              "the part as a geometry (mesh.kind = 'geometry')")
 
 
-def crack_surface(c: dict, i: int, base_dir: pathlib.Path):
-    """The crack surface of a parsed [[cracks]] entry (ellipse, polygon or surface)."""
-    name = c["name"] or f"crack {i}"
-    kw = {"name": name, "pressure": c["pressure"], "pressure_group": c["pressure_group"]}
-    where = f"cracks[{i}]"
-    try:
-        if "ellipse" in c:
-            e = c["ellipse"]
-            return EllipticalCrack(e["center"], e["normal"], e["a"], e.get("b"), e.get("a_direction"), **kw)
-        if "polygon" in c:
-            return PolygonCrack(np.asarray(c["polygon"], dtype=float), **kw)
-        f = pathlib.Path(c["surface"])
-        f = f if f.is_absolute() else base_dir / f
-        sc = read_crack_surface(f, name=name)
-        return SurfaceCrack(sc.vertices, sc.triangles, **kw)
-    except CrackGeometryError as e:
-        raise CrackGeometryError(f"{where}: {e}") from None
-
-
-def describe_crack(crack) -> str:
-    """One line of a crack surface (the notes of a scene)."""
-    def v(a) -> str:
-        return "[" + ", ".join(f"{x:.6g}" for x in np.asarray(a, dtype=float)) + "]"
-    if isinstance(crack, EllipticalCrack):
-        shape = (f"circle, radius {crack.a:.6g}" if crack.a == crack.b else
-                 f"ellipse, semi-axes a = {crack.a:.6g} along {v(crack.axis)}, b = {crack.b:.6g}")
-        return f"{crack.name}: {shape}, centre {v(crack.center)}, normal {v(crack.normal)}"
-    if isinstance(crack, PolygonCrack):
-        return f"{crack.name}: polygon of {len(crack.points)} vertices, normal {v(crack.normal)}, area {crack.area:.6g}"
-    return (f"{crack.name}: triangulated surface, {len(crack.vertices)} vertices, {len(crack.triangles)} triangles, "
-            f"area {crack.area:.6g}")
-
-
-def _refine_items(m: dict, h: float) -> list:
-    """mesh.refine items of a 3D scene as front refinements (a point, or a
-    segment sampled every h_near / 2)."""
-    from ..scene.mesh_3d import FrontRefinement
-    out = []
-    for r in m["refine"]:
-        if "point" in r:
-            pts = np.asarray([r["point"]], dtype=float)
-        else:
-            a, b = (np.asarray(p, dtype=float) for p in r["segment"])
-            k = max(1, int(np.ceil(np.linalg.norm(b - a) / (0.5 * r["h"]))))
-            pts = a + np.linspace(0.0, 1.0, k + 1)[:, None] * (b - a)
-        out.append(FrontRefinement(pts, min(r["h"], h), r["radius"]))
-    return out
-
-
-def mesh_3d(m: dict, cracks: list, base_dir: pathlib.Path) -> MeshData:
-    """The tetrahedral mesh of [mesh] settings: box, cylinder, a solid
-    geometry file (all refined to tip_h along the cracks' fronts, crack_h
-    over their surfaces, and the refine items), or a .msh file as it is."""
-    from ..scene import mesh_3d as m3
-    kind = m["kind"]
-    if kind == "file":
-        f = pathlib.Path(m["path"])
-        return m3.read_msh_3d(f if f.is_absolute() else base_dir / f)
-    h = m["h"]
-    fronts = []
-    if m["tip_h"] > 0.0 and cracks:
-        # tip_radius as in 2D: the distance over which the size grows back to
-        # h (0: the fastest growth the mesher honours, MAX_GROWTH); no
-        # refinement over the surfaces unless crack_h asks (h_surface = h).
-        growth = (h - m["tip_h"]) / m["tip_radius"] if m["tip_radius"] > 0.0 else MAX_GROWTH
-        fronts = m3.crack_refinements(cracks, m["tip_h"], h, growth=max(growth, 1e-12),
-                                      h_surface=m["crack_h"] if m.get("crack_h", 0.0) > 0.0 else h)
-    elif m.get("crack_h", 0.0) > 0.0:
-        fronts = [m3.FrontRefinement(c.surface_points(0.5 * m["crack_h"]), m["crack_h"], m["tip_radius"])
-                  for c in cracks]
-    fronts += _refine_items(m, h)
-    if kind == "box":
-        return m3.create_box(*m["box"], h, fronts=fronts)
-    if kind == "cylinder":
-        return m3.create_cylinder(m["center"], m["axis"], m["radius"], m["length"], h, fronts=fronts)
-    from ..scene.geometry_file import create_from_geometry
-    f = pathlib.Path(m["path"])
-    return create_from_geometry(f if f.is_absolute() else base_dir / f, h, fronts=fronts)
-
-
-def mesh_file_dimension(path: pathlib.Path) -> int:
-    """The dimension of the mesh in a .msh file (2: triangles, 3: tetrahedra)."""
-    from ..scene.mesh import _gmsh, _msh_header
-    if not path.is_file():
-        raise MeshError(f"mesh file {path} does not exist")
-    if not _msh_header(path):
-        return 2  # read_msh names the problem
-    gmsh = _gmsh()
-    try:
-        gmsh.open(str(path))
-    except Exception as e:  # gmsh raises a bare Exception for an unreadable file
-        raise MeshError(f"{path}: gmsh cannot read this file ({e})") from None
-    try:
-        return 3 if gmsh.model.getDimension() == 3 else 2
-    finally:
-        gmsh.model.remove()
-
-
-def traction_3d(tr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
-    where = f"loads.tractions[{i}]"
-    tag = tr["tag"]
-    nf = mesh.facets(tag).size
-    if "value" in tr:
-        notes.append(f"{where}: tag {tag!r} ({nf} facets), traction {tr['value']}")
-        return Traction(tag, tuple(tr["value"]), group=tr["group"])
-    notes.append(f"{where}: tag {tag!r} ({nf} facets), traction sigma n, uniform sigma = {tr['stress']} "
-                 "(xx, yy, zz, yz, xz, xy)")
-    return Traction(tag, stress=UniformStress3D(tuple(tr["stress"])), group=tr["group"])
-
-
-def pressure_3d(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
-    """-p n on a tag (the facets' own normals: sigma = -p I)."""
-    p = pr["value"]
-    notes.append(f"loads.pressures[{i}]: tag {pr['tag']!r} ({mesh.facets(pr['tag']).size} facets), pressure {p:g}")
-    return Traction(pr["tag"], stress=UniformStress3D.pressure(p), group=pr["group"])
-
-
-__all__ = ["scene_dimension", "check_dimension", "crack_surface", "describe_crack", "mesh_3d", "mesh_file_dimension",
-           "traction_3d", "pressure_3d", "CRACK_KINDS"]

@@ -1,0 +1,101 @@
+"""Building a scene file: its mesh, material, cracks, conditions, loads,
+options and growth, section by section (the modules beside this one), into
+a cracklip Scene (``SceneFile``); each condition and load leaves a line in
+the notes saying what it became."""
+from __future__ import annotations
+
+import dataclasses
+import pathlib
+import time
+import typing
+
+from ...errors import InputError, MeshError
+from ...scene.options import Options
+from ...scene.scene import Scene
+from .conditions import build_conditions, build_load_path, build_loads
+from .cracks import build_crack, crack_surface, describe_crack
+from .dimension import check_dimension, scene_dimension
+from .growth import build_growth
+from .material import build_material, build_units
+from .mesh import build_mesh
+from .reader import apply_override, parse_settings, read_document
+
+
+@dataclasses.dataclass
+class SceneFile:
+    """A scene file read and built.
+
+    Attributes:
+        path: the file (None for a document given directly).
+        title: the title (or the file's stem).
+        settings: every key with its value (parse_settings).
+        scene: the cracklip Scene.
+        growth: the [growth] settings (cracklip.scene.growth.Growth), or None.
+        outputs: the [outputs] settings.
+        notes: one line per boundary condition and load, saying what it became.
+        timings: seconds spent meshing ("mesh").
+    """
+    path: pathlib.Path | None
+    title: str
+    settings: dict
+    scene: Scene
+    outputs: dict
+    notes: list[str]
+    timings: dict[str, float]
+    growth: typing.Any = None
+
+
+def load_scene_file(path: str | pathlib.Path, overrides: typing.Sequence[str] = ()) -> SceneFile:
+    """Read, validate and build a scene file; overrides are ``KEY=VALUE`` strings."""
+    path = pathlib.Path(path)
+    doc = read_document(path)
+    for o in overrides:
+        apply_override(doc, o)
+    return build_scene(doc, base_dir=path.parent, path=path)
+
+
+def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Path | None = None) -> SceneFile:
+    """Validate a scene document and build its mesh and Scene."""
+    s = parse_settings(doc)
+    units = build_units(s)
+    material = build_material(s)
+    dim, why = scene_dimension(s)
+    base_dir = pathlib.Path(base_dir)
+    if dim == 3:
+        cracks = [crack_surface(c, i, base_dir) for i, c in enumerate(s["cracks"])]
+    else:
+        cracks = [build_crack(c, i) for i, c in enumerate(s["cracks"])]
+    t0 = time.perf_counter()
+    points = [bc["point"] for bc in s["dirichlet"] if "point" in bc] + \
+        [pf["point"] for pf in s["loads"]["point_forces"]]
+    mesh = build_mesh(s["mesh"], cracks, base_dir, points, dim)
+    t_mesh = time.perf_counter() - t0
+    gdim = mesh.gdim
+    if dim is None:
+        check_dimension(doc, s, gdim, f"mesh.path {s['mesh']['path']!r} holds a {'solid' if gdim == 3 else 'planar part'}")
+    elif gdim != dim:
+        raise MeshError(f"mesh.path {s['mesh']['path']!r} holds a {gdim}D part ({'tetrahedra' if gdim == 3 else 'triangles'}) "
+                        f"but {why}: the scene is {dim}D; give "
+                        + ("crack surfaces (ellipse, polygon, surface)" if gdim == 3 else "2D cracks (points, arc)")
+                        + " or the matching part")
+    notes: list[str] = []
+    if gdim == 3:
+        notes += [f"cracks[{i}] {describe_crack(c)}" for i, c in enumerate(cracks)]
+    dirichlet = build_conditions(s, mesh, material, cracks, notes)
+    loads = build_loads(s, mesh, material, cracks, notes)
+    try:
+        options = Options(**s["options"])
+    except InputError as e:
+        raise InputError(f"options: {e}") from None
+    load_path = build_load_path(s, options, notes)
+    scene = Scene(mesh, material, cracks=cracks, dirichlet=dirichlet, tractions=loads["tractions"],
+                  options=options, body_force=loads["body_force"], point_forces=loads["point_forces"],
+                  initial_stress=loads["initial_stress"], body_force_group=s["loads"]["body_force_group"],
+                  initial_stress_group=s["loads"].get("initial_stress", {}).get("group", "default"),
+                  load_path=load_path, units=units)
+    if load_path is not None:
+        from ...scene.load_path import steps
+        steps(scene)  # unknown groups are an InputError now, not at the solve
+    title = s["title"] or (path.stem if path is not None else "scene")
+    growth = build_growth(s, scene, units, base_dir, notes)
+    return SceneFile(path, title, s, scene, s["outputs"], notes, {"mesh": t_mesh}, growth)

@@ -1,0 +1,292 @@
+"""[[dirichlet]], [loads] and [[load_path]]: the keys (DIRICHLET_KEYS,
+LOAD_KEYS) and what they build: Dirichlet conditions on a tag, a box of
+nodes or a point (a value, or the exact Williams field), tractions (a
+value, sigma n of a stress, the Williams or Kirsch field; in 3D a value or
+a uniform stress), pressures, point forces, each with a line in the
+scene's notes saying what it became."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...errors import BoundaryConditionError, InputError
+from ...scene.conditions import Dirichlet, LoadStep, PointForce, Traction
+from ...scene.crack import Crack
+from ...scene.material import Material
+from ...scene.mesh import MeshData
+from ...scene.stress_field import LinearStress, UniformStress3D
+from .mesh import check_tag, nearest_node
+from .schema import (REQUIRED, UNSET, Key, p_choice, p_factors, p_float, p_gradient, p_group, p_point, p_point_any,
+                     p_region, p_str, p_stress, p_stress_any, p_tag, p_value, p_vector_any)
+
+
+_WILLIAMS = [
+    ("K_I", "float", 0.0, "mode I stress intensity factor of the exact Williams field", p_float()),
+    ("K_II", "float", 0.0, "mode II stress intensity factor of the exact Williams field", p_float()),
+    ("tip", "[x, y]", REQUIRED, "crack tip of the Williams field (an end of one of the cracks)", p_point),
+    ("angle", "float", 0.0, "crack direction at the tip, degrees from the x axis", p_float()),
+]
+
+
+DIRICHLET_KEYS: list[Key] = [
+    Key("dirichlet[].tag", "string or integer", UNSET,
+        "boundary tag the displacement is prescribed on (one of tag, box, point)", p_tag),
+    Key("dirichlet[].box", "[x0, y0, x1, y1]", UNSET,
+        "every mesh node inside the box, edges included; it may be flat (x0 = x1: the nodes on a "
+        "line); standard dofs only, like a point (3D: [x0, y0, z0, x1, y1, z1])", p_region),
+    Key("dirichlet[].point", "[x, y] or [x, y, z]", UNSET,
+        "the mesh node nearest to the point (within one mean edge length); a generated rectangle, "
+        "plate or box has a node at its corners", p_point_any),
+    Key("dirichlet[].component", "string", "all", "`x`, `y`, `z` (3D) or `all` (`both` in 2D means all)",
+        p_choice("x", "y", "z", "all", "both")),
+    Key("dirichlet[].value", "float or [x, y]", 0.0,
+        "prescribed displacement ([x, y], 3D [x, y, z], with component = all)", p_value),
+    Key("dirichlet[].group", "string", "default", "load group of the prescribed value (see load_path); the "
+        "values of conditions of different groups on one node add up", p_group),
+] + [Key(f"dirichlet[].williams.{n}", t, d, m + " (displacement prescribed; replaces value)", p)
+     for n, t, d, m, p in _WILLIAMS]
+
+
+LOAD_KEYS: list[Key] = [
+    Key("loads.body_force", "[x, y] or [x, y, z]", [0.0, 0.0], "constant body force, force per unit area "
+        "(3D: per unit volume)", p_vector_any),
+    Key("loads.body_force_group", "string", "default", "load group of the body force (see load_path)", p_group),
+    Key("loads.tractions[].tag", "string or integer", REQUIRED, "boundary tag loaded", p_tag),
+    Key("loads.tractions[].group", "string", "default", "load group (see load_path)", p_group),
+    Key("loads.tractions[].value", "[x, y] or [x, y, z]", UNSET, "constant traction, force per unit length "
+        "(3D: per unit area) (one of value, stress, williams, kirsch)", p_vector_any),
+    Key("loads.tractions[].stress", "[sxx, syy, sxy]", UNSET,
+        "stress at `origin`: the traction is sigma n on the tag (n the outward facet normal); 3D: a uniform "
+        "[sxx, syy, szz, syz, sxz, sxy]", p_stress_any),
+    Key("loads.tractions[].stress_gradient", "[[3 numbers], [3 numbers]]", UNSET,
+        "with stress: d(sxx, syy, sxy)/dx and d(sxx, syy, sxy)/dy of a linear stress field "
+        "sigma(x) = stress + (x - origin) gradient (bending: sxx varying with y)", p_gradient),
+    Key("loads.tractions[].origin", "[x, y]", [0.0, 0.0], "with stress_gradient: where sigma = stress",
+        p_point),
+] + [Key(f"loads.tractions[].williams.{n}", t, d, m + " (traction sigma n)", p) for n, t, d, m, p in _WILLIAMS] + [
+    Key("loads.tractions[].kirsch.remote_stress", "float", REQUIRED,
+        "Kirsch field of a hole under remote stress along x (< 0: compression); traction sigma n",
+        p_float()),
+    Key("loads.tractions[].kirsch.hole_radius", "float", REQUIRED, "Kirsch field: hole radius",
+        p_float(positive=True)),
+    Key("loads.tractions[].kirsch.center", "[x, y]", [0.0, 0.0], "Kirsch field: hole centre", p_point),
+    Key("loads.pressures[].tag", "string or integer", REQUIRED, "boundary tag under pressure", p_tag),
+    Key("loads.pressures[].group", "string", "default", "load group (see load_path)", p_group),
+    Key("loads.pressures[].value", "float", REQUIRED,
+        "pressure (> 0 pushes on the part): traction -p n", p_float()),
+    Key("loads.point_forces[].point", "[x, y] or [x, y, z]", REQUIRED,
+        "a concentrated force at the mesh node nearest to the point (within one element); a generated "
+        "rectangle or plate has a node there", p_point_any),
+    Key("loads.point_forces[].value", "[x, y] or [x, y, z]", REQUIRED, "the force (per unit thickness in 2D)",
+        p_vector_any),
+    Key("loads.point_forces[].group", "string", "default", "load group (see load_path)", p_group),
+    Key("loads.initial_stress.value", "[sxx, syy, sxy]", REQUIRED,
+        "initial (residual) stress sigma_0 at `origin`: the stress is C eps(u) + sigma_0, its "
+        "equivalent loads open or close the cracks", p_stress),
+    Key("loads.initial_stress.gradient", "[[3 numbers], [3 numbers]]", [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0]],
+        "d sigma_0 / dx and d sigma_0 / dy of a linear initial stress", p_gradient),
+    Key("loads.initial_stress.origin", "[x, y]", [0.0, 0.0], "where sigma_0 = value", p_point),
+    Key("loads.initial_stress.group", "string", "default", "load group of the initial stress (see load_path)",
+        p_group),
+    Key("load_path[].name", "string", "", "label of the step in outputs (default: step k)", p_str),
+    Key("load_path[].factors", "table of group = factor", REQUIRED,
+        "the factor of each named load group at the end of the step (a group not named keeps its factor "
+        "from the step before; all are 0 before the first step); without load_path one step takes every "
+        "group to 1", p_factors),
+]
+
+
+def _williams(w: dict, material: Material, cracks: list[Crack], where: str):
+    from ...exact.williams import WilliamsField
+    tip = np.asarray(w["tip"], dtype=float)
+    a = math.radians(w["angle"])
+    # Orientation: theta -> +pi on the crack's + side (left of the polyline's
+    # direction) when the tip is the polyline's last point, else on its - side.
+    orientation, best = 1, math.inf
+    for c in cracks:
+        for end, sign in ((c.points[-1], 1), (c.points[0], -1)):
+            d = float(np.linalg.norm(end - tip))
+            if d < best:
+                best, orientation = d, sign
+    scale = max((float(np.ptp(c.points, axis=0).max()) for c in cracks), default=1.0)
+    if best > 1e-6 * scale:
+        raise InputError(f"{where}.tip {tip.tolist()} is not an end point of any crack")
+    return WilliamsField(material, K_I=w["K_I"], K_II=w["K_II"], tip=tuple(tip),
+                         e1=(math.cos(a), math.sin(a)), orientation=orientation)
+
+
+_COMPONENT = {"x": 0, "y": 1, "z": 2, "both": None, "all": None}
+
+
+def build_dirichlet(bc: dict, i: int, mesh: MeshData, material: Material, cracks: list[Crack],
+               notes: list[str]) -> list[Dirichlet]:
+    where = f"dirichlet[{i}]"
+    comp = _COMPONENT[bc["component"]]
+    if "williams" in bc:
+        field = _williams(bc["williams"], material, cracks, f"{where}.williams")
+
+        def value(p, side):
+            u = field.displacement(p, side)
+            return u if comp is None else u[:, comp]
+        entries = [(comp, value)]
+        what = f"Williams field K_I = {field.K_I:g}, K_II = {field.K_II:g}"
+    elif isinstance(bc["value"], list):
+        entries = list(enumerate(bc["value"]))
+        what = f"u = {bc['value']}"
+    else:
+        entries = [(comp, bc["value"])]
+        what = f"u_{bc['component']} = {bc['value']:g}" if comp is not None else f"u = {bc['value']:g}"
+    gdim = mesh.gdim
+    x = mesh.mesh.geometry.x[:, :gdim]
+    out: list[Dirichlet] = []
+    if "tag" in bc:
+        check_tag(mesh, bc["tag"], where)
+        targets = [bc["tag"]]
+        notes.append(f"{where}: tag {bc['tag']!r} ({mesh.facets(bc['tag']).size} facets), {what}")
+    elif "point" in bc:
+        node = nearest_node(mesh, bc["point"], f"{where}.point")
+        targets = [node]
+        notes.append(f"{where}: point {bc['point']} -> node ({', '.join(f'{v:.6g}' for v in node)}), {what}")
+    else:
+        lo, hi = np.asarray(bc["box"][:gdim]), np.asarray(bc["box"][gdim:])
+        tol = 1e-9 * float(np.ptp(x, axis=0).max())
+        inside = np.flatnonzero(np.all((x >= lo - tol) & (x <= hi + tol), axis=1))
+        if inside.size == 0:
+            raise BoundaryConditionError(f"{where}.box {bc['box']} holds no mesh node")
+        targets = [tuple(float(v) for v in x[n]) for n in inside]
+        notes.append(f"{where}: box {bc['box']} ({inside.size} nodes), {what}")
+    label = f"{where}: " + (f"tag {bc['tag']!r}" if "tag" in bc else f"point {bc['point']}" if "point" in bc
+                            else f"box {bc['box']}")
+    for target in targets:
+        out += [Dirichlet(target, c, v, group=bc["group"], label=label) for c, v in entries]
+    return out
+
+
+def build_traction(tr: dict, i: int, mesh: MeshData, material: Material, cracks: list[Crack],
+              notes: list[str]) -> Traction:
+    from ...model.boundary import boundary_normals
+    where = f"loads.tractions[{i}]"
+    check_tag(mesh, tr["tag"], where)
+    tag = tr["tag"]
+    nf = mesh.facets(tag).size
+    if "value" in tr:
+        notes.append(f"{where}: tag {tag!r} ({nf} facets), traction {tr['value']}")
+        return Traction(tag, tuple(tr["value"]), group=tr["group"])
+    if "stress" in tr:
+        field = LinearStress(tuple(tr["stress"]), tuple(map(tuple, tr.get("stress_gradient", [[0.0] * 3] * 2))),
+                             tuple(tr["origin"]))
+        what = (f"sigma = {tr['stress']}" if field.is_uniform else
+                f"linear sigma = {tr['stress']} at {tr['origin']}, gradient {tr['stress_gradient']}")
+        notes.append(f"{where}: tag {tag!r} ({nf} facets), traction sigma n, {what}")
+        return Traction(tag, stress=field, group=tr["group"])
+    normals = boundary_normals(mesh, tag)
+    if "williams" in tr:
+        field = _williams(tr["williams"], material, cracks, f"{where}.williams")
+        notes.append(f"{where}: tag {tag!r} ({nf} facets), traction of the Williams field "
+                     f"K_I = {field.K_I:g}, K_II = {field.K_II:g}")
+        return Traction(tag, lambda p: np.einsum("nij,nj->ni", field.stress(p), normals(p)), group=tr["group"])
+    from ...exact.kirsch import kirsch_stress
+    k = tr["kirsch"]
+    center = np.asarray(k["center"], dtype=float)
+    notes.append(f"{where}: tag {tag!r} ({nf} facets), traction of the Kirsch field, remote stress "
+                 f"{k['remote_stress']:g}, hole radius {k['hole_radius']:g}")
+    def kirsch_traction(p):
+        return np.einsum("nij,nj->ni", kirsch_stress(p - center, k["remote_stress"], k["hole_radius"]), normals(p))
+    return Traction(tag, kirsch_traction, group=tr["group"])
+
+
+def build_point_force(pf: dict, i: int, mesh: MeshData, notes: list[str]) -> PointForce:
+    where = f"loads.point_forces[{i}]"
+    node = nearest_node(mesh, pf["point"], f"{where}.point")
+    notes.append(f"{where}: force {pf['value']} at node ({', '.join(f'{v:.6g}' for v in node)})")
+    return PointForce(node, tuple(pf["value"]), group=pf["group"])
+
+
+def build_pressure(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
+    from ...model.boundary import boundary_normals
+    where = f"loads.pressures[{i}]"
+    check_tag(mesh, pr["tag"], where)
+    normals = boundary_normals(mesh, pr["tag"])
+    p = pr["value"]
+    notes.append(f"{where}: tag {pr['tag']!r} ({mesh.facets(pr['tag']).size} facets), pressure {p:g}")
+    return Traction(pr["tag"], lambda x: -p * normals(x), group=pr["group"])
+
+
+
+def traction_3d(tr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
+    where = f"loads.tractions[{i}]"
+    tag = tr["tag"]
+    nf = mesh.facets(tag).size
+    if "value" in tr:
+        notes.append(f"{where}: tag {tag!r} ({nf} facets), traction {tr['value']}")
+        return Traction(tag, tuple(tr["value"]), group=tr["group"])
+    notes.append(f"{where}: tag {tag!r} ({nf} facets), traction sigma n, uniform sigma = {tr['stress']} "
+                 "(xx, yy, zz, yz, xz, xy)")
+    return Traction(tag, stress=UniformStress3D(tuple(tr["stress"])), group=tr["group"])
+
+
+def pressure_3d(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
+    """-p n on a tag (the facets' own normals: sigma = -p I)."""
+    p = pr["value"]
+    notes.append(f"loads.pressures[{i}]: tag {pr['tag']!r} ({mesh.facets(pr['tag']).size} facets), pressure {p:g}")
+    return Traction(pr["tag"], stress=UniformStress3D.pressure(p), group=pr["group"])
+
+
+def build_conditions(s: dict, mesh: MeshData, material: Material, cracks: list, notes: list[str]) -> list[Dirichlet]:
+    """The Dirichlet conditions of the [[dirichlet]] settings."""
+    dirichlet = []
+    for i, bc in enumerate(s["dirichlet"]):
+        dirichlet += build_dirichlet(bc, i, mesh, material, cracks, notes)
+    return dirichlet
+
+
+def build_loads(s: dict, mesh: MeshData, material: Material, cracks: list, notes: list[str]) -> dict:
+    """The loads of the [loads] settings: tractions (pressures among them),
+    body_force (None if zero), point_forces, initial_stress (or None), and
+    the lip pressures' notes. A 2D part takes the 2D tractions (value,
+    stress, Williams, Kirsch), a 3D one a value or a uniform stress."""
+    gdim = mesh.gdim
+    tractions = []
+    for i, tr in enumerate(s["loads"]["tractions"]):
+        if gdim == 3:
+            check_tag(mesh, tr["tag"], f"loads.tractions[{i}]")
+            tractions.append(traction_3d(tr, i, mesh, notes))
+        else:
+            tractions.append(build_traction(tr, i, mesh, material, cracks, notes))
+    for i, p in enumerate(s["loads"]["pressures"]):
+        if gdim == 3:
+            check_tag(mesh, p["tag"], f"loads.pressures[{i}]")
+            tractions.append(pressure_3d(p, i, mesh, notes))
+        else:
+            tractions.append(build_pressure(p, i, mesh, notes))
+    body_force = s["loads"]["body_force"]
+    if any(body_force):
+        notes.append(f"loads.body_force: {body_force} per unit {'volume' if gdim == 3 else 'area'}")
+    else:
+        body_force = None
+    point_forces = []
+    for i, pf in enumerate(s["loads"]["point_forces"]):
+        point_forces.append(build_point_force(pf, i, mesh, notes))
+    initial_stress = None
+    if "initial_stress" in s["loads"]:
+        st = s["loads"]["initial_stress"]
+        initial_stress = LinearStress(tuple(st["value"]), tuple(map(tuple, st["gradient"])), tuple(st["origin"]))
+        notes.append(f"loads.initial_stress: sigma_0 = {st['value']} at {st['origin']}"
+                     + (f", gradient {st['gradient']}" if not initial_stress.is_uniform else " (uniform)"))
+    for c, cs in zip(cracks, s["cracks"]):
+        if cs["pressure"] != 0.0:
+            notes.append(f"{c.name}: lip pressure {cs['pressure']:g}")
+    return {"tractions": tractions, "body_force": body_force, "point_forces": point_forces,
+            "initial_stress": initial_stress}
+
+
+def build_load_path(s: dict, options, notes: list[str]) -> list[LoadStep] | None:
+    """The load path of the [[load_path]] settings (None without steps)."""
+    if not s["load_path"]:
+        return None
+    load_path = [LoadStep(st["factors"], st["name"] or f"step {k + 1}") for k, st in enumerate(s["load_path"])]
+    notes.append("load path: " + "; ".join(f"{st.name}: " + ", ".join(f"{g} = {f:g}" for g, f in st.factors.items())
+                                           for st in load_path)
+                 + f" ({options.load_steps} increment(s) per step)")
+    return load_path
