@@ -1,4 +1,6 @@
-"""cracklip: X-FEM cracks with crack-lip contact on DOLFINx.
+"""cracklip: X-FEM cracks on DOLFINx, in planar parts (triangles: crack-lip
+contact, growth, fatigue life) and in solids (tetrahedra: K along the crack
+fronts), through one pipeline: the dimension is the mesh's.
 
 Quick use::
 
@@ -19,8 +21,9 @@ flows; a module imports only from its own step or earlier ones
 (tests/test_layering.py checks it, from LAYERS below):
 
     scene     what the user describes: mesh, material, cracks, loads, options
-    model     the discrete X-FEM model: level sets, enrichment, constraints,
-              room around the tips, model checks, assembly
+    model     the discrete X-FEM model: the cracks on the mesh (one interface,
+              a curve with tips or a surface with fronts), enrichment,
+              constraints, room around the tips, model checks, assembly
     solvers   checked linear solves: direct, phantom basis + AMG, saddle point
     contact   crack-lip contact and friction on the stable multiplier space
     fracture  stress intensity factors, kink criteria, growth laws, cycle
@@ -63,7 +66,7 @@ _EXPORTS = {
     "FatigueMaterial": "scene.fatigue", "Spectrum": "scene.spectrum", "SpectrumBlock": "scene.spectrum",
     "Units": "scene.units",
     "count_cycles": "fracture.rainflow", "rainflow": "fracture.rainflow", "LifeLaw": "fracture.life",
-    "XfemModel": "model.model", "create_model": "model.model",
+    "XfemModel": "model.model", "create_model": "model.model", "CrackModel": "model.model",
     "ContactError": "contact.frictionless",
     "Solution": "post.solution",
     "solve": "analysis.solve", "solve_plain": "analysis.solve", "grow": "analysis.growth",

@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import json
 import logging
+import math
 import pathlib
 import sys
 import time
@@ -63,8 +64,9 @@ def print_warnings(warnings) -> None:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog=PROG, description="cracklip: 2D X-FEM cracks with crack-lip contact, from a "
-                     "TOML scene file.", epilog="Scene keys: `python3 -m cracklip reference` or docs/scene_reference.md.")
+    parser = _Parser(prog=PROG, description="cracklip: X-FEM cracks in planar parts (with crack-lip contact, "
+                     "growth and fatigue life) and in solids (K along the crack fronts), from a TOML scene file.",
+                     epilog="Scene keys: `python3 -m cracklip reference` or docs/scene_reference.md.")
     sub = parser.add_subparsers(dest="command", metavar="{run,grow,check,reference}", parser_class=_Parser)
 
     def common(p: argparse.ArgumentParser) -> None:
@@ -76,8 +78,9 @@ def build_parser() -> argparse.ArgumentParser:
                        help="no progress on stderr, no summary on stdout (warnings are still printed on stderr)")
 
     run = sub.add_parser("run", help="solve a scene and write its results into a folder",
-                         description="Solve a scene and write results.json, crack.csv, sif.csv, "
-                                     "ParaView files and PNGs into --out.")
+                         description="Solve a scene and write results.json, the crack's tables (crack.csv and "
+                                     "sif.csv; 3D: crack_opening.csv and front.csv), ParaView files and PNGs into "
+                                     "--out.")
     common(run)
     run.add_argument("--out", type=pathlib.Path, required=True, metavar="DIR",
                      help="output folder (created if missing)")
@@ -168,9 +171,8 @@ def cmd_run(args) -> int:
     cond = bool(args.condition_number or sf.outputs["condition_number"])
     logger.info("solving (%s enrichment, contact %s)", sf.scene.options.enrichment, sf.scene.options.contact)
     sol = solve(sf.scene, condition_number=cond)
-    three_d = sol.model.gdim == 3
-    if three_d:
-        logger.info("3D part: no error estimate (it is that of K, not computed along 3D fronts yet)")
+    if sol.model.crack_type.END == "front":
+        logger.info("3D part: no error estimate of K (the refinement levels it takes are 2D only in this version)")
     elif sf.outputs["error_estimate"] and sf.scene.options.accuracy == 0.0:
         from ..analysis.accuracy import estimate_error
         logger.info("estimating the discretisation error of K (one more solve, element sizes halved around the tips)")
@@ -181,15 +183,25 @@ def cmd_run(args) -> int:
         c = sol.contact
         logger.info("contact: %d active-set iteration(s), active multipliers per iteration %s of %d",
                     c["iterations"], c["history"], c["system"].num_multipliers)
+    t0 = time.perf_counter()
+    rows = sol.stress_intensity_factors(None)
+    sol.warnings  # the SIFs' warnings with the K (computed once, written with the outputs)
+    t_sif = time.perf_counter() - t0
+    logger.info("stress intensity factors: %d %s (%.2f s)", len(rows),
+                "tip(s)" if sol.model.crack_type.END == "tip" else "front point(s)", t_sif)
     logger.info("writing outputs into %s", out)
     t0 = time.perf_counter()
-    results = write_outputs(sf, sol, out, timings={"mesh": sf.timings["mesh"], "build_scene": t_build})
+    results = write_outputs(sf, sol, out, timings={"mesh": sf.timings["mesh"], "build_scene": t_build, "sif": t_sif})
     print_warnings(w["message"] for w in results["warnings"])
     logger.info("outputs written (%.2f s); total %.2f s", time.perf_counter() - t0,
                 time.perf_counter() - t_start)
-    if not args.quiet and three_d:
-        print(f"{sf.title}: {results['solution']['dofs']} dofs, strain energy "
-              f"{results['solution']['strain_energy']:.6g}")
+    if args.quiet:
+        return 0
+    print(f"{sf.title}: {results['solution']['dofs']} dofs, strain energy "
+          f"{results['solution']['strain_energy']:.6g}")
+    if sol.model.crack_type.END == "front":
+        for line in front_summary(results["sifs"], sf.scene.units):
+            print(line)
         unit = "" if sf.scene.units is None else f" {sf.scene.units.name('length')}"
         for c in results["cracks"]:
             fr = c["front"]
@@ -198,10 +210,7 @@ def cmd_run(args) -> int:
             print(f"  {c['name']}: area {c['area_in_part']:.4g} in the part, opening up to {c['gap_max']:.4g}{unit} "
                   f"(mean {c['gap_mean']:.4g}), opened volume {c['opening_volume']:.4g}; front {fr['points']} "
                   f"points, length {fr['length']:.4g}: {shape}")
-        print(f"results in {out}: {', '.join(results['files'])}")
-    elif not args.quiet:
-        print(f"{sf.title}: {results['solution']['dofs']} dofs, strain energy "
-              f"{results['solution']['strain_energy']:.6g}")
+    else:
         for line in sif_summary(results["sifs"], results.get("error_estimate"), sf.scene.units):
             print(line)
         for c in results["cracks"]:
@@ -209,8 +218,35 @@ def cmd_run(args) -> int:
             if results["contact"] and "pressure" in c:
                 line += f", pressure {c['pressure']['min']:.4g} .. {c['pressure']['max']:.4g}"
             print(line)
-        print(f"results in {out}: {', '.join(results['files'])}")
+    print(f"results in {out}: {', '.join(results['files'])}")
     return 0
+
+
+def front_summary(rows, units) -> list[str]:
+    """K along each 3D front as printed: per crack and mode, the smallest and
+    largest value over its front points and where (the point's index and
+    position; the parametric angle on an elliptical front), and how many
+    points are flagged (a free surface, a domain that reaches an obstacle)."""
+    unit = "" if units is None else f" {units.name('K')}"
+    out = []
+    for c in sorted({r["crack"] for r in rows}):
+        mine = [r for r in rows if r["crack"] == c]
+        out.append(f"  {mine[0]['crack_name']}: K along its front at {len(mine)} points")
+
+        def where(r) -> str:
+            angle = ("" if r["parametric_angle"] is None else
+                     f", parametric angle {math.degrees(r['parametric_angle']):.1f} deg")
+            return f"point {r['point']} ({', '.join(f'{v:.4g}' for v in r['position'])}{angle})"
+        for mode in ("K_I", "K_II", "K_III"):
+            lo = min(mine, key=lambda r: r[mode])
+            hi = max(mine, key=lambda r: r[mode])
+            out.append(f"    {mode}: min {lo[mode]:.6g}{unit} at {where(lo)}, max {hi[mode]:.6g}{unit} at {where(hi)}")
+        free = sum(1 for r in mine if r["free_surface"])
+        unclear = sum(1 for r in mine if not r["domain_clear"])
+        if free or unclear:
+            out.append(f"    flagged: {free} point(s) where the front meets a free surface (K is not the square-root "
+                       f"singularity's there), {unclear} whose SIF domain reaches an obstacle (NOT reliable)")
+    return out
 
 
 def sif_summary(rows, estimate, units) -> list[str]:
@@ -304,6 +340,7 @@ def cmd_check(args) -> int:
     from ..contact.frictionless import create_contact_system
     from ..model.model import create_model
     from ..io.model_summary import describe_model, enriched_nodes, format_model
+    from ..io.outputs import output_files
     doc = _load(args)
     sf = _build(args, doc)
     scene = sf.scene
@@ -329,14 +366,7 @@ def cmd_check(args) -> int:
              f"material: E = {mat.E:g}, nu = {mat.nu:g} " + ("(3D elasticity)" if three_d else f"(plane {mat.plane})")]
     lines += sf.notes
     lines += format_model(summary)
-    if three_d:
-        files = ["results.json", "crack_opening.csv"] + (["solution.vtu", "crack_surface.vtu", "crack_front.vtu"]
-                                                         if o["vtu"] else []) \
-            + (["crack_opening.png"] if o["png"] and model.cracks else [])
-    else:
-        files = ["results.json", "crack.csv", "sif.csv"] + (["solution.vtu", "crack_lips.vtu"] if o["vtu"] else []) \
-            + (["deformed.png", "crack_pressure.png", "stress.png"] if o["png"] else [])
-    lines.append(f"run writes: {', '.join(files)}")
+    lines.append(f"run writes: {', '.join(output_files(model, o))}")
     if nodes is not None:
         names = [c.crack.name for c in model.cracks]
         lines.append(f"enriched nodes ({len(nodes)}):")
