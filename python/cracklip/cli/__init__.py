@@ -184,8 +184,7 @@ def cmd_run(args) -> int:
         logger.info("contact: %d active-set iteration(s), active multipliers per iteration %s of %d",
                     c["iterations"], c["history"], c["system"].num_multipliers)
     t0 = time.perf_counter()
-    rows = sol.stress_intensity_factors(None)
-    sol.warnings  # the SIFs' warnings with the K (computed once, written with the outputs)
+    rows = sol.stress_intensity_factors(None)  # computed once (with their warnings), written with the outputs
     t_sif = time.perf_counter() - t0
     logger.info("stress intensity factors: %d %s (%.2f s)", len(rows),
                 "tip(s)" if sol.model.crack_type.END == "tip" else "front point(s)", t_sif)

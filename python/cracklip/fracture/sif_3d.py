@@ -542,8 +542,9 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
         if not clear:
             radius = least
             warnings.append(f"{where}: no SIF domain of at least one element ({h:.3g}) fits between the front and "
-                            f"{obstacle} ({distance:.3g} away); K there is computed on a domain of radius "
-                            f"{radius:.3g} that reaches it and is NOT reliable: refine the mesh at the front")
+                            f"{obstacle} ({distance:.3g} away: room for a domain of radius {max(clearance, 0.0):.3g}, "
+                            f"{least:.3g} needed); K there is computed on a domain of radius {radius:.3g} that "
+                            "reaches it and is NOT reliable: refine the mesh at the front (mesh.tip_h)")
         elif wanted < least:
             radius = least
             warnings.append(f"{where}: sif_radius {wanted:.3g} is below two elements ({h:.3g}) there; K uses "

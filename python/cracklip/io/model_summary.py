@@ -200,11 +200,10 @@ def enriched_nodes(model: XfemModel) -> list[dict[str, typing.Any]]:
     crack = np.asarray(layout.crack)
     core = np.asarray(layout.core)
     out: dict[int, dict[str, typing.Any]] = {}
+    fn = model.crack_type.END
     for k in np.argsort(node, kind="stable"):
         n = int(node[k])
-        entry = out.setdefault(n, {"node": n, "x": float(model.x[n, 0]), "y": float(model.x[n, 1]),
-                                   **({"z": float(model.x[n, 2])} if model.gdim == 3 else {}), "enrichment": []})
-        fn = "front" if model.gdim == 3 else "tip"
+        entry = out.setdefault(n, {"node": n, **{a: float(v) for a, v in zip("xyz", model.x[n])}, "enrichment": []})
         what = "heaviside" if kind[k] == 0 else (f"{fn} core" if core[k] else f"{fn} blending")
         item = [int(crack[k]), what]
         if item not in entry["enrichment"]:
