@@ -16,12 +16,14 @@ using namespace vec3;
 
 namespace
 {
-/// The coordinate axis least aligned with v (ties: the first).
+/// The coordinate axis least aligned with v (ties within 1e-12 |v|, e.g.
+/// round-off in a summed normal: the first).
 Point3 least_aligned_axis(const Point3& v)
 {
   int k = 0;
+  const double tol = 1e-12 * norm(v);
   for (int d = 1; d < 3; ++d)
-    if (std::abs(v[d]) < std::abs(v[k]))
+    if (std::abs(v[d]) < std::abs(v[k]) - tol)
       k = d;
   Point3 e = {0.0, 0.0, 0.0};
   e[k] = 1.0;

@@ -64,7 +64,8 @@ struct ContactPoints3D
 
 /// The default tangent reference of a crack (file header): the coordinate
 /// axis least aligned with the area-weighted mean of its facet normals
-/// (ties: the first axis).
+/// (ties within 1e-12 of its length: the first axis; a crack normal to z
+/// gets t1 = e_x, t2 = e_y).
 Point3 default_tangent_reference(const CrackGeometry3D& g);
 
 /// The tangent basis at a point with unit normal n from the reference a
