@@ -111,6 +111,30 @@ inline void number_naive(MultiplierRestriction& r)
 /// Full index of every (crack, node) nodal multiplier.
 using NodalMultipliers = std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t>;
 
+/// The full index of the nodal multiplier of (crack ic, mesh node), added
+/// to r (and to nodal) when new.
+inline std::int32_t add_nodal_multiplier(MultiplierRestriction& r, NodalMultipliers& nodal, std::int32_t ic,
+                                         std::int32_t node)
+{
+  auto [it, inserted] = nodal.try_emplace({ic, node}, r.num_full());
+  if (inserted)
+  {
+    r.full_node.push_back(node);
+    r.full_crack.push_back(ic);
+    r.full_cell.push_back(-1);
+  }
+  return it->second;
+}
+
+/// A new P0 multiplier of crack ic on a cell: its full index.
+inline std::int32_t add_cell_multiplier(MultiplierRestriction& r, std::int32_t ic, std::int32_t cell)
+{
+  r.full_node.push_back(-1);
+  r.full_crack.push_back(ic);
+  r.full_cell.push_back(cell);
+  return r.num_full() - 1;
+}
+
 /// Step 1: cut_edges (crack, a, b) with a < b, possibly repeated (once per
 /// cell holding the edge), and their cut points. The distinct edges, in
 /// (crack, a, b) order, go through select_vital_edges; each vital edge

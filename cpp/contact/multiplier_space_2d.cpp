@@ -20,17 +20,6 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
   MultiplierSpace space;
   space.kind = kind;
   NodalMultipliers nodal; // (crack, node) -> full
-  auto nodal_mult = [&](std::int32_t ic, std::int32_t node)
-  {
-    auto [it, inserted] = nodal.try_emplace({ic, node}, space.num_full());
-    if (inserted)
-    {
-      space.full_node.push_back(node);
-      space.full_crack.push_back(ic);
-      space.full_cell.push_back(-1);
-    }
-    return it->second;
-  };
 
   // Cut edges of each crack, for the stable space: (crack, a, b) with a < b.
   std::vector<std::array<std::int32_t, 3>> cut_edges;
@@ -54,7 +43,7 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
         // On an edge cell only the nodes on the crack edge have a trace.
         if (cc.cls == CellClass::edge and g.phi[v[a]] != 0.0)
           continue;
-        seg.mult.push_back(nodal_mult(ic, v[a]));
+        seg.mult.push_back(add_nodal_multiplier(space, nodal, ic, v[a]));
         seg.local.push_back(a);
       }
       space.segments.push_back(seg);
@@ -88,16 +77,13 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
       if (kind == MultiplierKind::naive)
         for (int a = 0; a < 3; ++a)
         {
-          seg.mult.push_back(nodal_mult(ic, v[a]));
+          seg.mult.push_back(add_nodal_multiplier(space, nodal, ic, v[a]));
           seg.local.push_back(a);
         }
       else
       {
-        seg.mult.push_back(space.num_full());
+        seg.mult.push_back(add_cell_multiplier(space, ic, tc.cell));
         seg.local.push_back(-1);
-        space.full_node.push_back(-1);
-        space.full_crack.push_back(ic);
-        space.full_cell.push_back(tc.cell);
       }
       space.segments.push_back(seg);
     }

@@ -115,6 +115,82 @@ void tie_front_pieces(const MultiplierSpace3D& space, std::int32_t ic, std::span
         groups.unite(f, first);
     }
 }
+/// A group holding front cells' P0 multipliers whose weight (int of its
+/// function) lies for more than FRONT_SHARE on the front cells' pieces
+/// absorbs the group it overlaps most on the interior pieces (int psi_g
+/// psi_h), until no such group is left (or it overlaps none).
+constexpr double FRONT_SHARE = 1.0 / 3.0;
+
+void absorb_front_heavy_groups(const MultiplierSpace3D& space, std::int32_t ic, const CrackGeometry3D& g,
+                               MultiplierGroups& groups)
+{
+  const std::int32_t nfull = space.num_full();
+  std::vector<double> mass(nfull, 0.0), front_mass(nfull, 0.0);
+  std::map<std::pair<std::int32_t, std::int32_t>, double> overlap; // (f, l), f != l: int psi_f psi_l, interior
+  for (const LipPiece3D& piece : space.pieces)
+  {
+    if (piece.crack != ic)
+      continue;
+    const CrackCell3D& cc = g.crack_cells[g.crack_cell_index[piece.cell]];
+    for (int k = 0; k < cc.num_facets(); ++k)
+    {
+      const double A = cc.facet_area[k];
+      // Values of the piece's multipliers at the facet's vertices.
+      std::vector<std::array<double, 3>> v(piece.mult.size());
+      for (std::size_t m = 0; m < piece.mult.size(); ++m)
+        for (int i = 0; i < 3; ++i)
+        {
+          const double* r = &cc.facets[9 * k + 3 * i];
+          v[m][i] = piece.local[m] < 0 ? 1.0 : P1Tetrahedron::shape({r[0], r[1], r[2]})[piece.local[m]];
+        }
+      for (std::size_t m = 0; m < piece.mult.size(); ++m)
+      {
+        const double integral = A * (v[m][0] + v[m][1] + v[m][2]) / 3.0;
+        mass[piece.mult[m]] += integral;
+        if (piece.front)
+          front_mass[piece.mult[m]] += integral;
+        else // int f g over a triangle: A / 12 (sum f_i g_i + sum f_i sum g_j)
+          for (std::size_t l = 0; l < piece.mult.size(); ++l)
+            if (l != m)
+              overlap[{piece.mult[m], piece.mult[l]}]
+                  += A / 12.0
+                     * (v[m][0] * v[l][0] + v[m][1] * v[l][1] + v[m][2] * v[l][2]
+                        + (v[m][0] + v[m][1] + v[m][2]) * (v[l][0] + v[l][1] + v[l][2]));
+      }
+    }
+  }
+  std::set<std::int32_t> given_up; // roots that overlap no interior group
+  for (;;)
+  {
+    std::map<std::int32_t, std::array<double, 2>> total; // root -> (front mass, mass)
+    for (std::int32_t f = 0; f < nfull; ++f)
+      if (space.full_crack[f] == ic)
+      {
+        auto& t = total[groups.find(f)];
+        t[0] += front_mass[f], t[1] += mass[f];
+      }
+    std::int32_t worst = -1;
+    double worst_share = FRONT_SHARE + 1e-12;
+    for (const auto& [r, t] : total)
+      if (t[1] > 0.0 and t[0] / t[1] > worst_share and !given_up.count(r))
+        worst = r, worst_share = t[0] / t[1];
+    if (worst < 0)
+      return;
+    std::map<std::int32_t, double> with; // other root -> overlap
+    for (const auto& [fl, o] : overlap)
+      if (groups.find(fl.first) == worst)
+        if (const std::int32_t r = groups.find(fl.second); r != worst)
+          with[r] += o;
+    auto best = with.end();
+    for (auto it = with.begin(); it != with.end(); ++it)
+      if (it->second > 0.0 and (best == with.end() or it->second > best->second))
+        best = it;
+    if (best == with.end())
+      given_up.insert(worst);
+    else
+      groups.unite(worst, best->first);
+  }
+}
 } // namespace
 
 MultiplierSpace3D create_multiplier_space_3d(std::span<const double> x, std::span<const std::int32_t> cells,
@@ -127,17 +203,6 @@ MultiplierSpace3D create_multiplier_space_3d(std::span<const double> x, std::spa
   MultiplierSpace3D space;
   space.kind = kind;
   NodalMultipliers nodal; // (crack, node) -> full
-  auto nodal_mult = [&](std::int32_t ic, std::int32_t node)
-  {
-    auto [it, inserted] = nodal.try_emplace({ic, node}, space.num_full());
-    if (inserted)
-    {
-      space.full_node.push_back(node);
-      space.full_crack.push_back(ic);
-      space.full_cell.push_back(-1);
-    }
-    return it->second;
-  };
   static constexpr int EDGES[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   std::vector<CutEdge> cut_edges;
   std::vector<std::array<double, 3>> cut_points;
@@ -162,11 +227,8 @@ MultiplierSpace3D create_multiplier_space_3d(std::span<const double> x, std::spa
       const std::int32_t* v = &cells[4 * cc.cell];
       if (front and kind == MultiplierKind::stable)
       {
-        piece.mult.push_back(space.num_full());
+        piece.mult.push_back(add_cell_multiplier(space, ic, cc.cell));
         piece.local.push_back(-1);
-        space.full_node.push_back(-1);
-        space.full_crack.push_back(ic);
-        space.full_cell.push_back(cc.cell);
       }
       else
         for (int a = 0; a < 4; ++a)
@@ -179,7 +241,7 @@ MultiplierSpace3D create_multiplier_space_3d(std::span<const double> x, std::spa
           }
           if (trace <= TRACE_TOL)
             continue;
-          piece.mult.push_back(nodal_mult(ic, v[a]));
+          piece.mult.push_back(add_nodal_multiplier(space, nodal, ic, v[a]));
           piece.local.push_back(a);
         }
       if (!piece.mult.empty()) // else a sliver piece no shape function sees
@@ -219,7 +281,10 @@ MultiplierSpace3D create_multiplier_space_3d(std::span<const double> x, std::spa
       for (const std::int32_t f : piece.mult)
         interior[f] = 1;
   for (std::size_t icr = 0; icr < cracks.size(); ++icr)
+  {
     tie_front_pieces(space, static_cast<std::int32_t>(icr), cells, *cracks[icr], nodal, interior, groups);
+    absorb_front_heavy_groups(space, static_cast<std::int32_t>(icr), *cracks[icr], groups);
+  }
   groups.number(space);
   return space;
 }

@@ -22,12 +22,18 @@ using namespace cracklip::vec3;
 
 namespace
 {
-struct Mesh
+using Mesh = test::KuhnMesh;
+
+/// The group of full multiplier f has a nodal member (a front cell's P0
+/// multiplier tied to an interior star).
+bool tied_to_nodal(const MultiplierSpace3D& space, std::int32_t f)
 {
-  std::vector<double> x;
-  std::vector<std::int32_t> cells;
-  explicit Mesh(int n) { test::kuhn_cube(n, x, cells); }
-};
+  const std::int32_t r = space.full_to_reduced[f];
+  for (std::int32_t q = space.reduced_offsets[r]; q < space.reduced_offsets[r + 1]; ++q)
+    if (space.full_node[space.reduced_full[q]] >= 0)
+      return true;
+  return false;
+}
 
 /// The polygon over the xy-polygon q on the plane z = z0 + ax x + ay y (CCW
 /// seen from +z: the + side is above).
@@ -314,12 +320,7 @@ TEST(Contact3D, FrontJumpIsIntegratedExactly)
     ++front_pieces;
     ASSERT_EQ(piece.mult.size(), 1u);
     p0[piece.mult[0]] = 1.0;
-    // Tied: its group has a nodal member.
-    const std::int32_t r = space.full_to_reduced[piece.mult[0]];
-    bool nodal = false;
-    for (std::int32_t q = space.reduced_offsets[r]; q < space.reduced_offsets[r + 1]; ++q)
-      nodal = nodal or space.full_node[space.reduced_full[q]] >= 0;
-    EXPECT_TRUE(nodal) << "front cell " << piece.cell << " has a multiplier of its own";
+    EXPECT_TRUE(tied_to_nodal(space, piece.mult[0])) << "front cell " << piece.cell << " has a multiplier of its own";
     const CrackCell3D& cc = g.crack_cells[g.crack_cell_index[piece.cell]];
     const std::int32_t* nodes = &m.cells[4 * piece.cell];
     for (int f = 0; f < cc.num_facets(); ++f)
@@ -376,11 +377,7 @@ TEST(Contact3D, PennyFrontCellsAreTied)
     if (!piece.front)
       continue;
     ++front;
-    const std::int32_t r = space.full_to_reduced[piece.mult.at(0)];
-    bool nodal = false;
-    for (std::int32_t q = space.reduced_offsets[r]; q < space.reduced_offsets[r + 1]; ++q)
-      nodal = nodal or space.full_node[space.reduced_full[q]] >= 0;
-    EXPECT_TRUE(nodal) << "front cell " << piece.cell;
+    EXPECT_TRUE(tied_to_nodal(space, piece.mult.at(0))) << "front cell " << piece.cell;
   }
   EXPECT_GT(front, 30);
   EXPECT_LT(2 * space.num_reduced, naive.num_reduced);
