@@ -53,11 +53,12 @@ def test_inf_sup_3d_stable_bounded_naive_decays():
     assert naive[-1] <= 0.2 * stable[-1], (naive, stable)
 
 
-def _pressed_scene(h: float, crack: PolygonCrack, sigma: np.ndarray, multipliers: str = "stable") -> cl.Scene:
+def _pressed_scene(h: float, crack, sigma: np.ndarray, multipliers: str = "stable",
+                   enrichment: str = "none") -> cl.Scene:
     """A uniform stress sigma (3, 3) in the unit box: its traction sigma n on
     the four side faces, the exact displacement eps x held on the bottom and
     top faces (one per piece: frictionless lips would let a free piece
-    slide); Heaviside enrichment only, bilateral contact."""
+    slide); bilateral contact."""
     eps = ((1 + NU) * sigma - NU * np.trace(sigma) * np.eye(3)) / E
 
     def exact(x):
@@ -67,18 +68,20 @@ def _pressed_scene(h: float, crack: PolygonCrack, sigma: np.ndarray, multipliers
     return cl.Scene(create_box(0, 0, 0, 1, 1, 1, h), cl.Material(E, NU), cracks=[crack],
                     dirichlet=[cl.Dirichlet("zmin", None, exact), cl.Dirichlet("zmax", None, exact)],
                     tractions=tractions,
-                    options=cl.Options(enrichment="none", multipliers=multipliers, contact="bilateral"))
+                    options=cl.Options(enrichment=enrichment, radius=0.1, multipliers=multipliers,
+                                       contact="bilateral"))
 
 
 @pytest.mark.parametrize("case, h", [("hydrostatic inclined", 0.25), ("hydrostatic inclined", 0.17),
                                      ("uniaxial flat", 0.2)])
 def test_patch_pressed_crack_carries_the_exact_pressure(case, h):
     """A crack pressed shut by a uniform stress whose traction on it is a
-    pure pressure P: hydrostatic -P I on a plane inclined to every mesh
-    direction, or uniaxial -P e_z e_z on a flat one (z = 0.41, off the
-    node layers). The exact solution (uniform stress, no jump, lambda = -P)
-    lies in the discrete spaces (the stable groups sum to one), so every
-    reduced multiplier is P to 1e-8 and the lips neither open nor slide."""
+    pure pressure P: hydrostatic -P I on a plane through the box inclined
+    to every mesh direction, or uniaxial -P e_z e_z on a flat one (z =
+    0.41, off the node layers), Heaviside enrichment only. The exact
+    solution (uniform stress, no jump, lambda = -P) lies in the discrete
+    spaces (the stable groups sum to one), so every reduced multiplier is
+    P to 1e-8 and the lips neither open nor slide."""
     if case.startswith("hydrostatic"):
         crack, sigma = _plane_crack(0.43, 0.1, -0.05), -P * np.eye(3)
     else:
@@ -162,3 +165,36 @@ def test_inf_sup_3d_front_cells():
     naive = inf_sup_constant(create_model(_penny_scene(0.1, "naive")))
     assert min(stable) >= 0.3, stable
     assert naive <= 0.01, naive
+
+
+def test_pressed_penny_with_front_enrichment():
+    """The hydrostatic patch on a penny crack inside the box (a / h = 3),
+    vector front enrichment: the front cells' P0 multipliers ride on
+    interior groups and the coupling integrates the sqrt(r) jumps exactly,
+    so P B^T 1 is the lip load of the pressure P as the independent lip-load
+    kernel (assemble_lip_load_3d with 24 points per direction, plain fans
+    at the front, Gauss of degree 47 elsewhere) integrates it, to 1e-8 of
+    its largest entry (measured 3e-9, the lip load's own error; with Gauss
+    instead of the signed fans on the facets near the front, B would be off
+    by 3e-6). The pressure then is P to 2.6e-3: what is left is the stiffness's
+    Gauss rule on the front functions away from the front (QuadratureOptions3D
+    far_degree 4): the same solve with far_degree 8 gives 1.0e-3, with every
+    front rule raised (far_degree 10, signed near-front cones, 8 x 12 x 4
+    collapsed points) 5.8e-6."""
+    from cracklip import _cracklip
+    sigma = -P * np.eye(3)
+    model = create_model(_pressed_scene(0.1, _penny_scene(0.1, "stable").cracks[0], sigma, enrichment="vector"))
+    cs = create_contact_system(model)
+    assert np.count_nonzero(cs.space.full_node < 0) > 10  # front cells' P0 multipliers
+    lip = _cracklip.compute_lip_points_3d(model.x, model.cells, model.geometries[0], 24)
+    load = _cracklip.assemble_lip_load_3d(model.x, model.cells, model.layout, model.geometries, 0, lip["cell"],
+                                          lip["ref"], lip["weight"], P * lip["normal"])
+    free = np.ones(model.num_dofs, dtype=bool)
+    free[model.bc_dofs] = False
+    BtP = cs.B.T @ np.full(cs.num_multipliers, P)
+    assert np.abs(BtP - load * free).max() <= 1e-8 * np.abs(load).max()
+    A, b, _ = assemble_system(model)
+    u, info = solve_contact(model, A, b)
+    A.destroy()
+    b.destroy()
+    assert np.abs(-info["lambda"] - P).max() <= 5e-3 * P

@@ -38,11 +38,15 @@ namespace cracklip
 /// signed decomposition, exact for sqrt(r) and r^(-1/2) times polynomials
 /// (else the plain fan from that vertex); near_factor: facets within that
 /// many diameters of their cell's front line take the near-front signed
-/// fans (0: never). compute_lip_points_3d's arguments.
+/// fans (0: never). compute_lip_points_3d's arguments. The defaults
+/// integrate the sqrt(r) jumps of a penny's front functions (a / h = 3) to
+/// 6e-11 of B's largest entry (n = 4: 5e-3; near_factor 0, Gauss on the
+/// facets near the front that do not touch it: 3e-6; near_factor 2, longer
+/// signed fans: 9e-10). M is exact with any of them (polynomial).
 struct LipRule3D
 {
   int n = 6;
-  double near_factor = 0.0;
+  double near_factor = 1.0;
   bool signed_point_rule = true;
 };
 

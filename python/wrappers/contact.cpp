@@ -198,7 +198,7 @@ void declare_contact(py::module& m)
         return d;
       },
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("space"), py::arg("n") = 6,
-      py::arg("near_factor") = 0.0, py::arg("signed_point_rule") = true, py::arg("tangential") = false,
+      py::arg("near_factor") = 1.0, py::arg("signed_point_rule") = true, py::arg("tangential") = false,
       py::arg("tangent_reference") = py::none(),
       "Coupling B (full multipliers x dofs), multiplier mass M and, with tangential, the tangential couplings "
       "Bt1, Bt2 as COO triplets (rows, cols, values) in a dict; tangent_reference: (num_cracks, 3) or None "
@@ -229,7 +229,7 @@ void declare_contact(py::module& m)
         return d;
       },
       py::arg("x"), py::arg("cells"), py::arg("cracks"), py::arg("space"), py::arg("n") = 6,
-      py::arg("near_factor") = 0.0, py::arg("signed_point_rule") = true, py::arg("tangent_reference") = py::none(),
+      py::arg("near_factor") = 1.0, py::arg("signed_point_rule") = true, py::arg("tangent_reference") = py::none(),
       "Quadrature points on the pieces of a 3D multiplier space with multiplier values (COO) and tangent bases.");
 
   m.def(
