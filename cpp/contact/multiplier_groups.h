@@ -219,4 +219,21 @@ void tie_groups_without_jump(const Pieces& pieces, const MultiplierRestriction& 
   }
 }
 
+/// Steps 1 and 2 together (the stars, then the stars without a jump joined
+/// to a neighbour) on the pieces of a space: `vital_edges` of r receives
+/// the vital edges. Returns the (crack, node) pairs carrying Heaviside dofs
+/// (for dimension-specific steps).
+template <int Dim, class Pieces, class Layout>
+std::set<std::pair<std::int32_t, std::int32_t>>
+tie_stars(const Pieces& pieces, std::span<const CutEdge> cut_edges, std::span<const std::array<double, Dim>> cut_points,
+          const NodalMultipliers& nodal, const Layout& layout, std::int8_t heaviside_kind, MultiplierRestriction& r,
+          MultiplierGroups& groups)
+{
+  tie_vital_edges<Dim>(cut_edges, cut_points, nodal, groups, r.vital_edges);
+  std::set<std::pair<std::int32_t, std::int32_t>> enriched, heaviside; // (crack, node)
+  enriched_nodes(layout, heaviside_kind, enriched, heaviside);
+  tie_groups_without_jump(pieces, r, enriched, groups);
+  return heaviside;
+}
+
 } // namespace cracklip

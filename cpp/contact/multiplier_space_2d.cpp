@@ -99,10 +99,8 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
   // Stable (P1-): drop cut edges by score until every score is <= 1, tie
   // the stars, then the stars without enriched nodes to a neighbouring star.
   MultiplierGroups uf(nfull);
-  tie_vital_edges<2>(cut_edges, cut_points, nodal, uf, space.vital_edges);
-  std::set<std::pair<std::int32_t, std::int32_t>> enriched, heaviside; // (crack, node)
-  enriched_nodes(layout, static_cast<std::int8_t>(EnrichmentKind::heaviside), enriched, heaviside);
-  tie_groups_without_jump(space.segments, space, enriched, uf);
+  const auto heaviside = tie_stars<2>(space.segments, cut_edges, cut_points, nodal, layout,
+                                      static_cast<std::int8_t>(EnrichmentKind::heaviside), space, uf);
   // The multiplier at a crack end sees a jump that fades (like sqrt(r) in a
   // tip cell, linearly over the last cut cell of a Heaviside-only crack)
   // and is barely controlled: left alone it makes the inf-sup constant drop.

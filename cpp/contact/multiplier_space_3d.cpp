@@ -270,10 +270,8 @@ MultiplierSpace3D create_multiplier_space_3d(std::span<const double> x, std::spa
     return space;
   }
   MultiplierGroups groups(nfull);
-  tie_vital_edges<3>(cut_edges, cut_points, nodal, groups, space.vital_edges);
-  std::set<std::pair<std::int32_t, std::int32_t>> enriched, heaviside;
-  enriched_nodes(layout, static_cast<std::int8_t>(EnrichmentKind::heaviside), enriched, heaviside);
-  tie_groups_without_jump(space.pieces, space, enriched, groups);
+  tie_stars<3>(space.pieces, cut_edges, cut_points, nodal, layout, static_cast<std::int8_t>(EnrichmentKind::heaviside),
+               space, groups);
   // Nodal multipliers active on an interior (non-front) piece.
   std::vector<std::int8_t> interior(nfull, 0);
   for (const LipPiece3D& piece : space.pieces)

@@ -82,6 +82,16 @@ Assembled assemble(const Mesh& m, const EnrichmentLayout3D& layout, const CrackG
   return a;
 }
 
+/// The multiplier functions active at every contact point sum to one.
+void expect_partition_of_unity(const ContactPoints3D& cp)
+{
+  std::vector<double> sum(cp.weight.size(), 0.0);
+  for (std::size_t e = 0; e < cp.entry_value.size(); ++e)
+    sum[cp.entry_point[e]] += cp.entry_value[e];
+  for (std::size_t p = 0; p < sum.size(); ++p)
+    ASSERT_NEAR(sum[p], 1.0, 1e-14) << "point " << p;
+}
+
 /// sum_rows c_row (T v)_row.
 double weighted(const Triplets& T, const std::vector<double>& c, const std::map<std::int32_t, double>& v)
 {
@@ -209,11 +219,7 @@ TEST(Contact3D, StableSpaceIsOneUnknownPerStar)
   }
   // A constant reduced field is one at every point.
   const ContactPoints3D cp = compute_contact_points_3d(m.x, m.cells, c, space, {});
-  std::vector<double> sum(cp.weight.size(), 0.0);
-  for (std::size_t e = 0; e < cp.entry_value.size(); ++e)
-    sum[cp.entry_point[e]] += cp.entry_value[e];
-  for (double s : sum)
-    ASSERT_NEAR(s, 1.0, 1e-14);
+  expect_partition_of_unity(cp);
   const std::vector<double> ones(space.num_full(), 1.0);
   for (double v : evaluate_multipliers_3d(space, 0, cp.cell, cp.ref, ones))
     ASSERT_NEAR(v, 1.0, 1e-14);
@@ -381,12 +387,7 @@ TEST(Contact3D, PennyFrontCellsAreTied)
   }
   EXPECT_GT(front, 30);
   EXPECT_LT(2 * space.num_reduced, naive.num_reduced);
-  const ContactPoints3D cp = compute_contact_points_3d(m.x, m.cells, c, space, {});
-  std::vector<double> sum(cp.weight.size(), 0.0);
-  for (std::size_t e = 0; e < cp.entry_value.size(); ++e)
-    sum[cp.entry_point[e]] += cp.entry_value[e];
-  for (double v : sum)
-    ASSERT_NEAR(v, 1.0, 1e-14);
+  expect_partition_of_unity(compute_contact_points_3d(m.x, m.cells, c, space, {}));
   const Assembled a = assemble(m, layout, g, space);
   std::vector<double> row_norm(space.num_reduced, 0.0);
   // Reduced rows: sum of the members' rows; their squared norms.
