@@ -12,22 +12,6 @@
 
 namespace cracklip
 {
-namespace
-{
-struct UnionFind
-{
-  std::vector<std::int32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  std::int32_t find(std::int32_t i)
-  {
-    while (parent[i] != i)
-      i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void unite(std::int32_t a, std::int32_t b) { parent[find(a)] = find(b); }
-};
-} // namespace
-
 MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<const std::int32_t> cells,
                                         std::span<const CrackGeometry* const> cracks,
                                         const EnrichmentLayout& layout, MultiplierKind kind,
@@ -35,18 +19,7 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
 {
   MultiplierSpace space;
   space.kind = kind;
-  std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> nodal; // (crack, node) -> full
-  auto nodal_mult = [&](std::int32_t ic, std::int32_t node)
-  {
-    auto [it, inserted] = nodal.try_emplace({ic, node}, space.num_full());
-    if (inserted)
-    {
-      space.full_node.push_back(node);
-      space.full_crack.push_back(ic);
-      space.full_cell.push_back(-1);
-    }
-    return it->second;
-  };
+  NodalMultipliers nodal; // (crack, node) -> full
 
   // Cut edges of each crack, for the stable space: (crack, a, b) with a < b.
   std::vector<std::array<std::int32_t, 3>> cut_edges;
@@ -70,7 +43,7 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
         // On an edge cell only the nodes on the crack edge have a trace.
         if (cc.cls == CellClass::edge and g.phi[v[a]] != 0.0)
           continue;
-        seg.mult.push_back(nodal_mult(ic, v[a]));
+        seg.mult.push_back(add_nodal_multiplier(space, nodal, ic, v[a]));
         seg.local.push_back(a);
       }
       space.segments.push_back(seg);
@@ -104,88 +77,30 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
       if (kind == MultiplierKind::naive)
         for (int a = 0; a < 3; ++a)
         {
-          seg.mult.push_back(nodal_mult(ic, v[a]));
+          seg.mult.push_back(add_nodal_multiplier(space, nodal, ic, v[a]));
           seg.local.push_back(a);
         }
       else
       {
-        seg.mult.push_back(space.num_full());
+        seg.mult.push_back(add_cell_multiplier(space, ic, tc.cell));
         seg.local.push_back(-1);
-        space.full_node.push_back(-1);
-        space.full_crack.push_back(ic);
-        space.full_cell.push_back(tc.cell);
       }
       space.segments.push_back(seg);
     }
   }
 
   const std::int32_t nfull = space.num_full();
-  space.full_to_reduced.assign(nfull, -1);
   if (kind == MultiplierKind::naive)
   {
-    std::iota(space.full_to_reduced.begin(), space.full_to_reduced.end(), 0);
-    space.num_reduced = nfull;
+    number_naive(space);
     return space;
   }
 
-  // Stable (P1-): drop cut edges by score until every score is <= 1.
-  std::vector<std::size_t> order(cut_edges.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return cut_edges[i] < cut_edges[j]; });
-  std::vector<CutEdge> edges;
-  std::vector<std::array<double, 2>> points;
-  for (std::size_t k = 0; k < order.size(); ++k)
-    if (k == 0 or cut_edges[order[k]] != cut_edges[order[k - 1]])
-    {
-      edges.push_back(cut_edges[order[k]]);
-      points.push_back(cut_points[order[k]]);
-    }
-  const std::vector<std::int8_t> alive = select_vital_edges<2>(edges, points);
-  UnionFind uf(nfull);
-  for (std::size_t i = 0; i < edges.size(); ++i)
-    if (alive[i])
-    {
-      const std::int32_t ic = edges[i][0];
-      const auto a = nodal.find({ic, edges[i][1]}), b = nodal.find({ic, edges[i][2]});
-      if (a == nodal.end() or b == nodal.end())
-        throw std::logic_error("multiplier space: cut edge node without a multiplier");
-      uf.unite(a->second, b->second);
-      space.vital_edges.push_back(edges[i][1]);
-      space.vital_edges.push_back(edges[i][2]);
-    }
-  // Tie stars without enriched nodes to a neighbouring star.
-  std::set<std::pair<std::int32_t, std::int32_t>> enriched; // (crack, node)
-  std::set<std::pair<std::int32_t, std::int32_t>> heaviside; // (crack, node)
-  for (std::int32_t k = 0; k < layout.num_enriched(); ++k)
-  {
-    enriched.insert({layout.crack[k], layout.node[k]});
-    if (layout.kind[k] == static_cast<std::int8_t>(EnrichmentKind::heaviside))
-      heaviside.insert({layout.crack[k], layout.node[k]});
-  }
-  for (bool changed = true; changed;)
-  {
-    changed = false;
-    std::map<std::int32_t, bool> has_jump; // root -> any enriched node (or P0)
-    for (std::int32_t f = 0; f < nfull; ++f)
-    {
-      const bool j = space.full_node[f] < 0 or enriched.count({space.full_crack[f], space.full_node[f]});
-      has_jump[uf.find(f)] = has_jump[uf.find(f)] or j;
-    }
-    for (const CrackSegment& seg : space.segments)
-      for (std::size_t a = 0; a < seg.mult.size() and !changed; ++a)
-      {
-        const std::int32_t ra = uf.find(seg.mult[a]);
-        if (has_jump[ra])
-          continue;
-        for (std::size_t b = 0; b < seg.mult.size(); ++b)
-          if (const std::int32_t rb = uf.find(seg.mult[b]); rb != ra and has_jump[rb])
-          {
-            uf.unite(ra, rb);
-            changed = true;
-            break;
-          }
-      }
-  }
+  // Stable (P1-): drop cut edges by score until every score is <= 1, tie
+  // the stars, then the stars without enriched nodes to a neighbouring star.
+  MultiplierGroups uf(nfull);
+  const auto heaviside = tie_stars<2>(space.segments, cut_edges, cut_points, nodal, layout,
+                                      static_cast<std::int8_t>(EnrichmentKind::heaviside), space, uf);
   // The multiplier at a crack end sees a jump that fades (like sqrt(r) in a
   // tip cell, linearly over the last cut cell of a Heaviside-only crack)
   // and is barely controlled: left alone it makes the inf-sup constant drop.
@@ -354,15 +269,7 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
       }
     }
   }
-  std::map<std::int32_t, std::int32_t> root_to_reduced;
-  for (std::int32_t f = 0; f < nfull; ++f)
-  {
-    const std::int32_t r = uf.find(f);
-    auto [it, inserted] = root_to_reduced.try_emplace(r, space.num_reduced);
-    if (inserted)
-      ++space.num_reduced;
-    space.full_to_reduced[f] = it->second;
-  }
+  uf.number(space);
   return space;
 }
 

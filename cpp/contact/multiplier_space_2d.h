@@ -19,8 +19,9 @@
 //           end segment when shorter than the crack's mean segment.
 #pragma once
 
-#include "geometry/crack_geometry_2d.h"
+#include "contact/multiplier_groups.h"
 #include "enrichment/enrichment_layout.h"
+#include "geometry/crack_geometry_2d.h"
 
 #include <array>
 #include <cstdint>
@@ -29,12 +30,6 @@
 
 namespace cracklip
 {
-
-enum class MultiplierKind : std::int8_t
-{
-  naive = 0,
-  stable = 1
-};
 
 /// One crack segment in one cell, where multipliers and jumps are integrated.
 struct CrackSegment
@@ -51,18 +46,12 @@ struct CrackSegment
   std::vector<int> local;
 };
 
-struct MultiplierSpace
+/// The space: its crack segments and the restriction between full and
+/// reduced multipliers (multiplier_groups.h; P0 multipliers are the tip
+/// cells').
+struct MultiplierSpace : MultiplierRestriction
 {
-  MultiplierKind kind = MultiplierKind::stable;
   std::vector<CrackSegment> segments;
-  /// Full multipliers: mesh node (nodal) or -1 (P0), crack, and for P0 the cell.
-  std::vector<std::int32_t> full_node, full_crack, full_cell;
-  /// Reduced index of every full multiplier (the 0/1 prolongation R).
-  std::vector<std::int32_t> full_to_reduced;
-  std::int32_t num_reduced = 0;
-  /// Vital (tied) edges of the stable space, (num_vital, 2) mesh nodes.
-  std::vector<std::int32_t> vital_edges;
-  std::int32_t num_full() const { return static_cast<std::int32_t>(full_node.size()); }
 };
 
 /// x: (num_nodes, 2); cells: (num_cells, 3). with_tip_segments: integrate

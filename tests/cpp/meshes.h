@@ -48,4 +48,13 @@ inline void kuhn_cube(int n, std::vector<double>& x, std::vector<std::int32_t>& 
           cells.insert(cells.end(), tet.begin(), tet.end());
         }
 }
+
+/// The Kuhn mesh of [0,1]^3 with n cubes per edge, as arrays.
+struct KuhnMesh
+{
+  std::vector<double> x;
+  std::vector<std::int32_t> cells;
+  explicit KuhnMesh(int n) { kuhn_cube(n, x, cells); }
+  std::int32_t num_cells() const { return static_cast<std::int32_t>(cells.size() / 4); }
+};
 } // namespace cracklip::test

@@ -19,12 +19,9 @@ using namespace cracklip::vec3;
 
 namespace
 {
-struct Mesh
+struct Mesh : test::KuhnMesh
 {
-  std::vector<double> x;
-  std::vector<std::int32_t> cells;
-  explicit Mesh(int n) { test::kuhn_cube(n, x, cells); }
-  std::int32_t num_cells() const { return static_cast<std::int32_t>(cells.size() / 4); }
+  using KuhnMesh::KuhnMesh;
   P1Tetrahedron tet(std::int32_t c) const { return P1Tetrahedron(x, cells, c); }
 };
 

@@ -48,10 +48,12 @@ class ContactSystem:
         B: (num_reduced, num_dofs) coupling, Dirichlet columns removed.
         M: (num_reduced, num_reduced) multiplier mass.
         g: (num_reduced,) right-hand side of B u = g (prescribed enriched dofs).
-        Bt: (num_reduced, num_dofs) tangential coupling int lambda [[v]].t
-            (t = n turned by -90 degrees), Dirichlet columns removed; None
-            without friction.
-        gt: (num_reduced,) its right-hand side (zeros without friction).
+        Bt: tangential coupling int lambda [[v]].t, Dirichlet columns
+            removed; None without friction. 2D: (num_reduced, num_dofs), t
+            = n turned by -90 degrees; 3D: (2 num_reduced, num_dofs), the
+            rows of t1 then those of t2 (the tangent basis of
+            cpp/contact/contact_kernels_3d.h).
+        gt: (Bt rows,) its right-hand side (zeros without friction).
         g_groups, gt_groups: g and gt of each load group's prescribed values.
     """
     space: typing.Any
@@ -69,23 +71,44 @@ class ContactSystem:
         return self.R.shape[1]
 
 
+def create_multiplier_space(model: XfemModel):
+    """The C++ multiplier space of the model's cracks (options.multipliers;
+    pieces at the tips or fronts only with tip or front enrichment):
+    MultiplierSpace on triangles, MultiplierSpace3D on tetrahedra."""
+    opts = model.scene.options
+    create = _cracklip.create_multiplier_space if model.gdim == 2 else _cracklip.create_multiplier_space_3d
+    return create(model.x, model.cells, model.geometries, model.layout, opts.multipliers, opts.enrichment != "none")
+
+
+def _full_coupling(model: XfemModel, space, tangential: bool) -> tuple[tuple, tuple, list[tuple]]:
+    """COO triplets (rows, cols, values) of the full B and M and of each
+    tangential coupling (one in 2D, t1 and t2 in 3D; none without
+    tangential)."""
+    n = model.scene.options.contact_points
+    if model.gdim == 2:
+        coo = _cracklip.assemble_coupling(model.x, model.cells, model.layout, model.geometries, space, n,
+                                          tangential=tangential)
+        return coo[0:3], coo[3:6], [coo[6:9]] if tangential else []
+    d = _cracklip.assemble_coupling_3d(model.x, model.cells, model.layout, model.geometries, space, n,
+                                       tangential=tangential)
+    return d["B"], d["M"], [d["Bt1"], d["Bt2"]] if tangential else []
+
+
 def create_contact_system(model: XfemModel) -> ContactSystem:
     """Multiplier space and B, M for the model's cracks (options.multipliers);
     with friction (options.friction > 0) also the tangential coupling Bt."""
     opts = model.scene.options
-    space = _cracklip.create_multiplier_space(model.x, model.cells, model.geometries, model.layout,
-                                              opts.multipliers, opts.enrichment != "none")
+    space = create_multiplier_space(model)
     nf, nr = space.num_full, space.num_reduced
     R = sp.csr_matrix((np.ones(nf), (np.arange(nf), space.full_to_reduced)), shape=(nf, nr))
     friction = opts.friction > 0.0
-    coo = _cracklip.assemble_coupling(model.x, model.cells, model.layout, model.geometries, space,
-                                      opts.contact_points, tangential=friction)
-    br, bc, bv, mr, mc, mv = coo[:6]
+    (br, bc, bv), (mr, mc, mv), tangential = _full_coupling(model, space, friction)
     Bf = sp.csr_matrix((bv, (br, bc)), shape=(nf, model.num_dofs))
     Mf = sp.csr_matrix((mv, (mr, mc)), shape=(nf, nf))
     B = (R.T @ Bf).tocsr()
     M = (R.T @ Mf @ R).tocsr()
-    Bt = (R.T @ sp.csr_matrix((coo[8], (coo[6], coo[7])), shape=(nf, model.num_dofs))).tocsr() if friction else None
+    Bts = [(R.T @ sp.csr_matrix((v, (r, c)), shape=(nf, model.num_dofs))).tocsr() for r, c, v in tangential]
+    Bt = (Bts[0] if len(Bts) == 1 else sp.vstack(Bts).tocsr()) if friction else None
     # Dirichlet dofs: move their known values to the right-hand side, per load group.
     fixed = np.zeros(model.num_dofs, dtype=bool)
     fixed[model.bc_dofs] = True
@@ -97,7 +120,7 @@ def create_contact_system(model: XfemModel) -> ContactSystem:
         if friction:
             gt_groups[group] = -(Bt @ ufix)
     g = sum(g_groups.values(), np.zeros(nr))
-    gt = sum(gt_groups.values(), np.zeros(nr))
+    gt = sum(gt_groups.values(), np.zeros(Bt.shape[0] if friction else nr))
     free = sp.diags((~fixed).astype(float))
     B = B @ free
     B.eliminate_zeros()

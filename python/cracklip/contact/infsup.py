@@ -22,9 +22,10 @@ from .frictionless import create_contact_system
 
 def inf_sup_constant(model: XfemModel, h: float | None = None, max_multipliers: int = 4000,
                      tangential: bool = False) -> float:
-    """sqrt(beta_min) of the model's multiplier space (Options.multipliers);
-    tangential: of the pair [B_n; B_t] (normal and tangential multipliers on
-    the same space, the multiplier mass block-diagonal), the space friction
+    """sqrt(beta_min) of the model's multiplier space (Options.multipliers),
+    on triangles or tetrahedra; tangential: of [B_n; B_t] (normal and
+    tangential multipliers on the same space, one tangential block in 2D,
+    two in 3D, the multiplier mass block-diagonal), the space friction
     uses."""
     if tangential and model.scene.options.friction <= 0.0:
         model = dataclasses.replace(model, scene=dataclasses.replace(
@@ -34,7 +35,8 @@ def inf_sup_constant(model: XfemModel, h: float | None = None, max_multipliers: 
     cs = create_contact_system(model)
     if tangential:
         import scipy.sparse as sp
-        cs = dataclasses.replace(cs, B=sp.vstack([cs.B, cs.Bt]).tocsr(), M=sp.block_diag([cs.M, cs.M]).tocsr())
+        blocks = 1 + cs.Bt.shape[0] // cs.B.shape[0]  # normal + 1 tangent (2D) or 2 (3D)
+        cs = dataclasses.replace(cs, B=sp.vstack([cs.B, cs.Bt]).tocsr(), M=sp.block_diag([cs.M] * blocks).tocsr())
     m = cs.B.shape[0]
     if m > max_multipliers:
         raise ValueError(f"{m} multipliers: the dense inf-sup test is limited to {max_multipliers}")

@@ -11,7 +11,10 @@
       K_I   = 2 sigma_n sqrt(a / pi),
       K_II  = 4 tau sqrt(a / pi) cos(omega) / (2 - nu),
       K_III = 4 (1 - nu) tau sqrt(a / pi) sin(omega) / (2 - nu),
-  omega the angle along the front measured from the shear direction.
+  omega the angle along the front measured from the shear direction; the
+  shear part alone (penny_shear_k) is the penny whose faces carry a uniform
+  shear tau, whose slip is 8 (1 - nu) tau sqrt(a^2 - r^2) / (pi (2 - nu) mu)
+  along the shear everywhere (penny_slip).
 - Embedded elliptical crack (Irwin 1962) with semi-axes a >= b under remote
   tension sigma normal to it: K_I(phi) = sigma sqrt(pi b) / E(k) (sin^2 phi +
   (b / a)^2 cos^2 phi)^(1/4), k^2 = 1 - b^2 / a^2, E the complete elliptic
@@ -54,11 +57,31 @@ def inclined_penny_k(sigma: float, beta: float, a: float, nu: float, omega: np.n
     omega = np.asarray(omega, dtype=float)
     sn = sigma * math.sin(beta) ** 2
     tau = sigma * math.sin(beta) * math.cos(beta)
-    root = math.sqrt(a / math.pi)
-    K_I = np.full(omega.shape, 2.0 * sn * root)
-    K_II = 4.0 * tau * root * np.cos(omega) / (2.0 - nu)
-    K_III = 4.0 * (1.0 - nu) * tau * root * np.sin(omega) / (2.0 - nu)
+    K_I = np.full(omega.shape, 2.0 * sn * math.sqrt(a / math.pi))
+    K_II, K_III = penny_shear_k(tau, a, nu, omega)
     return K_I, K_II, K_III
+
+
+def penny_shear_k(tau: float, a: float, nu: float, omega: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """K_II, K_III (each (n,)) along the front of a penny crack of radius a
+    whose faces carry a uniform shear traction tau (the + face pulled along
+    t, omega (n,) from t): 4 tau sqrt(a / pi) cos(omega) / (2 - nu) and
+    4 (1 - nu) tau sqrt(a / pi) sin(omega) / (2 - nu) (Tada P.24.22)."""
+    omega = np.asarray(omega, dtype=float)
+    root = math.sqrt(a / math.pi)
+    return (4.0 * tau * root * np.cos(omega) / (2.0 - nu),
+            4.0 * (1.0 - nu) * tau * root * np.sin(omega) / (2.0 - nu))
+
+
+def penny_slip(r: np.ndarray, tau: float, a: float, E: float, nu: float) -> np.ndarray:
+    """The slip (the jump of the tangential displacement, along t) at
+    distance r (n,) from the centre of a penny crack of radius a under a
+    uniform face shear tau: 8 (1 - nu) tau sqrt(a^2 - r^2) / (pi (2 - nu) mu),
+    mu = E / (2 (1 + nu)); 0 outside (Eshelby 1957; Segall, Earthquake and
+    Volcano Deformation, eq. 4.74 gives one face's half)."""
+    r = np.asarray(r, dtype=float)
+    mu = E / (2.0 * (1.0 + nu))
+    return 8.0 * (1.0 - nu) * tau * np.sqrt(np.maximum(a * a - r * r, 0.0)) / (math.pi * (2.0 - nu) * mu)
 
 
 def elliptic_e(k2: float) -> float:
@@ -87,4 +110,5 @@ def parametric_angle(x: np.ndarray, a: float, b: float) -> np.ndarray:
     return np.arctan2(x[:, 1] / b, x[:, 0] / a)
 
 
-__all__ = ["penny_k", "penny_opening", "inclined_penny_k", "elliptic_e", "irwin_k", "parametric_angle"]
+__all__ = ["penny_k", "penny_opening", "inclined_penny_k", "penny_shear_k", "penny_slip", "elliptic_e", "irwin_k",
+           "parametric_angle"]
