@@ -341,15 +341,22 @@ def test_nan_traction(square_h01):
         cl.solve(scene)
 
 
-def test_singular_multiplier_space():
+def test_singular_multiplier_space(gmsh_seed):
     """Naive P1 multipliers on every node of the cut cells: their traces on a
     straight crack are dependent, B loses rank, the saddle-point system is
-    singular while the stiffness is not."""
+    singular while the stiffness is not. Whether MUMPS meets an exactly null
+    pivot depends on the mesh: on gmsh's with Mesh.RandomSeed = 2 round-off
+    left one (B's smallest singular value 5e-17 of the largest) and the solve
+    returned an arbitrary multiplier, so the naive space's rank is checked."""
     import block_uniform_pressure as block
-    scene = block.scene_for(10, enrichment="vector", multipliers="naive")
-    with pytest.raises(cl.SolverError, match=r"null pivot.*stiffness alone is regular, so the contact multiplier "
-                                             r"space \('naive'\) is singular.*use multipliers='stable'"):
-        cl.solve(scene)
+    for seed in (1, 2):
+        with gmsh_seed(seed):
+            scene = block.scene_for(10, enrichment="vector", multipliers="naive")
+            with pytest.raises(cl.SolverError, match=r"singular: the \d+ active contact constraints have [12] linear "
+                                                     r"dependenc.*stiffness alone is regular, so the contact "
+                                                     r"multiplier space \('naive'\) is singular.*use multipliers="
+                                                     r"'stable'"):
+                cl.solve(scene)
 
 
 def test_active_set_that_does_not_settle():
