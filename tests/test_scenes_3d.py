@@ -209,7 +209,9 @@ def test_check_reports_what_run_uses(tmp_path, capsys):
     assert c["front"]["points"] == len(g.front["x"])
     fs = c["front_element_size"]
     assert fs["cells"] == counts["front"]
-    assert 0.2 <= fs["min"] <= fs["mean"] <= fs["max"] < 2 * 0.2 * 1.5  # tip_h = 0.2 asked
+    # tip_h = 0.2 asked; gmsh's edges are its size within [1/sqrt(2), 1.5] (test_crack_surfaces): the
+    # smallest front cell's mean edge measured 0.218 .. 0.220 over gmsh seeds 1-3.
+    assert 0.2 / math.sqrt(2) <= fs["min"] <= fs["mean"] <= fs["max"] < 2 * 0.2 * 1.5
     assert set(summary["boundary_tags"]) == {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"}
     assert cli.main(args) == 0
     text = capsys.readouterr().out
