@@ -1,3 +1,5 @@
+import contextlib
+import os
 import pathlib
 import sys
 
@@ -48,3 +50,39 @@ def square_h01():
     import cracklip as cl
     return cl.create_square(0.1)
 
+
+# -- mesh robustness: another gmsh mesh realisation --------------------------------------
+# CRACKLIP_TEST_GMSH_SEED=N sets gmsh's Mesh.RandomSeed (default 1) before every mesh
+# generation in the test process, so a developer sees the suite on another mesh of the same
+# geometry and size field (as another CPU's gmsh produces): a bound that holds only on one
+# mesh fails there. Subprocesses (CLI and demo runs) keep gmsh's default. The fixture
+# gmsh_seed(N) meshes a block with seed N (a realisation that once exposed a weakness).
+GMSH_SEED = os.environ.get("CRACKLIP_TEST_GMSH_SEED")
+_seeds = [int(GMSH_SEED)] if GMSH_SEED else []
+
+
+def pytest_configure(config):
+    import gmsh
+    generate = gmsh.model.mesh.generate
+
+    def seeded_generate(*args, **kwargs):
+        gmsh.option.setNumber("Mesh.RandomSeed", _seeds[-1] if _seeds else 1)  # 1: gmsh's default
+        return generate(*args, **kwargs)
+    gmsh.model.mesh.generate = seeded_generate
+
+
+def pytest_report_header(config):
+    return f"gmsh Mesh.RandomSeed: {GMSH_SEED or 'default (1)'} (CRACKLIP_TEST_GMSH_SEED)"
+
+
+@pytest.fixture
+def gmsh_seed():
+    """gmsh_seed(N): a context in which gmsh meshes with Mesh.RandomSeed = N."""
+    @contextlib.contextmanager
+    def seeded(seed: int):
+        _seeds.append(int(seed))
+        try:
+            yield
+        finally:
+            _seeds.pop()
+    return seeded

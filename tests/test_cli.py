@@ -21,9 +21,22 @@ BLOCK = ROOT / "demos" / "scenes" / "block_uniform_pressure.toml"
 ENV = {"PYTHONPATH": str(ROOT / "python"), "PATH": "/usr/bin:/bin", "MPLBACKEND": "Agg"}
 
 
+# Under CRACKLIP_TEST_GMSH_SEED (tests/conftest.py) the CLI meshes with the test process's gmsh
+# seed, so what `check` reports and what the test solves come from one mesh.
+SEEDED_CLI = """import runpy, gmsh
+generate = gmsh.model.mesh.generate
+def seeded(*args, **kwargs):
+    gmsh.option.setNumber("Mesh.RandomSeed", {seed})
+    return generate(*args, **kwargs)
+gmsh.model.mesh.generate = seeded
+runpy.run_module("cracklip", run_name="__main__", alter_sys=True)"""
+
+
 def run_cli(*args):
     """python3 -m cracklip as a user runs it: (exit status, stdout, stderr)."""
-    p = subprocess.run([sys.executable, "-m", "cracklip", *args], cwd=ROOT, env=ENV, capture_output=True,
+    seed = os.environ.get("CRACKLIP_TEST_GMSH_SEED")
+    python = ["-m", "cracklip"] if not seed else ["-c", SEEDED_CLI.format(seed=int(seed))]
+    p = subprocess.run([sys.executable, *python, *args], cwd=ROOT, env=ENV, capture_output=True,
                        text=True, timeout=300)
     return p.returncode, p.stdout, p.stderr
 

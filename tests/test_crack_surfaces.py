@@ -88,13 +88,22 @@ def test_box_refined_around_a_front():
     assert md.gdim == 3 and set(md.tags) == {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"}
     x = md.mesh.geometry.x
     cells = md.mesh.geometry.dofmap.array.reshape(-1, 4)
-    centre = x[cells].mean(axis=1)
-    edge = np.linalg.norm(x[cells[:, 1]] - x[cells[:, 0]], axis=1)
-    dist = np.hypot(np.hypot(centre[:, 0], centre[:, 1]) - 0.5, centre[:, 2])
-    # The size field: h_front = 0.05 within 0.2 of the front, then growing by 0.25 per unit
-    # distance: 0.25 or more beyond a distance of 1 (capped by h = 0.4).
-    assert 0.03 < np.median(edge[dist < 0.05]) < 0.07
-    assert np.median(edge[dist > 1.0]) > 0.18
+    # Every edge of every cell against the size field at its midpoint: h_front = 0.05 within
+    # the plateau 4 h_front = 0.2 of the front, then growing by 0.25 per unit distance up to
+    # h = 0.4 (refinement_size). gmsh aims at edges of that size (adimensional length 1); its
+    # 3D Delaunay insertion lands the median at 1.0-1.35 (measured 1.32 in the plateau, 1.01
+    # beyond a distance of 1): a band [1/sqrt(2), 1.5] holds the size field within the
+    # mesher's tolerance, while a missing refinement (edges 0.4 = 8 h_front at the front) or
+    # a field applied twice (0.5) fails. Medians over thousands of edges, not one CPU's mesh.
+    pairs = [(a, b) for a in range(4) for b in range(a + 1, 4)]
+    edge = np.stack([np.linalg.norm(x[cells[:, b]] - x[cells[:, a]], axis=1) for a, b in pairs], axis=1)
+    mid = np.stack([0.5 * (x[cells[:, a]] + x[cells[:, b]]) for a, b in pairs], axis=1)
+    dist = np.hypot(np.hypot(mid[..., 0], mid[..., 1]) - 0.5, mid[..., 2])
+    size = np.minimum(0.4, 0.05 + 0.25 * np.maximum(0.0, dist - 0.2))
+    adim = edge / size
+    for near in (dist < 0.2, dist > 1.0):
+        assert near.sum() > 1000
+        assert 1 / math.sqrt(2) < np.median(adim[near]) < 1.5
     # Facet tags cover the six faces, each of area 4.
     for tag in md.tags:
         f = md.facets(tag)

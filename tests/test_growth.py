@@ -303,7 +303,10 @@ def test_grow_wing_crack_scene(tmp_path, capsys):
     first = [r for r in rows if r["step"] == "0"]
     assert len(first) == 2
     for r in first:
-        assert abs(float(r["K_I"])) < 1e-3 * abs(float(r["K_II"])) and float(r["closed_fraction"]) == 1.0
+        # Closed: K_I = 0 exactly, here to the discretisation error of K (measured 1.8e-4 .. 2.6e-3 of
+        # K_II over gmsh seeds 1-4); without contact the lips of this 45 degree crack under
+        # compression would give K_I = -|K_II|.
+        assert abs(float(r["K_I"])) < 1e-2 * abs(float(r["K_II"])) and float(r["closed_fraction"]) == 1.0
         assert r["status"] == "growing"
         assert 70.0 < abs(float(r["kink_deg"])) < 80.0  # 70.53 plus the corrector's turn of the first increment
     later = [r for r in rows if r["step"] != "0"]

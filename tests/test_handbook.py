@@ -23,7 +23,10 @@ import handbook  # noqa: E402
 @pytest.mark.parametrize("case", list(handbook.CASES))
 def test_handbook_case(case):
     row = handbook.run(case, 40)
-    limit = 1e-9 if case.startswith("crack closed") else 5e-3
+    # Closed by residual stress: u = 0 and K = 0 up to the solve's round-off, which the conditioning
+    # of the mesh's enriched dofs amplifies (measured 1e-15 .. 3.7e-9 over gmsh seeds 1-4: 1-norm
+    # condition 1e7, 1.5e11 unscaled on seed 2's mesh); open, K would be ~1.
+    limit = 1e-7 if case.startswith("crack closed") else 5e-3
     assert row["error_I"] < limit and row["error_II"] < limit
     if row["K_II_exact"] == 0.0:
         assert max(abs(k) for k in row["K_II"]) < 1e-3 * row["K_scale"]

@@ -50,7 +50,8 @@ def test_scalar_corrected_near_null_modes_live_on_the_ring_tip_dofs():
         assert r["all"][0] <= 1e-4 * r["without_ring_tip_dofs"][0], (n, r["all"][0])  # 8.9e-8/1.1e-2 .. 2.7e-11/6.8e-4
         assert r["without_ring_tip_dofs"][0] >= 0.95 * r["without_tip_dofs"][0]
     assert rows[80]["all"][4] <= 0.2 * rows[80]["without_ring_tip_dofs"][0]   # 9.0e-5 vs 6.8e-4
-    assert rows[40]["all"][0] <= rows[20]["all"][0] / 16.0 ** 1.25            # falls faster than h^5 (x50)
+    # (How fast the near-null eigenvalue falls with h is the mesh's: x50 from n = 20 to 40 on gmsh's
+    # default mesh, x4.4 with Mesh.RandomSeed = 2; it stays 1e-4 below the standard level above.)
     for n in (20, 40):
         r = conditioning.smallest_eigenvalues(n, "vector")
         assert r["all"][0] >= 0.95 * r["without_tip_dofs"][0], (n, r["all"][0])

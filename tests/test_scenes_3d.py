@@ -209,7 +209,9 @@ def test_check_reports_what_run_uses(tmp_path, capsys):
     assert c["front"]["points"] == len(g.front["x"])
     fs = c["front_element_size"]
     assert fs["cells"] == counts["front"]
-    assert 0.2 <= fs["min"] <= fs["mean"] <= fs["max"] < 2 * 0.2 * 1.5  # tip_h = 0.2 asked
+    # tip_h = 0.2 asked; gmsh's edges are its size within [1/sqrt(2), 1.5] (test_crack_surfaces): the
+    # smallest front cell's mean edge measured 0.218 .. 0.220 over gmsh seeds 1-3.
+    assert 0.2 / math.sqrt(2) <= fs["min"] <= fs["mean"] <= fs["max"] < 2 * 0.2 * 1.5
     assert set(summary["boundary_tags"]) == {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"}
     assert cli.main(args) == 0
     text = capsys.readouterr().out
@@ -489,9 +491,13 @@ def test_geometry_of_the_wrong_dimension(tmp_path):
 
 def test_lip_pressure_opens_the_penny_like_remote_tension():
     """cracks[].pressure on a 3D crack: a pressure p on the lips of the penny
-    crack without remote load opens it as the remote tension p does
-    (superposition: measured equal to 2.6e-4 of the largest opening on the
-    same mesh), both within 7 % (L2) of Sneddon's opening (measured 5.3 %)."""
+    crack without remote load opens it as the remote tension p does. The two
+    are equal in the exact solution (superposition); discretely they differ
+    only by the quadrature of the enriched cells (the uniform remote field
+    integrated by parts against the front functions), which is a small part
+    of the discretisation error: measured 0.8 % of the largest error against
+    Sneddon's opening on this mesh (2 % on another CPU's mesh), bound 5 %.
+    Both within 7 % (L2) of Sneddon's opening (measured 5.0 %)."""
     openings = []
     for pressure in (True, False):
         doc = _penny_doc()
@@ -504,9 +510,10 @@ def test_lip_pressure_opens_the_penny_like_remote_tension():
         openings.append(cl.solve(sf.scene).crack_opening())
     op, remote = openings
     assert np.array_equal(op["x"], remote["x"])
-    assert np.abs(op["normal"] - remote["normal"]).max() < 1e-3 * remote["normal"].max()
     r = np.hypot(op["x"][:, 0], op["x"][:, 1])
     exact = 8 * (1 - 0.3 ** 2) * np.sqrt(np.clip(1 - r ** 2, 0, None)) / math.pi
+    error = max(np.abs(op["normal"] - exact).max(), np.abs(remote["normal"] - exact).max())
+    assert np.abs(op["normal"] - remote["normal"]).max() < 0.05 * error
     w = op["weight"]
     l2 = math.sqrt(np.sum(w * (op["normal"] - exact) ** 2) / np.sum(w * exact ** 2))
     assert l2 < 0.07, l2

@@ -185,13 +185,25 @@ def test_westergaard_spread_is_small():
 
 
 def test_spread_warning_on_an_unresolved_tip():
-    """A tip whose field is not resolved (no tip enrichment, 4 elements on
-    the crack): K varies with the domain by 62 % at one tip and a warning
-    says so, besides the ones on the resolution and the enrichment."""
+    """Tips whose field is not resolved (no tip enrichment, 4 elements on
+    the crack): K varies with the domain by 6 .. 85 % of the K scale, and
+    each such tip is flagged: by the spread warning where its SIF domains are
+    clear, else by the domain warning (no domain of one element fits). Which
+    tip is which is the mesh's: on gmsh's default mesh one of each, with
+    Mesh.RandomSeed = 2 two spread warnings, with 3 two domain warnings.
+    Besides, the resolution and the enrichment are warned about."""
     scene = plate_scene([[-0.5, 0.0], [0.5, 0.0]], h=0.25, tip_h=0.25, enrichment="none", radius=0.0)
     sol = cl.solve(scene)
-    spread = [w for w in sol.warnings if w.code == "sif_spread"]
-    assert len(spread) == 1 and "varies with the SIF domain" in spread[0].message
+    ks = sol.stress_intensity_factors(0)
+    scale = max(abs(k["K_I"]) for k in ks)
+    unresolved = [max(k["K_I_spread"], k["K_II_spread"]) > 0.01 * scale for k in ks]  # sif.SPREAD_WARNING
+    assert any(unresolved)
+    for k, bad in zip(ks, unresolved):
+        said = {w.code for w in sol.warnings if w.message.startswith(f"tip {k['tip']} of crack")}
+        assert ("sif_spread" in said) == (bad and k["domain_clear"]), (k, said)
+        assert not bad or k["domain_clear"] or "sif_domain" in said, (k, said)
+    for w in sol.warnings:
+        assert w.code != "sif_spread" or "varies with the SIF domain" in w.message
     assert {"tip_resolution", "tip_enrichment", "sif_domain"} <= set(codes(sol.warnings))
 
 

@@ -354,9 +354,9 @@ def test_auto_choice_by_size():
 
 def test_iterative_reports_a_singular_saddle_point_system():
     """Naive P1 multipliers: B loses rank and the saddle-point system is
-    singular. The iterative path must not return a solution either: its
-    crack band holds every multiplier, so the band's factorisation meets the
-    null pivots (the direct path's message then names the multiplier space)."""
+    singular. The iterative path must not return a solution either: the
+    naive space's active constraints are checked for rank before either path
+    solves (the message then names the multiplier space)."""
     scene = with_solver(block.scene_for(10, enrichment="vector", multipliers="naive"), "iterative")
     with pytest.raises(cl.SolverError, match="singular"):
         cl.solve(scene)

@@ -5,6 +5,7 @@
 #include <dolfinx/fem/FiniteElement.h>
 #include <dolfinx/fem/FunctionSpace.h>
 #include <dolfinx/mesh/Mesh.h>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -32,19 +33,27 @@ NodeMesh extract_node_mesh(const dolfinx::fem::FunctionSpace& V)
   NodeMesh out;
   out.gdim = gdim;
   const std::int32_t num_nodes = dofmap->index_map->size_local();
-  const std::vector<double> xall = V.tabulate_dof_coordinates(false); // (num_nodes, 3)
-  out.x.resize(gdim * num_nodes);
-  for (std::int32_t i = 0; i < num_nodes; ++i)
-    for (int d = 0; d < gdim; ++d)
-      out.x[gdim * i + d] = xall[3 * i + d];
+  // A P1 dof sits at a cell vertex: copy the mesh's vertex coordinates (the
+  // geometry dofmap lists a cell's vertices first, in the same reference
+  // order) rather than push the reference vertex forward through the cell map
+  // (tabulate_dof_coordinates), whose round-off puts a corner at
+  // -0.9999999999999999 on some meshes, depending on which cell maps it.
+  const std::span<const double> xg = mesh->geometry().x(); // (num_geometry_nodes, 3)
+  const auto& gdofs = mesh->geometry().dofmap();
   const auto& list = dofmap->list();
   const std::int32_t num_cells = list.num_nodes();
+  out.x.resize(gdim * num_nodes);
   out.cells.resize((gdim + 1) * num_cells);
   for (std::int32_t c = 0; c < num_cells; ++c)
   {
     auto dofs = list.links(c);
+    auto g = gdofs.links(c);
     for (int a = 0; a <= gdim; ++a)
+    {
       out.cells[(gdim + 1) * c + a] = dofs[a];
+      for (int d = 0; d < gdim; ++d)
+        out.x[gdim * dofs[a] + d] = xg[3 * g[a] + d];
+    }
   }
   return out;
 }

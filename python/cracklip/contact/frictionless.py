@@ -148,6 +148,8 @@ def solve_saddle(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: ContactSyste
     initial guess (u, lambda) for an iterative path (the previous active
     set's solution)."""
     m = cs.num_multipliers
+    if cs.space.kind == "naive":
+        check_constraint_rank(cs.B[np.flatnonzero(active)])
     A = saddle_matrix(K, cs.B, active) if linear is None else linear.saddle_matrix(K, cs.B, active)
     b = PETSc.Vec().createWithArray(np.concatenate([f, np.where(active, cs.g, 0.0)]), comm=PETSc.COMM_SELF)
     what = "contact saddle-point system"
@@ -160,6 +162,31 @@ def solve_saddle(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: ContactSyste
     b.destroy()
     x.destroy()
     return sol[:-m] if m else sol, sol[-m:] if m else np.zeros(0)
+
+
+#: Relative singular value of the active constraints B below which they are
+#: dependent: round-off leaves 1e-18 .. 1e-16 of the largest on the naive
+#: space's exact dependencies (gmsh meshes of the block, Mesh.RandomSeed 1 to
+#: 4), its smallest genuine one was 4e-8.
+RANK_TOL = 1e-12
+
+
+def check_constraint_rank(B: sp.csr_matrix) -> None:
+    """Raise SolverError if the rows of B (the active multipliers'
+    constraints) are linearly dependent. MUMPS' null-pivot detection alone
+    misses a dependency that round-off leaves a tiny nonzero pivot (the naive
+    space's on most meshes: the system was then solved with an arbitrary
+    multiplier component). Dense SVD: for the naive space only, whose
+    multipliers are few (a comparison with the paper), not the stable one."""
+    if B.shape[0] == 0:
+        return
+    cols = np.unique(B.indices)
+    s = np.linalg.svd(B[:, cols].toarray(), compute_uv=False)
+    dependent = int(np.sum(s <= RANK_TOL * s[0])) + max(0, B.shape[0] - s.size)
+    if dependent:
+        raise SolverError(f"the contact saddle-point system is singular: the {B.shape[0]} active contact "
+                          f"constraints have {dependent} linear dependenc{'y' if dependent == 1 else 'ies'} "
+                          f"(smallest singular value {s[-1] / s[0]:.1e} of the largest)")
 
 
 class _VisitedSets:
