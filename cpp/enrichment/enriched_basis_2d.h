@@ -2,6 +2,7 @@
 #pragma once
 
 #include "geometry/crack_geometry_2d.h"
+#include "geometry/p1_simplex.h"
 #include "enrichment/enrichment_layout.h"
 #include "enrichment/tip_functions_2d.h"
 
@@ -15,60 +16,6 @@
 
 namespace cracklip
 {
-
-/// Geometry of one triangle: node indices, vertex coordinates, constant
-/// P1 shape-function gradients (grad[a] = dN_a/dx, dN_a/dy) and |det J|.
-struct P1Cell
-{
-  std::array<std::int32_t, 3> nodes;
-  std::array<std::array<double, 2>, 3> xv;
-  std::array<std::array<double, 2>, 3> grad;
-  double detJ;
-
-  P1Cell(std::span<const double> x, std::span<const std::int32_t> cells, std::int32_t c)
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      nodes[a] = cells[3 * c + a];
-      xv[a] = {x[2 * nodes[a]], x[2 * nodes[a] + 1]};
-    }
-    const double J00 = xv[1][0] - xv[0][0], J01 = xv[2][0] - xv[0][0];
-    const double J10 = xv[1][1] - xv[0][1], J11 = xv[2][1] - xv[0][1];
-    const double det = J00 * J11 - J01 * J10;
-    if (!(std::abs(det) > 0.0))
-      throw std::runtime_error("cell " + std::to_string(c) + " has zero area");
-    // Rows of J^{-1}: dxi/dx, deta/dx.
-    const double i00 = J11 / det, i01 = -J01 / det, i10 = -J10 / det, i11 = J00 / det;
-    grad[1] = {i00, i01};
-    grad[2] = {i10, i11};
-    grad[0] = {-i00 - i10, -i01 - i11};
-    detJ = std::abs(det);
-  }
-
-  std::array<double, 2> physical(std::array<double, 2> r) const
-  {
-    return {xv[0][0] + r[0] * (xv[1][0] - xv[0][0]) + r[1] * (xv[2][0] - xv[0][0]),
-            xv[0][1] + r[0] * (xv[1][1] - xv[0][1]) + r[1] * (xv[2][1] - xv[0][1])};
-  }
-  /// Reference coordinates of a physical point (affine inverse).
-  std::array<double, 2> reference(std::array<double, 2> p) const
-  {
-    const double dx = p[0] - xv[0][0], dy = p[1] - xv[0][1];
-    return {grad[1][0] * dx + grad[1][1] * dy, grad[2][0] * dx + grad[2][1] * dy};
-  }
-  static std::array<double, 3> shape(std::array<double, 2> r)
-  {
-    return {1.0 - r[0] - r[1], r[0], r[1]};
-  }
-  /// Local index (0..2) of a mesh node in this cell, -1 if absent.
-  int local(std::int32_t node) const
-  {
-    for (int a = 0; a < 3; ++a)
-      if (nodes[a] == node)
-        return a;
-    return -1;
-  }
-};
 
 /// The basis functions of an enriched cell: 3 standard nodes then the cell's
 /// pseudo-nodes, each with two scalar dofs. `dofs` holds global scalar dof

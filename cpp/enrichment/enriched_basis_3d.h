@@ -4,7 +4,7 @@
 #include "enrichment/dof_numbering.h"
 #include "enrichment/enrichment_layout_3d.h"
 #include "enrichment/front_functions_3d.h"
-#include "geometry/p1_tetrahedron.h"
+#include "geometry/p1_simplex.h"
 
 #include <array>
 #include <cmath>

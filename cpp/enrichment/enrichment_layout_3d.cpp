@@ -1,5 +1,5 @@
 #include "enrichment/enrichment_layout_3d.h"
-#include "geometry/p1_tetrahedron.h"
+#include "geometry/p1_simplex.h"
 
 #include <algorithm>
 #include <cmath>

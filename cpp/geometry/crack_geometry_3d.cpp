@@ -1,6 +1,6 @@
 #include "geometry/crack_geometry_3d.h"
 
-#include "geometry/p1_tetrahedron.h"
+#include "geometry/p1_simplex.h"
 #include "geometry/snapping.h"
 #include "geometry/vec3.h"
 

@@ -1,6 +1,6 @@
 #include "quadrature/cell_quadrature_3d.h"
 
-#include "geometry/p1_tetrahedron.h"
+#include "geometry/p1_simplex.h"
 #include "geometry/vec3.h"
 #include "quadrature/front_rules_3d.h"
 
