@@ -1,6 +1,7 @@
 #include "post/fields_2d.h"
 
-#include "enrichment/enriched_basis_2d.h"
+#include "assembly/elasticity.h"
+#include "enrichment/enriched_basis.h"
 
 #include <stdexcept>
 #include <string>
@@ -34,61 +35,13 @@ void contract(const CellBasis& basis, std::span<const double> u, const std::vect
 }
 } // namespace
 
-std::vector<double> evaluate_displacement(std::span<const double> x,
-                                          std::span<const std::int32_t> cells,
-                                          const EnrichmentLayout& layout,
-                                          std::span<const CrackGeometry* const> cracks,
-                                          std::span<const double> u,
-                                          std::span<const std::int32_t> point_cells,
-                                          std::span<const double> ref_points,
-                                          std::span<const std::int8_t> sides,
-                                          std::vector<double>* grad_out)
-{
-  check_size(u, layout);
-  const std::size_t n = point_cells.size();
-  if (ref_points.size() != 2 * n or sides.size() != n)
-    throw std::invalid_argument("evaluate_displacement: expected ref_points (n, 2) and sides (n)");
-  std::vector<double> out(2 * n, 0.0), val, grad;
-  if (grad_out)
-    grad_out->assign(4 * n, 0.0);
-  std::vector<int> side;
-  const std::size_t num_cells = cells.size() / 3;
-  for (std::size_t p = 0; p < n; ++p)
-  {
-    const std::int32_t c = point_cells[p];
-    if (c < 0 or static_cast<std::size_t>(c) >= num_cells)
-      throw std::invalid_argument("evaluate_displacement: cell index out of range");
-    const P1Cell cell(x, cells, c);
-    const CellBasis basis(cell, layout, c);
-    const std::array<double, 2> r = {ref_points[2 * p], ref_points[2 * p + 1]};
-    int s = sides[p];
-    if (s == 0)
-    {
-      // The side the point lies on, for the crack crossing or ending in c.
-      for (const CrackGeometry* g : cracks)
-        if (g->crack_cell_index[c] >= 0 or g->tip_cell_index[c] >= 0)
-        {
-          const auto N = P1Cell::shape(r);
-          double phi = 0.0;
-          for (int a = 0; a < 3; ++a)
-            phi += N[a] * g->phi[cell.nodes[a]];
-          s = phi >= 0.0 ? 1 : -1;
-        }
-    }
-    region_sides(cracks, c, s, side);
-    evaluate_basis(cell, basis, layout, side, r, val, grad);
-    contract(basis, u, val, grad, &out[2 * p], grad_out ? &(*grad_out)[4 * p] : nullptr);
-  }
-  return out;
-}
-
 SubcellFields compute_subcell_fields(std::span<const double> x, std::span<const std::int32_t> cells,
                                      const EnrichmentLayout& layout,
                                      std::span<const CrackGeometry* const> cracks,
                                      std::span<const double> u, double E, double nu)
 {
   check_size(u, layout);
-  const auto D = plane_strain_matrix(E, nu);
+  const auto D = elasticity_matrix<2>(E, nu);
   const std::size_t num_cells = cells.size() / 3;
   SubcellFields out;
   out.points.reserve(6 * num_cells);
@@ -109,14 +62,14 @@ SubcellFields compute_subcell_fields(std::span<const double> x, std::span<const 
       {
         const auto xp = cell.physical(tri[i]);
         out.points.insert(out.points.end(), xp.begin(), xp.end());
-        evaluate_basis(cell, basis, layout, side, tri[i], val, grad);
+        evaluate_basis<2>(cell, basis, layout, cracks, side, tri[i], val, grad);
         double ud[2] = {0.0, 0.0};
         contract(basis, u, val, grad, ud, nullptr);
         out.displacement.insert(out.displacement.end(), ud, ud + 2);
       }
       const std::array<double, 2> rc = {(tri[0][0] + tri[1][0] + tri[2][0]) / 3.0,
                                          (tri[0][1] + tri[1][1] + tri[2][1]) / 3.0};
-      evaluate_basis(cell, basis, layout, side, rc, val, grad);
+      evaluate_basis<2>(cell, basis, layout, cracks, side, rc, val, grad);
       double g[4] = {0.0, 0.0, 0.0, 0.0};
       contract(basis, u, val, grad, nullptr, g);
       const double eps[3] = {g[0], g[3], g[1] + g[2]};
@@ -155,7 +108,7 @@ FieldPoints compute_field_points(std::span<const double> x, std::span<const std:
     {
       const std::array<double, 2> r = {qp.ref[2 * q], qp.ref[2 * q + 1]};
       region_sides(cracks, c, qp.side[q], side);
-      evaluate_basis(cell, basis, layout, side, r, val, grad);
+      evaluate_basis<2>(cell, basis, layout, cracks, side, r, val, grad);
       double g[4] = {0.0, 0.0, 0.0, 0.0};
       contract(basis, u, val, grad, nullptr, g);
       const auto xp = cell.physical(r);

@@ -1,4 +1,6 @@
-// Post-processing of enriched P1 fields (layer a).
+// Post-processing of enriched P1 fields on triangles (layer a): the
+// solution on sub-triangles, and at the enriched quadrature points of cells
+// (the point values in any dimension are displacement.h's).
 #pragma once
 
 #include "quadrature/cell_quadrature_2d.h"
@@ -11,22 +13,6 @@
 
 namespace cracklip
 {
-
-/// Displacement (n, 2) and, if grad is not null, its gradient (n, 2, 2)
-/// (grad[p][i][j] = d u_i / d x_j) at points given by cell and reference
-/// coordinates. u: scalar dofs (2 * layout.num_nodes_total()); point_cells
-/// (n); ref_points (n, 2); sides (n): +1 / -1 evaluates the + / - lip of a
-/// crack crossing the cell (the polynomial of that side), 0 the side the
-/// point lies on (+ on the crack itself).
-std::vector<double> evaluate_displacement(std::span<const double> x,
-                                          std::span<const std::int32_t> cells,
-                                          const EnrichmentLayout& layout,
-                                          std::span<const CrackGeometry* const> cracks,
-                                          std::span<const double> u,
-                                          std::span<const std::int32_t> point_cells,
-                                          std::span<const double> ref_points,
-                                          std::span<const std::int8_t> sides,
-                                          std::vector<double>* grad = nullptr);
 
 /// The solution on a mesh of sub-triangles: every uncrossed cell is one
 /// sub-triangle, every crossed cell contributes its sub-triangles. Vertices

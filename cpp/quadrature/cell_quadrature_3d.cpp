@@ -3,6 +3,7 @@
 #include "geometry/p1_simplex.h"
 #include "geometry/vec3.h"
 #include "quadrature/front_rules_3d.h"
+#include "quadrature/rules.h"
 
 #include <algorithm>
 #include <array>
@@ -173,6 +174,100 @@ void compute_cell_quadrature_3d(std::span<const double> x, std::span<const std::
     append(quadrature::tetrahedron_point_collapsed(xv, d, options.front_radial, options.front_angular,
                                                    options.front_axial),
            R, cc.side[k], nf);
+  }
+}
+
+void compute_enriched_cell_quadrature(std::span<const double> x, std::span<const std::int32_t> cells,
+                                      const EnrichmentLayout& layout, std::span<const CrackGeometry3D* const> cracks,
+                                      std::int32_t c, const QuadratureOptions3D& options, CellQuadrature3D& out)
+{
+  out.clear();
+  // The crack whose front functions the cell carries, if any.
+  int front_crack = -1;
+  if (const std::int32_t ie = layout.cell_index.empty() ? -1 : layout.cell_index[c]; ie >= 0)
+    for (std::int32_t j = layout.cell_offsets[ie]; j < layout.cell_offsets[ie + 1] and front_crack < 0; ++j)
+      if (const std::int32_t k = layout.cell_enr[j];
+          layout.kind[k] != static_cast<std::int8_t>(EnrichmentKind::heaviside))
+        front_crack = layout.crack[k];
+  const int ic = crossing_crack(cracks, c);
+  if (ic >= 0)
+  {
+    // Front functions are smooth but not polynomial away from the front:
+    // the sub-tetrahedra away from it get a degree graded by the distance.
+    QuadratureOptions3D o = options;
+    o.front_functions = front_crack >= 0;
+    compute_cell_quadrature_3d(x, cells, *cracks[ic], c, o, out);
+    return;
+  }
+  const P1Tetrahedron T(x, cells, c);
+  const double scale6 = std::abs(T.detJ);
+  auto append = [&](const quadrature::Rule& rule)
+  {
+    for (int q = 0; q < rule.size(); ++q)
+    {
+      out.ref.insert(out.ref.end(), rule.points.begin() + 3 * q, rule.points.begin() + 3 * q + 3);
+      out.weight.push_back(rule.weights[q] * scale6);
+      out.side.push_back(0);
+      out.front_vertices.push_back(0);
+    }
+  };
+  if (front_crack < 0)
+  {
+    append(quadrature::tetrahedron_cached(options.degree));
+    return;
+  }
+  Point3 on_line, dir;
+  bool near = false;
+  if (options.front_rule == FrontQuadrature::collapsed and options.near_factor > 0.0
+      and front_line(x, cells, *cracks[front_crack], c, on_line, dir))
+  {
+    double dmin = 1e300, diam = 0.0;
+    for (int a = 0; a < 4; ++a)
+    {
+      double w[3], along = 0.0;
+      for (int i = 0; i < 3; ++i)
+        w[i] = T.xv[a][i] - on_line[i], along += w[i] * dir[i];
+      double d2 = 0.0;
+      for (int i = 0; i < 3; ++i)
+        d2 += (w[i] - along * dir[i]) * (w[i] - along * dir[i]);
+      dmin = std::min(dmin, std::sqrt(d2));
+      for (int b = a + 1; b < 4; ++b)
+      {
+        double e2 = 0.0;
+        for (int i = 0; i < 3; ++i)
+          e2 += (T.xv[a][i] - T.xv[b][i]) * (T.xv[a][i] - T.xv[b][i]);
+        diam = std::max(diam, std::sqrt(e2));
+      }
+    }
+    near = dmin < options.near_factor * diam;
+  }
+  if (near)
+  {
+    std::array<double, 12> xv;
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i)
+        xv[3 * a + i] = T.xv[a][i];
+    append(quadrature::tetrahedron_near_front(xv, on_line, dir, options.front_radial, options.front_angular,
+                                              options.front_axial));
+  }
+  else
+  {
+    // Gauss graded by the distance of the nearest vertex to the front (its
+    // level sets' distance at the vertices).
+    const CrackGeometry3D& g = *cracks[front_crack];
+    double rmin = std::numeric_limits<double>::infinity(), diam = 0.0;
+    for (int a = 0; a < 4; ++a)
+    {
+      rmin = std::min(rmin, std::hypot(g.phi[T.nodes[a]], g.psi[T.nodes[a]]));
+      for (int b = a + 1; b < 4; ++b)
+      {
+        double e2 = 0.0;
+        for (int i = 0; i < 3; ++i)
+          e2 += (T.xv[a][i] - T.xv[b][i]) * (T.xv[a][i] - T.xv[b][i]);
+        diam = std::max(diam, std::sqrt(e2));
+      }
+    }
+    append(quadrature::tetrahedron_cached(front_function_degree(options, rmin / diam)));
   }
 }
 
