@@ -31,18 +31,31 @@
 namespace cracklip
 {
 
+/// What every dimension's part holds: the crack's tips (front pieces),
+/// each node's core tip (-1 for others) and the selection input made of
+/// them.
+class CrackEnrichmentBase
+{
+public:
+  CrackEnrichmentBase() = default;
+  CrackEnrichmentBase(const CrackEnrichmentBase&) = delete;
+  const SelectionInput& selection() const { return input_; }
+
+protected:
+  std::vector<std::int32_t> core_tip_, tips_;
+  SelectionInput input_;
+};
+
 template <int dim>
 class CrackEnrichment;
 
 /// A curve with tips on triangles (crack_enrichment_2d.cpp).
 template <>
-class CrackEnrichment<2>
+class CrackEnrichment<2> : public CrackEnrichmentBase
 {
 public:
   CrackEnrichment(std::span<const double> x, std::span<const std::int32_t> cells, const CrackGeometry& g,
                   std::int32_t ic, const EnrichmentOptions& options, EnrichmentLayout& layout);
-  CrackEnrichment(const CrackEnrichment&) = delete;
-  const SelectionInput& selection() const { return input_; }
   /// The dim * dim shift values of a tip pseudo-node at its base node.
   void shift(const PseudoNode& pn, int side, std::span<double> out) const;
   static void complete(EnrichmentLayout&, std::span<const double>, std::span<const std::int32_t>,
@@ -53,19 +66,15 @@ public:
 private:
   std::span<const double> x_;
   const EnrichmentLayout& layout_;
-  std::vector<std::int32_t> core_tip_, tips_;
-  SelectionInput input_;
 };
 
 /// A surface with fronts on tetrahedra (crack_enrichment_3d.cpp).
 template <>
-class CrackEnrichment<3>
+class CrackEnrichment<3> : public CrackEnrichmentBase
 {
 public:
   CrackEnrichment(std::span<const double> x, std::span<const std::int32_t> cells, const CrackGeometry3D& g,
                   std::int32_t ic, const EnrichmentOptions& options, EnrichmentLayout& layout);
-  CrackEnrichment(const CrackEnrichment&) = delete;
-  const SelectionInput& selection() const { return input_; }
   void shift(const PseudoNode& pn, int side, std::span<double> out) const;
   /// The nodal frames of every node of every cell carrying front functions.
   static void complete(EnrichmentLayout& layout, std::span<const double> x, std::span<const std::int32_t> cells,
@@ -81,9 +90,7 @@ private:
   const CrackGeometry3D& g_;
   const EnrichmentOptions& options_;
   std::unique_ptr<FrontLocator> locator_;
-  std::vector<std::int32_t> core_tip_, tips_;
   std::vector<double> bare_, ramped_, jump_share_;
-  SelectionInput input_;
 };
 
 } // namespace cracklip

@@ -10,12 +10,9 @@
 namespace cracklip
 {
 
-std::array<double, 2> interaction_integral(const TipFrame& tip, double E, double nu,
-                                           std::span<const double> points,
-                                           std::span<const double> weights,
-                                           std::span<const double> grad_q,
-                                           std::span<const double> grad_u,
-                                           std::span<const std::int8_t> sides)
+std::array<double, 2> interaction_integral(const TipFrame& tip, double E, double nu, std::span<const double> points,
+                                           std::span<const double> weights, std::span<const double> grad_q,
+                                           std::span<const double> grad_u, std::span<const std::int8_t> sides)
 {
   const std::size_t n = weights.size();
   if (points.size() != 2 * n or grad_q.size() != 2 * n or grad_u.size() != 4 * n or sides.size() != n)
@@ -24,9 +21,9 @@ std::array<double, 2> interaction_integral(const TipFrame& tip, double E, double
   const IsotropicElasticity<2> el(E, nu, "interaction_integral (plane strain)");
   const double e1[2] = {tip.e1[0], tip.e1[1]};
   std::array<std::array<double, 2>, 2> U;
-  return interaction_sum<2>(el, e1, weights, grad_q, grad_u,
-                            [&](std::size_t p, std::array<std::array<std::array<double, 2>, 2>, 2>& dU)
-                            { williams_displacement(tip, {points[2 * p], points[2 * p + 1]}, sides[p], el.kappa, U, dU); });
+  const auto aux = [&](std::size_t p, std::array<std::array<std::array<double, 2>, 2>, 2>& dU)
+  { williams_displacement(tip, {points[2 * p], points[2 * p + 1]}, sides[p], el.kappa, U, dU); };
+  return interaction_sum<2>(el, e1, weights, grad_q, grad_u, aux);
 }
 
 double domain_q(double distance, double radius, std::optional<double> inner_radius)

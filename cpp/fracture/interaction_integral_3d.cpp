@@ -68,6 +68,20 @@ void aux_point(const Elasticity& el, const FrontFrame& f, double curvature, cons
       a.div[m][i] = dR * f.e1[i] + dz * f.e2[i] + d3 * f.e3[i];
   }
 }
+
+/// aux_point at every point p (frames (n, 12), curvature (n), x (n, 3),
+/// sides (n)), then f(p, fields).
+template <typename F>
+void for_each_aux_point(const Elasticity& el, std::span<const double> frames, std::span<const double> curvature,
+                        std::span<const double> x, std::span<const std::int8_t> sides, F&& f)
+{
+  AuxPoint a;
+  for (std::size_t p = 0; p < sides.size(); ++p)
+  {
+    aux_point(el, frame_at(frames, p), curvature[p], {x[3 * p], x[3 * p + 1], x[3 * p + 2]}, sides[p], a);
+    f(p, a);
+  }
+}
 } // namespace
 
 void auxiliary_fields_3d(double E, double nu, std::span<const double> frames, std::span<const double> curvature,
@@ -80,20 +94,19 @@ void auxiliary_fields_3d(double E, double nu, std::span<const double> frames, st
     throw std::invalid_argument("auxiliary_fields_3d: expected frames (n, 12), curvature (n), x (n, 3), sides (n), "
                                 "U (n, 3, 3), G (n, 3, 3, 3), local (n, 3, 3), div_sigma (n, 3, 3)");
   const Elasticity el(E, nu, "auxiliary_fields_3d");
-  AuxPoint a;
-  for (std::size_t p = 0; p < n; ++p)
-  {
-    aux_point(el, frame_at(frames, p), curvature[p], {x[3 * p], x[3 * p + 1], x[3 * p + 2]}, sides[p], a);
-    for (int m = 0; m < 3; ++m)
-      for (int i = 0; i < 3; ++i)
-      {
-        U[9 * p + 3 * m + i] = a.U[m][i];
-        local[9 * p + 3 * m + i] = a.local[m][i];
-        div_sigma[9 * p + 3 * m + i] = a.div[m][i];
-        for (int j = 0; j < 3; ++j)
-          G[27 * p + 9 * m + 3 * i + j] = a.G[m][i][j];
-      }
-  }
+  for_each_aux_point(el, frames, curvature, x, sides,
+                     [&](std::size_t p, const AuxPoint& a)
+                     {
+                       for (int m = 0; m < 3; ++m)
+                         for (int i = 0; i < 3; ++i)
+                         {
+                           U[9 * p + 3 * m + i] = a.U[m][i];
+                           local[9 * p + 3 * m + i] = a.local[m][i];
+                           div_sigma[9 * p + 3 * m + i] = a.div[m][i];
+                           for (int j = 0; j < 3; ++j)
+                             G[27 * p + 9 * m + 3 * i + j] = a.G[m][i][j];
+                         }
+                     });
 }
 
 void interaction_integrand_3d(double E, double nu, std::span<const double> frames, std::span<const double> curvature,
@@ -107,10 +120,8 @@ void interaction_integrand_3d(double E, double nu, std::span<const double> frame
     throw std::invalid_argument("interaction_integrand_3d: expected frames (n, 12), curvature (n), x (n, 3), "
                                 "grad_u (n, 3, 3), sides (n), body (3) or empty, T (n, 3, 3, 3), D (n, 3, 3)");
   const Elasticity el(E, nu, "interaction_integrand_3d");
-  AuxPoint a;
-  for (std::size_t p = 0; p < n; ++p)
+  const auto integrand = [&](std::size_t p, const AuxPoint& a)
   {
-    aux_point(el, frame_at(frames, p), curvature[p], {x[3 * p], x[3 * p + 1], x[3 * p + 2]}, sides[p], a);
     double g[3][3], sig[3][3];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
@@ -141,7 +152,8 @@ void interaction_integrand_3d(double E, double nu, std::span<const double> frame
         D[9 * p + 3 * m + l] = v;
       }
     }
-  }
+  };
+  for_each_aux_point(el, frames, curvature, x, sides, integrand);
 }
 
 std::array<double, 3> interaction_integral_3d(double E, double nu, const Point3& d, std::span<const double> frames,
@@ -156,11 +168,9 @@ std::array<double, 3> interaction_integral_3d(double E, double nu, const Point3&
                                 "grad_q (n, 3), grad_u (n, 3, 3), sides (n)");
   const Elasticity el(E, nu, "interaction_integral_3d");
   std::array<Point3, 3> U;
-  return interaction_sum<3>(el, d.data(), weights, grad_q, grad_u,
-                            [&](std::size_t p, std::array<std::array<Point3, 3>, 3>& dU) {
-                              front_vector_functions(frame_at(frames, p), {x[3 * p], x[3 * p + 1], x[3 * p + 2]},
-                                                     sides[p], el.kappa, U, dU);
-                            });
+  const auto aux = [&](std::size_t p, std::array<std::array<Point3, 3>, 3>& dU)
+  { front_vector_functions(frame_at(frames, p), {x[3 * p], x[3 * p + 1], x[3 * p + 2]}, sides[p], el.kappa, U, dU); };
+  return interaction_sum<3>(el, d.data(), weights, grad_q, grad_u, aux);
 }
 
 void aux_derivative_3d(double E, double nu, const Point3& d, std::span<const double> frames,

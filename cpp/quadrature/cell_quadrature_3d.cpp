@@ -15,20 +15,6 @@ namespace cracklip
 {
 using namespace vec3;
 
-Point3 front_direction(std::span<const double> x, std::span<const std::int32_t> cells, const CrackGeometry3D& g,
-                       std::int32_t c)
-{
-  const P1Tetrahedron T(x, cells, c);
-  std::array<double, 4> f, p;
-  for (int a = 0; a < 4; ++a)
-    f[a] = g.phi[T.nodes[a]], p[a] = g.psi[T.nodes[a]];
-  const Point3 gf = T.gradient(f), gp = T.gradient(p);
-  const Point3 d = cross(gp, gf);
-  if (!(norm(d) > 1e-12 * norm(gp) * norm(gf)))
-    return {0.0, 0.0, 0.0};
-  return unit(d);
-}
-
 bool front_line(std::span<const double> x, std::span<const std::int32_t> cells, const CrackGeometry3D& g,
                 std::int32_t c, Point3& point, Point3& direction)
 {
@@ -49,6 +35,35 @@ bool front_line(std::span<const double> x, std::span<const std::int32_t> cells, 
   const double l0 = (cc * v0 - b * v1) / det, l1 = (a * v1 - b * v0) / det;
   point = axpy(axpy(xc, -l0, gf), -l1, gp);
   return true;
+}
+
+Point3 front_direction(std::span<const double> x, std::span<const std::int32_t> cells, const CrackGeometry3D& g,
+                       std::int32_t c)
+{
+  Point3 point, direction;
+  return front_line(x, cells, g, c, point, direction) ? direction : Point3{0.0, 0.0, 0.0};
+}
+
+double diameter(std::span<const Point3> points)
+{
+  double d = 0.0;
+  for (std::size_t a = 0; a < points.size(); ++a)
+    for (std::size_t b = a + 1; b < points.size(); ++b)
+      d = std::max(d, dist(points[a], points[b]));
+  return d;
+}
+
+bool near_line(std::span<const Point3> vertices, const Point3& on_line, const Point3& direction, double factor)
+{
+  if (!(factor > 0.0))
+    return false;
+  double dmin = std::numeric_limits<double>::infinity();
+  for (const Point3& v : vertices)
+  {
+    const Point3 w = sub(v, on_line);
+    dmin = std::min(dmin, norm(axpy(w, -dot(w, direction), direction)));
+  }
+  return dmin < factor * diameter(vertices);
 }
 
 int front_function_degree(const QuadratureOptions3D& options, double rho)
@@ -112,27 +127,14 @@ void compute_cell_quadrature_3d(std::span<const double> x, std::span<const std::
     if (nf == 0)
     {
       // Near the front line: the near-front rule (signed cones from it).
-      bool near = false;
-      if (has_line and options.near_factor > 0.0)
-      {
-        double dmin = std::numeric_limits<double>::infinity(), diam = 0.0;
-        for (int a = 0; a < 4; ++a)
-        {
-          const Point3 w = sub(X[a], on_line);
-          dmin = std::min(dmin, norm(axpy(w, -dot(w, dir), dir)));
-          for (int b = a + 1; b < 4; ++b)
-            diam = std::max(diam, dist(X[a], X[b]));
-        }
-        near = dmin < options.near_factor * diam;
-      }
-      if (near)
+      if (has_line and near_line(X, on_line, dir, options.near_factor))
         append(quadrature::tetrahedron_near_front(xv, on_line, dir, options.front_radial, options.front_angular,
                                                   options.front_axial),
                R, cc.side[k], 0);
       else if (options.front_functions)
       {
         // Distance to the front from the P1 level sets at the vertices.
-        double rmin = std::numeric_limits<double>::infinity(), diam = 0.0;
+        double rmin = std::numeric_limits<double>::infinity();
         for (int a = 0; a < 4; ++a)
         {
           const auto N = P1Tetrahedron::shape({R[3 * a], R[3 * a + 1], R[3 * a + 2]});
@@ -140,10 +142,8 @@ void compute_cell_quadrature_3d(std::span<const double> x, std::span<const std::
           for (int b = 0; b < 4; ++b)
             f += N[b] * g.phi[T.nodes[b]], p += N[b] * g.psi[T.nodes[b]];
           rmin = std::min(rmin, std::hypot(f, p));
-          for (int b = a + 1; b < 4; ++b)
-            diam = std::max(diam, dist(X[a], X[b]));
         }
-        append(gauss_rule(front_function_degree(options, rmin / diam)), R, cc.side[k], 0);
+        append(gauss_rule(front_function_degree(options, rmin / diameter(X))), R, cc.side[k], 0);
       }
       else
         append(gauss_rule(options.degree), R, cc.side[k], 0);
@@ -217,30 +217,9 @@ void compute_enriched_cell_quadrature(std::span<const double> x, std::span<const
     return;
   }
   Point3 on_line, dir;
-  bool near = false;
-  if (options.front_rule == FrontQuadrature::collapsed and options.near_factor > 0.0
-      and front_line(x, cells, *cracks[front_crack], c, on_line, dir))
-  {
-    double dmin = 1e300, diam = 0.0;
-    for (int a = 0; a < 4; ++a)
-    {
-      double w[3], along = 0.0;
-      for (int i = 0; i < 3; ++i)
-        w[i] = T.xv[a][i] - on_line[i], along += w[i] * dir[i];
-      double d2 = 0.0;
-      for (int i = 0; i < 3; ++i)
-        d2 += (w[i] - along * dir[i]) * (w[i] - along * dir[i]);
-      dmin = std::min(dmin, std::sqrt(d2));
-      for (int b = a + 1; b < 4; ++b)
-      {
-        double e2 = 0.0;
-        for (int i = 0; i < 3; ++i)
-          e2 += (T.xv[a][i] - T.xv[b][i]) * (T.xv[a][i] - T.xv[b][i]);
-        diam = std::max(diam, std::sqrt(e2));
-      }
-    }
-    near = dmin < options.near_factor * diam;
-  }
+  const bool near = options.front_rule == FrontQuadrature::collapsed and options.near_factor > 0.0
+                    and front_line(x, cells, *cracks[front_crack], c, on_line, dir)
+                    and near_line(T.xv, on_line, dir, options.near_factor);
   if (near)
   {
     std::array<double, 12> xv;
@@ -255,19 +234,10 @@ void compute_enriched_cell_quadrature(std::span<const double> x, std::span<const
     // Gauss graded by the distance of the nearest vertex to the front (its
     // level sets' distance at the vertices).
     const CrackGeometry3D& g = *cracks[front_crack];
-    double rmin = std::numeric_limits<double>::infinity(), diam = 0.0;
+    double rmin = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 4; ++a)
-    {
       rmin = std::min(rmin, std::hypot(g.phi[T.nodes[a]], g.psi[T.nodes[a]]));
-      for (int b = a + 1; b < 4; ++b)
-      {
-        double e2 = 0.0;
-        for (int i = 0; i < 3; ++i)
-          e2 += (T.xv[a][i] - T.xv[b][i]) * (T.xv[a][i] - T.xv[b][i]);
-        diam = std::max(diam, std::sqrt(e2));
-      }
-    }
-    append(quadrature::tetrahedron_cached(front_function_degree(options, rmin / diam)));
+    append(quadrature::tetrahedron_cached(front_function_degree(options, rmin / diameter(T.xv))));
   }
 }
 

@@ -68,6 +68,14 @@ struct QuadratureOptions3D
   bool front_functions = false;
 };
 
+/// Largest distance between two of the points (a piece's diameter).
+double diameter(std::span<const Point3> points);
+
+/// A piece lies near a line (a point on it, its unit direction): its
+/// nearest vertex within factor times its diameter of the line (never for
+/// factor <= 0). Decides where the near-front rules take over.
+bool near_line(std::span<const Point3> vertices, const Point3& on_line, const Point3& direction, double factor);
+
 /// Gauss degree for a piece carrying front functions (smooth there but not
 /// polynomial, varying on the scale of the distance r to the front) whose
 /// nearest vertex lies rho diameters from the front line: far_degree below

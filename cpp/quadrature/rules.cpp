@@ -27,6 +27,21 @@ const Rule& cached(std::vector<std::unique_ptr<Rule>>& cache, int key, Make make
   return *cache[key];
 }
 
+/// P_n(x) and its derivative P_n'(x) (n >= 1), by the three-term recurrence.
+std::array<double, 2> legendre(int n, double x)
+{
+  double p0 = 1.0, p1 = x;
+  for (int k = 2; k <= n; ++k)
+  {
+    const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+    p0 = p1;
+    p1 = p2;
+  }
+  const double pn = (n == 1) ? x : p1;
+  const double pnm1 = (n == 1) ? 1.0 : p0;
+  return {pn, n * (x * pn - pnm1) / (x * x - 1.0)};
+}
+
 Rule make_gauss_legendre(int n)
 {
   if (n < 1)
@@ -40,35 +55,16 @@ Rule make_gauss_legendre(int n)
   for (int i = 0; i < n; ++i)
   {
     double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5));
-    double dp = 1.0;
     for (int it = 0; it < 100; ++it)
     {
-      double p0 = 1.0, p1 = x;
-      for (int k = 2; k <= n; ++k)
-      {
-        const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      const double pn = (n == 1) ? x : p1;
-      const double pnm1 = (n == 1) ? 1.0 : p0;
-      dp = n * (x * pn - pnm1) / (x * x - 1.0);
+      const auto [pn, dp] = legendre(n, x);
       const double dx = pn / dp;
       x -= dx;
       if (std::abs(dx) < 1e-16)
         break;
     }
-    // Recompute derivative at the converged point.
-    double p0 = 1.0, p1 = x;
-    for (int k = 2; k <= n; ++k)
-    {
-      const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
-      p0 = p1;
-      p1 = p2;
-    }
-    const double pn = (n == 1) ? x : p1;
-    const double pnm1 = (n == 1) ? 1.0 : p0;
-    dp = n * (x * pn - pnm1) / (x * x - 1.0);
+    // The derivative at the converged point.
+    const double dp = legendre(n, x)[1];
     rule.points[i] = 0.5 * (1.0 - x);
     rule.weights[i] = 1.0 / ((1.0 - x * x) * dp * dp);
   }
