@@ -17,9 +17,8 @@
 #include "geometry/crack_geometry_2d.h"
 #include "geometry/p1_simplex.h"
 
-#include <cmath>
-
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <utility>
