@@ -28,52 +28,43 @@ constexpr double crack_at = 0.51, front_at = 0.53; // crack plane / line, tip / 
 /// The crack (a line at y = 0.51 on a triangle grid, a plane at z = 0.51 on a
 /// Kuhn cube, both through or ending at x = 0.53) and the exact mode I field.
 template <int dim>
-struct Problem;
-
-template <>
-struct Problem<2>
+struct Problem
 {
   std::vector<double> x;
   std::vector<std::int32_t> cells;
-  CrackGeometry g;
+  CrackGeometryOf<dim> g;
   explicit Problem(bool through)
   {
-    test::triangle_grid(4, x, cells);
-    const CrackPath c{{-1.0, crack_at, through ? 2.0 : front_at, crack_at}, {false, !through}};
-    g = compute_crack_geometry(x, cells, c, 1e-8);
+    if constexpr (dim == 2)
+    {
+      test::triangle_grid(4, x, cells);
+      g = compute_crack_geometry(x, cells, CrackPath{{-1.0, crack_at, through ? 2.0 : front_at, crack_at},
+                                                     {false, !through}}, 1e-8);
+    }
+    else
+    {
+      test::kuhn_cube(4, x, cells);
+      const std::size_t n = x.size() / 3;
+      std::vector<double> phi(n), psi(n);
+      for (std::size_t i = 0; i < n; ++i)
+        phi[i] = x[3 * i + 2] - crack_at, psi[i] = through ? -1.0 : x[3 * i] - front_at;
+      g = compute_crack_geometry_3d(x, cells, phi, psi, 1e-8);
+    }
   }
-  static double phi(const double* p) { return p[1] - crack_at; }
-  static void williams(const double* p, int side, std::array<double, 2>& U, std::array<std::array<double, 2>, 2>& dU)
+  /// The crack's level set: the last coordinate's distance to the crack.
+  static double phi(const double* p) { return p[dim - 1] - crack_at; }
+  /// U_I (unscaled) and its gradient at p on lip branch `side`: the tip at
+  /// (0.53, 0.51), e1 = x; the front through (0.53, ., 0.51) along -y.
+  static void williams(const double* p, int side, std::array<double, dim>& U,
+                       std::array<std::array<double, dim>, dim>& dU)
   {
-    std::array<std::array<double, 2>, 2> u;
-    std::array<std::array<std::array<double, 2>, 2>, 2> du;
-    williams_displacement(TipFrame{{front_at, crack_at}, {1.0, 0.0}, 1}, {p[0], p[1]}, side, kappa, u, du);
-    U = u[0], dU = du[0];
-  }
-};
-
-template <>
-struct Problem<3>
-{
-  std::vector<double> x;
-  std::vector<std::int32_t> cells;
-  CrackGeometry3D g;
-  explicit Problem(bool through)
-  {
-    test::kuhn_cube(4, x, cells);
-    const std::size_t n = x.size() / 3;
-    std::vector<double> phi(n), psi(n);
-    for (std::size_t i = 0; i < n; ++i)
-      phi[i] = x[3 * i + 2] - crack_at, psi[i] = through ? -1.0 : x[3 * i] - front_at;
-    g = compute_crack_geometry_3d(x, cells, phi, psi, 1e-8);
-  }
-  static double phi(const double* p) { return p[2] - crack_at; }
-  static void williams(const double* p, int side, std::array<double, 3>& U, std::array<std::array<double, 3>, 3>& dU)
-  {
-    const FrontFrame f{{front_at, 0.0, crack_at}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, {0.0, -1.0, 0.0}};
-    std::array<Point3, 3> u;
-    std::array<std::array<Point3, 3>, 3> du;
-    front_vector_functions(f, {p[0], p[1], p[2]}, side, kappa, u, du);
+    std::array<std::array<double, dim>, dim> u;
+    std::array<std::array<std::array<double, dim>, dim>, dim> du;
+    if constexpr (dim == 2)
+      williams_displacement(TipFrame{{front_at, crack_at}, {1.0, 0.0}, 1}, {p[0], p[1]}, side, kappa, u, du);
+    else
+      front_vector_functions(FrontFrame{{front_at, 0.0, crack_at}, {1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, {0.0, -1.0, 0.0}},
+                             {p[0], p[1], p[2]}, side, kappa, u, du);
     U = u[0], dU = du[0];
   }
 };
