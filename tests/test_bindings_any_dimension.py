@@ -137,3 +137,19 @@ def test_the_other_dimension_is_refused_with_a_message(model_2d, model_3d):
     with pytest.raises(ValueError, match=r"cells \(node indices per tetrahedron\) must be an array of shape \(n, 4\)"):
         _cracklip.evaluate_displacement(x3, cells2, layout3, [g3], np.zeros(3), np.zeros(0, dtype=np.int32),
                                         np.zeros((0, 3)), np.zeros(0, dtype=np.int8))
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_field_points_of_a_linear_field(dim, model_2d, model_3d):
+    """compute_field_points on every cell (plain and enriched, 2D or 3D): the
+    weights sum to the part's measure and grad u is the field's gradient."""
+    x, cells, g, layout = model_2d if dim == 2 else model_3d
+    opts = _cracklip.QuadratureOptions() if dim == 2 else _cracklip.QuadratureOptions3D()
+    G = np.arange(1, dim * dim + 1, dtype=float).reshape(dim, dim) / 7.0
+    u = np.zeros(dim * layout.num_nodes_total)
+    u[: dim * layout.num_std_nodes] = (x @ G.T).ravel()
+    f = _cracklip.compute_field_points(x, cells, layout, [g], u, np.zeros(0, dtype=np.int32), opts)
+    assert f["grad_u"].shape == (len(f["weight"]), dim, dim)
+    assert set(np.unique(f["cell"])) == set(range(len(cells)))
+    np.testing.assert_allclose(f["weight"].sum(), 1.0, rtol=1e-12)
+    np.testing.assert_allclose(f["grad_u"], np.broadcast_to(G, f["grad_u"].shape), atol=1e-12)

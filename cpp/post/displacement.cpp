@@ -1,7 +1,5 @@
 #include "post/displacement.h"
 
-#include "enrichment/enriched_basis.h"
-
 #include <stdexcept>
 #include <string>
 
@@ -57,18 +55,51 @@ std::vector<double> evaluate_displacement(std::span<const double> x, std::span<c
     }
     region_sides(cracks, c, s, side);
     evaluate_basis<dim>(cell, basis, layout, cracks, side, r, val, grad);
-    for (int i = 0; i < basis.num_dofs(); ++i)
+    add_point_values<dim>(basis, u, val, grad, &out[dim * p], grad_out ? &(*grad_out)[dim * dim * p] : nullptr);
+  }
+  return out;
+}
+
+template <int dim>
+FieldPoints compute_field_points(std::span<const double> x, std::span<const std::int32_t> cells,
+                                 const EnrichmentLayout& layout, std::span<const CrackGeometryOf<dim>* const> cracks,
+                                 std::span<const double> u, std::span<const std::int32_t> cell_list,
+                                 const QuadratureOptionsOf<dim>& options)
+{
+  layout.require_dimension(dim, "compute_field_points");
+  if (u.size() != dim * static_cast<std::size_t>(layout.num_nodes_total()))
+    throw std::invalid_argument("solution vector has " + std::to_string(u.size()) + " entries, expected "
+                                + std::to_string(dim * layout.num_nodes_total()));
+  const auto num_cells = static_cast<std::int32_t>(cells.size() / (dim + 1));
+  FieldPoints out;
+  std::vector<double> val, grad;
+  std::vector<int> side;
+  CellQuadratureOf<dim> q;
+  std::array<double, dim> r;
+  const std::int32_t n = cell_list.empty() ? num_cells : static_cast<std::int32_t>(cell_list.size());
+  for (std::int32_t k = 0; k < n; ++k)
+  {
+    const std::int32_t c = cell_list.empty() ? k : cell_list[k];
+    if (c < 0 or c >= num_cells)
+      throw std::invalid_argument("compute_field_points: cell index out of range");
+    const P1Simplex<dim> cell(x, cells, c);
+    const EnrichedCellBasis<dim> basis(cell, layout, c);
+    compute_enriched_cell_quadrature(x, cells, layout, cracks, c, options, q);
+    for (int p = 0; p < q.size(); ++p)
     {
-      const double ui = u[basis.dofs[i]];
-      if (ui == 0.0)
-        continue;
-      for (int a = 0; a < dim; ++a)
-      {
-        out[dim * p + a] += val[dim * i + a] * ui;
-        if (grad_out)
-          for (int b = 0; b < dim; ++b)
-            (*grad_out)[dim * dim * p + dim * a + b] += grad[(dim * i + a) * dim + b] * ui;
-      }
+      for (int i = 0; i < dim; ++i)
+        r[i] = q.ref[dim * p + i];
+      region_sides(cracks, c, q.side[p], side);
+      evaluate_basis<dim>(cell, basis, layout, cracks, side, r, val, grad);
+      std::array<double, dim * dim> g{};
+      add_point_values<dim>(basis, u, val, grad, nullptr, g.data());
+      const auto xp = cell.physical(r);
+      out.cell.push_back(c);
+      out.ref.insert(out.ref.end(), r.begin(), r.end());
+      out.x.insert(out.x.end(), xp.begin(), xp.end());
+      out.weight.push_back(q.weight[p]);
+      out.side.push_back(q.side[p]);
+      out.grad_u.insert(out.grad_u.end(), g.begin(), g.end());
     }
   }
   return out;
@@ -84,5 +115,14 @@ template std::vector<double> evaluate_displacement<3>(std::span<const double>, s
                                                       std::span<const double>, std::span<const std::int32_t>,
                                                       std::span<const double>, std::span<const std::int8_t>,
                                                       std::vector<double>*);
+
+template FieldPoints compute_field_points<2>(std::span<const double>, std::span<const std::int32_t>,
+                                             const EnrichmentLayout&, std::span<const CrackGeometry* const>,
+                                             std::span<const double>, std::span<const std::int32_t>,
+                                             const QuadratureOptions&);
+template FieldPoints compute_field_points<3>(std::span<const double>, std::span<const std::int32_t>,
+                                             const EnrichmentLayout&, std::span<const CrackGeometry3D* const>,
+                                             std::span<const double>, std::span<const std::int32_t>,
+                                             const QuadratureOptions3D&);
 
 } // namespace cracklip
