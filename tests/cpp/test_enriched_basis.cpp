@@ -69,18 +69,37 @@ struct Problem
   }
 };
 
-/// Sample points in every cell: reference coordinates (n, dim) and cells.
+/// The displacement u of the layout's dofs at four points of every cell
+/// (side 0: the side each lies on): their physical coordinates, values
+/// (n, dim) and gradients (n, dim, dim).
 template <int dim>
-void sample_points(std::size_t num_cells, std::vector<std::int32_t>& pc, std::vector<double>& ref)
+struct Samples
+{
+  std::vector<std::array<double, dim>> x;
+  std::vector<double> u, grad;
+};
+
+template <int dim>
+Samples<dim> evaluate_at_samples(const Problem<dim>& pb, const EnrichmentLayout& layout, const std::vector<double>& u)
 {
   const double bary[4][3] = {{0.25, 0.25, 0.25}, {0.6, 0.15, 0.1}, {0.1, 0.7, 0.05}, {0.15, 0.1, 0.6}};
-  for (std::size_t c = 0; c < num_cells; ++c)
+  std::vector<std::int32_t> pc;
+  std::vector<double> ref;
+  Samples<dim> out;
+  for (std::size_t c = 0; c < pb.cells.size() / (dim + 1); ++c)
     for (const auto& b : bary)
     {
-      pc.push_back(static_cast<std::int32_t>(c));
+      std::array<double, dim> r;
       for (int i = 0; i < dim; ++i)
-        ref.push_back(dim == 2 ? b[i] * 0.9 : b[i]);
+        r[i] = dim == 2 ? b[i] * 0.9 : b[i];
+      pc.push_back(static_cast<std::int32_t>(c));
+      ref.insert(ref.end(), r.begin(), r.end());
+      out.x.push_back(P1Simplex<dim>(pb.x, pb.cells, pc.back()).physical(r));
     }
+  const CrackGeometryOf<dim>* gs[] = {&pb.g};
+  const std::vector<std::int8_t> sides(pc.size(), 0);
+  out.u = evaluate_displacement<dim>(pb.x, pb.cells, layout, gs, u, pc, ref, sides, &out.grad);
+  return out;
 }
 
 template <int dim>
@@ -102,24 +121,16 @@ void check_heaviside_jump()
     for (int d = 0; d < dim; ++d)
       u[dim * (layout.num_std_nodes + k) + d] = 0.5 * a[d];
   }
-  std::vector<std::int32_t> pc;
-  std::vector<double> ref, grad;
-  sample_points<dim>(pb.cells.size() / (dim + 1), pc, ref);
-  const std::vector<std::int8_t> sides(pc.size(), 0);
-  const auto val = evaluate_displacement<dim>(pb.x, pb.cells, layout, gs, u, pc, ref, sides, &grad);
-  for (std::size_t p = 0; p < pc.size(); ++p)
+  const Samples<dim> at = evaluate_at_samples(pb, layout, u);
+  for (std::size_t p = 0; p < at.x.size(); ++p)
   {
-    const P1Simplex<dim> cell(pb.x, pb.cells, pc[p]);
-    std::array<double, dim> r;
-    for (int i = 0; i < dim; ++i)
-      r[i] = ref[dim * p + i];
-    const auto xp = cell.physical(r);
+    const auto& xp = at.x[p];
     const bool plus = Problem<dim>::phi(xp.data()) >= 0.0;
     for (int d = 0; d < dim; ++d)
     {
-      EXPECT_NEAR(val[dim * p + d], plus ? a[d] : 0.0, 1e-14) << "dim " << dim << " point " << p;
+      EXPECT_NEAR(at.u[dim * p + d], plus ? a[d] : 0.0, 1e-14) << "dim " << dim << " point " << p;
       for (int j = 0; j < dim; ++j)
-        EXPECT_NEAR(grad[dim * dim * p + dim * d + j], 0.0, 1e-12);
+        EXPECT_NEAR(at.grad[dim * dim * p + dim * d + j], 0.0, 1e-12);
     }
   }
 }
@@ -152,26 +163,18 @@ void check_williams_field()
     ++vector_nodes;
   }
   EXPECT_EQ(vector_nodes, layout.num_std_nodes);
-  std::vector<std::int32_t> pc;
-  std::vector<double> ref, grad;
-  sample_points<dim>(pb.cells.size() / (dim + 1), pc, ref);
-  const std::vector<std::int8_t> sides(pc.size(), 0);
-  const auto val = evaluate_displacement<dim>(pb.x, pb.cells, layout, gs, u, pc, ref, sides, &grad);
+  const Samples<dim> at = evaluate_at_samples(pb, layout, u);
   double umax = 0.0;
-  for (std::size_t p = 0; p < pc.size(); ++p)
+  for (std::size_t p = 0; p < at.x.size(); ++p)
   {
-    const P1Simplex<dim> cell(pb.x, pb.cells, pc[p]);
-    std::array<double, dim> r;
-    for (int i = 0; i < dim; ++i)
-      r[i] = ref[dim * p + i];
-    const auto xp = cell.physical(r);
+    const auto& xp = at.x[p];
     Problem<dim>::williams(xp.data(), Problem<dim>::phi(xp.data()) >= 0.0 ? 1 : -1, U, dU);
     for (int d = 0; d < dim; ++d)
     {
       umax = std::max(umax, std::abs(U[d]));
-      EXPECT_NEAR(val[dim * p + d], U[d], 1e-12) << "dim " << dim << " point " << p;
+      EXPECT_NEAR(at.u[dim * p + d], U[d], 1e-12) << "dim " << dim << " point " << p;
       for (int j = 0; j < dim; ++j)
-        EXPECT_NEAR(grad[dim * dim * p + dim * d + j], dU[d][j], 1e-10 * (1.0 + std::abs(dU[d][j])));
+        EXPECT_NEAR(at.grad[dim * dim * p + dim * d + j], dU[d][j], 1e-10 * (1.0 + std::abs(dU[d][j])));
     }
   }
   EXPECT_GT(umax, 0.5); // a field worth reproducing
