@@ -1,7 +1,6 @@
 #include "contact/contact_kernels_3d.h"
 
-#include "assembly/enriched_kernels_3d.h"
-#include "enrichment/enriched_basis_3d.h"
+#include "enrichment/enriched_basis.h"
 #include "geometry/vec3.h"
 #include "quadrature/crack_points_3d.h"
 
@@ -125,7 +124,7 @@ ContactPoints3D compute_contact_points_3d(std::span<const double> x, std::span<c
 }
 
 void assemble_coupling_3d(std::span<const double> x, std::span<const std::int32_t> cells,
-                          const EnrichmentLayout3D& layout, std::span<const CrackGeometry3D* const> cracks,
+                          const EnrichmentLayout& layout, std::span<const CrackGeometry3D* const> cracks,
                           const MultiplierSpace3D& space, const LipRule3D& rule, const ContactSinks3D& sinks,
                           std::span<const double> tangent_reference)
 {
@@ -147,16 +146,16 @@ void assemble_coupling_3d(std::span<const double> x, std::span<const std::int32_
     const std::int32_t c = cp.cell[p];
     const LipPiece3D& piece = space.pieces[cp.piece[p]];
     const P1Tetrahedron cell(x, cells, c);
-    const CellBasis3D basis(cell, layout, c);
+    const EnrichedCellBasis<3> basis(cell, layout, c);
     const int nd = basis.num_dofs();
     if (nd <= 12)
       continue; // no enriched dof: nothing jumps
     const Point3 r = {cp.ref[3 * p], cp.ref[3 * p + 1], cp.ref[3 * p + 2]};
-    region_sides_3d(cracks, c, 1, side);
+    region_sides(cracks, c, 1, side);
     side[piece.crack] = 1;
-    evaluate_basis_3d(cell, basis, layout, cracks, side, r, vp, grad);
+    evaluate_basis<3>(cell, basis, layout, cracks, side, r, vp, grad);
     side[piece.crack] = -1;
-    evaluate_basis_3d(cell, basis, layout, cracks, side, r, vm, grad);
+    evaluate_basis<3>(cell, basis, layout, cracks, side, r, vm, grad);
     const double w = cp.weight[p];
     const double* n = &cp.normal[3 * p];
     const double* t1 = &cp.t1[3 * p];

@@ -22,7 +22,7 @@
 
 #include "assembly/matrix_sink.h"
 #include "contact/multiplier_space_3d.h"
-#include "enrichment/enrichment_layout_3d.h"
+#include "enrichment/enrichment_layout.h"
 #include "geometry/crack_geometry_3d.h"
 
 #include <cstdint>
@@ -95,7 +95,7 @@ struct ContactSinks3D
 /// header), one block per quadrature point: the multipliers non-zero there
 /// times the enriched dofs of its cell (standard functions do not jump).
 void assemble_coupling_3d(std::span<const double> x, std::span<const std::int32_t> cells,
-                          const EnrichmentLayout3D& layout, std::span<const CrackGeometry3D* const> cracks,
+                          const EnrichmentLayout& layout, std::span<const CrackGeometry3D* const> cracks,
                           const MultiplierSpace3D& space, const LipRule3D& rule, const ContactSinks3D& sinks,
                           std::span<const double> tangent_reference = {});
 

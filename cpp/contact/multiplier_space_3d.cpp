@@ -1,6 +1,6 @@
 #include "contact/multiplier_space_3d.h"
 
-#include "geometry/p1_tetrahedron.h"
+#include "geometry/p1_simplex.h"
 
 #include <algorithm>
 #include <map>
@@ -195,7 +195,7 @@ void absorb_front_heavy_groups(const MultiplierSpace3D& space, std::int32_t ic, 
 
 MultiplierSpace3D create_multiplier_space_3d(std::span<const double> x, std::span<const std::int32_t> cells,
                                              std::span<const CrackGeometry3D* const> cracks,
-                                             const EnrichmentLayout3D& layout, MultiplierKind kind,
+                                             const EnrichmentLayout& layout, MultiplierKind kind,
                                              bool with_front_pieces)
 {
   if (x.size() % 3 != 0 or cells.size() % 4 != 0)

@@ -37,7 +37,7 @@
 #pragma once
 
 #include "contact/multiplier_groups.h"
-#include "enrichment/enrichment_layout_3d.h"
+#include "enrichment/enrichment_layout.h"
 #include "geometry/crack_geometry_3d.h"
 
 #include <cstdint>
@@ -74,7 +74,7 @@ struct MultiplierSpace3D : MultiplierRestriction
 /// without tip enrichment).
 MultiplierSpace3D create_multiplier_space_3d(std::span<const double> x, std::span<const std::int32_t> cells,
                                              std::span<const CrackGeometry3D* const> cracks,
-                                             const EnrichmentLayout3D& layout, MultiplierKind kind,
+                                             const EnrichmentLayout& layout, MultiplierKind kind,
                                              bool with_front_pieces);
 
 } // namespace cracklip

@@ -1,8 +1,8 @@
 // Which nodes carry which enrichment (layer a), in any dimension.
 //
 // The rules are the same on triangles and tetrahedra; only the inputs come
-// from the geometry of the dimension (enrichment_layout.cpp in 2D,
-// enrichment_layout_3d.cpp in 3D):
+// from the geometry of the dimension (crack_enrichment_2d.cpp,
+// crack_enrichment_3d.cpp):
 //   - core tip (front) nodes: given by the caller (nodes within the
 //     enrichment radius of a tip / the front, and the nodes of the cells
 //     holding it), each with the tip (front piece) whose functions it takes;
@@ -18,7 +18,7 @@
 //   - scalar branch functions with corrected blending: F_1, F_2 are left
 //     out at one node per tip (the node farthest from the crack's plane),
 //     which removes the functions' two exact linear dependencies per
-//     component (see enrichment_layout.cpp), when the tip's functions cover
+//     component (see enrichment_selection.cpp), when the tip's functions cover
 //     the whole support of its ramp.
 // Cell class codes (CellClass in 2D, CellClass3D in 3D): 0 plain, 1 cut,
 // 2 crack along an edge (2D) / a face (3D), 3 tip / front, 4 extension.

@@ -1,6 +1,7 @@
 #include "fracture/interaction_integral_2d.h"
 
-#include "enrichment/enriched_basis_2d.h"
+#include "enrichment/enriched_basis.h"
+#include "fracture/interaction_density.h"
 
 #include <cmath>
 #include <numbers>
@@ -9,64 +10,20 @@
 namespace cracklip
 {
 
-std::array<double, 2> interaction_integral(const TipFrame& tip, double E, double nu,
-                                           std::span<const double> points,
-                                           std::span<const double> weights,
-                                           std::span<const double> grad_q,
-                                           std::span<const double> grad_u,
-                                           std::span<const std::int8_t> sides)
+std::array<double, 2> interaction_integral(const TipFrame& tip, double E, double nu, std::span<const double> points,
+                                           std::span<const double> weights, std::span<const double> grad_q,
+                                           std::span<const double> grad_u, std::span<const std::int8_t> sides)
 {
   const std::size_t n = weights.size();
   if (points.size() != 2 * n or grad_q.size() != 2 * n or grad_u.size() != 4 * n or sides.size() != n)
     throw std::invalid_argument("interaction_integral: expected points (n,2), weights (n), "
                                 "grad_q (n,2), grad_u (n,2,2), sides (n)");
-  const auto D = plane_strain_matrix(E, nu);
-  const double mu = E / (2.0 * (1.0 + nu));
-  const double kappa = 3.0 - 4.0 * nu;
-  const double scale = 1.0 / (2.0 * mu * std::sqrt(2.0 * std::numbers::pi));
+  const IsotropicElasticity<2> el(E, nu, "interaction_integral (plane strain)");
   const double e1[2] = {tip.e1[0], tip.e1[1]};
-  std::array<double, 2> I = {0.0, 0.0};
   std::array<std::array<double, 2>, 2> U;
-  std::array<std::array<std::array<double, 2>, 2>, 2> dU;
-  auto stress = [&](const double g[2][2], double s[2][2])
-  {
-    const double exx = g[0][0], eyy = g[1][1], gxy = g[0][1] + g[1][0];
-    const double sxx = D[0] * exx + D[1] * eyy + D[2] * gxy;
-    const double syy = D[3] * exx + D[4] * eyy + D[5] * gxy;
-    const double sxy = D[6] * exx + D[7] * eyy + D[8] * gxy;
-    s[0][0] = sxx, s[0][1] = sxy, s[1][0] = sxy, s[1][1] = syy;
-  };
-  for (std::size_t p = 0; p < n; ++p)
-  {
-    const double gq[2] = {grad_q[2 * p], grad_q[2 * p + 1]};
-    if (gq[0] == 0.0 and gq[1] == 0.0)
-      continue;
-    const double gu[2][2] = {{grad_u[4 * p], grad_u[4 * p + 1]}, {grad_u[4 * p + 2], grad_u[4 * p + 3]}};
-    double sig[2][2];
-    stress(gu, sig);
-    williams_displacement(tip, {points[2 * p], points[2 * p + 1]}, sides[p], kappa, U, dU);
-    for (int m = 0; m < 2; ++m)
-    {
-      double ga[2][2];
-      for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j)
-          ga[i][j] = scale * dU[m][i][j];
-      double siga[2][2];
-      stress(ga, siga);
-      double t1 = 0.0, t2 = 0.0, w = 0.0;
-      for (int i = 0; i < 2; ++i)
-      {
-        const double ua1 = ga[i][0] * e1[0] + ga[i][1] * e1[1]; // (grad u_aux e1)_i
-        const double u1 = gu[i][0] * e1[0] + gu[i][1] * e1[1];
-        t1 += (sig[i][0] * gq[0] + sig[i][1] * gq[1]) * ua1;
-        t2 += (siga[i][0] * gq[0] + siga[i][1] * gq[1]) * u1;
-        for (int j = 0; j < 2; ++j)
-          w += sig[i][j] * 0.5 * (ga[i][j] + ga[j][i]);
-      }
-      I[m] += weights[p] * (t1 + t2 - w * (e1[0] * gq[0] + e1[1] * gq[1]));
-    }
-  }
-  return I;
+  const auto aux = [&](std::size_t p, std::array<std::array<std::array<double, 2>, 2>, 2>& dU)
+  { williams_displacement(tip, {points[2 * p], points[2 * p + 1]}, sides[p], el.kappa, U, dU); };
+  return interaction_sum<2>(el, e1, weights, grad_q, grad_u, aux);
 }
 
 double domain_q(double distance, double radius, std::optional<double> inner_radius)

@@ -1,4 +1,7 @@
-// Stress intensity factors by the domain interaction integral (layer a).
+// Stress intensity factors at a 2D crack tip by the domain interaction
+// integral (layer a): the density and its sum are the same in 3D
+// (interaction_density.h); here the auxiliary fields live in the tip's
+// frame and the domain is a disc (or ring) of cells around the tip.
 //
 //   I_m = int_A ( sigma_ij u^aux_i,1 + sigma^aux_ij u_i,1 - sigma_kl eps^aux_kl delta_1j ) q,_j dA
 //   K_m = (E* / 2) I_m,   E* = E / (1 - nu^2) (plane strain)

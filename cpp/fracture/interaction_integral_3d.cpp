@@ -1,5 +1,7 @@
 #include "fracture/interaction_integral_3d.h"
 
+#include "fracture/interaction_density.h"
+
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -21,26 +23,7 @@ struct AuxPoint
   double U[3][3], G[3][3][3], local[3][3], div[3][3];
 };
 
-struct Elasticity
-{
-  double mu, lmbda, kappa, scale;
-  Elasticity(double E, double nu, const char* who)
-  {
-    if (!(E > 0.0) or !(nu > -1.0 and nu < 0.5))
-      throw std::invalid_argument(std::string(who) + ": needs E > 0 and -1 < nu < 0.5");
-    mu = E / (2.0 * (1.0 + nu));
-    lmbda = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    kappa = 3.0 - 4.0 * nu;
-    scale = 1.0 / (2.0 * mu * std::sqrt(2.0 * std::numbers::pi));
-  }
-  void stress(const double g[3][3], double s[3][3]) const
-  {
-    const double tr = g[0][0] + g[1][1] + g[2][2];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        s[i][j] = mu * (g[i][j] + g[j][i]) + (i == j ? lmbda * tr : 0.0);
-  }
-};
+using Elasticity = IsotropicElasticity<3>;
 
 void aux_point(const Elasticity& el, const FrontFrame& f, double curvature, const Point3& x, int side, AuxPoint& a)
 {
@@ -85,6 +68,20 @@ void aux_point(const Elasticity& el, const FrontFrame& f, double curvature, cons
       a.div[m][i] = dR * f.e1[i] + dz * f.e2[i] + d3 * f.e3[i];
   }
 }
+
+/// aux_point at every point p (frames (n, 12), curvature (n), x (n, 3),
+/// sides (n)), then f(p, fields).
+template <typename F>
+void for_each_aux_point(const Elasticity& el, std::span<const double> frames, std::span<const double> curvature,
+                        std::span<const double> x, std::span<const std::int8_t> sides, F&& f)
+{
+  AuxPoint a;
+  for (std::size_t p = 0; p < sides.size(); ++p)
+  {
+    aux_point(el, frame_at(frames, p), curvature[p], {x[3 * p], x[3 * p + 1], x[3 * p + 2]}, sides[p], a);
+    f(p, a);
+  }
+}
 } // namespace
 
 void auxiliary_fields_3d(double E, double nu, std::span<const double> frames, std::span<const double> curvature,
@@ -97,20 +94,19 @@ void auxiliary_fields_3d(double E, double nu, std::span<const double> frames, st
     throw std::invalid_argument("auxiliary_fields_3d: expected frames (n, 12), curvature (n), x (n, 3), sides (n), "
                                 "U (n, 3, 3), G (n, 3, 3, 3), local (n, 3, 3), div_sigma (n, 3, 3)");
   const Elasticity el(E, nu, "auxiliary_fields_3d");
-  AuxPoint a;
-  for (std::size_t p = 0; p < n; ++p)
-  {
-    aux_point(el, frame_at(frames, p), curvature[p], {x[3 * p], x[3 * p + 1], x[3 * p + 2]}, sides[p], a);
-    for (int m = 0; m < 3; ++m)
-      for (int i = 0; i < 3; ++i)
-      {
-        U[9 * p + 3 * m + i] = a.U[m][i];
-        local[9 * p + 3 * m + i] = a.local[m][i];
-        div_sigma[9 * p + 3 * m + i] = a.div[m][i];
-        for (int j = 0; j < 3; ++j)
-          G[27 * p + 9 * m + 3 * i + j] = a.G[m][i][j];
-      }
-  }
+  for_each_aux_point(el, frames, curvature, x, sides,
+                     [&](std::size_t p, const AuxPoint& a)
+                     {
+                       for (int m = 0; m < 3; ++m)
+                         for (int i = 0; i < 3; ++i)
+                         {
+                           U[9 * p + 3 * m + i] = a.U[m][i];
+                           local[9 * p + 3 * m + i] = a.local[m][i];
+                           div_sigma[9 * p + 3 * m + i] = a.div[m][i];
+                           for (int j = 0; j < 3; ++j)
+                             G[27 * p + 9 * m + 3 * i + j] = a.G[m][i][j];
+                         }
+                     });
 }
 
 void interaction_integrand_3d(double E, double nu, std::span<const double> frames, std::span<const double> curvature,
@@ -124,10 +120,8 @@ void interaction_integrand_3d(double E, double nu, std::span<const double> frame
     throw std::invalid_argument("interaction_integrand_3d: expected frames (n, 12), curvature (n), x (n, 3), "
                                 "grad_u (n, 3, 3), sides (n), body (3) or empty, T (n, 3, 3, 3), D (n, 3, 3)");
   const Elasticity el(E, nu, "interaction_integrand_3d");
-  AuxPoint a;
-  for (std::size_t p = 0; p < n; ++p)
+  const auto integrand = [&](std::size_t p, const AuxPoint& a)
   {
-    aux_point(el, frame_at(frames, p), curvature[p], {x[3 * p], x[3 * p + 1], x[3 * p + 2]}, sides[p], a);
     double g[3][3], sig[3][3];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
@@ -158,7 +152,8 @@ void interaction_integrand_3d(double E, double nu, std::span<const double> frame
         D[9 * p + 3 * m + l] = v;
       }
     }
-  }
+  };
+  for_each_aux_point(el, frames, curvature, x, sides, integrand);
 }
 
 std::array<double, 3> interaction_integral_3d(double E, double nu, const Point3& d, std::span<const double> frames,
@@ -171,56 +166,11 @@ std::array<double, 3> interaction_integral_3d(double E, double nu, const Point3&
       or sides.size() != n)
     throw std::invalid_argument("interaction_integral_3d: expected frames (n, 12), x (n, 3), weights (n), "
                                 "grad_q (n, 3), grad_u (n, 3, 3), sides (n)");
-  if (!(E > 0.0) or !(nu > -1.0 and nu < 0.5))
-    throw std::invalid_argument("interaction_integral_3d: needs E > 0 and -1 < nu < 0.5");
-  const double mu = E / (2.0 * (1.0 + nu)), lmbda = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-  const double kappa = 3.0 - 4.0 * nu;
-  const double scale = 1.0 / (2.0 * mu * std::sqrt(2.0 * std::numbers::pi));
-  auto stress = [&](const double g[3][3], double s[3][3])
-  {
-    const double tr = g[0][0] + g[1][1] + g[2][2];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        s[i][j] = mu * (g[i][j] + g[j][i]) + (i == j ? lmbda * tr : 0.0);
-  };
-  std::array<double, 3> I = {0.0, 0.0, 0.0};
+  const Elasticity el(E, nu, "interaction_integral_3d");
   std::array<Point3, 3> U;
-  std::array<std::array<Point3, 3>, 3> dU;
-  for (std::size_t p = 0; p < n; ++p)
-  {
-    const double gq[3] = {grad_q[3 * p], grad_q[3 * p + 1], grad_q[3 * p + 2]};
-    if (gq[0] == 0.0 and gq[1] == 0.0 and gq[2] == 0.0)
-      continue;
-    double gu[3][3];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        gu[i][j] = grad_u[9 * p + 3 * i + j];
-    double sig[3][3];
-    stress(gu, sig);
-    front_vector_functions(frame_at(frames, p), {x[3 * p], x[3 * p + 1], x[3 * p + 2]}, sides[p], kappa, U, dU);
-    const double dq = d[0] * gq[0] + d[1] * gq[1] + d[2] * gq[2];
-    for (int m = 0; m < 3; ++m)
-    {
-      double ga[3][3];
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-          ga[i][j] = scale * dU[m][i][j];
-      double siga[3][3];
-      stress(ga, siga);
-      double t1 = 0.0, t2 = 0.0, w = 0.0;
-      for (int i = 0; i < 3; ++i)
-      {
-        const double ua = ga[i][0] * d[0] + ga[i][1] * d[1] + ga[i][2] * d[2]; // (grad u_aux d)_i
-        const double ud = gu[i][0] * d[0] + gu[i][1] * d[1] + gu[i][2] * d[2];
-        t1 += (sig[i][0] * gq[0] + sig[i][1] * gq[1] + sig[i][2] * gq[2]) * ua;
-        t2 += (siga[i][0] * gq[0] + siga[i][1] * gq[1] + siga[i][2] * gq[2]) * ud;
-        for (int j = 0; j < 3; ++j)
-          w += sig[i][j] * 0.5 * (ga[i][j] + ga[j][i]);
-      }
-      I[m] += weights[p] * (t1 + t2 - w * dq);
-    }
-  }
-  return I;
+  const auto aux = [&](std::size_t p, std::array<std::array<Point3, 3>, 3>& dU)
+  { front_vector_functions(frame_at(frames, p), {x[3 * p], x[3 * p + 1], x[3 * p + 2]}, sides[p], el.kappa, U, dU); };
+  return interaction_sum<3>(el, d.data(), weights, grad_q, grad_u, aux);
 }
 
 void aux_derivative_3d(double E, double nu, const Point3& d, std::span<const double> frames,

@@ -1,5 +1,6 @@
 #include "geometry/crack_geometry_2d.h"
 
+#include "geometry/mesh_arrays.h"
 #include "geometry/snapping.h"
 
 #include <algorithm>
@@ -128,15 +129,7 @@ CrackGeometry compute_crack_geometry(std::span<const double> x,
 
   const std::size_t num_nodes = x.size() / 2;
   const std::size_t num_cells = cells.size() / 3;
-  for (std::size_t i = 0; i < x.size(); ++i)
-    if (!std::isfinite(x[i]))
-      throw std::invalid_argument("compute_crack_geometry: mesh node " + std::to_string(i / 2)
-                                  + " has a non-finite coordinate; node coordinates must be finite");
-  for (std::size_t i = 0; i < cells.size(); ++i)
-    if (cells[i] < 0 or static_cast<std::size_t>(cells[i]) >= num_nodes)
-      throw std::invalid_argument("compute_crack_geometry: cell " + std::to_string(i / 3) + " refers to node "
-                                  + std::to_string(cells[i]) + "; node indices must lie in [0, "
-                                  + std::to_string(num_nodes) + ")");
+  check_mesh_arrays(x, 2, cells, 3, "compute_crack_geometry");
 
   CrackGeometry g;
 

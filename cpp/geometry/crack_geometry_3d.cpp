@@ -1,6 +1,7 @@
 #include "geometry/crack_geometry_3d.h"
 
-#include "geometry/p1_tetrahedron.h"
+#include "geometry/mesh_arrays.h"
+#include "geometry/p1_simplex.h"
 #include "geometry/snapping.h"
 #include "geometry/vec3.h"
 
@@ -382,19 +383,11 @@ CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<c
   if (!(snap_tol >= 0.0 and snap_tol < 0.5))
     throw std::invalid_argument("compute_crack_geometry_3d: snap_tol must be in [0, 0.5), got "
                                 + std::to_string(snap_tol));
-  for (std::size_t i = 0; i < x.size(); ++i)
-    if (!std::isfinite(x[i]))
-      throw std::invalid_argument("compute_crack_geometry_3d: mesh node " + std::to_string(i / 3)
-                                  + " has a non-finite coordinate; node coordinates must be finite");
+  check_mesh_arrays(x, 3, cells, 4, "compute_crack_geometry_3d");
   for (std::size_t i = 0; i < num_nodes; ++i)
     if (!std::isfinite(phi[i]) or !std::isfinite(psi[i]))
       throw std::invalid_argument("compute_crack_geometry_3d: a level set is not finite at node "
                                   + std::to_string(i));
-  for (std::size_t i = 0; i < cells.size(); ++i)
-    if (cells[i] < 0 or static_cast<std::size_t>(cells[i]) >= num_nodes)
-      throw std::invalid_argument("compute_crack_geometry_3d: cell " + std::to_string(i / 4) + " refers to node "
-                                  + std::to_string(cells[i]) + "; node indices must lie in [0, "
-                                  + std::to_string(num_nodes) + ")");
 
   CrackGeometry3D g;
   const std::vector<double> h_node = compute_shortest_edges(x, 3, cells, 4);

@@ -1,6 +1,8 @@
 #include "post/fields_2d.h"
 
-#include "enrichment/enriched_basis_2d.h"
+#include "assembly/elasticity.h"
+#include "enrichment/enriched_basis.h"
+#include "post/displacement.h"
 
 #include <stdexcept>
 #include <string>
@@ -16,71 +18,7 @@ void check_size(std::span<const double> u, const EnrichmentLayout& layout)
                                 + " entries, expected "
                                 + std::to_string(2 * layout.num_nodes_total()));
 }
-
-/// u and grad u at one point from basis values.
-void contract(const CellBasis& basis, std::span<const double> u, const std::vector<double>& val,
-              const std::vector<double>& grad, double* uo, double* go)
-{
-  for (int i = 0; i < basis.num_dofs(); ++i)
-  {
-    const double ui = u[basis.dofs[i]];
-    if (uo)
-      for (int a = 0; a < 2; ++a)
-        uo[a] += val[2 * i + a] * ui;
-    if (go)
-      for (int k = 0; k < 4; ++k)
-        go[k] += grad[4 * i + k] * ui;
-  }
-}
 } // namespace
-
-std::vector<double> evaluate_displacement(std::span<const double> x,
-                                          std::span<const std::int32_t> cells,
-                                          const EnrichmentLayout& layout,
-                                          std::span<const CrackGeometry* const> cracks,
-                                          std::span<const double> u,
-                                          std::span<const std::int32_t> point_cells,
-                                          std::span<const double> ref_points,
-                                          std::span<const std::int8_t> sides,
-                                          std::vector<double>* grad_out)
-{
-  check_size(u, layout);
-  const std::size_t n = point_cells.size();
-  if (ref_points.size() != 2 * n or sides.size() != n)
-    throw std::invalid_argument("evaluate_displacement: expected ref_points (n, 2) and sides (n)");
-  std::vector<double> out(2 * n, 0.0), val, grad;
-  if (grad_out)
-    grad_out->assign(4 * n, 0.0);
-  std::vector<int> side;
-  const std::size_t num_cells = cells.size() / 3;
-  for (std::size_t p = 0; p < n; ++p)
-  {
-    const std::int32_t c = point_cells[p];
-    if (c < 0 or static_cast<std::size_t>(c) >= num_cells)
-      throw std::invalid_argument("evaluate_displacement: cell index out of range");
-    const P1Cell cell(x, cells, c);
-    const CellBasis basis(cell, layout, c);
-    const std::array<double, 2> r = {ref_points[2 * p], ref_points[2 * p + 1]};
-    int s = sides[p];
-    if (s == 0)
-    {
-      // The side the point lies on, for the crack crossing or ending in c.
-      for (const CrackGeometry* g : cracks)
-        if (g->crack_cell_index[c] >= 0 or g->tip_cell_index[c] >= 0)
-        {
-          const auto N = P1Cell::shape(r);
-          double phi = 0.0;
-          for (int a = 0; a < 3; ++a)
-            phi += N[a] * g->phi[cell.nodes[a]];
-          s = phi >= 0.0 ? 1 : -1;
-        }
-    }
-    region_sides(cracks, c, s, side);
-    evaluate_basis(cell, basis, layout, side, r, val, grad);
-    contract(basis, u, val, grad, &out[2 * p], grad_out ? &(*grad_out)[4 * p] : nullptr);
-  }
-  return out;
-}
 
 SubcellFields compute_subcell_fields(std::span<const double> x, std::span<const std::int32_t> cells,
                                      const EnrichmentLayout& layout,
@@ -88,7 +26,7 @@ SubcellFields compute_subcell_fields(std::span<const double> x, std::span<const 
                                      std::span<const double> u, double E, double nu)
 {
   check_size(u, layout);
-  const auto D = plane_strain_matrix(E, nu);
+  const auto D = elasticity_matrix<2>(E, nu);
   const std::size_t num_cells = cells.size() / 3;
   SubcellFields out;
   out.points.reserve(6 * num_cells);
@@ -109,62 +47,21 @@ SubcellFields compute_subcell_fields(std::span<const double> x, std::span<const 
       {
         const auto xp = cell.physical(tri[i]);
         out.points.insert(out.points.end(), xp.begin(), xp.end());
-        evaluate_basis(cell, basis, layout, side, tri[i], val, grad);
+        evaluate_basis<2>(cell, basis, layout, cracks, side, tri[i], val, grad);
         double ud[2] = {0.0, 0.0};
-        contract(basis, u, val, grad, ud, nullptr);
+        add_point_values<2>(basis, u, val, grad, ud, nullptr);
         out.displacement.insert(out.displacement.end(), ud, ud + 2);
       }
       const std::array<double, 2> rc = {(tri[0][0] + tri[1][0] + tri[2][0]) / 3.0,
                                          (tri[0][1] + tri[1][1] + tri[2][1]) / 3.0};
-      evaluate_basis(cell, basis, layout, side, rc, val, grad);
+      evaluate_basis<2>(cell, basis, layout, cracks, side, rc, val, grad);
       double g[4] = {0.0, 0.0, 0.0, 0.0};
-      contract(basis, u, val, grad, nullptr, g);
+      add_point_values<2>(basis, u, val, grad, nullptr, g);
       const double eps[3] = {g[0], g[3], g[1] + g[2]};
       for (int a = 0; a < 3; ++a)
         out.stress.push_back(D[3 * a] * eps[0] + D[3 * a + 1] * eps[1] + D[3 * a + 2] * eps[2]);
       out.parent.push_back(ci);
       out.side.push_back(static_cast<std::int8_t>(sd));
-    }
-  }
-  return out;
-}
-
-FieldPoints compute_field_points(std::span<const double> x, std::span<const std::int32_t> cells,
-                                 const EnrichmentLayout& layout,
-                                 std::span<const CrackGeometry* const> cracks,
-                                 std::span<const double> u,
-                                 std::span<const std::int32_t> cell_list,
-                                 const QuadratureOptions& options)
-{
-  check_size(u, layout);
-  const auto num_cells = static_cast<std::int32_t>(cells.size() / 3);
-  FieldPoints out;
-  std::vector<double> val, grad;
-  std::vector<int> side;
-  CellQuadrature qp;
-  const std::int32_t n = cell_list.empty() ? num_cells : static_cast<std::int32_t>(cell_list.size());
-  for (std::int32_t k = 0; k < n; ++k)
-  {
-    const std::int32_t c = cell_list.empty() ? k : cell_list[k];
-    if (c < 0 or c >= num_cells)
-      throw std::invalid_argument("compute_field_points: cell index out of range");
-    const P1Cell cell(x, cells, c);
-    const CellBasis basis(cell, layout, c);
-    compute_cell_quadrature(cell, c, cracks, cell_tip(cell, basis, layout), options, qp);
-    for (int q = 0; q < qp.size(); ++q)
-    {
-      const std::array<double, 2> r = {qp.ref[2 * q], qp.ref[2 * q + 1]};
-      region_sides(cracks, c, qp.side[q], side);
-      evaluate_basis(cell, basis, layout, side, r, val, grad);
-      double g[4] = {0.0, 0.0, 0.0, 0.0};
-      contract(basis, u, val, grad, nullptr, g);
-      const auto xp = cell.physical(r);
-      out.cell.push_back(c);
-      out.ref.insert(out.ref.end(), r.begin(), r.end());
-      out.x.insert(out.x.end(), xp.begin(), xp.end());
-      out.weight.push_back(qp.weight[q]);
-      out.side.push_back(qp.side[q]);
-      out.grad_u.insert(out.grad_u.end(), g, g + 4);
     }
   }
   return out;

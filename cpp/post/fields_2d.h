@@ -1,4 +1,5 @@
-// Post-processing of enriched P1 fields (layer a).
+// The X-FEM solution on sub-triangles (layer a): the picture of a 2D field
+// with its cracks open (point values in any dimension: displacement.h).
 #pragma once
 
 #include "quadrature/cell_quadrature_2d.h"
@@ -11,22 +12,6 @@
 
 namespace cracklip
 {
-
-/// Displacement (n, 2) and, if grad is not null, its gradient (n, 2, 2)
-/// (grad[p][i][j] = d u_i / d x_j) at points given by cell and reference
-/// coordinates. u: scalar dofs (2 * layout.num_nodes_total()); point_cells
-/// (n); ref_points (n, 2); sides (n): +1 / -1 evaluates the + / - lip of a
-/// crack crossing the cell (the polynomial of that side), 0 the side the
-/// point lies on (+ on the crack itself).
-std::vector<double> evaluate_displacement(std::span<const double> x,
-                                          std::span<const std::int32_t> cells,
-                                          const EnrichmentLayout& layout,
-                                          std::span<const CrackGeometry* const> cracks,
-                                          std::span<const double> u,
-                                          std::span<const std::int32_t> point_cells,
-                                          std::span<const double> ref_points,
-                                          std::span<const std::int8_t> sides,
-                                          std::vector<double>* grad = nullptr);
 
 /// The solution on a mesh of sub-triangles: every uncrossed cell is one
 /// sub-triangle, every crossed cell contributes its sub-triangles. Vertices
@@ -44,25 +29,5 @@ SubcellFields compute_subcell_fields(std::span<const double> x, std::span<const 
                                      const EnrichmentLayout& layout,
                                      std::span<const CrackGeometry* const> cracks,
                                      std::span<const double> u, double E, double nu);
-
-/// Quadrature points of a set of cells (the rules of the stiffness), with the
-/// solution's displacement gradient there: for energies and error norms.
-struct FieldPoints
-{
-  std::vector<std::int32_t> cell; ///< (n)
-  std::vector<double> ref;        ///< (n, 2) reference coordinates in the cell
-  std::vector<double> x;          ///< (n, 2) physical points
-  std::vector<double> weight;     ///< (n)
-  std::vector<std::int8_t> side;  ///< (n) side of the crack crossing the cell, 0 if none
-  std::vector<double> grad_u;     ///< (n, 2, 2) d u_i / d x_j
-};
-
-/// cell_list: cells to integrate over (all cells if empty).
-FieldPoints compute_field_points(std::span<const double> x, std::span<const std::int32_t> cells,
-                                 const EnrichmentLayout& layout,
-                                 std::span<const CrackGeometry* const> cracks,
-                                 std::span<const double> u,
-                                 std::span<const std::int32_t> cell_list,
-                                 const QuadratureOptions& options);
 
 } // namespace cracklip

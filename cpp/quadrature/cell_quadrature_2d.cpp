@@ -298,4 +298,12 @@ void compute_cell_quadrature(const P1Cell& cell, std::int32_t c,
   }
 }
 
+void compute_enriched_cell_quadrature(std::span<const double> x, std::span<const std::int32_t> cells,
+                                      const EnrichmentLayout& layout, std::span<const CrackGeometry* const> cracks,
+                                      std::int32_t c, const QuadratureOptions& options, CellQuadrature& out)
+{
+  const P1Cell cell(x, cells, c);
+  compute_cell_quadrature(cell, c, cracks, cell_tip(cell, CellBasis(cell, layout, c), layout), options, out);
+}
+
 } // namespace cracklip

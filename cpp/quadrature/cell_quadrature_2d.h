@@ -12,11 +12,13 @@
 // available.
 #pragma once
 
-#include "geometry/crack_geometry_2d.h"
-#include "enrichment/enriched_basis_2d.h"
+#include "enrichment/enriched_basis.h"
 #include "enrichment/enrichment_layout.h"
+#include "geometry/crack_geometry_2d.h"
+#include "geometry/p1_simplex.h"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -57,6 +59,38 @@ struct CellQuadrature
   int size() const { return static_cast<int>(weight.size()); }
 };
 
+/// Integration regions of a cell: the sub-triangles of a crossed cell (with
+/// the side of the crossing crack), else the cell itself (side 0).
+struct CellRegions
+{
+  const CrackCell* crack_cell = nullptr;
+
+  CellRegions(std::span<const CrackGeometry* const> cracks, std::int32_t c)
+  {
+    const int ic = crossing_crack(cracks, c);
+    if (ic >= 0)
+      crack_cell = &cracks[ic]->crack_cells[cracks[ic]->crack_cell_index[c]];
+  }
+  int size() const { return crack_cell ? crack_cell->num_sub : 1; }
+  int side(int s) const { return crack_cell ? crack_cell->side[s] : 0; }
+  /// Vertices of region s in reference coordinates.
+  std::array<std::array<double, 2>, 3> triangle(int s) const
+  {
+    std::array<std::array<double, 2>, 3> tri = {{{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}};
+    if (crack_cell)
+      for (int i = 0; i < 3; ++i)
+        tri[i] = {crack_cell->sub[6 * s + 2 * i], crack_cell->sub[6 * s + 2 * i + 1]};
+    return tri;
+  }
+  /// Reference area of region s.
+  double area(int s) const
+  {
+    const auto t = triangle(s);
+    return 0.5 * std::abs((t[1][0] - t[0][0]) * (t[2][1] - t[0][1])
+                          - (t[2][0] - t[0][0]) * (t[1][1] - t[0][1]));
+  }
+};
+
 using Point2 = std::array<double, 2>;
 using Triangle2 = std::array<Point2, 3>;
 
@@ -91,5 +125,12 @@ void compute_cell_quadrature(const P1Cell& cell, std::int32_t c,
 /// The tip frame a cell's tip functions belong to (nearest tip among its
 /// pseudo-nodes), or nullptr.
 const TipFrame* cell_tip(const P1Cell& cell, const CellBasis& basis, const EnrichmentLayout& layout);
+
+/// The rule of an enriched cell c (x (num_nodes, 2), cells (num_cells, 3)):
+/// compute_cell_quadrature with the tip of its tip functions, if any (the
+/// 2D geometry's answer to the enriched kernels, enriched_stiffness.h).
+void compute_enriched_cell_quadrature(std::span<const double> x, std::span<const std::int32_t> cells,
+                                      const EnrichmentLayout& layout, std::span<const CrackGeometry* const> cracks,
+                                      std::int32_t c, const QuadratureOptions& options, CellQuadrature& out);
 
 } // namespace cracklip

@@ -1,8 +1,9 @@
 #include "quadrature/cell_quadrature_3d.h"
 
-#include "geometry/p1_tetrahedron.h"
+#include "geometry/p1_simplex.h"
 #include "geometry/vec3.h"
 #include "quadrature/front_rules_3d.h"
+#include "quadrature/rules.h"
 
 #include <algorithm>
 #include <array>
@@ -13,20 +14,6 @@
 namespace cracklip
 {
 using namespace vec3;
-
-Point3 front_direction(std::span<const double> x, std::span<const std::int32_t> cells, const CrackGeometry3D& g,
-                       std::int32_t c)
-{
-  const P1Tetrahedron T(x, cells, c);
-  std::array<double, 4> f, p;
-  for (int a = 0; a < 4; ++a)
-    f[a] = g.phi[T.nodes[a]], p[a] = g.psi[T.nodes[a]];
-  const Point3 gf = T.gradient(f), gp = T.gradient(p);
-  const Point3 d = cross(gp, gf);
-  if (!(norm(d) > 1e-12 * norm(gp) * norm(gf)))
-    return {0.0, 0.0, 0.0};
-  return unit(d);
-}
 
 bool front_line(std::span<const double> x, std::span<const std::int32_t> cells, const CrackGeometry3D& g,
                 std::int32_t c, Point3& point, Point3& direction)
@@ -48,6 +35,35 @@ bool front_line(std::span<const double> x, std::span<const std::int32_t> cells, 
   const double l0 = (cc * v0 - b * v1) / det, l1 = (a * v1 - b * v0) / det;
   point = axpy(axpy(xc, -l0, gf), -l1, gp);
   return true;
+}
+
+Point3 front_direction(std::span<const double> x, std::span<const std::int32_t> cells, const CrackGeometry3D& g,
+                       std::int32_t c)
+{
+  Point3 point, direction;
+  return front_line(x, cells, g, c, point, direction) ? direction : Point3{0.0, 0.0, 0.0};
+}
+
+double diameter(std::span<const Point3> points)
+{
+  double d = 0.0;
+  for (std::size_t a = 0; a < points.size(); ++a)
+    for (std::size_t b = a + 1; b < points.size(); ++b)
+      d = std::max(d, dist(points[a], points[b]));
+  return d;
+}
+
+bool near_line(std::span<const Point3> vertices, const Point3& on_line, const Point3& direction, double factor)
+{
+  if (!(factor > 0.0))
+    return false;
+  double dmin = std::numeric_limits<double>::infinity();
+  for (const Point3& v : vertices)
+  {
+    const Point3 w = sub(v, on_line);
+    dmin = std::min(dmin, norm(axpy(w, -dot(w, direction), direction)));
+  }
+  return dmin < factor * diameter(vertices);
 }
 
 int front_function_degree(const QuadratureOptions3D& options, double rho)
@@ -111,27 +127,14 @@ void compute_cell_quadrature_3d(std::span<const double> x, std::span<const std::
     if (nf == 0)
     {
       // Near the front line: the near-front rule (signed cones from it).
-      bool near = false;
-      if (has_line and options.near_factor > 0.0)
-      {
-        double dmin = std::numeric_limits<double>::infinity(), diam = 0.0;
-        for (int a = 0; a < 4; ++a)
-        {
-          const Point3 w = sub(X[a], on_line);
-          dmin = std::min(dmin, norm(axpy(w, -dot(w, dir), dir)));
-          for (int b = a + 1; b < 4; ++b)
-            diam = std::max(diam, dist(X[a], X[b]));
-        }
-        near = dmin < options.near_factor * diam;
-      }
-      if (near)
+      if (has_line and near_line(X, on_line, dir, options.near_factor))
         append(quadrature::tetrahedron_near_front(xv, on_line, dir, options.front_radial, options.front_angular,
                                                   options.front_axial),
                R, cc.side[k], 0);
       else if (options.front_functions)
       {
         // Distance to the front from the P1 level sets at the vertices.
-        double rmin = std::numeric_limits<double>::infinity(), diam = 0.0;
+        double rmin = std::numeric_limits<double>::infinity();
         for (int a = 0; a < 4; ++a)
         {
           const auto N = P1Tetrahedron::shape({R[3 * a], R[3 * a + 1], R[3 * a + 2]});
@@ -139,10 +142,8 @@ void compute_cell_quadrature_3d(std::span<const double> x, std::span<const std::
           for (int b = 0; b < 4; ++b)
             f += N[b] * g.phi[T.nodes[b]], p += N[b] * g.psi[T.nodes[b]];
           rmin = std::min(rmin, std::hypot(f, p));
-          for (int b = a + 1; b < 4; ++b)
-            diam = std::max(diam, dist(X[a], X[b]));
         }
-        append(gauss_rule(front_function_degree(options, rmin / diam)), R, cc.side[k], 0);
+        append(gauss_rule(front_function_degree(options, rmin / diameter(X))), R, cc.side[k], 0);
       }
       else
         append(gauss_rule(options.degree), R, cc.side[k], 0);
@@ -173,6 +174,70 @@ void compute_cell_quadrature_3d(std::span<const double> x, std::span<const std::
     append(quadrature::tetrahedron_point_collapsed(xv, d, options.front_radial, options.front_angular,
                                                    options.front_axial),
            R, cc.side[k], nf);
+  }
+}
+
+void compute_enriched_cell_quadrature(std::span<const double> x, std::span<const std::int32_t> cells,
+                                      const EnrichmentLayout& layout, std::span<const CrackGeometry3D* const> cracks,
+                                      std::int32_t c, const QuadratureOptions3D& options, CellQuadrature3D& out)
+{
+  out.clear();
+  // The crack whose front functions the cell carries, if any.
+  int front_crack = -1;
+  if (const std::int32_t ie = layout.cell_index.empty() ? -1 : layout.cell_index[c]; ie >= 0)
+    for (std::int32_t j = layout.cell_offsets[ie]; j < layout.cell_offsets[ie + 1] and front_crack < 0; ++j)
+      if (const std::int32_t k = layout.cell_enr[j];
+          layout.kind[k] != static_cast<std::int8_t>(EnrichmentKind::heaviside))
+        front_crack = layout.crack[k];
+  const int ic = crossing_crack(cracks, c);
+  if (ic >= 0)
+  {
+    // Front functions are smooth but not polynomial away from the front:
+    // the sub-tetrahedra away from it get a degree graded by the distance.
+    QuadratureOptions3D o = options;
+    o.front_functions = front_crack >= 0;
+    compute_cell_quadrature_3d(x, cells, *cracks[ic], c, o, out);
+    return;
+  }
+  const P1Tetrahedron T(x, cells, c);
+  const double scale6 = std::abs(T.detJ);
+  auto append = [&](const quadrature::Rule& rule)
+  {
+    for (int q = 0; q < rule.size(); ++q)
+    {
+      out.ref.insert(out.ref.end(), rule.points.begin() + 3 * q, rule.points.begin() + 3 * q + 3);
+      out.weight.push_back(rule.weights[q] * scale6);
+      out.side.push_back(0);
+      out.front_vertices.push_back(0);
+    }
+  };
+  if (front_crack < 0)
+  {
+    append(quadrature::tetrahedron_cached(options.degree));
+    return;
+  }
+  Point3 on_line, dir;
+  const bool near = options.front_rule == FrontQuadrature::collapsed and options.near_factor > 0.0
+                    and front_line(x, cells, *cracks[front_crack], c, on_line, dir)
+                    and near_line(T.xv, on_line, dir, options.near_factor);
+  if (near)
+  {
+    std::array<double, 12> xv;
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i)
+        xv[3 * a + i] = T.xv[a][i];
+    append(quadrature::tetrahedron_near_front(xv, on_line, dir, options.front_radial, options.front_angular,
+                                              options.front_axial));
+  }
+  else
+  {
+    // Gauss graded by the distance of the nearest vertex to the front (its
+    // level sets' distance at the vertices).
+    const CrackGeometry3D& g = *cracks[front_crack];
+    double rmin = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 4; ++a)
+      rmin = std::min(rmin, std::hypot(g.phi[T.nodes[a]], g.psi[T.nodes[a]]));
+    append(quadrature::tetrahedron_cached(front_function_degree(options, rmin / diameter(T.xv))));
   }
 }
 

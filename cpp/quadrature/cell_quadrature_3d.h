@@ -16,7 +16,8 @@
 // assembly can call tetrahedron_near_front with the front from FrontLocator.
 #pragma once
 
-#include "geometry/crack_geometry_3d.h"
+#include "enrichment/enrichment_layout.h"
+#include "geometry/crack_geometry.h"
 
 #include <cstdint>
 #include <span>
@@ -67,6 +68,14 @@ struct QuadratureOptions3D
   bool front_functions = false;
 };
 
+/// Largest distance between two of the points (a piece's diameter).
+double diameter(std::span<const Point3> points);
+
+/// A piece lies near a line (a point on it, its unit direction): its
+/// nearest vertex within factor times its diameter of the line (never for
+/// factor <= 0). Decides where the near-front rules take over.
+bool near_line(std::span<const Point3> vertices, const Point3& on_line, const Point3& direction, double factor);
+
 /// Gauss degree for a piece carrying front functions (smooth there but not
 /// polynomial, varying on the scale of the distance r to the front) whose
 /// nearest vertex lies rho diameters from the front line: far_degree below
@@ -108,5 +117,20 @@ Point3 front_direction(std::span<const double> x, std::span<const std::int32_t> 
 /// front_direction). False where the gradients are parallel.
 bool front_line(std::span<const double> x, std::span<const std::int32_t> cells, const CrackGeometry3D& g,
                 std::int32_t c, Point3& point, Point3& direction);
+
+/// Quadrature of an enriched cell: the crack geometry's per-cell rule where
+/// a crack crosses the cell (sub-tetrahedra, collapsed at the front; Gauss
+/// graded by the distance (front_function_degree) on the sub-tetrahedra away
+/// from the front when the cell carries front functions); in a cell that
+/// carries front functions without being crossed, the near-front rule
+/// (signed cones from the cell's P1 front line) when that line passes within
+/// options.near_factor diameters of its nearest vertex, else Gauss of
+/// front_function_degree (graded by the distance to the front); Gauss of
+/// options.degree otherwise. Sides: the crossing crack's sub-tetrahedra,
+/// else 0. (The 3D geometry's answer to the enriched kernels,
+/// enriched_stiffness.h.)
+void compute_enriched_cell_quadrature(std::span<const double> x, std::span<const std::int32_t> cells,
+                                      const EnrichmentLayout& layout, std::span<const CrackGeometry3D* const> cracks,
+                                      std::int32_t c, const QuadratureOptions3D& options, CellQuadrature3D& out);
 
 } // namespace cracklip

@@ -10,7 +10,7 @@
 #pragma once
 
 #include "geometry/crack_geometry_2d.h"
-#include "enrichment/enriched_basis_2d.h"
+#include "geometry/p1_simplex.h"
 #include "quadrature/rules.h"
 
 #include <array>

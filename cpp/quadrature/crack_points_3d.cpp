@@ -1,6 +1,6 @@
 #include "quadrature/crack_points_3d.h"
 
-#include "geometry/p1_tetrahedron.h"
+#include "geometry/p1_simplex.h"
 #include "geometry/vec3.h"
 #include "quadrature/cell_quadrature_3d.h"
 #include "quadrature/front_rules_3d.h"
@@ -49,18 +49,7 @@ LipPoints3D compute_lip_points_3d(std::span<const double> x, std::span<const std
         rule = quadrature::tip_fan(n, n); // the plain fan from the front vertex
       else
       {
-        bool near = false;
-        if (has_line and near_factor > 0.0)
-        {
-          double dmin = std::numeric_limits<double>::infinity(), diam = 0.0;
-          for (int a = 0; a < 3; ++a)
-          {
-            const Point3 w = sub(X[a], on_line);
-            dmin = std::min(dmin, norm(axpy(w, -dot(w, dir), dir)));
-            diam = std::max(diam, dist(X[a], X[(a + 1) % 3]));
-          }
-          near = dmin < near_factor * diam;
-        }
+        const bool near = has_line and near_line(X, on_line, dir, near_factor);
         rule = near ? quadrature::triangle_near_front(xv, on_line, dir, n, n) : smooth;
       }
       const double scale2 = 2.0 * cc.facet_area[k];

@@ -32,9 +32,18 @@ const Rule& gauss_legendre_cached(int n);
 /// r0 = r1 it is plain Gauss-Legendre.
 Rule line_toward_tip(int n, double r0, double r1);
 
-/// Rule on the reference triangle (0,0), (1,0), (0,1), exact for polynomials
-/// of total degree `degree` (collapsed Gauss-Legendre product rule; weights
-/// sum to 1/2). Degree 1 returns the one-point centroid rule.
+/// Rule on the reference simplex of dimension dim (1, 2 or 3: [0, 1], the
+/// triangle (0,0), (1,0), (0,1), the tetrahedron (0,0,0), (1,0,0), (0,1,0),
+/// (0,0,1)), exact for polynomials of total degree `degree`: the collapsed
+/// Gauss-Legendre product rule x_0 = u_0, x_k = (1 - u_0) ... (1 - u_{k-1})
+/// u_k, Jacobian prod_k (1 - u_k)^(dim - 1 - k), with (degree + 1 + dim - k)
+/// / 2 points in u_k (a monomial of degree p is of degree p + dim - 1 - k in
+/// u_k with the Jacobian); weights sum to 1 / dim!. Degree 1 returns the
+/// one-point centroid rule. Computed once per (dim, degree) and kept
+/// (single-threaded callers, as the kernels that call it).
+const Rule& simplex(int dim, int degree);
+
+/// simplex(2, degree): the reference triangle (weights sum to 1/2).
 Rule triangle(int degree);
 
 /// Conical product rule with n x n points on the reference triangle (the
@@ -42,15 +51,10 @@ Rule triangle(int degree);
 /// 2n - 2.
 Rule triangle_product(int n);
 
-/// Rule on the reference tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1),
-/// exact for polynomials of total degree `degree` (collapsed Gauss-Legendre
-/// product rule: x = u, y = (1 - u) v, z = (1 - u)(1 - v) w, Jacobian
-/// (1 - u)^2 (1 - v), with (degree + 4) / 2, (degree + 3) / 2 and
-/// (degree + 2) / 2 points in u, v, w; weights sum to 1/6). Degree 1 returns
-/// the one-point centroid rule.
+/// simplex(3, degree): the reference tetrahedron (weights sum to 1/6).
 Rule tetrahedron(int degree);
 
-/// The same, computed once per degree and kept (single-threaded callers).
+/// The same, without a copy.
 const Rule& tetrahedron_cached(int degree);
 
 /// Quasi-polar rule for integrands with a 1/r (and sqrt(r)) singularity at

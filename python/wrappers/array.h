@@ -5,6 +5,8 @@
 #include <pybind11/pybind11.h>
 
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace cracklip_wrappers
@@ -34,6 +36,20 @@ py::array_t<T> as_pyarray(std::vector<T>&& v)
 {
   const auto n = static_cast<py::ssize_t>(v.size());
   return as_pyarray(std::move(v), {n});
+}
+
+/// Raise ValueError unless `a` has shape (n, cols).
+template <typename T>
+void require_columns(const carray<T>& a, py::ssize_t cols, const std::string& name)
+{
+  if (a.ndim() != 2 or a.shape(1) != cols)
+  {
+    std::string shape;
+    for (py::ssize_t d = 0; d < a.ndim(); ++d)
+      shape += (d ? ", " : "") + std::to_string(a.shape(d));
+    throw std::invalid_argument(name + " must be an array of shape (n, " + std::to_string(cols) + "), got shape ("
+                                + shape + ")");
+  }
 }
 
 } // namespace cracklip_wrappers

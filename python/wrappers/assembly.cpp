@@ -1,23 +1,43 @@
-// Bindings: sparsity, enriched stiffness (into PETSc or COO), facet basis.
+// Bindings: quadrature options (tip rules in 2D, front rules in 3D), the
+// enriched stiffness (into PETSc or COO) and its quadrature points, block
+// rescaling.
 #include "array.h"
+#include "dimension.h"
 
 #include "assembly/dolfinx_glue.h"
-#include "assembly/enriched_kernels_2d.h"
+#include "assembly/enriched_stiffness.h"
 #include "solvers/rescaling.h"
+
 #include <pybind11/stl.h>
-#include "assembly/sparsity.h"
 
 namespace cracklip_wrappers
 {
 using namespace cracklip;
-using Cracks = std::vector<const CrackGeometry*>;
+
+namespace
+{
+/// Stiffness of the enriched cells through a sink, in the mesh's dimension.
+std::int32_t assemble(const MatrixSink& sink, const carray<double>& x, const carray<std::int32_t>& cells,
+                      const EnrichmentLayout& layout, const py::sequence& cracks, double E, double nu,
+                      const py::object& options)
+{
+  return with_dimension(mesh_dimension(x, cells),
+                        [&](auto d)
+                        {
+                          constexpr int dim = decltype(d)::value;
+                          return assemble_enriched_stiffness<dim>(sink, as_span(x), as_span(cells), layout,
+                                                                  cracks_of<dim>(cracks), E, nu,
+                                                                  options_of<dim>(options));
+                        });
+}
+} // namespace
 
 void declare_assembly(py::module& m)
 {
   py::enum_<TipQuadrature>(m, "TipQuadrature")
       .value("collapsed", TipQuadrature::collapsed)
       .value("gauss", TipQuadrature::gauss);
-  py::class_<QuadratureOptions>(m, "QuadratureOptions", "Quadrature rules of the enriched kernels")
+  py::class_<QuadratureOptions>(m, "QuadratureOptions", "Quadrature rules of the enriched kernels on triangles")
       .def(py::init<>())
       .def_readwrite("degree", &QuadratureOptions::degree)
       .def_readwrite("tip_rule", &QuadratureOptions::tip_rule)
@@ -25,67 +45,88 @@ void declare_assembly(py::module& m)
       .def_readwrite("tip_angular", &QuadratureOptions::tip_angular)
       .def_readwrite("tip_max_angle", &QuadratureOptions::tip_max_angle)
       .def_readwrite("tip_degree", &QuadratureOptions::tip_degree);
-
-  m.def(
-      "create_sparsity",
-      [](const carray<std::int32_t>& cells, const EnrichmentLayout& layout)
-      {
-        CSR s = expand_blocks(create_block_sparsity(as_span(cells), 3, layout.num_std_nodes, layout.num_enriched(), layout), 2);
-        return py::make_tuple(as_pyarray(std::move(s.offsets)), as_pyarray(std::move(s.indices)));
-      },
-      py::arg("cells"), py::arg("layout"),
-      "Scalar CSR (indptr, indices) of the enriched stiffness, block size 2.");
+  py::class_<QuadratureOptions3D>(m, "QuadratureOptions3D", "Quadrature rules of the enriched kernels on tetrahedra")
+      .def(py::init<>())
+      .def_readwrite("degree", &QuadratureOptions3D::degree)
+      .def_property(
+          "front_rule",
+          [](const QuadratureOptions3D& o) { return o.front_rule == FrontQuadrature::collapsed ? "collapsed" : "gauss"; },
+          [](QuadratureOptions3D& o, const std::string& v)
+          {
+            if (v != "collapsed" and v != "gauss")
+              throw std::invalid_argument("front_rule must be 'collapsed' or 'gauss', got '" + v + "'");
+            o.front_rule = v == "collapsed" ? FrontQuadrature::collapsed : FrontQuadrature::gauss;
+          })
+      .def_readwrite("front_radial", &QuadratureOptions3D::front_radial)
+      .def_readwrite("front_angular", &QuadratureOptions3D::front_angular)
+      .def_readwrite("front_axial", &QuadratureOptions3D::front_axial)
+      .def_readwrite("front_degree", &QuadratureOptions3D::front_degree)
+      .def_readwrite("near_factor", &QuadratureOptions3D::near_factor)
+      .def_readwrite("far_degree", &QuadratureOptions3D::far_degree)
+      .def_readwrite("signed_point_rule", &QuadratureOptions3D::signed_point_rule)
+      .def_readwrite("front_functions", &QuadratureOptions3D::front_functions);
 
   m.def(
       "assemble_enriched_stiffness_petsc",
       [](std::uintptr_t mat_handle, const carray<double>& x, const carray<std::int32_t>& cells,
-         const EnrichmentLayout& layout, const Cracks& cracks, double E, double nu,
-         const QuadratureOptions& options)
-      {
-        const MatrixSink sink = petsc_add_sink(reinterpret_cast<Mat>(mat_handle));
-        return assemble_enriched_stiffness(sink, as_span(x), as_span(cells), layout, cracks, E, nu, options);
-      },
-      py::arg("mat_handle"), py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"),
-      py::arg("E"), py::arg("nu"), py::arg("options"),
-      "Add the enriched blocks into a PETSc Mat (petsc4py Mat.handle). Returns the number "
-      "of cells integrated.");
+         const EnrichmentLayout& layout, const py::sequence& cracks, double E, double nu, const py::object& options)
+      { return assemble(petsc_add_sink(reinterpret_cast<Mat>(mat_handle)), x, cells, layout, cracks, E, nu, options); },
+      py::arg("mat_handle"), py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("E"),
+      py::arg("nu"), py::arg("options"),
+      "Add the enriched cells' stiffness (standard-standard block excluded) into a PETSc Mat (petsc4py Mat.handle). "
+      "Returns the number of cells integrated. options: QuadratureOptions (2D) or QuadratureOptions3D.");
+  m.attr("assemble_enriched_stiffness_3d_petsc") = m.attr("assemble_enriched_stiffness_petsc");
 
   m.def(
       "assemble_enriched_stiffness_coo",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
-         const Cracks& cracks, double E, double nu, const QuadratureOptions& options)
+         const py::sequence& cracks, double E, double nu, const py::object& options)
       {
         Triplets coo;
-        const MatrixSink sink = coo_sink(coo);
-        const auto n = assemble_enriched_stiffness(sink, as_span(x), as_span(cells), layout, cracks, E, nu, options);
+        const auto n = assemble(coo_sink(coo), x, cells, layout, cracks, E, nu, options);
         return py::make_tuple(as_pyarray(std::move(coo.row)), as_pyarray(std::move(coo.col)),
                               as_pyarray(std::move(coo.value)), n);
       },
-      py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("E"),
-      py::arg("nu"), py::arg("options"),
-      "Enriched blocks as COO (rows, cols, values, num_cells); for tests.");
+      py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("E"), py::arg("nu"),
+      py::arg("options"), "The enriched stiffness as COO triplets (rows, cols, values, cells integrated).");
+  m.attr("assemble_enriched_stiffness_3d_coo") = m.attr("assemble_enriched_stiffness_coo");
 
   m.def(
-      "compute_facet_basis",
+      "compute_enriched_cell_quadrature",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
-         const Cracks& cracks, const carray<std::int32_t>& facet_cells,
-         const carray<std::int32_t>& facet_local, int degree)
+         const py::sequence& cracks, const carray<std::int32_t>& cell_list, const py::object& options)
       {
-        FacetBasis fb = compute_facet_basis(as_span(x), as_span(cells), layout, cracks,
-                                            as_span(facet_cells), as_span(facet_local), degree);
-        const py::ssize_t n = fb.weights.size();
-        py::dict d;
-        d["points"] = as_pyarray(std::move(fb.points), {n, 2});
-        d["weights"] = as_pyarray(std::move(fb.weights));
-        d["entry_point"] = as_pyarray(std::move(fb.entry_point));
-        const py::ssize_t ne = fb.entry_dof.size();
-        d["entry_dof"] = as_pyarray(std::move(fb.entry_dof));
-        d["entry_value"] = as_pyarray(std::move(fb.entry_value), {ne, 2});
-        return d;
+        return with_dimension(
+            mesh_dimension(x, cells),
+            [&](auto d)
+            {
+              constexpr int dim = decltype(d)::value;
+              const auto cr = cracks_of<dim>(cracks);
+              const auto& o = options_of<dim>(options);
+              std::vector<std::int32_t> pc;
+              std::vector<double> ref, weight;
+              std::vector<std::int8_t> side;
+              CellQuadratureOf<dim> q;
+              for (const std::int32_t c : as_span(cell_list))
+              {
+                compute_enriched_cell_quadrature(as_span(x), as_span(cells), layout, cr, c, o, q);
+                pc.insert(pc.end(), q.size(), c);
+                ref.insert(ref.end(), q.ref.begin(), q.ref.end());
+                weight.insert(weight.end(), q.weight.begin(), q.weight.end());
+                side.insert(side.end(), q.side.begin(), q.side.end());
+              }
+              const auto np = static_cast<py::ssize_t>(pc.size());
+              py::dict out;
+              out["cell"] = as_pyarray(std::move(pc));
+              out["ref"] = as_pyarray(std::move(ref), {np, dim});
+              out["weight"] = as_pyarray(std::move(weight));
+              out["side"] = as_pyarray(std::move(side));
+              return out;
+            });
       },
-      py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("facet_cells"),
-      py::arg("facet_local"), py::arg("degree"),
-      "Quadrature points on boundary facets and the basis values there (COO by point).");
+      py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("cell_list"), py::arg("options"),
+      "The stiffness's quadrature points of the given cells: cell, ref (n, dim), weight, side.");
+  m.attr("compute_enriched_cell_quadrature_3d") = m.attr("compute_enriched_cell_quadrature");
 
   m.def(
       "nodal_block_transform",

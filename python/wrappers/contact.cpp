@@ -167,7 +167,7 @@ void declare_contact(py::module& m)
   m.def(
       "create_multiplier_space_3d",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const Cracks3D& cracks,
-         const EnrichmentLayout3D& layout, const std::string& kind, bool with_front_pieces)
+         const EnrichmentLayout& layout, const std::string& kind, bool with_front_pieces)
       {
         return create_multiplier_space_3d(as_span(x), as_span(cells), cracks, layout, multiplier_kind(kind),
                                           with_front_pieces);
@@ -177,7 +177,7 @@ void declare_contact(py::module& m)
 
   m.def(
       "assemble_coupling_3d",
-      [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout3D& layout,
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
          const Cracks3D& cracks, const MultiplierSpace3D& space, int n, double near_factor, bool signed_point_rule,
          bool tangential, const std::optional<carray<double>>& tangent_reference)
       {

@@ -1,6 +1,9 @@
-// Bindings: point evaluation, sub-cell fields, quadrature-point fields.
+// Bindings: point values and quadrature-point fields (2D or 3D), sub-cell
+// fields (2D), rasterised pictures.
 #include "array.h"
+#include "dimension.h"
 
+#include "post/displacement.h"
 #include "post/fields_2d.h"
 #include "post/raster.h"
 #include <pybind11/stl.h>
@@ -15,20 +18,27 @@ void declare_fields(py::module& m)
   m.def(
       "evaluate_displacement",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
-         const Cracks& cracks, const carray<double>& u, const carray<std::int32_t>& point_cells,
+         const py::sequence& cracks, const carray<double>& u, const carray<std::int32_t>& point_cells,
          const carray<double>& ref_points, const carray<std::int8_t>& sides)
       {
+        const int dim = mesh_dimension(x, cells);
         std::vector<double> grad;
-        auto out = evaluate_displacement(as_span(x), as_span(cells), layout, cracks, as_span(u),
-                                         as_span(point_cells), as_span(ref_points), as_span(sides),
-                                         &grad);
-        const py::ssize_t n = out.size() / 2;
-        return py::make_tuple(as_pyarray(std::move(out), {n, 2}),
-                              as_pyarray(std::move(grad), {n, 2, 2}));
+        auto out = with_dimension(dim,
+                                  [&](auto d)
+                                  {
+                                    constexpr int D = decltype(d)::value;
+                                    return evaluate_displacement<D>(as_span(x), as_span(cells), layout,
+                                                                    cracks_of<D>(cracks), as_span(u),
+                                                                    as_span(point_cells), as_span(ref_points),
+                                                                    as_span(sides), &grad);
+                                  });
+        const auto n = static_cast<py::ssize_t>(point_cells.size());
+        return py::make_tuple(as_pyarray(std::move(out), {n, dim}), as_pyarray(std::move(grad), {n, dim, dim}));
       },
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("u"),
       py::arg("point_cells"), py::arg("ref_points"), py::arg("sides"),
-      "Displacement (n, 2) and its gradient (n, 2, 2) at (cell, reference point, side).");
+      "Displacement (n, dim) and its gradient (n, dim, dim) at (cell, reference point, side).");
+  m.attr("evaluate_displacement_3d") = m.attr("evaluate_displacement");
 
   m.def(
       "compute_subcell_fields",
@@ -64,24 +74,32 @@ void declare_fields(py::module& m)
   m.def(
       "compute_field_points",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const EnrichmentLayout& layout,
-         const Cracks& cracks, const carray<double>& u, const carray<std::int32_t>& cell_list,
-         const QuadratureOptions& options)
+         const py::sequence& cracks, const carray<double>& u, const carray<std::int32_t>& cell_list,
+         const py::object& options)
       {
-        FieldPoints f = compute_field_points(as_span(x), as_span(cells), layout, cracks, as_span(u),
-                                             as_span(cell_list), options);
+        const int dim = mesh_dimension(x, cells);
+        FieldPoints f = with_dimension(dim,
+                                       [&](auto d)
+                                       {
+                                         constexpr int D = decltype(d)::value;
+                                         return compute_field_points<D>(as_span(x), as_span(cells), layout,
+                                                                        cracks_of<D>(cracks), as_span(u),
+                                                                        as_span(cell_list), options_of<D>(options));
+                                       });
         const py::ssize_t n = f.weight.size();
         py::dict d;
         d["cell"] = as_pyarray(std::move(f.cell));
-        d["ref"] = as_pyarray(std::move(f.ref), {n, 2});
-        d["x"] = as_pyarray(std::move(f.x), {n, 2});
+        d["ref"] = as_pyarray(std::move(f.ref), {n, dim});
+        d["x"] = as_pyarray(std::move(f.x), {n, dim});
         d["weight"] = as_pyarray(std::move(f.weight));
         d["side"] = as_pyarray(std::move(f.side));
-        d["grad_u"] = as_pyarray(std::move(f.grad_u), {n, 2, 2});
+        d["grad_u"] = as_pyarray(std::move(f.grad_u), {n, dim, dim});
         return d;
       },
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("u"),
       py::arg("cell_list"), py::arg("options"),
-      "Quadrature points of cells (all if cell_list is empty) with grad u there.");
+      "Quadrature points of cells (all if cell_list is empty; the enriched stiffness's rules) with grad u there: "
+      "cell, ref (n, dim), x (n, dim), weight, side, grad_u (n, dim, dim).");
 }
 
 } // namespace cracklip_wrappers

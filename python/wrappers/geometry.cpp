@@ -1,32 +1,15 @@
-// Bindings: crack geometry, node mesh extraction, enrichment layout.
+// Bindings: the node mesh of a P1 space, the crack geometry of a polyline on
+// triangles.
 #include "array.h"
 
 #include "geometry/crack_geometry_2d.h"
 #include <dolfinx/fem/FunctionSpace.h>
 #include "assembly/dolfinx_glue.h"
-#include "enrichment/enrichment_layout.h"
 #include <pybind11/stl.h>
 
 namespace cracklip_wrappers
 {
 using namespace cracklip;
-
-namespace
-{
-/// Raise ValueError unless `a` has shape (n, cols).
-template <typename T>
-void require_columns(const carray<T>& a, py::ssize_t cols, const std::string& name)
-{
-  if (a.ndim() != 2 or a.shape(1) != cols)
-  {
-    std::string shape;
-    for (py::ssize_t d = 0; d < a.ndim(); ++d)
-      shape += (d ? ", " : "") + std::to_string(a.shape(d));
-    throw std::invalid_argument(name + " must be an array of shape (n, " + std::to_string(cols)
-                                + "), got shape (" + shape + ")");
-  }
-}
-} // namespace
 
 void declare_geometry(py::module& m)
 {
@@ -147,48 +130,6 @@ void declare_geometry(py::module& m)
         return as_pyarray(std::move(out));
       },
       py::arg("crack_points"), py::arg("points"));
-
-  py::class_<EnrichmentLayout>(m, "EnrichmentLayout", "Enriched pseudo-nodes and enriched cells")
-      .def_property_readonly("num_std_nodes", [](const EnrichmentLayout& l) { return l.num_std_nodes; })
-      .def_property_readonly("num_enriched", &EnrichmentLayout::num_enriched)
-      .def_property_readonly("num_nodes_total", &EnrichmentLayout::num_nodes_total)
-      .def_property_readonly("node", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.node.size(), l.node.data()); })
-      .def_property_readonly("crack", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.crack.size(), l.crack.data()); })
-      .def_property_readonly("kind", [](const EnrichmentLayout& l) { return carray<std::int8_t>(l.kind.size(), l.kind.data()); })
-      .def_property_readonly("function", [](const EnrichmentLayout& l) { return carray<std::int8_t>(l.function.size(), l.function.data()); })
-      .def_property_readonly("tip", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.tip.size(), l.tip.data()); })
-      .def_property_readonly("core", [](const EnrichmentLayout& l) { return carray<std::int8_t>(l.core.size(), l.core.data()); })
-      .def_property_readonly("node_side", [](const EnrichmentLayout& l) { return carray<std::int8_t>(l.node_side.size(), l.node_side.data()); })
-      .def_property_readonly("tip_crack", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.tip_crack.size(), l.tip_crack.data()); })
-      .def_property_readonly("tip_local", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.tip_local.size(), l.tip_local.data()); })
-      .def_property_readonly("cells", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.cells.size(), l.cells.data()); })
-      .def_property_readonly("cell_offsets", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.cell_offsets.size(), l.cell_offsets.data()); })
-      .def_property_readonly("cell_enr", [](const EnrichmentLayout& l) { return carray<std::int32_t>(l.cell_enr.size(), l.cell_enr.data()); });
-
-  m.def(
-      "create_enrichment_layout",
-      [](const carray<double>& x, const carray<std::int32_t>& cells,
-         const std::vector<const CrackGeometry*>& cracks, const std::string& tip, double radius,
-         double kappa, bool corrected)
-      {
-        require_columns(x, 2, "x (node coordinates)");
-        require_columns(cells, 3, "cells (node indices per triangle)");
-        EnrichmentOptions opt;
-        opt.corrected = corrected;
-        if (tip == "none")
-          opt.tip = TipEnrichment::none;
-        else if (tip == "scalar")
-          opt.tip = TipEnrichment::scalar;
-        else if (tip == "vector")
-          opt.tip = TipEnrichment::vector;
-        else
-          throw std::invalid_argument("tip enrichment must be 'none', 'scalar' or 'vector', got '" + tip + "'");
-        opt.radius = radius;
-        opt.kappa = kappa;
-        return create_enrichment_layout(as_span(x), as_span(cells), cracks, opt);
-      },
-      py::arg("x"), py::arg("cells"), py::arg("cracks"), py::arg("tip") = "none",
-      py::arg("radius") = 0.0, py::arg("kappa") = 1.8, py::arg("corrected") = true);
 }
 
 } // namespace cracklip_wrappers

@@ -19,20 +19,6 @@ using namespace cracklip;
 
 namespace
 {
-/// Raise ValueError unless `a` has shape (n, cols).
-template <typename T>
-void require_shape(const carray<T>& a, py::ssize_t cols, const std::string& name)
-{
-  if (a.ndim() != 2 or a.shape(1) != cols)
-  {
-    std::string shape;
-    for (py::ssize_t d = 0; d < a.ndim(); ++d)
-      shape += (d ? ", " : "") + std::to_string(a.shape(d));
-    throw std::invalid_argument(name + " must be an array of shape (n, " + std::to_string(cols) + "), got shape ("
-                                + shape + ")");
-  }
-}
-
 Point3 point3(const carray<double>& a, const std::string& name)
 {
   if (a.size() != 3)
@@ -166,7 +152,7 @@ void declare_geometry_3d(py::module& m)
           "level_sets",
           [](const CrackSurface3D& s, const carray<double>& p)
           {
-            require_shape(p, 3, "points");
+            require_columns(p, 3, "points");
             const LevelSets3D ls = compute_level_sets_3d(as_span(p), s);
             return py::make_tuple(copy_array(ls.phi, {p.shape(0)}), copy_array(ls.psi, {p.shape(0)}));
           },
@@ -175,7 +161,7 @@ void declare_geometry_3d(py::module& m)
           "front_directions",
           [](const CrackSurface3D& s, const carray<double>& p)
           {
-            require_shape(p, 3, "points");
+            require_columns(p, 3, "points");
             const py::ssize_t np = p.shape(0);
             std::vector<double> e1(3 * np), e2(3 * np);
             for (py::ssize_t i = 0; i < np; ++i)
@@ -199,7 +185,7 @@ void declare_geometry_3d(py::module& m)
       "create_polygon_crack",
       [](const carray<double>& v)
       {
-        require_shape(v, 3, "vertices");
+        require_columns(v, 3, "vertices");
         return create_polygon_crack(as_span(v));
       },
       py::arg("vertices"), "Planar polygonal crack, vertices (n, 3) counter-clockwise seen from the + side.");
@@ -207,8 +193,8 @@ void declare_geometry_3d(py::module& m)
       "create_triangulated_crack",
       [](const carray<double>& v, const carray<std::int32_t>& t)
       {
-        require_shape(v, 3, "vertices");
-        require_shape(t, 3, "triangles");
+        require_columns(v, 3, "vertices");
+        require_columns(t, 3, "triangles");
         return create_triangulated_crack(as_span(v), as_span(t));
       },
       py::arg("vertices"), py::arg("triangles"),
@@ -217,7 +203,7 @@ void declare_geometry_3d(py::module& m)
       "compute_level_sets_3d",
       [](const carray<double>& x, const CrackSurface3D& s)
       {
-        require_shape(x, 3, "x (node coordinates)");
+        require_columns(x, 3, "x (node coordinates)");
         LevelSets3D ls = compute_level_sets_3d(as_span(x), s);
         return py::make_tuple(as_pyarray(std::move(ls.phi)), as_pyarray(std::move(ls.psi)));
       },
@@ -264,8 +250,8 @@ void declare_geometry_3d(py::module& m)
       "compute_crack_geometry_3d",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const CrackSurface3D& s, double snap_tol)
       {
-        require_shape(x, 3, "x (node coordinates)");
-        require_shape(cells, 4, "cells (node indices per tetrahedron)");
+        require_columns(x, 3, "x (node coordinates)");
+        require_columns(cells, 4, "cells (node indices per tetrahedron)");
         return compute_crack_geometry_3d(as_span(x), as_span(cells), s, snap_tol);
       },
       py::arg("x"), py::arg("cells"), py::arg("surface"), py::arg("snap_tol") = 1e-6,
@@ -275,8 +261,8 @@ void declare_geometry_3d(py::module& m)
       [](const carray<double>& x, const carray<std::int32_t>& cells, const carray<double>& phi,
          const carray<double>& psi, double snap_tol)
       {
-        require_shape(x, 3, "x (node coordinates)");
-        require_shape(cells, 4, "cells (node indices per tetrahedron)");
+        require_columns(x, 3, "x (node coordinates)");
+        require_columns(cells, 4, "cells (node indices per tetrahedron)");
         return compute_crack_geometry_3d(as_span(x), as_span(cells), as_span(phi), as_span(psi), snap_tol);
       },
       py::arg("x"), py::arg("cells"), py::arg("phi"), py::arg("psi"), py::arg("snap_tol") = 1e-6,
@@ -285,7 +271,7 @@ void declare_geometry_3d(py::module& m)
       "compute_front_projection_3d",
       [](const CrackGeometry3D& g, const carray<double>& p)
       {
-        require_shape(p, 3, "points");
+        require_columns(p, 3, "points");
         const FrontLocator loc(g.front);
         const py::ssize_t np = p.shape(0);
         std::vector<std::int32_t> seg(np), piece(np), nearest(np);
@@ -318,8 +304,8 @@ void declare_geometry_3d(py::module& m)
          int degree, const std::string& front_rule, int front_radial, int front_angular, int front_axial,
          int front_degree, double near_factor, bool signed_point_rule)
       {
-        require_shape(x, 3, "x (node coordinates)");
-        require_shape(cells, 4, "cells (node indices per tetrahedron)");
+        require_columns(x, 3, "x (node coordinates)");
+        require_columns(cells, 4, "cells (node indices per tetrahedron)");
         const QuadratureOptions3D o = quadrature_options(degree, front_rule, front_radial, front_angular,
                                                          front_axial, front_degree, near_factor, signed_point_rule);
         CellQuadrature3D q;
@@ -343,8 +329,8 @@ void declare_geometry_3d(py::module& m)
       [](const carray<double>& x, const carray<std::int32_t>& cells, const CrackGeometry3D& g, int npts,
          double near_factor, bool signed_point_rule)
       {
-        require_shape(x, 3, "x (node coordinates)");
-        require_shape(cells, 4, "cells (node indices per tetrahedron)");
+        require_columns(x, 3, "x (node coordinates)");
+        require_columns(cells, 4, "cells (node indices per tetrahedron)");
         LipPoints3D lp = compute_lip_points_3d(as_span(x), as_span(cells), g, npts, near_factor, signed_point_rule);
         const py::ssize_t nq = n(lp.weight.size());
         py::dict d;
@@ -366,7 +352,7 @@ void declare_geometry_3d(py::module& m)
       "tetrahedron_edge_collapsed_rule",
       [](const carray<double>& xv, int n_tau, int n_eta, int n_t)
       {
-        require_shape(xv, 3, "xv (vertices A, B, C, D)");
+        require_columns(xv, 3, "xv (vertices A, B, C, D)");
         if (xv.shape(0) != 4)
           throw std::invalid_argument("xv must be (4, 3)");
         return rule_dict(
@@ -378,7 +364,7 @@ void declare_geometry_3d(py::module& m)
       "tetrahedron_point_collapsed_rule",
       [](const carray<double>& xv, const carray<double>& front, int n_tau, int n_eta, int n_t)
       {
-        require_shape(xv, 3, "xv (vertices A, B, C, D)");
+        require_columns(xv, 3, "xv (vertices A, B, C, D)");
         if (xv.shape(0) != 4)
           throw std::invalid_argument("xv must be (4, 3)");
         const Point3 d = point3(front, "front");

@@ -5,12 +5,12 @@ namespace cracklip_wrappers
 {
 void declare_geometry(pybind11::module& m);
 void declare_geometry_3d(pybind11::module& m);
+void declare_enrichment(pybind11::module& m);
 void declare_assembly(pybind11::module& m);
 void declare_fields(pybind11::module& m);
 void declare_fracture(pybind11::module& m);
 void declare_contact(pybind11::module& m);
 void declare_loads(pybind11::module& m);
-void declare_model_3d(pybind11::module& m);
 } // namespace cracklip_wrappers
 
 PYBIND11_MODULE(_cracklip, m)
@@ -18,10 +18,10 @@ PYBIND11_MODULE(_cracklip, m)
   m.doc() = "cracklip C++ kernels: crack geometry, enrichment, enriched assembly, fields, tip functions, SIFs";
   cracklip_wrappers::declare_geometry(m);
   cracklip_wrappers::declare_geometry_3d(m);
+  cracklip_wrappers::declare_enrichment(m);
   cracklip_wrappers::declare_assembly(m);
   cracklip_wrappers::declare_fields(m);
   cracklip_wrappers::declare_fracture(m);
   cracklip_wrappers::declare_contact(m);
   cracklip_wrappers::declare_loads(m);
-  cracklip_wrappers::declare_model_3d(m);
 }

@@ -1,7 +1,7 @@
 // Quadrature of whole cells and lip facets near a 3D front.
 #include "adaptive_reference.h"
 #include "geometry/crack_geometry_3d.h"
-#include "geometry/p1_tetrahedron.h"
+#include "geometry/p1_simplex.h"
 #include "geometry/vec3.h"
 #include "meshes.h"
 #include "quadrature/cell_quadrature_3d.h"

@@ -6,7 +6,7 @@
 #include "contact/contact_kernels_3d.h"
 #include "contact/multiplier_space_3d.h"
 #include "enrichment/dof_numbering.h"
-#include "geometry/p1_tetrahedron.h"
+#include "geometry/p1_simplex.h"
 #include "geometry/vec3.h"
 #include "meshes.h"
 #include "quadrature/rules.h"
@@ -57,14 +57,14 @@ CrackSurface3D straight_front(double z0, double ax, double ay, double x0, double
   return plane_crack({{-5, -3}, {x0 - 3 * k, -3}, {x0 + 4 * k, 4}, {-5, 4}}, z0, ax, ay);
 }
 
-EnrichmentLayout3D layout_of(const Mesh& m, const CrackGeometry3D& g, TipEnrichment front, double radius)
+EnrichmentLayout layout_of(const Mesh& m, const CrackGeometry3D& g, TipEnrichment front, double radius)
 {
-  EnrichmentOptions3D o;
-  o.front = front;
+  EnrichmentOptions o;
+  o.tip = front;
   o.radius = radius;
   o.kappa = 1.8;
   const CrackGeometry3D* c[] = {&g};
-  return create_enrichment_layout_3d(m.x, m.cells, c, o);
+  return create_enrichment_layout(m.x, m.cells, c, o);
 }
 
 struct Assembled
@@ -72,7 +72,7 @@ struct Assembled
   Triplets B, M, T1, T2;
 };
 
-Assembled assemble(const Mesh& m, const EnrichmentLayout3D& layout, const CrackGeometry3D& g,
+Assembled assemble(const Mesh& m, const EnrichmentLayout& layout, const CrackGeometry3D& g,
                    const MultiplierSpace3D& space, const LipRule3D& rule = {})
 {
   Assembled a;
@@ -133,7 +133,7 @@ TEST(Contact3D, PieceAreasAndMass)
   const Mesh m(n);
   {
     const CrackGeometry3D g = compute_crack_geometry_3d(m.x, m.cells, through(0.47, 0.0, 0.0), 1e-6);
-    const EnrichmentLayout3D layout = layout_of(m, g, TipEnrichment::none, 0.0);
+    const EnrichmentLayout layout = layout_of(m, g, TipEnrichment::none, 0.0);
     const CrackGeometry3D* c[] = {&g};
     const MultiplierSpace3D space = create_multiplier_space_3d(m.x, m.cells, c, layout, MultiplierKind::stable, true);
     const ContactPoints3D cp = compute_contact_points_3d(m.x, m.cells, c, space, {});
@@ -157,7 +157,7 @@ TEST(Contact3D, PieceAreasAndMass)
   }
   const double ax = 0.1, ay = -0.05;
   const CrackGeometry3D g = compute_crack_geometry_3d(m.x, m.cells, through(0.43, ax, ay), 1e-6);
-  const EnrichmentLayout3D layout = layout_of(m, g, TipEnrichment::none, 0.0);
+  const EnrichmentLayout layout = layout_of(m, g, TipEnrichment::none, 0.0);
   const CrackGeometry3D* c[] = {&g};
   for (const MultiplierKind kind : {MultiplierKind::naive, MultiplierKind::stable})
   {
@@ -179,7 +179,7 @@ TEST(Contact3D, StableSpaceIsOneUnknownPerStar)
 {
   const Mesh m(6);
   const CrackGeometry3D g = compute_crack_geometry_3d(m.x, m.cells, through(0.43, 0.1, -0.05), 1e-6);
-  const EnrichmentLayout3D layout = layout_of(m, g, TipEnrichment::none, 0.0);
+  const EnrichmentLayout layout = layout_of(m, g, TipEnrichment::none, 0.0);
   const CrackGeometry3D* c[] = {&g};
   const MultiplierSpace3D naive = create_multiplier_space_3d(m.x, m.cells, c, layout, MultiplierKind::naive, true);
   const MultiplierSpace3D space = create_multiplier_space_3d(m.x, m.cells, c, layout, MultiplierKind::stable, true);
@@ -237,7 +237,7 @@ TEST(Contact3D, HeavisideJumpIsIntegratedExactly)
   const double ax = 0.1, ay = -0.05, J = std::sqrt(1 + ax * ax + ay * ay);
   const Mesh m(5);
   const CrackGeometry3D g = compute_crack_geometry_3d(m.x, m.cells, through(0.43, ax, ay), 1e-6);
-  const EnrichmentLayout3D layout = layout_of(m, g, TipEnrichment::none, 0.0);
+  const EnrichmentLayout layout = layout_of(m, g, TipEnrichment::none, 0.0);
   const CrackGeometry3D* c[] = {&g};
   const MultiplierSpace3D space = create_multiplier_space_3d(m.x, m.cells, c, layout, MultiplierKind::naive, true);
   const Assembled a = assemble(m, layout, g, space);
@@ -306,7 +306,7 @@ TEST(Contact3D, FrontJumpIsIntegratedExactly)
   const double z0 = 0.43, ax = 0.07, ay = 0.11, x0 = 0.61, k = 0.13, kappa = 1.8;
   const Mesh m(5);
   const CrackGeometry3D g = compute_crack_geometry_3d(m.x, m.cells, straight_front(z0, ax, ay, x0, k), 1e-6);
-  const EnrichmentLayout3D layout = layout_of(m, g, TipEnrichment::vector, 10.0);
+  const EnrichmentLayout layout = layout_of(m, g, TipEnrichment::vector, 10.0);
   const CrackGeometry3D* c[] = {&g};
   const MultiplierSpace3D space = create_multiplier_space_3d(m.x, m.cells, c, layout, MultiplierKind::stable, true);
   std::map<std::int32_t, double> v; // mode I dof of every front-enriched node
@@ -373,7 +373,7 @@ TEST(Contact3D, PennyFrontCellsAreTied)
   const Mesh m(8);
   const CrackSurface3D s = create_ellipse_crack({0.5, 0.49, 0.47}, {0.1, 0.2, 1.0}, {1.0, 0.0, 0.0}, 0.3, 0.3);
   const CrackGeometry3D g = compute_crack_geometry_3d(m.x, m.cells, s, 1e-6);
-  const EnrichmentLayout3D layout = layout_of(m, g, TipEnrichment::vector, 0.1);
+  const EnrichmentLayout layout = layout_of(m, g, TipEnrichment::vector, 0.1);
   const CrackGeometry3D* c[] = {&g};
   const MultiplierSpace3D naive = create_multiplier_space_3d(m.x, m.cells, c, layout, MultiplierKind::naive, true);
   const MultiplierSpace3D space = create_multiplier_space_3d(m.x, m.cells, c, layout, MultiplierKind::stable, true);

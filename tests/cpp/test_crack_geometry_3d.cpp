@@ -2,7 +2,7 @@
 // forms: volumes split by a plane, cross-section areas, straight and
 // circular fronts, snapping and degenerate positions.
 #include "geometry/crack_geometry_3d.h"
-#include "geometry/p1_tetrahedron.h"
+#include "geometry/p1_simplex.h"
 #include "geometry/vec3.h"
 #include "meshes.h"
 

@@ -9,7 +9,7 @@
 // tolerance.
 #include "adaptive_reference.h"
 #include "geometry/cut_tetrahedron.h"
-#include "geometry/p1_tetrahedron.h"
+#include "geometry/p1_simplex.h"
 #include "geometry/vec3.h"
 #include "quadrature/front_rules_3d.h"
 

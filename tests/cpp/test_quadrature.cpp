@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <gtest/gtest.h>
+#include <stdexcept>
 
 using namespace cracklip::quadrature;
 
@@ -108,4 +109,37 @@ TEST(LineTowardTip, PlainGaussMissesTheNearSingularEnd)
   const double exact = 2.0 * (std::sqrt(r1) - std::sqrt(r0)) / (r1 - r0);
   EXPECT_GT(std::abs(s - exact), 1e-3 * exact);
   EXPECT_EQ(line_toward_tip(6, 0.5, 0.5).points, g.points);
+}
+
+// One collapsed rule for every simplex: int over the reference simplex of
+// prod x_k^a_k = prod a_k! / (sum a_k + dim)! (Dirichlet), in 1, 2 and 3
+// dimensions, and the cached rule is the same object each time.
+TEST(SimplexRule, ExactInEveryDimension)
+{
+  auto fact = [](int n) { double f = 1; for (int i = 2; i <= n; ++i) f *= i; return f; };
+  for (int dim = 1; dim <= 3; ++dim)
+    for (int deg = 0; deg <= 10; ++deg)
+    {
+      const Rule& r = simplex(dim, deg);
+      EXPECT_EQ(&r, &simplex(dim, deg));
+      EXPECT_EQ(r.dim, dim);
+      int e[3] = {0, 0, 0};
+      for (e[0] = 0; e[0] <= deg; ++e[0])
+        for (e[1] = 0; e[1] <= (dim > 1 ? deg - e[0] : 0); ++e[1])
+          for (e[2] = 0; e[2] <= (dim > 2 ? deg - e[0] - e[1] : 0); ++e[2])
+          {
+            double s = 0.0;
+            for (int q = 0; q < r.size(); ++q)
+            {
+              double m = r.weights[q];
+              for (int k = 0; k < dim; ++k)
+                m *= std::pow(r.points[dim * q + k], e[k]);
+              s += m;
+            }
+            EXPECT_NEAR(s, fact(e[0]) * fact(e[1]) * fact(e[2]) / fact(e[0] + e[1] + e[2] + dim), 1e-14)
+                << "dim " << dim << " degree " << deg;
+          }
+    }
+  EXPECT_THROW(simplex(4, 2), std::invalid_argument);
+  EXPECT_THROW(simplex(2, -1), std::invalid_argument);
 }

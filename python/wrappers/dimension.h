@@ -1,0 +1,76 @@
+// Bindings written once for both dimensions: the dimension comes from the
+// mesh arrays at run time (as in DOLFINx), and one call site instantiates
+// the C++ template of that dimension.
+#pragma once
+
+#include "array.h"
+
+#include "geometry/crack_geometry.h"
+#include "quadrature/cell_quadrature.h"
+
+#include <pybind11/stl.h>
+
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace cracklip_wrappers
+{
+
+/// The dimension of a mesh given as node coordinates x (n, dim) and cells
+/// (m, dim + 1): 2 (triangles) or 3 (tetrahedra); ValueError otherwise.
+inline int mesh_dimension(const carray<double>& x, const carray<std::int32_t>& cells)
+{
+  if (x.ndim() != 2 or (x.shape(1) != 2 and x.shape(1) != 3))
+    throw std::invalid_argument("x (node coordinates) must be an array of shape (n, 2) or (n, 3)");
+  const auto dim = static_cast<int>(x.shape(1));
+  require_columns(cells, dim + 1, dim == 2 ? "cells (node indices per triangle)"
+                                           : "cells (node indices per tetrahedron)");
+  return dim;
+}
+
+/// f(std::integral_constant<int, dim>{}) for dim 2 or 3.
+template <typename F>
+decltype(auto) with_dimension(int dim, F&& f)
+{
+  if (dim == 2)
+    return f(std::integral_constant<int, 2>{});
+  if (dim != 3)
+    throw std::invalid_argument("the dimension must be 2 or 3, got " + std::to_string(dim));
+  return f(std::integral_constant<int, 3>{});
+}
+
+/// A Python list of crack geometries of dimension dim (CrackGeometry or
+/// CrackGeometry3D), as the C++ kernels take them.
+template <int dim>
+std::vector<const cracklip::CrackGeometryOf<dim>*> cracks_of(const py::sequence& cracks)
+{
+  try
+  {
+    return cracks.cast<std::vector<const cracklip::CrackGeometryOf<dim>*>>();
+  }
+  catch (const py::cast_error&)
+  {
+    throw std::invalid_argument(std::string("cracks must be a list of ")
+                                + (dim == 2 ? "CrackGeometry (compute_crack_geometry) on a triangle mesh"
+                                            : "CrackGeometry3D (compute_crack_geometry_3d) on a tetrahedral mesh"));
+  }
+}
+
+/// Quadrature options of dimension dim (QuadratureOptions or
+/// QuadratureOptions3D).
+template <int dim>
+const cracklip::QuadratureOptionsOf<dim>& options_of(const py::object& options)
+{
+  try
+  {
+    return options.cast<const cracklip::QuadratureOptionsOf<dim>&>();
+  }
+  catch (const py::cast_error&)
+  {
+    throw std::invalid_argument(dim == 2 ? "options must be QuadratureOptions on a triangle mesh"
+                                         : "options must be QuadratureOptions3D on a tetrahedral mesh");
+  }
+}
+
+} // namespace cracklip_wrappers
