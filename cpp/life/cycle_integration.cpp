@@ -53,7 +53,8 @@ CycleRun integrate_cycles(const Table& table, const Cycles& cy, const GrowthLaw&
 {
   constexpr int P = Table::sizes;
   check_cycles(cy);
-  if (table.cases() != cy.cases)
+  const int G = cy.cases;
+  if (table.cases() != G)
     throw std::invalid_argument("life integration: the K table and the factors have different load cases");
   const auto n = static_cast<std::int64_t>(cy.lo.size());
   if (n == 0)
@@ -61,101 +62,112 @@ CycleRun integrate_cycles(const Table& table, const Cycles& cy, const GrowthLaw&
     run.stop = Stop::arrest;
     return run;
   }
-  std::vector<double> K(static_cast<std::size_t>(P * cy.cases));
+  std::vector<double> K(static_cast<std::size_t>(P * G));
   const bool retarded = ret.model != RetardationModel::none;
-  double spent = 0.0;
-  if (run.entry == 0 and run.done == 0)
+  const RetardationKernel rk(ret);
+  const double* F = cy.F.data();
+  const std::int64_t* LO = cy.lo.data();
+  const std::int64_t* HI = cy.hi.data();
+  const double* W = cy.count.data();
+  // The run's state in locals (kept in registers in the hot loop), written back on every exit.
+  double size[P], start[P];
+  OverloadState state[P];
+  for (int p = 0; p < P; ++p)
+  {
+    size[p] = run.size[p];
+    start[p] = (run.entry == 0 and run.done == 0) ? run.size[p] : run.pass_start[p];
+    state[p] = run.state[p];
+  }
+  double cycles = run.cycles, spent = 0.0;
+  std::int64_t pass = run.pass, entry = run.entry, done = run.done;
+  auto finish = [&](Stop stop)
+  {
     for (int p = 0; p < P; ++p)
-      run.pass_start[p] = run.size[p];
+    {
+      run.size[p] = size[p];
+      run.pass_start[p] = start[p];
+      run.state[p] = state[p];
+    }
+    run.cycles = cycles;
+    run.pass = pass;
+    run.entry = entry;
+    run.done = done;
+    run.stop = stop;
+    return run;
+  };
   while (true)
   {
-    if (static_cast<double>(run.pass) >= limits.max_passes)
+    if (static_cast<double>(pass) >= limits.max_passes)
+      return finish(Stop::max_passes);
+    for (; entry < n; ++entry)
     {
-      run.stop = Stop::max_passes;
-      return run;
-    }
-    for (; run.entry < n; ++run.entry)
-    {
-      const std::int64_t lo = cy.lo[run.entry], hi = cy.hi[run.entry];
-      const double w = cy.count[run.entry];
+      const std::int64_t lo = LO[entry], hi = HI[entry];
+      const double w = W[entry];
       const double whole = w > 1.0 ? std::floor(w) : 1.0;
-      const double rest = w > 1.0 ? w - whole : 0.0;
-      const auto reps = static_cast<std::int64_t>(whole) + (rest > 0.0 ? 1 : 0);
-      for (; run.done < reps; ++run.done)
+      const std::int64_t reps = static_cast<std::int64_t>(whole) + (w > whole ? 1 : 0);
+      for (; done < reps; ++done)
       {
         if (spent >= limits.max_cycles)
-        {
-          run.stop = Stop::paused;
-          return run;
-        }
-        const double wt = w <= 1.0 ? w : (run.done < static_cast<std::int64_t>(whole) ? 1.0 : rest);
-        table.evaluate(run.size, K.data());
+          return finish(Stop::paused);
+        const double wt = w <= 1.0 ? w : (done < static_cast<std::int64_t>(whole) ? 1.0 : w - whole);
+        table.evaluate(size, K.data());
         double da[P];
         for (int p = 0; p < P; ++p)
         {
-          double kmax, kmin;
-          cycle_k(cy, K.data(), p, lo, hi, kmax, kmin);
-          if (kmax >= limits.K_crit)
+          double kmax = 0.0, kmin = 0.0;
+          for (int g = 0; g < G; ++g)
           {
-            run.stop = Stop::failure;
-            run.point = p;
-            run.K_max = kmax;
-            return run;
+            kmax += F[hi * G + g] * K[p * G + g];
+            kmin += F[lo * G + g] * K[p * G + g];
           }
-          const double rate = retarded ? retarded_rate(law, ret, run.state[p], run.size[p], kmax, kmin)
-                                       : law.rate(kmax, kmin, run.size[p]);
+          const double rate = kmax >= limits.K_crit ? std::numeric_limits<double>::infinity()
+                              : retarded       ? retarded_rate(law, rk, state[p], size[p], kmax, kmin)
+                                               : law.rate(kmax, kmin, size[p]);
           if (!std::isfinite(rate))
           {
-            run.stop = Stop::failure;
             run.point = p;
             run.K_max = kmax;
-            return run;
+            return finish(Stop::failure);
           }
           da[p] = wt * rate;
         }
-        run.cycles += wt;
+        cycles += wt;
         spent += wt;
-        bool reached = false;
+        int reached = -1;
         for (int p = 0; p < P; ++p)
         {
-          run.size[p] += da[p];
-          if (run.size[p] >= limits.size_end[p] and !reached)
-          {
-            reached = true;
-            run.point = p;
-          }
+          size[p] += da[p];
+          if (size[p] >= limits.size_end[p] and reached < 0)
+            reached = p;
         }
-        if (reached)
+        if (reached >= 0)
         {
           // Position after this cycle.
-          if (++run.done >= reps)
+          if (++done >= reps)
           {
-            run.done = 0;
-            if (++run.entry >= n)
+            done = 0;
+            if (++entry >= n)
             {
-              run.entry = 0;
-              ++run.pass;
+              entry = 0;
+              ++pass;
             }
           }
-          run.stop = Stop::reached;
-          return run;
+          run.point = reached;
+          return finish(Stop::reached);
         }
       }
-      run.done = 0;
+      done = 0;
     }
-    run.entry = 0;
-    ++run.pass;
+    entry = 0;
+    ++pass;
     bool grew = false;
     for (int p = 0; p < P; ++p)
     {
-      grew = grew or run.size[p] != run.pass_start[p];
-      run.pass_start[p] = run.size[p];
+      grew = grew or size[p] != start[p];
+      start[p] = size[p];
     }
     if (!grew)
-    {
-      run.stop = Stop::arrest;
-      return run;
-    }
+      return finish(Stop::arrest);
   }
 }
 

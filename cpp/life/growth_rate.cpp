@@ -92,6 +92,12 @@ GrowthLaw::GrowthLaw(const LawConstants& c, RateTable table) : c_(c), table_(std
     throw std::invalid_argument("Newman closure applies to the nasgro, paris and hartman_schijve laws only");
   newman_coefficients(c_.alpha, c_.smax_over_flow, A_);
   nasgro_newman_ = c_.kind == LawKind::nasgro and c_.closure == Closure::newman;
+  newman_U_ = c_.closure == Closure::newman and (c_.kind == LawKind::paris or c_.kind == LawKind::hartman_schijve);
+  pow_m_ = Power(c_.m);
+  pow_n_ = Power(c_.n);
+  pow_p_ = Power(c_.p);
+  pow_q_ = Power(c_.q);
+  pow_e_ = Power(c_.exponent);
 }
 
 double GrowthLaw::newman_f(double R) const
@@ -110,32 +116,18 @@ double GrowthLaw::nasgro_threshold(double R, double a, double f) const
   return c_.dK1 * small / std::pow((1.0 - f) / ((1.0 - A_[0]) * (1.0 - R)), 1.0 + cth * R);
 }
 
-void GrowthLaw::effective(double K_max, double K_min, double& dK, double& R) const
-{
-  if (!(K_max > 0.0))
-  {
-    dK = 0.0;
-    R = 0.0;
-    return;
-  }
-  R = K_min / K_max;
-  dK = K_max - K_min;
-  if (c_.closure == Closure::newman and (c_.kind == LawKind::paris or c_.kind == LawKind::hartman_schijve))
-    dK = dK * (R < 1.0 ? (1.0 - newman_f(R)) / (1.0 - R) : 1.0);
-}
-
-double GrowthLaw::law_rate(double dK, double R, double K_max, double a) const
+double GrowthLaw::other_rate(double dK, double R, double K_max, double a) const
 {
   switch (c_.kind)
   {
   case LawKind::paris:
-    return dK > 0.0 ? c_.C * std::pow(dK, c_.m) : 0.0;
+    return dK > 0.0 ? c_.C * pow_m_(dK) : 0.0;
   case LawKind::walker:
   {
     if (!(dK > 0.0))
       return 0.0;
     const double k = R < 1.0 ? dK / std::pow(1.0 - R, 1.0 - c_.gamma) : dK;
-    return c_.C * std::pow(std::max(k, 0.0), c_.m);
+    return c_.C * pow_m_(std::max(k, 0.0));
   }
   case LawKind::forman:
   {
@@ -145,7 +137,7 @@ double GrowthLaw::law_rate(double dK, double R, double K_max, double a) const
       return 0.0;
     if (den <= 0.0)
       return inf;
-    return c_.C * std::pow(dK, c_.n) / den;
+    return c_.C * pow_n_(dK) / den;
   }
   case LawKind::nasgro:
   {
@@ -160,7 +152,7 @@ double GrowthLaw::law_rate(double dK, double R, double K_max, double a) const
       return 0.0;
     const double eff = (1.0 - f) / (1.0 - R) * dK;
     const double above = std::max(1.0 - th / dK, 0.0);
-    return c_.C * std::pow(std::max(eff, 0.0), c_.n) * std::pow(above, c_.p) / std::pow(std::max(room, 1e-300), c_.q);
+    return c_.C * pow_n_(std::max(eff, 0.0)) * pow_p_(above) / pow_q_(std::max(room, 1e-300));
   }
   case LawKind::hartman_schijve:
   {
@@ -169,23 +161,12 @@ double GrowthLaw::law_rate(double dK, double R, double K_max, double a) const
     const double room = 1.0 - K_max / c_.A;
     if (room <= 0.0)
       return inf;
-    return c_.D * std::pow(std::max(dK - c_.dK_thr, 0.0) / std::sqrt(std::max(room, 1e-300)), c_.exponent);
+    return c_.D * pow_e_(std::max(dK - c_.dK_thr, 0.0) / std::sqrt(std::max(room, 1e-300)));
   }
   case LawKind::tabular:
     return table_.rate(dK, R);
   }
   return 0.0;
-}
-
-double GrowthLaw::rate(double K_max, double K_min, double a) const
-{
-  if (!(K_max > 0.0))
-    return 0.0;
-  double dK, R;
-  effective(K_max, K_min, dK, R);
-  if (!(dK > c_.threshold))
-    return 0.0;
-  return law_rate(dK, R, K_max, a);
 }
 
 double GrowthLaw::law_threshold(double K_max, double K_min, double a) const

@@ -7,12 +7,47 @@
 // over random cycles.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <vector>
 
 namespace cracklip::life
 {
+/// x^e for x >= 0 with the exponent's kind found once: small integers by
+/// multiplication, half-integers by multiplication and one sqrt, others by
+/// std::pow (the rates of a life call this once or twice per cycle).
+class Power
+{
+public:
+  Power() = default;
+  explicit Power(double e) : e_(e)
+  {
+    const double twice = 2.0 * e;
+    if (e == std::round(e) and std::abs(e) <= 16.0)
+      kind_ = 1, k_ = static_cast<int>(e);
+    else if (twice == std::round(twice) and std::abs(e) <= 16.0)
+      kind_ = 2, k_ = static_cast<int>(std::floor(e));
+  }
+  double operator()(double x) const
+  {
+    if (kind_ == 0)
+      return std::pow(x, e_);
+    double r = 1.0;
+    for (int i = 0; i < std::abs(k_); ++i)
+      r *= x;
+    if (k_ < 0)
+      r = 1.0 / r;
+    return kind_ == 1 ? r : r * std::sqrt(x);
+  }
+
+private:
+  double e_ = 1.0;
+  int kind_ = 0; ///< 0 general, 1 integer, 2 half-integer
+  int k_ = 0;
+};
+
 enum class LawKind
 {
   paris,           ///< C dK^m
@@ -84,25 +119,60 @@ public:
   /// da/dN of a cycle (K_max, K_min) at crack size a: 0 where K_max <= 0 or
   /// the range is at or below a threshold; +inf at or beyond the law's
   /// critical K.
-  double rate(double K_max, double K_min, double a) const;
+  double rate(double K_max, double K_min, double a) const
+  {
+    if (!(K_max > 0.0))
+      return 0.0;
+    if (c_.kind == LawKind::paris and !newman_U_)
+    {
+      // Paris without Newman's U needs no R.
+      const double range = K_max - K_min;
+      return range > c_.threshold and range > 0.0 ? c_.C * pow_m_(range) : 0.0;
+    }
+    double dK, R;
+    effective(K_max, K_min, dK, R);
+    if (!(dK > c_.threshold))
+      return 0.0;
+    return law_rate(dK, R, K_max, a);
+  }
   /// The threshold Delta K of a cycle (Willenborg's phi): NASGRO's Delta
   /// K_th at R = min(R, 0.99), else the constant threshold.
   double law_threshold(double K_max, double K_min, double a) const;
   /// Delta K as the law sees it and R: the range, times U for Newman
   /// closure on a law without its own f.
-  void effective(double K_max, double K_min, double& dK, double& R) const;
+  void effective(double K_max, double K_min, double& dK, double& R) const
+  {
+    if (!(K_max > 0.0))
+    {
+      dK = 0.0;
+      R = 0.0;
+      return;
+    }
+    R = K_min / K_max;
+    dK = K_max - K_min;
+    if (newman_U_)
+      dK = dK * (R < 1.0 ? (1.0 - newman_f(R)) / (1.0 - R) : 1.0);
+  }
   /// The law alone at (dK as the law sees it, R, K_max, a).
-  double law_rate(double dK, double R, double K_max, double a) const;
+  double law_rate(double dK, double R, double K_max, double a) const
+  {
+    if (c_.kind == LawKind::paris)
+      return dK > 0.0 ? c_.C * pow_m_(dK) : 0.0;
+    return other_rate(dK, R, K_max, a);
+  }
   /// The K at which the rate diverges (inf: none).
   double critical_k() const;
   const LawConstants& constants() const { return c_; }
 
 private:
+  double other_rate(double dK, double R, double K_max, double a) const;
   double newman_f(double R) const;
   double nasgro_threshold(double R, double a, double f) const;
   LawConstants c_;
   RateTable table_;
   double A_[4] = {0, 0, 0, 0};
   bool nasgro_newman_ = false;
+  bool newman_U_ = false; ///< closure newman on paris / hartman_schijve: U Delta K
+  Power pow_m_, pow_n_, pow_p_, pow_q_, pow_e_;
 };
 } // namespace cracklip::life

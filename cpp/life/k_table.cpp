@@ -50,13 +50,16 @@ KTable1::KTable1(std::vector<double> a, const std::vector<double>& K, int cases)
         throw std::invalid_argument("K table: a K is not finite");
       kr_[i * cases + g] = k / std::sqrt(a_[i]);
     }
+  inv_w_.resize(a_.size() - 1);
+  for (std::size_t i = 0; i + 1 < a_.size(); ++i)
+    inv_w_[i] = 1.0 / (a_[i + 1] - a_[i]);
 }
 
 void KTable1::evaluate(const double* s, double* K) const
 {
   const double a = std::clamp(s[0], a_.front(), a_.back());
   const std::size_t i = locate(a_, a, hint_);
-  const double t = (a - a_[i]) / (a_[i + 1] - a_[i]);
+  const double t = (a - a_[i]) * inv_w_[i];
   const double r = std::sqrt(a);
   const double* k0 = kr_.data() + i * cases_;
   const double* k1 = k0 + cases_;

@@ -35,7 +35,8 @@ public:
 
 private:
   std::vector<double> a_;
-  std::vector<double> kr_; ///< K / sqrt(a), (n x cases)
+  std::vector<double> kr_;    ///< K / sqrt(a), (n x cases)
+  std::vector<double> inv_w_; ///< 1 / (a[i + 1] - a[i])
   int cases_ = 0;
   mutable std::size_t hint_ = 0;
 };

@@ -6,90 +6,92 @@
 
 namespace cracklip::life
 {
-std::vector<std::int64_t> reversal_indices(std::span<const double> v)
+namespace
+{
+/// Turning points of v into out (indices into v): one pass, plateaus keep
+/// their first point. Returns false if v has fewer than two distinct values.
+bool turning_points(std::span<const double> v, std::vector<std::int64_t>& out)
 {
   const std::size_t n = v.size();
-  for (std::size_t i = 0; i < n; ++i)
+  out.clear();
+  out.reserve(n);
+  std::size_t last = 0; // the last distinct point kept so far (first of its plateau)
+  int dir = 0;          // direction from out.back() to last: +1 up, -1 down, 0 none yet
+  out.push_back(0);
+  for (std::size_t i = 1; i < n; ++i)
+  {
+    if (v[i] == v[last])
+      continue;
+    const int d = v[i] > v[last] ? 1 : -1;
+    if (dir != 0 and d != dir)
+      out.push_back(static_cast<std::int64_t>(last));
+    dir = d;
+    last = i;
+  }
+  if (dir == 0)
+    return false;
+  out.push_back(static_cast<std::int64_t>(last));
+  return true;
+}
+
+void check_finite(std::span<const double> v)
+{
+  for (std::size_t i = 0; i < v.size(); ++i)
     if (!std::isfinite(v[i]))
     {
       std::ostringstream s;
       s << "the load history has a non-finite value " << v[i] << " at point " << i;
       throw std::invalid_argument(s.str());
     }
-  // The first point of every plateau.
-  std::vector<std::int64_t> keep;
-  keep.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
-    if (i == 0 or v[i] != v[i - 1])
-      keep.push_back(static_cast<std::int64_t>(i));
-  if (keep.size() < 2)
-    throw std::invalid_argument("the load history has no reversal: it needs at least two different values");
-  std::vector<std::int64_t> out{keep[0]};
-  for (std::size_t k = 1; k + 1 < keep.size(); ++k)
-  {
-    const bool up_before = v[keep[k]] > v[keep[k - 1]];
-    const bool up_after = v[keep[k + 1]] > v[keep[k]];
-    if (up_before != up_after)
-      out.push_back(keep[k]);
-  }
-  out.push_back(keep.back());
-  return out;
 }
 
-namespace
-{
-struct Range
-{
-  std::int64_t i, j;
-  double count;
-};
-
-/// The three-point rule on a reversal sequence w: the counted ranges (indices
-/// into w) and the residue. The stack keeps a moving bottom (`base`) so that
-/// the starting-point rule's "drop the first point" is O(1).
-void three_point(std::span<const double> w, bool start_rule, std::vector<Range>& out,
+/// The three-point rule on the reversals w (their indices into the history:
+/// index): counted ranges go into c, the residue (positions in w) stays. The
+/// stack keeps the values beside the positions and a moving bottom (`base`)
+/// so that the starting-point rule's "drop the first point" is O(1).
+void three_point(std::span<const double> w, std::span<const std::int64_t> index, bool start_rule, CountedCycles& c,
                  std::vector<std::int64_t>& residue)
 {
-  std::vector<std::int64_t> stack;
-  stack.reserve(w.size());
+  std::vector<std::int64_t> pos;
+  std::vector<double> val;
+  pos.reserve(w.size());
+  val.reserve(w.size());
   std::size_t base = 0;
+  auto emit = [&](std::size_t i, std::size_t j, double count)
+  {
+    const bool up = val[i] <= val[j];
+    c.lo.push_back(index[pos[up ? i : j]]);
+    c.hi.push_back(index[pos[up ? j : i]]);
+    c.count.push_back(count);
+  };
   for (std::size_t k = 0; k < w.size(); ++k)
   {
-    stack.push_back(static_cast<std::int64_t>(k));
-    while (stack.size() - base >= 3)
+    pos.push_back(static_cast<std::int64_t>(k));
+    val.push_back(w[k]);
+    while (pos.size() - base >= 3)
     {
-      const std::size_t s = stack.size();
-      const double x = std::abs(w[stack[s - 1]] - w[stack[s - 2]]);
-      const double y = std::abs(w[stack[s - 2]] - w[stack[s - 3]]);
+      const std::size_t s = pos.size();
+      const double x = std::abs(val[s - 1] - val[s - 2]);
+      const double y = std::abs(val[s - 2] - val[s - 3]);
       if (x < y)
         break;
       if (start_rule and s - base == 3)
       {
         // Y holds the starting point: half a cycle, the start moves on.
-        out.push_back({stack[base], stack[base + 1], 0.5});
+        emit(base, base + 1, 0.5);
         ++base;
       }
       else
       {
-        out.push_back({stack[s - 3], stack[s - 2], 1.0});
-        stack[s - 3] = stack[s - 1];
-        stack.resize(s - 2);
+        emit(s - 3, s - 2, 1.0);
+        pos[s - 3] = pos[s - 1];
+        val[s - 3] = val[s - 1];
+        pos.resize(s - 2);
+        val.resize(s - 2);
       }
     }
   }
-  residue.assign(stack.begin() + static_cast<std::ptrdiff_t>(base), stack.end());
-}
-
-void append(CountedCycles& c, std::span<const double> w, const std::vector<Range>& ranges,
-            std::span<const std::int64_t> index)
-{
-  for (const Range& r : ranges)
-  {
-    const bool up = w[r.i] <= w[r.j];
-    c.lo.push_back(index[up ? r.i : r.j]);
-    c.hi.push_back(index[up ? r.j : r.i]);
-    c.count.push_back(r.count);
-  }
+  residue.assign(pos.begin() + static_cast<std::ptrdiff_t>(base), pos.end());
 }
 
 void rises(CountedCycles& c, std::span<const double> w, std::span<const std::int64_t> index)
@@ -104,60 +106,76 @@ void rises(CountedCycles& c, std::span<const double> w, std::span<const std::int
 }
 } // namespace
 
+std::vector<std::int64_t> reversal_indices(std::span<const double> v)
+{
+  check_finite(v);
+  std::vector<std::int64_t> out;
+  if (!turning_points(v, out))
+    throw std::invalid_argument("the load history has no reversal: it needs at least two different values");
+  return out;
+}
+
 CountedCycles count_cycles(std::span<const double> values, Counting method, bool repeated)
 {
-  const std::vector<std::int64_t> rev = reversal_indices(values);
-  std::vector<double> v(rev.size());
-  for (std::size_t k = 0; k < rev.size(); ++k)
-    v[k] = values[rev[k]];
+  std::vector<std::int64_t> rev = reversal_indices(values);
   CountedCycles c;
-  std::vector<Range> ranges;
+  c.lo.reserve(rev.size() / 2 + 1);
+  c.hi.reserve(rev.size() / 2 + 1);
+  c.count.reserve(rev.size() / 2 + 1);
   std::vector<std::int64_t> residue;
+  std::vector<double> w;
+  std::vector<std::int64_t> index;
   if (repeated)
   {
     // Start at the largest absolute value and close the loop on it (E1049
-    // 5.4.5); the joint (the last point, then the first) may not be a
-    // reversal: such points drop out.
+    // 5.4.5). The rotated sequence is made of reversals except perhaps at
+    // the joint (the last point, then the first), where points that are no
+    // longer turning points drop out.
+    const std::size_t n = rev.size();
     std::size_t k = 0;
-    for (std::size_t i = 1; i < v.size(); ++i)
-      if (std::abs(v[i]) > std::abs(v[k]))
+    for (std::size_t i = 1; i < n; ++i)
+      if (std::abs(values[rev[i]]) > std::abs(values[rev[k]]))
         k = i;
-    std::vector<std::int64_t> order;
-    order.reserve(v.size() + 1);
-    for (std::size_t i = k; i < v.size(); ++i)
-      order.push_back(static_cast<std::int64_t>(i));
-    for (std::size_t i = 0; i < k; ++i)
-      order.push_back(static_cast<std::int64_t>(i));
-    order.push_back(static_cast<std::int64_t>(k));
-    std::vector<double> w(order.size());
-    for (std::size_t i = 0; i < order.size(); ++i)
-      w[i] = v[order[i]];
-    const std::vector<std::int64_t> keep = reversal_indices(w);
-    std::vector<std::int64_t> index(keep.size());
-    std::vector<double> ww(keep.size());
+    std::vector<double> rot(n + 1);
+    std::vector<std::int64_t> rot_index(n + 1);
+    for (std::size_t i = 0; i <= n; ++i)
+    {
+      const std::size_t j = i < n - k ? k + i : (i < n ? i - (n - k) : k);
+      rot[i] = values[rev[j]];
+      rot_index[i] = rev[j];
+    }
+    std::vector<std::int64_t> keep;
+    turning_points(rot, keep);
+    w.resize(keep.size());
+    index.resize(keep.size());
     for (std::size_t i = 0; i < keep.size(); ++i)
     {
-      index[i] = rev[order[keep[i]]];
-      ww[i] = w[keep[i]];
+      w[i] = rot[keep[i]];
+      index[i] = rot_index[keep[i]];
     }
     if (method == Counting::valley_to_peak)
-      rises(c, ww, index);
+      rises(c, w, index);
     else
-    {
-      three_point(ww, false, ranges, residue);
-      append(c, ww, ranges, index);
-    }
+      three_point(w, index, false, c, residue);
     return c;
   }
+  w.resize(rev.size());
+  for (std::size_t i = 0; i < rev.size(); ++i)
+    w[i] = values[rev[i]];
   if (method == Counting::valley_to_peak)
   {
-    rises(c, v, rev);
+    rises(c, w, rev);
     return c;
   }
-  three_point(v, method == Counting::rainflow, ranges, residue);
+  three_point(w, rev, method == Counting::rainflow, c, residue);
   for (std::size_t i = 0; i + 1 < residue.size(); ++i)
-    ranges.push_back({residue[i], residue[i + 1], 0.5});
-  append(c, v, ranges, rev);
+  {
+    const std::int64_t p = residue[i], q = residue[i + 1];
+    const bool up = w[p] <= w[q];
+    c.lo.push_back(rev[up ? p : q]);
+    c.hi.push_back(rev[up ? q : p]);
+    c.count.push_back(0.5);
+  }
   return c;
 }
 } // namespace cracklip::life

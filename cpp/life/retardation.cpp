@@ -4,28 +4,9 @@
 
 namespace cracklip::life
 {
-double retarded_rate(const GrowthLaw& law, const Retardation& ret, OverloadState& state, double a, double K_max,
-                     double K_min)
+double willenborg_rate(const GrowthLaw& law, const Retardation& ret, const OverloadState& state, double a,
+                       double K_max, double K_min)
 {
-  if (ret.model == RetardationModel::none)
-    return law.rate(K_max, K_min, a);
-  const double km = std::max(K_max, 0.0);
-  const double r = plastic_zone(km, ret.sigma_ys, ret.beta);
-  const double end = state.zone_end();
-  if (a + r >= end)
-  {
-    // A new overload: its own rate (Willenborg still clamps K_min at 0).
-    state = {a, r, km};
-    if (ret.model == RetardationModel::wheeler)
-      return law.rate(K_max, K_min, a);
-    return K_max > 0.0 ? law.rate(K_max, std::max(K_min, 0.0), a) : 0.0;
-  }
-  if (ret.model == RetardationModel::wheeler)
-  {
-    const double room = std::max(end - a, 1e-300);
-    return law.rate(K_max, K_min, a) * std::pow(std::clamp(r / room, 0.0, 1.0), ret.gamma);
-  }
-  // Generalized Willenborg.
   double kr = 0.0;
   if (state.r_OL > 0.0)
   {
