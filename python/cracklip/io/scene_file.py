@@ -520,6 +520,11 @@ def _fatigue_keys() -> list[Key]:
     return keys
 
 
+def _life_keys() -> list[Key]:
+    from .life_file import life_keys  # [life] and the input-file keys (io/life_file.py)
+    return life_keys()
+
+
 def _spectrum_keys() -> list[Key]:
     from ..scene.spectrum import COUNTING, RESIDUE
     return [
@@ -538,8 +543,9 @@ def _spectrum_keys() -> list[Key]:
         Key("spectrum.blocks[].points", "[factor, ...] or [[factors], ...]", UNSET, "turning points of the "
             "block: one factor per point (one group) or one row per point (one factor per group); one of "
             "points, file", p_numbers_any),
-        Key("spectrum.blocks[].file", "string", UNSET, "a CSV of turning points (header: the group of each "
-            "column), relative to the scene file", p_str),
+        Key("spectrum.blocks[].file", "string", UNSET, "a file of turning points, relative to the scene file: one "
+            "value per line, or a header naming the group of each column, or a block-load table (header max, min, "
+            "cycles); docs/life.md", p_str),
         Key("spectrum.blocks[].repeat", "integer", 1, "times the block comes in a pass", p_int(1)),
         Key("spectrum.blocks[].name", "string", "", "label of the block (e.g. a flight type)", p_str),
     ]
@@ -717,7 +723,7 @@ SCHEMA: tuple[Key, ...] = tuple([
         "the factor of each named load group at the end of the step (a group not named keeps its factor "
         "from the step before; all are 0 before the first step); without load_path one step takes every "
         "group to 1", p_factors),
-] + _option_keys() + _growth_keys() + _spectrum_keys() + [
+] + _option_keys() + _growth_keys() + _spectrum_keys() + _life_keys() + [
     # outputs
     Key("outputs.vtu", "boolean", True, "write ParaView files solution.vtu and crack_lips.vtu (3D: "
         "solution.vtu, crack_surface.vtu and crack_front.vtu)", p_bool),
@@ -1061,6 +1067,8 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
         raise type(e)(f"material: {e}") from None
     dim, why = scene_dimension(s)
     base_dir = pathlib.Path(base_dir)
+    from .life_file import build_growth
+    growth = build_growth(doc, s, units, base_dir)  # the fatigue inputs and their files, before meshing
     if dim == 3:
         from .scene_file_3d import crack_surface
         cracks = [crack_surface(c, i, base_dir) for i, c in enumerate(s["cracks"])]
@@ -1137,20 +1145,7 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
         from ..scene.load_path import steps
         steps(scene)  # unknown groups are an InputError now, not at the solve
     title = s["title"] or (path.stem if path is not None else "scene")
-    growth = None
-    if "growth" not in s and ("spectrum" in s or "fatigue" in s["material"]):
-        raise InputError(f"[{'spectrum' if 'spectrum' in s else 'material.fatigue'}] is read by `cracklip grow`: "
-                         "add a [growth] table (growth.da, growth.steps)")
-    if "growth" in s:
-        from ..scene.growth import Growth
-        fatigue = _fatigue_material(s["material"]["fatigue"]) if "fatigue" in s["material"] else None
-        spectrum = _spectrum(s["spectrum"], pathlib.Path(base_dir)) if "spectrum" in s else None
-        if fatigue is not None:
-            fatigue.converted(units)  # units given without the scene's [units]: an error now, not at the solve
-        try:
-            growth = Growth(**s["growth"], fatigue_material=fatigue, spectrum=spectrum)
-        except InputError as e:
-            raise InputError(f"growth: {e}") from None
+    if growth is not None:
         if scene.load_path is not None:
             raise InputError("a scene with [growth] solves its loads (or its load cycle) at every step: give "
                              "growth.cycle_max / cycle_min instead of [[load_path]]")
@@ -1206,7 +1201,7 @@ def _spectrum(sp: dict, base_dir: pathlib.Path):
         where = f"spectrum.blocks[{i}]"
         if "file" in b:
             f = pathlib.Path(b["file"])
-            cols, pts = read_spectrum_csv(f if f.is_absolute() else base_dir / f, f"{where}.file")
+            cols, pts = read_spectrum_csv(f if f.is_absolute() else base_dir / f, f"{where}.file", groups)
             missing = [g for g in groups if g not in cols]
             if missing:
                 raise InputError(f"{where}.file {b['file']}: no column for load group(s) {missing} of spectrum.groups "
