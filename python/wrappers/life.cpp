@@ -53,11 +53,11 @@ GrowthLaw make_law(const std::string& kind, const std::string& closure, const st
 }
 
 Cycles cycles_of(const carray<double>& F, const carray<std::int64_t>& lo, const carray<std::int64_t>& hi,
-                 const carray<double>& count)
+                 const carray<double>& count, bool clamp_min)
 {
   if (F.ndim() != 2)
     throw std::invalid_argument("the factors must be (states, cases)");
-  return Cycles{as_span(F), static_cast<int>(F.shape(1)), as_span(lo), as_span(hi), as_span(count)};
+  return Cycles{as_span(F), static_cast<int>(F.shape(1)), as_span(lo), as_span(hi), as_span(count), clamp_min};
 }
 
 py::dict run_dict(const CycleRun& r)
@@ -115,9 +115,9 @@ void declare_table_functions(py::module& m)
       "integrate_cycles",
       [](const Table& t, const carray<double>& F, const carray<std::int64_t>& lo, const carray<std::int64_t>& hi,
          const carray<double>& count, const GrowthLaw& law, const Retardation& ret, const py::dict& run,
-         const py::dict& limits)
+         const py::dict& limits, bool clamp_min)
       {
-        const Cycles cy = cycles_of(F, lo, hi, count);
+        const Cycles cy = cycles_of(F, lo, hi, count, clamp_min);
         const CycleRun start = run_of(run);
         const CycleLimits lim = limits_of(limits);
         CycleRun out;
@@ -128,21 +128,21 @@ void declare_table_functions(py::module& m)
         return run_dict(out);
       },
       py::arg("table"), py::arg("F"), py::arg("lo"), py::arg("hi"), py::arg("count"), py::arg("law"),
-      py::arg("retardation"), py::arg("run"), py::arg("limits"),
+      py::arg("retardation"), py::arg("run"), py::arg("limits"), py::arg("clamp_min") = false,
       "Cycle by cycle from run (a dict: size, cycles, pass, entry, done, state, pass_start) within limits "
       "(size_end, K_crit, max_passes, max_cycles); returns the run where it stopped, with stop (0 reached, 1 "
       "failure, 2 arrest, 3 max_passes, 4 paused), point and K_max.");
   m.def(
       "growth_per_pass",
       [](const Table& t, const carray<double>& F, const carray<std::int64_t>& lo, const carray<std::int64_t>& hi,
-         const carray<double>& count, const GrowthLaw& law, const std::vector<double>& sizes)
+         const carray<double>& count, const GrowthLaw& law, const std::vector<double>& sizes, bool clamp_min)
       {
         std::vector<double> g(Table::sizes);
-        growth_per_pass(t, cycles_of(F, lo, hi, count), law, sizes.data(), g.data());
+        growth_per_pass(t, cycles_of(F, lo, hi, count, clamp_min), law, sizes.data(), g.data());
         return g;
       },
       py::arg("table"), py::arg("F"), py::arg("lo"), py::arg("hi"), py::arg("count"), py::arg("law"),
-      py::arg("sizes"), "Growth per pass of each point at the sizes (distinct cycles, counts summed).");
+      py::arg("sizes"), py::arg("clamp_min") = false, "Growth per pass of each point at the sizes (distinct cycles, counts summed).");
   m.def(
       "state_k_max",
       [](const Table& t, const carray<double>& F, const std::vector<double>& sizes)
@@ -257,9 +257,10 @@ void declare_life(py::module& m)
   m.def(
       "passes_to",
       [](const KTable1& t, const carray<double>& F, const carray<std::int64_t>& lo, const carray<std::int64_t>& hi,
-         const carray<double>& count, const GrowthLaw& law, const carray<double>& a, int order, double max_width)
+         const carray<double>& count, const GrowthLaw& law, const carray<double>& a, int order, double max_width,
+         bool clamp_min)
       {
-        const Cycles cy = cycles_of(F, lo, hi, count);
+        const Cycles cy = cycles_of(F, lo, hi, count, clamp_min);
         std::vector<double> out;
         {
           py::gil_scoped_release release;
@@ -268,15 +269,15 @@ void declare_life(py::module& m)
         return as_pyarray(std::move(out));
       },
       py::arg("table"), py::arg("F"), py::arg("lo"), py::arg("hi"), py::arg("count"), py::arg("law"), py::arg("a"),
-      py::arg("order") = 10, py::arg("max_width") = 0.05,
+      py::arg("order") = 10, py::arg("max_width") = 0.05, py::arg("clamp_min") = false,
       "Passes from a[0] to each a[k] without sequence effects (inf past an arrest).");
   m.def(
       "grow_blocks",
       [](const KTable2& t, const carray<double>& F, const carray<std::int64_t>& lo, const carray<std::int64_t>& hi,
          const carray<double>& count, const GrowthLaw& law, double a0, double c0, const py::dict& limits,
-         double fraction)
+         double fraction, bool clamp_min)
       {
-        const Cycles cy = cycles_of(F, lo, hi, count);
+        const Cycles cy = cycles_of(F, lo, hi, count, clamp_min);
         const CycleLimits lim = limits_of(limits);
         BlockPath p;
         {
@@ -292,7 +293,7 @@ void declare_life(py::module& m)
         return d;
       },
       py::arg("table"), py::arg("F"), py::arg("lo"), py::arg("hi"), py::arg("count"), py::arg("law"), py::arg("a0"),
-      py::arg("c0"), py::arg("limits"), py::arg("fraction") = 2e-3,
+      py::arg("c0"), py::arg("limits"), py::arg("fraction") = 2e-3, py::arg("clamp_min") = false,
       "Two sizes in blocks (RK4 in the passes): passes, a, c per step, stop, point.");
 }
 } // namespace cracklip_wrappers

@@ -413,14 +413,15 @@ def run_life(tl: TableLife, progress: typing.Callable[[str], None] | None = None
 def _stop_of_end(tl: TableLife, a_crit, crit, end_table) -> tuple[float, str, str]:
     """Where a one-size life ends before integrating, and why."""
     life = tl.life
-    ends = [(end_table[0], "end of the table", end_table[1])]
-    if life.a_final is not None:
-        ends.append((life.a_final, "a_final", f"life.a_final = {life.a_final:g} reached"))
+    ends = []  # failure first, then a_final, then the table's end: the first of equal sizes names the stop
     if a_crit is not None:
         ends.append((a_crit, crit, "final failure: " + ("K_max reached K_c = " + f"{tl.K_crit:.6g}"
                                                            if crit == "K_max >= K_c" else
                                                            f"the net section reached the yield stress "
                                                            f"{tl.yield_stress:.6g}") + f" at a = {a_crit:.6g}"))
+    if life.a_final is not None:
+        ends.append((life.a_final, "a_final", f"life.a_final = {life.a_final:g} reached"))
+    ends.append((end_table[0], "end of the table", end_table[1]))
     return min(ends, key=lambda e: e[0])
 
 
