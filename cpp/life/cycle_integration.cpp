@@ -28,6 +28,8 @@ inline void cycle_k(const Cycles& cy, const double* K, int p, std::int64_t lo, s
     kmax += fh[g] * k[g];
     kmin += fl[g] * k[g];
   }
+  if (cy.clamp_min)
+    kmin = std::max(kmin, 0.0);
 }
 
 void check_cycles(const Cycles& cy)
@@ -120,6 +122,8 @@ CycleRun integrate_cycles(const Table& table, const Cycles& cy, const GrowthLaw&
             kmax += F[hi * G + g] * K[p * G + g];
             kmin += F[lo * G + g] * K[p * G + g];
           }
+          if (cy.clamp_min)
+            kmin = std::max(kmin, 0.0);
           const double rate = kmax >= limits.K_crit ? std::numeric_limits<double>::infinity()
                               : retarded       ? retarded_rate(law, rk, state[p], size[p], kmax, kmin)
                                                : law.rate(kmax, kmin, size[p]);

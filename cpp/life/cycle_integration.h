@@ -37,6 +37,7 @@ struct Cycles
   int cases = 1;                          ///< load cases (columns of F)
   std::span<const std::int64_t> lo, hi;   ///< each cycle's minimum and maximum state
   std::span<const double> count;          ///< weight (0.5, 1); > 1: that many cycles in a row
+  bool clamp_min = false;                 ///< K_min = max(K_min, 0): lips closed at the tip carry no negative K
 };
 
 enum class Stop

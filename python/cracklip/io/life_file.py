@@ -1,8 +1,7 @@
-"""The scene-file side of a fatigue life: the [life] table's keys (in the
-scene reference with every other key), a life scene read and checked
-without any mesh (`cracklip life`, `cracklip check`), and the input files
-of [material.fatigue] and [spectrum] read before anything is meshed (also
-for `cracklip grow` and `check` on a scene with a mesh).
+"""A life scene read and checked without any mesh (`cracklip life`,
+`cracklip check`): the [life] table (its keys are in the scene reference,
+cracklip.io.scene_file), [material.fatigue] with its da/dN table file,
+[spectrum] with its turning-point files, [units].
 
 A life scene needs [life], [material.fatigue] and [spectrum] (and [units]
 when the constants are given in other units); any other table (a mesh,
@@ -19,90 +18,6 @@ from ..errors import InputError
 
 #: The tables `cracklip life` reads; the others are left alone.
 LIFE_TABLES = ("title", "units", "material", "spectrum", "life")
-
-
-def life_keys() -> list:
-    """The [life] keys and the input-file keys of [material.fatigue] (the
-    scene reference lists them with the others)."""
-    from ..scene.input_files import RATE_LAYOUTS, UNSUPPORTED_RATE_LAYOUTS
-    from ..scene.life import CENTRE_FORMS, GEOMETRIES, INTEGRATIONS
-    from .scene_file import REQUIRED, UNSET, Key, p_choice, p_factors, p_float, p_int, p_numbers, p_str
-    t = "life"
-    return [
-        Key(f"{t}.geometry", "string", REQUIRED, "the crack's geometry factor for `cracklip life` (a life without a "
-            "mesh): " + ", ".join(f"`{g}`" for g in GEOMETRIES) + " (docs/life.md)", p_choice(*GEOMETRIES)),
-        Key(f"{t}.a0", "float", REQUIRED, "initial crack size a (half length of a centre crack; length from the edge "
-            "or the hole's edge; depth of a surface or corner crack)", p_float(positive=True)),
-        Key(f"{t}.c0", "float", UNSET, "initial second size c of a surface crack (half length) or corner crack "
-            "(length), or of a two-size beta table", p_float(positive=True)),
-        Key(f"{t}.a_final", "float", UNSET, "stop when a reaches this (unset: at failure or the end of the table "
-            "or handbook range)", p_float(positive=True)),
-        Key(f"{t}.detectable_size", "float", UNSET, "crack size a an inspection finds: the inspection interval is "
-            "half the life from it to failure (the threshold half the life from a0)", p_float(positive=True)),
-        Key(f"{t}.width", "float", UNSET, "plate width W (centre and edge crack; surface crack 2b, corner crack b; "
-            "hole crack: net-section yield only)", p_float(positive=True)),
-        Key(f"{t}.thickness", "float", UNSET, "plate thickness t (surface and corner cracks)", p_float(positive=True)),
-        Key(f"{t}.hole_radius", "float", UNSET, "radius R of the hole (hole_crack)", p_float(positive=True)),
-        Key(f"{t}.cracks", "integer", 1, "cracks at the hole: 1 or 2 symmetric ones (hole_crack)", p_int(1)),
-        Key(f"{t}.form", "string", "feddersen", "centre crack: `feddersen` (sqrt(sec(pi a / W))) or `tada` "
-            "(0.1 %)", p_choice(*CENTRE_FORMS)),
-        Key(f"{t}.table", "string", UNSET, "beta_table: a file of K or beta against crack size (a, beta[_group] / "
-            "K[_group]; a, c, beta_a, beta_c; a beta; or the beta.csv of `cracklip grow --beta-table`), relative "
-            "to the scene file", p_str),
-        Key(f"{t}.table_scale", "float", 1.0, "factor on the table's crack sizes (an a/d table: d)",
-            p_float(positive=True)),
-        Key(f"{t}.tip", "[crack, end]", UNSET, "the tip of a beta.csv `cracklip grow` wrote for several tips",
-            p_numbers(2, "a tip [crack, end]")),
-        Key(f"{t}.reference_stress", "table of group = stress", UNSET, "remote stress S of factor 1 of each load "
-            "group: K = factor x S x beta x sqrt(pi a) (handbook solutions and beta columns; default 1)", p_factors),
-        Key(f"{t}.integration", "string", "auto", "`cycles` (cycle by cycle, sequence effects), `blocks` (growth "
-            "per pass summed) or `auto` (cycles with retardation, else blocks)", p_choice(*INTEGRATIONS)),
-        Key(f"{t}.points", "integer", 200, "rows of the a-N table", p_int(2)),
-        Key("material.fatigue.table_file", "string", UNSET, "tabular law: a da/dN table file instead of table_R / "
-            "table, relative to the scene file (layouts: table_layout)", p_str),
-        Key("material.fatigue.table_layout", "string", "auto", "layout of table_file: " + ", ".join(
-            f"`{x}`" for x in RATE_LAYOUTS) + f" (not supported, undocumented publicly: "
-            f"{', '.join(UNSUPPORTED_RATE_LAYOUTS)}; docs/life.md)", p_str),
-    ]
-
-
-def resolve_rate_table(fatigue: dict, base_dir: pathlib.Path) -> dict:
-    """The [material.fatigue] values with table_file read into table_R and
-    table (the file's errors name its line and column)."""
-    from ..scene.input_files import read_rate_table
-    f = dict(fatigue)
-    layout = f.pop("table_layout", "auto")
-    name = f.pop("table_file", None)
-    if name is None:
-        return f
-    if "table" in f or "table_R" in f:
-        raise InputError("material.fatigue: give table_file or table_R / table, not both")
-    path = pathlib.Path(name)
-    f["table_R"], f["table"] = read_rate_table(path if path.is_absolute() else base_dir / path,
-                                               "material.fatigue.table_file", layout)
-    return f
-
-
-def build_growth(doc: dict, s: dict, units, base_dir: pathlib.Path):
-    """The [growth] settings of a scene with a mesh, with its fatigue material
-    and spectrum and their files, checked before the mesh is made; None
-    without [growth]."""
-    from ..scene.growth import Growth
-    from .scene_file import _fatigue_material, _spectrum
-    if "growth" not in s:
-        if "life" not in doc and ("spectrum" in s or "fatigue" in s["material"]):
-            raise InputError(f"[{'spectrum' if 'spectrum' in s else 'material.fatigue'}] is read by `cracklip grow` "
-                             "(add a [growth] table: growth.da, growth.steps) or `cracklip life` (a [life] table)")
-        return None
-    fatigue = (_fatigue_material(resolve_rate_table(s["material"]["fatigue"], base_dir))
-               if "fatigue" in s["material"] else None)
-    spectrum = _spectrum(s["spectrum"], base_dir) if "spectrum" in s else None
-    if fatigue is not None:
-        fatigue.converted(units)  # units given without the scene's [units]: an error now, not at the solve
-    try:
-        return Growth(**s["growth"], fatigue_material=fatigue, spectrum=spectrum)
-    except InputError as e:
-        raise InputError(f"growth: {e}") from None
 
 
 @dataclasses.dataclass
@@ -136,7 +51,7 @@ def is_life_scene(doc: dict) -> bool:
 
 def build_life(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Path | None = None) -> LifeFile:
     """Check a life scene's tables and files (nothing is meshed)."""
-    from ..scene.input_files import read_k_table
+    from ..scene.input_files import read_k_table, resolve_rate_table
     from ..scene.life import life_settings
     from ..scene.units import Units
     from .scene_file import _fatigue_material, _items, _section, _spectrum, check_keys
@@ -198,5 +113,4 @@ def load_life_file(path: str | pathlib.Path, overrides: typing.Sequence[str] = (
     return build_life(doc, path.parent, path)
 
 
-__all__ = ["LIFE_TABLES", "life_keys", "resolve_rate_table", "build_growth", "LifeFile", "is_life_scene", "build_life",
-           "load_life_file"]
+__all__ = ["LIFE_TABLES", "LifeFile", "is_life_scene", "build_life", "load_life_file"]

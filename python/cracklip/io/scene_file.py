@@ -521,8 +521,47 @@ def _fatigue_keys() -> list[Key]:
 
 
 def _life_keys() -> list[Key]:
-    from .life_file import life_keys  # [life] and the input-file keys (io/life_file.py)
-    return life_keys()
+    """The [life] keys and the input-file keys of [material.fatigue] (the
+    scene reference lists them with the others)."""
+    from ..scene.input_files import RATE_LAYOUTS, UNSUPPORTED_RATE_LAYOUTS
+    from ..scene.life import CENTRE_FORMS, GEOMETRIES, INTEGRATIONS
+    t = "life"
+    return [
+        Key(f"{t}.geometry", "string", REQUIRED, "the crack's geometry factor for `cracklip life` (a life without a "
+            "mesh): " + ", ".join(f"`{g}`" for g in GEOMETRIES) + " (docs/life.md)", p_choice(*GEOMETRIES)),
+        Key(f"{t}.a0", "float", REQUIRED, "initial crack size a (half length of a centre crack; length from the edge "
+            "or the hole's edge; depth of a surface or corner crack)", p_float(positive=True)),
+        Key(f"{t}.c0", "float", UNSET, "initial second size c of a surface crack (half length) or corner crack "
+            "(length), or of a two-size beta table", p_float(positive=True)),
+        Key(f"{t}.a_final", "float", UNSET, "stop when a reaches this (unset: at failure or the end of the table "
+            "or handbook range)", p_float(positive=True)),
+        Key(f"{t}.detectable_size", "float", UNSET, "crack size a an inspection finds: the inspection interval is "
+            "half the life from it to failure (the threshold half the life from a0)", p_float(positive=True)),
+        Key(f"{t}.width", "float", UNSET, "plate width W (centre and edge crack; surface crack 2b, corner crack b; "
+            "hole crack: net-section yield only)", p_float(positive=True)),
+        Key(f"{t}.thickness", "float", UNSET, "plate thickness t (surface and corner cracks)", p_float(positive=True)),
+        Key(f"{t}.hole_radius", "float", UNSET, "radius R of the hole (hole_crack)", p_float(positive=True)),
+        Key(f"{t}.cracks", "integer", 1, "cracks at the hole: 1 or 2 symmetric ones (hole_crack)", p_int(1)),
+        Key(f"{t}.form", "string", "feddersen", "centre crack: `feddersen` (sqrt(sec(pi a / W))) or `tada` "
+            "(0.1 %)", p_choice(*CENTRE_FORMS)),
+        Key(f"{t}.table", "string", UNSET, "beta_table: a file of K or beta against crack size (a, beta[_group] / "
+            "K[_group]; a, c, beta_a, beta_c; a beta; or the beta.csv of `cracklip grow --beta-table`), relative "
+            "to the scene file", p_str),
+        Key(f"{t}.table_scale", "float", 1.0, "factor on the table's crack sizes (an a/d table: d)",
+            p_float(positive=True)),
+        Key(f"{t}.tip", "[crack, end]", UNSET, "the tip of a beta.csv `cracklip grow` wrote for several tips",
+            p_numbers(2, "a tip [crack, end]")),
+        Key(f"{t}.reference_stress", "table of group = stress", UNSET, "remote stress S of factor 1 of each load "
+            "group: K = factor x S x beta x sqrt(pi a) (handbook solutions and beta columns; default 1)", p_factors),
+        Key(f"{t}.integration", "string", "auto", "`cycles` (cycle by cycle, sequence effects), `blocks` (growth "
+            "per pass summed) or `auto` (cycles with retardation, else blocks)", p_choice(*INTEGRATIONS)),
+        Key(f"{t}.points", "integer", 200, "rows of the a-N table", p_int(2)),
+        Key("material.fatigue.table_file", "string", UNSET, "tabular law: a da/dN table file instead of table_R / "
+            "table, relative to the scene file (layouts: table_layout)", p_str),
+        Key("material.fatigue.table_layout", "string", "auto", "layout of table_file: " + ", ".join(
+            f"`{x}`" for x in RATE_LAYOUTS) + f" (not supported, undocumented publicly: "
+            f"{', '.join(UNSUPPORTED_RATE_LAYOUTS)}; docs/life.md)", p_str),
+    ]
 
 
 def _spectrum_keys() -> list[Key]:
@@ -1067,8 +1106,22 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
         raise type(e)(f"material: {e}") from None
     dim, why = scene_dimension(s)
     base_dir = pathlib.Path(base_dir)
-    from .life_file import build_growth
-    growth = build_growth(doc, s, units, base_dir)  # the fatigue inputs and their files, before meshing
+    growth = None  # [growth] with the fatigue inputs and their files: checked before meshing
+    if "growth" not in s and "life" not in doc and ("spectrum" in s or "fatigue" in s["material"]):
+        raise InputError(f"[{'spectrum' if 'spectrum' in s else 'material.fatigue'}] is read by `cracklip grow` (add "
+                         "a [growth] table: growth.da, growth.steps) or `cracklip life` (a [life] table)")
+    if "growth" in s:
+        from ..scene.growth import Growth
+        from ..scene.input_files import resolve_rate_table
+        fatigue = (_fatigue_material(resolve_rate_table(s["material"]["fatigue"], base_dir))
+                   if "fatigue" in s["material"] else None)
+        spectrum = _spectrum(s["spectrum"], base_dir) if "spectrum" in s else None
+        if fatigue is not None:
+            fatigue.converted(units)  # units given without the scene's [units]: an error now, not at the solve
+        try:
+            growth = Growth(**s["growth"], fatigue_material=fatigue, spectrum=spectrum)
+        except InputError as e:
+            raise InputError(f"growth: {e}") from None
     if dim == 3:
         from .scene_file_3d import crack_surface
         cracks = [crack_surface(c, i, base_dir) for i, c in enumerate(s["cracks"])]

@@ -287,6 +287,22 @@ def read_rate_table(path: str | pathlib.Path, where: str, layout: str = "auto") 
     return R, table
 
 
+def resolve_rate_table(fatigue: dict, base_dir: pathlib.Path) -> dict:
+    """The [material.fatigue] values with table_file read into table_R and
+    table (the file's errors name its line and column); the others as given."""
+    f = dict(fatigue)
+    layout = f.pop("table_layout", "auto")
+    name = f.pop("table_file", None)
+    if name is None:
+        return f
+    if "table" in f or "table_R" in f:
+        raise InputError("material.fatigue: give table_file or table_R / table, not both")
+    path = pathlib.Path(name)
+    f["table_R"], f["table"] = read_rate_table(path if path.is_absolute() else pathlib.Path(base_dir) / path,
+                                               "material.fatigue.table_file", layout)
+    return f
+
+
 # -- tables of K against crack size ----------------------------------------------------------------------------
 
 @dataclasses.dataclass
@@ -434,4 +450,5 @@ def _two_size_table(path, head: Row, data: list[Row], col: dict[str, int], where
 
 
 __all__ = ["RATE_LAYOUTS", "UNSUPPORTED_RATE_LAYOUTS", "read_rows", "read_turning_points", "read_rate_table",
+           "resolve_rate_table",
            "KTableData", "DEFAULT_CASE", "read_k_table"]
