@@ -77,12 +77,19 @@ py::dict run_dict(const CycleRun& r)
   return d;
 }
 
+/// Up to two numbers of a dict entry into out (sizes of one or two points).
+void pair_of(const py::dict& d, const char* key, double out[2])
+{
+  const auto v = d[key].cast<std::vector<double>>();
+  for (std::size_t p = 0; p < v.size() and p < 2; ++p)
+    out[p] = v[p];
+}
+
 CycleRun run_of(const py::dict& d)
 {
   CycleRun r;
-  auto size = d["size"].cast<std::vector<double>>();
-  for (std::size_t p = 0; p < size.size() and p < 2; ++p)
-    r.size[p] = size[p];
+  pair_of(d, "size", r.size);
+  pair_of(d, "pass_start", r.pass_start);
   r.cycles = d["cycles"].cast<double>();
   r.pass = d["pass"].cast<std::int64_t>();
   r.entry = d["entry"].cast<std::int64_t>();
@@ -90,18 +97,13 @@ CycleRun run_of(const py::dict& d)
   auto st = d["state"].cast<std::vector<std::vector<double>>>();
   for (std::size_t p = 0; p < st.size() and p < 2; ++p)
     r.state[p] = {st[p].at(0), st[p].at(1), st[p].at(2)};
-  auto ps = d["pass_start"].cast<std::vector<double>>();
-  for (std::size_t p = 0; p < ps.size() and p < 2; ++p)
-    r.pass_start[p] = ps[p];
   return r;
 }
 
 CycleLimits limits_of(const py::dict& d)
 {
   CycleLimits l;
-  auto end = d["size_end"].cast<std::vector<double>>();
-  for (std::size_t p = 0; p < end.size() and p < 2; ++p)
-    l.size_end[p] = end[p];
+  pair_of(d, "size_end", l.size_end);
   l.K_crit = d["K_crit"].cast<double>();
   l.max_passes = d["max_passes"].cast<double>();
   l.max_cycles = d["max_cycles"].cast<double>();

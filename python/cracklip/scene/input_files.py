@@ -102,6 +102,13 @@ def read_rows(path: str | pathlib.Path, where: str) -> list[Row]:
     return rows
 
 
+def _head(path: str | pathlib.Path, where: str) -> tuple[pathlib.Path, list[Row], list[str], bool]:
+    """(path, the data lines, the first line's fields, whether they are all numbers: no header)."""
+    path = pathlib.Path(path)
+    rows = read_rows(path, where)
+    return path, rows, rows[0].fields, all(_is_number(f) for f in rows[0].fields)
+
+
 def _is_number(text: str) -> bool:
     try:
         float(text)
@@ -151,10 +158,8 @@ def read_turning_points(path: str | pathlib.Path, where: str, groups: list[str] 
     """The turning points of a block file as (n, len(groups)) factors in the
     order of `groups` (module doc: plain, named columns or a block-load
     table; the plain and block forms need a spectrum of one load group)."""
-    path = pathlib.Path(path)
-    rows = read_rows(path, where)
-    head = rows[0].fields
-    if all(_is_number(f) for f in head):
+    path, rows, head, numeric = _head(path, where)
+    if numeric:
         # Plain: one value per line.
         if len(head) != 1:
             raise InputFileError(f"{where}: {path}, line {rows[0].line} has {len(head)} numbers and no header: a "
@@ -235,9 +240,7 @@ def read_rate_table(path: str | pathlib.Path, where: str, layout: str = "auto") 
     if layout not in RATE_LAYOUTS:
         raise InputError(f"{where}: table_layout must be one of {RATE_LAYOUTS} (not supported: "
                          f"{UNSUPPORTED_RATE_LAYOUTS}), got {layout!r}")
-    rows = read_rows(path, where)
-    head = rows[0].fields
-    numeric = all(_is_number(f) for f in head)
+    path, rows, head, numeric = _head(path, where)
     if layout == "auto":
         layout = "easigrow" if numeric else "csv"
     if layout == "easigrow":
@@ -337,10 +340,8 @@ def read_k_table(path: str | pathlib.Path, where: str, tip: tuple[int, int] | No
                  scale: float = 1.0) -> KTableData:
     """A table of K (or beta) against crack size (module doc); scale
     multiplies the crack sizes (easigrow's a/d tables: d)."""
-    path = pathlib.Path(path)
-    rows = read_rows(path, where)
-    head = rows[0].fields
-    if all(_is_number(f) for f in head):
+    path, rows, head, numeric = _head(path, where)
+    if numeric:
         if len(head) != 2:
             raise InputFileError(f"{where}: {path}, line {rows[0].line}: a table without a header has two columns "
                                  f"(a beta), got {len(head)} values", path, rows[0].line)
