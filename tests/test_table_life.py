@@ -260,8 +260,8 @@ def test_surface_crack_two_sizes_against_an_ode_solver():
     """A Newman-Raju surface crack (t = 6, 2b = 60, a0 = 0.5, c0 = 1) under
     Paris, a grown to 3: the compiled RK4 on the tabulated K (blocks) and
     cycle by cycle both follow scipy's ODE solver on the formula itself (to
-    2e-4: the table's bilinear interpolation; cycle by cycle its one-cycle
-    resolution too)."""
+    5e-5, measured 2.2e-5 and 2.5e-5: the bilinear interpolation on the 321 x
+    321 grid; cycle by cycle its one-cycle resolution too)."""
     from scipy.integrate import solve_ivp
     doc = {"units": {"length": "mm", "stress": "MPa"},
            "material": {"fatigue": {"law": "paris", "C": 3e-13, "m": 3.0, "closure": "none"}},
@@ -282,8 +282,8 @@ def test_surface_crack_two_sizes_against_an_ode_solver():
         tl = create_table_life(lf.life, lf.material, lf.spectrum, lf.units, lf.table)
         out = run_life(tl)
         assert out.stop == "a_final"
-        assert out.cycles == pytest.approx(N_ref, rel=2e-4), method
-        assert out.rows[-1]["c"] == pytest.approx(c_ref, rel=2e-4), method
+        assert out.cycles == pytest.approx(N_ref, rel=5e-5), method
+        assert out.rows[-1]["c"] == pytest.approx(c_ref, rel=5e-5), method
 
 
 def test_hole_scene_life_through_its_own_beta_table_equals_grow(tmp_path):

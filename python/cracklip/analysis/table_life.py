@@ -65,7 +65,7 @@ from .life import create_law
 logger = logging.getLogger(__name__)
 
 #: Sizes of a handbook solution's table (one size; two sizes: per direction).
-HANDBOOK_POINTS, HANDBOOK_GRID = 16000, 161
+HANDBOOK_POINTS, HANDBOOK_GRID = 16000, 321
 #: Cycles per call of the cycle-by-cycle kernel between progress lines.
 CHUNK = 20_000_000
 
