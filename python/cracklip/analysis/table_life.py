@@ -145,8 +145,9 @@ def handbook_end(life: LifeSettings) -> tuple[float, str]:
     if g == "edge_crack":
         return life.width * (1 - 1e-9), "the ligament (a = W)"
     if g == "hole_crack":
-        end = life.a_final if life.a_final is not None else 100.0 * (life.a0 + life.hole_radius)
-        return end, "life.a_final" if life.a_final is not None else "100 (a0 + R): the table's end"
+        if life.width is not None:
+            return (life.width - 2 * life.hole_radius) / life.cracks * (1 - 1e-9), "the ligament (W - 2R)"
+        return max(100.0 * (life.a0 + life.hole_radius), life.a_final or 0.0), "100 (a0 + R): the table's end"
     return 0.8 * life.thickness * (1 - 1e-12), "Newman-Raju's range a/t < 0.8"
 
 
