@@ -327,6 +327,9 @@ def test_life_command_on_the_example_scenes(tmp_path, capsys):
     assert cli.main(["check", str(SCENES / "life_surface_crack.toml")]) == 0
     text = capsys.readouterr().out
     assert "valid (a life without a mesh" in text and "integration cycles" in text
+    assert cli.main(["check", str(SCENES / "life_hole_crack.toml"), "--json"]) == 0
+    plan = json.loads(capsys.readouterr().out)["life"]
+    assert plan["critical"]["criterion"] == "net-section yield" and plan["cycles_per_pass"] == 124000
 
 
 # -- bad inputs: typed errors before any mesh work -------------------------------------------------------------

@@ -8,6 +8,7 @@ the summary to stdout.
 """
 from __future__ import annotations
 
+import json
 import logging
 import pathlib
 import sys
@@ -95,6 +96,15 @@ def check_life(args, doc: dict, quiet: bool = False) -> int:
     info = setup.table_info
     a_crit, criterion = critical_size(setup) if setup.table.sizes == 1 else (None, None)
     err = tabulation_error(info, a_crit if a_crit is not None else setup.table.a[-1])
+    if getattr(args, "json", False):
+        print(json.dumps({"title": lf.title, "notes": lf.notes, "life": {
+            "K_source": setup.source, "K_table_points": info["points"], "tabulation_error": err,
+            "critical": None if a_crit is None else {"a": a_crit, "criterion": criterion},
+            "cycles_per_pass": setup.cycles_per_pass, "blocks_per_pass": setup.blocks_per_pass,
+            "load_states": int(len(setup.load.states)), "load_cases": list(setup.load.cases),
+            "integration": setup.method, "law": setup.law.law.describe(), "closure": setup.law.closure,
+            "K_crit": setup.K_crit}}, indent=2))
+        return 0
     lines = [f"scene {args.scene} ({lf.title!r}): valid (a life without a mesh: `cracklip life`)"] + lf.notes + [
         f"K: {setup.source}; table of {info['points']} sizes"
         + (f", tabulation error {err:.1e} up to a = {a_crit if a_crit is not None else setup.table.a[-1]:.6g}"
