@@ -12,7 +12,7 @@ import typing
 
 from ...errors import BoundaryConditionError, InputError
 from ...scene.scene import rigid_motion_hint
-from . import conditions, cracks, growth, material, mesh, options
+from . import conditions, cracks, growth, life, material, mesh, options
 from .cracks import CRACK_KINDS
 from .dimension import check_dimension, scene_dimension
 from .mesh import MESH_KINDS
@@ -23,7 +23,7 @@ SCHEMA: tuple[Key, ...] = tuple(
     [Key("title", "string", "", "name shown in outputs (default: the file name)", p_str)]
     + mesh.KEYS + material.KEYS + growth._fatigue_keys() + cracks.KEYS + conditions.DIRICHLET_KEYS
     + conditions.LOAD_KEYS + options.OPTION_KEYS + growth._growth_keys() + growth._spectrum_keys()
-    + options.OUTPUT_KEYS)
+    + life.KEYS + growth._fatigue_file_keys() + options.OUTPUT_KEYS)
 
 
 KEYS: dict[str, Key] = {k.path: k for k in SCHEMA}
