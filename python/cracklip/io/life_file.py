@@ -53,9 +53,9 @@ def build_life(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Path
     """Check a life scene's tables and files (nothing is meshed)."""
     from ..scene.input_files import read_k_table, resolve_rate_table
     from ..scene.life import life_settings
-    from ..scene.units import Units
     from .scene_file.growth import _fatigue_material, _spectrum
-    from .scene_file.reader import _items, _section, check_keys
+    from .scene_file.material import build_units
+    from .scene_file.reader import _section, check_keys, fatigue_settings, spectrum_settings
     base_dir = pathlib.Path(base_dir)
     if "life" not in doc:
         raise InputError("the scene has no [life] table: give life.geometry and life.a0 (docs/life.md)")
@@ -72,23 +72,10 @@ def build_life(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Path
         raise InputError("a life needs a [spectrum]: blocks of turning points (a constant-amplitude cycle is one "
                          "block of two points, e.g. points = [0.1, 1.0])")
     title = doc.get("title") or (path.stem if path is not None else "life")
-    units = None
-    if "units" in doc:
-        u = _section(doc["units"], "units", "units")
-        units = Units(u.get("length"), u.get("force"), u.get("stress"))
-    fd = doc["material"]["fatigue"]
-    fs = _section(fd, "material.fatigue", "material.fatigue")
-    if "units" in fd:
-        fs["units"] = _section(fd["units"], "material.fatigue.units", "material.fatigue.units")
-    fatigue = _fatigue_material(resolve_rate_table(fs, base_dir))
+    units = build_units({"units": _section(doc["units"], "units", "units")} if "units" in doc else {})
+    fatigue = _fatigue_material(resolve_rate_table(fatigue_settings(doc["material"]["fatigue"]), base_dir))
     fatigue.converted(units)
-    sp = _section(doc["spectrum"], "spectrum", "spectrum")
-    sp["blocks"] = [_section(b, "spectrum.blocks[]", f"spectrum.blocks[{i}]")
-                    for i, b in enumerate(_items(doc["spectrum"], "blocks"))]
-    for i, b in enumerate(sp["blocks"]):
-        if ("points" in b) == ("file" in b):
-            raise InputError(f"spectrum.blocks[{i}] needs exactly one of points or file")
-    spectrum = _spectrum(sp, base_dir)
+    spectrum = _spectrum(spectrum_settings(doc["spectrum"]), base_dir)
     life = life_settings(_section(doc["life"], "life", "life"))
     table = None
     if life.table is not None:
