@@ -26,6 +26,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
 from cracklip.exact.griffith import GriffithField, remote_in_crack_frame  # noqa: E402
+from cracklip.fracture.handbook import centre_crack, edge_crack  # noqa: E402
 from cracklip.io.files import write_json  # noqa: E402
 
 TIP_H = 0.01
@@ -34,18 +35,17 @@ TIP_H = 0.01
 def tada_centre_crack(a_over_b: float) -> float:
     """Tada's finite-width correction of a centre crack in a strip under
     uniform tension: K = F sigma sqrt(pi a), F = (1 - 0.025 x^2 + 0.06 x^4)
-    sqrt(sec(pi x / 2)), x = a / b (b the half width); 0.1 % for any x."""
-    x = a_over_b
-    return (1 - 0.025 * x ** 2 + 0.06 * x ** 4) * math.sqrt(1.0 / math.cos(math.pi * x / 2))
+    sqrt(sec(pi x / 2)), x = a / b (b the half width); 0.1 % for any x
+    (cracklip.fracture.handbook.centre_crack)."""
+    return float(centre_crack(a_over_b, 2.0, "tada"))
 
 
 def tada_edge_crack(a_over_w: float) -> float:
     """Tada's single-edge-notch tension factor (ends free to rotate): K = F
     sigma sqrt(pi a), F = sqrt(2 / (pi x) tan(pi x / 2)) (0.752 + 2.02 x +
-    0.37 (1 - sin(pi x / 2))^3) / cos(pi x / 2), x = a / W; 0.5 % for any x."""
-    x = a_over_w
-    t = math.pi * x / 2
-    return math.sqrt(2 / (math.pi * x) * math.tan(t)) * (0.752 + 2.02 * x + 0.37 * (1 - math.sin(t)) ** 3) / math.cos(t)
+    0.37 (1 - sin(pi x / 2))^3) / cos(pi x / 2), x = a / W; 0.5 % for any x
+    (cracklip.fracture.handbook.edge_crack)."""
+    return float(edge_crack(a_over_w, 1.0))
 
 
 def tada_bending(a_over_w: float) -> float:

@@ -14,7 +14,8 @@ without the nodal rescaling, K against handbook and exact values (issue
 crack growth (first kinks, straight growth, Paris law, closure, published
 paths and the SIF rings of their peers, the cost of a step; issue 17), the fatigue life under load histories
 (rainflow, block life, NASGRO, Wheeler, a flight spectrum with contact, beta
-tables; issue 29) and the hard-case suite (not with --quick).
+tables; issue 29), the life without a mesh from beta and da/dN table files
+and its compiled speed (issue 38) and the hard-case suite (not with --quick).
 
     /usr/bin/python3 demos/paper_figures.py --out results
 """
@@ -41,6 +42,7 @@ import friction_crack  # noqa: E402
 import front_sifs  # noqa: E402
 import growth_benchmarks  # noqa: E402
 import handbook  # noqa: E402
+import life_inputs  # noqa: E402
 import growth_paths  # noqa: E402
 import hard_cases  # noqa: E402
 import block_uniform_pressure  # noqa: E402
@@ -169,6 +171,9 @@ def main(argv=None) -> int:
 
     log("[15/18] fatigue life: rainflow, block life, NASGRO, Wheeler, a flight spectrum with contact, beta tables")
     summary["fatigue"] = fatigue_checks.main(["--out", str(out / "fatigue"), *(["--quick"] if args.quick else [])])
+    log("[15/18] fatigue life without a mesh: beta and da/dN table files, turning-point files, compiled speed")
+    summary["life_inputs"] = life_inputs.main(["--json", str(out / "life_inputs.json"),
+                                               *(["--quick"] if args.quick else [])])
 
     log("[16/18] 3D: penny crack opening against Sneddon (tetrahedra, a/h = 10, 14, 20 at the front)")
     summary["penny_crack"] = penny_crack.main(["--json", str(out / "penny" / "penny_crack.json"), "--quiet",
@@ -311,6 +316,9 @@ def markdown(s: dict) -> str:
         lines += ["", "## Fatigue life under load histories (`demos/fatigue_checks.py`, docs/life.md)", "",
                   fatigue_checks.markdown(s["fatigue"]).rstrip("\n"), "",
                   "![block life](fatigue/block_life.png)", "", "![spectrum life](fatigue/spectrum_life.png)"]
+    if s.get("life_inputs"):
+        lines += ["", "## Fatigue life without a mesh, from files, at compiled speed (`demos/life_inputs.py`, "
+                  "docs/life.md)", "", life_inputs.markdown(s["life_inputs"]).rstrip("\n")]
     if s.get("penny_crack"):
         lines += ["", "## 3D: penny crack under remote tension against Sneddon (`demos/penny_crack.py`)", "",
                   penny_crack.markdown(s["penny_crack"]).rstrip("\n"), "", "![penny opening](penny/penny_crack.png)"]

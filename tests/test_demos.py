@@ -96,3 +96,16 @@ def test_ring_study_demo(tmp_path):
     assert len((tmp_path / "ring_sweep.csv").read_text().splitlines()) == len(p["sweep"]) + 1
     for name in ("ring_study.png", "dcb_rings.png"):
         assert (tmp_path / name).stat().st_size > 10000
+
+
+def test_life_inputs_demo(tmp_path):
+    """demos/life_inputs.py --quick: issue 38's keys, the lives within 0.5 %
+    of their references (measured 1.6e-6 and 2e-15), the E1049 file's cycles.
+    No speed is asserted (the machine's load decides it; the demo reports it)."""
+    out = tmp_path / "life.json"
+    run_demo("life_inputs.py", "--quick", "--json", str(out))
+    res = json.loads(out.read_text())
+    for key in ("beta_table_life", "dadn_file_life"):
+        assert abs(res[key]["N"] / res[key]["N_exact"] - 1) < 5e-3
+    assert res["turning_points"]["ok"] is True
+    assert res["speed"]["cycles_per_s"] > 0 and res["speed"]["rainflow_points_per_s"] > 0

@@ -1,4 +1,5 @@
 """Typed errors: every bad input names what is wrong and how to fix it."""
+from __future__ import annotations
 
 
 class CracklipError(Exception):
@@ -27,3 +28,14 @@ class BoundaryConditionError(InputError):
 
 class SolverError(CracklipError, RuntimeError):
     """The linear solve failed (singular matrix, factorisation error, large residual)."""
+
+
+class InputFileError(InputError):
+    """An input file (a table of turning points, of da/dN, of beta) is
+    unreadable or holds a bad value; the message names the file, the line
+    and the column. Attributes: path, line (1-based, None: the whole file),
+    column (1-based, None: the whole line)."""
+
+    def __init__(self, message: str, path=None, line: int | None = None, column: int | None = None):
+        super().__init__(message)
+        self.path, self.line, self.column = path, line, column

@@ -11,11 +11,12 @@ void declare_fields(pybind11::module& m);
 void declare_fracture(pybind11::module& m);
 void declare_contact(pybind11::module& m);
 void declare_loads(pybind11::module& m);
+void declare_life(pybind11::module& m);
 } // namespace cracklip_wrappers
 
 PYBIND11_MODULE(_cracklip, m)
 {
-  m.doc() = "cracklip C++ kernels: crack geometry, enrichment, enriched assembly, fields, tip functions, SIFs";
+  m.doc() = "cracklip C++ kernels: crack geometry, enrichment, enriched assembly, fields, tip functions, SIFs, fatigue life";
   cracklip_wrappers::declare_geometry(m);
   cracklip_wrappers::declare_geometry_3d(m);
   cracklip_wrappers::declare_enrichment(m);
@@ -24,4 +25,5 @@ PYBIND11_MODULE(_cracklip, m)
   cracklip_wrappers::declare_fracture(m);
   cracklip_wrappers::declare_contact(m);
   cracklip_wrappers::declare_loads(m);
+  cracklip_wrappers::declare_life(m);
 }

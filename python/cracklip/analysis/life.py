@@ -34,9 +34,9 @@ t (exact for K proportional to sqrt(a)), a the tip's crack length (the
 length in the part over its number of tips). Without retardation a pass
 grows the crack by the sum over its cycles (equal cycles merged) and the
 passes of the increment are the integral of da / (growth per pass),
-composite Simpson in t; with retardation the fastest tip is grown cycle by
-cycle in closing order (fracture.life.grow_with_retardation), chunk by
-chunk, and every tip keeps its own overload state. The increments
+composite Simpson in t; with retardation every tip is grown cycle by cycle
+in closing order by the compiled kernel (fracture.life_kernels, each cycle
+at its own crack length) and keeps its own overload state. The increments
 themselves are as in constant amplitude: the fastest tip advances da, the
 others da times their growth per pass over the fastest one's.
 
@@ -63,7 +63,8 @@ from ..errors import InputError
 from ..fracture.kink import equivalent_k, kink_angle
 from ..fracture.laws import (Forman, GrowthLaw, HartmanSchijve, Nasgro, NasgroConstants, Paris, RateTable, Tabular,
                              Walker)
-from ..fracture.life import CycleTable, LifeLaw, grow_with_retardation, pass_growth
+from ..fracture.life import CycleTable, LifeLaw, pass_growth
+from ..fracture.life_kernels import KTable, integrate_cycles, new_run
 from ..fracture.rainflow import count_cycles
 from ..fracture.retardation import OverloadState, Retardation, constraint_beta
 from ..scene.fatigue import FatigueMaterial
@@ -618,21 +619,27 @@ class LifeRun:
                 self.failure_point["a"] = aa
 
     def _retarded_passes(self, prev, now, keys, fast, ds, t_end, which) -> float:
+        """Every tip grown cycle by cycle over the increment by the compiled
+        kernel (fracture.life_kernels): K of each load state from the
+        increment's two level tables (K / sqrt(a) linear in a, as _interp),
+        each tip with its own overload state; the passes of the fastest tip."""
         out = None
         for key in keys:
             p, q = prev[key], now[key]
             span = q.a - p.a
             if span <= 0.0:
                 continue
-
-            def K_of_a(a: float, p=p, q=q, span=span) -> np.ndarray:
-                t = min(max((a - p.a) / span, 0.0), 1.0)
-                return self._interp(p, q, t, which)[0]
-            run = grow_with_retardation(K_of_a, lambda i, c=p.cycles: c, self.law, self.retardation, p.a,
-                                        p.a + t_end * span, self.ret_state.get(key), max_passes=10 ** 7)
-            self.ret_state[key] = run.state
+            K = np.stack([getattr(p, which), getattr(q, which)])  # (2 sizes, states): one case per state
+            table = KTable(1, np.array([p.a, q.a]), K, tuple(str(s) for s in range(K.shape[1])))
+            st = self.ret_state.get(key) or OverloadState()
+            run = new_run([p.a])
+            run["state"] = ((st.a_OL, st.r_OL, st.K_OL), run["state"][1])
+            run = integrate_cycles(table, np.eye(K.shape[1]), p.cycles, self.law, self.retardation, run,
+                                   [p.a + t_end * span], max_passes=10 ** 7)
+            self.ret_state[key] = OverloadState(*run["state"][0])
             if key == fast:
-                out = run.cycles / max(self.cycles_per_pass or 1.0, 1e-300) if run.reached else math.inf
+                out = (run["cycles"] / max(self.cycles_per_pass or 1.0, 1e-300) if run["stop"] == "reached"
+                       else math.inf)
         return out if out is not None else 0.0
 
     def passes_exceeded(self) -> bool:

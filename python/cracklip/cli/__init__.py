@@ -3,6 +3,7 @@
     python3 -m cracklip run SCENE.toml --out DIR      solve, write results into DIR
     python3 -m cracklip grow SCENE.toml --out DIR     grow the cracks ([growth] table), write the path
                                                       (--beta-table: K / (S sqrt(pi a)) along it)
+    python3 -m cracklip life SCENE.toml --out DIR     a fatigue life without a mesh ([life] table)
     python3 -m cracklip check SCENE.toml             validate, print what will be modelled
     python3 -m cracklip reference [--update PAGE]    the scene-file reference (Markdown)
 
@@ -67,7 +68,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog=PROG, description="cracklip: X-FEM cracks in planar parts (with crack-lip contact, "
                      "growth and fatigue life) and in solids (K along the crack fronts), from a TOML scene file.",
                      epilog="Scene keys: `python3 -m cracklip reference` or docs/scene_reference.md.")
-    sub = parser.add_subparsers(dest="command", metavar="{run,grow,check,reference}", parser_class=_Parser)
+    sub = parser.add_subparsers(dest="command", metavar="{run,grow,life,check,reference}", parser_class=_Parser)
 
     def common(p: argparse.ArgumentParser) -> None:
         p.add_argument("scene", type=pathlib.Path, help="scene file (TOML)")
@@ -108,6 +109,8 @@ def build_parser() -> argparse.ArgumentParser:
                       help="at every step, refine around the crack tips until the estimated error of every K is "
                            "below TARGET times the K scale (as options.accuracy; several solves per step)")
     grow.set_defaults(func=cmd_grow)
+    from .life import add_life_parser
+    add_life_parser(sub, common)
 
     check = sub.add_parser("check", help="validate a scene and print what will be modelled",
                            description="Validate a scene, mesh it and build its model without "
@@ -309,7 +312,9 @@ def cmd_grow(args) -> int:
                 name = sf.growth.spectrum.block_name if sf.growth.spectrum is not None else "cycle"
                 life = f" | {r0.blocks:.6g} {name}s done ({r0.passes:.6g} passes), N = {r0.N:.6g} cycles"
             sys.stderr.write(f"cracklip grow: step {k}: " + "; ".join(
-                f"{sf.scene.cracks[r.crack].name} end {r.end}: a = {r.length:.5g}, K_I = {r.K_I:.5g}, "
+                f"{sf.scene.cracks[r.crack].name} end {r.end}: "
+                + (f"a = {r.a:.5g} (length in the part {r.length:.5g})" if r.a is not None else
+                   f"length in the part {r.length:.5g}") + f", K_I = {r.K_I:.5g}, "
                 f"K_II = {r.K_II:.5g}, kink {r.kink_deg:+.2f} deg"
                 + (f", N = {r.N:.5g}" if sf.growth.fatigue and not sf.growth.life else "")
                 + ("" if r.status == "growing" else f" ({r.status})")
@@ -338,9 +343,15 @@ def cmd_grow(args) -> int:
 def cmd_check(args) -> int:
     from ..contact.frictionless import create_contact_system
     from ..model.model import create_model
+    from ..io.life_file import is_life_scene
     from ..io.model_summary import describe_model, enriched_nodes, format_model
     from ..io.outputs import output_files
+    from .life import check_life, read_doc
+    if is_life_scene(read_doc(args)):
+        return check_life(args, read_doc(args))  # a life without a mesh: nothing to mesh
     doc = _load(args)
+    if "life" in doc:
+        check_life(args, doc, quiet=True)  # its files too, before the mesh
     sf = _build(args, doc)
     scene = sf.scene
     model = create_model(scene)  # runs the model checks of a run (cracklip.model.checks)

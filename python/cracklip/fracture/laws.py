@@ -204,10 +204,12 @@ class RateTable:
                 not np.all(np.isfinite(K)):
             raise InputError(f"tabular da/dN: every row needs one positive Delta K per R ({R.size}), ascending "
                              "down each column")
+        # Converted once (a table of many curves is evaluated at every step of a life).
+        object.__setattr__(self, "_log_dk", np.log(K).T.copy())  # (curves, rates)
+        object.__setattr__(self, "_log_rate", np.log(d))
 
     def curve_rate(self, j: int, dk: np.ndarray) -> np.ndarray:
-        K = np.log(np.asarray(self.delta_K, float)[:, j])
-        d = np.log(np.asarray(self.dadn, float))
+        K, d = self._log_dk[j], self._log_rate
         x = np.log(np.maximum(dk, 1e-300))
         slope = (d[-1] - d[-2]) / (K[-1] - K[-2])
         y = np.where(x <= K[-1], np.interp(x, K, d), d[-1] + slope * (x - K[-1]))
@@ -223,9 +225,11 @@ class RateTable:
             rc = np.clip(r, Rs[0], Rs[-1])
             j = np.clip(np.searchsorted(Rs, rc, side="right") - 1, 0, Rs.size - 2)
             w = (rc - Rs[j]) / (Rs[j + 1] - Rs[j])
-            curves = np.stack([self.curve_rate(i, dk) for i in range(Rs.size)])
-            cols = np.arange(dk.size)
-            out = np.where(dk > 0, (1.0 - w) * curves[j, cols] + w * curves[j + 1, cols], 0.0)
+            out = np.zeros(dk.size)
+            for jj in np.unique(j):  # only the curves around the cycles' R
+                sel = j == jj
+                out[sel] = (1.0 - w[sel]) * self.curve_rate(jj, dk[sel]) + w[sel] * self.curve_rate(jj + 1, dk[sel])
+            out = np.where(dk > 0, out, 0.0)
         return out.reshape(dk0.shape)
 
 

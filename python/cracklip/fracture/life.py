@@ -204,7 +204,11 @@ def grow_with_retardation(K_of_a: typing.Callable[[float], np.ndarray], passes: 
     length gives every cycle's crack length (the growth of the cycles
     before it), the corrector takes the overload zones at those lengths and
     K at the chunk's middle (second order in the chunk's growth). Stops at
-    the cycle where a reaches a_end (cycle resolution)."""
+    the cycle where a reaches a_end (cycle resolution). K may be any
+    function of a here; grow and `cracklip life` use the compiled kernel
+    (fracture.life_kernels.integrate_cycles: each cycle at its own length,
+    K from a table), which this vectorised form approximates to 5e-5 on the
+    notes' Wheeler check (tests/test_table_life.py)."""
     st = state if state is not None else OverloadState()
     a = a0
     cycles = 0.0

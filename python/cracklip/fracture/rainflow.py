@@ -24,6 +24,9 @@ retardation).
   cycles), or closed like rainflow_repeated.
 - ``valley_to_peak``: every rise from a valley to the next peak is one
   cycle (the "tension part" of each excursion; easigrow's "tension").
+
+The counting itself is compiled (cpp/life/rainflow.cpp: one pass with a
+stack, O(n)); this module checks the history and names the cycles.
 """
 from __future__ import annotations
 
@@ -31,6 +34,7 @@ import dataclasses
 
 import numpy as np
 
+from .. import _cracklip
 from ..errors import InputError
 
 
@@ -68,53 +72,24 @@ class Cycles:
         return sorted(out.items())
 
 
+def _history(values) -> np.ndarray:
+    """The history as a flat float array; InputError for a non-finite value
+    or a history with no reversal (fewer than two distinct values)."""
+    v = np.ascontiguousarray(values, dtype=float).ravel()
+    if v.size and not np.all(np.isfinite(v)):
+        bad = int(np.flatnonzero(~np.isfinite(v))[0])
+        raise InputError(f"the load history has a non-finite value {v[bad]} at point {bad}")
+    if v.size < 2 or not np.any(v != v[0]):
+        raise InputError("the load history has no reversal: it needs at least two different values")
+    return v
+
+
 def reversal_indices(values: np.ndarray) -> np.ndarray:
     """Indices of the turning points of a history: the first and last point
     and every point where the slope changes sign (of a plateau its first
     point). Raises InputError for a history with no reversal (fewer than two
     distinct values) or a non-finite value."""
-    v = np.asarray(values, dtype=float).ravel()
-    if v.size and not np.all(np.isfinite(v)):
-        bad = int(np.flatnonzero(~np.isfinite(v))[0])
-        raise InputError(f"the load history has a non-finite value {v[bad]} at point {bad}")
-    keep = np.flatnonzero(np.r_[True, np.diff(v) != 0.0])  # first point of every plateau
-    w = v[keep]
-    if w.size < 2:
-        raise InputError("the load history has no reversal: it needs at least two different values")
-    d = np.sign(np.diff(w))
-    turn = np.flatnonzero(d[1:] != d[:-1]) + 1
-    return keep[np.r_[0, turn, w.size - 1]]
-
-
-def _count(v: np.ndarray, start_rule: bool) -> tuple[list[tuple[int, int, float]], list[int]]:
-    """The three-point rule on a reversal sequence v: (i, j, count) of the
-    counted ranges (indices into v) and the residue (indices left)."""
-    stack: list[int] = []
-    out: list[tuple[int, int, float]] = []
-    for k in range(v.size):
-        stack.append(k)
-        while len(stack) >= 3:
-            x = abs(v[stack[-1]] - v[stack[-2]])
-            y = abs(v[stack[-2]] - v[stack[-3]])
-            if x < y:
-                break
-            if start_rule and len(stack) == 3:
-                # Y holds the starting point: half a cycle, the start moves on.
-                out.append((stack[0], stack[1], 0.5))
-                stack.pop(0)
-            else:
-                out.append((stack[-3], stack[-2], 1.0))
-                del stack[-3:-1]
-    return out, stack
-
-
-def _as_cycles(v: np.ndarray, ranges: list[tuple[int, int, float]], index: np.ndarray) -> Cycles:
-    i = np.array([r[0] for r in ranges], dtype=int)
-    j = np.array([r[1] for r in ranges], dtype=int)
-    c = np.array([r[2] for r in ranges], dtype=float)
-    low = np.where(v[i] <= v[j], i, j)
-    high = np.where(v[i] <= v[j], j, i)
-    return Cycles(index[low], index[high], c)
+    return np.asarray(_cracklip.reversal_indices(_history(values)), dtype=int)
 
 
 def count_cycles(values, method: str = "rainflow", repeated: bool = True) -> Cycles:
@@ -124,27 +99,8 @@ def count_cycles(values, method: str = "rainflow", repeated: bool = True) -> Cyc
     residue). Indices in the result refer to the given values."""
     if method not in METHODS:
         raise InputError(f"cycle counting must be one of {METHODS}, got {method!r}")
-    rev = reversal_indices(values)
-    v = np.asarray(values, dtype=float).ravel()[rev]
-    if repeated:
-        # Start at the largest absolute value, close the loop on it (E1049 5.4.5); the joint (the
-        # last point, then the first) may not be a reversal: such points drop out.
-        k = int(np.argmax(np.abs(v)))
-        order = np.r_[np.arange(k, v.size), np.arange(0, k), k]
-        keep = reversal_indices(v[order])
-        order = order[keep]
-        vv = v[order]
-        if method == "valley_to_peak":
-            up = np.flatnonzero(vv[1:] > vv[:-1])
-            return Cycles(rev[order[up]], rev[order[up + 1]], np.ones(up.size))
-        ranges, _ = _count(vv, start_rule=False)
-        return _as_cycles(vv, ranges, rev[order])
-    if method == "valley_to_peak":
-        up = np.flatnonzero(v[1:] > v[:-1])
-        return Cycles(rev[up], rev[up + 1], np.ones(up.size))
-    ranges, residue = _count(v, start_rule=(method == "rainflow"))
-    ranges += [(residue[i], residue[i + 1], 0.5) for i in range(len(residue) - 1)]
-    return _as_cycles(v, ranges, rev)
+    lo, hi, count = _cracklip.count_cycles(_history(values), method, repeated)
+    return Cycles(np.asarray(lo, dtype=int), np.asarray(hi, dtype=int), np.asarray(count))
 
 
 def rainflow(values) -> list[tuple[float, float]]:

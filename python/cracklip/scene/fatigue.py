@@ -173,6 +173,7 @@ class FatigueMaterial:
                                      f"R of {where}.table_R ({len(self.table_R)})")
                 for j, v in enumerate(row):
                     _finite(v, f"{where}.table[{i}][{j}]")
+            self._check_table(where)
         elif self.table is not None or self.table_R is not None:
             raise InputError(f"{where}.table and table_R belong to the tabular law (law = 'tabular'), not {self.law!r}")
         if self.retardation != "none":
@@ -219,6 +220,30 @@ class FatigueMaterial:
             raise InputError(f"{where}.gamma = {c['gamma']!r} is out of range: Walker's gamma lies in [0, 1]")
         if self.law == "hartman_schijve" and c["dK_thr"] < 0.0:
             raise InputError(f"{where}.dK_thr must be >= 0, got {c['dK_thr']!r}")
+
+    def _check_table(self, where: str) -> None:
+        """The tabular law's R rise, its rates and every Delta K column are
+        positive and rise down the table (the interpolation needs it)."""
+        R, rows = self.table_R, self.table
+        for j in range(1, len(R)):
+            if not R[j] > R[j - 1]:
+                raise InputError(f"{where}.table_R[{j}] = {R[j]!r} does not rise above {R[j - 1]!r}: the R values must "
+                                 "be ascending")
+        if len(rows) < 2:
+            raise InputError(f"{where}.table needs at least two rows (rates)")
+        for i, row in enumerate(rows):
+            for j, v in enumerate(row):
+                if not v > 0:
+                    raise InputError(f"{where}.table[{i}][{j}] must be positive, got {v!r}")
+            if i == 0:
+                continue
+            if not row[0] > rows[i - 1][0]:
+                raise InputError(f"{where}.table[{i}][0]: the rates must rise down the table, {row[0]!r} follows "
+                                 f"{rows[i - 1][0]!r}")
+            for j in range(1, len(row)):
+                if not row[j] > rows[i - 1][j]:
+                    raise InputError(f"{where}.table[{i}][{j}]: the Delta K at R = {R[j - 1]:g} must rise down the "
+                                     f"table (a non-ascending Delta K column), {row[j]!r} follows {rows[i - 1][j]!r}")
 
     @property
     def fixed_units(self) -> Units | None:

@@ -13,10 +13,10 @@ left-over ranges as half cycles).
 """
 from __future__ import annotations
 
-import csv
 import dataclasses
 import math
 import pathlib
+import typing
 
 import numpy as np
 
@@ -127,41 +127,15 @@ class Spectrum:
         return np.vstack(rows), np.concatenate(owner)
 
 
-def read_spectrum_csv(path: str | pathlib.Path, where: str = "spectrum") -> tuple[list[str], np.ndarray]:
-    """A CSV of turning points: a header row with the load group of each
-    column, then one row of factors per turning point (lines starting with #
-    are comments). Returns (groups, points)."""
-    path = pathlib.Path(path)
-    try:
-        with path.open(newline="") as f:
-            rows = [r for r in csv.reader(line for line in f if line.strip() and not line.lstrip().startswith("#"))]
-    except OSError as e:
-        raise InputError(f"{where}: cannot read {path}: {e.strerror}") from None
-    if len(rows) < 2:
-        raise InputError(f"{where}: {path} needs a header row (the load groups) and at least one row of factors")
-    groups = [g.strip() for g in rows[0]]
-    if not all(groups) or any(_is_number(g) for g in groups):
-        raise InputError(f"{where}: the first row of {path} must name the load group of each column, got {rows[0]}")
-    out = np.empty((len(rows) - 1, len(groups)))
-    for i, r in enumerate(rows[1:]):
-        if len(r) != len(groups):
-            raise InputError(f"{where}: {path} line {i + 2} has {len(r)} values, the header {len(groups)}")
-        for j, v in enumerate(r):
-            try:
-                out[i, j] = float(v)
-            except ValueError:
-                raise InputError(f"{where}: {path} line {i + 2}, column {groups[j]!r}: {v!r} is not a number") from None
-            if not math.isfinite(out[i, j]):
-                raise InputError(f"{where}: {path} line {i + 2}, column {groups[j]!r}: {v!r} is not finite")
-    return groups, out
-
-
-def _is_number(text: str) -> bool:
-    try:
-        float(text)
-        return True
-    except ValueError:
-        return False
+def read_spectrum_csv(path: str | pathlib.Path, where: str = "spectrum",
+                      groups: typing.Sequence[str] = ("default",)) -> tuple[list[str], np.ndarray]:
+    """The turning points of a block file for the spectrum's load groups:
+    (groups, points (n, groups)). The file is a plain list of values (one
+    group), named columns (a header with the group of each column; comment
+    lines start with #) or a block-load table (header max, min, cycles);
+    cracklip.scene.input_files has the layouts and checks them line by line."""
+    from .input_files import read_turning_points
+    return list(groups), read_turning_points(path, where, tuple(groups))
 
 
 __all__ = ["COUNTING", "RESIDUE", "SpectrumBlock", "Spectrum", "read_spectrum_csv"]

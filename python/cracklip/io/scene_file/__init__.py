@@ -19,9 +19,11 @@ One module per section of the schema, each with its keys and what they
 build: ``mesh`` ([mesh]), ``material`` ([units], [material]), ``cracks``
 ([[cracks]]), ``conditions`` ([[dirichlet]], [loads], [[load_path]]),
 ``options`` ([options], [outputs]), ``growth`` ([growth],
-[material.fatigue], [spectrum]); ``schema`` the machinery of keys and
-parsers, ``dimension`` which keys a 2D or a 3D scene takes, ``reader``
-the whole schema and its checks, ``build`` the Scene.
+[material.fatigue] with its da/dN table file, [spectrum]), ``life``
+([life], the life without a mesh that cracklip.io.life_file reads);
+``schema`` the machinery of keys and parsers, ``dimension`` which keys a
+2D or a 3D scene takes, ``reader`` the whole schema and its checks,
+``build`` the Scene.
 """
 from .build import SceneFile, build_scene, load_scene_file
 from .options import add_option_arguments

@@ -15,7 +15,7 @@ from ...scene.scene import Scene
 from .conditions import build_conditions, build_load_path, build_loads
 from .cracks import build_crack, crack_surface, describe_crack
 from .dimension import check_dimension, scene_dimension
-from .growth import build_growth
+from .growth import check_growth, read_growth
 from .material import build_material, build_units
 from .mesh import build_mesh
 from .reader import apply_override, parse_settings, read_document
@@ -61,6 +61,7 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
     material = build_material(s)
     dim, why = scene_dimension(s)
     base_dir = pathlib.Path(base_dir)
+    growth = read_growth(s, "life" in doc, units, base_dir)  # with the fatigue inputs' files: before meshing
     if dim == 3:
         cracks = [crack_surface(c, i, base_dir) for i, c in enumerate(s["cracks"])]
     else:
@@ -97,5 +98,5 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
         from ...scene.load_path import steps
         steps(scene)  # unknown groups are an InputError now, not at the solve
     title = s["title"] or (path.stem if path is not None else "scene")
-    growth = build_growth(s, scene, units, base_dir, notes)
+    check_growth(growth, scene, notes)
     return SceneFile(path, title, s, scene, s["outputs"], notes, {"mesh": t_mesh}, growth)

@@ -1,8 +1,9 @@
 """[growth], [material.fatigue] and [spectrum]: the keys of crack growth, of
-the fatigue constants and of the load spectrum, and what they build
-(``build_growth``: cracklip.scene.growth.Growth with its FatigueMaterial
-and Spectrum, checked against the scene's load groups; ``describe_growth``:
-its line in the notes)."""
+the fatigue constants (and their da/dN table file) and of the load
+spectrum, and what they build (``read_growth``, before the mesh:
+cracklip.scene.growth.Growth with its FatigueMaterial and Spectrum and
+their input files; ``check_growth``, on the built scene: its load groups;
+``describe_growth``: its line in the notes)."""
 from __future__ import annotations
 
 import dataclasses
@@ -142,10 +143,25 @@ def _spectrum_keys() -> list[Key]:
         Key("spectrum.blocks[].points", "[factor, ...] or [[factors], ...]", UNSET, "turning points of the "
             "block: one factor per point (one group) or one row per point (one factor per group); one of "
             "points, file", p_numbers_any),
-        Key("spectrum.blocks[].file", "string", UNSET, "a CSV of turning points (header: the group of each "
-            "column), relative to the scene file", p_str),
+        Key("spectrum.blocks[].file", "string", UNSET, "a file of turning points, relative to the scene file: one "
+            "value per line, or a header naming the group of each column, or a block-load table (header max, min, "
+            "cycles); docs/life.md", p_str),
         Key("spectrum.blocks[].repeat", "integer", 1, "times the block comes in a pass", p_int(1)),
         Key("spectrum.blocks[].name", "string", "", "label of the block (e.g. a flight type)", p_str),
+    ]
+
+
+def _fatigue_file_keys() -> list[Key]:
+    """The input-file keys of [material.fatigue]: a da/dN table file and its
+    layout (cracklip.scene.input_files; listed in the reference after the
+    [life] keys)."""
+    from ...scene.input_files import RATE_LAYOUTS, UNSUPPORTED_RATE_LAYOUTS
+    return [
+        Key("material.fatigue.table_file", "string", UNSET, "tabular law: a da/dN table file instead of table_R / "
+            "table, relative to the scene file (layouts: table_layout)", p_str),
+        Key("material.fatigue.table_layout", "string", "auto", "layout of table_file: " + ", ".join(
+            f"`{x}`" for x in RATE_LAYOUTS) + f" (not supported, undocumented publicly: "
+            f"{', '.join(UNSUPPORTED_RATE_LAYOUTS)}; docs/life.md)", p_str),
     ]
 
 
@@ -182,7 +198,7 @@ def _spectrum(sp: dict, base_dir: pathlib.Path):
         where = f"spectrum.blocks[{i}]"
         if "file" in b:
             f = pathlib.Path(b["file"])
-            cols, pts = read_spectrum_csv(f if f.is_absolute() else base_dir / f, f"{where}.file")
+            cols, pts = read_spectrum_csv(f if f.is_absolute() else base_dir / f, f"{where}.file", groups)
             missing = [g for g in groups if g not in cols]
             if missing:
                 raise InputError(f"{where}.file {b['file']}: no column for load group(s) {missing} of spectrum.groups "
@@ -220,41 +236,51 @@ def describe_growth(g) -> str:
     return f"{g.criterion.replace('_', ' ')} criterion, {how}; stops: {', '.join(stops)}"
 
 
-def build_growth(s: dict, scene, units, base_dir, notes: list[str]):
+def read_growth(s: dict, life: bool, units, base_dir: pathlib.Path):
     """The Growth of the [growth] settings with its [material.fatigue] and
-    [spectrum] (None without [growth]), checked against the scene's load
-    groups; its line goes into the notes."""
-    growth = None
-    if "growth" not in s and ("spectrum" in s or "fatigue" in s["material"]):
-        raise InputError(f"[{'spectrum' if 'spectrum' in s else 'material.fatigue'}] is read by `cracklip grow`: "
-                         "add a [growth] table (growth.da, growth.steps)")
-    if "growth" in s:
-        from ...scene.growth import Growth
-        fatigue = _fatigue_material(s["material"]["fatigue"]) if "fatigue" in s["material"] else None
-        spectrum = _spectrum(s["spectrum"], pathlib.Path(base_dir)) if "spectrum" in s else None
-        if fatigue is not None:
-            fatigue.converted(units)  # units given without the scene's [units]: an error now, not at the solve
-        try:
-            growth = Growth(**s["growth"], fatigue_material=fatigue, spectrum=spectrum)
-        except InputError as e:
-            raise InputError(f"growth: {e}") from None
-        if scene.load_path is not None:
-            raise InputError("a scene with [growth] solves its loads (or its load cycle) at every step: give "
-                             "growth.cycle_max / cycle_min instead of [[load_path]]")
-        from ...scene.scene import load_groups
-        groups = load_groups(scene) | {"default"}
-        for name in ("cycle_max", "cycle_min"):
-            unknown = sorted(set(getattr(growth, name) or {}) - groups)
-            if unknown:
-                raise InputError(f"growth.{name} names load group(s) {unknown} that no load belongs to; the "
-                                 f"scene's groups: {sorted(groups)}")
-        checks = [("growth.reference_stress", set(growth.reference_stress or {}))]
-        if growth.spectrum is not None:
-            checks += [("spectrum.groups", set(growth.spectrum.groups)), ("spectrum.steady", set(growth.spectrum.steady))]
-        for name, named in checks:
-            unknown = sorted(named - groups)
-            if unknown:
-                raise InputError(f"{name} names load group(s) {unknown} that no load belongs to; the scene's "
-                                 f"groups: {sorted(groups)}")
-        notes.append("growth: " + describe_growth(growth))
-    return growth
+    [spectrum] and their files (None without [growth]), read before the
+    mesh so a bad input file stops the run before any meshing. life: the
+    document has a [life] table (`cracklip life` reads the fatigue inputs)."""
+    if "growth" not in s:
+        if not life and ("spectrum" in s or "fatigue" in s["material"]):
+            raise InputError(f"[{'spectrum' if 'spectrum' in s else 'material.fatigue'}] is read by `cracklip grow` "
+                             "(add a [growth] table: growth.da, growth.steps) or `cracklip life` (a [life] table)")
+        return None
+    from ...scene.growth import Growth
+    from ...scene.input_files import resolve_rate_table
+    fatigue = (_fatigue_material(resolve_rate_table(s["material"]["fatigue"], base_dir))
+               if "fatigue" in s["material"] else None)
+    spectrum = _spectrum(s["spectrum"], base_dir) if "spectrum" in s else None
+    if fatigue is not None:
+        fatigue.converted(units)  # units given without the scene's [units]: an error now, not at the solve
+    try:
+        return Growth(**s["growth"], fatigue_material=fatigue, spectrum=spectrum)
+    except InputError as e:
+        raise InputError(f"growth: {e}") from None
+
+
+def check_growth(growth, scene, notes: list[str]) -> None:
+    """Check a Growth (read_growth) against the built scene: no load path,
+    every load group it names belongs to a load; its line goes into the
+    notes."""
+    if growth is None:
+        return
+    if scene.load_path is not None:
+        raise InputError("a scene with [growth] solves its loads (or its load cycle) at every step: give "
+                         "growth.cycle_max / cycle_min instead of [[load_path]]")
+    from ...scene.scene import load_groups
+    groups = load_groups(scene) | {"default"}
+    for name in ("cycle_max", "cycle_min"):
+        unknown = sorted(set(getattr(growth, name) or {}) - groups)
+        if unknown:
+            raise InputError(f"growth.{name} names load group(s) {unknown} that no load belongs to; the "
+                             f"scene's groups: {sorted(groups)}")
+    checks = [("growth.reference_stress", set(growth.reference_stress or {}))]
+    if growth.spectrum is not None:
+        checks += [("spectrum.groups", set(growth.spectrum.groups)), ("spectrum.steady", set(growth.spectrum.steady))]
+    for name, named in checks:
+        unknown = sorted(named - groups)
+        if unknown:
+            raise InputError(f"{name} names load group(s) {unknown} that no load belongs to; the scene's "
+                             f"groups: {sorted(groups)}")
+    notes.append("growth: " + describe_growth(growth))

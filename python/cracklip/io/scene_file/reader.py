@@ -12,7 +12,7 @@ import typing
 
 from ...errors import BoundaryConditionError, InputError
 from ...scene.scene import rigid_motion_hint
-from . import conditions, cracks, growth, material, mesh, options
+from . import conditions, cracks, growth, life, material, mesh, options
 from .cracks import CRACK_KINDS
 from .dimension import check_dimension, scene_dimension
 from .mesh import MESH_KINDS
@@ -23,7 +23,7 @@ SCHEMA: tuple[Key, ...] = tuple(
     [Key("title", "string", "", "name shown in outputs (default: the file name)", p_str)]
     + mesh.KEYS + material.KEYS + growth._fatigue_keys() + cracks.KEYS + conditions.DIRICHLET_KEYS
     + conditions.LOAD_KEYS + options.OPTION_KEYS + growth._growth_keys() + growth._spectrum_keys()
-    + options.OUTPUT_KEYS)
+    + life.KEYS + growth._fatigue_file_keys() + options.OUTPUT_KEYS)
 
 
 KEYS: dict[str, Key] = {k.path: k for k in SCHEMA}
@@ -127,6 +127,25 @@ def _items(doc: dict, name: str) -> list[dict]:
     return [v] if isinstance(v, dict) else v
 
 
+def fatigue_settings(fd: dict) -> dict:
+    """The parsed [material.fatigue] table (with its [material.fatigue.units])."""
+    out = _section(fd, "material.fatigue", "material.fatigue")
+    if "units" in fd:
+        out["units"] = _section(fd["units"], "material.fatigue.units", "material.fatigue.units")
+    return out
+
+
+def spectrum_settings(sd: dict) -> dict:
+    """The parsed [spectrum] table with its blocks (each of points or file)."""
+    out = _section(sd, "spectrum", "spectrum")
+    out["blocks"] = [_section(b, "spectrum.blocks[]", f"spectrum.blocks[{i}]")
+                     for i, b in enumerate(_items(sd, "blocks"))]
+    for i, b in enumerate(out["blocks"]):
+        if ("points" in b) == ("file" in b):
+            raise InputError(f"spectrum.blocks[{i}] needs exactly one of points or file")
+    return out
+
+
 def parse_settings(doc: dict) -> dict:
     """Validate a scene document (from tomllib) and fill in defaults.
 
@@ -150,10 +169,7 @@ def parse_settings(doc: dict) -> dict:
         raise InputError("the scene has no [material] table: give material.E and material.nu")
     s["material"] = _section(doc["material"], "material", "material")
     if "fatigue" in doc["material"]:
-        fd = doc["material"]["fatigue"]
-        s["material"]["fatigue"] = _section(fd, "material.fatigue", "material.fatigue")
-        if "units" in fd:
-            s["material"]["fatigue"]["units"] = _section(fd["units"], "material.fatigue.units", "material.fatigue.units")
+        s["material"]["fatigue"] = fatigue_settings(doc["material"]["fatigue"])
     s["cracks"] = []
     for i, c in enumerate(_items(doc, "cracks")):
         where = f"cracks[{i}]"
@@ -214,12 +230,7 @@ def parse_settings(doc: dict) -> dict:
     if "growth" in doc:
         s["growth"] = _section(doc["growth"], "growth", "growth")
     if "spectrum" in doc:
-        s["spectrum"] = _section(doc["spectrum"], "spectrum", "spectrum")
-        s["spectrum"]["blocks"] = [_section(b, "spectrum.blocks[]", f"spectrum.blocks[{i}]")
-                                   for i, b in enumerate(_items(doc["spectrum"], "blocks"))]
-        for i, b in enumerate(s["spectrum"]["blocks"]):
-            if ("points" in b) == ("file" in b):
-                raise InputError(f"spectrum.blocks[{i}] needs exactly one of points or file")
+        s["spectrum"] = spectrum_settings(doc["spectrum"])
     s["options"] = _section(doc.get("options", {}), "options", "options")
     s["outputs"] = _section(doc.get("outputs", {}), "outputs", "outputs")
     dim, why = scene_dimension(s)
