@@ -460,3 +460,13 @@ def test_bad_life_settings_name_the_key(life, key):
     doc["life"] = life
     with pytest.raises(cl.InputError, match=re.escape(key)):
         build_life(doc, DATA)
+
+
+@pytest.mark.parametrize("command", ["run", "grow"])
+def test_run_and_grow_point_a_life_scene_to_the_life_command(command, capsys):
+    """A [life] scene has no part: `run` and `grow` name `cracklip life`
+    instead of asking for mesh.h."""
+    scene = "demos/scenes/life_hole_crack.toml"
+    assert cli.main([command, scene, "--out", "unused"]) == 2
+    err = capsys.readouterr().err
+    assert f"cracklip life {scene}" in err and "mesh.h" not in err

@@ -134,6 +134,10 @@ def _load(args):
     """Read and validate the scene document (nothing built yet)."""
     from ..io.scene_file import apply_override, parse_settings, read_document
     doc = read_document(args.scene)
+    if "life" in doc and "mesh" not in doc and getattr(args, "command", None) in ("run", "grow"):
+        from ..errors import InputError
+        raise InputError(f"{args.scene} describes a life without a mesh ([life], no [mesh]): run "
+                         f"`python3 -m cracklip life {args.scene}`; `{args.command}` solves a part (a [mesh])")
     for o in args.overrides:
         apply_override(doc, o)
     if getattr(args, "accuracy", None) is not None:
