@@ -40,6 +40,13 @@ decltype(auto) with_dimension(int dim, F&& f)
   return f(std::integral_constant<int, 3>{});
 }
 
+/// What a crack geometry of dimension dim is, for error messages.
+inline std::string geometry_kind(int dim)
+{
+  return dim == 2 ? "CrackGeometry (compute_crack_geometry) on a triangle mesh"
+                  : "CrackGeometry3D (compute_crack_geometry_3d) on a tetrahedral mesh";
+}
+
 /// A Python list of crack geometries of dimension dim (CrackGeometry or
 /// CrackGeometry3D), as the C++ kernels take them.
 template <int dim>
@@ -51,9 +58,21 @@ std::vector<const cracklip::CrackGeometryOf<dim>*> cracks_of(const py::sequence&
   }
   catch (const py::cast_error&)
   {
-    throw std::invalid_argument(std::string("cracks must be a list of ")
-                                + (dim == 2 ? "CrackGeometry (compute_crack_geometry) on a triangle mesh"
-                                            : "CrackGeometry3D (compute_crack_geometry_3d) on a tetrahedral mesh"));
+    throw std::invalid_argument("cracks must be a list of " + geometry_kind(dim));
+  }
+}
+
+/// One crack geometry of dimension dim.
+template <int dim>
+const cracklip::CrackGeometryOf<dim>& crack_of(const py::object& geometry)
+{
+  try
+  {
+    return geometry.cast<const cracklip::CrackGeometryOf<dim>&>();
+  }
+  catch (const py::cast_error&)
+  {
+    throw std::invalid_argument("geometry must be a " + geometry_kind(dim));
   }
 }
 
