@@ -93,7 +93,6 @@ void declare_loads(py::module& m)
       py::arg("facet_local"), py::arg("degree"),
       "Quadrature points of boundary facets (points, outward normals, weights) and the basis values there "
       "(entries: COO by point).");
-  m.attr("compute_facet_basis_3d") = m.attr("compute_facet_basis");
 
   m.def(
       "assemble_lip_load",
@@ -116,7 +115,6 @@ void declare_loads(py::module& m)
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("crack"), py::arg("point_cells"),
       py::arg("ref"), py::arg("weights"), py::arg("traction"),
       "Load vector (num_dofs) of + lip tractions (n, dim) at crack points (the - lip carries the opposite).");
-  m.attr("assemble_lip_load_3d") = m.attr("assemble_lip_load");
 
   m.def(
       "assemble_cell_load",
@@ -142,7 +140,6 @@ void declare_loads(py::module& m)
       py::arg("sides"), py::arg("weights"), py::arg("force"), py::arg("stress") = py::none(),
       "Enriched-dof load (num_dofs) of a body force (n, dim) and an initial stress (n, 3: xx, yy, xy in 2D; "
       "n, 6: xx, yy, zz, yz, xz, xy in 3D; or None) at quadrature points of enriched cells.");
-  m.attr("assemble_cell_load_3d") = m.attr("assemble_cell_load");
 }
 
 } // namespace cracklip_wrappers
