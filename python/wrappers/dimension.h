@@ -40,11 +40,18 @@ decltype(auto) with_dimension(int dim, F&& f)
   return f(std::integral_constant<int, 3>{});
 }
 
-/// What a crack geometry of dimension dim is, for error messages.
-inline std::string geometry_kind(int dim)
+/// o cast to T, or ValueError(`what`) if it is something else.
+template <typename T>
+T cast_or_refuse(const py::handle& o, const char* what)
 {
-  return dim == 2 ? "CrackGeometry (compute_crack_geometry) on a triangle mesh"
-                  : "CrackGeometry3D (compute_crack_geometry_3d) on a tetrahedral mesh";
+  try
+  {
+    return o.cast<T>();
+  }
+  catch (const py::cast_error&)
+  {
+    throw std::invalid_argument(what);
+  }
 }
 
 /// A Python list of crack geometries of dimension dim (CrackGeometry or
@@ -52,28 +59,18 @@ inline std::string geometry_kind(int dim)
 template <int dim>
 std::vector<const cracklip::CrackGeometryOf<dim>*> cracks_of(const py::sequence& cracks)
 {
-  try
-  {
-    return cracks.cast<std::vector<const cracklip::CrackGeometryOf<dim>*>>();
-  }
-  catch (const py::cast_error&)
-  {
-    throw std::invalid_argument("cracks must be a list of " + geometry_kind(dim));
-  }
+  return cast_or_refuse<std::vector<const cracklip::CrackGeometryOf<dim>*>>(
+      cracks, dim == 2 ? "cracks must be a list of CrackGeometry (compute_crack_geometry) on a triangle mesh"
+                       : "cracks must be a list of CrackGeometry3D (compute_crack_geometry_3d) on a tetrahedral mesh");
 }
 
 /// One crack geometry of dimension dim.
 template <int dim>
 const cracklip::CrackGeometryOf<dim>& crack_of(const py::object& geometry)
 {
-  try
-  {
-    return geometry.cast<const cracklip::CrackGeometryOf<dim>&>();
-  }
-  catch (const py::cast_error&)
-  {
-    throw std::invalid_argument("geometry must be a " + geometry_kind(dim));
-  }
+  return cast_or_refuse<const cracklip::CrackGeometryOf<dim>&>(
+      geometry, dim == 2 ? "geometry must be a CrackGeometry (compute_crack_geometry) on a triangle mesh"
+                         : "geometry must be a CrackGeometry3D (compute_crack_geometry_3d) on a tetrahedral mesh");
 }
 
 /// Quadrature options of dimension dim (QuadratureOptions or
@@ -81,15 +78,9 @@ const cracklip::CrackGeometryOf<dim>& crack_of(const py::object& geometry)
 template <int dim>
 const cracklip::QuadratureOptionsOf<dim>& options_of(const py::object& options)
 {
-  try
-  {
-    return options.cast<const cracklip::QuadratureOptionsOf<dim>&>();
-  }
-  catch (const py::cast_error&)
-  {
-    throw std::invalid_argument(dim == 2 ? "options must be QuadratureOptions on a triangle mesh"
-                                         : "options must be QuadratureOptions3D on a tetrahedral mesh");
-  }
+  return cast_or_refuse<const cracklip::QuadratureOptionsOf<dim>&>(
+      options, dim == 2 ? "options must be QuadratureOptions on a triangle mesh"
+                        : "options must be QuadratureOptions3D on a tetrahedral mesh");
 }
 
 } // namespace cracklip_wrappers
