@@ -1,7 +1,7 @@
 """The C++ module's bindings written once for both dimensions: the mesh arrays
-decide (x of shape (n, 2) or (n, 3)), the 3D pipeline's names are the same
-functions, and a crack list or options of the other dimension is refused
-with a message that says what was expected."""
+decide (x of shape (n, 2) or (n, 3)), each kernel has one name, and a crack
+list, a crack or options of the other dimension is refused with a message
+that says what was expected."""
 from __future__ import annotations
 
 import itertools
@@ -57,25 +57,42 @@ def model_3d():
     return x, cells, g, layout
 
 
-def test_one_layout_class_and_the_3d_names_are_the_same_functions(model_2d, model_3d):
+def test_one_layout_class_and_one_name_per_kernel(model_2d, model_3d):
+    """One EnrichmentLayout for both dimensions, and no second (3D) name of
+    the kernels written once."""
+    assert type(model_2d[3]) is type(model_3d[3]) is _cracklip.EnrichmentLayout
     assert model_2d[3].dim == 2 and model_3d[3].dim == 3
-    assert _cracklip.EnrichmentLayout3D is _cracklip.EnrichmentLayout
-    for name in ("create_sparsity", "assemble_enriched_stiffness_petsc", "assemble_enriched_stiffness_coo",
-                 "compute_enriched_cell_quadrature", "compute_facet_basis", "assemble_lip_load",
-                 "assemble_cell_load", "evaluate_displacement"):
-        three = name.replace("_petsc", "_3d_petsc").replace("_coo", "_3d_coo") if "stiffness" in name else name + "_3d"
-        assert getattr(_cracklip, three) is getattr(_cracklip, name), name
-    np.testing.assert_array_equal(model_3d[3].piece, model_3d[3].tip)
+    for old in ("EnrichmentLayout3D", "create_enrichment_layout_3d", "create_sparsity_3d",
+                "assemble_enriched_stiffness_3d_petsc", "assemble_enriched_stiffness_3d_coo",
+                "compute_facet_basis_3d", "assemble_lip_load_3d", "assemble_cell_load_3d",
+                "evaluate_displacement_3d", "compute_crack_points", "compute_lip_points_3d"):
+        assert not hasattr(_cracklip, old), old
+    assert not hasattr(model_3d[3], "piece")
 
 
-def test_the_3d_layout_name_keeps_its_keyword_and_default(model_3d):
-    x, cells, g, layout = model_3d
-    old = _cracklip.create_enrichment_layout_3d(x, cells, [g], front="vector", radius=0.3)
-    np.testing.assert_array_equal(old.node, layout.node)
-    np.testing.assert_array_equal(old.kind, layout.kind)
-    assert _cracklip.create_enrichment_layout_3d(x, cells, [g], radius=0.3).num_enriched == layout.num_enriched
-    with pytest.raises(ValueError, match="front enrichment must be 'none', 'scalar' or 'vector', got 'cubic'"):
-        _cracklip.create_enrichment_layout_3d(x, cells, [g], front="cubic")
+@pytest.mark.parametrize("dim", [2, 3])
+def test_lip_points_in_both_dimensions(dim, model_2d, model_3d):
+    """compute_lip_points on a crack's segments (2D) or lip facets (3D): the
+    weights sum to the crack's length (area) inside the part, 0.53 (the
+    crack y = 0.51 (z = 0.51) up to x = 0.53), the points lie on it, the
+    normals point to its + side."""
+    x, cells, g, _ = model_2d if dim == 2 else model_3d
+    lp = _cracklip.compute_lip_points(x, cells, g, 4)
+    assert lp["ref"].shape == lp["x"].shape == lp["normal"].shape == (len(lp["weight"]), dim)
+    assert ("front_vertices" in lp) == (dim == 3)
+    np.testing.assert_allclose(lp["weight"].sum(), 0.53, rtol=1e-12)
+    np.testing.assert_allclose(lp["x"][:, dim - 1], 0.51, rtol=1e-12)
+    assert lp["x"][:, 0].max() <= 0.53 + 1e-12
+    np.testing.assert_allclose(lp["normal"], np.broadcast_to(np.eye(dim)[dim - 1], lp["normal"].shape), atol=1e-13)
+
+
+def test_lip_points_refuse_what_their_dimension_does_not_have(model_2d, model_3d):
+    x2, cells2, g2, _ = model_2d
+    x3, cells3, g3, _ = model_3d
+    with pytest.raises(ValueError, match=r"near_factor and signed_point_rule choose the rules of lip facets near a 3D"):
+        _cracklip.compute_lip_points(x2, cells2, g2, 4, near_factor=1.0)
+    with pytest.raises(ValueError, match=r"geometry must be a CrackGeometry3D \(compute_crack_geometry_3d\)"):
+        _cracklip.compute_lip_points(x3, cells3, g2, 4)
 
 
 @pytest.mark.parametrize("dim", [2, 3])

@@ -172,7 +172,7 @@ def test_pressed_penny_with_front_enrichment():
     vector front enrichment: the front cells' P0 multipliers ride on
     interior groups and the coupling integrates the sqrt(r) jumps exactly,
     so P B^T 1 is the lip load of the pressure P as the independent lip-load
-    kernel (assemble_lip_load_3d with 24 points per direction, plain fans
+    kernel (assemble_lip_load with 24 points per direction, plain fans
     at the front, Gauss of degree 47 elsewhere) integrates it, to 1e-8 of
     its largest entry (measured 3e-9, the lip load's own error; with Gauss
     instead of the signed fans on the facets near the front, B would be off
@@ -186,9 +186,9 @@ def test_pressed_penny_with_front_enrichment():
     model = create_model(_pressed_scene(0.1, _penny_scene(0.1, "stable").cracks[0], sigma, enrichment="vector"))
     cs = create_contact_system(model)
     assert np.count_nonzero(cs.space.full_node < 0) > 10  # front cells' P0 multipliers
-    lip = _cracklip.compute_lip_points_3d(model.x, model.cells, model.geometries[0], 24)
-    load = _cracklip.assemble_lip_load_3d(model.x, model.cells, model.layout, model.geometries, 0, lip["cell"],
-                                          lip["ref"], lip["weight"], P * lip["normal"])
+    lip = _cracklip.compute_lip_points(model.x, model.cells, model.geometries[0], 24)
+    load = _cracklip.assemble_lip_load(model.x, model.cells, model.layout, model.geometries, 0, lip["cell"],
+                                       lip["ref"], lip["weight"], P * lip["normal"])
     free = np.ones(model.num_dofs, dtype=bool)
     free[model.bc_dofs] = False
     BtP = cs.B.T @ np.full(cs.num_multipliers, P)

@@ -170,7 +170,7 @@ def test_lip_points_and_cell_quadrature(geometries):
     weights sum to its volume (front cells included), with the points'
     sides those of the sub-tetrahedra."""
     x, cells, g = geometries[8]
-    lp = _cracklip.compute_lip_points_3d(x, cells, g, 4)
+    lp = _cracklip.compute_lip_points(x, cells, g, 4)
     assert np.isclose(lp["weight"].sum(), g.crack_cells["facet_area"].sum(), rtol=1e-13)
     assert np.allclose(lp["normal"] @ (NORMAL / np.linalg.norm(NORMAL)), 1.0, atol=1e-13)
     cc = g.crack_cells

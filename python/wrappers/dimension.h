@@ -40,21 +40,37 @@ decltype(auto) with_dimension(int dim, F&& f)
   return f(std::integral_constant<int, 3>{});
 }
 
+/// o cast to T, or ValueError(`what`) if it is something else.
+template <typename T>
+T cast_or_refuse(const py::handle& o, const char* what)
+{
+  try
+  {
+    return o.cast<T>();
+  }
+  catch (const py::cast_error&)
+  {
+    throw std::invalid_argument(what);
+  }
+}
+
 /// A Python list of crack geometries of dimension dim (CrackGeometry or
 /// CrackGeometry3D), as the C++ kernels take them.
 template <int dim>
 std::vector<const cracklip::CrackGeometryOf<dim>*> cracks_of(const py::sequence& cracks)
 {
-  try
-  {
-    return cracks.cast<std::vector<const cracklip::CrackGeometryOf<dim>*>>();
-  }
-  catch (const py::cast_error&)
-  {
-    throw std::invalid_argument(std::string("cracks must be a list of ")
-                                + (dim == 2 ? "CrackGeometry (compute_crack_geometry) on a triangle mesh"
-                                            : "CrackGeometry3D (compute_crack_geometry_3d) on a tetrahedral mesh"));
-  }
+  return cast_or_refuse<std::vector<const cracklip::CrackGeometryOf<dim>*>>(
+      cracks, dim == 2 ? "cracks must be a list of CrackGeometry (compute_crack_geometry) on a triangle mesh"
+                       : "cracks must be a list of CrackGeometry3D (compute_crack_geometry_3d) on a tetrahedral mesh");
+}
+
+/// One crack geometry of dimension dim.
+template <int dim>
+const cracklip::CrackGeometryOf<dim>& crack_of(const py::object& geometry)
+{
+  return cast_or_refuse<const cracklip::CrackGeometryOf<dim>&>(
+      geometry, dim == 2 ? "geometry must be a CrackGeometry (compute_crack_geometry) on a triangle mesh"
+                         : "geometry must be a CrackGeometry3D (compute_crack_geometry_3d) on a tetrahedral mesh");
 }
 
 /// Quadrature options of dimension dim (QuadratureOptions or
@@ -62,15 +78,9 @@ std::vector<const cracklip::CrackGeometryOf<dim>*> cracks_of(const py::sequence&
 template <int dim>
 const cracklip::QuadratureOptionsOf<dim>& options_of(const py::object& options)
 {
-  try
-  {
-    return options.cast<const cracklip::QuadratureOptionsOf<dim>&>();
-  }
-  catch (const py::cast_error&)
-  {
-    throw std::invalid_argument(dim == 2 ? "options must be QuadratureOptions on a triangle mesh"
-                                         : "options must be QuadratureOptions3D on a tetrahedral mesh");
-  }
+  return cast_or_refuse<const cracklip::QuadratureOptionsOf<dim>&>(
+      options, dim == 2 ? "options must be QuadratureOptions on a triangle mesh"
+                        : "options must be QuadratureOptions3D on a tetrahedral mesh");
 }
 
 } // namespace cracklip_wrappers

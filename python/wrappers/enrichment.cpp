@@ -20,7 +20,7 @@ py::array_t<T> view(const std::vector<T>& v)
   return carray<T>(static_cast<py::ssize_t>(v.size()), v.data());
 }
 
-TipEnrichment tip_enrichment(const std::string& tip, const char* what)
+TipEnrichment tip_enrichment(const std::string& tip)
 {
   if (tip == "none")
     return TipEnrichment::none;
@@ -28,20 +28,7 @@ TipEnrichment tip_enrichment(const std::string& tip, const char* what)
     return TipEnrichment::scalar;
   if (tip == "vector")
     return TipEnrichment::vector;
-  throw std::invalid_argument(std::string(what) + " enrichment must be 'none', 'scalar' or 'vector', got '" + tip
-                              + "'");
-}
-
-EnrichmentLayout create_layout(const carray<double>& x, const carray<std::int32_t>& cells, const py::sequence& cracks,
-                               TipEnrichment tip, double radius, double kappa, bool corrected)
-{
-  EnrichmentOptions o;
-  o.tip = tip;
-  o.radius = radius;
-  o.kappa = kappa;
-  o.corrected = corrected;
-  return with_dimension(mesh_dimension(x, cells), [&](auto d)
-                        { return create_enrichment_layout(as_span(x), as_span(cells), cracks_of<decltype(d)::value>(cracks), o); });
+  throw std::invalid_argument("tip enrichment must be 'none', 'scalar' or 'vector', got '" + tip + "'");
 }
 } // namespace
 
@@ -59,7 +46,6 @@ void declare_enrichment(py::module& m)
       .def_property_readonly("function", [](const L& l) { return view(l.function); })
       .def_property_readonly("tip", [](const L& l) { return view(l.tip); },
                              "Per pseudo-node: its tip (2D) / front piece (3D), -1 for Heaviside")
-      .def_property_readonly("piece", [](const L& l) { return view(l.tip); }, "The 3D name of `tip`")
       .def_property_readonly("core", [](const L& l) { return view(l.core); })
       .def_property_readonly("node_side", [](const L& l) { return view(l.node_side); })
       .def_property_readonly("tip_crack", [](const L& l) { return view(l.tip_crack); })
@@ -68,25 +54,28 @@ void declare_enrichment(py::module& m)
       .def_property_readonly("cell_offsets", [](const L& l) { return view(l.cell_offsets); })
       .def_property_readonly("cell_enr", [](const L& l) { return view(l.cell_enr); })
       .def_property_readonly("frame_node", [](const L& l) { return view(l.frame_node); });
-  m.attr("EnrichmentLayout3D") = m.attr("EnrichmentLayout");
 
   m.def(
       "create_enrichment_layout",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const py::sequence& cracks, const std::string& tip,
          double radius, double kappa, bool corrected)
-      { return create_layout(x, cells, cracks, tip_enrichment(tip, "tip"), radius, kappa, corrected); },
+      {
+        EnrichmentOptions o;
+        o.tip = tip_enrichment(tip);
+        o.radius = radius;
+        o.kappa = kappa;
+        o.corrected = corrected;
+        return with_dimension(mesh_dimension(x, cells),
+                              [&](auto d)
+                              {
+                                return create_enrichment_layout(as_span(x), as_span(cells),
+                                                                cracks_of<decltype(d)::value>(cracks), o);
+                              });
+      },
       py::arg("x"), py::arg("cells"), py::arg("cracks"), py::arg("tip") = "none", py::arg("radius") = 0.0,
       py::arg("kappa") = 1.8, py::arg("corrected") = true,
       "Heaviside and tip (2D) / front (3D) enrichment of every crack on a triangle or tetrahedral mesh "
       "(x (n, dim), cells (m, dim + 1)).");
-  m.def(
-      "create_enrichment_layout_3d",
-      [](const carray<double>& x, const carray<std::int32_t>& cells, const py::sequence& cracks,
-         const std::string& front, double radius, double kappa, bool corrected)
-      { return create_layout(x, cells, cracks, tip_enrichment(front, "front"), radius, kappa, corrected); },
-      py::arg("x"), py::arg("cells"), py::arg("cracks"), py::arg("front") = "vector", py::arg("radius") = 0.0,
-      py::arg("kappa") = 1.8, py::arg("corrected") = true,
-      "create_enrichment_layout with the 3D pipeline's keyword (front) and default ('vector').");
 
   m.def(
       "create_sparsity",
@@ -100,7 +89,6 @@ void declare_enrichment(py::module& m)
       },
       py::arg("cells"), py::arg("layout"),
       "Scalar CSR (indptr, indices) of the enriched stiffness, block size = the dimension.");
-  m.attr("create_sparsity_3d") = m.attr("create_sparsity");
 }
 
 } // namespace cracklip_wrappers

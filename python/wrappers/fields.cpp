@@ -38,7 +38,6 @@ void declare_fields(py::module& m)
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("u"),
       py::arg("point_cells"), py::arg("ref_points"), py::arg("sides"),
       "Displacement (n, dim) and its gradient (n, dim, dim) at (cell, reference point, side).");
-  m.attr("evaluate_displacement_3d") = m.attr("evaluate_displacement");
 
   m.def(
       "compute_subcell_fields",

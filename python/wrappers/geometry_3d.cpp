@@ -7,7 +7,6 @@
 #include "geometry/crack_geometry_3d.h"
 #include "geometry/crack_surface_3d.h"
 #include "quadrature/cell_quadrature_3d.h"
-#include "quadrature/crack_points_3d.h"
 #include "quadrature/front_rules_3d.h"
 #include "quadrature/rules.h"
 
@@ -324,27 +323,6 @@ void declare_geometry_3d(py::module& m)
       py::arg("signed_point_rule") = false,
       "Quadrature points of one cell (defaults: QuadratureOptions3D's): ref (n, 3), weight (n), side (n), "
       "front_vertices (n).");
-  m.def(
-      "compute_lip_points_3d",
-      [](const carray<double>& x, const carray<std::int32_t>& cells, const CrackGeometry3D& g, int npts,
-         double near_factor, bool signed_point_rule)
-      {
-        require_columns(x, 3, "x (node coordinates)");
-        require_columns(cells, 4, "cells (node indices per tetrahedron)");
-        LipPoints3D lp = compute_lip_points_3d(as_span(x), as_span(cells), g, npts, near_factor, signed_point_rule);
-        const py::ssize_t nq = n(lp.weight.size());
-        py::dict d;
-        d["cell"] = as_pyarray(std::move(lp.cell));
-        d["ref"] = as_pyarray(std::move(lp.ref), {nq, 3});
-        d["x"] = as_pyarray(std::move(lp.x), {nq, 3});
-        d["weight"] = as_pyarray(std::move(lp.weight));
-        d["normal"] = as_pyarray(std::move(lp.normal), {nq, 3});
-        d["front_vertices"] = as_pyarray(std::move(lp.front_vertices));
-        return d;
-      },
-      py::arg("x"), py::arg("cells"), py::arg("geometry"), py::arg("n") = 6, py::arg("near_factor") = 0.0,
-      py::arg("signed_point_rule") = false,
-      "Quadrature points on the lip facets: cell, ref (n, 3), x (n, 3), weight, normal (n, 3), front_vertices.");
   m.def(
       "tetrahedron_rule", [](int degree) { return rule_dict(quadrature::tetrahedron(degree)); }, py::arg("degree"),
       "Gauss rule on the reference tetrahedron exact to a degree: points (n, 3), weights (n) summing to 1/6.");

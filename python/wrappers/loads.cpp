@@ -1,11 +1,12 @@
-// Bindings: points on a crack's segments (2D), boundary facet bases, lip
-// loads, loads in enriched cells (2D or 3D).
+// Bindings: points on a crack's lips (segments in 2D, lip facets in 3D),
+// boundary facet bases, lip loads, loads in enriched cells (2D or 3D).
 #include "array.h"
 #include "dimension.h"
 
 #include "assembly/enriched_loads.h"
 #include "assembly/facet_basis.h"
 #include "quadrature/crack_points_2d.h"
+#include "quadrature/crack_points_3d.h"
 
 #include <pybind11/stl.h>
 
@@ -15,25 +16,52 @@ namespace cracklip_wrappers
 {
 using namespace cracklip;
 
+namespace
+{
+/// cell, ref, x, weight, normal of crack points (2D CrackPoints, 3D LipPoints3D).
+template <typename Points>
+py::dict lip_points_dict(Points&& p, py::ssize_t dim)
+{
+  const auto np_ = static_cast<py::ssize_t>(p.weight.size());
+  py::dict d;
+  d["cell"] = as_pyarray(std::move(p.cell));
+  d["ref"] = as_pyarray(std::move(p.ref), {np_, dim});
+  d["x"] = as_pyarray(std::move(p.x), {np_, dim});
+  d["weight"] = as_pyarray(std::move(p.weight));
+  d["normal"] = as_pyarray(std::move(p.normal), {np_, dim});
+  return d;
+}
+} // namespace
+
 void declare_loads(py::module& m)
 {
   m.def(
-      "compute_crack_points",
-      [](const carray<double>& x, const carray<std::int32_t>& cells, const CrackGeometry& g, int n)
+      "compute_lip_points",
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const py::object& geometry, int n,
+         double near_factor, bool signed_point_rule)
       {
-        CrackPoints c = compute_crack_points(as_span(x), as_span(cells), g, n);
-        const py::ssize_t np_ = c.weight.size();
-        py::dict d;
-        d["cell"] = as_pyarray(std::move(c.cell));
-        d["ref"] = as_pyarray(std::move(c.ref), {np_, 2});
-        d["x"] = as_pyarray(std::move(c.x), {np_, 2});
-        d["weight"] = as_pyarray(std::move(c.weight));
-        d["normal"] = as_pyarray(std::move(c.normal), {np_, 2});
+        const int dim = mesh_dimension(x, cells);
+        if (dim == 2)
+        {
+          if (near_factor != 0.0 or signed_point_rule)
+            throw std::invalid_argument("near_factor and signed_point_rule choose the rules of lip facets near a 3D "
+                                        "front; a 2D crack's segments take n only");
+          return lip_points_dict(compute_crack_points(as_span(x), as_span(cells), crack_of<2>(geometry), n), 2);
+        }
+        LipPoints3D lp = compute_lip_points_3d(as_span(x), as_span(cells), crack_of<3>(geometry), n, near_factor,
+                                               signed_point_rule);
+        auto front_vertices = std::move(lp.front_vertices);
+        py::dict d = lip_points_dict(std::move(lp), 3);
+        d["front_vertices"] = as_pyarray(std::move(front_vertices));
         return d;
       },
-      py::arg("x"), py::arg("cells"), py::arg("geometry"), py::arg("n"),
-      "Gauss points on a crack's segments (tau^2 toward tips): cell, ref (n, 2), x (n, 2), weight, "
-      "normal (n, 2) to the + side.");
+      py::arg("x"), py::arg("cells"), py::arg("geometry"), py::arg("n"), py::arg("near_factor") = 0.0,
+      py::arg("signed_point_rule") = false,
+      "Quadrature points on one crack's lips, inside the cells: cell, ref (n, dim), x (n, dim), weight, "
+      "normal (n, dim) to the + side; 3D also front_vertices (the facet's vertices on the front). 2D: n Gauss "
+      "points per segment (tau^2 toward tips); 3D: n per direction on each lip facet (collapsed on facets touching "
+      "the front, signed fans from it on facets within near_factor diameters of it; signed_point_rule: the signed "
+      "point-collapsed rule).");
 
   m.def(
       "compute_facet_basis",
@@ -65,7 +93,6 @@ void declare_loads(py::module& m)
       py::arg("facet_local"), py::arg("degree"),
       "Quadrature points of boundary facets (points, outward normals, weights) and the basis values there "
       "(entries: COO by point).");
-  m.attr("compute_facet_basis_3d") = m.attr("compute_facet_basis");
 
   m.def(
       "assemble_lip_load",
@@ -88,7 +115,6 @@ void declare_loads(py::module& m)
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("crack"), py::arg("point_cells"),
       py::arg("ref"), py::arg("weights"), py::arg("traction"),
       "Load vector (num_dofs) of + lip tractions (n, dim) at crack points (the - lip carries the opposite).");
-  m.attr("assemble_lip_load_3d") = m.attr("assemble_lip_load");
 
   m.def(
       "assemble_cell_load",
@@ -114,7 +140,6 @@ void declare_loads(py::module& m)
       py::arg("sides"), py::arg("weights"), py::arg("force"), py::arg("stress") = py::none(),
       "Enriched-dof load (num_dofs) of a body force (n, dim) and an initial stress (n, 3: xx, yy, xy in 2D; "
       "n, 6: xx, yy, zz, yz, xz, xy in 3D; or None) at quadrature points of enriched cells.");
-  m.attr("assemble_cell_load_3d") = m.attr("assemble_cell_load");
 }
 
 } // namespace cracklip_wrappers

@@ -23,11 +23,12 @@ Two implementations: ``CurveCrackModel`` (cracks.curve: a polyline on
 triangles, ending at tips) and ``SurfaceCrackModel`` (cracks.surface: a
 surface on tetrahedra, ending at fronts). A model's cracks are all of the
 type of its mesh (``crack_model_type(gdim)``), and that type also carries
-the C++ entry points of its cells (KERNELS: sparsity, enriched stiffness,
-enrichment layout, facet basis, lip loads, displacement evaluation, whose
-arguments are the same in 2D and 3D; the cell loads and quadrature points,
-whose are not): the callers write one line whatever the dimension, and a
-model without cracks has the type too (``XfemModel.crack_type``).
+the C++ entry points of its cells (sparsity, enriched stiffness, enrichment
+layout, facet basis, lip points and loads, cell loads, displacement
+evaluation: one binding each for both dimensions, which takes the dimension
+from the mesh arrays; the quadrature options, which differ: tip rules in
+2D, front rules in 3D): the callers write one line whatever the dimension,
+and a model without cracks has the type too (``XfemModel.crack_type``).
 """
 from __future__ import annotations
 
@@ -35,6 +36,8 @@ import abc
 import typing
 
 import numpy as np
+
+from ... import _cracklip
 
 
 class CrackModel(abc.ABC):
@@ -62,12 +65,9 @@ class CrackModel(abc.ABC):
     EDGES: typing.ClassVar[tuple[tuple[int, int], ...]]
     #: The stress components of the Voigt columns.
     VOIGT: typing.ClassVar[tuple[str, ...]]
-    #: The C++ entry points (_cracklip) of this dimension's cells that take
-    #: the same arguments in 2D and 3D: sparsity, stiffness (into a PETSc
-    #: matrix), layout (the enrichment), facet_basis, lip_points, lip_load,
-    #: evaluate; and quadrature, the Options method giving the C++
-    #: quadrature options of these cells.
-    KERNELS: typing.ClassVar[dict[str, typing.Callable]]
+    #: The scene Options method giving the C++ quadrature options of these
+    #: cells (QuadratureOptions: tip rules; QuadratureOptions3D: front rules).
+    QUADRATURE: typing.ClassVar[typing.Callable]
 
     def __init__(self, crack, tips: tuple[bool, ...], geometry):
         self.crack = crack
@@ -103,7 +103,7 @@ class CrackModel(abc.ABC):
         `points` per segment (2D) or per facet direction (3D); computed once."""
         cache = self.__dict__.setdefault("_lip_points", {})
         if points not in cache:
-            cache[points] = self.KERNELS["lip_points"](model.x, model.cells, self.geometry, int(points))
+            cache[points] = _cracklip.compute_lip_points(model.x, model.cells, self.geometry, int(points))
         return cache[points]
 
     @abc.abstractmethod
@@ -135,8 +135,9 @@ class CrackModel(abc.ABC):
     def enrichment_layout(cls, scene, x: np.ndarray, cells: np.ndarray, cracks: list["CrackModel"]):
         """The enriched pseudo-nodes and cells of all cracks (Options.enrichment, radius, blending)."""
         opts = scene.options
-        return cls.KERNELS["layout"](x, cells, [c.geometry for c in cracks], opts.enrichment, radius=opts.radius,
-                                     kappa=scene.material.kappa, corrected=opts.blending == "corrected")
+        return _cracklip.create_enrichment_layout(x, cells, [c.geometry for c in cracks], opts.enrichment,
+                                                  radius=opts.radius, kappa=scene.material.kappa,
+                                                  corrected=opts.blending == "corrected")
 
     @classmethod
     @abc.abstractmethod
@@ -164,7 +165,7 @@ class CrackModel(abc.ABC):
     def quadrature_options(cls, options, degree: int | None = None):
         """The C++ quadrature options of scene Options (the stiffness's), the
         Gauss degree raised to `degree` if given."""
-        q = cls.KERNELS["quadrature"](options)
+        q = cls.QUADRATURE(options)
         if degree is not None:
             q.degree = max(q.degree, int(degree))
         return q
@@ -172,20 +173,22 @@ class CrackModel(abc.ABC):
     @classmethod
     def sparsity(cls, cells: np.ndarray, layout) -> tuple[np.ndarray, np.ndarray]:
         """CSR (indptr, indices) of the blocked matrix with every coupling."""
-        return cls.KERNELS["sparsity"](cells, layout)
+        return _cracklip.create_sparsity(cells, layout)
 
     @classmethod
     def assemble_stiffness(cls, A, model, E: float, nu: float) -> int:
         """Add the enriched blocks into the PETSc matrix A; returns the
         number of cells integrated."""
-        return cls.KERNELS["stiffness"](A.handle, model.x, model.cells, model.layout, model.geometries, E, nu,
-                                        cls.quadrature_options(model.scene.options))
+        return _cracklip.assemble_enriched_stiffness_petsc(A.handle, model.x, model.cells, model.layout,
+                                                           model.geometries, E, nu,
+                                                           cls.quadrature_options(model.scene.options))
 
     @classmethod
     def facet_basis(cls, model, cells: np.ndarray, local: np.ndarray, degree: int) -> dict[str, np.ndarray]:
         """Quadrature of boundary facets (cell, local facet) with every basis
         function there: points, weights, entry_point, entry_dof, entry_value."""
-        return cls.KERNELS["facet_basis"](model.x, model.cells, model.layout, model.geometries, cells, local, degree)
+        return _cracklip.compute_facet_basis(model.x, model.cells, model.layout, model.geometries, cells, local,
+                                             degree)
 
     @classmethod
     @abc.abstractmethod
@@ -194,16 +197,18 @@ class CrackModel(abc.ABC):
         Gauss degree `degree`: cell, ref, x, weight, side."""
 
     @classmethod
-    @abc.abstractmethod
     def assemble_cell_load(cls, model, points: dict, force: np.ndarray, stress: np.ndarray | None) -> np.ndarray:
         """int f . phi_j - int sigma_0 : eps(phi_j) on the enriched dofs
-        from values at enriched_cell_points (force (n, d), stress Voigt or None)."""
+        from values at enriched_cell_points (force (n, d), stress (n, VOIGT)
+        or None)."""
+        return _cracklip.assemble_cell_load(model.x, model.cells, model.layout, model.geometries, points["cell"],
+                                            points["ref"], points["side"], points["weight"], force, stress)
 
     @classmethod
     def assemble_lip_load(cls, model, crack: int, points: dict, traction: np.ndarray) -> np.ndarray:
         """int t [[phi_j]] over a crack's lip points (traction (n, d) on the + lip)."""
-        return cls.KERNELS["lip_load"](model.x, model.cells, model.layout, model.geometries, crack, points["cell"],
-                                       points["ref"], points["weight"], traction)
+        return _cracklip.assemble_lip_load(model.x, model.cells, model.layout, model.geometries, crack,
+                                           points["cell"], points["ref"], points["weight"], traction)
 
     @classmethod
     def evaluate(cls, model, u: np.ndarray, cells: np.ndarray, ref: np.ndarray,
@@ -211,9 +216,9 @@ class CrackModel(abc.ABC):
         """Displacement (n, d) and gradient (n, d, d) of the dofs u at
         points (cell, ref) on a side (+1 / -1 of a crossing crack, 0 the
         point's own)."""
-        return cls.KERNELS["evaluate"](model.x, model.cells, model.layout, model.geometries, u,
-                                       np.asarray(cells, dtype=np.int32), np.ascontiguousarray(ref, dtype=float),
-                                       np.asarray(sides, dtype=np.int8))
+        return _cracklip.evaluate_displacement(model.x, model.cells, model.layout, model.geometries, u,
+                                               np.asarray(cells, dtype=np.int32),
+                                               np.ascontiguousarray(ref, dtype=float), np.asarray(sides, dtype=np.int8))
 
     @classmethod
     @abc.abstractmethod

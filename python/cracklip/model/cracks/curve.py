@@ -35,12 +35,8 @@ class CurveCrackModel(CrackModel):
     CROSSED = (1, 2)
     END = "tip"
     EDGES = ((0, 1), (1, 2), (2, 0))
-    #: The C++ entry points of triangles.
-    KERNELS = {"sparsity": _cracklip.create_sparsity, "stiffness": _cracklip.assemble_enriched_stiffness_petsc,
-               "layout": _cracklip.create_enrichment_layout, "facet_basis": _cracklip.compute_facet_basis,
-               "lip_points": _cracklip.compute_crack_points, "lip_load": _cracklip.assemble_lip_load,
-               "evaluate": _cracklip.evaluate_displacement,
-               "quadrature": Options.quadrature_options}
+    #: Triangles' quadrature options: the tip rules.
+    QUADRATURE = Options.quadrature_options
     VOIGT = ("xx", "yy", "xy")
     #: Gauss points per crack segment of the lip loads and the SIFs' lip terms.
     LIP_POINTS = 8
@@ -50,7 +46,7 @@ class CurveCrackModel(CrackModel):
         """lip_points sorted by the arc length s from the crack's first point.
         Without tip enrichment the tip cell holds no crack (the discrete
         crack ends at its edge) and is left out."""
-        pts = dict(self.KERNELS["lip_points"](model.x, model.cells, self.geometry, int(points)))
+        pts = dict(_cracklip.compute_lip_points(model.x, model.cells, self.geometry, int(points)))
         if model.scene.options.enrichment == "none":
             keep = ~np.isin(pts["cell"], np.asarray(self.geometry.tip_cells["cell"]))
             pts = {k: v[keep] for k, v in pts.items()}
@@ -135,12 +131,6 @@ class CurveCrackModel(CrackModel):
     @classmethod
     def enriched_cell_points(cls, model, cells: np.ndarray, degree: int) -> dict[str, np.ndarray]:
         return cls.field_points(model, np.zeros(model.num_dofs), cells, degree)
-
-    @classmethod
-    def assemble_cell_load(cls, model, points: dict, force: np.ndarray, stress: np.ndarray | None) -> np.ndarray:
-        s_at = np.zeros((len(points["weight"]), 3)) if stress is None else stress
-        return _cracklip.assemble_cell_load(model.x, model.cells, model.layout, model.geometries, points["cell"],
-                                            points["ref"], points["side"], points["weight"], force, s_at)
 
     @classmethod
     def field_points(cls, model, u: np.ndarray, cells: np.ndarray | None, degree: int | None) -> dict[str, np.ndarray]:

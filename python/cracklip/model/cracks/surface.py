@@ -67,12 +67,8 @@ class SurfaceCrackModel(CrackModel):
     CROSSED = (1, 2, 3)
     END = "front"
     EDGES = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
-    #: The C++ entry points of tetrahedra.
-    KERNELS = {"sparsity": _cracklip.create_sparsity_3d, "stiffness": _cracklip.assemble_enriched_stiffness_3d_petsc,
-               "layout": _cracklip.create_enrichment_layout_3d, "facet_basis": _cracklip.compute_facet_basis_3d,
-               "lip_points": _cracklip.compute_lip_points_3d, "lip_load": _cracklip.assemble_lip_load_3d,
-               "evaluate": _cracklip.evaluate_displacement_3d,
-               "quadrature": Options.quadrature_options_3d}
+    #: Tetrahedra's quadrature options: the front rules.
+    QUADRATURE = Options.quadrature_options_3d
     VOIGT = VOIGT
     #: Gauss points per lip facet direction of the lip loads and the SIFs' lip terms.
     LIP_POINTS = 6
@@ -82,7 +78,7 @@ class SurfaceCrackModel(CrackModel):
         """lip_points facet by facet (Gauss away from the front, collapsed on
         facets touching it; a point-collapsed facet may give negative
         weights), with front_vertices (n,)."""
-        return dict(self.KERNELS["lip_points"](model.x, model.cells, self.geometry, int(points)))
+        return dict(_cracklip.compute_lip_points(model.x, model.cells, self.geometry, int(points)))
 
     @staticmethod
     def slip(jump: np.ndarray, normal: np.ndarray) -> np.ndarray:
@@ -137,18 +133,11 @@ class SurfaceCrackModel(CrackModel):
 
     @classmethod
     def enriched_cell_points(cls, model, cells: np.ndarray, degree: int) -> dict[str, np.ndarray]:
-        qp = dict(_cracklip.compute_enriched_cell_quadrature_3d(model.x, model.cells, model.layout, model.geometries,
-                                                                np.asarray(cells, dtype=np.int32),
-                                                                cls.quadrature_options(model.scene.options, degree)))
+        qp = dict(_cracklip.compute_enriched_cell_quadrature(model.x, model.cells, model.layout, model.geometries,
+                                                             np.asarray(cells, dtype=np.int32),
+                                                             cls.quadrature_options(model.scene.options, degree)))
         qp["x"] = physical(model, qp["cell"], qp["ref"])
         return qp
-
-    @classmethod
-    def assemble_cell_load(cls, model, points: dict, force: np.ndarray, stress: np.ndarray | None) -> np.ndarray:
-        if stress is not None:
-            raise InputError("an initial stress is not supported on 3D parts yet")
-        return _cracklip.assemble_cell_load_3d(model.x, model.cells, model.layout, model.geometries, points["cell"],
-                                               points["ref"], points["side"], points["weight"], force)
 
     @classmethod
     def field_points(cls, model, u: np.ndarray, cells: np.ndarray | None, degree: int | None) -> dict[str, np.ndarray]:
@@ -162,8 +151,8 @@ class SurfaceCrackModel(CrackModel):
         ec, pc = split_enriched(model, cell_list)
         parts = []
         if ec.size:
-            qp = _cracklip.compute_enriched_cell_quadrature_3d(model.x, model.cells, model.layout, model.geometries, ec,
-                                                               cls.quadrature_options(model.scene.options, degree))
+            qp = _cracklip.compute_enriched_cell_quadrature(model.x, model.cells, model.layout, model.geometries, ec,
+                                                            cls.quadrature_options(model.scene.options, degree))
             _, grad = cls.evaluate(model, u, qp["cell"], qp["ref"], qp["side"])
             parts.append({"cell": qp["cell"], "x": physical(model, qp["cell"], qp["ref"]), "weight": qp["weight"],
                           "side": qp["side"], "grad_u": grad})
