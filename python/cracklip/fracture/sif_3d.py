@@ -333,7 +333,7 @@ def crack_front(model, crack: int) -> Front:
             mid = np.arange(len(idx))
         w = max(h, 1e-12)
         ahead = np.clip(np.searchsorted(sp, sp[mid] + w, side="right") - 1, mid + 1, len(sp) - 1)
-        behind = np.clip(np.searchsorted(sp, sp[mid] - w, side="left"), 0, mid - 1)
+        behind = np.clip(np.searchsorted(sp, sp[mid] - w, side="left"), 0, np.maximum(mid - 1, 0))
         ahead = np.where(ahead <= mid, np.minimum(mid + 1, len(sp) - 1), ahead)
         behind = np.where(behind >= mid, np.maximum(mid - 1, 0), behind)
         ds = sp[ahead] - sp[behind]
