@@ -111,7 +111,7 @@ def run(case: str, model: str, n: int) -> tuple[dict, list[dict]]:
     deg = np.degrees(phi) % 360.0
 
     def at(angle: float) -> float | None:
-        k = np.flatnonzero(np.abs((deg - angle + 180.0) % 360.0 - 180.0) < 1e-3)
+        k = np.flatnonzero(np.abs((deg - angle + 180.0) % 360.0 - 180.0) < 0.05)
         return float(K[k[0], 0]) if k.size else None
     ends = {}
     for name, copies in (("0", (0.0, 180.0)), ("90", (90.0, 270.0))):

@@ -5,8 +5,8 @@ crack too, and a front end on it is an interior point of the whole front).
 
 The same code serves planar parts (a straight line of symmetry, cracks as
 curves) and solids (a plane, crack surfaces): the crack's normal is the
-gradient of its normal level set phi in the cells it crosses that have a
-facet on the plane.
+gradient of its normal level set phi in the cells it crosses whose nodes on
+the plane see phi of both signs (the crack's trace on the plane).
 """
 from __future__ import annotations
 
@@ -82,8 +82,14 @@ def check_symmetry(model) -> None:
         on_plane = np.zeros(model.x.shape[0], dtype=bool)
         on_plane[plane_nodes(model, bc)] = True
         for cm in model.cracks:
+            # the cells the crack crosses where its trace meets the plane: phi
+            # of both signs (or 0) at their nodes on the plane
             cells = np.flatnonzero(cm.crossed())
-            cells = cells[on_plane[model.cells[cells]].sum(axis=1) >= gdim]   # a facet on the plane
+            onp = on_plane[model.cells[cells]]
+            phi = cm.phi[model.cells[cells]]
+            meets = onp.any(axis=1) & (np.where(onp, phi, np.inf).min(axis=1) <= 0.0) \
+                & (np.where(onp, phi, -np.inf).max(axis=1) >= 0.0)
+            cells = cells[meets]
             if cells.size:
                 g = np.einsum("ca,cai->ci", cm.phi[model.cells[cells]], kind.shape_gradients(model.x, model.cells[cells]))
                 g /= np.maximum(np.linalg.norm(g, axis=1), 1e-300)[:, None]
