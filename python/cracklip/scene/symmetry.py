@@ -60,15 +60,8 @@ class SymmetryCondition(Dirichlet):
 
 def tag_nodes(mesh, where) -> np.ndarray:
     """Coordinates (n, d) of the nodes of a boundary tag's facets."""
-    import dolfinx.cpp.mesh
-    facets = mesh.facets(where)
-    if facets.size == 0:
-        raise BoundaryConditionError(f"boundary {where!r} has no facets")
-    msh = mesh.mesh
-    tdim = msh.topology.dim
-    msh.topology.create_connectivity(tdim - 1, tdim)
-    verts = dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, tdim - 1, facets, False)
-    return msh.geometry.x[np.unique(verts.ravel()), :mesh.gdim]
+    verts = mesh.facet_vertices(where)
+    return np.unique(verts.reshape(-1, verts.shape[-1]), axis=0)
 
 
 def symmetry_plane(mesh, sym: Symmetry) -> tuple[np.ndarray, np.ndarray, int]:
