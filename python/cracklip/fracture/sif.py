@@ -74,7 +74,7 @@ SIF_KEYS = ("crack", "crack_name", "point", "tip", "piece", "s", "position", "x"
             "frame", "K_I", "K_II", "K_III", "K_I_spread", "K_II_spread", "K_III_spread", "K_I_error", "K_II_error",
             "K_I_extrapolated", "K_II_extrapolated", "K_I_levels", "K_II_levels", "mode_mix_deg", "G", "radius",
             "radii", "radius_min", "inner_radius", "element_size", "hat", "curvature", "parametric_angle",
-            "limited_by", "free_surface", "domain_clear")
+            "limited_by", "free_surface", "domain_clear", "K_source", "requested", "symmetry", "K_domain")
 
 
 def complete_rows(rows: list[dict[str, typing.Any]]) -> list[dict[str, typing.Any]]:
@@ -240,7 +240,8 @@ def compute_sifs(solution, radius: float | None = None, cracks: typing.Sequence[
     degrees), frame [e1, e2], K_I, K_II, K_I_spread, K_II_spread,
     mode_mix_deg, G, radius, radii, radius_min, inner_radius (a ring's
     r_in, else None), element_size, limited_by, free_surface (False),
-    domain_clear; the 3D keys None."""
+    domain_clear, K_source ("domain"), requested (False); the 3D keys
+    None."""
     m = solution.model
     mat = m.scene.material
     cracks = range(len(m.cracks)) if cracks is None else cracks
@@ -282,5 +283,5 @@ def compute_sifs(solution, radius: float | None = None, cracks: typing.Sequence[
                      "radius": dom.radius, "radii": list(dom.radii), "radius_min": float(min(dom.radii)),
                      "inner_radius": dom.inner_radius, "element_size": dom.element_size,
                      "limited_by": dom.obstacle if dom.limited or not dom.clear else None,
-                     "free_surface": False, "domain_clear": dom.clear})
+                     "free_surface": False, "domain_clear": dom.clear, "K_source": "domain", "requested": False})
     return complete_rows(rows), warnings

@@ -68,6 +68,8 @@ from ..errors import InputError
 from ..model.cracks.surface import split_enriched
 from ..model.loads import lip_pressure
 from ..scene.crack_surface import EllipticalCrack
+from ..scene.symmetry import SymmetryCondition
+from . import front_sampling
 from .sif import complete_rows
 
 logger = logging.getLogger(__name__)
@@ -116,9 +118,6 @@ HAT_CURVATURE = 1.0
 #: at 1 element); Irwin b/a = 0.25 at b/7: max 3.36 % with a floor of 1, 2.99
 #: % with 2 (K_II, K_III noise 1.3 % -> 1.0 %).
 MIN_HAT_ELEMENTS = 2.0
-
-#: At least this many front points on a closed front.
-MIN_POINTS_CLOSED = 8
 
 #: A domain's radius stays below this fraction of the front's radius of
 #: curvature (the curvature terms hold for 1 + kappa x1 > 0; the change of
@@ -176,12 +175,20 @@ class FrontPoint:
         curvature: the front's curvature there (1/a on a penny of radius a).
         element_size: mean edge of the front's cells within the hat.
         free_surface: the point is an end of an open piece on the part's
-            boundary (a surface crack meeting a free face).
+            boundary (a surface crack meeting a free face), not on a
+            symmetry plane.
         clearance, obstacle: distance to what the domain must avoid and what.
         radius, radii: the largest domain's radius, all radii (increasing).
         requested: the radius asked for (None: the default).
         clear: False when no domain of one element fits.
         warnings: messages about this point's domains.
+        symmetry: the label of the symmetry plane the point (an end) lies
+            on, else None (front_sampling: its domain is mirrored).
+        requested_position: the point is at a position asked for
+            (Options.sif_angles, sif_angle_step, sif_arc_lengths).
+        source: where its K comes from (front_sampling.SOURCES).
+        K_domain: a free-surface end's own domain K (domains, 3) when its K
+            is the end value (front_sampling), else None.
     """
     crack: int
     index: int
@@ -204,6 +211,10 @@ class FrontPoint:
     warnings: list[str] = dataclasses.field(default_factory=list)
     hat_before: float = 0.0
     hat_after: float = 0.0
+    symmetry: str | None = None
+    requested_position: bool = False
+    source: str = "domain"
+    K_domain: np.ndarray | None = None
 
     def __post_init__(self):
         self.hat_before = self.hat_before or self.hat
@@ -322,7 +333,7 @@ def crack_front(model, crack: int) -> Front:
             mid = np.arange(len(idx))
         w = max(h, 1e-12)
         ahead = np.clip(np.searchsorted(sp, sp[mid] + w, side="right") - 1, mid + 1, len(sp) - 1)
-        behind = np.clip(np.searchsorted(sp, sp[mid] - w, side="left"), 0, mid - 1)
+        behind = np.clip(np.searchsorted(sp, sp[mid] - w, side="left"), 0, np.maximum(mid - 1, 0))
         ahead = np.where(ahead <= mid, np.minimum(mid + 1, len(sp) - 1), ahead)
         behind = np.where(behind >= mid, np.maximum(mid - 1, 0), behind)
         ds = sp[ahead] - sp[behind]
@@ -399,30 +410,46 @@ def station_positions(s: np.ndarray, l: np.ndarray, length: float, closed: bool,
     return out
 
 
-def _stations(model, crack: int, spacing: float | None) -> list[dict]:
-    """Front points along every piece: crack, piece, s, closed, length, hat,
-    hat_before, hat_after."""
+def symmetry_planes(model) -> list:
+    """The scene's symmetry planes (cracklip.scene.symmetry.SymmetryCondition)."""
+    return [bc for bc in model.scene.dirichlet if isinstance(bc, SymmetryCondition)]
+
+
+def _end_plane(model, x: np.ndarray, h: float):
+    """The symmetry plane a front end at x lies on (within half an element), or None."""
+    for bc in symmetry_planes(model):
+        if abs(float((x - np.asarray(bc.origin)) @ np.asarray(bc.normal))) <= 0.5 * h:
+            return bc
+    return None
+
+
+def _stations(model, crack: int, spacing: float | None) -> tuple[list[dict], list[dict], list[str]]:
+    """Front points along every piece (front_sampling.piece_stations): piece,
+    s, closed, length, hat, hat_before, hat_after, end, end_on_boundary,
+    symmetry (the label of the plane an end lies on, else None), requested;
+    the requested positions between front points (piece, s, closed,
+    length); notes on positions that could not be used."""
     fr = crack_front(model, crack)
     h = float(np.median(fr.segment_size)) if len(fr.segment_size) else 0.0
-    step = spacing if spacing else HAT_ELEMENTS * h
-    out = []
+    opts = model.scene.options
+    floor = MIN_HAT_ELEMENTS * h if not spacing else min(MIN_HAT_ELEMENTS * h, spacing)
+    crk = model.cracks[crack].crack
+    out, between_all, notes_all = [], [], []
     for k in range(len(fr.closed)):
         L = float(fr.length[k])
         if L <= 0.0:
             continue
         closed = bool(fr.closed[k])
         idx = np.arange(fr.offsets[k], fr.offsets[k + 1])
+        sv = fr.s[idx]
         if spacing or HAT_CURVATURE <= 0.0 or len(idx) < 3:
-            if closed:
-                n = max(MIN_POINTS_CLOSED, int(round(L / step)))
-                svals = np.arange(n) * (L / n)
-            else:
-                n = max(1, int(round(L / step)))
-                svals = np.linspace(0.0, L, n + 1)
+            wanted = np.full(len(idx), spacing if spacing else HAT_ELEMENTS * h)
         else:
-            sv = fr.s[idx]
-            svals = station_positions(sv, wanted_hats(sv, fr.curvature[idx], h, L, closed), L, closed,
-                                      MIN_POINTS_CLOSED if closed else 1)
+            wanted = wanted_hats(sv, fr.curvature[idx], h, L, closed)
+        asked, notes = front_sampling.requested_positions(opts, crk, fr.x[idx], sv, L, closed, 0.5 * h)
+        notes_all += [n_ for n_ in notes if n_ not in notes_all]
+        svals, requested, between = front_sampling.piece_stations(sv, wanted, L, closed, floor, opts.sif_points,
+                                                                  asked)
         n = len(svals)
         if closed:
             before = (svals - np.roll(svals, 1)) % L
@@ -433,15 +460,21 @@ def _stations(model, crack: int, spacing: float | None) -> list[dict]:
             gaps = np.diff(svals)
             before = np.concatenate([gaps[:1], gaps])
             after = np.concatenate([gaps, gaps[-1:]])
+        planes = [None, None]
+        if not closed:
+            for e, v in enumerate((fr.offsets[k], fr.offsets[k + 1] - 1)):
+                if fr.on_boundary[v]:
+                    planes[e] = _end_plane(model, fr.x[v], h)
         for j, sv_ in enumerate(svals):
+            end = (not closed) and (j == 0 or j == n - 1)
+            on_boundary = end and bool(fr.on_boundary[fr.offsets[k] if j == 0 else fr.offsets[k + 1] - 1])
+            plane = planes[0 if j == 0 else 1] if on_boundary else None
             out.append({"piece": k, "s": float(sv_), "closed": closed, "length": L,
                         "hat": float(max(before[j], after[j])), "hat_before": float(before[j]),
-                        "hat_after": float(after[j]),
-                        "end": (not closed) and (j == 0 or j == n - 1),
-                        "end_on_boundary": (not closed) and (
-                            (j == 0 and fr.on_boundary[fr.offsets[k]]) or
-                            (j == n - 1 and fr.on_boundary[fr.offsets[k + 1] - 1]))})
-    return out
+                        "hat_after": float(after[j]), "end": end, "end_on_boundary": on_boundary,
+                        "symmetry": None if plane is None else plane.label, "requested": bool(requested[j])})
+        between_all += [{"piece": k, "s": float(b), "closed": closed, "length": L} for b in between]
+    return out, between_all, notes_all
 
 
 def _point_at(fr: Front, piece: int, s: float) -> np.ndarray:
@@ -468,7 +501,7 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
     if fr.segments.size == 0:
         return []
     name = model.cracks[crack].crack.name
-    st = _stations(model, crack, spacing)
+    st, _, notes = _stations(model, crack, spacing)
     xs = np.array([_point_at(fr, d["piece"], d["s"]) for d in st])
     pr = project(model, crack, xs)
     # The front's own segments within each hat: element size and curvature.
@@ -488,6 +521,14 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
                                        scipy.spatial.cKDTree(model.x[bnodes]).query_ball_point(fr.x, reach)]
                                       + [np.zeros(0, np.int64)]))
     bpr = project(model, crack, model.x[bnodes[near_b]]) if near_b.size else None
+    # A symmetry plane that a piece ends on is no obstacle of that piece's
+    # domains: they continue in the mirror image.
+    size = float(np.ptp(model.x, axis=0).max())
+    mirror_of = {}
+    for bc in symmetry_planes(model):
+        on = np.abs((model.x[bnodes[near_b]] - np.asarray(bc.origin)) @ np.asarray(bc.normal)) <= 1e-9 * size
+        pieces = {d["piece"] for d in st if d["symmetry"] == bc.label}
+        mirror_of[bc.label] = (on, pieces)
     others = [ci for ci in range(len(model.cracks)) if ci != crack]
     other_pts = [(ci, np.vstack([lip_points(model, ci)["x"], np.asarray(model.geometries[ci].front["x"])]))
                  for ci in others]
@@ -520,6 +561,9 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
             if d["end_on_boundary"]:  # the free surface the front meets is not an obstacle
                 end_s = 0.0 if s0 == 0.0 else L
                 hit &= np.abs(bpr["s"] - end_s) > h
+            for on, pieces in mirror_of.values():
+                if piece in pieces:
+                    hit &= ~on
             if np.any(hit):
                 dist = float(bpr["distance"][hit].min())
                 obstacles.append((dist - h, "the boundary of the part", dist))
@@ -553,9 +597,13 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
             radius = min(wanted, clearance)
         radii = tuple(float(f * radius) for f in DOMAIN_FRACTIONS)
         out.append(FrontPoint(crack, k, piece, d["closed"], s0, L, xk.copy(), pr["frame"][k].copy(), hat,
-                              float(pr["curvature"][k]), h, bool(d["end_on_boundary"]), float(clearance),
-                              obstacle, float(radius), radii, float(requested) if requested else None, clear,
-                              warnings, d["hat_before"], d["hat_after"]))
+                              float(pr["curvature"][k]), h, bool(d["end_on_boundary"]) and d["symmetry"] is None,
+                              float(clearance), obstacle, float(radius), radii,
+                              float(requested) if requested else None, clear, warnings, d["hat_before"],
+                              d["hat_after"], symmetry=d["symmetry"], requested_position=d["requested"],
+                              source="mirrored_domain" if d["symmetry"] else "domain"))
+    if out:
+        out[0].warnings[:0] = notes
     return out
 
 
@@ -748,32 +796,89 @@ def crack_front_sifs(solution, crack: int, radius: float | None = None) -> tuple
         est += n_est
     if chunk:
         run(chunk)
+    K = _mirror_ends(fps, K)
     if HAT_CORRECTION:
         K = _hat_correction(fps, K)
+    K = _free_surface_ends(fps, K)
     return fps, K
+
+
+def _mirror_ends(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
+    """K at ends on symmetry planes on the domain and its mirror image
+    (front_sampling): the hat and q of the end are symmetric about the plane,
+    so the mirror adds s_m I_half to the integral of mode m and as much
+    again to the normalisation int q ds: K_m = (1 + s_m) / 2 I_half / Q_half
+    (K_I, K_II as on the half, K_III = 0)."""
+    out = K.copy()
+    for i, fp in enumerate(fps):
+        if fp.symmetry is not None:
+            out[i] = K[i] * 0.5 * (1.0 + front_sampling.MIRROR_SIGNS)
+    return out
 
 
 def _hat_correction(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
     """K from the hat averages along each piece (HAT_CORRECTION,
-    hat_deconvolve); points at open ends and next to free-surface points keep
-    their averages."""
+    hat_deconvolve), with the mirror images of the points beyond ends on
+    symmetry planes (front_sampling.mirrored_sequence: a piece between two
+    planes is a loop); points at the other open ends and next to
+    free-surface points keep their averages."""
     out = K.copy()
     pieces = np.array([fp.piece for fp in fps])
     for p in np.unique(pieces):
         idx = np.flatnonzero(pieces == p)
         n = len(idx)
-        closed = fps[idx[0]].closed
-        if n < 3:
+        if fps[idx[0]].closed:
+            seq, mirrored, loop = np.arange(n), np.zeros(n, dtype=bool), True
+        else:
+            seq, mirrored, loop = front_sampling.mirrored_sequence(n, fps[idx[0]].symmetry is not None,
+                                                                   fps[idx[-1]].symmetry is not None)
+        m = len(seq)
+        if m < 3:
             continue
-        keep = np.zeros(n, dtype=bool)
-        for j in range(n):
-            if not closed and (j == 0 or j == n - 1):
+        pts = [fps[idx[j]] for j in seq]
+        free = np.array([fp.free_surface for fp in pts])
+        keep = np.zeros(m, dtype=bool)
+        for j in range(m):
+            if not loop and (j == 0 or j == m - 1):
                 keep[j] = True
-            elif fps[idx[(j - 1) % n]].free_surface or fps[idx[(j + 1) % n]].free_surface:
+            elif free[(j - 1) % m] or free[(j + 1) % m]:
                 keep[j] = True
-        lm = np.array([fps[i].hat_before for i in idx])
-        lp = np.array([fps[i].hat_after for i in idx])
-        out[idx] = hat_deconvolve(K[idx], lm, lp, closed, keep)
+        # a mirror image runs the other way: its hat's halves swap
+        lm = np.array([fp.hat_after if mir else fp.hat_before for fp, mir in zip(pts, mirrored)])
+        lp = np.array([fp.hat_before if mir else fp.hat_after for fp, mir in zip(pts, mirrored)])
+        sign = np.where(mirrored[:, None], front_sampling.MIRROR_SIGNS[None, :], 1.0)[:, None, :]
+        res = hat_deconvolve(K[idx[seq]] * sign, lm, lp, loop, keep)
+        own = np.flatnonzero(~mirrored)
+        out[idx[seq[own]]] = res[own]
+    return out
+
+
+def _free_surface_ends(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
+    """K at ends on a free surface: the end value of front_sampling.end_value
+    from the piece's other points (each domain on its own), the end's own
+    domain K kept in its K_domain."""
+    out = K.copy()
+    pieces = np.array([fp.piece for fp in fps])
+    for p in np.unique(pieces):
+        idx = np.flatnonzero(pieces == p)
+        if fps[idx[0]].closed:
+            continue
+        inner = np.array([i for i in idx if not fps[i].free_surface])
+        for i in (idx[0], idx[-1]):
+            fp = fps[i]
+            if not fp.free_surface or fp.source == "end_extrapolation":
+                continue
+            if len(inner) < 2:
+                fp.warnings.append(f"front point {fp.index} of crack {fp.crack}: the front piece has too few other "
+                                   "points for an end value at the free surface (front_sampling); K there is its own "
+                                   "domain's, which depends on the mesh: refine along the front (mesh.tip_h)")
+                continue
+            s = np.array([fps[j].s for j in inner])
+            near = np.abs(s - fp.s) <= front_sampling.END_WINDOW * fp.length
+            window = front_sampling.end_window(fp.length, [fp.curvature] + [fps[j].curvature for j in inner[near]])
+            out[i], _ = front_sampling.end_value(s, K[inner], fp.s, window)
+            fp.K_domain = K[i].copy()
+            fp.source = "end_extrapolation"
     return out
 
 
@@ -850,6 +955,36 @@ def _lip_terms(solution, crack: int, lp: dict, E: float, nu: float, lam: float, 
     return out
 
 
+def _with_asked_positions(model, crack: int, fps: list[FrontPoint], K: np.ndarray
+                          ) -> tuple[list[FrontPoint], np.ndarray]:
+    """The front points and K with the positions asked for that are not
+    front points (front_sampling: K interpolated along the piece, index -1,
+    source "interpolation"), in the order of pieces and arc lengths."""
+    if not fps:
+        return fps, K
+    _, between, _ = _stations(model, crack, None)
+    if not between:
+        return fps, K
+    fr = crack_front(model, crack)
+    pieces = np.array([fp.piece for fp in fps])
+    s_all = np.array([fp.s for fp in fps])
+    extra, K_extra = [], []
+    for d in between:
+        idx = np.flatnonzero(pieces == d["piece"])
+        x = _point_at(fr, d["piece"], d["s"])
+        frame = project(model, crack, x[None])["frame"][0]
+        near = fps[idx[np.argmin(np.abs(_wrap(s_all[idx] - d["s"], d["length"], d["closed"])))]]
+        extra.append(dataclasses.replace(near, index=-1, s=d["s"], x=x, frame=frame, free_surface=False,
+                                         symmetry=None, requested_position=True, source="interpolation",
+                                         K_domain=None, warnings=[]))
+        K_extra.append(front_sampling.interpolate(s_all[idx], K[idx], np.array([d["s"]]), d["length"],
+                                                  d["closed"])[0])
+    allp = fps + extra
+    allK = np.concatenate([K, np.asarray(K_extra)])
+    order = sorted(range(len(allp)), key=lambda i: (allp[i].piece, allp[i].s))
+    return [allp[i] for i in order], allK[order]
+
+
 def natural_k(solution) -> float:
     """A K that the loads could make: E' max|u| / sqrt(L) (L the part's size)."""
     m = solution.model
@@ -866,7 +1001,11 @@ def compute_front_sifs(solution, radius: float | None = None, cracks: typing.Seq
     K_III, K_I_spread, K_II_spread, K_III_spread, G, mode_mix_deg, radius,
     radii, radius_min, element_size, hat, curvature, limited_by,
     free_surface, domain_clear, direction (e1), normal (e2), frame [e1, e2,
-    e3]; tip, inner_radius and the error estimates None."""
+    e3], K_source (front_sampling.SOURCES), requested (at a position asked
+    for), symmetry (the plane of an end on one), K_domain (a free-surface
+    end's own domain K_I, K_II, K_III, else None); tip, inner_radius and
+    the error estimates None. Positions asked for that are not front points
+    come with K interpolated (point None)."""
     m = solution.model
     mat = m.scene.material
     Ep, mu = mat.E / (1 - mat.nu ** 2), mat.E / (2 * (1 + mat.nu))
@@ -874,7 +1013,7 @@ def compute_front_sifs(solution, radius: float | None = None, cracks: typing.Seq
     raw = []
     for ci in cracks:
         fps, K = crack_front_sifs(solution, ci, radius)
-        raw.append((ci, fps, K))
+        raw.append((ci, *_with_asked_positions(m, ci, fps, K)))
     norms = [float(np.linalg.norm(K[:, -1], axis=1).max()) for _, _, K in raw if len(K)]
     nat = natural_k(solution)
     scale = max(norms + [1e-3 * nat, 1e-300])
@@ -901,7 +1040,8 @@ def compute_front_sifs(solution, radius: float | None = None, cracks: typing.Seq
             shear = math.hypot(kII, kIII)
             mix = math.degrees(math.atan2(shear, kI)) if math.hypot(kI, shear) > 1e-6 * nat else None
             rows.append({
-                "crack": ci, "crack_name": crk.name, "point": fp.index, "piece": fp.piece, "s": fp.s,
+                "crack": ci, "crack_name": crk.name, "point": fp.index if fp.index >= 0 else None, "piece": fp.piece,
+                "s": fp.s,
                 "position": fp.x.tolist(), "x": float(fp.x[0]), "y": float(fp.x[1]), "z": float(fp.x[2]),
                 "parametric_angle": (float(crk.parametric_angle(fp.x[None])[0])
                                      if isinstance(crk, EllipticalCrack) else None),
@@ -914,7 +1054,9 @@ def compute_front_sifs(solution, radius: float | None = None, cracks: typing.Seq
                 "curvature": fp.curvature,
                 "limited_by": fp.obstacle if fp.limited or not fp.clear else None,
                 "free_surface": fp.free_surface, "domain_clear": fp.clear,
-                "direction": fp.frame[0].tolist(), "normal": fp.frame[1].tolist(), "frame": fp.frame.tolist()})
+                "direction": fp.frame[0].tolist(), "normal": fp.frame[1].tolist(), "frame": fp.frame.tolist(),
+                "K_source": fp.source, "requested": fp.requested_position, "symmetry": fp.symmetry,
+                "K_domain": None if fp.K_domain is None else fp.K_domain[-1].tolist()})
     return complete_rows(rows), warnings
 
 

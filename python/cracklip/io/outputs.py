@@ -57,13 +57,16 @@ logger = logging.getLogger(__name__)
 OPENING_SUBDIVISION = 2
 
 
-#: front.csv's columns (keys of the SIF rows): one line per front point (the
-#: parametric angle only for elliptical fronts, limited_by empty when the
-#: domain was not clipped, free_surface 1 where the front meets the part's
-#: boundary: K there is not the square-root singularity's and is flagged).
+#: front.csv's columns (keys of the SIF rows): one line per front point and
+#: per position asked for (the parametric angle only for elliptical fronts,
+#: limited_by empty when the domain was not clipped, free_surface 1 where
+#: the front meets the part's boundary off a symmetry plane: K there is the
+#: documented end value, K_source end_extrapolation; K_source and the
+#: other flags: cracklip.fracture.front_sampling, docs/sifs.md).
 FRONT_COLUMNS = ["crack", "crack_name", "point", "piece", "s", "x", "y", "z", "parametric_angle", "K_I", "K_II",
                  "K_III", "K_I_spread", "K_II_spread", "K_III_spread", "G", "mode_mix_deg", "radius", "radius_min",
-                 "element_size", "hat", "curvature", "limited_by", "free_surface", "domain_clear"]
+                 "element_size", "hat", "curvature", "limited_by", "free_surface", "domain_clear", "K_source",
+                 "requested", "symmetry"]
 
 
 #: sif.csv's columns (2D tips, one line per tip and load step).
@@ -295,7 +298,8 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
         write_mesh(front_mesh(fronts), out / "crack_front.vtu")
         files += ["solution.vtu", "crack_surface.vtu", "crack_front.vtu"]
         if sifs:
-            write_mesh(front_sif_mesh(sifs), out / "front_sifs.vtu")
+            write_mesh(front_sif_mesh(sifs, lambda c, p: bool(m.cracks[c].geometry.front["closed"][p])),
+                       out / "front_sifs.vtu")
             files.append("front_sifs.vtu")
         timings["write_vtu"] = time.perf_counter() - t0
         logger.info("wrote ParaView files solution.vtu (%d points, %d cells: %d sub-tetrahedra), crack_surface.vtu, "

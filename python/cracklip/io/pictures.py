@@ -15,7 +15,9 @@ are functions here side by side.
 - K along 3D fronts (``write_front_png``): front_sifs.png, K_I, K_II, K_III
   against the arc length (against the parametric angle for elliptical
   fronts) per crack, with the spread of the three domains as error bars and
-  the free-surface points marked.
+  marked: free-surface points (their end values, K_source
+  end_extrapolation, as open diamonds) and positions asked for between
+  front points (interpolated, open circles).
 """
 from __future__ import annotations
 
@@ -494,15 +496,23 @@ def write_front_png(rows: typing.Sequence[dict], path: pathlib.Path, title: str 
         angle = all(r["parametric_angle"] is not None for r in mine)
         t = np.array([math.degrees(r["parametric_angle"]) if angle else r["s"] for r in mine])
         o = np.argsort(t)
-        free = np.array([bool(r["free_surface"]) for r in mine])
+        source = np.array([r.get("K_source") or "domain" for r in mine])
+        ends = source == "end_extrapolation"
+        between = source == "interpolation"
+        free = np.array([bool(r["free_surface"]) for r in mine]) & ~ends
         for name, col in (("K_I", "C0"), ("K_II", "C1"), ("K_III", "C2")):
             k = np.array([r[name] for r in mine])
             sp = np.array([r[f"{name}_spread"] for r in mine])
             ax.errorbar(t[o], k[o], yerr=0.5 * sp[o], fmt="o-", color=col, ms=3, lw=1, capsize=2, label=name)
-            if free.any():
-                ax.plot(t[free], k[free], "kx", ms=8)
-        if free.any():
-            ax.plot([], [], "kx", label="free surface (flagged)")
+            for mask, style in ((free, dict(marker="x", ms=8)), (ends, dict(marker="D", ms=6, mfc="none")),
+                                (between, dict(marker="o", ms=6, mfc="none"))):
+                if mask.any():
+                    ax.plot(t[mask], k[mask], ls="none", color="k", **style)
+        for mask, style, label in ((free, dict(marker="x", ms=8), "free surface (flagged)"),
+                                   (ends, dict(marker="D", ms=6, mfc="none"), "free-surface end value (extrapolated)"),
+                                   (between, dict(marker="o", ms=6, mfc="none"), "asked position (interpolated)")):
+            if mask.any():
+                ax.plot([], [], ls="none", color="k", label=label, **style)
         ax.axhline(0.0, color="0.7", lw=0.5)
         ax.set_xlabel("parametric angle [deg]" if angle else "arc length along the front")
         ax.set_ylabel(f"K [{k_unit}]" if k_unit else "K")

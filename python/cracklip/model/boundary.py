@@ -11,7 +11,6 @@ import dolfinx.cpp.mesh
 import dolfinx.fem
 import dolfinx.mesh
 
-from ..errors import InputError
 from ..scene.mesh import MeshData
 
 
@@ -61,14 +60,9 @@ def tag_facets(mesh: MeshData, where: str | int) -> tuple[np.ndarray, np.ndarray
 def _tag_facets(mesh: MeshData, where: str | int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The facets of a tag: vertices (n, d, d), lengths or areas (n,),
     outward unit normals (n, d) (pointing away from the facet's cell)."""
-    facets = mesh.facets(where)
-    if facets.size == 0:
-        raise InputError(f"boundary {where!r} has no facets")
-    msh = mesh.mesh
-    tdim = msh.topology.dim
-    msh.topology.create_connectivity(tdim - 1, tdim)
+    verts = mesh.facet_vertices(where)                                      # (n, d, d)
+    facets, msh, tdim = mesh.facets(where), mesh.mesh, verts.shape[-1]
     x = msh.geometry.x[:, :tdim]
-    verts = x[dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, tdim - 1, facets, False)]   # (n, d, d)
     edges = verts[:, 1:] - verts[:, :1]
     if tdim == 2:  # a segment's normal: its direction turned by -90 degrees
         n = np.stack([edges[:, 0, 1], -edges[:, 0, 0]], axis=1)

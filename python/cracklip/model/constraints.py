@@ -11,6 +11,8 @@ import dolfinx.mesh
 
 from ..errors import BoundaryConditionError
 from ..scene.scene import Scene
+from ..scene.symmetry import SymmetryCondition
+from .symmetry import symmetry_enriched_dofs
 
 
 def _accepts_side(f) -> bool:
@@ -77,6 +79,8 @@ def compute_dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tup
     because their functions do not vanish between the nodes of a boundary
     facet that the crack crosses: to 0 for a continuous value, to the jump
     (f(x_i, -H_i) - f(x_i, H_i)) / (-2 H_i) otherwise. Tip dofs stay free.
+    A symmetry plane (SymmetryCondition) also fixes the enriched dofs
+    that would move its nodes out of the plane (symmetry_enriched_dofs).
     A point condition fixes only the node's standard dofs. Conditions that
     constrain the same dof (two sides sharing a corner node) must agree.
     """
@@ -138,6 +142,9 @@ def compute_dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tup
                 jump = (evaluate(xp, -H.astype(np.int8)) - evaluate(xp, H.astype(np.int8))) / (-2.0 * H[:, None])
             for j, c in enumerate(comps):
                 prescribe(gdim * (layout.num_std_nodes + pseudo) + c, jump[:, j], k_bc)
+        if isinstance(bc, SymmetryCondition):
+            extra = symmetry_enriched_dofs(layout, nodes, bc, geometries, x)
+            prescribe(extra, np.zeros(len(extra)), k_bc)
     for grp, mine in values.items():
         _check_clashes(scene, x, layout, mine, [c for c in clashes if scene.dirichlet[c[1]].group == grp])
     dofs = np.array(sorted(set().union(*values.values())), dtype=np.int32)

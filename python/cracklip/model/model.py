@@ -21,6 +21,7 @@ from ..scene.mesh import check_mesh
 from ..scene.scene import Scene
 from .constraints import check_rigid_motion, compute_dirichlet
 from .cracks import CrackModel, crack_model_type
+from .symmetry import check_symmetry
 from .xfem_model import XfemModel
 
 
@@ -59,6 +60,7 @@ def create_model(scene: Scene) -> XfemModel:
     model = XfemModel(scene, V, x, cells, cracks, layout, bc_dofs, bc_values, timings,
                       bc_group_values=bc_group_values)
     t0 = time.perf_counter()
+    check_symmetry(model)
     model.warnings = kind.check_model(model)  # raises on what makes the model unusable
     for w in model.warnings:
         logger.warning("%s", w.message)

@@ -18,7 +18,7 @@ import typing
 
 import numpy as np
 
-from ..errors import MeshError
+from ..errors import BoundaryConditionError, MeshError
 from .size_field import (MAX_GROWTH, PLATEAU, refinement_expression, refinement_size,  # noqa: F401
                          size_expression, smallest_size)
 
@@ -79,6 +79,18 @@ class MeshData:
         """Facet indices of a named (or numbered) boundary tag."""
         tag = self.tag_value(where)
         return self.facet_tags.indices[self.facet_tags.values == tag]
+
+    def facet_vertices(self, where: str | int) -> np.ndarray:
+        """Vertex coordinates (n, d, d) of a boundary tag's facets (segments
+        in 2D, triangles in 3D); a tag without facets is an error."""
+        import dolfinx.cpp.mesh
+        facets = self.facets(where)
+        if facets.size == 0:
+            raise BoundaryConditionError(f"boundary {where!r} has no facets")
+        msh = self.mesh
+        tdim = msh.topology.dim
+        msh.topology.create_connectivity(tdim - 1, tdim)
+        return msh.geometry.x[:, :tdim][dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, tdim - 1, facets, False)]
 
     def nearest_node(self, point) -> tuple[float, float]:
         """Coordinates of the mesh node nearest to a point (for point conditions)."""

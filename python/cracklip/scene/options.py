@@ -15,7 +15,7 @@ ENRICHMENTS = ("none", "scalar", "vector")
 #: point counts beyond these cost time without adding accuracy).
 INTEGER_OPTIONS = {"quadrature_degree": 60, "degree": 60, "facet_degree": 60, "tip_radial": 60,
                    "tip_angular": 60, "contact_points": 60, "max_active_set_iterations": 10000,
-                   "load_steps": 10000, "accuracy_levels": 6}
+                   "load_steps": 10000, "accuracy_levels": 6, "sif_points": 1000}
 
 
 TIP_QUADRATURES = ("collapsed", "gauss")
@@ -88,6 +88,17 @@ class Options:
             tip or the boundary warns (sif_domain) and its K is marked
             unreliable (domain_clear false); one domain, so no spread.
             Overrides sif_radius. None: cracklip's domains.
+        sif_points: 3D: at least this many front points (where K is
+            computed) on every front piece, where hats of two front elements
+            fit (a shorter piece gets fewer: refine along the front,
+            mesh.tip_h); cracklip.fracture.front_sampling.
+        sif_angles: 3D: K also at these parametric angles (degrees) of
+            elliptical cracks' fronts (e.g. [0, 90]: the two ends of a
+            corner crack); None: none.
+        sif_angle_step: 3D: K also every this many degrees of parametric
+            angle along elliptical fronts (from 0); 0: off.
+        sif_arc_lengths: 3D: K also at these arc lengths from the start of
+            every front piece (front.csv's s); None: none.
         friction: Coulomb friction coefficient mu of the crack lips (0:
             frictionless); needs contact "bilateral" or "unilateral". Each
             contact multiplier is then open, stick or slip (semi-smooth
@@ -126,6 +137,10 @@ class Options:
     rescale: str = "none"
     sif_radius: float = 0.0
     sif_ring: tuple[float, float] | None = None
+    sif_points: int = 16
+    sif_angles: list[float] | None = None
+    sif_angle_step: float = 0.0
+    sif_arc_lengths: list[float] | None = None
     friction: float = 0.0
     load_steps: int = 1
     solver: str = "auto"
@@ -167,6 +182,12 @@ class Options:
                              f"{self.sif_radius!r}")
         if self.sif_ring is not None:
             self.sif_ring = check_ring(self.sif_ring, "sif_ring")
+        for name in ("sif_angles", "sif_arc_lengths"):
+            self._check_positions(name)
+        if isinstance(self.sif_angle_step, bool) or not (isinstance(self.sif_angle_step, numbers.Real)
+                                                         and 0.0 <= self.sif_angle_step <= 360.0):
+            raise InputError(f"sif_angle_step must be a number of degrees in [0, 360] (0: off), got "
+                             f"{self.sif_angle_step!r}")
         if isinstance(self.friction, bool) or not (isinstance(self.friction, numbers.Real)
                                                    and math.isfinite(self.friction) and self.friction >= 0.0):
             raise InputError(f"friction must be a finite number >= 0 (the Coulomb coefficient mu; 0: "
@@ -180,6 +201,17 @@ class Options:
                              f"the K scale, e.g. 0.01 for 1 %; 0: off), got {self.accuracy!r}")
         if not (0.05 <= self.tip_max_angle <= 3.2):
             raise InputError(f"tip_max_angle must lie in [0.05, 3.2] radians, got {self.tip_max_angle}")
+
+    def _check_positions(self, name: str) -> None:
+        v = getattr(self, name)
+        if v is None:
+            return
+        ok = isinstance(v, (list, tuple)) and all(isinstance(e, numbers.Real) and not isinstance(e, bool)
+                                                  and math.isfinite(e) for e in v)
+        if not ok or (name == "sif_arc_lengths" and any(e < 0.0 for e in v)):
+            raise InputError(f"{name} must be a list of finite numbers{' >= 0' if name == 'sif_arc_lengths' else ''}"
+                             f", got {v!r}")
+        setattr(self, name, [float(e) for e in v])
 
     def quadrature_options(self):
         """The C++ QuadratureOptions of these options."""

@@ -15,6 +15,7 @@ from .mesh import MeshData
 from .options import Options
 from .units import Units
 from .stress_field import as_stress_field
+from .symmetry import Symmetry, SymmetryCondition, symmetry_conditions
 
 
 @dataclasses.dataclass
@@ -45,6 +46,9 @@ class Scene:
     load_path: typing.Optional[list] = None
     #: The units of the scene's numbers (labels and conversions only), or None.
     units: typing.Optional[Units] = None
+    #: Symmetry planes (Symmetry, or a boundary tag): each adds its
+    #: SymmetryCondition (u . n = 0) to ``dirichlet`` (scene.symmetry).
+    symmetry: list[Symmetry] = dataclasses.field(default_factory=list)
 
     def __post_init__(self):
         if self.load_path is not None:
@@ -80,6 +84,9 @@ class Scene:
         for pf in self.point_forces:
             if len(pf.point) != gdim:
                 raise InputError(f"point force at {pf.point}: {len(pf.point)} coordinates on a {gdim}D part")
+        self.symmetry = [p if isinstance(p, Symmetry) else Symmetry(p) for p in self.symmetry]
+        self.dirichlet = [d for d in self.dirichlet if not isinstance(d, SymmetryCondition)] \
+            + symmetry_conditions(self.mesh, self.symmetry)
         if not self.dirichlet:
             raise BoundaryConditionError(f"the scene has no Dirichlet condition: rigid body motion is free; "
                                          f"{rigid_motion_hint(gdim)}")

@@ -12,7 +12,7 @@ import typing
 from ...errors import InputError, MeshError
 from ...scene.options import Options
 from ...scene.scene import Scene
-from .conditions import build_conditions, build_load_path, build_loads
+from .conditions import build_conditions, build_load_path, build_loads, build_symmetry
 from .cracks import build_crack, crack_surface, describe_crack
 from .dimension import check_dimension, scene_dimension
 from .growth import check_growth, read_growth
@@ -83,6 +83,7 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
     if gdim == 3:
         notes += [f"cracks[{i}] {describe_crack(c)}" for i, c in enumerate(cracks)]
     dirichlet = build_conditions(s, mesh, material, cracks, notes)
+    symmetry = build_symmetry(s, mesh, notes)
     loads = build_loads(s, mesh, material, cracks, notes)
     try:
         options = Options(**s["options"])
@@ -93,7 +94,7 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
                   options=options, body_force=loads["body_force"], point_forces=loads["point_forces"],
                   initial_stress=loads["initial_stress"], body_force_group=s["loads"]["body_force_group"],
                   initial_stress_group=s["loads"].get("initial_stress", {}).get("group", "default"),
-                  load_path=load_path, units=units)
+                  load_path=load_path, units=units, symmetry=symmetry)
     if load_path is not None:
         from ...scene.load_path import steps
         steps(scene)  # unknown groups are an InputError now, not at the solve

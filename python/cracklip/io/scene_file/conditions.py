@@ -1,6 +1,7 @@
-"""[[dirichlet]], [loads] and [[load_path]]: the keys (DIRICHLET_KEYS,
-LOAD_KEYS) and what they build: Dirichlet conditions on a tag, a box of
-nodes or a point (a value, or the exact Williams field), tractions (a
+"""[[dirichlet]], [[symmetry]], [loads] and [[load_path]]: the keys
+(DIRICHLET_KEYS, SYMMETRY_KEYS, LOAD_KEYS) and what they build: Dirichlet
+conditions on a tag, a box of nodes or a point (a value, or the exact
+Williams field), symmetry planes, tractions (a
 value, sigma n of a stress, the Williams or Kirsch field; in 3D a value or
 a uniform stress), pressures, point forces, each with a line in the
 scene's notes saying what it became."""
@@ -16,6 +17,7 @@ from ...scene.crack import Crack
 from ...scene.material import Material
 from ...scene.mesh import MeshData
 from ...scene.stress_field import LinearStress, UniformStress3D
+from ...scene.symmetry import Symmetry
 from .mesh import check_tag, nearest_node
 from .schema import (REQUIRED, UNSET, Key, p_choice, p_factors, p_float, p_gradient, p_group, p_point, p_point_any,
                      p_region, p_str, p_stress, p_stress_any, p_tag, p_value, p_vector_any)
@@ -46,6 +48,15 @@ DIRICHLET_KEYS: list[Key] = [
         "values of conditions of different groups on one node add up", p_group),
 ] + [Key(f"dirichlet[].williams.{n}", t, d, m + " (displacement prescribed; replaces value)", p)
      for n, t, d, m, p in _WILLIAMS]
+
+
+SYMMETRY_KEYS: list[Key] = [
+    Key("symmetry[].tag", "string or integer", REQUIRED,
+        "boundary tag that is a plane of symmetry of the problem (3D; a straight line in 2D): the displacement "
+        "normal to it is 0 there (the plane must be normal to x, y or z); a crack meeting it must meet it at right "
+        "angles, and a front end on it is an interior point (K on the domain and its mirror image, no free-surface "
+        "flag; docs/sifs.md)", p_tag),
+]
 
 
 LOAD_KEYS: list[Key] = [
@@ -239,6 +250,18 @@ def build_conditions(s: dict, mesh: MeshData, material: Material, cracks: list, 
     for i, bc in enumerate(s["dirichlet"]):
         dirichlet += build_dirichlet(bc, i, mesh, material, cracks, notes)
     return dirichlet
+
+
+def build_symmetry(s: dict, mesh: MeshData, notes: list[str]) -> list[Symmetry]:
+    """The symmetry planes of the [[symmetry]] settings."""
+    out = []
+    for i, sym in enumerate(s["symmetry"]):
+        where = f"symmetry[{i}]"
+        check_tag(mesh, sym["tag"], where)
+        out.append(Symmetry(sym["tag"], label=where))
+        notes.append(f"{where}: tag {sym['tag']!r} ({mesh.facets(sym['tag']).size} facets), a plane of symmetry: "
+                     "normal displacement 0")
+    return out
 
 
 def build_loads(s: dict, mesh: MeshData, material: Material, cracks: list, notes: list[str]) -> dict:

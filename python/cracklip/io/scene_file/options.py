@@ -8,7 +8,8 @@ import dataclasses
 import typing
 
 from ...scene.options import ENRICHMENTS, Options, SOLVERS, TIP_QUADRATURES
-from .schema import UNSET, Key, docstring_attributes, p_bool, p_choice, p_float, p_int, p_numbers, p_str
+from .schema import (UNSET, Key, docstring_attributes, p_bool, p_choice, p_float, p_int, p_number_list,
+                     p_numbers, p_str)
 
 
 STRESS_COMPONENTS = ("xx", "yy", "xy", "von_mises")
@@ -50,6 +51,12 @@ _OPTION_MEANINGS = {
                 "(code_aster's R_INF / R_SUP, MOOSE's rings; r_in = r_out: the plateau of that radius); NOT clipped: "
                 "a ring reaching a hole, kink, tip or the boundary warns and its K is marked unreliable; no spread; "
                 "overrides sif_radius (a ring through a hole: docs/growth.md)",
+    "sif_points": "3D: at least this many front points (where K is computed) on every front piece, where hats of two "
+                  "front elements fit (a shorter piece gets fewer: refine along the front, mesh.tip_h); docs/sifs.md",
+    "sif_angles": "3D: K also at these parametric angles (degrees) of elliptical cracks' fronts, e.g. [0, 90] for the "
+                  "two ends of a corner crack (between front points: interpolated, flagged); docs/sifs.md",
+    "sif_angle_step": "3D: K also every this many degrees of parametric angle along elliptical fronts (from 0); 0: off",
+    "sif_arc_lengths": "3D: K also at these arc lengths from the start of every front piece (front.csv's s)",
     "accuracy": "target of the estimated discretisation error of every K, relative to the K scale (0.01: 1 %); "
                 "0: off. Refines around every tip (sizes halved within twice the crack's length, one level per "
                 "solve) until the estimate is below it; reports the levels, the estimate and the extrapolated K; "
@@ -85,6 +92,8 @@ def _option_keys() -> list[Key]:
         elif f.name == "sif_ring":
             keys.append(Key(f"options.{f.name}", "[r_in, r_out]", UNSET, meaning,
                             p_numbers(2, "two radii [r_in, r_out]")))
+        elif f.name in ("sif_angles", "sif_arc_lengths"):
+            keys.append(Key(f"options.{f.name}", "[number, ...]", UNSET, meaning, p_number_list))
         elif isinstance(default, bool):
             keys.append(Key(f"options.{f.name}", "boolean", default, meaning, p_bool))
         elif isinstance(default, int):

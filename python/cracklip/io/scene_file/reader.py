@@ -21,7 +21,7 @@ from .schema import REQUIRED, UNSET, Key, p_choice, p_str
 
 SCHEMA: tuple[Key, ...] = tuple(
     [Key("title", "string", "", "name shown in outputs (default: the file name)", p_str)]
-    + mesh.KEYS + material.KEYS + growth._fatigue_keys() + cracks.KEYS + conditions.DIRICHLET_KEYS
+    + mesh.KEYS + material.KEYS + growth._fatigue_keys() + cracks.KEYS + conditions.DIRICHLET_KEYS + conditions.SYMMETRY_KEYS
     + conditions.LOAD_KEYS + options.OPTION_KEYS + growth._growth_keys() + growth._spectrum_keys()
     + life.KEYS + growth._fatigue_file_keys() + options.OUTPUT_KEYS)
 
@@ -199,7 +199,8 @@ def parse_settings(doc: dict) -> dict:
             raise InputError(f"{where}.value is a vector but component is {bc['component']!r}: "
                              "give one number for one component")
         s["dirichlet"].append(bc)
-    if not s["dirichlet"]:
+    s["symmetry"] = [_section(d, "symmetry[]", f"symmetry[{i}]") for i, d in enumerate(_items(doc, "symmetry"))]
+    if not s["dirichlet"] and not s["symmetry"]:
         dim, _ = scene_dimension(s)
         raise BoundaryConditionError("the scene has no [[dirichlet]] condition: rigid body motion is free; "
                                      + rigid_motion_hint(dim or 2))

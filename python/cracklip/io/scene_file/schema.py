@@ -100,6 +100,13 @@ def p_numbers(n: int, what: str):
     return parse
 
 
+def p_number_list(value, path):
+    """A list of numbers of any length."""
+    if not isinstance(value, list):
+        raise _type_error(path, "a list of numbers [v, ...]", value)
+    return [_number(v, f"{path}[{i}]") for i, v in enumerate(value)]
+
+
 p_point = p_numbers(2, "a point [x, y]")
 
 

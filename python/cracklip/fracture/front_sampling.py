@@ -1,0 +1,320 @@
+"""Where K is computed along a 3D crack front, and what K is at its ends
+(cracklip.fracture.sif_3d computes the domain integrals at these points).
+
+Front points. Along every front piece the points are spaced by the hat
+half-width l(s) each wants (sif_3d: HAT_ELEMENTS front elements, shorter
+where the front curves), capped so that the piece gets at least
+Options.sif_points points (MIN_POINTS = 16; a loop's length / n, an open
+piece's length / (n - 1)), but never closer than MIN_HAT_ELEMENTS element
+sizes (the floor: a hat narrower than two elements scatters, sif_3d). So a
+front shorter than (n - 1) x 2 element sizes gets fewer points: the mesh
+along the front limits them (refine with mesh.tip_h). An open piece keeps
+both ends.
+
+Positions asked for. Options.sif_angles / sif_angle_step (parametric
+angles of an elliptical crack, degrees: the ellipse center + a cos t
+e_a + b sin t e_b, e_b = normal x e_a) and sif_arc_lengths (from the start
+of each piece, front.csv's s) name positions where K is wanted. A position
+within SNAP_END floors of an open piece's end is that end; one whose
+neighbours (asked positions, ends) are at least the local spacing away
+becomes a front point, the others placed in the gaps as above; where the
+asked positions are denser than the spacing K is interpolated between the
+front points (a cubic spline in s through their K, periodic on a loop),
+so that asking for many positions never thins the front points; those
+rows say so (K_source "interpolation"). Every row at an asked position has
+``requested`` true.
+
+Ends on a symmetry plane (cracklip.scene.symmetry). The crack continues in
+its mirror image, so the end is an interior point of the whole front: its
+q is symmetric about the plane and the domain integral over the part's half
+plus its mirror image is I_half (1 + s_m) per mode, with the normalisation
+int q ds twice the half's. The signs s_m of the mirror (MIRROR_SIGNS):
+with the front meeting the plane at right angles (e3 = the plane's normal,
+e1 and e2 in the plane) the mirror M = I - 2 n n^T maps the frame (e1, e2,
+e3) at x to (e1, e2, -e3) at M x, so in local coordinates the mirrored
+field is (u1, u2, -u3)(x1, x2, -x3): the opening u2 and the sliding u1 are
+even, the tearing u3 odd. K_I and K_II keep their values in the mirror
+(s = +1), K_III changes sign (s = -1) and vanishes on the plane. The hat
+correction sees the mirror images of the neighbours (K_-1 = s K_1).
+
+Ends on a free surface. There the singularity is no longer the square
+root (the corner singularity of a front meeting a surface: K of the
+square-root field tends to 0 or infinity within a boundary layer), and the
+end's own domain integral (half a hat, q not vanishing on the surface)
+depends on the mesh: the corner crack at a hole gave 374, 380, 381 MPa
+sqrt(mm) at the bore against 420 at 82 degrees. What an engineer needs at
+phi -> 0 and 90 degrees is the value of the front's K distribution there,
+as Newman and Raju's fits give it: their phi = 0 value continues the
+interior distribution (it is a fit over the front; the boundary layer, a
+small fraction of the crack size for nu = 0.3, is left out) [from memory:
+Newman and Raju, NASA TM-85793]; NASGRO's corner and surface crack tables
+take it from them, FRANC3D users commonly drop or extrapolate the end
+points and code_aster reports the end nodes as they are [from memory, not
+checked]. The rule here (END_*): K at a free-surface end is the
+least-squares quadratic in the arc length through K at the interior
+points within END_WINDOW of the piece's length from the end (at least the
+END_POINTS points nearest it; the end's own value left out), evaluated at
+the end; K_source "end_extrapolation", the end's own domain value kept as
+K_domain. On the surface crack a/c = 1, a/t = 0.2 at a/12 it gives
+1.3204 against Newman-Raju's 1.3198 at phi = 0 (the end's own domain
+value: 1.011).
+"""
+from __future__ import annotations
+
+import math
+import typing
+
+import numpy as np
+
+#: Default of Options.sif_points: the fewest front points per piece.
+MIN_POINTS = 16
+
+#: Mirror signs of (K_I, K_II, K_III) across a symmetry plane that the
+#: front meets at right angles (module doc).
+MIRROR_SIGNS = np.array([1.0, 1.0, -1.0])
+
+#: Steps may fall this fraction of a step below the floor (two steps in a
+#: gap of 1.97 floors rather than one).
+FLOOR_SLACK = 0.1
+
+#: A requested position within SNAP_END floors of an open piece's end is
+#: that end (the P1 front ends within about an element of the exact one),
+#: within SNAP floors of another front point that point.
+SNAP_END = 0.25
+SNAP = 1e-3
+
+#: Free-surface end value (module doc): the window (END_WINDOW of the
+#: piece's length, at most END_CURVATURE radii of curvature of the front
+#: there), the fewest interior points, the polynomial degree.
+END_WINDOW = 0.5
+END_CURVATURE = 1.0
+END_POINTS = 4
+END_DEGREE = 2
+
+#: Where a row's K comes from (the rows' K_source).
+SOURCES = {"domain": "the point's domain integral (hat along the front)",
+           "mirrored_domain": "an end on a symmetry plane: its domain and the domain's mirror image",
+           "end_extrapolation": "a free-surface end: the interior points' K extrapolated to the end",
+           "interpolation": "an asked position between front points: K interpolated between them"}
+
+
+def requested_positions(options, crack, x: np.ndarray, s: np.ndarray, length: float, closed: bool,
+                        tol: float) -> tuple[np.ndarray, list[str]]:
+    """Arc lengths along a front piece (vertices x (n, 3) at arc lengths s)
+    where K is asked for (Options.sif_angles, sif_angle_step on an
+    elliptical crack, sif_arc_lengths), sorted and unique, and notes on
+    positions that cannot be used. tol: a distance (about half an element)
+    within which an angle just beyond an open piece's end is that end."""
+    out: list[float] = []
+    notes: list[str] = []
+    angles = list(options.sif_angles or [])
+    step = float(options.sif_angle_step or 0.0)
+    if step > 0.0:
+        angles += list(np.arange(0.0, 360.0 - 1e-9, step))
+    if angles:
+        if hasattr(crack, "parametric_angle"):
+            out += _angle_positions(crack, np.radians(angles), x, s, length, closed, tol)
+        else:
+            notes.append(f"crack {crack.name!r}: options.sif_angles / sif_angle_step need an elliptical crack "
+                         "(a parametric angle); give options.sif_arc_lengths")
+    for v in options.sif_arc_lengths or []:
+        if closed:
+            out.append(v % length)
+        elif v <= length + tol:
+            out.append(min(v, length))
+    if not out:
+        return np.zeros(0), notes
+    v = np.sort(np.asarray(out, dtype=float))
+    keep = np.concatenate([[True], np.diff(v) > 1e-9 * max(length, 1e-300)])
+    v = v[keep]
+    if closed and len(v) > 1 and length - v[-1] + v[0] <= 1e-9 * length:
+        v = v[:-1]
+    return v, notes
+
+
+def _angle_positions(crack, theta: np.ndarray, x: np.ndarray, s: np.ndarray, length: float, closed: bool,
+                     tol: float) -> list[float]:
+    """Arc lengths where the piece's parametric angle (unwrapped along its
+    vertices) equals theta (mod 2 pi)."""
+    t = np.unwrap(crack.parametric_angle(x))
+    sv = np.asarray(s, dtype=float)
+    if closed:
+        t = np.append(t, t[0] + 2.0 * math.pi * np.sign(t[-1] - t[0] or 1.0))
+        sv = np.append(sv, length)
+    out = []
+    lo, hi = min(t[0], t[-1]), max(t[0], t[-1])
+    for th in np.asarray(theta, dtype=float):
+        ks = np.arange(math.floor((lo - th) / (2 * math.pi)) - 1, math.ceil((hi - th) / (2 * math.pi)) + 2)
+        for k in ks:
+            target = th + 2.0 * math.pi * k
+            i = np.flatnonzero((t[:-1] - target) * (t[1:] - target) <= 0.0)
+            for j in i:
+                dt = t[j + 1] - t[j]
+                f = 0.0 if dt == 0.0 else (target - t[j]) / dt
+                out.append(float(sv[j] + f * (sv[j + 1] - sv[j])))
+            if not closed and not len(i):  # just beyond an end (within tol): that end
+                for j0, j1, at in ((0, 1, 0.0), (-1, -2, length)):
+                    rate = abs((sv[j1] - sv[j0]) / ((t[j1] - t[j0]) or 1e-300))
+                    if abs(target - t[j0]) * rate <= tol:
+                        out.append(at)
+    return [v % length if closed else min(max(v, 0.0), length) for v in out]
+
+
+def piece_stations(s: np.ndarray, l: np.ndarray, length: float, closed: bool, floor: float, minimum: int,
+                   requested: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Front points along a piece whose vertices at arc lengths s (from 0,
+    increasing) want hat half-widths l (module doc): their arc lengths, a
+    flag per point for the requested positions that are front points, and
+    the requested positions that are not (interpolated)."""
+    s, l = np.asarray(s, dtype=float), np.asarray(l, dtype=float)
+    cap = length / max(minimum if closed else minimum - 1, 1)
+    l = np.maximum(np.minimum(l, cap), floor)
+    if closed:   # the loop unrolled twice, so that a gap may pass s = length
+        s = np.concatenate([s, s + length, [2.0 * length]])
+        l = np.concatenate([l, l, l[:1]])
+    elif s[-1] < length:
+        s, l = np.append(s, length), np.append(l, l[-1])
+    dens = 1.0 / l
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (dens[1:] + dens[:-1]) * np.diff(s))])
+    req = np.zeros(0) if requested is None else np.asarray(requested, dtype=float)
+    # The anchors: the ends of an open piece, and the requested positions
+    # at least the local spacing from the others (denser ones would thin
+    # the points: they are interpolated); one within SNAP_END floors of an end
+    # is that end.
+    anchors = [] if closed else [0.0, length]
+    is_req = [] if closed else [False, False]
+    between = []
+    for i, r in enumerate(req):
+        others = np.delete(req, i)
+        if not closed:
+            others = np.concatenate([others, [0.0, length]])
+        d = np.abs(others - r)
+        if closed:
+            d = np.minimum(d, length - d)
+        step = (1.0 - FLOOR_SLACK) * max(float(np.interp(r, s, l)), floor)
+        if not closed and min(r, length - r) <= SNAP_END * floor:
+            is_req[0 if r <= length - r else 1] = True
+        elif not d.size or d.min() >= step:
+            anchors.append(float(r))
+            is_req.append(True)
+        else:
+            between.append(float(r))
+    if closed and not anchors:
+        n = max(1, int(round(cum[len(cum) // 2])))  # cum at s = length
+        n = min(n, max(1, int(length / floor + FLOOR_SLACK)))
+        targets = np.arange(n) * (cum[len(cum) // 2] / n)
+        return _snap(np.interp(targets, cum, s), np.zeros(n, dtype=bool), between, length, closed, floor)
+    order = np.argsort(anchors)
+    anchors, is_req = [anchors[i] for i in order], [is_req[i] for i in order]
+    out, flags = [], []
+    gaps = list(zip(anchors[:-1], anchors[1:]))
+    if closed:
+        gaps.append((anchors[-1], anchors[0] + length))
+    for k, (a, b) in enumerate(gaps):
+        out.append(a)
+        flags.append(is_req[k])
+        ca, cb = np.interp([a, b], s, cum)
+        n = max(1, int(round(cb - ca)))
+        n = min(n, max(1, int((b - a) / floor + FLOOR_SLACK)))
+        for j in range(1, n):
+            out.append(float(np.interp(ca + j * (cb - ca) / n, cum, s)))
+            flags.append(False)
+    if not closed:
+        out.append(anchors[-1])
+        flags.append(is_req[-1])
+    out = np.asarray(out)
+    if closed:
+        out = out % length
+        o = np.argsort(out)
+        out, flags = out[o], np.asarray(flags)[o]
+    return _snap(out, np.asarray(flags, dtype=bool), between, length, closed, floor)
+
+
+def _snap(st: np.ndarray, flags: np.ndarray, between: list[float], length: float, closed: bool, floor: float
+          ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Requested positions within SNAP floors of a front point are that point."""
+    rest = []
+    for r in between:
+        d = np.abs(st - r)
+        if closed:
+            d = np.minimum(d, length - d)
+        k = int(np.argmin(d))
+        if d[k] <= SNAP * floor:
+            flags[k] = True
+        else:
+            rest.append(r)
+    return st, flags, np.asarray(rest, dtype=float)
+
+
+def mirrored_sequence(n: int, mirror_start: bool, mirror_end: bool) -> tuple[np.ndarray, np.ndarray, bool]:
+    """The points of an open piece of n points with their mirror images at
+    the ends on symmetry planes, as one sequence (the hat correction along
+    the whole front): indices into the piece, a flag per entry for mirror
+    images and whether the sequence is a loop (both ends mirrored). Mirrored at the start: n - 1, ..., 1
+    (mirrored), 0, ..., n - 1; at the end: 0, ..., n - 1, n - 2, ..., 0
+    (mirrored); at both: the loop 0, ..., n - 1, n - 2, ..., 1."""
+    own = np.arange(n)
+    if mirror_start and mirror_end and n >= 2:
+        back = np.arange(n - 2, 0, -1)
+        return np.concatenate([own, back]), np.concatenate([np.zeros(n, bool), np.ones(len(back), bool)]), True
+    idx, flag = own, np.zeros(n, dtype=bool)
+    if mirror_start and n >= 2:
+        idx = np.concatenate([own[:0:-1], idx])
+        flag = np.concatenate([np.ones(n - 1, bool), flag])
+    if mirror_end and n >= 2:
+        idx = np.concatenate([idx, own[-2::-1]])
+        flag = np.concatenate([flag, np.ones(n - 1, bool)])
+    return idx, flag, False
+
+
+def end_window(length: float, curvature: np.ndarray) -> float:
+    """The window of an end value: END_WINDOW x the piece's length, at most
+    END_CURVATURE / the largest |curvature| of the front there."""
+    kappa = float(np.abs(np.asarray(curvature, dtype=float)).max(initial=0.0))
+    return min(END_WINDOW * length, END_CURVATURE / kappa if kappa > 0.0 else math.inf)
+
+
+def end_value(s: np.ndarray, K: np.ndarray, end: float, window: float) -> tuple[np.ndarray, np.ndarray]:
+    """K (...) at a free-surface end at arc length `end` from the interior
+    points' K (n, ...) at arc lengths s (the end itself left out by the
+    caller): the END_DEGREE least-squares polynomial in the distance from
+    the end through the points within `window` of it (end_window; at least
+    the END_POINTS nearest), evaluated at the end. Returns the value and
+    the indices of the points used."""
+    d = np.abs(np.asarray(s, dtype=float) - end)
+    order = np.argsort(d)
+    use = order[d[order] <= window]
+    if len(use) < END_POINTS:
+        use = order[:END_POINTS]
+    deg = min(END_DEGREE, len(use) - 1)
+    flat = np.asarray(K, dtype=float).reshape(len(d), -1)[use]
+    V = np.vander(d[use], deg + 1)                     # columns d^deg .. d^0
+    coef, *_ = np.linalg.lstsq(V, flat, rcond=None)
+    return coef[-1].reshape(np.shape(K)[1:]), use
+
+
+def interpolate(s: np.ndarray, K: np.ndarray, at: np.ndarray, length: float, closed: bool) -> np.ndarray:
+    """K (m, ...) at arc lengths `at` by a cubic spline in s through K (n,
+    ...) at the front points s (periodic on a loop; linear through fewer
+    than 4 points)."""
+    import scipy.interpolate
+    s = np.asarray(s, dtype=float)
+    flat = np.asarray(K, dtype=float).reshape(len(s), -1)
+    at = np.asarray(at, dtype=float)
+    if closed:
+        ss, ff = np.append(s, s[0] + length), np.vstack([flat, flat[:1]])
+        x = (at - s[0]) % length + s[0]
+        if len(s) >= 3:
+            out = scipy.interpolate.CubicSpline(ss, ff, bc_type="periodic", axis=0)(x)
+        else:
+            out = np.stack([np.interp(x, ss, ff[:, j]) for j in range(ff.shape[1])], axis=1)
+    elif len(s) >= 4:
+        out = scipy.interpolate.CubicSpline(s, flat, axis=0)(at)
+    else:
+        out = np.stack([np.interp(at, s, flat[:, j]) for j in range(flat.shape[1])], axis=1)
+    return out.reshape((len(at),) + np.shape(K)[1:])
+
+
+__all__ = ["MIN_POINTS", "MIRROR_SIGNS", "END_WINDOW", "END_CURVATURE", "END_POINTS", "END_DEGREE", "SOURCES",
+           "requested_positions",
+           "piece_stations", "mirrored_sequence", "end_window", "end_value", "interpolate"]
