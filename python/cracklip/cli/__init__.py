@@ -204,11 +204,13 @@ def cmd_run(args) -> int:
         unit = "" if sf.scene.units is None else f" {sf.scene.units.name('length')}"
         for c in results["cracks"]:
             fr = c["front"]
-            shape = ", ".join("closed" if p["closed"] else f"open ({p['ends_on_boundary']} ends on the boundary)"
-                              for p in fr["pieces"])
+            shape = ", ".join("a closed loop" if p["closed"] else
+                              f"a line with {p['ends_on_boundary']} of 2 ends on the boundary" for p in fr["pieces"])
+            overlap = (f", the lips overlapping by up to {c['interpenetration_max']:.4g}{unit} (see the warning)"
+                       if any(w["code"] == "interpenetration" for w in results["warnings"]) else "")
             print(f"  {c['name']}: area {c['area_in_part']:.4g} in the part, opening up to {c['gap_max']:.4g}{unit} "
-                  f"(mean {c['gap_mean']:.4g}), opened volume {c['opening_volume']:.4g}; front {fr['points']} "
-                  f"points, length {fr['length']:.4g}: {shape}")
+                  f"(mean {c['gap_mean']:.4g}){overlap}, opened volume {c['opening_volume']:.4g}; front "
+                  f"{fr['points']} points, length {fr['length']:.4g}: {shape}")
     else:
         for line in sif_summary(results["sifs"], results.get("error_estimate"), sf.scene.units):
             print(line)
