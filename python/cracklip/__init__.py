@@ -54,6 +54,7 @@ LAYERS = ("scene", "model", "solvers", "contact", "fracture", "post", "analysis"
 _EXPORTS = {
     "BoundaryConditionError": "errors", "CrackGeometryError": "errors", "CracklipError": "errors",
     "InputError": "errors", "MaterialError": "errors", "MeshError": "errors", "SolverError": "errors",
+    "ModelSizeError": "errors",
     "MeshData": "scene.mesh", "create_half_annulus": "scene.mesh", "create_rectangle": "scene.mesh",
     "create_square": "scene.mesh", "read_msh": "scene.mesh", "create_plate_with_hole": "scene.mesh",
     "create_plate_with_holes": "scene.mesh", "create_from_geometry": "scene.geometry_file",

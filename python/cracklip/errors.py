@@ -27,3 +27,7 @@ class BoundaryConditionError(InputError):
 
 class SolverError(CracklipError, RuntimeError):
     """The linear solve failed (singular matrix, factorisation error, large residual)."""
+
+
+class ModelSizeError(MeshError):
+    """The model asked for would not fit in the machine's memory (estimated before meshing)."""

@@ -76,6 +76,9 @@ def build_parser() -> argparse.ArgumentParser:
                             "syntax, a bare word is a string)")
         p.add_argument("--quiet", "-q", action="store_true",
                        help="no progress on stderr, no summary on stdout (warnings are still printed on stderr)")
+        p.add_argument("--force", action="store_true",
+                       help="mesh a solid even when its run is estimated to need more memory than the machine "
+                            "has available (refused otherwise, before meshing)")
 
     run = sub.add_parser("run", help="solve a scene and write its results into a folder",
                          description="Solve a scene and write results.json, the crack's tables (crack.csv and "
@@ -143,7 +146,9 @@ def _load(args):
 
 def _build(args, doc):
     from ..io.scene_file import build_scene
-    sf = build_scene(doc, base_dir=args.scene.parent, path=args.scene)
+    from ..scene.mesh_estimate import available_memory
+    sf = build_scene(doc, base_dir=args.scene.parent, path=args.scene,
+                     memory_limit=None if args.force else available_memory())
     msh = sf.scene.mesh.mesh
     logger.info("mesh: %d nodes, %d %s (%.2f s)", msh.geometry.x.shape[0],
                 msh.topology.index_map(msh.topology.dim).size_local,

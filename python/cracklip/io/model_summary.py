@@ -76,6 +76,10 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
         "cracks": describe_cracks(model),
         "quadrature": _describe_quadrature(model, solution),
     }
+    est = getattr(model.scene.mesh, "estimate", None)
+    if est is not None:  # a solid meshed by cracklip: the size estimated before meshing
+        out["estimate"] = {"cells": round(est.cells), "nodes": round(est.nodes), "dofs": round(est.dofs),
+                           "memory_GB": round(est.memory / 1e9, 3), "coarse": bool(est.coarse)}
     if contact_system is None:
         out["contact"] = {"law": "none" if not model.cracks else opts.contact, "multipliers": 0}
     else:
@@ -326,6 +330,10 @@ def format_model(summary: dict[str, typing.Any]) -> list[str]:
              f"enriched pseudo-nodes on {summary['enriched_cells']} cells)",
              f"enrichment: {'front' if solid else 'tip'} {e['tip']}, radius {e['radius']:g}, {e['blending']} blending",
              "boundary tags: " + (", ".join(f"{n!r}" for n in summary["boundary_tags"]) or "none")]
+    if "estimate" in summary:
+        est = summary["estimate"]
+        lines.insert(2, f"estimated before meshing: {est['cells']} tetrahedra, {est['dofs']} dofs, a run peaking at "
+                        f"about {est['memory_GB']:.2g} GB")
     for c in summary["cracks"]:
         lines += (_format_surface if solid else _format_curve)(c)
         if c["lip_pressure"] != 0.0:

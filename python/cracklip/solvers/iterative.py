@@ -59,7 +59,7 @@ from .direct import LinearSolver
 from .phantom import phantom_basis, transform_matrix
 from .saddle import SaddleOperator
 from .checked import scipy_from_petsc
-from .checked import factor_call, create_lu_solver
+from .checked import factor_call, create_lu_solver, out_of_memory
 
 
 logger = logging.getLogger(__name__)
@@ -738,6 +738,10 @@ def _factor_band(A11: PETSc.Mat, symmetric: bool = True) -> PETSc.KSP:
             ksp.destroy()
             continue
         break
+    oom = out_of_memory(ksp, error, "crack band block of the iterative solver", A11.getSize()[0])
+    if oom is not None and info not in (-8, -9):
+        ksp.destroy()
+        raise oom
     null = factor_call(ksp, "getMumpsInfog", 28)
     if error is not None or info < 0 or null > 0:
         ksp.destroy()
