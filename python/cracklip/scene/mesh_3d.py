@@ -46,10 +46,14 @@ class FrontRefinement:
         h_front: element size at the front.
         radius: the distance over which the size grows from h_front to the
             mesh size (lengthened if the growth would exceed MAX_GROWTH).
+        kind: what the points sample: "curve" (a front, a segment),
+            "surface" (a crack's surface) or "points" (isolated points);
+            the size estimate before meshing models each by its shape.
     """
     points: np.ndarray
     h_front: float
     radius: float
+    kind: str = "curve"
 
     def __post_init__(self):
         pts = np.asarray(self.points, dtype=float).reshape(-1, 3)
@@ -84,7 +88,7 @@ def crack_refinements(cracks, h_front: float, h: float, growth: float = GROWTH,
         out.append(FrontRefinement(crack.front_points(front_sampling(h_front)), h_front,
                                    max(h - h_front, 0.0) / growth))
         if hs < h:
-            out.append(FrontRefinement(crack.surface_points(0.5 * hs), hs, (h - hs) / growth))
+            out.append(FrontRefinement(crack.surface_points(0.5 * hs), hs, (h - hs) / growth, "surface"))
     return out
 
 

@@ -90,8 +90,7 @@ class MeshEstimate:
     coarse: bool = False
 
     def describe(self) -> str:
-        about = "roughly (at least) " if self.coarse else "about "
-        return (f"{about}{self.cells:.3g} tetrahedra, {self.dofs:.3g} dofs and {self.memory / 1e9:.2g} GB of "
+        return (f"about {self.cells:.3g} tetrahedra, {self.dofs:.3g} dofs and {self.memory / 1e9:.2g} GB of "
                 "memory")
 
 
@@ -99,19 +98,67 @@ class SizeField:
     """The size field of the mesh (mesh_3d._size_fields): h, or less near
     the refinements' points (a k-d tree of each refinement's points)."""
 
-    def __init__(self, h: float, fronts: typing.Sequence):
+    def __init__(self, h: float, fronts: typing.Sequence, floor: float = 0.0):
         from scipy.spatial import cKDTree
         self.h = float(h)
-        self.items = [(cKDTree(fr.points), fr.h_front, *refinement_size(h, fr.h_front, fr.radius)) for fr in fronts]
+        self.floor = float(floor)
+        self.items = [(cKDTree(thinned(fr.points, 0.5 * self.floor)), fr.h_front,
+                       *refinement_size(h, fr.h_front, fr.radius)) for fr in fronts]
 
     def __call__(self, points: np.ndarray) -> np.ndarray:
-        """The size at points (n, 3)."""
+        """The size at points (n, 3), at least the floor."""
         out = np.full(len(points), self.h)
         for tree, h_front, plateau, growth in self.items:
             reach = plateau + (self.h - h_front) / growth  # the size is h beyond
             d, _ = tree.query(points, distance_upper_bound=reach)
             out = np.minimum(out, h_front + growth * np.maximum(0.0, np.minimum(d, reach) - plateau))
-        return out
+        return np.maximum(out, self.floor)
+
+
+def thinned(points: np.ndarray, cell: float) -> np.ndarray:
+    """One point per cube of side `cell` (all of them if cell = 0): the
+    distances to the set change by at most sqrt(3) cell, which a size field
+    floored well above that does not see, and the k-d tree queries stay
+    fast however fine the front's sampling."""
+    if cell <= 0.0:
+        return points
+    _, keep = np.unique(np.floor(points / cell).astype(np.int64), axis=0, return_index=True)
+    return points[np.sort(keep)]
+
+
+#: Sizes below this fraction of h are not resolved by the coarse integration
+#: (its work would grow with the mesh): the size field is taken at least
+#: that there, and what the smaller sizes add is modelled near each
+#: refinement (below_floor).
+FLOOR = 0.01
+
+
+def below_floor(fr, h: float, floor: float) -> float:
+    """integral of 6 / size^3 - 6 / floor^3 where a refinement's size is below
+    the floor: the size depends on the distance s to its points only, and so
+    close to them (a few floor sizes) the region is a tube around a curve
+    (area 2 pi s L at distance s), a slab on both sides of a surface (2 A)
+    or balls around points (4 pi s^2 each); L and A from the points' mean
+    spacing (their nearest-neighbour distance). Parts of it outside the
+    part are counted too (at most a few floor sizes at a front's ends)."""
+    plateau, growth = refinement_size(h, fr.h_front, fr.radius)
+    if fr.h_front >= floor:
+        return 0.0
+    from scipy.spatial import cKDTree
+    pts = fr.points
+    n = len(pts)
+    spacing = float(np.median(cKDTree(pts).query(pts, k=2)[0][:, 1])) if n > 1 else 0.0
+    top = plateau + (floor - fr.h_front) / growth  # the size reaches the floor
+    s = np.linspace(0.0, top, 2001)
+    size = fr.h_front + growth * np.maximum(0.0, s - plateau)
+    excess = 6.0 / size ** 3 - 6.0 / floor ** 3
+    if fr.kind == "surface" and n > 1:
+        area = np.full_like(s, 2.0 * n * spacing ** 2)
+    elif fr.kind == "curve" and n > 1:
+        area = 2.0 * np.pi * s * n * spacing
+    else:
+        area = 4.0 * np.pi * s ** 2 * n
+    return float(np.trapz(excess * area, s))
 
 
 #: Degree-2 rule on the tetrahedron (barycentric points, equal weights).
@@ -127,12 +174,15 @@ _CHILDREN = np.array([[0, 4, 5, 6], [4, 1, 7, 8], [5, 7, 2, 9], [6, 8, 9, 3],
 def integrate_cells(tets: np.ndarray, h: float, fronts: typing.Sequence) -> tuple[float, bool]:
     """integral of 6 / size^3 over tetrahedra (m, 4, 3): (value, stopped
     early). Each is split in eight while it is more than ACCEPT_SIZES local
-    sizes across, within a budget of MAX_TETS tetrahedra evaluated: past it,
+    sizes across (sizes below FLOOR h: below_floor), within a budget of
+    MAX_TETS tetrahedra evaluated: past it,
     only those whose rule values spread most (volume x (max - min)) are
     split, the others taken as they are (the estimate is then coarse, and
     rather low: a rule's points miss the smallest sizes)."""
-    total, stopped, spent = 0.0, False, 0
-    size_at = SizeField(h, fronts)
+    floor = FLOOR * h
+    total = sum(below_floor(fr, h, floor) for fr in fronts)
+    stopped, spent = False, 0
+    size_at = SizeField(h, fronts, floor)
     t = np.asarray(tets, dtype=float)
     while len(t):
         spent += len(t)

@@ -228,7 +228,7 @@ def _refine_items(m: dict, h: float) -> list:
             a, b = (np.asarray(p, dtype=float) for p in r["segment"])
             k = max(1, int(np.ceil(np.linalg.norm(b - a) / (0.5 * r["h"]))))
             pts = a + np.linspace(0.0, 1.0, k + 1)[:, None] * (b - a)
-        out.append(FrontRefinement(pts, min(r["h"], h), r["radius"]))
+        out.append(FrontRefinement(pts, min(r["h"], h), r["radius"], "points" if "point" in r else "curve"))
     return out
 
 
@@ -252,7 +252,7 @@ def mesh_3d(m: dict, cracks: list, base_dir: pathlib.Path, memory_limit: float |
         fronts = m3.crack_refinements(cracks, m["tip_h"], h, growth=max(growth, 1e-12),
                                       h_surface=m["crack_h"] if m.get("crack_h", 0.0) > 0.0 else h)
     elif m.get("crack_h", 0.0) > 0.0:
-        fronts = [m3.FrontRefinement(c.surface_points(0.5 * m["crack_h"]), m["crack_h"], m["tip_radius"])
+        fronts = [m3.FrontRefinement(c.surface_points(0.5 * m["crack_h"]), m["crack_h"], m["tip_radius"], "surface")
                   for c in cracks]
     fronts += _refine_items(m, h)
     if kind == "box":
