@@ -211,7 +211,7 @@ class Solution:
         = [[u]].t accumulated over the load path, state (n,) "open",
         "stick" or "slip"."""
         if not self.contact:
-            raise InputError("this solution has no contact (Options.contact is 'none')")
+            raise InputError("this solution has no contact (options.contact = 'none')")
         smp = self.lip_samples(crack, points_per_segment)
         return {k: smp[k] for k in ("x", "s", "pressure", "gap", "weight", "shear", "slip", "state")}
 
