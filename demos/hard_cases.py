@@ -1069,7 +1069,11 @@ def main(argv=None) -> dict:
     res = {"quick": args.quick, "rows": rows, "total_time": time.perf_counter() - t0,
            "all_finite": all(r["finite"] for r in rows),
            "max_relative_residual": max(r["relative_residual"] for r in rows),
-           "all_converge": all(r["converges"] for r in rows if r["converges"] is not None)}
+           "all_converge": all(r["converges"] for r in rows if r["converges"] is not None),
+           # A case that does not converge must say why: a model warning of LIMITING_WARNINGS.
+           "not_converging": {r["case"]: [w for w in r["levels"][-1].get("warnings", []) if w in LIMITING_WARNINGS]
+                              for r in rows if r["converges"] is False}}
+    res["all_converge_or_warned"] = all(res["not_converging"].values())
     write_json(args.json, res)
     md = args.md or args.json.with_suffix(".md")
     md.write_text(markdown(rows, args.quick))
