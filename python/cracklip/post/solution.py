@@ -24,6 +24,7 @@ from ..fracture.sif_3d import compute_front_sifs
 from ..model.checks import ModelWarning
 from ..model.model import XfemModel
 from ..scene.material import strain, stress
+from ..scene.mesh_estimate import release_memory
 
 #: Cells per chunk of the whole-mesh field loops (bounded memory at 1e6 cells).
 CHUNK = 200_000
@@ -320,6 +321,7 @@ class Solution:
                 if ring is not None:
                     raise InputError("a SIF ring (options.sif_ring) is a 2D setting: 3D fronts take sif_radius")
                 self._sif_cache[key] = compute_front_sifs(self, radius, cracks)
+                release_memory()  # the domains' quadrature points are gone
             else:
                 self._sif_cache[key] = compute_sifs(self, radius, cracks, ring)
         rows = [dict(r) for r in self._sif_cache[key][0]]

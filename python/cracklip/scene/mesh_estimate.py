@@ -53,9 +53,18 @@ NODES_PER_CELL = 0.18
 ENRICHED_SHARE = 0.25
 
 #: Peak memory of a whole run (import, mesh, model, assembly, solve, K,
-#: outputs) = BASE_MEMORY + BYTES_PER_DOF x dofs (docs/speed.md).
-BASE_MEMORY = 0.25e9
-BYTES_PER_DOF = 6.0e3
+#: outputs) = BASE_MEMORY + BYTES_PER_DOF x dofs, on the iterative path
+#: (docs/speed.md "Memory of a 3D run"): command-line runs of the penny
+#: crack at 5.9e4 and 9.6e4 dofs peak at 0.57 and 0.78 GB (this
+#: formula: 0.64, 0.77), bench_3d's runs at 4.9e5 and 9.9e5 dofs at 1.95 and
+#: 3.57 GB (2.08, 3.71); the libraries alone take 0.16 GB. A fit to the
+#: small runs alone (2.5 KB per dof) underestimates the large ones by 16 %,
+#: and the estimate guards against running out of memory. A solid with
+#: many enriched dofs needs more: the penny at 7.6e4 dofs, 39 % enriched,
+#: by the direct path 1.4 GB; with the enrichment radius 0.25 a at 9.6e5
+#: dofs 5.97 GB (this formula 0.70, 3.6).
+BASE_MEMORY = 0.45e9
+BYTES_PER_DOF = 3.3e3
 
 #: A coarse tetrahedron is accepted once it is at most this many local
 #: element sizes across; finer ones are split in eight.
@@ -238,6 +247,21 @@ def available_memory() -> float:
     return out
 
 
+def release_memory() -> None:
+    """Give the heap's free pages back to the system (glibc malloc_trim):
+    after a phase that freed much (the solve, K along the fronts), so that
+    the next one starts from what is live. Without it the freed memory
+    stayed with the process and the next phase's arrays, not fitting the
+    fragments, grew it further: command-line runs of the penny crack at
+    5.9e4 and 9.6e4 dofs peaked at 0.62 and 0.86 GB, 0.57 and 0.78 GB with
+    it (docs/speed.md). Nothing happens where there is no glibc."""
+    import ctypes
+    try:
+        ctypes.CDLL("libc.so.6").malloc_trim(0)
+    except (OSError, AttributeError):  # pragma: no cover - not glibc
+        pass
+
+
 def check_estimate(est: MeshEstimate, limit: float | None, what: str) -> None:
     """Raise ModelSizeError if the estimated run needs more than `limit`
     bytes (None: no limit)."""
@@ -250,4 +274,5 @@ def check_estimate(est: MeshEstimate, limit: float | None, what: str) -> None:
         "it anyway")
 
 
-__all__ = ["MeshEstimate", "estimate", "integrate_cells", "SizeField", "available_memory", "check_estimate"]
+__all__ = ["MeshEstimate", "estimate", "integrate_cells", "SizeField", "available_memory", "release_memory",
+           "check_estimate"]
