@@ -18,7 +18,8 @@ estimate's resolution, not with the mesh. Then
     dofs  ~ 3 nodes (1 + ENRICHED_SHARE),
     peak  ~ BASE_MEMORY + BYTES_PER_DOF dofs
 
-calibrated on measured runs (docs/speed.md "Size estimate"). A run whose
+calibrated on measured runs (docs/speed.md, "Memory of a 3D run" and
+"Size estimate before meshing"). A run whose
 estimated peak exceeds the memory the machine has available
 (``available_memory``: MemAvailable, or the cgroup's limit if lower) is
 refused with ModelSizeError before meshing, unless forced (``--force``).
