@@ -34,7 +34,9 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
 from cracklip.io.files import write_json  # noqa: E402
-from cracklip.exact.williams import WilliamsField  # noqa: E402
+from cracklip.exact.williams import WilliamsField, WilliamsField3D  # noqa: E402
+from cracklip.scene.crack_surface import PolygonCrack  # noqa: E402
+from cracklip.scene.material import strain, stress  # noqa: E402
 
 MAT = cl.Material(1.0, 0.3)
 SIDES = ("left", "right", "bottom", "top")
@@ -387,6 +389,298 @@ def case_15(radius_of_h):
     return build
 
 
+# -- solids (issue 39) ------------------------------------------------------------------------------
+
+FACES_3D = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
+
+
+def structured_cube(n: int) -> cl.MeshData:
+    """[-1, 1]^3 split into n^3 cubes, six tetrahedra each (DOLFINx's
+    create_box), with the boundary tags xmin .. zmax. Node (i, j, k) sits at
+    (-1 + 2 i / n, -1 + 2 j / n, -1 + 2 k / n); every cube edge is a mesh edge."""
+    from mpi4py import MPI
+    import dolfinx.mesh as dm
+    msh = dm.create_box(MPI.COMM_WORLD, [np.array([-1.0, -1.0, -1.0]), np.array([1.0, 1.0, 1.0])], [n, n, n],
+                        cell_type=dm.CellType.tetrahedron)
+    idx, val = [], []
+    for tag, name in enumerate(FACES_3D, start=1):
+        axis, value = "xyz".index(name[0]), (-1.0 if name.endswith("min") else 1.0)
+        facets = dm.locate_entities_boundary(msh, 2, lambda x, a=axis, v=value: np.isclose(x[a], v))
+        idx.append(facets)
+        val.append(np.full(len(facets), tag, dtype=np.int32))
+    idx, val = np.concatenate(idx), np.concatenate(val)
+    order = np.argsort(idx, kind="stable")
+    tags = dm.meshtags(msh, 2, idx[order], val[order])
+    return cl.MeshData(msh, tags, {name: i for i, name in enumerate(FACES_3D, start=1)}, 2.0 / n)
+
+
+def box_with_bore(h: float, radius: float) -> cl.MeshData:
+    """[-1, 1]^3 with a cylindrical hole of the given radius along z through
+    its centre, in gmsh tetrahedra of size h; tags the six faces' names and
+    "bore"."""
+    from cracklip.scene.mesh import _gmsh
+    from cracklip.scene.mesh_3d import _finish
+    gmsh = _gmsh()
+    gmsh.model.add("box_with_bore")
+    box = gmsh.model.occ.addBox(-1, -1, -1, 2, 2, 2)
+    bore = gmsh.model.occ.addCylinder(0, 0, -1, 0, 0, 2, radius)
+    gmsh.model.occ.cut([(3, box)], [(3, bore)])
+    gmsh.model.occ.synchronize()
+    groups: dict[str, list[int]] = {k: [] for k in FACES_3D + ("bore",)}
+    for _, s in gmsh.model.getEntities(2):
+        c = np.array(gmsh.model.occ.getCenterOfMass(2, s))
+        named = [f"{a}{'min' if c[i] < 0 else 'max'}" for i, a in enumerate("xyz") if abs(abs(c[i]) - 1.0) < 1e-7]
+        groups[named[0] if named else "bore"].append(s)
+    return _finish(gmsh, groups, h, ())
+
+
+@dataclasses.dataclass
+class LayeredBending3D:
+    """Parallel through cracks (planes through points[k] with the common unit
+    normal n, sorted along it) cutting a solid into layers; layer m (m
+    planes below it) is in pure bending along the in-plane direction t,
+    sigma = a_m eta t (x) t (eta = (x - points[0]).n), plus its own
+    translation c_m. The lips are traction-free (sigma n = 0) and each
+    layer in equilibrium; the displacement is quadratic (not in P1):
+    u = c_m + (a_m / E) (xi eta t - (xi^2 + nu (eta^2 - zeta^2)) / 2 n
+    - nu eta zeta b), xi = (x - p).t, zeta = (x - p).b, b = n x t."""
+    material: cl.Material
+    points: list
+    n: np.ndarray
+    t: np.ndarray
+    a: tuple = (0.3, -0.2, 0.25)
+    c: tuple = ((0.002, -0.001, 0.003), (-0.003, 0.004, -0.002), (0.001, 0.002, -0.004))
+
+    def __post_init__(self):
+        self.n = np.asarray(self.n, float) / np.linalg.norm(self.n)
+        t = np.asarray(self.t, float)
+        t = t - (t @ self.n) * self.n
+        self.t = t / np.linalg.norm(t)
+        self.b = np.cross(self.n, self.t)
+        self.points = [np.asarray(p, float) for p in self.points]
+
+    def _layer(self, x: np.ndarray, side) -> np.ndarray:
+        eta = np.stack([(x - p) @ self.n for p in self.points], axis=1)  # (n, planes)
+        s = np.zeros(len(x), dtype=int) if side is None else np.asarray(side, dtype=int).reshape(-1)
+        if s.size == 1 and len(x) != 1:
+            s = np.full(len(x), int(s[0]))
+        near = np.argmin(np.abs(eta), axis=1)
+        rows = np.arange(len(x))
+        above = eta > 0.0
+        above[rows, near] = np.where(s != 0, s > 0, above[rows, near])
+        return above.sum(axis=1)
+
+    def _local(self, x):
+        d = np.asarray(x, float).reshape(-1, 3) - self.points[0]
+        return d @ self.t, d @ self.n, d @ self.b
+
+    def displacement(self, x, side=None) -> np.ndarray:
+        x = np.asarray(x, float).reshape(-1, 3)
+        m = self._layer(x, side)
+        xi, eta, zeta = self._local(x)
+        A = np.asarray(self.a)[m] / self.material.E
+        nu = self.material.nu
+        return (np.asarray(self.c)[m] + (A * xi * eta)[:, None] * self.t
+                - (0.5 * A * (xi ** 2 + nu * (eta ** 2 - zeta ** 2)))[:, None] * self.n
+                - (nu * A * eta * zeta)[:, None] * self.b)
+
+    def gradient(self, x, side=None) -> np.ndarray:
+        x = np.asarray(x, float).reshape(-1, 3)
+        m = self._layer(x, side)
+        xi, eta, zeta = self._local(x)
+        A = np.asarray(self.a)[m] / self.material.E
+        nu = self.material.nu
+        G = np.zeros((len(x), 3, 3))  # d(u_t, u_n, u_b) / d(xi, eta, zeta)
+        G[:, 0, 0], G[:, 0, 1] = A * eta, A * xi
+        G[:, 1, 0], G[:, 1, 1], G[:, 1, 2] = -A * xi, -nu * A * eta, nu * A * zeta
+        G[:, 2, 1], G[:, 2, 2] = -nu * A * zeta, -nu * A * eta
+        Q = np.stack([self.t, self.n, self.b], axis=1)
+        return np.einsum("ij,njk,lk->nil", Q, G, Q)
+
+
+def plane_polygon(point, n, t, size: float = 4.0) -> np.ndarray:
+    """A square of half side `size` in the plane through `point` with normal
+    n, its vertices ordered so that its normal (right-hand rule) is n."""
+    n = np.asarray(n, float) / np.linalg.norm(n)
+    t = np.asarray(t, float) - (np.asarray(t, float) @ n) * n
+    t /= np.linalg.norm(t)
+    b = np.cross(n, t)
+    p = np.asarray(point, float)
+    return np.array([p + size * (u * t + v * b) for u, v in ((-1, -1), (1, -1), (1, 1), (-1, 1))])
+
+
+def half_plane(williams) -> np.ndarray:
+    """A polygon covering the crack of a WilliamsField3D within a box of
+    side 8 around it: the half plane behind the front, normal e2."""
+    Q = williams.frame
+    e1, e3 = Q[:, 0], Q[:, 2]
+    p = np.asarray(williams.point, float)
+    return np.array([p + 4 * e3, p - 4 * e3, p - 4 * e1 - 4 * e3, p - 4 * e1 + 4 * e3])  # normal +e2
+
+
+def layered_scene(md: cl.MeshData, exact: LayeredBending3D, faces=FACES_3D) -> Built:
+    """Through cracks on the planes of `exact`, its field prescribed on the faces."""
+    cracks = [PolygonCrack(plane_polygon(p, exact.n, exact.t), name=f"through {k}") for k, p in enumerate(exact.points)]
+    scene = cl.Scene(md, exact.material, cracks=cracks,
+                     dirichlet=[cl.Dirichlet(f, None, lambda x, s: exact.displacement(x, s)) for f in faces],
+                     options=cl.Options(solver="direct"))
+    return Built(scene, exact=exact)
+
+
+def front_scene(md: cl.MeshData, exact, radius: float, free: tuple = ()) -> Built:
+    """A half-plane crack with a straight front: the exact Williams field
+    (WilliamsField3D) prescribed on the faces, except those in `free`, which
+    carry its traction instead (a loaded free surface the front meets)."""
+    def traction(face):
+        normal = np.eye(3)["xyz".index(face[0])] * (-1.0 if face.endswith("min") else 1.0)
+        mat = exact.material
+        return lambda x: np.einsum("nij,j->ni", stress(strain(exact.gradient(x)), mat), normal)
+    scene = cl.Scene(md, exact.material, cracks=[PolygonCrack(half_plane(exact), name="front")],
+                     dirichlet=[cl.Dirichlet(f, None, lambda x, s: exact.displacement(x, s))
+                                for f in FACES_3D if f not in free],
+                     tractions=[cl.Traction(f, traction(f)) for f in free],
+                     options=cl.Options(radius=radius, solver="direct"))
+    return Built(scene, exact=exact, K_exact=[(exact.K_I, exact.K_II, exact.K_III)], sif_radius=None)
+
+
+MAT3 = cl.Material(1.0, 0.3)
+
+
+def _on_crack_nodes(sol, crack: int = 0) -> int:
+    return int(np.count_nonzero(np.asarray(sol.model.geometries[crack].phi) == 0.0))
+
+
+def _classes(sol, crack: int = 0) -> dict:
+    cls = np.asarray(sol.model.geometries[crack].cell_class)
+    return {name: int(np.count_nonzero(cls == code)) for name, code in sol.model.crack_type.CELL_CLASSES.items()
+            if name != "plain"}
+
+
+def case_3d_vertices(n):
+    """A through crack whose plane (normal (1, 2, 4)) passes through mesh
+    vertices but contains no mesh edge (no edge direction d of a cube and its
+    diagonals has d.(1, 2, 4) = 0)."""
+    b = layered_scene(structured_cube(n), LayeredBending3D(MAT3, [(0.0, 0.0, 0.0)], (1.0, 2.0, 4.0), (1.0, 0.0, 0.0)))
+    b.facts = lambda sol: {"nodes_on_crack": _on_crack_nodes(sol), **_classes(sol)}
+    return b
+
+
+def case_3d_edges(n):
+    """A through crack on the plane x = 2 y, which holds the vertical mesh
+    edges through the nodes (2 k h, k h, z)."""
+    b = layered_scene(structured_cube(n), LayeredBending3D(MAT3, [(0.0, 0.0, 0.0)], (1.0, -2.0, 0.0), (0.0, 0.0, 1.0)))
+
+    def facts(sol):
+        phi = np.asarray(sol.model.geometries[0].phi)
+        cells = sol.model.cells
+        on = phi[cells] == 0.0
+        edges = sum(int(np.count_nonzero(on[:, i] & on[:, j])) for i, j in sol.model.crack_type.EDGES)
+        return {"nodes_on_crack": _on_crack_nodes(sol), "cell_edges_on_crack": edges, **_classes(sol)}
+    b.facts = facts
+    return b
+
+
+def case_3d_faces(n):
+    """A through crack on the node layer z = 0: it runs along mesh faces
+    ("face" cells on both sides, none cut)."""
+    b = layered_scene(structured_cube(n), LayeredBending3D(MAT3, [(0.0, 0.0, 0.0)], (0.0, 0.0, 1.0), (1.0, 0.0, 0.0)))
+    b.facts = lambda sol: {"nodes_on_crack": _on_crack_nodes(sol), **_classes(sol)}
+    return b
+
+
+def _front_facts(sol):
+    g = sol.model.geometries[0]
+    phi, psi = np.abs(np.asarray(g.phi)), np.abs(np.asarray(g.psi))
+    h = sol.model.h
+    return {"nodes_on_front": int(np.count_nonzero((phi < 1e-12 * h) & (psi < 1e-12 * h))), **_classes(sol),
+            "degenerate_front_cells": int(g.num_degenerate_front_cells),
+            "front_points": len(sol.stress_intensity_factors(None))}
+
+
+def case_3d_front_nodes(n):
+    """A straight front through mesh nodes (direction (0, 1, 2): the nodes
+    (0, k h, 2 k h)) in a plane through no other node line, mixed mode
+    K_I = 1, K_II = 0.5, K_III = 0.7."""
+    t = np.array([0.0, 1.0, 2.0]) / math.sqrt(5.0)
+    e1 = np.array([1.0, 0.2, -0.1])
+    e1 /= np.linalg.norm(e1)
+    w = WilliamsField3D(MAT3, 1.0, 0.5, 0.7, (0.0, 0.0, 0.0), tuple(e1), tuple(np.cross(t, e1)))
+    b = front_scene(structured_cube(n), w, radius=0.3)
+    b.facts = _front_facts
+    return b
+
+
+def case_3d_front_edges(n):
+    """A straight front along the mesh edges of the z axis, the crack plane
+    at 20 degrees through it (so not along faces), mixed mode."""
+    a = math.radians(20.0)
+    w = WilliamsField3D(MAT3, 1.0, -0.4, 0.6, (0.0, 0.0, 0.0), (math.cos(a), math.sin(a), 0.0),
+                        (-math.sin(a), math.cos(a), 0.0))
+    b = front_scene(structured_cube(n), w, radius=0.3)
+    b.facts = _front_facts
+    return b
+
+
+BORE = 0.4
+
+
+def case_3d_bore(n):
+    """A through crack on the plane y = R, tangent to the bore of radius R
+    along x = 0 (gmsh mesh of the drilled box, h = 2 / n); the bending
+    field prescribed on every face and on the bore."""
+    md = box_with_bore(2.0 / n, BORE)
+    b = layered_scene(md, LayeredBending3D(MAT3, [(0.0, BORE, 0.0)], (0.0, 1.0, 0.0), (1.0, 0.0, 0.0)),
+                      faces=FACES_3D + ("bore",))
+
+    def facts(sol):
+        g = sol.model.geometries[0]
+        x = sol.model.x
+        bore = np.flatnonzero(np.abs(np.hypot(x[:, 0], x[:, 1]) - BORE) < 1e-9)
+        return {"bore_nodes_within_h_of_the_plane": int(np.count_nonzero(np.abs(np.asarray(g.phi)[bore]) < sol.model.h)),
+                "nodes_on_crack": _on_crack_nodes(sol), **_classes(sol)}
+    b.facts = facts
+    return b
+
+
+SHALLOW = 10.0
+
+
+def case_3d_shallow(n):
+    """A straight front meeting the face z = 1 at 10 degrees (through (0,
+    0.013, 0.9) along (cos 10, 0, sin 10), in the plane y = 0.013, off the
+    node layers); that face carries the exact traction (a loaded free
+    surface), the others the exact displacement; mode I and II."""
+    a = math.radians(SHALLOW)
+    t = np.array([math.cos(a), 0.0, math.sin(a)])
+    e2 = np.array([0.0, 1.0, 0.0])
+    w = WilliamsField3D(MAT3, 1.0, 0.3, 0.0, (0.0, 0.013, 0.9), tuple(np.cross(e2, t)), tuple(e2))
+    b = front_scene(structured_cube(n), w, radius=0.3, free=("zmax",))
+
+    def facts(sol):
+        rows = sol.stress_intensity_factors(None)
+        return {**_front_facts(sol), "free_surface_points": int(sum(r["free_surface"] for r in rows)),
+                "front_surface_angle_deg": SHALLOW}
+    b.facts = facts
+    return b
+
+
+def case_3d_two_cracks(n0):
+    """Two parallel through cracks 1.5 base elements apart (tilted planes,
+    off the nodes): three layers, each in its own bending field."""
+    h0 = 2.0 / n0
+    nrm = np.array([0.05, 0.03, 1.0])
+    nrm /= np.linalg.norm(nrm)
+    p0 = np.array([0.0, 0.0, 0.013])
+
+    def build(n):
+        exact = LayeredBending3D(MAT3, [p0, p0 + 1.5 * h0 * nrm], nrm, (1.0, 0.0, 0.0))
+        b = layered_scene(structured_cube(n), exact)
+        b.facts = lambda sol: {"distance_over_h": 1.5 * h0 / (2.0 / n), "cut_cells": [_classes(sol, k)["cut"]
+                                                                                       for k in (0, 1)]}
+        return b
+    return build
+
+
 @dataclasses.dataclass
 class Case:
     key: str
@@ -397,6 +691,11 @@ class Case:
     n0_small: int   # for --quick and the tests
     build: typing.Callable[[int], Built]
     contact: bool = False
+    #: The finer mesh's divisions per base division (4 in 2D; 2 for solids,
+    #: 8 times the cells) and the error ratio that counts as converging
+    #: (2 in 2D: rate 1/2 over 4x; 1.5 in 3D: rate 0.58 over 2x).
+    refine: int = 4
+    min_ratio: float = 2.0
 
 
 CASES = [
@@ -431,6 +730,23 @@ CASES = [
          case_15(lambda h: 0.5 * h)),
     Case("15b", "radius above a quarter", "enrichment radius 0.6 (domain width 2): most of the domain "
          "tip-enriched", "exact", 20, 10, case_15(lambda h: 0.6)),
+    # Solids (issue 39): each on n and 2n divisions of [-1, 1]^3.
+    Case("3D-1", "3D: crack through mesh vertices", "through crack on the plane (1, 2, 4).x = 0: through nodes, "
+         "along no edge or face", "exact", 8, 4, case_3d_vertices, refine=2, min_ratio=1.5),
+    Case("3D-2", "3D: crack along mesh edges", "through crack on the plane x = 2 y, holding the vertical edges "
+         "through (2 k h, k h, z)", "exact", 8, 4, case_3d_edges, refine=2, min_ratio=1.5),
+    Case("3D-3", "3D: crack along mesh faces", "through crack on the node layer z = 0: 'face' cells, none cut",
+         "exact", 8, 4, case_3d_faces, refine=2, min_ratio=1.5),
+    Case("3D-4", "3D: front through nodes", "straight front through the nodes (0, k h, 2 k h), mixed mode I+II+III",
+         "exact", 8, 6, case_3d_front_nodes, refine=2, min_ratio=1.5),
+    Case("3D-5", "3D: front along mesh edges", "straight front on the edges of the z axis, crack plane at 20 deg, "
+         "mixed mode", "exact", 8, 6, case_3d_front_edges, refine=2, min_ratio=1.5),
+    Case("3D-6", "3D: crack plane tangent to a bore", "through crack on y = R, tangent to a hole of radius R = 0.4 "
+         "along x = 0 (gmsh mesh)", "exact", 8, 4, case_3d_bore, refine=2, min_ratio=1.5),
+    Case("3D-7", "3D: front meets a surface at 10 deg", "straight front meeting the face z = 1 (loaded by the exact "
+         "traction) at 10 degrees, mode I+II", "exact", 8, 6, case_3d_shallow, refine=2, min_ratio=1.5),
+    Case("3D-8", "3D: two cracks 1.5 elements apart", "two parallel through cracks 1.5 base elements apart: three "
+         "layers", "exact", 8, 4, None, refine=2, min_ratio=1.5),
 ]
 
 
@@ -442,6 +758,8 @@ def _bind(case: Case, n0: int) -> typing.Callable[[int], Built]:
         return case_13(n0, -1e-8)
     if case.key == "13b":
         return case_13(n0, 1e-8)
+    if case.key == "3D-8":
+        return case_3d_two_cracks(n0)
     return case.build
 
 
@@ -452,6 +770,19 @@ CASE_BY_KEY = {c.key: c for c in CASES}
 
 def _finite(*arrays) -> bool:
     return all(np.all(np.isfinite(np.asarray(a, dtype=float))) for a in arrays)
+
+
+def sif_matrix(sol: cl.Solution, built: Built) -> tuple[np.ndarray, np.ndarray]:
+    """K of crack 0 and the exact K: per tip (K_I, K_II) in 2D; in 3D
+    (K_I, K_II, K_III) at every front point inside the part whose domain is
+    clear (not those where the front meets the surface)."""
+    if sol.model.gdim == 2:
+        K = sif_vector(sol, built.sif_radius, cracks=[0]).reshape(-1, 2)
+        return K, np.asarray(built.K_exact, dtype=float)
+    rows = [r for r in sol.stress_intensity_factors(None)  # (None: the rows Solution.warnings computes)
+            if r["crack"] == 0 and not r["free_surface"] and r["domain_clear"]]
+    K = np.array([[r["K_I"], r["K_II"], r["K_III"]] for r in rows]).reshape(-1, 3)
+    return K, np.broadcast_to(np.asarray(built.K_exact[0], dtype=float), K.shape)
 
 
 def solve_level(built: Built, condition: bool = True) -> dict:
@@ -470,10 +801,10 @@ def solve_level(built: Built, condition: bool = True) -> dict:
         out["energy_error"] = err_rel
         outputs.append([err_abs, err_rel])
         if built.K_exact is not None:
-            K = sif_vector(sol, built.sif_radius, cracks=[0]).reshape(-1, 2)
+            K, K_exact = sif_matrix(sol, built)
             out["K"] = K.tolist()
-            out["K_error"] = float(np.abs(K - np.asarray(built.K_exact)).max()
-                                   / np.abs(np.asarray(built.K_exact)).max())
+            out["K_points"] = len(K)
+            out["K_error"] = float(np.abs(K - K_exact).max() / np.abs(K_exact).max()) if len(K) else None
             outputs.append(K)
     if built.quantities is not None:
         q = built.quantities(sol)
@@ -488,6 +819,7 @@ def solve_level(built: Built, condition: bool = True) -> dict:
         out["pressure"] = (-sol.contact["lambda"]).tolist()
         outputs += [cp["pressure"], cp["gap"]]
     out["finite"] = _finite(*outputs)
+    out["warnings"] = sorted({w.code for w in sol.warnings})
     out.update(built.facts(sol))
     out["wall_time"] = time.perf_counter() - t0
     out["_solution"] = sol
@@ -545,13 +877,13 @@ def run_case(case: Case, n0: int, levels: typing.Optional[int] = None, log=None)
     build = _bind(case, n0)
     if levels is None:
         levels = 3 if case.reference == "finer" else 2
-    ns = [n0 * 4 ** k for k in range(levels)]
+    ns = [n0 * case.refine ** k for k in range(levels)]
     runs = []
     for k, n in enumerate(ns):
         if log:
             log(f"  case {case.key}: n = {n}")
         built = build(n)
-        r = solve_level(built, condition=k < 2)
+        r = solve_level(built, condition=k < (2 if case.refine == 4 else 1))
         r["n"] = n
         if case.contact:
             # Both active-set starts must reach the same active set and pressure.
@@ -589,7 +921,8 @@ def run_case(case: Case, n0: int, levels: typing.Optional[int] = None, log=None)
         "levels": [_strip(r) for r in runs],
         "wall_time_base": runs[0]["wall_time"], "wall_time": time.perf_counter() - t_case,
     })
-    row["converges"] = row["error_ratio"] is not None and row["error_ratio"] >= 2.0
+    row["converges"] = row["error_ratio"] is not None and row["error_ratio"] >= case.min_ratio
+    row["refine"], row["min_ratio"] = case.refine, case.min_ratio
     if case.contact:
         row["starts_agree"] = all(r["start_open"]["same_active_set"] and r["start_open"]["pressure_difference"] <= 1e-10
                                   for r in runs)
@@ -614,7 +947,17 @@ NOTES = {
     "14": "radius 0.5: with r = 0.2 (below the cell size on both meshes, tip-cell-only enrichment) the "
           "error falls only 1.27x (0.265 -> 0.208), the pre-asymptotic rate-1/2 regime of case 15a",
     "15a": "tip-cell-only enrichment converges at rate 1/2 in energy: a 4x finer mesh gives about 2x",
+    "3D-3": "NOT converging, and warned (crack_on_faces): the crack on the node layer gets no Heaviside "
+            "function at all (enriched dofs 0, every cell beside it a 'face' cell), so the lips cannot open; "
+            "the 3D enrichment selection does not open face cells as 2D does edge cells (cpp/enrichment). "
+            "Moved off the nodes by 1e-3 h it converges (case 3D-1's rate)",
+    "3D-7": "K only where the front's SIF domain is clear of the face the front meets (free_surface "
+            "points flagged, not compared)",
 }
+
+
+#: Warnings that say what limits a case's convergence (model.checks codes).
+LIMITING_WARNINGS = ("crack_on_faces", "degenerate_front", "enrichment_radius", "front_resolution")
 
 
 def _fmt(v, spec=".1e"):
@@ -640,19 +983,21 @@ def markdown(rows: list[dict], quick: bool) -> str:
              "or each piece of a through crack in pure bending), max |Q(n) - Q(4n)| / max|Q(4n)| over "
              "mesh-independent quantities Q against the same case on a 4x finer mesh (finer; Q per case "
              "below), or the largest relative deviation from the exact factor (scaling). "
-             "Ratio = error(base) / error(4x finer); it must be >= 2. Residual: largest "
+             "Ratio = error(base) / error(finer): 4x finer in 2D, it must be >= 2; 2x finer for solids "
+             "(3D-*), >= 1.5. Residual: largest "
              "||A x - b|| / ||b|| over every solve of the case. Condition numbers: 1-norm estimates of "
              "the stiffness with constraints on the base mesh, raw and Jacobi-scaled.", "",
              "| case | what makes it hard | finite | residual | cond raw | cond Jacobi | reference | n base | "
-             "error base | error 4x finer | ratio | K error base / 4x | active-set its | "
-             "wall time base / 4x / case [s] |",
+             "error base | error finer | ratio | K error base / finer | active-set its | "
+             "wall time base / finer / case [s] |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         if r["reference"] == "scaling":
             err, errf, ratio = _fmt(r["error"]), "-", "exact to " + _fmt(r["error"])
         else:
             err, errf, ratio = _fmt(r["error"]), _fmt(r["error_fine"]), _fmt(r["error_ratio"], ".2f")
-        kerr = "-" if r.get("K_error") is None else f"{r['K_error']:.1e} / {r['K_error_fine']:.1e}"
+        kerr = ("-" if r.get("K_error") is None and r.get("K_error_fine") is None else
+                f"{_fmt(r.get('K_error'))} / {_fmt(r.get('K_error_fine'))}")
         its = "-"
         if r["reference"] == "scaling":
             its = "base {}, scaled {}".format(*r["active_set_iterations"])
@@ -672,7 +1017,10 @@ def markdown(rows: list[dict], quick: bool) -> str:
             notes.append("deviations " + ", ".join(f"{k} {v:.1e}" for k, v in s["deviation"].items())
                          + f"; same active set: {_fmt(s['same_active_set'])}")
         else:
-            notes.append(f"error: {r['error_kind']}; converges (ratio >= 2): {_fmt(r['converges'])}")
+            notes.append(f"error: {r['error_kind']}; converges (ratio >= {r['min_ratio']:g}): {_fmt(r['converges'])}")
+            limits = [w for w in (r.get("levels") or [{}])[-1].get("warnings", []) if w in LIMITING_WARNINGS]
+            if limits:
+                notes.append("warned: " + ", ".join(limits))
         if "starts_agree" in r:
             notes.append(f"both starts same active set and pressure to 1e-10: {_fmt(r['starts_agree'])} "
                          f"(max pressure difference {r['pressure_difference_between_starts']:.1e})")
@@ -681,7 +1029,10 @@ def markdown(rows: list[dict], quick: bool) -> str:
                           "offset_over_h", "snapped", "edge_ratio", "crossed_cells", "cells", "radius",
                           "tip_enriched_nodes", "tip_distance", "nodes_with_both_cracks_tip_functions",
                           "tip_node_distance", "mouth_node_phi", "tip_edge_distance", "num_active",
-                          "num_multipliers")}
+                          "num_multipliers", "nodes_on_crack", "cell_edges_on_crack", "cut", "face", "front",
+                          "nodes_on_front", "degenerate_front_cells", "front_points", "K_points",
+                          "bore_nodes_within_h_of_the_plane", "free_surface_points", "front_surface_angle_deg",
+                          "distance_over_h", "cut_cells")}
         if facts:
             notes.append("base mesh: " + ", ".join(f"{k} {_fmt(v, '.3g')}" for k, v in facts.items()))
         if r["case"] in NOTES:
@@ -718,7 +1069,11 @@ def main(argv=None) -> dict:
     res = {"quick": args.quick, "rows": rows, "total_time": time.perf_counter() - t0,
            "all_finite": all(r["finite"] for r in rows),
            "max_relative_residual": max(r["relative_residual"] for r in rows),
-           "all_converge": all(r["converges"] for r in rows if r["converges"] is not None)}
+           "all_converge": all(r["converges"] for r in rows if r["converges"] is not None),
+           # A case that does not converge must say why: a model warning of LIMITING_WARNINGS.
+           "not_converging": {r["case"]: [w for w in r["levels"][-1].get("warnings", []) if w in LIMITING_WARNINGS]
+                              for r in rows if r["converges"] is False}}
+    res["all_converge_or_warned"] = all(res["not_converging"].values())
     write_json(args.json, res)
     md = args.md or args.json.with_suffix(".md")
     md.write_text(markdown(rows, args.quick))

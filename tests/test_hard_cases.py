@@ -143,3 +143,56 @@ def test_demo_quick_writes_table(tmp_path):
         for key in ("case", "hard", "finite", "relative_residual", "cond_1norm", "cond_1norm_jacobi",
                     "error", "wall_time"):
             assert key in row
+
+
+# -- solids (issue 39) ----------------------------------------------------------------------------
+
+#: The 3D cases run here, at n0_small and 2 n0_small (4 / 8 divisions of the
+#: cube for through cracks, 6 / 12 with a front); the full table is the
+#: demo's (n = 8 / 16, docs/benchmarks.md).
+CASES_3D = ["3D-1", "3D-2", "3D-3", "3D-6", "3D-8", "3D-4"]
+
+
+@pytest.fixture(scope="module")
+def rows_3d():
+    return {k: hc.run_case(hc.CASE_BY_KEY[k], hc.CASE_BY_KEY[k].n0_small) for k in CASES_3D}
+
+
+@pytest.mark.parametrize("key", CASES_3D)
+def test_3d_case_finite_accurate_and_converging_or_warned(rows_3d, key):
+    """Every 3D case: finite outputs, every solve's relative residual <=
+    1e-10, and the energy error against the exact field falls on the 2x
+    finer mesh (rate >= 0.58; fronts at these sizes, radius 0.3 of about one
+    element, at least rate 1/2) -- or a warning names what stops it: the
+    crack along mesh faces (3D-3) gets no Heaviside function, and says so."""
+    r = rows_3d[key]
+    assert r["finite"]
+    assert r["relative_residual"] <= RESIDUAL, r["relative_residual"]
+    if key == "3D-3":
+        assert r["error_ratio"] < 1.2 and r["error_fine"] > 0.9, (r["error"], r["error_fine"])
+        assert all("crack_on_faces" in lv["warnings"] for lv in r["levels"])
+        assert _base(r)["face"] > 0 and _base(r)["cut"] == 0 and _base(r)["nodes_on_crack"] == 25
+        return
+    assert r["error_ratio"] >= (1.45 if key == "3D-4" else 1.5), (r["error"], r["error_fine"])
+    assert not any(w in hc.LIMITING_WARNINGS for lv in r["levels"] for w in lv["warnings"] if w != "enrichment_radius")
+
+
+def test_3d_cases_have_what_makes_them_hard(rows_3d):
+    """The degenerate geometry is really in the discrete model."""
+    b = {k: _base(r) for k, r in rows_3d.items()}
+    assert b["3D-1"]["nodes_on_crack"] >= 3 and b["3D-1"]["face"] == 0          # vertices, no face
+    assert b["3D-2"]["cell_edges_on_crack"] > 0 and b["3D-2"]["face"] == 0       # along edges
+    assert b["3D-6"]["bore_nodes_within_h_of_the_plane"] > 0                      # tangent to the bore
+    assert b["3D-8"]["distance_over_h"] == 1.5 and min(b["3D-8"]["cut_cells"]) > 0
+    assert b["3D-4"]["nodes_on_front"] >= 3 and b["3D-4"]["front"] > 0          # front through nodes
+    # K along the front through nodes, interior points with a clear domain (finer mesh): within 2 %.
+    assert rows_3d["3D-4"]["K_error_fine"] is not None and rows_3d["3D-4"]["K_error_fine"] < 0.02
+
+
+def test_3d_shallow_front_base_mesh():
+    """Case 3D-7 on its base mesh (the 2x finer one is the demo's): a front
+    meeting a loaded face at 10 degrees solves finite with residual <=
+    1e-10, and its ends on the face are flagged (free_surface)."""
+    lv = hc.solve_level(hc.CASE_BY_KEY["3D-7"].build(6), condition=False)
+    assert lv["finite"] and lv["relative_residual"] <= RESIDUAL
+    assert lv["free_surface_points"] >= 1 and lv["energy_error"] < 0.3

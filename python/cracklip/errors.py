@@ -39,3 +39,7 @@ class InputFileError(InputError):
     def __init__(self, message: str, path=None, line: int | None = None, column: int | None = None):
         super().__init__(message)
         self.path, self.line, self.column = path, line, column
+
+
+class ModelSizeError(MeshError):
+    """The model asked for would not fit in the machine's memory (estimated before meshing)."""

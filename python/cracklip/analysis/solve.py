@@ -17,6 +17,7 @@ from ..errors import InputError, SolverError
 from ..model.assembly import assemble_system, elasticity_form
 from ..model.model import create_model
 from ..post.solution import Solution, create_solution
+from ..scene.mesh_estimate import release_memory
 from ..scene.scene import Scene
 from ..solvers.checked import condition_number_1norm, record_solves, solve_checked
 from ..solvers.choice import create_linear_solver, to_solver_basis
@@ -103,6 +104,7 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     A.destroy()
     b.destroy()
     x.destroy()
+    release_memory()  # the factors and the AMG hierarchy are gone: their pages back to the system
     timings = {**model.timings, **timings}
     timings["total"] = time.perf_counter() - t_start
     logger.info("solved %d dofs (%d enriched) in %.3f s", model.num_dofs,

@@ -77,6 +77,9 @@ def build_parser() -> argparse.ArgumentParser:
                             "syntax, a bare word is a string)")
         p.add_argument("--quiet", "-q", action="store_true",
                        help="no progress on stderr, no summary on stdout (warnings are still printed on stderr)")
+        p.add_argument("--force", action="store_true",
+                       help="mesh a solid even when its run is estimated to need more memory than the machine "
+                            "has available (refused otherwise, before meshing)")
 
     run = sub.add_parser("run", help="solve a scene and write its results into a folder",
                          description="Solve a scene and write results.json, the crack's tables (crack.csv and "
@@ -150,7 +153,9 @@ def _load(args):
 
 def _build(args, doc):
     from ..io.scene_file import build_scene
-    sf = build_scene(doc, base_dir=args.scene.parent, path=args.scene)
+    from ..scene.mesh_estimate import available_memory
+    sf = build_scene(doc, base_dir=args.scene.parent, path=args.scene,
+                     memory_limit=None if args.force else available_memory())
     msh = sf.scene.mesh.mesh
     logger.info("mesh: %d nodes, %d %s (%.2f s)", msh.geometry.x.shape[0],
                 msh.topology.index_map(msh.topology.dim).size_local,
@@ -211,11 +216,13 @@ def cmd_run(args) -> int:
         unit = "" if sf.scene.units is None else f" {sf.scene.units.name('length')}"
         for c in results["cracks"]:
             fr = c["front"]
-            shape = ", ".join("closed" if p["closed"] else f"open ({p['ends_on_boundary']} ends on the boundary)"
-                              for p in fr["pieces"])
+            shape = ", ".join("a closed loop" if p["closed"] else
+                              f"a line with {p['ends_on_boundary']} of 2 ends on the boundary" for p in fr["pieces"])
+            overlap = (f", the lips overlapping by up to {c['interpenetration_max']:.4g}{unit} (see the warning)"
+                       if any(w["code"] == "interpenetration" for w in results["warnings"]) else "")
             print(f"  {c['name']}: area {c['area_in_part']:.4g} in the part, opening up to {c['gap_max']:.4g}{unit} "
-                  f"(mean {c['gap_mean']:.4g}), opened volume {c['opening_volume']:.4g}; front {fr['points']} "
-                  f"points, length {fr['length']:.4g}: {shape}")
+                  f"(mean {c['gap_mean']:.4g}){overlap}, opened volume {c['opening_volume']:.4g}; front "
+                  f"{fr['points']} points, length {fr['length']:.4g}: {shape}")
     else:
         for line in sif_summary(results["sifs"], results.get("error_estimate"), sf.scene.units):
             print(line)

@@ -12,7 +12,7 @@ import typing
 import numpy as np
 
 from ..model.model import XfemModel
-from ..post.solution import Solution
+from ..post.solution import Solution, enriched_chunks
 
 
 def _kind(tips: int, pieces: list[dict], model: XfemModel) -> str:
@@ -76,6 +76,10 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
         "cracks": describe_cracks(model),
         "quadrature": _describe_quadrature(model, solution),
     }
+    est = getattr(model.scene.mesh, "estimate", None)
+    if est is not None:  # a solid meshed by cracklip: the size estimated before meshing
+        out["estimate"] = {"cells": round(est.cells), "nodes": round(est.nodes), "dofs": round(est.dofs),
+                           "memory_GB": round(est.memory / 1e9, 3), "coarse": bool(est.coarse)}
     if contact_system is None:
         out["contact"] = {"law": "none" if not model.cracks else opts.contact, "multipliers": 0}
     else:
@@ -242,7 +246,7 @@ def _rule_groups(per_cell: np.ndarray, rows: list[tuple[str, np.ndarray, str]]) 
 
 def _describe_quadrature(model: XfemModel, solution: Solution | None = None) -> list[dict[str, typing.Any]]:
     """Cells of each quadrature kind with their rule and point counts (the
-    points of solution.enriched_field_points() if given, else the same
+    points of solution.enriched_quadrature() if given, else the same
     stiffness rules computed here): the plain cells, then the enriched
     ones by kind (_RULES of the crack's end, tips or fronts)."""
     layout = model.layout
@@ -251,9 +255,12 @@ def _describe_quadrature(model: XfemModel, solution: Solution | None = None) -> 
     groups = [_plain_group(ncells, enr_cells)]
     if enr_cells.size == 0:
         return groups
-    fp = solution.enriched_field_points() if solution is not None else model.crack_type.field_points(
-        model, np.zeros(model.num_dofs), enr_cells, None)
-    per_cell = np.bincount(fp["cell"], minlength=ncells)
+    if solution is not None:
+        per_cell = solution.enriched_quadrature()[1]
+    else:  # the same rules, a chunk of cells at a time
+        per_cell = np.zeros(ncells, dtype=np.int64)
+        for chunk in enriched_chunks(model):
+            per_cell += np.bincount(model.crack_type.enriched_cell_points(model, chunk, 0)["cell"], minlength=ncells)
     enriched, has_tip = _enriched_flags(layout, ncells)
     classes = model.crack_type.CELL_CLASSES
     cls = {name: np.zeros(ncells, dtype=bool) for name in classes}
@@ -326,6 +333,10 @@ def format_model(summary: dict[str, typing.Any]) -> list[str]:
              f"enriched pseudo-nodes on {summary['enriched_cells']} cells)",
              f"enrichment: {'front' if solid else 'tip'} {e['tip']}, radius {e['radius']:g}, {e['blending']} blending",
              "boundary tags: " + (", ".join(f"{n!r}" for n in summary["boundary_tags"]) or "none")]
+    if "estimate" in summary:
+        est = summary["estimate"]
+        lines.insert(2, f"estimated before meshing: {est['cells']} tetrahedra, {est['dofs']} dofs, a run peaking at "
+                        f"about {est['memory_GB']:.2g} GB")
     for c in summary["cracks"]:
         lines += (_format_surface if solid else _format_curve)(c)
         if c["lip_pressure"] != 0.0:

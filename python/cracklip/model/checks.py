@@ -3,10 +3,13 @@ or a solve untrustworthy, found before solving. The crack model of the
 part's dimension runs those of its ends (cracklip.model.cracks: a curve's
 tips, a surface's fronts; create_model calls them).
 
-Planar parts (tips):
+Both dimensions:
 - ``check_pieces(model)`` raises BoundaryConditionError when the cracks cut
   the part into pieces and one of them has no Dirichlet condition fixing
-  its rigid motion (the solve would fail on a singular matrix);
+  its rigid motion (the solve would fail on a singular matrix), naming the
+  cracks and every piece.
+
+Planar parts (tips):
 - ``check_tips(model)`` returns warnings: a refinement that the mesh did not
   reach (or whose point lies in a hole or outside the part), a tip element
   coarser than a tenth of the crack length or than the enrichment radius, a
@@ -24,7 +27,9 @@ Solids (fronts), ``check_fronts(model)``:
 - warnings: a front whose elements are coarse for the crack's size
   (front_resolution), a radius below the element size at the front
   (enrichment_radius), front cells where the P1 front is not a line
-  (degenerate_front), no front enrichment (front_enrichment).
+  (degenerate_front), no front enrichment (front_enrichment), a crack
+  along mesh faces whose nodes there got no Heaviside function
+  (crack_on_faces).
   ``front_element_sizes`` is the element size reached along a front (what
   ``check`` reports): the mean edge length of each front cell.
 
@@ -43,8 +48,9 @@ import scipy.sparse.csgraph
 from .. import _cracklip
 from ..errors import BoundaryConditionError, CrackGeometryError, InputError
 from ..scene.size_field import PLATEAU
+from ..scene.units import STRESSES
 from .boundary import nearest_boundary_point, where_outside
-from .constraints import rigid_motion_rank
+from .constraints import ROTATIONS, rigid_motion_rank
 from .tip_regions import lip_points, model_boundary, segment_distance, tip_domains, tip_element_size
 
 
@@ -208,122 +214,151 @@ def _tip_region(model, ci: int, dom, length: float, radius: float) -> ModelWarni
 
 
 def _pieces(model) -> tuple[np.ndarray, np.ndarray]:
-    """Connected pieces of the cracked part: for every node its component on
-    its own side, and for nodes lying on a crack (phi = 0 in a crossed cell)
-    the component of their other side (-1 if none). Returns (comp (N,),
-    comp_other (N,))."""
+    """Connected pieces of the cracked part (triangles or tetrahedra): for
+    every node its component on its own side, and for nodes lying on a
+    crack (phi = 0 in a cell the crack splits whole) the component of their
+    other side (-1 if none). Returns (comp (N,), comp_other (N,)).
+
+    The graph's vertices are the nodes and a copy of every node on a crack
+    (the node stands for the crack's + side there, the copy for its - side).
+    A cell no crack touches joins its nodes; a cell a crack splits whole
+    (crack_type.SPLIT) joins the nodes of each side with the on-crack
+    nodes' copies of that side; any other cell with on-crack nodes joins
+    them on the side it lies on (cell_side), or both copies where the crack
+    ends in or beyond it (a tip or front cell, the extension). numpy over
+    the cells, no Python loop over the mesh."""
     x, cells = model.x, model.cells
-    N = x.shape[0]
-    geos = model.geometries
+    N, nv = x.shape[0], cells.shape[1]
+    C = cells.shape[0]
+    split_classes = model.crack_type.SPLIT
+    geos = [(np.asarray(g.phi), np.asarray(g.cell_class), np.asarray(g.cell_side)) for g in model.geometries]
     copy = np.full(N, -1, dtype=np.int64)  # the other-side copy of on-crack nodes
-    special = np.zeros(cells.shape[0], dtype=bool)
+    split_by = np.full(C, -1, dtype=np.int64)  # the first crack splitting each cell whole
+    touched = np.zeros(C, dtype=bool)
     next_id = N
-    for g in geos:
-        cls = np.asarray(g.cell_class)
-        crossed = (cls == 1) | (cls == 2)
-        on = np.asarray(g.phi) == 0.0
-        on_nodes = np.unique(cells[crossed][on[cells[crossed]]])
+    for k, (phi, cls, _) in enumerate(geos):
+        split = np.isin(cls, split_classes)
+        on_nodes = np.unique(cells[split][phi[cells[split]] == 0.0])
         fresh = on_nodes[copy[on_nodes] < 0]
         copy[fresh] = np.arange(next_id, next_id + fresh.size)
         next_id += fresh.size
-        special |= cls != 0
+        split_by[(split_by < 0) & split] = k
+        touched |= cls != 0
     has_copy = copy >= 0
-    special |= np.any(has_copy[cells], axis=1)
+    special = touched | np.any(has_copy[cells], axis=1)
     rows, cols = [], []
-    bulk = cells[~special]
-    for i, j in ((0, 1), (1, 2)):
-        rows.append(bulk[:, i])
-        cols.append(bulk[:, j])
 
-    def ident(node: int, side: int) -> int:
-        return int(copy[node]) if side < 0 and copy[node] >= 0 else int(node)
-    for c in np.flatnonzero(special).tolist():
-        verts = cells[c]
-        pieces: list[list[int]] = [[int(v) for v in verts]]
-        for g in geos:
-            cls = int(g.cell_class[c])
-            phi = np.asarray(g.phi)[verts]
-            if cls in (1, 2):  # cut / edge: one piece per side present
-                sides = [s for s in (1, -1) if np.any(np.sign(phi) == s)]
-                pieces = [[ident(v, s) if ph == 0.0 else int(v) for v, ph in zip(verts, phi) if ph == 0.0 or np.sign(ph) == s]
-                          for s in sides]
-                break
-        else:
-            # Not crossed: the nodes on a crack join the cell's side, or both
-            # copies where the crack ends in or beyond the cell (tip, extension).
-            piece = []
-            for v in verts:
-                piece.append(int(v))
-                if copy[v] >= 0:
-                    sides = [int(g.cell_side[c]) for g in geos if int(g.cell_class[c]) == 0 and g.phi[v] == 0.0]
-                    if sides and all(s == sides[0] for s in sides) and sides[0] != 0:
-                        piece[-1] = ident(int(v), sides[0])
-                    else:
-                        piece.append(int(copy[v]))
-            pieces = [piece]
-        for piece in pieces:
-            rows.append(np.asarray(piece[:-1], dtype=np.int64))
-            cols.append(np.asarray(piece[1:], dtype=np.int64))
-    r, c = np.concatenate(rows), np.concatenate(cols)
-    graph = sp.coo_matrix((np.ones(len(r)), (r, c)), shape=(next_id, next_id))
+    def star(ids: np.ndarray, include: np.ndarray) -> None:
+        """Join the included vertices of each row of ids to the row's first included one."""
+        keep = include.any(axis=1)
+        ids, include = ids[keep], include[keep]
+        first = ids[np.arange(len(ids)), include.argmax(axis=1)]
+        rows.append(np.broadcast_to(first[:, None], ids.shape)[include])
+        cols.append(ids[include])
+
+    bulk = cells[~special]
+    star(bulk, np.ones(bulk.shape, dtype=bool))
+    for k, (phi, _, _) in enumerate(geos):
+        c = cells[split_by == k]
+        ph = phi[c]
+        for s in (1, -1):
+            present = np.any(np.sign(ph) == s, axis=1)[:, None]
+            ids = np.where(ph == 0.0, c if s > 0 else copy[c], c)
+            star(ids, ((np.sign(ph) == s) | (ph == 0.0)) & present)
+    other = np.flatnonzero(special & (split_by < 0))
+    c = cells[other]
+    # The side each on-crack vertex joins: +1 / -1 from the cells' sides of
+    # the cracks it lies on (where the cell is plain for that crack), 2 where
+    # they disagree, 0 where no crack says (the crack ends in or beyond the cell).
+    side = np.zeros(c.shape, dtype=np.int8)
+    for phi, cls, cside in geos:
+        s = np.where((phi[c] == 0.0) & (cls[other] == 0)[:, None], cside[other][:, None], 0).astype(np.int8)
+        side = np.where((side != 0) & (s != 0) & (side != s), np.int8(2), np.where(side == 0, s, side))
+    own = np.where(has_copy[c] & (side == -1), copy[c], c)
+    star(own, np.ones(c.shape, dtype=bool))
+    both = has_copy[c] & ((side == 0) | (side == 2))
+    rows.append(c[both])
+    cols.append(copy[c[both]])
+    r, cc = np.concatenate(rows), np.concatenate(cols)
+    graph = sp.coo_matrix((np.ones(len(r)), (r, cc)), shape=(next_id, next_id))
     _, comp = scipy.sparse.csgraph.connected_components(graph, directed=False)
-    other = np.where(has_copy, comp[np.maximum(copy, 0)], -1)
-    return comp[:N], other
+    other_side = np.where(has_copy, comp[np.maximum(copy, 0)], -1)
+    return comp[:N], other_side
 
 
 def check_pieces(model) -> None:
-    """Raise BoundaryConditionError if a crack cuts off a piece of the part
-    whose rigid motion no Dirichlet condition fixes. Only cracks without a
-    tip inside the part (both ends on the boundary) can cut a piece off."""
-    if not any(sum(cm.tips) == 0 for cm in model.cracks):
+    """Raise BoundaryConditionError if the cracks cut the part (planar or
+    solid) into pieces and one of them has no Dirichlet condition fixing
+    its rigid motion: the error names the cracks and every piece (its
+    nodes, its bounding box, what fixes it or what it leaves free). Only
+    cracks that do not end inside the part (no tip, no front there) can
+    cut a piece off."""
+    if all(cm.ends_inside() for cm in model.cracks):
         return
     comp, other = _pieces(model)
     labels = np.unique(comp)
     if labels.size < 2:
         return
-    N = model.x.shape[0]
+    N, d = model.x.shape
     layout = model.layout
-    std = model.bc_dofs[model.bc_dofs < 2 * N]
-    entries = [(comp[std // 2], std // 2, std % 2)]
-    # A constrained Heaviside dof also fixes the other side at its node.
-    enr = model.bc_dofs[model.bc_dofs >= 2 * N] // 2 - N
+    bc = np.asarray(model.bc_dofs)
+    std = bc[bc < d * N]
+    entries = [(comp[std // d], std // d, std % d)]
+    # A constrained enriched (Heaviside) dof also fixes the other side at its node.
+    enr = bc[bc >= d * N] // d - N
     if enr.size:
         base = np.asarray(layout.node)[enr]
         side_comp = _other_side_components(model, comp, other, base, np.asarray(layout.crack)[enr])
-        comps = model.bc_dofs[model.bc_dofs >= 2 * N] % 2
+        comps = bc[bc >= d * N] % d
         keep = side_comp >= 0
         entries.append((side_comp[keep], base[keep], comps[keep]))
     pc = np.concatenate([e[0] for e in entries])
     nodes = np.concatenate([e[1] for e in entries])
     dirs = np.concatenate([e[2] for e in entries])
-    names = ", ".join(repr(cm.crack.name) for cm in model.cracks if sum(cm.tips) == 0)
+    names = ", ".join(repr(cm.crack.name) for cm in model.cracks if not cm.ends_inside())
+    tiny = 1e-12 * float(np.ptp(model.x, axis=0).max())
+    loose, held = [], []
     for lab in labels.tolist():
+        members = np.flatnonzero(comp == lab)
+        lo, hi = model.x[members].min(axis=0), model.x[members].max(axis=0)
+        lo, hi = np.where(np.abs(lo) < tiny, 0.0, lo), np.where(np.abs(hi) < tiny, 0.0, hi)
+        box = " x ".join(f"[{a:.6g}, {b:.6g}]" for a, b in zip(lo, hi))
         mine = pc == lab
         rank, free = rigid_motion_rank(model.x, nodes[mine], dirs[mine])
-        if rank < 3:
-            members = np.flatnonzero(comp == lab)
-            lo, hi = model.x[members].min(axis=0), model.x[members].max(axis=0)
-            tiny = 1e-12 * float(np.ptp(model.x, axis=0).max())
-            lo, hi = np.where(np.abs(lo) < tiny, 0.0, lo), np.where(np.abs(hi) < tiny, 0.0, hi)
-            raise BoundaryConditionError(
-                f"the crack(s) {names} cut the part into {labels.size} pieces; the piece of {members.size} nodes "
-                f"in [{lo[0]:.6g}, {hi[0]:.6g}] x [{lo[1]:.6g}, {hi[1]:.6g}] has no Dirichlet condition fixing "
-                f"its {', '.join(free)}: add a condition on that piece, or end the crack inside the part")
+        piece = f"the piece of {members.size} nodes in {box}"
+        if rank < d + len(ROTATIONS[d]):
+            loose.append(f"{piece} has no Dirichlet condition fixing its {', '.join(free)}")
+        else:
+            held.append(f"{piece} is held")
+    if loose:
+        raise BoundaryConditionError(
+            f"the crack(s) {names} cut the part into {labels.size} pieces; " + "; ".join(loose + held)
+            + ". The solve would meet a singular matrix: add a Dirichlet condition on every loose piece (a tag, "
+            "box or point on it), or end the crack inside the part")
 
 
 def _other_side_components(model, comp, other, base: np.ndarray, crack: np.ndarray) -> np.ndarray:
-    """Component of the other side of the crack at each node of `base`."""
-    out = np.full(base.size, -1, dtype=np.int64)
-    for k, (n, c) in enumerate(zip(base.tolist(), crack.tolist())):
-        if other[n] >= 0:
-            out[k] = other[n]
-            continue
-        g = model.geometries[c]
-        phi = np.asarray(g.phi)
-        around = model.cells[np.any(model.cells == n, axis=1)]
-        opposite = around[np.sign(phi[around]) == -np.sign(phi[n])]
-        if opposite.size:
-            out[k] = comp[opposite[0]]
+    """Component of the other side of the crack at each node of `base` (the
+    node's other-side copy, else a node sharing a cell with it on the other
+    side of that crack; -1 if none). Work proportional to the nodes given."""
+    out = np.where(other[base] >= 0, other[base], -1)
+    todo = np.flatnonzero(out < 0)
+    if not todo.size:
+        return out
+    cells = model.cells
+    N = model.x.shape[0]
+    incidence = sp.csr_matrix((np.ones(cells.size), (cells.ravel(), np.repeat(np.arange(cells.shape[0]),
+                                                                            cells.shape[1]))),
+                              shape=(N, cells.shape[0]))
+    neighbours = (incidence[base[todo]] @ incidence.T).tocsr()  # (todo, N): nodes sharing a cell
+    for c in np.unique(crack[todo]).tolist():
+        phi = np.asarray(model.geometries[c].phi)
+        for j in np.flatnonzero(crack[todo] == c).tolist():
+            row = neighbours.indices[neighbours.indptr[j]:neighbours.indptr[j + 1]]
+            n = base[todo[j]]
+            opposite = row[np.sign(phi[row]) == -np.sign(phi[n])]
+            if opposite.size:
+                out[todo[j]] = comp[opposite[0]]
     return out
 
 
@@ -431,6 +466,9 @@ def check_fronts(model) -> list[ModelWarning]:
         front = g.front
         name = cm.crack.name
         check_front_ends(name, front)
+        w = _unopened_faces(model, ci)
+        if w is not None:
+            out.append(w)
         if not len(front["x"]):
             continue
         h = front_element_sizes(model, ci)
@@ -456,4 +494,103 @@ def check_fronts(model) -> list[ModelWarning]:
                 "is not a line (a corner of the crack on a mesh node, or its edge along mesh edges); move the crack "
                 "off the nodes by a fraction of the element size", ci))
     check_enrichment_radius(model)
+    return out
+
+
+#: CellClass3D::face: a cell with a face on the crack, lying on one side.
+FACE_CLASS = 2
+
+
+def _unopened_faces(model, ci: int) -> ModelWarning | None:
+    """The 'crack_on_faces' warning when a crack runs along mesh faces and
+    the nodes on it there got no Heaviside function: nothing lets the lips
+    open across those faces (hard case 3D-3: a through crack on a node layer
+    gets no enriched dof at all, the energy error stays at 100 %)."""
+    g = model.geometries[ci]
+    face = np.asarray(g.cell_class) == FACE_CLASS
+    if not face.any():
+        return None
+    phi = np.asarray(g.phi)
+    cells = model.cells[face]
+    on = np.unique(cells[phi[cells] == 0.0])
+    lay = model.layout
+    heaviside = np.asarray(lay.node)[(np.asarray(lay.kind) == 0) & (np.asarray(lay.crack) == ci)]
+    bare = np.setdiff1d(on, heaviside)
+    if not bare.size:
+        return None
+    name = model.cracks[ci].crack.name
+    return ModelWarning("crack_on_faces", (
+        f"crack {name!r} runs along mesh faces ({int(face.sum())} cells have a face on it) and {bare.size} of the "
+        f"{on.size} nodes on it there got no Heaviside function: the lips cannot open across those faces, so the "
+        "opening, the stiffness and K are wrong there. Move the crack off the mesh nodes by a small fraction of the "
+        "element size (e.g. 1e-3 of it along its normal)"), ci)
+
+
+# -- the scene's scale: units ---------------------------------------------------------------------
+
+#: Young's moduli of the solids fracture mechanics deals with, in Pa: from
+#: engineering polymers (PMMA 3 GPa, epoxy 2.5 GPa; 0.1 GPa leaves room for
+#: soft ones) to diamond (1.05-1.2 TPa). An E outside, in the scene's
+#: stress unit, is a unit slip: E in Pa with stresses in MPa is 1e6 times
+#: too stiff (openings 1e6 times too small), E in GPa with MPa 1e3 too soft.
+E_RANGE_PA = (1e8, 1.5e12)
+
+#: Sizes of a part cracklip models, in metres: a part whose largest extent
+#: lies outside was most likely drawn in another length unit than
+#: units.length says (a 40 mm plate read in m is 40 m long; one of 40 m read
+#: in mm 40 um).
+SIZE_RANGE_M = (1e-4, 10.0)
+
+#: Without [units]: loads below this fraction of E strain the part by less
+#: than elastic round-off matters for, but more to the point are the mark
+#: of E and the loads in different units (E in Pa, stresses in MPa: 1e-9).
+LOAD_OVER_E_MIN = 1e-7
+
+
+def check_units(model) -> list[ModelWarning]:
+    """Warnings when the scene's numbers do not fit its units (module doc of
+    the constants): material.E against the usual range in units.stress,
+    the part's size against units.length, and without [units] constant
+    tractions and lip pressures far below E."""
+    scene = model.scene
+    units = scene.units
+    E = scene.material.E
+    size = float(np.ptp(model.x, axis=0).max())
+    out = []
+    if units is not None:
+        E_pa = E * units.stress_si
+        lo, hi = E_RANGE_PA
+        if not lo <= E_pa <= hi:
+            fits = [name for name, f in STRESSES.items() if lo <= E * f <= hi]
+            likely = f"; {E:g} would be a usual E in {' or '.join(fits)}" if fits else ""
+            out.append(ModelWarning("units", (
+                f"material.E = {E:g} {units.stress_name} (the stress unit of [units]) is "
+                f"{E_pa / 1e9:.3g} GPa, outside the {lo / 1e9:g} GPa .. {hi / 1e12:g} TPa of solids (polymers to "
+                f"diamond){likely}: every displacement and opening scales with 1 / E, so a unit slip makes them "
+                f"{'too small' if E_pa > hi else 'too large'} by that factor (K from loads alone is not affected; "
+                "with prescribed displacements it is too). Give material.E in the stress unit of [units] (e.g. "
+                "70000 for aluminium in MPa), or fix units.stress")))
+        size_m = size * units.length_si
+        lo, hi = SIZE_RANGE_M
+        if not lo <= size_m <= hi:
+            out.append(ModelWarning("units", (
+                f"the part is {size:.4g} {units.length} across (the largest side of its bounding box)"
+                + ("" if units.length == "m" else f", i.e. {size_m:.3g} m") + ", "
+                f"{'more' if size_m > hi else 'less'} than the {lo * 1e3:g} mm .. {hi:g} m of the "
+                f"parts cracklip models: was the geometry drawn in another unit than units.length = "
+                f"{units.length!r} (a part drawn in mm read in m is 1000 times too large)? Every length of the "
+                "scene (mesh.h, tip_h, the cracks, the loads' positions) is in units.length; set it to the "
+                "geometry's unit")))
+    else:
+        loads = [abs(float(v)) for tr in scene.tractions if tr.value is not None and not callable(tr.value)
+                 for v in np.ravel(tr.value)]
+        loads += [abs(float(c.pressure)) for c in scene.cracks if not callable(getattr(c, "pressure", 0.0))
+                  and getattr(c, "pressure", 0.0)]
+        largest = max(loads, default=0.0)
+        if largest > 0.0 and largest < LOAD_OVER_E_MIN * E:
+            out.append(ModelWarning("units", (
+                f"the largest traction or lip pressure ({largest:.3g}) is {largest / E:.2g} of material.E "
+                f"({E:.4g}): strains of that size are the mark of E and the loads in different units (E in Pa "
+                "with stresses in MPa gives 1e-9); the displacements and openings scale with 1 / E. Give E in the "
+                "loads' unit, and name them in a [units] table (units.length, units.stress)")))
     return out

@@ -78,7 +78,11 @@ def compute_dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tup
     tagged boundary the Heaviside dofs of the boundary's nodes are fixed too,
     because their functions do not vanish between the nodes of a boundary
     facet that the crack crosses: to 0 for a continuous value, to the jump
-    (f(x_i, -H_i) - f(x_i, H_i)) / (-2 H_i) otherwise. Tip dofs stay free.
+    (f(x_i, -H_i) - f(x_i, H_i)) / (-2 H_i) otherwise. Only where the crack
+    meets the boundary (_straddled): a Heaviside node of a face the crack
+    does not reach has its function vanish on that face, and fixing its dof
+    would pin the other side's material there (a piece cut off by the crack
+    held by a support on the far side of the crack). Tip dofs stay free.
     A symmetry plane (SymmetryCondition) also fixes the enriched dofs
     that would move its nodes out of the plane (symmetry_enriched_dofs).
     A point condition fixes only the node's standard dofs. Conditions that
@@ -88,6 +92,7 @@ def compute_dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tup
     tdim = msh.topology.dim
     gdim = x.shape[1]
     msh.topology.create_connectivity(tdim - 1, tdim)
+    cells = V.dofmap.list.array.reshape(-1, tdim + 1)
     # Side of every node with respect to its nearest crack (+1 without cracks).
     node_side = np.ones(x.shape[0], dtype=np.int8)
     if geometries:
@@ -135,6 +140,7 @@ def compute_dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tup
             prescribe(gdim * nodes + c, v[:, j], k_bc)
         if not is_point:
             pseudo = np.flatnonzero(np.isin(layout.node, nodes) & (layout.kind == 0))
+            pseudo = pseudo[_straddled(nodes, cells, geometries, layout.node[pseudo], layout.crack[pseudo])]
             jump = np.zeros((len(pseudo), len(comps)))
             if with_side and len(pseudo):
                 H = layout.node_side[pseudo].astype(float)
@@ -151,6 +157,31 @@ def compute_dirichlet(scene: Scene, V, x: np.ndarray, layout, geometries) -> tup
     group_values = {grp: np.array([mine.get(d, 0.0) for d in dofs.tolist()], dtype=np.float64)
                     for grp, mine in values.items()}
     return dofs, sum(group_values.values(), np.zeros(len(dofs))), group_values
+
+
+def _straddled(nodes: np.ndarray, cells: np.ndarray, geometries, pseudo_nodes: np.ndarray,
+               pseudo_cracks: np.ndarray) -> np.ndarray:
+    """Mask over Heaviside pseudo-nodes (their base node and crack) of those
+    where their crack meets the condition's boundary: the node lies on the
+    crack, or shares a cell with another of the condition's nodes on the
+    other side of it (a boundary facet the crack crosses, or close to one)."""
+    keep = np.zeros(len(pseudo_nodes), dtype=bool)
+    if not len(pseudo_nodes):
+        return keep
+    on_boundary = np.zeros(int(max(cells.max(), nodes.max())) + 1, dtype=bool)
+    on_boundary[nodes] = True
+    in_cond = on_boundary[cells]
+    near = np.any(in_cond, axis=1)
+    for c in np.unique(pseudo_cracks).tolist():
+        phi = np.asarray(geometries[c].phi)
+        sub, ph = in_cond[near], phi[cells[near]]
+        crossed = (np.any(sub & (ph > 0.0), axis=1) & np.any(sub & (ph < 0.0), axis=1)) | np.any(sub & (ph == 0.0),
+                                                                                                 axis=1)
+        marked = np.zeros(len(on_boundary), dtype=bool)
+        marked[cells[near][crossed][sub[crossed]]] = True
+        mine = pseudo_cracks == c
+        keep[mine] = marked[pseudo_nodes[mine]]
+    return keep
 
 
 def _check_clashes(scene: Scene, x: np.ndarray, layout, values: dict, clashes: list) -> None:

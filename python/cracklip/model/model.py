@@ -19,6 +19,7 @@ from .. import _cracklip
 from ..errors import CrackGeometryError
 from ..scene.mesh import check_mesh
 from ..scene.scene import Scene
+from .checks import check_units
 from .constraints import check_rigid_motion, compute_dirichlet
 from .cracks import CrackModel, crack_model_type
 from .symmetry import check_symmetry
@@ -61,7 +62,7 @@ def create_model(scene: Scene) -> XfemModel:
                       bc_group_values=bc_group_values)
     t0 = time.perf_counter()
     check_symmetry(model)
-    model.warnings = kind.check_model(model)  # raises on what makes the model unusable
+    model.warnings = kind.check_model(model) + check_units(model)  # raises on what makes the model unusable
     for w in model.warnings:
         logger.warning("%s", w.message)
     timings["checks"] = time.perf_counter() - t0

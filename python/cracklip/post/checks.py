@@ -70,17 +70,41 @@ def interpenetration(solution) -> list[tuple[str, str]]:
         if worst is None:
             continue
         st, overlap, frac = worst
-        kis = [r for r in st.stress_intensity_factors(ci) if r["K_I"] < 0.0]
+        rows = st.stress_intensity_factors(ci)
+        unit = "" if m.scene.units is None else f" {m.scene.units.name('length')}"
         at = f" at {st.step['name']!r}" if getattr(st, "step", None) and len(states) > 1 else ""
-        k_text = "; ".join(f"K_I = {r['K_I']:.4g} at the {cm.END} ({', '.join(f'{v:.6g}' for v in r['position'])})"
-                           for r in kis)
         out.append(("interpenetration", (
-            f"crack {cm.crack.name!r}{at}: the lips pass through each other over {100 * frac:.0f} % of its length "
-            f"(largest overlap {overlap:.3g}" + (f"; {k_text}" if k_text else "") + "): contact is off "
+            f"crack {cm.crack.name!r}{at}: the lips pass through each other over {100 * frac:.0f} % of its "
+            f"{cm.EXTENT} (largest overlap {overlap:.3g}{unit}{_negative_k(rows, cm.END)}): contact is off "
             "(options.contact = \"none\"), so nothing stops them; the K_I < 0 of overlapping lips is not physical, "
-            "and in fatigue it makes K_min negative and Delta K too large (life too short). Set "
-            "options.contact = \"unilateral\": the lips then touch and carry the pressure")))
+            "and in fatigue it makes K_min negative and Delta K too large (life too short). " + CONTACT_FIX[cm.END])))
     return out
+
+
+#: The fix named by the interpenetration warning, per kind of crack end
+#: (CrackModel.END): contact on the lips, or the load's sign. 3D contact is
+#: named as the setting it will be, without claiming a 3D part has it.
+CONTACT_FIX = {
+    "tip": "Set options.contact = \"unilateral\": the lips then touch and carry the pressure; or check the sign "
+           "of the load",
+    "front": "Model the contact (options.contact = \"unilateral\", when available for 3D parts: the lips then touch "
+             "and carry the pressure), or check the sign of the load",
+}
+
+
+def _negative_k(rows: list[dict], end: str) -> str:
+    """'; K_I = ... at ...' for the points of a crack with K_I < 0: each of
+    them when there are at most two, else their count and the lowest."""
+    neg = sorted((r for r in rows if r["K_I"] < 0.0), key=lambda r: r["K_I"])
+    if not neg:
+        return ""
+
+    def where(r):
+        return f"({', '.join(f'{v:.6g}' for v in r['position'])})"
+    if len(neg) <= 2:
+        return "; " + "; ".join(f"K_I = {r['K_I']:.4g} at the {end} {where(r)}" for r in neg)
+    return (f"; K_I < 0 at {len(neg)} of the {len(rows)} {end} points, down to {neg[0]['K_I']:.4g} at "
+            f"{where(neg[0])}")
 
 
 def no_load(solution) -> list[tuple[str, str]]:

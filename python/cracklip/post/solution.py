@@ -24,6 +24,7 @@ from ..fracture.sif_3d import compute_front_sifs
 from ..model.checks import ModelWarning
 from ..model.model import XfemModel
 from ..scene.material import strain, stress
+from ..scene.mesh_estimate import release_memory
 
 #: Cells per chunk of the whole-mesh field loops (bounded memory at 1e6 cells).
 CHUNK = 200_000
@@ -211,7 +212,7 @@ class Solution:
         = [[u]].t accumulated over the load path, state (n,) "open",
         "stick" or "slip"."""
         if not self.contact:
-            raise InputError("this solution has no contact (Options.contact is 'none')")
+            raise InputError("this solution has no contact (options.contact = 'none')")
         smp = self.lip_samples(crack, points_per_segment)
         return {k: smp[k] for k in ("x", "s", "pressure", "gap", "weight", "shear", "slip", "state")}
 
@@ -233,14 +234,22 @@ class Solution:
         (default: the stiffness's)."""
         return self.model.crack_type.field_points(self.model, self.u, cells, degree)
 
-    def enriched_field_points(self) -> dict[str, np.ndarray] | None:
-        """field_points() on the enriched cells, computed once (the strain
-        energy and results.json's quadrature counts both need them; None
-        without enriched cells)."""
-        if not hasattr(self, "_enriched_points"):
-            enriched = np.asarray(self.model.layout.cells, dtype=np.int32)
-            self._enriched_points = self.field_points(enriched) if enriched.size else None
-        return self._enriched_points
+    def enriched_quadrature(self) -> tuple[float, np.ndarray]:
+        """(strain energy of the enriched cells, quadrature points per cell
+        (num_cells,)) on the stiffness's rules, computed once, a chunk of
+        enriched cells at a time (enriched_chunks: the points of all of them
+        at once, with their gradients, took 0.46 GB at 6e4 dofs in 3D); the
+        strain energy and results.json's quadrature counts both need them."""
+        if not hasattr(self, "_enriched_quadrature"):
+            m = self.model
+            counts = np.zeros(m.cells.shape[0], dtype=np.int64)
+            energy = 0.0
+            for chunk in enriched_chunks(m):
+                f = self.field_points(chunk)
+                counts += np.bincount(f["cell"], minlength=len(counts))
+                energy += _energy(f, m.scene.material)
+            self._enriched_quadrature = (energy, counts)
+        return self._enriched_quadrature
 
     def _plain_chunks(self) -> list[np.ndarray]:
         """The cells without enriched nodes, in chunks of at most CHUNK."""
@@ -252,17 +261,10 @@ class Solution:
 
     def strain_energy(self) -> float:
         """1/2 int sigma : eps over the domain (the stiffness quadrature; the
-        enriched cells' points are enriched_field_points(), shared with
+        enriched cells' part is enriched_quadrature()'s, shared with
         results.json's quadrature counts)."""
-        m = self.model
-        parts = [self.enriched_field_points()] + [self.field_points(c) for c in self._plain_chunks()]
-        energy = 0.0
-        for f in parts:
-            if f is not None:
-                eps = strain(f["grad_u"])
-                energy += float(0.5 * np.sum(f["weight"] * np.einsum("nij,nij->n", stress(eps, m.scene.material),
-                                                                     eps)))
-        return energy
+        mat = self.model.scene.material
+        return self.enriched_quadrature()[0] + sum(_energy(self.field_points(c), mat) for c in self._plain_chunks())
 
     def energy_error(self, exact_gradient: typing.Callable[[np.ndarray, np.ndarray], np.ndarray],
                      degree: int | None = None) -> tuple[float, float]:
@@ -319,6 +321,7 @@ class Solution:
                 if ring is not None:
                     raise InputError("a SIF ring (options.sif_ring) is a 2D setting: 3D fronts take sif_radius")
                 self._sif_cache[key] = compute_front_sifs(self, radius, cracks)
+                release_memory()  # the domains' quadrature points are gone
             else:
                 self._sif_cache[key] = compute_sifs(self, radius, cracks, ring)
         rows = [dict(r) for r in self._sif_cache[key][0]]
@@ -363,6 +366,44 @@ class Solution:
         n = self.model.layout.num_std_nodes
         d = self.model.gdim
         return self.u[: d * n].reshape(n, d)
+
+
+#: Quadrature points per chunk of the enriched cells' passes (about: the
+#: chunks are sized by POINTS_GUESS).
+ENRICHED_CHUNK_POINTS = 200_000
+
+#: The points a cell is taken to hold when the chunks are sized: the cells
+#: holding a tip or the front (3D: 900-2700 measured on the penny crack),
+#: the other crossed cells (50-220), any other enriched cell (12-36).
+POINTS_GUESS = {"end": 2000, "crossed": 200, "other": 40}
+
+
+def enriched_chunks(model) -> list[np.ndarray]:
+    """The model's enriched cells in chunks of about ENRICHED_CHUNK_POINTS
+    quadrature points each (by POINTS_GUESS of each cell's class), so that
+    a pass over their points (with gradients: 150 bytes a point) holds one
+    chunk at a time."""
+    cells = np.asarray(model.layout.cells, dtype=np.int32)
+    if not cells.size:
+        return []
+    kind = model.crack_type
+    guess = np.full(cells.size, POINTS_GUESS["other"], dtype=np.int64)
+    for g in model.geometries:
+        cls = np.asarray(g.cell_class)[cells]
+        guess = np.maximum(guess, np.where(np.isin(cls, kind.CROSSED), POINTS_GUESS["crossed"], 0))
+        guess = np.maximum(guess, np.where(cls == kind.CELL_CLASSES.get("tip", kind.CELL_CLASSES.get("front")),
+                                           POINTS_GUESS["end"], 0))
+    bounds = np.searchsorted(np.cumsum(guess), np.arange(ENRICHED_CHUNK_POINTS, int(guess.sum()),
+                                                         ENRICHED_CHUNK_POINTS))
+    return [c for c in np.split(cells, np.unique(bounds)) if c.size]
+
+
+def _energy(f: dict, material) -> float:
+    """1/2 sum w sigma : eps over field points (Solution.field_points)."""
+    if not len(f["weight"]):
+        return 0.0
+    eps = strain(f["grad_u"])
+    return float(0.5 * np.sum(f["weight"] * np.einsum("nij,nij->n", stress(eps, material), eps)))
 
 
 def create_solution(model, u: np.ndarray, timings: dict, *args, **kwargs) -> Solution:

@@ -209,9 +209,9 @@ def _volumes(gmsh) -> list[int]:
     return sorted(set(physical)) if physical else [v for _, v in gmsh.model.getEntities(3)]
 
 
-def _create_3d(gmsh, path: pathlib.Path, h: float, fronts) -> MeshData:
+def _create_3d(gmsh, path: pathlib.Path, h: float, fronts, memory_limit: float | None = None) -> MeshData:
     """Tetrahedra of a 3D part (module doc); gmsh holds the opened file."""
-    from .mesh_3d import _size_fields, expected_cells
+    from .mesh_3d import _size_fields, estimate_size
     volumes = _volumes(gmsh)
     lo_x, lo_y, lo_z, hi_x, hi_y, hi_z = gmsh.model.getBoundingBox(-1, -1)
     scale = max(hi_x - lo_x, hi_y - lo_y, hi_z - lo_z)
@@ -223,10 +223,8 @@ def _create_3d(gmsh, path: pathlib.Path, h: float, fronts) -> MeshData:
         for s in surfaces:
             gmsh.model.addPhysicalGroup(2, [s], s)
             gmsh.model.setPhysicalName(2, s, f"surface {s}")
-    volume = sum(gmsh.model.occ.getMass(3, v) for v in volumes) if gmsh.model.occ.getEntities(3) else None
-    if volume is not None:
-        logger.info("%s: about %.3g tetrahedra at h = %g before the front refinement", path.name,
-                    expected_cells(volume, h), h)
+    gmsh.model.mesh.clear()
+    est = estimate_size(gmsh, h, fronts, memory_limit, f"{path.name}")
     gmsh.model.mesh.clear()
     gmsh.option.setNumber("Mesh.ElementOrder", 1)
     gmsh.option.setNumber("Mesh.RecombineAll", 0)
@@ -237,6 +235,7 @@ def _create_3d(gmsh, path: pathlib.Path, h: float, fronts) -> MeshData:
     gmsh.model.mesh.generate(3)
     md = to_dolfinx(gmsh, h, volumes, dim=3, fronts=fronts)
     md.source = "geometry"
+    md.estimate = est
     return md
 
 
@@ -262,7 +261,8 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
                          embed_points: typing.Sequence[tuple[float, float]] = (),
                          levels: typing.Sequence[typing.Sequence[float]] = (),
                          tips: typing.Sequence[tuple[float, float]] = (), tip_h: float = 0.0,
-                         tip_radius: float = 0.0, fronts: typing.Sequence = ()) -> MeshData:
+                         tip_radius: float = 0.0, fronts: typing.Sequence = (),
+                         memory_limit: float | None = None) -> MeshData:
     """Triangles of size h (with the refinements and levels of
     cracklip.scene.size_field) of the part a .geo, STEP or BREP file
     describes; embed_points become mesh nodes; each of `tips` inside the
@@ -272,7 +272,9 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
     A geometry with volumes is meshed in tetrahedra instead, refined by
     `fronts` (mesh_3d.FrontRefinement items, e.g. mesh_3d.crack_refinements
     of the cracks); refine, levels, tips and embed_points are 2D settings
-    and must be empty then."""
+    and must be empty then; a 3D mesh whose run is estimated to need more
+    than memory_limit bytes is refused before meshing (ModelSizeError;
+    None: no limit)."""
     path = pathlib.Path(path)
     if not path.is_file():
         raise MeshError(f"geometry file {path} does not exist")
@@ -288,7 +290,7 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
             raise MeshError(f"{path} is a 3D part: refine it around its cracks' fronts (fronts; in a scene file "
                             "mesh.tip_h, mesh.crack_h), not with 2D refinement points or tips")
         with _gmsh_errors(gmsh, f"{path}: gmsh could not mesh the 3D geometry"):
-            return _create_3d(gmsh, path, h, fronts)
+            return _create_3d(gmsh, path, h, fronts, memory_limit)
     with _gmsh_errors(gmsh, f"{path}: gmsh could not mesh the geometry"):
         surfaces = _part_surfaces(gmsh, path)
         outlines = [surface_outline(gmsh, s) for s in surfaces]

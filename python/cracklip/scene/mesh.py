@@ -55,6 +55,8 @@ class MeshData:
             STEP or BREP meshed by cracklip) or "file" (a .msh).
         front_refinements: in 3D, the refinements around crack fronts asked
             for (mesh_3d.FrontRefinement).
+        estimate: in 3D, the size estimated before meshing (a
+            mesh_estimate.MeshEstimate; None for a mesh read from a file).
     """
     mesh: dolfinx.mesh.Mesh
     facet_tags: typing.Any
@@ -69,6 +71,7 @@ class MeshData:
                                                                                 compare=False)
     source: str = "generated"
     front_refinements: list = dataclasses.field(default_factory=list)
+    estimate: typing.Any = None
 
     @property
     def gdim(self) -> int:

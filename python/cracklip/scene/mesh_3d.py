@@ -18,14 +18,18 @@ closer); gmsh's Distance field measures the distance to them.
 from __future__ import annotations
 
 import dataclasses
+import logging
 import pathlib
 import typing
 
 import numpy as np
 
-from ..errors import MeshError
+from ..errors import MeshError, ModelSizeError
 from .mesh import MeshData, _gmsh, to_dolfinx
+from .mesh_estimate import CURVATURE_ELEMENTS, MeshEstimate, check_estimate, estimate
 from .size_field import refinement_size
+
+logger = logging.getLogger(__name__)
 
 #: Tetrahedra per unit volume of gmsh's mesh of size h: about 6 / h^3 (each
 #: node ~1 / (0.95 h^3)); used to say how big a mesh will be before making it.
@@ -42,10 +46,14 @@ class FrontRefinement:
         h_front: element size at the front.
         radius: the distance over which the size grows from h_front to the
             mesh size (lengthened if the growth would exceed MAX_GROWTH).
+        kind: what the points sample: "curve" (a front, a segment),
+            "surface" (a crack's surface) or "points" (isolated points);
+            the size estimate before meshing models each by its shape.
     """
     points: np.ndarray
     h_front: float
     radius: float
+    kind: str = "curve"
 
     def __post_init__(self):
         pts = np.asarray(self.points, dtype=float).reshape(-1, 3)
@@ -80,7 +88,7 @@ def crack_refinements(cracks, h_front: float, h: float, growth: float = GROWTH,
         out.append(FrontRefinement(crack.front_points(front_sampling(h_front)), h_front,
                                    max(h - h_front, 0.0) / growth))
         if hs < h:
-            out.append(FrontRefinement(crack.surface_points(0.5 * hs), hs, (h - hs) / growth))
+            out.append(FrontRefinement(crack.surface_points(0.5 * hs), hs, (h - hs) / growth, "surface"))
     return out
 
 
@@ -120,24 +128,71 @@ def _size_fields(gmsh, h: float, fronts: typing.Sequence[FrontRefinement], kerne
     gmsh.model.mesh.field.setAsBackgroundMesh(fmin)
 
 
-def _finish(gmsh, groups: dict[str, list[int]], h: float, fronts) -> MeshData:
+#: The coarse mesh of a size estimate has at most about this many tetrahedra
+#: (coarser than h for a part of many elements).
+COARSE_CELLS = 50_000
+
+
+def estimate_size(gmsh, h: float, fronts: typing.Sequence[FrontRefinement], memory_limit: float | None,
+                  what: str) -> MeshEstimate:
+    """Estimate the mesh gmsh's current model will get at size h with the
+    fronts' refinements, before making it (cracklip.scene.mesh_estimate: a
+    coarse mesh at h, or coarser for a part of more than COARSE_CELLS
+    elements, following curved faces; cleared afterwards); raise
+    ModelSizeError if its run would need more than memory_limit bytes."""
+    x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(-1, -1)
+    volume = (x1 - x0) * (y1 - y0) * (z1 - z0)
+    coarse = max(h, (TETS_PER_VOLUME_H3 * volume / COARSE_CELLS) ** (1.0 / 3.0))
+    gmsh.option.setNumber("Mesh.MeshSizeMax", coarse)
+    gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
+    gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", CURVATURE_ELEMENTS)
+    gmsh.option.setNumber("Mesh.Algorithm3D", 1)
+    gmsh.model.mesh.generate(3)
+    tags, coords, _ = gmsh.model.mesh.getNodes()
+    xyz = np.zeros((int(tags.max()) + 1 if len(tags) else 0, 3))
+    xyz[tags.astype(np.int64)] = coords.reshape(-1, 3)
+    tets = []
+    for etype, _, enodes in zip(*gmsh.model.mesh.getElements(3)):
+        if etype == 4:  # 4-node tetrahedra
+            tets.append(xyz[np.asarray(enodes, dtype=np.int64).reshape(-1, 4)])
+    gmsh.model.mesh.clear()
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+    est = estimate(np.concatenate(tets) if tets else np.zeros((0, 4, 3)), h, fronts)
+    logger.info("%s: %s expected (estimated before meshing)", what, est.describe())
+    try:
+        check_estimate(est, memory_limit, what)
+    except ModelSizeError:
+        gmsh.model.remove()
+        raise
+    return est
+
+
+def _finish(gmsh, groups: dict[str, list[int]], h: float, fronts, memory_limit: float | None = None,
+            what: str = "the part") -> MeshData:
     """Name the face groups as physical surfaces 1, 2, ... (in order), the
-    volumes as physical volume 1, mesh in 3D with the front size fields,
-    convert."""
+    volumes as physical volume 1, estimate the mesh (refused above
+    memory_limit bytes), mesh in 3D with the front size fields, convert."""
     gmsh.model.addPhysicalGroup(3, [v for _, v in gmsh.model.getEntities(3)], 1)
     for tag, (name, surfaces) in enumerate(groups.items(), start=1):
         gmsh.model.addPhysicalGroup(2, surfaces, tag)
         gmsh.model.setPhysicalName(2, tag, name)
+    est = estimate_size(gmsh, h, fronts, memory_limit, what)
     _size_fields(gmsh, h, fronts)
     gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay: robust, deterministic in serial
     gmsh.model.mesh.generate(3)
-    return to_dolfinx(gmsh, h, dim=3, fronts=fronts)
+    md = to_dolfinx(gmsh, h, dim=3, fronts=fronts)
+    md.estimate = est
+    return md
 
 
 def create_box(x0: float, y0: float, z0: float, x1: float, y1: float, z1: float, h: float,
-               fronts: typing.Sequence[FrontRefinement] = ()) -> MeshData:
+               fronts: typing.Sequence[FrontRefinement] = (), memory_limit: float | None = None) -> MeshData:
     """The box [x0, x1] x [y0, y1] x [z0, z1] in tetrahedra of size h (h_front
-    around the fronts). Tags: xmin, xmax, ymin, ymax, zmin, zmax."""
+    around the fronts). Tags: xmin, xmax, ymin, ymax, zmin, zmax.
+    memory_limit: refuse (ModelSizeError) a mesh whose run is estimated to
+    need more bytes (None: no limit)."""
     lo, hi = np.array([x0, y0, z0], dtype=float), np.array([x1, y1, z1], dtype=float)
     if not np.all(hi > lo) or not np.all(np.isfinite(lo)) or not np.all(np.isfinite(hi)):
         raise MeshError(f"empty or infinite box [{x0}, {x1}] x [{y0}, {y1}] x [{z0}, {z1}]")
@@ -156,14 +211,16 @@ def create_box(x0: float, y0: float, z0: float, x1: float, y1: float, z1: float,
                 groups[f"{name}min"].append(s)
             elif abs(c[axis] - hi[axis]) < eps:
                 groups[f"{name}max"].append(s)
-    return _finish(gmsh, groups, h, fronts)
+    return _finish(gmsh, groups, h, fronts, memory_limit, "the box")
 
 
 def create_cylinder(center: typing.Sequence[float], axis: typing.Sequence[float], radius: float, length: float,
-                    h: float, fronts: typing.Sequence[FrontRefinement] = ()) -> MeshData:
+                    h: float, fronts: typing.Sequence[FrontRefinement] = (),
+                    memory_limit: float | None = None) -> MeshData:
     """A solid cylinder: its bottom face centred at `center`, extruded by
     `length` along the unit vector `axis`, of the given radius; tetrahedra of
-    size h (h_front around the fronts). Tags: bottom, top, side."""
+    size h (h_front around the fronts). Tags: bottom, top, side.
+    memory_limit: as create_box's."""
     c = np.asarray(center, dtype=float).reshape(3)
     a = np.asarray(axis, dtype=float).reshape(3)
     if not (np.all(np.isfinite(c)) and np.linalg.norm(a) > 0 and radius > 0 and length > 0):
@@ -183,7 +240,7 @@ def create_cylinder(center: typing.Sequence[float], axis: typing.Sequence[float]
         m = np.array(gmsh.model.occ.getCenterOfMass(2, s))
         t = float(np.dot(m - c, a))
         groups["bottom" if abs(t) < eps else "top" if abs(t - length) < eps else "side"].append(s)
-    return _finish(gmsh, groups, h, fronts)
+    return _finish(gmsh, groups, h, fronts, memory_limit, "the cylinder")
 
 
 def read_msh_3d(path: str | pathlib.Path) -> MeshData:

@@ -146,6 +146,9 @@ def solve_checked(A: PETSc.Mat, b: PETSc.Vec, residual_tol: float = 1e-8,
             if factor_call(ksp, "getMumpsInfog", 1) in (-8, -9) and relax < 400:
                 ksp.destroy()  # workspace too small: retry with more
                 continue
+            oom = out_of_memory(ksp, error, what, M.getSize()[0])
+            if oom is not None:
+                raise oom
             if error is not None:
                 raise SolverError(f"MUMPS factorisation of the {what} failed ({error}); the matrix is "
                                   "probably singular: check that every piece of the domain (a crack may "
@@ -183,6 +186,39 @@ def solve_checked(A: PETSc.Mat, b: PETSc.Vec, residual_tol: float = 1e-8,
         raise SolverError(f"the solve of the {what} is inaccurate: relative residual {rel:.3g} "
                           f"> {residual_tol:g}; the matrix is singular or very ill-conditioned")
     return x
+
+
+#: MUMPS' INFOG(1) codes of a factorisation out of memory: -8, -9 (a
+#: workspace too small even after the retries with a larger ICNTL(14)),
+#: -13 (an allocation failed: the machine's memory is exhausted), -19
+#: (ICNTL(23) too small), -17 / -20 (communication buffers).
+MUMPS_OUT_OF_MEMORY = (-8, -9, -13, -17, -19, -20)
+
+#: PETSc's error code for a failed allocation (PETSC_ERR_MEM).
+PETSC_ERR_MEM = 55
+
+
+def out_of_memory(ksp: PETSc.KSP, error: Exception | None, what: str, size: int) -> SolverError | None:
+    """The SolverError to raise when a MUMPS factorisation ran out of memory
+    (MUMPS_OUT_OF_MEMORY, or PETSc's allocation error), naming the size of
+    the system and MUMPS' own estimate of what it needed, with the fix;
+    None otherwise."""
+    info = factor_call(ksp, "getMumpsInfog", 1)
+    petsc_mem = isinstance(error, PETSc.Error) and getattr(error, "ierr", None) == PETSC_ERR_MEM
+    if info not in MUMPS_OUT_OF_MEMORY and not petsc_mem:
+        return None
+    detail = f"INFOG(1) = {info}" if info in MUMPS_OUT_OF_MEMORY else "PETSc could not allocate memory"
+    if info == -13:
+        detail += f": an allocation failed, INFOG(2) = {factor_call(ksp, 'getMumpsInfog', 2)}"
+    needed = factor_call(ksp, "getMumpsInfog", 17)  # MB the factorisation was estimated to need (all processes)
+    from ..scene.mesh_estimate import available_memory
+    free = available_memory()
+    return SolverError(
+        f"MUMPS ran out of memory factoring the {what} ({size} unknowns; {detail}; it estimated "
+        f"{needed / 1e3:.3g} GB for the factors, the machine has {free / 1e9:.3g} GB available now): the model is "
+        "too large for a direct solve on this machine. Coarsen the mesh (mesh.h, mesh.tip_h, mesh.crack_h: the "
+        "factors of a 3D mesh grow faster than its dofs), use options.solver = \"iterative\" (AMG, a few KB per "
+        "dof), or run where there is more memory")
 
 
 def estimate_inverse_1norm(ksp: PETSc.KSP, A: PETSc.Mat, max_iter: int = 5) -> float:

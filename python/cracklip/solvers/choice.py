@@ -51,20 +51,33 @@ AUTO_DIRECT_MAX_DOFS = 2_000_000
 AUTO_MAX_ENRICHED_FRACTION = 0.05
 
 
-def choose_solver(options: "Options", num_dofs: int, num_enriched_dofs: int = 0) -> str:
+#: The same bound for solids. The factors of a 3D mesh fill far more than a
+#: planar one's (MUMPS: 10 KB per dof at 3.4e4 dofs Heaviside-only, 13 KB at
+#: 7.6e4 with front functions), so the iterative path, whose crack band is
+#: a thin layer, wins on memory at any enrichment and on time up to about
+#: 30 %: penny crack, 2 cores, direct / iterative solve and peak memory:
+#: 5.9e4 dofs, 21 % enriched 17.6 / 12.6 s, 0.96 / 0.64 GB; 7.6e4, 21 %:
+#: 22.8 / 17.6 s, 1.24 / 0.77 GB; 6.9e4, 33 %: 20.6 / 23.1 s, 1.19 / 0.98 GB;
+#: 7.6e4, 39 %: 24.7 / 37.1 s, 1.3 / 1.24 GB (docs/speed.md).
+AUTO_MAX_ENRICHED_FRACTION_3D = 0.3
+
+
+def choose_solver(options: "Options", num_dofs: int, num_enriched_dofs: int = 0, gdim: int = 2) -> str:
     """The path Options.solver names for a system of num_dofs stiffness
-    dofs, num_enriched_dofs of them enriched: "direct" or "iterative"
-    ("auto": iterative from AUTO_DIRECT_MAX_DOFS on, and from
-    AUTO_ITERATIVE_DOFS on while the enriched fraction lies between
-    AUTO_MIN_ENRICHED_FRACTION and AUTO_MAX_ENRICHED_FRACTION; direct
-    otherwise, and always with rescale = "nodal", a direct-solver option)."""
+    dofs, num_enriched_dofs of them enriched, of a part of dimension gdim:
+    "direct" or "iterative" ("auto": iterative from AUTO_DIRECT_MAX_DOFS
+    on, and from AUTO_ITERATIVE_DOFS on while the enriched fraction lies
+    between AUTO_MIN_ENRICHED_FRACTION and AUTO_MAX_ENRICHED_FRACTION
+    (AUTO_MAX_ENRICHED_FRACTION_3D for a solid); direct otherwise, and
+    always with rescale = "nodal", a direct-solver option)."""
     if options.solver == "auto":
         if options.rescale == "nodal":
             return "direct"
         if num_dofs >= AUTO_DIRECT_MAX_DOFS:
             return "iterative"
         fraction = num_enriched_dofs / max(num_dofs, 1)
-        band = AUTO_MIN_ENRICHED_FRACTION <= fraction <= AUTO_MAX_ENRICHED_FRACTION
+        top = AUTO_MAX_ENRICHED_FRACTION_3D if gdim == 3 else AUTO_MAX_ENRICHED_FRACTION
+        band = AUTO_MIN_ENRICHED_FRACTION <= fraction <= top
         return "iterative" if num_dofs >= AUTO_ITERATIVE_DOFS and band else "direct"
     if options.solver == "iterative" and options.rescale == "nodal":
         raise InputError("rescale = 'nodal' conditions the matrix for the direct solver; the iterative "
@@ -98,7 +111,7 @@ def to_solver_basis(model: "XfemModel", linear: LinearSolver, A: PETSc.Mat, rhs:
 
 def create_linear_solver(model: "XfemModel") -> LinearSolver:
     """The solver path for a model (Options.solver, choose_solver)."""
-    which = choose_solver(model.scene.options, model.num_dofs, model.gdim * model.layout.num_enriched)
+    which = choose_solver(model.scene.options, model.num_dofs, model.gdim * model.layout.num_enriched, model.gdim)
     if which == "direct":
         return DirectSolver()
     return IterativeSolver(model, fallback=model.scene.options.solver == "auto")

@@ -131,16 +131,11 @@ def transform_matrix(basis: PhantomBasis, A: PETSc.Mat) -> PETSc.Mat:
         A_t = A.PtAP(Tp)
         Tp.destroy()
         return A_t
-    # One MatSetValues call: row r gets its entries, padded with column -1
-    # (ignored by PETSc) to the longest row.
-    lens = np.diff(delta.indptr)
-    width = int(lens.max(initial=0))
-    cols = np.full((len(order), width), -1, dtype=PETSc.IntType)
-    vals = np.zeros((len(order), width))
-    slot = np.arange(delta.nnz) - np.repeat(delta.indptr[:-1], lens)
-    row_of = np.repeat(np.arange(len(order)), lens)
-    cols[row_of, slot] = delta.indices
-    vals[row_of, slot] = delta.data
-    A.setValuesRCV(order.astype(PETSc.IntType).reshape(-1, 1), cols, vals, addv=PETSc.InsertMode.ADD_VALUES)
+    # One call with the CSR rows of delta, row k going to row order[k] (no
+    # padding to the longest row: in 3D that dense block took 0.15 GB at
+    # 8e4 dofs).
+    del S, ST, new, old, ones
+    A.setValuesIJV(delta.indptr.astype(PETSc.IntType), delta.indices.astype(PETSc.IntType), delta.data,
+                   addv=PETSc.InsertMode.ADD_VALUES, rowmap=order.astype(PETSc.IntType))
     A.assemble()
     return A

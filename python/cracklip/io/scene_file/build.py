@@ -54,8 +54,12 @@ def load_scene_file(path: str | pathlib.Path, overrides: typing.Sequence[str] = 
     return build_scene(doc, base_dir=path.parent, path=path)
 
 
-def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Path | None = None) -> SceneFile:
-    """Validate a scene document and build its mesh and Scene."""
+def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Path | None = None,
+                memory_limit: float | None = None) -> SceneFile:
+    """Validate a scene document and build its mesh and Scene. memory_limit:
+    a solid whose run is estimated to need more bytes is refused before
+    meshing (ModelSizeError; None: no limit; the command line gives the
+    machine's available memory unless --force)."""
     s = parse_settings(doc)
     units = build_units(s)
     material = build_material(s)
@@ -69,7 +73,7 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
     t0 = time.perf_counter()
     points = [bc["point"] for bc in s["dirichlet"] if "point" in bc] + \
         [pf["point"] for pf in s["loads"]["point_forces"]]
-    mesh = build_mesh(s["mesh"], cracks, base_dir, points, dim)
+    mesh = build_mesh(s["mesh"], cracks, base_dir, points, dim, memory_limit)
     t_mesh = time.perf_counter() - t0
     gdim = mesh.gdim
     if dim is None:

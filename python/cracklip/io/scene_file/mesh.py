@@ -119,17 +119,20 @@ def _holes(m: dict) -> list[tuple[float, float, float]]:
     return []
 
 
-def build_mesh(m: dict, cracks: list, base_dir: pathlib.Path, points=(), dim: int | None = 2) -> MeshData:
+def build_mesh(m: dict, cracks: list, base_dir: pathlib.Path, points=(), dim: int | None = 2,
+               memory_limit: float | None = None) -> MeshData:
     """The mesh of the [mesh] settings; `points` (point supports and forces)
     inside or on a generated rectangle or plate become mesh nodes. dim: the
     scene's dimension if known (3: mesh_3d; None: a geometry
-    or .msh file without cracks, whose own dimension decides)."""
+    or .msh file without cracks, whose own dimension decides).
+    memory_limit: a solid whose run is estimated to need more bytes is
+    refused before meshing (ModelSizeError; None: no limit)."""
     kind = m["kind"]
     if dim is None and kind == "file":
         f = pathlib.Path(m["path"])
         dim = mesh_file_dimension(f if f.is_absolute() else base_dir / f)
     if dim == 3:
-        return mesh_3d(m, cracks, base_dir)
+        return mesh_3d(m, cracks, base_dir, memory_limit)
     refine = [(r["point"][0], r["point"][1], r["h"], r["radius"]) if "point" in r else
               (r["segment"][0][0], r["segment"][0][1], r["h"], r["radius"], r["segment"][1][0], r["segment"][1][1])
               for r in m["refine"]]
@@ -225,14 +228,15 @@ def _refine_items(m: dict, h: float) -> list:
             a, b = (np.asarray(p, dtype=float) for p in r["segment"])
             k = max(1, int(np.ceil(np.linalg.norm(b - a) / (0.5 * r["h"]))))
             pts = a + np.linspace(0.0, 1.0, k + 1)[:, None] * (b - a)
-        out.append(FrontRefinement(pts, min(r["h"], h), r["radius"]))
+        out.append(FrontRefinement(pts, min(r["h"], h), r["radius"], "points" if "point" in r else "curve"))
     return out
 
 
-def mesh_3d(m: dict, cracks: list, base_dir: pathlib.Path) -> MeshData:
+def mesh_3d(m: dict, cracks: list, base_dir: pathlib.Path, memory_limit: float | None = None) -> MeshData:
     """The tetrahedral mesh of [mesh] settings: box, cylinder, a solid
     geometry file (all refined to tip_h along the cracks' fronts, crack_h
-    over their surfaces, and the refine items), or a .msh file as it is."""
+    over their surfaces, and the refine items; estimated first, refused
+    above memory_limit bytes), or a .msh file as it is."""
     from ...scene import mesh_3d as m3
     kind = m["kind"]
     if kind == "file":
@@ -248,16 +252,17 @@ def mesh_3d(m: dict, cracks: list, base_dir: pathlib.Path) -> MeshData:
         fronts = m3.crack_refinements(cracks, m["tip_h"], h, growth=max(growth, 1e-12),
                                       h_surface=m["crack_h"] if m.get("crack_h", 0.0) > 0.0 else h)
     elif m.get("crack_h", 0.0) > 0.0:
-        fronts = [m3.FrontRefinement(c.surface_points(0.5 * m["crack_h"]), m["crack_h"], m["tip_radius"])
+        fronts = [m3.FrontRefinement(c.surface_points(0.5 * m["crack_h"]), m["crack_h"], m["tip_radius"], "surface")
                   for c in cracks]
     fronts += _refine_items(m, h)
     if kind == "box":
-        return m3.create_box(*m["box"], h, fronts=fronts)
+        return m3.create_box(*m["box"], h, fronts=fronts, memory_limit=memory_limit)
     if kind == "cylinder":
-        return m3.create_cylinder(m["center"], m["axis"], m["radius"], m["length"], h, fronts=fronts)
+        return m3.create_cylinder(m["center"], m["axis"], m["radius"], m["length"], h, fronts=fronts,
+                                  memory_limit=memory_limit)
     from ...scene.geometry_file import create_from_geometry
     f = pathlib.Path(m["path"])
-    return create_from_geometry(f if f.is_absolute() else base_dir / f, h, fronts=fronts)
+    return create_from_geometry(f if f.is_absolute() else base_dir / f, h, fronts=fronts, memory_limit=memory_limit)
 
 
 def mesh_file_dimension(path: pathlib.Path) -> int:

@@ -59,8 +59,13 @@ class CrackModel(abc.ABC):
     CELL_CLASSES: typing.ClassVar[dict[str, int]]
     #: Codes of the classes whose cells the crack splits into two sides.
     CROSSED: typing.ClassVar[tuple[int, ...]]
+    #: Codes of the crossed classes whose cells the crack splits whole (not
+    #: the cell holding a tip or the front, whose sides meet around it).
+    SPLIT: typing.ClassVar[tuple[int, ...]]
     #: What the crack ends at: "tip" (2D) or "front" (3D).
     END: typing.ClassVar[str]
+    #: The measure of the crack, as messages name it: "length" (a curve) or "area" (a surface).
+    EXTENT: typing.ClassVar[str]
     #: The vertex pairs of a cell's edges.
     EDGES: typing.ClassVar[tuple[tuple[int, int], ...]]
     #: The stress components of the Voigt columns.
@@ -92,6 +97,11 @@ class CrackModel(abc.ABC):
     def cell_class(self) -> np.ndarray:
         """Class of every cell (num_cells,), codes of CELL_CLASSES."""
         return np.asarray(self.geometry.cell_class)
+
+    @abc.abstractmethod
+    def ends_inside(self) -> bool:
+        """Whether the crack ends inside the part (a tip or a front there);
+        a crack that does not can cut the part into pieces."""
 
     def crossed(self) -> np.ndarray:
         """Mask (num_cells,) of the cells this crack splits into two sides."""

@@ -33,7 +33,9 @@ class CurveCrackModel(CrackModel):
     #: cpp/geometry/crack_geometry_2d.h CellClass.
     CELL_CLASSES = {"plain": 0, "cut": 1, "edge": 2, "tip": 3, "extension": 4}
     CROSSED = (1, 2)
+    SPLIT = (1, 2)
     END = "tip"
+    EXTENT = "length"
     EDGES = ((0, 1), (1, 2), (2, 0))
     #: Triangles' quadrature options: the tip rules.
     QUADRATURE = Options.quadrature_options
@@ -55,6 +57,9 @@ class CurveCrackModel(CrackModel):
         out = {k: v[o] for k, v in pts.items()}
         out["s"] = s[o]
         return out
+
+    def ends_inside(self) -> bool:
+        return any(self.tips)
 
     @staticmethod
     def slip(jump: np.ndarray, normal: np.ndarray) -> np.ndarray:

@@ -65,7 +65,9 @@ class SurfaceCrackModel(CrackModel):
     #: cpp/geometry/crack_geometry_3d.h CellClass3D.
     CELL_CLASSES = {"plain": 0, "cut": 1, "face": 2, "front": 3, "extension": 4}
     CROSSED = (1, 2, 3)
+    SPLIT = (1, 2)
     END = "front"
+    EXTENT = "area"
     EDGES = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
     #: Tetrahedra's quadrature options: the front rules.
     QUADRATURE = Options.quadrature_options_3d
@@ -79,6 +81,9 @@ class SurfaceCrackModel(CrackModel):
         facets touching it; a point-collapsed facet may give negative
         weights), with front_vertices (n,)."""
         return dict(_cracklip.compute_lip_points(model.x, model.cells, self.geometry, int(points)))
+
+    def ends_inside(self) -> bool:
+        return len(self.geometry.front["x"]) > 0
 
     @staticmethod
     def slip(jump: np.ndarray, normal: np.ndarray) -> np.ndarray:
@@ -105,7 +110,8 @@ class SurfaceCrackModel(CrackModel):
 
     @classmethod
     def check_model(cls, model) -> list:
-        from ..checks import check_fronts
+        from ..checks import check_fronts, check_pieces
+        check_pieces(model)
         return check_fronts(model)
 
     # -- the kernels of tetrahedra ----------------------------------------------
