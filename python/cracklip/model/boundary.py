@@ -13,6 +13,7 @@ import dolfinx.mesh
 
 from ..errors import InputError
 from ..scene.mesh import MeshData
+from ..scene.processes import total
 
 
 def boundary_segments(mesh) -> tuple[np.ndarray, np.ndarray]:
@@ -62,7 +63,7 @@ def _tag_facets(mesh: MeshData, where: str | int) -> tuple[np.ndarray, np.ndarra
     """The facets of a tag: vertices (n, d, d), lengths or areas (n,),
     outward unit normals (n, d) (pointing away from the facet's cell)."""
     facets = mesh.facets(where)
-    if facets.size == 0:
+    if total(facets.size, mesh.mesh.comm) == 0:  # (under mpirun a process may hold none of them)
         raise InputError(f"boundary {where!r} has no facets")
     msh = mesh.mesh
     tdim = msh.topology.dim

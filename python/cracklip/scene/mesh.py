@@ -19,6 +19,7 @@ import typing
 import numpy as np
 
 from ..errors import MeshError
+from .processes import agree, first_error
 from .size_field import (MAX_GROWTH, PLATEAU, refinement_expression, refinement_size,  # noqa: F401
                          size_expression, smallest_size)
 
@@ -93,6 +94,8 @@ class MeshData:
                                 f"{sorted(self.tags)}")
             return self.tags[where]
         values = set(np.unique(self.facet_tags.values).tolist())
+        if self.mesh.comm.size > 1:  # the tags present on any process
+            values = set().union(*self.mesh.comm.allgather(values))
         if int(where) not in values:
             raise MeshError(f"no boundary facets carry tag {where}; tags present: {sorted(values)}")
         return int(where)
@@ -167,7 +170,7 @@ _CELLS = {"triangle": (2, "area", "every triangle must have three distinct, non-
 
 
 def check_mesh(msh: dolfinx.mesh.Mesh) -> None:
-    """Raise MeshError unless msh is a serial first-order mesh of triangles
+    """Raise MeshError unless msh is a first-order mesh of triangles
     (a planar part, z = 0) or of tetrahedra (a solid), with finite, unique
     nodes and cells of non-zero area (volume)."""
     name = msh.topology.cell_type.name
@@ -175,12 +178,17 @@ def check_mesh(msh: dolfinx.mesh.Mesh) -> None:
         raise MeshError(f"cracklip needs triangles (a planar part) or tetrahedra (a solid), the mesh has {name} "
                         "cells; mesh with gmsh without recombination")
     d, measure, fix = _CELLS[name]
+    # Under mpirun each process checks its own cells and nodes (owned and
+    # ghost); all raise the first process's finding (local indices).
+    agree(first_error([lambda: _check_cells(msh, d, measure, fix)]), msh.comm)
+
+
+def _check_cells(msh: dolfinx.mesh.Mesh, d: int, measure: str, fix: str) -> None:
+    """check_mesh on this process's nodes and cells."""
     if d == 2 and msh.geometry.dim != 2 and not np.allclose(msh.geometry.x[:, 2], 0.0):
         raise MeshError("cracklip needs a planar mesh (z = 0)")
     if msh.geometry.cmap.degree != 1:
-        raise MeshError(f"cracklip needs straight (first-order) {name}s")
-    if msh.comm.size != 1:
-        raise MeshError("cracklip runs in serial; start it without mpirun")
+        raise MeshError(f"cracklip needs straight (first-order) {msh.topology.cell_type.name}s")
     x = msh.geometry.x[:, :d]
     cells = msh.geometry.dofmap.array.reshape(-1, d + 1)
     if not np.all(np.isfinite(x)):

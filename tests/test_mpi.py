@@ -1,0 +1,118 @@
+"""Every command under ``mpirun -n 2`` (issue 40): no crash, no hang, no
+traceback, one clear message.
+
+What runs on several processes today: the mesh (gmsh's cells and facet
+tags go through rank 0 into DOLFINx, which partitions them), its checks,
+and the commands that need no mesh (`life`, `check` of a life scene,
+`reference`), run by rank 0 with their files written once. The X-FEM model
+(cracks, enrichment, solvers, K) is refused with one
+``cracklip: error: ... is not available under MPI yet`` (rank 0) and exit
+status 2 on every process. Each case runs `mpirun --allow-run-as-root
+--oversubscribe -n 2 /usr/bin/python3 -m cracklip ...` with a timeout: a
+hang fails the test instead of stalling the suite.
+"""
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+
+import pytest
+from conftest import ROOT
+
+pytestmark = pytest.mark.mpi
+
+ENV = {"PYTHONPATH": str(ROOT / "python"), "PATH": "/usr/bin:/bin", "MPLBACKEND": "Agg", "HOME": "/tmp",
+       "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+SCENES = ROOT / "demos" / "scenes"
+#: Small meshes of the shipped scenes (a few seconds per process).
+SMALL_2D = ["--set", "mesh.tip_h=0.1"]
+SMALL_3D = ["--set", "mesh.h=2.0", "--set", "mesh.tip_h=0.5", "--set", "mesh.crack_h=0.5"]
+REFUSED = "is not available under MPI yet (2 processes): run it without mpirun"
+
+
+def mpirun(*args: str, timeout: float = 600, n: int = 2) -> subprocess.CompletedProcess:
+    """`python3 -m cracklip ARGS` on n processes."""
+    return python_on(n, "-m", "cracklip", *args, timeout=timeout)
+
+
+def python_on(n: int, *args: str, timeout: float = 600) -> subprocess.CompletedProcess:
+    """`/usr/bin/python3 ARGS` on n processes (mpirun)."""
+    cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-n", str(n), "/usr/bin/python3", *args]
+    return subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=timeout)
+
+
+def assert_clean(p: subprocess.CompletedProcess, status: int) -> None:
+    """Exit status `status`, no Python traceback, no signal, no MPI abort."""
+    report = f"exit {p.returncode}\nstdout:\n{p.stdout[-3000:]}\nstderr:\n{p.stderr[-3000:]}"
+    assert p.returncode == status, report
+    for bad in ("Traceback", "signal", "SEGV", "MPI_ABORT", "malloc", "exiting improperly"):
+        assert bad not in p.stdout + p.stderr, report
+
+
+def assert_refused(p: subprocess.CompletedProcess) -> None:
+    """Exit 2 with exactly one 'cracklip: error: ...' line, the not-yet-parallel message."""
+    assert_clean(p, 2)
+    errors = [line for line in p.stderr.splitlines() if line.startswith("cracklip: error:")]
+    assert len(errors) == 1, p.stderr
+    assert REFUSED in errors[0], errors[0]
+
+
+def test_mpirun_is_installed():
+    """Open MPI's mpirun comes with DOLFINx's packages (scripts/setup.sh names openmpi-bin)."""
+    assert shutil.which("mpirun", path=ENV["PATH"]) is not None
+
+
+@pytest.mark.parametrize("command", ["run", "check", "grow"])
+def test_2d_model_refused_not_crashed(command, tmp_path):
+    """The issue's reproducer crashed both processes with SEGV (every process
+    passed the whole mesh to DOLFINx); now the mesh is made and the model is
+    refused collectively."""
+    scene = {"grow": "fatigue_edge_crack.toml"}.get(command, "block_uniform_pressure.toml")
+    extra = ["--out", str(tmp_path / "out")] if command != "check" else []
+    p = mpirun(command, str(SCENES / scene), *extra)
+    assert_refused(p)
+    assert "X-FEM model" in p.stderr
+
+
+@pytest.mark.parametrize("command", ["run", "check"])
+def test_3d_model_refused_not_crashed(command, tmp_path):
+    extra = ["--out", str(tmp_path / "out")] if command == "run" else []
+    p = mpirun(command, str(SCENES / "penny_crack.toml"), *SMALL_3D, *extra)
+    assert_refused(p)
+
+
+def test_input_error_printed_once(tmp_path):
+    """An error every process finds alike (here a bad scene key, before any
+    mesh) is printed once, exit 2 on all."""
+    p = mpirun("run", str(SCENES / "pressurised_crack.toml"), *SMALL_2D, "--set", "mesh.h=-1",
+               "--out", str(tmp_path / "out"))
+    assert_clean(p, 2)
+    assert len([line for line in p.stderr.splitlines() if line.startswith("cracklip: error:")]) == 1, p.stderr
+
+
+@pytest.mark.parametrize("scene", ["life_hole_crack.toml", "life_surface_crack.toml"])
+def test_life_runs_once(scene, tmp_path):
+    """`life` needs no mesh: rank 0 runs it, the summary and the files once;
+    the same results as a serial run."""
+    out, serial = tmp_path / "mpi", tmp_path / "serial"
+    p = mpirun("life", str(SCENES / scene), "--no-png", "--out", str(out))
+    assert_clean(p, 0)
+    assert p.stdout.count("results in ") == 1, p.stdout
+    s = subprocess.run(["/usr/bin/python3", "-m", "cracklip", "life", str(SCENES / scene), "--no-png", "--out",
+                        str(serial), "-q"], cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=600)
+    assert s.returncode == 0, s.stderr
+    a, b = json.loads((out / "results.json").read_text()), json.loads((serial / "results.json").read_text())
+    for r in (a, b):  # wall-clock times
+        r.pop("timings", None), r["life"].pop("seconds", None), r["life"].pop("cycles_per_second", None)
+    assert a == b
+
+
+def test_check_life_scene_and_reference_print_once():
+    p = mpirun("check", str(SCENES / "life_hole_crack.toml"))
+    assert_clean(p, 0)
+    assert p.stdout.count(": valid") == 1, p.stdout
+    p = mpirun("reference")
+    assert_clean(p, 0)
+    assert p.stdout.count("| key | type | default | meaning |") == 1
+
