@@ -140,14 +140,16 @@ def _model_to_distributed_mesh(model, comm, surfaces, dim: int):
     """model_to_mesh on several processes (mpirun): rank 0 reads the gmsh
     model and passes every cell, node and tagged boundary element to
     DOLFINx, the other processes pass none; DOLFINx partitions the mesh and
-    sends each process its cells, and the boundary elements to the
-    processes that hold them (distribute_entity_data, as gmshio does).
+    sends each process its cells with their vertex patches
+    (scene.partition), and the boundary elements to the processes that hold
+    them (distribute_entity_data, as gmshio does).
     Every process returns the same names; an error on rank 0 is raised on
     all (scene.processes.agree)."""
     import dolfinx.cpp.io
     import dolfinx.cpp.graph
     import dolfinx.mesh
     from dolfinx.io import gmshio
+    from .partition import vertex_patch_partitioner
     from .processes import agree
     cell_type, npc, _, npf, cell_name, _, group_name = _GMSH_TYPES[dim]
     read, error = None, None
@@ -167,7 +169,8 @@ def _model_to_distributed_mesh(model, comm, surfaces, dim: int):
         names, facets, values = None, np.zeros((0, npf), dtype=np.int64), np.zeros(0, dtype=np.int32)
     names = comm.bcast(names, root=0)
     num_marked = comm.bcast(len(facets), root=0)
-    msh = dolfinx.mesh.create_mesh(comm, cells, x, gmshio.ufl_mesh(cell_type, dim))
+    msh = dolfinx.mesh.create_mesh(comm, cells, x, gmshio.ufl_mesh(cell_type, dim),
+                                   partitioner=vertex_patch_partitioner)
     tdim = msh.topology.dim
     msh.topology.create_entities(tdim - 1)
     msh.topology.create_connectivity(tdim - 1, tdim)

@@ -63,6 +63,17 @@ def total(count: int, comm=None) -> int:
     return int(count) if comm.size == 1 else int(comm.allreduce(int(count)))
 
 
+def on_all(flag: bool, comm=None) -> bool:
+    """Collective: whether flag holds on every process (flag in serial)."""
+    comm = world() if comm is None else comm
+    return bool(flag) if comm.size == 1 else bool(comm.allreduce(bool(flag), op=_land()))
+
+
+def _land():
+    from mpi4py import MPI
+    return MPI.LAND
+
+
 def not_parallel(what: str, comm=None) -> None:
     """Collective: refuse `what` (a feature, by its scene key or command)
     when running on more than one process."""
