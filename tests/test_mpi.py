@@ -1,10 +1,11 @@
 """Every command under ``mpirun -n 2`` (issue 40): no crash, no hang, no
 traceback, one clear message.
 
-What runs on several processes today: the mesh (gmsh's cells and facet
-tags go through rank 0 into DOLFINx, which partitions them), its checks,
-and the commands that need no mesh (`life`, `check` of a life scene,
-`reference`), run by rank 0 with their files written once. The X-FEM model
+What runs on several processes today: the mesh (gmsh meshes on rank 0,
+its cells and facet tags go into DOLFINx, which partitions them with vertex
+patches), its checks, a plain P1 solve (equal to serial), and the commands
+that need no mesh (`life`, `check` of a life scene, `reference`), run by
+rank 0 with their files written once. The X-FEM model
 (cracks, enrichment, solvers, K) is refused with one
 ``cracklip: error: ... is not available under MPI yet`` (rank 0) and exit
 status 2 on every process. Each case runs `mpirun --allow-run-as-root
@@ -91,6 +92,19 @@ def test_input_error_printed_once(tmp_path):
     assert len([line for line in p.stderr.splitlines() if line.startswith("cracklip: error:")]) == 1, p.stderr
 
 
+@pytest.mark.parametrize("scene, message", [("pressurised_crack.toml", "mesh size h = 1000.0 must be positive and "
+                                                                    "at most the domain size"),
+                                            ("penny_crack.toml", "mesh size h = 1000.0 must be positive and at "
+                                                                 "most the box size")])
+def test_rank0_mesh_error_printed_once(scene, message):
+    """gmsh meshes on rank 0 only; its refusal (here h larger than the part)
+    reaches every process: one message, exit 2 on all."""
+    p = mpirun("check", str(SCENES / scene), "--set", "mesh.h=1000")
+    assert_clean(p, 2)
+    errors = [line for line in p.stderr.splitlines() if line.startswith("cracklip: error:")]
+    assert errors == [f"cracklip: error: {message}"], p.stderr
+
+
 @pytest.mark.parametrize("scene", ["life_hole_crack.toml", "life_surface_crack.toml"])
 def test_life_runs_once(scene, tmp_path):
     """`life` needs no mesh: rank 0 runs it, the summary and the files once;
@@ -131,6 +145,7 @@ def test_plain_solve_same_on_one_and_two_processes(dim):
         runs[n] = json.loads(p.stdout.strip().splitlines()[-1])
     one, two = runs[1], runs[2]
     assert two["processes"] == 2 and one["dofs"] == two["dofs"]
+    assert two["gmsh_processes"] == 1  # gmsh meshes on rank 0 only
     assert two["incomplete"] == 0 and one["incomplete"] == 0
     # V's dof coordinates are pushed forward through the cell map: round-off only
     assert two["node_mesh_ok"] and two["node_mesh_distance"] <= 1e-12

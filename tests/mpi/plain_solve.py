@@ -8,6 +8,7 @@ use. Prints one JSON line (rank 0):
   dofs        global number of dofs
   incomplete  owned nodes whose local cells (owned + ghost) miss part of
               their patch in the whole mesh (0 with vertex patches)
+  gmsh_processes  how many processes started gmsh (1: rank 0 meshes)
   node_mesh   extract_node_mesh gives this process's owned then ghost
               nodes, at V's dof coordinates (max distance), all processes
 
@@ -69,7 +70,9 @@ ok = (nodes.shape[0] == imap.size_local + imap.num_ghosts and cells.shape[0] == 
 far = float(np.abs(nodes - coords).max(initial=0.0))
 ok = comm.allreduce(bool(ok), op=MPI.LAND)
 far = comm.allreduce(far, op=MPI.MAX)
-out = {"processes": comm.size, "energy": energy, "u_max": u_max, "dofs": int(V.dofmap.index_map.size_global * dim),
+import cracklip.scene.mesh
+gmsh_processes = comm.allreduce(int(cracklip.scene.mesh._GMSH_READY))
+out = {"processes": comm.size, "gmsh_processes": gmsh_processes, "energy": energy, "u_max": u_max, "dofs": int(V.dofmap.index_map.size_global * dim),
        "incomplete": incomplete_patches(V), "node_mesh_ok": ok, "node_mesh_distance": far}
 if comm.rank == 0:
     print(json.dumps(out), flush=True)

@@ -24,7 +24,7 @@ import typing
 import numpy as np
 
 from ..errors import MeshError
-from .mesh import MeshData, _gmsh, to_dolfinx
+from .mesh import MeshData, _gmsh, gmsh_on_rank0, to_dolfinx
 from .size_field import refinement_size
 
 #: Tetrahedra per unit volume of gmsh's mesh of size h: about 6 / h^3 (each
@@ -134,6 +134,7 @@ def _finish(gmsh, groups: dict[str, list[int]], h: float, fronts) -> MeshData:
     return to_dolfinx(gmsh, h, dim=3, fronts=fronts)
 
 
+@gmsh_on_rank0
 def create_box(x0: float, y0: float, z0: float, x1: float, y1: float, z1: float, h: float,
                fronts: typing.Sequence[FrontRefinement] = ()) -> MeshData:
     """The box [x0, x1] x [y0, y1] x [z0, z1] in tetrahedra of size h (h_front
@@ -159,6 +160,7 @@ def create_box(x0: float, y0: float, z0: float, x1: float, y1: float, z1: float,
     return _finish(gmsh, groups, h, fronts)
 
 
+@gmsh_on_rank0
 def create_cylinder(center: typing.Sequence[float], axis: typing.Sequence[float], radius: float, length: float,
                     h: float, fronts: typing.Sequence[FrontRefinement] = ()) -> MeshData:
     """A solid cylinder: its bottom face centred at `center`, extruded by
@@ -186,6 +188,7 @@ def create_cylinder(center: typing.Sequence[float], axis: typing.Sequence[float]
     return _finish(gmsh, groups, h, fronts)
 
 
+@gmsh_on_rank0
 def read_msh_3d(path: str | pathlib.Path) -> MeshData:
     """Read a gmsh .msh file of first-order tetrahedra, its named physical
     surfaces as boundary tags."""

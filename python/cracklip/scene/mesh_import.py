@@ -9,8 +9,8 @@ matched to the mesh's facets by their two vertices (original node indices,
 through geometry.input_global_indices). First-order triangles in 2D or
 tetrahedra in 3D (cracklip's meshes; mesh.check_mesh enforces it); in 3D
 the physical surfaces' triangles tag the facets. Under mpirun rank 0
-passes the whole mesh and DOLFINx distributes it (gmsh runs on every
-process; only rank 0's model is read).
+(where gmsh meshes: scene.mesh.gmsh_on_rank0) passes the whole mesh and
+DOLFINx distributes it.
 """
 from __future__ import annotations
 
@@ -55,10 +55,10 @@ def model_to_mesh(model, comm, surfaces: typing.Sequence[int] | None = None, dim
     import dolfinx.cpp.mesh
     import dolfinx.mesh
     from dolfinx.io import gmshio
-    if dim not in _GMSH_TYPES:
-        raise MeshError(f"cracklip meshes are 2D or 3D, not {dim}D")
     if comm.size > 1:
         return _model_to_distributed_mesh(model, comm, surfaces, dim)
+    if dim not in _GMSH_TYPES:
+        raise MeshError(f"cracklip meshes are 2D or 3D, not {dim}D")
     cell_type, _, _, _, cell_name, _, group_name = _GMSH_TYPES[dim]
     x, cells, names, lines, line_values = _read_model(model, surfaces, dim)
     shape = "triangle" if dim == 2 else "tetrahedron"
@@ -144,21 +144,24 @@ def _model_to_distributed_mesh(model, comm, surfaces, dim: int):
     (scene.partition), and the boundary elements to the processes that hold
     them (distribute_entity_data, as gmshio does).
     Every process returns the same names; an error on rank 0 is raised on
-    all (scene.processes.agree)."""
+    all (scene.processes.agree). model (and dim) matter on rank 0 only."""
     import dolfinx.cpp.io
     import dolfinx.cpp.graph
     import dolfinx.mesh
     from dolfinx.io import gmshio
     from .partition import vertex_patch_partitioner
     from .processes import agree
-    cell_type, npc, _, npf, cell_name, _, group_name = _GMSH_TYPES[dim]
     read, error = None, None
     if comm.rank == 0:
         try:
+            if dim not in _GMSH_TYPES:
+                raise MeshError(f"cracklip meshes are 2D or 3D, not {dim}D")
             read = _read_model(model, surfaces, dim)
         except MeshError as e:
             error = e
     agree(error, comm)
+    dim = comm.bcast(dim, root=0)  # (the other processes have no gmsh model: scene.mesh.gmsh_on_rank0)
+    cell_type, npc, _, npf, cell_name, _, group_name = _GMSH_TYPES[dim]
     if comm.rank == 0:
         x, cells, names, facets, values = read
         # One value per boundary element (the last physical group wins, as in serial).
