@@ -83,6 +83,15 @@ def test_3d_model_refused_not_crashed(command, tmp_path):
     assert_refused(p)
 
 
+def test_3d_grow_without_growth_table_printed_once(tmp_path):
+    """No shipped 3D scene grows; `grow` on one stops before meshing with
+    the scene's own error, once."""
+    p = mpirun("grow", str(SCENES / "penny_crack.toml"), *SMALL_3D, "--out", str(tmp_path / "out"))
+    assert_clean(p, 2)
+    errors = [line for line in p.stderr.splitlines() if line.startswith("cracklip: error:")]
+    assert len(errors) == 1 and "has no [growth] table" in errors[0], p.stderr
+
+
 def test_input_error_printed_once(tmp_path):
     """An error every process finds alike (here a bad scene key, before any
     mesh) is printed once, exit 2 on all."""
