@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 PACKAGES="build-essential cmake pkg-config python3-dolfinx libdolfinx-dev python3-basix
 python3-ufl python3-ffcx python3-petsc4py python3-slepc4py libslepc-real-dev pybind11-dev
 python3-pybind11 python3-gmsh python3-meshio python3-pytest python3-scipy python3-matplotlib
-libgtest-dev libopenblas0-pthread"
+libgtest-dev libopenblas0-pthread openmpi-bin"
 
 SUDO=""
 [ "$(id -u)" -eq 0 ] || SUDO="sudo"

@@ -27,12 +27,12 @@ NodeMesh extract_node_mesh(const dolfinx::fem::FunctionSpace& V)
   if (dofmap->index_map_bs() != gdim or static_cast<int>(dofmap->cell_dofs(0).size()) != gdim + 1)
     throw std::invalid_argument("cracklip needs a P1 vector function space (block size " + std::to_string(gdim)
                                 + ", " + std::to_string(gdim + 1) + " dof blocks per cell)");
-  if (dofmap->index_map->num_ghosts() != 0)
-    throw std::invalid_argument("cracklip runs in serial only (the mesh has ghost dofs)");
 
   NodeMesh out;
   out.gdim = gdim;
-  const std::int32_t num_nodes = dofmap->index_map->size_local();
+  // Under MPI: this process's owned nodes, then its ghost nodes (the dof
+  // blocks of its ghost cells); in serial there are no ghosts.
+  const std::int32_t num_nodes = dofmap->index_map->size_local() + dofmap->index_map->num_ghosts();
   // A P1 dof sits at a cell vertex: copy the mesh's vertex coordinates (the
   // geometry dofmap lists a cell's vertices first, in the same reference
   // order) rather than push the reference vertex forward through the cell map

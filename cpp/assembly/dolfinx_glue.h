@@ -18,8 +18,10 @@ namespace cracklip
 /// The P1 "node mesh" of a DOLFINx P1 vector function space: one node per
 /// dof block. x: (num_nodes, gdim) node coordinates, cells: (num_cells,
 /// gdim + 1) node (= dof block) indices per cell in the reference vertex
-/// order; gdim 2 (triangles) or 3 (tetrahedra). Throws unless V is a serial
-/// P1 vector space on triangles or tetrahedra.
+/// order; gdim 2 (triangles) or 3 (tetrahedra). Under MPI the process's
+/// local nodes (owned, then ghost: V's dof blocks) and local cells (owned,
+/// then ghost). Throws unless V is a P1 vector space on triangles or
+/// tetrahedra.
 struct NodeMesh
 {
   int gdim = 2;

@@ -3,7 +3,7 @@ import os
 import signal
 import sys
 
-from .cli import main
+from .cli import finish_processes, main
 
 # Die quietly when the reader of stdout goes away (`... | head`), as Unix
 # tools do, instead of PETSc's signal handler aborting MPI with a report.
@@ -15,4 +15,5 @@ status = main()
 # is closed by now, only the standard streams need flushing.
 sys.stdout.flush()
 sys.stderr.flush()
+finish_processes()
 os._exit(status)

@@ -25,7 +25,7 @@ void declare_geometry(py::module& m)
                               as_pyarray(std::move(nm.cells), {nc, d + 1}));
       },
       py::arg("V"), "Node coordinates (n, gdim) and cells (m, gdim + 1) of a P1 vector space "
-                    "(triangles or tetrahedra).");
+                    "(triangles or tetrahedra); under MPI the local ones (owned, then ghost).");
 
   py::class_<CrackGeometry>(m, "CrackGeometry", "Geometry of one crack on the mesh")
       .def_property_readonly("phi", [](const CrackGeometry& g) { return carray<double>(g.phi.size(), g.phi.data()); })

@@ -137,8 +137,10 @@ def solve_plain(scene: Scene) -> tuple[np.ndarray, dict[str, float]]:
 
     The baseline for benchmarks: DOLFINx creates, assembles (with its
     Dirichlet conditions) and the same checked MUMPS solve runs. Only
-    constant tractions and Dirichlet values are supported here.
-    Returns (dofs (2 num_nodes,), timings).
+    constant tractions and Dirichlet values are supported here. 2D or 3D;
+    under mpirun on the distributed mesh (parallel MUMPS).
+    Returns (dofs (d num_nodes,), timings): under mpirun this process's
+    owned dofs (V's order).
     """
     t_start = time.perf_counter()
     timings: dict[str, float] = {}
@@ -151,13 +153,13 @@ def solve_plain(scene: Scene) -> tuple[np.ndarray, dict[str, float]]:
         if callable(bc.value) or not isinstance(bc.where, (str, int)):
             raise InputError("solve_plain supports constant Dirichlet values on tagged boundaries")
         facets = scene.mesh.facets(bc.where)
-        comps = [0, 1] if bc.component is None else [bc.component]
+        comps = list(range(tdim)) if bc.component is None else [bc.component]
         for c in comps:
             dofs = dolfinx.fem.locate_dofs_topological(V.sub(c), tdim - 1, facets)
             bcs.append(dolfinx.fem.dirichletbc(PETSc.ScalarType(bc.value), dofs, V.sub(c)))
     v = ufl.TestFunction(V)
     ds = ufl.Measure("ds", domain=msh, subdomain_data=scene.mesh.facet_tags)
-    L = ufl.inner(dolfinx.fem.Constant(msh, PETSc.ScalarType((0.0, 0.0))), v) * ufl.dx
+    L = ufl.inner(dolfinx.fem.Constant(msh, PETSc.ScalarType((0.0,) * tdim)), v) * ufl.dx
     for tr in scene.tractions:
         if callable(tr.value):
             raise InputError("solve_plain supports constant tractions only")

@@ -58,7 +58,11 @@ logger = logging.getLogger("cracklip.cli")
 
 
 def print_warnings(warnings) -> None:
-    """Each model or SIF warning as one 'cracklip: warning: ...' line on stderr."""
+    """Each model or SIF warning as one 'cracklip: warning: ...' line on
+    stderr (under mpirun by rank 0)."""
+    comm = _processes()
+    if comm is not None and comm.rank != 0:
+        return
     for w in warnings:
         sys.stderr.write(f"cracklip: warning: {' '.join(str(w).split())}\n")
     sys.stderr.flush()
@@ -133,8 +137,29 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def replicated(fn: typing.Callable[[], typing.Any]) -> typing.Any:
+    """fn() (no collective call inside: e.g. reading the scene file, which
+    every process does alike); under mpirun an error of any process is
+    raised on all (scene.processes.agree) instead of on one alone."""
+    comm = _processes()
+    if comm is None:
+        return fn()
+    from ..scene.processes import agree
+    value, error = None, None
+    try:
+        value = fn()
+    except (CracklipError, OSError) as e:
+        error = e
+    agree(error, comm)
+    return value
+
+
 def _load(args):
     """Read and validate the scene document (nothing built yet)."""
+    return replicated(lambda: _read_and_check(args))
+
+
+def _read_and_check(args):
     from ..io.scene_file import apply_override, parse_settings, read_document
     doc = read_document(args.scene)
     if "life" in doc and "mesh" not in doc and getattr(args, "command", None) in ("run", "grow"):
@@ -157,8 +182,8 @@ def _build(args, doc):
     sf = build_scene(doc, base_dir=args.scene.parent, path=args.scene,
                      memory_limit=None if args.force else available_memory())
     msh = sf.scene.mesh.mesh
-    logger.info("mesh: %d nodes, %d %s (%.2f s)", msh.geometry.x.shape[0],
-                msh.topology.index_map(msh.topology.dim).size_local,
+    logger.info("mesh: %d nodes, %d %s (%.2f s)", msh.topology.index_map(0).size_global,
+                msh.topology.index_map(msh.topology.dim).size_global,
                 "tetrahedra" if msh.topology.dim == 3 else "cells", sf.timings["mesh"])
     return sf
 
@@ -358,8 +383,9 @@ def cmd_check(args) -> int:
     from ..io.model_summary import describe_model, enriched_nodes, format_model
     from ..io.outputs import output_files
     from .life import check_life, read_doc
-    if is_life_scene(read_doc(args)):
-        return check_life(args, read_doc(args))  # a life without a mesh: nothing to mesh
+    if is_life_scene(replicated(lambda: read_doc(args))):  # a life without a mesh: nothing to mesh
+        from ..scene.processes import on_rank0  # (under mpirun rank 0 checks it)
+        return on_rank0(lambda: check_life(args, read_doc(args)))
     doc = _load(args)
     if "life" in doc:
         check_life(args, doc, quiet=True)  # its files too, before the mesh
@@ -397,6 +423,14 @@ def cmd_check(args) -> int:
     return 0
 
 
+def rank0_only(cmd):
+    """Mark a command that needs no mesh: under mpirun rank 0 runs it (its
+    output and files once), the other processes wait for its status."""
+    cmd.rank0_only = True
+    return cmd
+
+
+@rank0_only
 def cmd_reference(args) -> int:
     from ..io.scene_file import reference_markdown
     table = reference_markdown()
@@ -428,6 +462,43 @@ def _one_line(e: BaseException) -> str:
     return " ".join(text.split())
 
 
+def _processes():
+    """MPI.COMM_WORLD if this run has several processes (mpirun), else None."""
+    mpi = sys.modules.get("mpi4py.MPI")
+    if mpi is None or not mpi.Is_initialized() or mpi.Is_finalized() or mpi.COMM_WORLD.size == 1:
+        return None
+    return mpi.COMM_WORLD
+
+
+def _report_error(e: BaseException) -> None:
+    """'cracklip: error: ...' once. Under mpirun an error every process
+    raised alike (scene.processes marks it collective) is printed by rank 0
+    and every process exits 2; an error of one process alone would leave the
+    others waiting in their next collective call, so it aborts the job."""
+    comm = _processes()
+    if comm is None:
+        sys.stderr.write(f"cracklip: error: {_one_line(e)}\n")
+        return
+    from ..scene.processes import is_collective
+    if is_collective(e):
+        if comm.rank == 0:
+            sys.stderr.write(f"cracklip: error: {_one_line(e)}\n")
+        return
+    sys.stderr.write(f"cracklip: error: (process {comm.rank} of {comm.size} alone; aborting the job) "
+                     f"{_one_line(e)}\n")
+    sys.stderr.flush()
+    comm.Abort(2)
+
+
+def finish_processes() -> None:
+    """Under mpirun: MPI_Finalize, so that a process leaving by os._exit is a
+    normal end for mpirun (no-op in serial)."""
+    comm = _processes()
+    if comm is not None:
+        comm.Barrier()
+        sys.modules["mpi4py.MPI"].Finalize()
+
+
 def main(argv: typing.Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
     parser = build_parser()
@@ -435,22 +506,38 @@ def main(argv: typing.Sequence[str] | None = None) -> int:
     if args.command is None:
         parser.print_help(sys.stderr)
         return 2
+    from ..scene.processes import launched_on_several, on_rank0
+    if launched_on_several():
+        from mpi4py import MPI  # noqa: F401 (MPI_Init now: errors and progress are then printed by rank 0 only)
+    comm = _processes()
     root = logging.getLogger("cracklip")
     old_level, old_propagate = root.level, root.propagate
-    # Progress on stderr unless --quiet; warnings are printed by the commands
-    # themselves (print_warnings), not again through logging.
-    handler = logging.NullHandler() if getattr(args, "quiet", False) else _Progress(time.perf_counter())
+    # Progress on stderr unless --quiet (under mpirun from rank 0); warnings
+    # are printed by the commands themselves (print_warnings), not again
+    # through logging.
+    quiet = getattr(args, "quiet", False) or (comm is not None and comm.rank != 0)
+    handler = logging.NullHandler() if quiet else _Progress(time.perf_counter())
     root.addHandler(handler)
     root.setLevel(logging.INFO)
     root.propagate = False
     try:
+        if comm is not None and getattr(args.func, "rank0_only", False):
+            return on_rank0(lambda: args.func(args), comm)
         return args.func(args)
     except (CracklipError, OSError) as e:
-        sys.stderr.write(f"cracklip: error: {_one_line(e)}\n")
+        _report_error(e)
         return 2
     except KeyboardInterrupt:
         sys.stderr.write("cracklip: error: interrupted\n")
         return 130
+    except Exception:
+        comm = _processes()
+        if comm is not None:  # a bug on one process: abort the job rather than leave the others waiting
+            import traceback
+            traceback.print_exc()
+            sys.stderr.flush()
+            comm.Abort(1)
+        raise
     finally:
         root.removeHandler(handler)
         root.setLevel(old_level)

@@ -62,6 +62,9 @@ def cmd_life(args) -> int:
     return 0
 
 
+cmd_life.rank0_only = True  # needs no mesh: under mpirun rank 0 runs it, its files written once (cli.main)
+
+
 def life_summary(title: str, s: dict) -> list[str]:
     """The printed summary of a life (cmd_life)."""
     block = s["block_name"]

@@ -12,6 +12,7 @@ import dolfinx.fem
 import dolfinx.mesh
 
 from ..scene.mesh import MeshData
+from ..scene.processes import total
 
 
 def boundary_segments(mesh) -> tuple[np.ndarray, np.ndarray]:

@@ -13,6 +13,7 @@ from ..errors import BoundaryConditionError
 from ..scene.scene import Scene
 from ..scene.symmetry import SymmetryCondition
 from .symmetry import symmetry_enriched_dofs
+from ..scene.processes import total
 
 
 def _accepts_side(f) -> bool:
@@ -44,7 +45,7 @@ def condition_nodes(scene: Scene, V, x: np.ndarray, bc) -> np.ndarray:
                 f"{x[node].tolist()} at distance {d[node]:.3g}); use a node or a boundary tag")
         return np.array([node], dtype=np.int32)
     facets = scene.mesh.facets(bc.where)
-    if facets.size == 0:
+    if total(facets.size, scene.mesh.mesh.comm) == 0:
         raise BoundaryConditionError(f"Dirichlet boundary {bc.where!r} has no facets")
     tdim = scene.mesh.mesh.topology.dim
     return np.asarray(dolfinx.fem.locate_dofs_topological(V, tdim - 1, facets), dtype=np.int32)

@@ -27,6 +27,7 @@ import typing
 import numpy as np
 
 from ..errors import InputError
+from ..scene.processes import total
 from ..scene.stress_field import LinearStress, evaluate_stress, tensor_to_voigt
 
 
@@ -57,7 +58,7 @@ def _boundary_facets(model, where) -> tuple[np.ndarray, np.ndarray]:
     msh = model.scene.mesh.mesh
     tdim = msh.topology.dim
     facets = model.scene.mesh.facets(where)
-    if facets.size == 0:
+    if total(facets.size, msh.comm) == 0:
         raise InputError(f"traction boundary {where!r} has no facets")
     msh.topology.create_connectivity(tdim - 1, tdim)
     msh.topology.create_connectivity(tdim, tdim - 1)

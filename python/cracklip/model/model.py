@@ -18,6 +18,7 @@ import dolfinx.fem
 from .. import _cracklip
 from ..errors import CrackGeometryError
 from ..scene.mesh import check_mesh
+from ..scene.processes import not_parallel
 from ..scene.scene import Scene
 from .checks import check_units
 from .constraints import check_rigid_motion, compute_dirichlet
@@ -37,6 +38,7 @@ def create_model(scene: Scene) -> XfemModel:
     timings: dict[str, float] = {}
     msh = scene.mesh.mesh
     check_mesh(msh)
+    not_parallel("the X-FEM model (cracks, enrichment, solvers, K)", msh.comm)
     kind = crack_model_type(scene.mesh.gdim)
     kind.check_scene(scene)
     t0 = time.perf_counter()

@@ -37,7 +37,7 @@ import typing
 import numpy as np
 
 from ..errors import MeshError
-from .mesh import MeshData, _gmsh, _mesh_2d, _restart_gmsh, check_mesh, to_dolfinx
+from .mesh import MeshData, _gmsh, _mesh_2d, _restart_gmsh, gmsh_on_rank0, to_dolfinx
 
 
 logger = logging.getLogger(__name__)
@@ -256,6 +256,7 @@ def _gmsh_errors(gmsh, message: str):
         raise MeshError(f"{message} ({e})") from None
 
 
+@gmsh_on_rank0
 def create_from_geometry(path: str | pathlib.Path, h: float,
                          refine: typing.Sequence[typing.Sequence[float]] = (),
                          embed_points: typing.Sequence[tuple[float, float]] = (),
@@ -318,8 +319,7 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
         area = sum(_area(a, b) for a, b in outlines)
         _mesh_2d(gmsh, h, refine, levels, area=area)
         _check_nodes(gmsh, path, embed_points, scale)
-        md = to_dolfinx(gmsh, h, surfaces)
-    check_mesh(md.mesh)
+        md = to_dolfinx(gmsh, h, surfaces)  # (checks the mesh)
     md.refinements = [(float(r[0]), float(r[1]), float(r[2])) for r in refine]
     md.refine = [tuple(float(v) for v in r) for r in refine]
     md.levels = [tuple(v) for v in levels]

@@ -18,7 +18,8 @@ import typing
 
 import numpy as np
 
-from ..errors import BoundaryConditionError, MeshError
+from ..errors import BoundaryConditionError, CracklipError, MeshError
+from .processes import agree, first_error, total
 from .size_field import (MAX_GROWTH, PLATEAU, refinement_expression, refinement_size,  # noqa: F401
                          size_expression, smallest_size)
 
@@ -35,8 +36,8 @@ class MeshData:
     (this module), tetrahedra in 3D (mesh_3d).
 
     Attributes:
-        mesh: the DOLFINx mesh (serial; triangles with geometric dimension 2,
-            or tetrahedra).
+        mesh: the DOLFINx mesh (triangles with geometric dimension 2, or
+            tetrahedra; under mpirun distributed, with vertex patches).
         facet_tags: DOLFINx MeshTags on boundary facets.
         tags: boundary name -> tag value.
         h: nominal mesh size used to generate it (None for a file).
@@ -88,7 +89,7 @@ class MeshData:
         in 2D, triangles in 3D); a tag without facets is an error."""
         import dolfinx.cpp.mesh
         facets = self.facets(where)
-        if facets.size == 0:
+        if total(facets.size, self.mesh.comm) == 0:  # (under mpirun a process may hold none of them)
             raise BoundaryConditionError(f"boundary {where!r} has no facets")
         msh = self.mesh
         tdim = msh.topology.dim
@@ -108,6 +109,8 @@ class MeshData:
                                 f"{sorted(self.tags)}")
             return self.tags[where]
         values = set(np.unique(self.facet_tags.values).tolist())
+        if self.mesh.comm.size > 1:  # the tags present on any process
+            values = set().union(*self.mesh.comm.allgather(values))
         if int(where) not in values:
             raise MeshError(f"no boundary facets carry tag {where}; tags present: {sorted(values)}")
         return int(where)
@@ -170,10 +173,68 @@ def to_dolfinx(gmsh, h: float | None, entities: typing.Sequence[int] | None = No
     # while another thread loads it (cracklip.prefetch).
     from mpi4py import MPI
     from .mesh_import import model_to_mesh
+    _GMSH_ON_RANK0["handed_over"] = True
     msh, facet_tags, _ = model_to_mesh(gmsh.model, MPI.COMM_WORLD, entities, dim=dim)
     gmsh.model.remove()
     check_mesh(msh)
     return MeshData(msh, facet_tags, names, h, front_refinements=list(fronts))
+
+
+#: gmsh_on_rank0's state on rank 0: inside a mesh entry (nested entries run
+#: plainly), and whether to_dolfinx has handed the mesh to DOLFINx yet.
+_GMSH_ON_RANK0 = {"inside": False, "handed_over": False}
+#: MeshData fields sent from rank 0 to the others (the mesh and tags are
+#: DOLFINx's, the recipe is a closure over rank 0's gmsh).
+_SENT_FIELDS = ("tags", "h", "refinements", "cache_standard_block", "refine", "levels", "source",
+                "front_refinements", "estimate")
+
+
+def gmsh_on_rank0(make: typing.Callable[..., "MeshData"]) -> typing.Callable[..., "MeshData"]:
+    """A mesh entry (gmsh meshes, then to_dolfinx) that under mpirun runs
+    gmsh on rank 0 only: the other processes take their part of the mesh
+    from DOLFINx (mesh_import), then rank 0's MeshData fields. Rank 0's
+    error before the hand-over is raised on all (agree, matching the
+    others' first collective in model_to_mesh), after it by a broadcast.
+    In serial: make itself."""
+    @functools.wraps(make)
+    def entry(*args, **kwargs):
+        from .processes import agree, is_collective, mark_collective, world
+        comm = world() if _several_processes() else None
+        if comm is None or _GMSH_ON_RANK0["inside"]:
+            return make(*args, **kwargs)
+        _GMSH_ON_RANK0.update(inside=True, handed_over=False)
+        try:
+            if comm.rank == 0:
+                try:
+                    md = make(*args, **kwargs)
+                except (CracklipError, OSError) as e:
+                    if is_collective(e):  # (check_mesh: the others raised it too)
+                        raise
+                    if not _GMSH_ON_RANK0["handed_over"]:
+                        agree(e, comm)  # the others wait in model_to_mesh's first agree
+                    comm.bcast(("error", type(e), str(e)), root=0)
+                    raise mark_collective(e)
+                comm.bcast(("ok", {f: getattr(md, f) for f in _SENT_FIELDS}), root=0)
+                return md
+            from .mesh_import import model_to_mesh
+            msh, facet_tags, names = model_to_mesh(None, comm, None, dim=0)
+            check_mesh(msh)
+            outcome = comm.bcast(None, root=0)
+            if outcome[0] == "error":
+                raise mark_collective(outcome[1](outcome[2]))
+            md = MeshData(msh, facet_tags, names)
+            for f, v in outcome[1].items():
+                setattr(md, f, v)
+            return md
+        finally:
+            _GMSH_ON_RANK0.update(inside=False, handed_over=False)
+    return entry
+
+
+def _several_processes() -> bool:
+    import sys
+    mpi = sys.modules.get("mpi4py.MPI")
+    return mpi is not None and mpi.Is_initialized() and mpi.COMM_WORLD.size > 1
 
 
 #: Per cell kind: the dimension, what a cell's measure is called and what makes it non-zero.
@@ -182,7 +243,7 @@ _CELLS = {"triangle": (2, "area", "every triangle must have three distinct, non-
 
 
 def check_mesh(msh: dolfinx.mesh.Mesh) -> None:
-    """Raise MeshError unless msh is a serial first-order mesh of triangles
+    """Raise MeshError unless msh is a first-order mesh of triangles
     (a planar part, z = 0) or of tetrahedra (a solid), with finite, unique
     nodes and cells of non-zero area (volume)."""
     name = msh.topology.cell_type.name
@@ -190,12 +251,17 @@ def check_mesh(msh: dolfinx.mesh.Mesh) -> None:
         raise MeshError(f"cracklip needs triangles (a planar part) or tetrahedra (a solid), the mesh has {name} "
                         "cells; mesh with gmsh without recombination")
     d, measure, fix = _CELLS[name]
+    # Under mpirun each process checks its own cells and nodes (owned and
+    # ghost); all raise the first process's finding (local indices).
+    agree(first_error([lambda: _check_cells(msh, d, measure, fix)]), msh.comm)
+
+
+def _check_cells(msh: dolfinx.mesh.Mesh, d: int, measure: str, fix: str) -> None:
+    """check_mesh on this process's nodes and cells."""
     if d == 2 and msh.geometry.dim != 2 and not np.allclose(msh.geometry.x[:, 2], 0.0):
         raise MeshError("cracklip needs a planar mesh (z = 0)")
     if msh.geometry.cmap.degree != 1:
-        raise MeshError(f"cracklip needs straight (first-order) {name}s")
-    if msh.comm.size != 1:
-        raise MeshError("cracklip runs in serial; start it without mpirun")
+        raise MeshError(f"cracklip needs straight (first-order) {msh.topology.cell_type.name}s")
     x = msh.geometry.x[:, :d]
     cells = msh.geometry.dofmap.array.reshape(-1, d + 1)
     if not np.all(np.isfinite(x)):
@@ -335,6 +401,7 @@ def _on_cut(gmsh, curve: int, cuts: tuple[int, list[float]]) -> bool:
     return hi - lo <= 2 * tol and min(abs(0.5 * (lo + hi) - t) for t in positions) <= 2 * tol
 
 
+@gmsh_on_rank0
 def create_rectangle(x0: float, y0: float, x1: float, y1: float, h: float,
                      refine: typing.Sequence[tuple[float, float, float, float]] = (),
                      embed_lines: typing.Sequence[tuple[tuple[float, float], tuple[float, float]]] = (),
@@ -379,6 +446,7 @@ def create_square(h: float, half_width: float = 1.0, **kwargs) -> MeshData:
     return create_rectangle(-half_width, -half_width, half_width, half_width, h, **kwargs)
 
 
+@gmsh_on_rank0
 def create_half_annulus(h: float, radius: float = 1.0, outer_radius: float = 3.0,
                         refine: typing.Sequence[tuple[float, float, float, float]] = (), levels=()) -> MeshData:
     """Half annulus radius <= r <= outer_radius, y >= 0 (paper section 5.2).
@@ -472,6 +540,7 @@ def _mesh_2d(gmsh, h: float, refine, levels=(), area: float | None = None) -> No
     gmsh.model.mesh.generate(2)
 
 
+@gmsh_on_rank0
 def read_msh(path: str | pathlib.Path) -> MeshData:
     """Read a gmsh .msh file with named physical curves as boundary tags."""
     path = pathlib.Path(path)
@@ -538,6 +607,7 @@ def create_plate_with_hole(x0: float, y0: float, x1: float, y1: float, h: float,
     return create_plate_with_holes(x0, y0, x1, y1, h, [(center[0], center[1], radius)], refine, embed_points, levels)
 
 
+@gmsh_on_rank0
 def create_plate_with_holes(x0: float, y0: float, x1: float, y1: float, h: float,
                             holes: typing.Sequence[tuple[float, float, float]],
                             refine: typing.Sequence[tuple[float, float, float, float]] = (),

@@ -25,7 +25,7 @@ import typing
 import numpy as np
 
 from ..errors import MeshError, ModelSizeError
-from .mesh import MeshData, _gmsh, to_dolfinx
+from .mesh import MeshData, _gmsh, gmsh_on_rank0, to_dolfinx
 from .mesh_estimate import CURVATURE_ELEMENTS, MeshEstimate, check_estimate, estimate
 from .size_field import refinement_size
 
@@ -187,6 +187,7 @@ def _finish(gmsh, groups: dict[str, list[int]], h: float, fronts, memory_limit: 
     return md
 
 
+@gmsh_on_rank0
 def create_box(x0: float, y0: float, z0: float, x1: float, y1: float, z1: float, h: float,
                fronts: typing.Sequence[FrontRefinement] = (), memory_limit: float | None = None) -> MeshData:
     """The box [x0, x1] x [y0, y1] x [z0, z1] in tetrahedra of size h (h_front
@@ -214,6 +215,7 @@ def create_box(x0: float, y0: float, z0: float, x1: float, y1: float, z1: float,
     return _finish(gmsh, groups, h, fronts, memory_limit, "the box")
 
 
+@gmsh_on_rank0
 def create_cylinder(center: typing.Sequence[float], axis: typing.Sequence[float], radius: float, length: float,
                     h: float, fronts: typing.Sequence[FrontRefinement] = (),
                     memory_limit: float | None = None) -> MeshData:
@@ -243,6 +245,7 @@ def create_cylinder(center: typing.Sequence[float], axis: typing.Sequence[float]
     return _finish(gmsh, groups, h, fronts, memory_limit, "the cylinder")
 
 
+@gmsh_on_rank0
 def read_msh_3d(path: str | pathlib.Path) -> MeshData:
     """Read a gmsh .msh file of first-order tetrahedra, its named physical
     surfaces as boundary tags."""

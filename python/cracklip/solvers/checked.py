@@ -23,6 +23,7 @@ import scipy.sparse as sp
 from petsc4py import PETSc
 
 from ..errors import SolverError
+from ..scene.processes import on_all
 
 
 logger = logging.getLogger(__name__)
@@ -74,7 +75,7 @@ def create_lu_solver(A: PETSc.Mat, detect_null_pivots: bool = True, symmetric: b
     (no METIS, no SCOTCH) it picks PORD, which has the fewest factor entries
     and flops of AMD, AMF, PORD and QAMD on cracklip's matrices
     (demos/bench_solvers.py --orderings records them)."""
-    ksp = PETSc.KSP().create(PETSc.COMM_SELF)
+    ksp = PETSc.KSP().create(A.getComm())  # (a distributed A: parallel MUMPS)
     if symmetric:
         A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
         A.setOption(PETSc.Mat.Option.SYMMETRY_ETERNAL, True)
@@ -182,7 +183,7 @@ def solve_checked(A: PETSc.Mat, b: PETSc.Vec, residual_tol: float = 1e-8,
     r.destroy()
     record_solve({"what": what, "size": A.getSize()[0], "relative_residual": float(rel), "solver": "direct",
                   "method": f"MUMPS {'LDL^T' if symmetric else 'LU'}", "iterations": 1})
-    if not np.all(np.isfinite(x.array)) or not rel <= residual_tol:
+    if not on_all(np.all(np.isfinite(x.array)), x.getComm().tompi4py()) or not rel <= residual_tol:
         raise SolverError(f"the solve of the {what} is inaccurate: relative residual {rel:.3g} "
                           f"> {residual_tol:g}; the matrix is singular or very ill-conditioned")
     return x

@@ -12,6 +12,7 @@ import numpy as np
 from ...errors import BoundaryConditionError, MeshError
 from ...scene.mesh import MeshData, create_half_annulus, create_plate_with_holes, create_rectangle, read_msh
 from ...scene.size_field import MAX_GROWTH
+from ...scene.processes import total
 from .schema import (REQUIRED, UNSET, Key, p_box, p_choice, p_float, p_holes, p_point, p_point3, p_point_any,
                      p_segment, p_solid_box, p_str, p_vector3)
 
@@ -181,7 +182,7 @@ def check_tag(mesh: MeshData, tag, where: str) -> None:
         facets = mesh.facets(tag)
     except MeshError as e:
         raise MeshError(f"{where}: {e}") from None
-    if facets.size == 0:
+    if total(facets.size, mesh.mesh.comm) == 0:
         raise MeshError(f"{where}: boundary tag {tag!r} has no facets")
 
 
@@ -208,11 +209,17 @@ def nearest_node(mesh: MeshData, point, where: str) -> tuple[float, ...]:
     d = np.linalg.norm(x - p, axis=1)
     node = int(np.argmin(d))
     edge = _mean_edge(mesh)
-    if d[node] > edge:
+    comm = mesh.mesh.comm
+    dist, nearest = float(d[node]), x[node]
+    if comm.size > 1:  # the nearest node over all processes (ties: the lowest rank), the mean of their mean edges
+        dist, nearest = min(comm.allgather((dist, x[node].tolist())), key=lambda v: v[0])
+        nearest = np.asarray(nearest)
+        edge = comm.allreduce(edge) / comm.size
+    if dist > edge:
         raise BoundaryConditionError(
-            f"{where} {p.tolist()}: the nearest mesh node {x[node].tolist()} is {d[node]:.3g} away, more than "
+            f"{where} {p.tolist()}: the nearest mesh node {nearest.tolist()} is {dist:.3g} away, more than "
             f"the mean edge length {edge:.3g}; put the point on the part")
-    return tuple(float(v) for v in x[node])
+    return tuple(float(v) for v in nearest)
 
 
 

@@ -1,0 +1,88 @@
+"""The mesh's cells over MPI processes, with vertex patches: every process
+also holds (as ghosts) every cell that shares a vertex with one of its own.
+
+X-FEM decides per node from the node's whole patch of cells (is the node's
+support cut by the crack, does it hold a tip, which pieces of its support
+lie on either side). DOLFINx 0.5.2 ghosts only the cells across a facet
+(GhostMode.shared_facet; shared_vertex is refused), so an owned node at the
+edge of a process's cells may see part of its patch only. A cell
+partitioner may return ghost destinations too (DOLFINx's
+CellPartitionFunction: the owner first, then the processes that ghost the
+cell): ``vertex_patch_partitioner`` takes the owners from DOLFINx's own
+partitioner (SCOTCH on the dual graph), then adds as ghost destinations of
+a cell every process that owns a cell sharing one of its vertices. Then
+every owned node's patch is whole on its process
+(``incomplete_patches`` counts the exceptions; 0 is asserted by the tests).
+
+It works on meshes given on rank 0 (cracklip meshes there: gmsh runs once).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+def vertex_patch_partitioner(comm, nparts: int, tdim: int, cells, ghost_mode):
+    """A DOLFINx cell partitioner (the signature of
+    dolfinx.mesh.create_mesh's `partitioner`): owners by DOLFINx's default,
+    ghosts by shared vertices. Collective; the cells must all be on rank 0."""
+    import dolfinx.cpp.graph
+    import dolfinx.cpp.mesh
+    import scipy.sparse
+    if comm.allreduce(cells.num_nodes if comm.rank != 0 else 0) != 0:
+        raise ValueError("vertex_patch_partitioner: the cells must all be given on rank 0")
+    default = dolfinx.cpp.mesh.create_cell_partitioner()
+    owners = default(comm, nparts, tdim, cells, dolfinx.cpp.mesh.GhostMode.none)
+    n = cells.num_nodes
+    if n == 0:
+        return dolfinx.cpp.graph.AdjacencyList_int32(np.zeros((0, 1), dtype=np.int32))
+    owner = np.asarray(owners.array, dtype=np.int32)
+    assert owner.size == n, "one owner per cell"
+    c = np.asarray(cells.array, dtype=np.int64).reshape(n, -1)
+    num_vertices = int(c.max()) + 1
+    ones = np.ones(c.size, dtype=np.int8)
+    # cell -> vertex incidence (n x V), cell -> owner (n x P): the processes
+    # owning a cell at each vertex (V x P), then at each cell's vertices (n x P).
+    cv = scipy.sparse.csr_matrix((ones, (np.repeat(np.arange(n), c.shape[1]), c.ravel())), shape=(n, num_vertices))
+    cp = scipy.sparse.csr_matrix((np.ones(n, dtype=np.int8), (np.arange(n), owner)), shape=(n, nparts))
+    reach = (cv @ (cv.T @ cp)).tocsr()
+    reach.sum_duplicates()
+    reach.sort_indices()
+    # Each cell's row: its owner first, then the other processes reaching it (ascending).
+    rows = np.repeat(np.arange(n), np.diff(reach.indptr))
+    others = reach.indices != owner[rows]
+    r = rows[others]
+    k = np.bincount(r, minlength=n)
+    offsets = np.zeros(n + 1, dtype=np.int32)
+    np.cumsum(1 + k, out=offsets[1:])
+    dest = np.empty(offsets[-1], dtype=np.int32)
+    dest[offsets[:-1]] = owner
+    place_in_row = np.arange(r.size) - (np.cumsum(k) - k)[r]
+    dest[offsets[r] + 1 + place_in_row] = reach.indices[others]
+    return dolfinx.cpp.graph.AdjacencyList_int32(dest, offsets)
+
+
+def incomplete_patches(V) -> int:
+    """Collective: how many owned nodes of a P1 space V (over all processes)
+    have fewer local cells (owned and ghost) than cells at them in the whole
+    mesh; 0 with vertex patches."""
+    msh = V.mesh
+    comm = msh.comm
+    tdim = msh.topology.dim
+    dofs = V.dofmap.list.array.reshape(-1, tdim + 1)
+    imap = V.dofmap.index_map
+    owned = imap.size_local
+    node_input = np.empty(owned + imap.num_ghosts, dtype=np.int64)
+    node_input[dofs.ravel()] = np.asarray(msh.geometry.input_global_indices, dtype=np.int64)[
+        msh.geometry.dofmap.array]
+    num_inputs = comm.allreduce(int(node_input.max(initial=-1)) + 1, op=_max())
+    own_cells = msh.topology.index_map(tdim).size_local
+    whole = np.bincount(node_input[dofs[:own_cells]].ravel(), minlength=num_inputs).astype(np.int64)
+    total = np.zeros_like(whole)
+    comm.Allreduce(whole, total)
+    local = np.bincount(dofs.ravel(), minlength=owned + imap.num_ghosts)[:owned]
+    return int(comm.allreduce(int(np.count_nonzero(local != total[node_input[:owned]]))))
+
+
+def _max():
+    from mpi4py import MPI
+    return MPI.MAX
