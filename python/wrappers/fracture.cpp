@@ -202,6 +202,27 @@ void declare_fracture(py::module& m)
       "auxiliary_fields_3d.");
 
   m.def(
+      "front_sifs_3d",
+      [](double E, double nu, const carray<double>& I, const carray<double>& q_e1, const carray<double>& q_e2)
+      {
+        require_columns(I, 3, "I");
+        const py::ssize_t n = I.shape(0);
+        if (q_e1.size() != n or q_e2.size() != n)
+          throw std::invalid_argument("front_sifs_3d: q_e1 and q_e2 need one value per row of I");
+        std::vector<double> K(3 * n);
+        for (py::ssize_t k = 0; k < n; ++k)
+        {
+          const auto v = front_sifs_3d(E, nu, {I.data()[3 * k], I.data()[3 * k + 1], I.data()[3 * k + 2]},
+                                       q_e1.data()[k], q_e2.data()[k]);
+          std::copy(v.begin(), v.end(), K.begin() + 3 * k);
+        }
+        return as_pyarray(std::move(K), {n, 3});
+      },
+      py::arg("E"), py::arg("nu"), py::arg("I"), py::arg("q_e1"), py::arg("q_e2"),
+      "K (n, 3) from interaction integrals I (n, 3) and int q (e1 . d) ds, int q (e2 . d) ds (n) "
+      "(interaction_integral_3d.h front_sifs_3d).");
+
+  m.def(
       "front_domain_integrals_3d",
       [](double E, double nu, const carray<double>& frames, const carray<double>& curvature, const carray<double>& x,
          const carray<double>& grad_u, const carray<std::int8_t>& sides, std::optional<std::array<double, 3>> body,
