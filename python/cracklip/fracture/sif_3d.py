@@ -375,15 +375,11 @@ def project(model, crack: int, points: np.ndarray) -> dict[str, np.ndarray]:
     interpolated along the segment), curvature (n,) (kappa_f)."""
     fr = crack_front(model, crack)
     pts = np.ascontiguousarray(points, dtype=float)
-    p = _cracklip.compute_front_projection_3d(model.geometries[crack], pts)
+    # (a triangulated surface: its fitted frames, interpolated as the geometry's are)
+    p = _cracklip.compute_front_projection_3d(model.geometries[crack], pts,
+                                              np.ascontiguousarray(fr.frame) if fr.fitted else None)
     seg = fr.segments[p["segment"]]
     t = p["t"]
-    if fr.fitted:  # the fitted frames, interpolated as the geometry's are
-        f = (1.0 - t)[:, None, None] * fr.frame[seg[:, 0]] + t[:, None, None] * fr.frame[seg[:, 1]]
-        e2 = f[:, 1] / np.linalg.norm(f[:, 1], axis=1)[:, None]
-        e3 = f[:, 2] - np.einsum("ni,ni->n", f[:, 2], e2)[:, None] * e2
-        e3 /= np.linalg.norm(e3, axis=1)[:, None]
-        p["frame"] = np.stack([np.cross(e2, e3), e2, e3], axis=1)
     k = (1.0 - t)[:, None] * fr.curvatures[seg[:, 0]] + t[:, None] * fr.curvatures[seg[:, 1]]
     if not CURVATURE_TERMS:
         k[:] = 0.0
@@ -392,7 +388,9 @@ def project(model, crack: int, points: np.ndarray) -> dict[str, np.ndarray]:
     # curvatures scaled so that it lies a tenth of the way: the kernel needs
     # h = 1 + kappa_f x1 - kappa_33 x2 > 0.
     d = pts - p["x"]
-    lin = k[:, 0] * np.einsum("ni,ni->n", d, p["frame"][:, 0]) - k[:, 2] * np.einsum("ni,ni->n", d, p["frame"][:, 1])
+    lin = k[:, 0] * np.einsum("ni,ni->n", d, p["frame"][:, 0])
+    if np.any(k[:, 2]):
+        lin -= k[:, 2] * np.einsum("ni,ni->n", d, p["frame"][:, 1])
     bad = 1.0 + lin < 0.1
     k[bad] *= (-0.9 / lin[bad])[:, None]
     p["curvatures"] = k
