@@ -255,6 +255,23 @@ namespace
 // and d = e1 there: volume, body-force and lip terms; curved = false drops
 // every curvature term (the straight-front auxiliary fields of the nearest
 // front point). Returns K recovered per mode.
+// The domain integrand (grad q . T_m + q D_m) . d of the three modes at a
+// point (T (3, 3, 3), D (3, 3) of interaction_integrand_3d).
+std::array<double, 3> domain_integrand(const std::vector<double>& T, const std::vector<double>& D, const Point3& gq,
+                                       double q, const Point3& d)
+{
+  std::array<double, 3> v = {0.0, 0.0, 0.0};
+  for (int m = 0; m < 3; ++m)
+  {
+    for (int j = 0; j < 3; ++j)
+      for (int ll = 0; ll < 3; ++ll)
+        v[m] += gq[j] * T[9 * m + 3 * j + ll] * d[ll];
+    for (int ll = 0; ll < 3; ++ll)
+      v[m] += q * D[3 * m + ll] * d[ll];
+  }
+  return v;
+}
+
 std::array<double, 3> circle_domain_integral(const double K[3], int sign, double R, double l, bool curved)
 {
   const auto gr = quadrature::gauss_legendre(16), gt = quadrature::gauss_legendre(40),
@@ -317,16 +334,9 @@ std::array<double, 3> circle_domain_integral(const double K[3], int sign, double
         const std::vector<std::int8_t> sd = {0};
         std::vector<double> T(27), D(9);
         interaction_integrand_3d(E, nu, fr, kk, p, g, sd, body, T, D);
+        const std::array<double, 3> v = domain_integrand(T, D, gq, q, d);
         for (int m = 0; m < 3; ++m)
-        {
-          double v = 0.0;
-          for (int j = 0; j < 3; ++j)
-            for (int ll = 0; ll < 3; ++ll)
-              v += gq[j] * T[9 * m + 3 * j + ll] * d[ll];
-          for (int ll = 0; ll < 3; ++ll)
-            v += q * D[3 * m + ll] * d[ll];
-          I[m] += ws * dr * wt * jac * v;
-        }
+          I[m] += ws * dr * wt * jac * v[m];
       }
       // Lips: x1 = -r, x2 = 0; the + lip (side +1) has outward normal -e2.
       for (int side : {1, -1})
@@ -585,16 +595,9 @@ std::array<double, 3> tube_integral(const Darboux& D, const double K[3], double 
         const std::vector<std::int8_t> sd = {0};
         std::vector<double> T(27), Dv(9);
         interaction_integrand_3d(E, nu, fr, kk, p, g, sd, body, T, Dv);
+        const std::array<double, 3> v = domain_integrand(T, Dv, gq, q, d);
         for (int m = 0; m < 3; ++m)
-        {
-          double v = 0.0;
-          for (int j = 0; j < 3; ++j)
-            for (int ll = 0; ll < 3; ++ll)
-              v += gq[j] * T[9 * m + 3 * j + ll] * d[ll];
-          for (int ll = 0; ll < 3; ++ll)
-            v += q * Dv[3 * m + ll] * d[ll];
-          I[m] += ws * dr * wt * h * r * v;
-        }
+          I[m] += ws * dr * wt * h * r * v[m];
       }
       // The lips xi2 = 0, xi1 = -r: dA = h |grad xi2| dr ds, n_out = -side
       // grad xi2 / |grad xi2|.
