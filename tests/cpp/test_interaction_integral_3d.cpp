@@ -183,6 +183,42 @@ void stress_of(const double* g, double s[3][3])
       s[i][j] = mu * (g[3 * i + j] + g[3 * j + i]) + (i == j ? lm * tr : 0.0);
 }
 
+// On a lip with outward normal n_out, the solution's gradient g (3, 3) and
+// the auxiliary gradients auxG (3 modes, 3, 3), per mode m: the traction
+// terms t . (G_m d) + t_aux,m . (g d) (t = sigma(g) n_out) and sigma(g) :
+// eps_aux,m.
+struct LipIntegrand
+{
+  std::array<double, 3> traction{}, energy{};
+};
+LipIntegrand lip_integrand(const double* g, const double* auxG, const double* n_out, const double* d)
+{
+  double sig[3][3];
+  stress_of(g, sig);
+  double t[3], gd[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    t[i] = sig[i][0] * n_out[0] + sig[i][1] * n_out[1] + sig[i][2] * n_out[2];
+    gd[i] = g[3 * i] * d[0] + g[3 * i + 1] * d[1] + g[3 * i + 2] * d[2];
+  }
+  LipIntegrand out;
+  for (int m = 0; m < 3; ++m)
+  {
+    const double* G = auxG + 9 * m;
+    double sa[3][3];
+    stress_of(G, sa);
+    for (int i = 0; i < 3; ++i)
+    {
+      const double ta = sa[i][0] * n_out[0] + sa[i][1] * n_out[1] + sa[i][2] * n_out[2];
+      const double Gd = G[3 * i] * d[0] + G[3 * i + 1] * d[1] + G[3 * i + 2] * d[2];
+      out.traction[m] += t[i] * Gd + ta * gd[i];
+      for (int j = 0; j < 3; ++j)
+        out.energy[m] += sig[i][j] * 0.5 * (G[3 * i + j] + G[3 * j + i]);
+    }
+  }
+  return out;
+}
+
 const std::vector<Point3> probe_points = {{1.62, 0.31, 0.05}, {-0.9, 1.1, -0.13}, {1.2, -0.85, 0.21},
                                           {0.3, 1.35, -0.02}};
 } // namespace
@@ -350,29 +386,10 @@ std::array<double, 3> circle_domain_integral(const double K[3], int sign, double
         for (int m = 0; m < 3; ++m)
           for (int k = 0; k < 9; ++k)
             g[k] += K[m] * real.G[9 * m + k];
-        double sig[3][3];
-        stress_of(g, sig);
         const double n_out[3] = {0, 0, -1.0 * side};
-        double t[3], gd[3];
-        for (int i = 0; i < 3; ++i)
-        {
-          t[i] = sig[i][0] * n_out[0] + sig[i][1] * n_out[1] + sig[i][2] * n_out[2];
-          gd[i] = g[3 * i] * d[0] + g[3 * i + 1] * d[1] + g[3 * i + 2] * d[2];
-        }
+        const LipIntegrand lip = lip_integrand(g, aux.G.data(), n_out, d.data());
         for (int m = 0; m < 3; ++m)
-        {
-          double sa[3][3];
-          stress_of(&aux.G[9 * m], sa);
-          double v = 0.0;
-          for (int i = 0; i < 3; ++i)
-          {
-            const double ta = sa[i][0] * n_out[0] + sa[i][1] * n_out[1] + sa[i][2] * n_out[2];
-            const double Gd = aux.G[9 * m + 3 * i] * d[0] + aux.G[9 * m + 3 * i + 1] * d[1]
-                              + aux.G[9 * m + 3 * i + 2] * d[2];
-            v += t[i] * Gd + ta * gd[i];
-          }
-          I[m] -= ws * dr * jac * q * v;
-        }
+          I[m] -= ws * dr * jac * q * lip.traction[m];
       }
     }
   }
@@ -614,33 +631,15 @@ std::array<double, 3> tube_integral(const Darboux& D, const double K[3], double 
         for (int m = 0; m < 3; ++m)
           for (int c = 0; c < 9; ++c)
             g[c] += K[m] * real.G[9 * m + c];
-        double sig[3][3];
-        stress_of(g, sig);
         Point3 n_out;
         for (int i = 0; i < 3; ++i)
           n_out[i] = -side * gxi2[i] / gn;
-        double t[3], gd[3];
-        for (int i = 0; i < 3; ++i)
-        {
-          t[i] = sig[i][0] * n_out[0] + sig[i][1] * n_out[1] + sig[i][2] * n_out[2];
-          gd[i] = g[3 * i] * d[0] + g[3 * i + 1] * d[1] + g[3 * i + 2] * d[2];
-        }
+        const LipIntegrand lip = lip_integrand(g, aux.G.data(), n_out.data(), d.data());
         for (int m = 0; m < 3; ++m)
         {
-          double sa[3][3];
-          stress_of(&aux.G[9 * m], sa);
-          double v = 0.0, W = 0.0;
-          for (int i = 0; i < 3; ++i)
-          {
-            const double ta = sa[i][0] * n_out[0] + sa[i][1] * n_out[1] + sa[i][2] * n_out[2];
-            const double Gd = aux.G[9 * m + 3 * i] * d[0] + aux.G[9 * m + 3 * i + 1] * d[1]
-                              + aux.G[9 * m + 3 * i + 2] * d[2];
-            v -= t[i] * Gd + ta * gd[i];
-            for (int j = 0; j < 3; ++j)
-              W += sig[i][j] * 0.5 * (aux.G[9 * m + 3 * i + j] + aux.G[9 * m + 3 * j + i]);
-          }
+          double v = -lip.traction[m];
           if (terms.lip_energy)
-            v += W * dot3(n_out, d);
+            v += lip.energy[m] * dot3(n_out, d);
           I[m] += ws * dr * h * gn * q * v;
         }
       }
