@@ -2,6 +2,7 @@
 #include "enrichment/williams_local.h"
 
 #include <cmath>
+#include <numbers>
 
 namespace cracklip
 {
@@ -54,6 +55,16 @@ double front_angle(double x1, double x2, int side)
   const double t = std::atan2(x2, x1);
   if (side != 0 and x1 < 0.0)
     return side > 0 ? std::abs(t) : -std::abs(t);
+  return t;
+}
+
+double continued_front_angle(double x1, double x2, int side)
+{
+  const double t = std::atan2(x2, x1);
+  if (side > 0 and x1 < 0.0 and t < 0.0)
+    return t + 2.0 * std::numbers::pi;
+  if (side < 0 and x1 < 0.0 and t > 0.0)
+    return t - 2.0 * std::numbers::pi;
   return t;
 }
 

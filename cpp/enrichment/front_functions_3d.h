@@ -57,6 +57,16 @@ LocalCoordinates frame_coordinates(const FrontFrame& f, const Point3& x);
 /// side); side 0 uses atan2 alone.
 double front_angle(double x1, double x2, int side);
 
+/// The same angle continued across the plane x2 = 0 behind the front instead
+/// of mirrored: a point of the + side (side +1) with x1 < 0 and x2 < 0 gets
+/// 2 pi + atan2(x2, x1) (just above pi), one of the - side with x2 > 0 gets
+/// atan2 - 2 pi. Where the coordinates are a curved surface's (the
+/// auxiliary fields of a curved crack, interaction_integral_3d.h) a point of
+/// the real + lip may lie a little below x2 = 0; the continued angle keeps
+/// the field analytic in the material of its side, as its gradient assumes.
+/// Equal to front_angle wherever the side agrees with the sign of x2.
+double continued_front_angle(double x1, double x2, int side);
+
 /// The Williams displacement fields of modes I, II, III (williams_local.h,
 /// without K / (2 mu sqrt(2 pi))): U[m] global vector of mode m and
 /// dU[m][i][j] = d U[m]_i / d x_j (global). kappa = 3 - 4 nu (the front is

@@ -234,10 +234,14 @@ FrontLocator::FrontLocator(const CrackFront3D& front) : front_(front)
   tree_ = BoundingBoxTree<3>(boxes);
 }
 
-FrontProjection FrontLocator::project(const Point3& p) const
+FrontProjection FrontLocator::project(const Point3& p, std::span<const double> frames) const
 {
   if (front_.num_segments() == 0)
     throw std::runtime_error("FrontLocator: the crack has no front segment");
+  if (frames.empty())
+    frames = front_.frame;
+  else if (frames.size() != front_.frame.size())
+    throw std::invalid_argument("FrontLocator: frames must be (num_points, 3, 3) of the front");
   auto point = [&](std::int32_t i) { return Point3{front_.x[3 * i], front_.x[3 * i + 1], front_.x[3 * i + 2]}; };
   const auto [k, d2] = tree_.nearest(p,
                                      [&](std::int32_t j)
@@ -259,7 +263,7 @@ FrontProjection FrontLocator::project(const Point3& p) const
   std::array<Point3, 3> f;
   for (int r = 0; r < 3; ++r)
     for (int d = 0; d < 3; ++d)
-      f[r][d] = (1.0 - out.t) * front_.frame[9 * a + 3 * r + d] + out.t * front_.frame[9 * b + 3 * r + d];
+      f[r][d] = (1.0 - out.t) * frames[9 * a + 3 * r + d] + out.t * frames[9 * b + 3 * r + d];
   const Point3 e2 = unit(f[1]);
   const Point3 e3 = unit(axpy(f[2], -dot(f[2], e2), e2));
   out.frame = {cross(e2, e3), e2, e3};

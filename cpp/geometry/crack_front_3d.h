@@ -101,8 +101,10 @@ class FrontLocator
 {
 public:
   explicit FrontLocator(const CrackFront3D& front);
-  /// Throws std::runtime_error for a front without segments.
-  FrontProjection project(const Point3& p) const;
+  /// Throws std::runtime_error for a front without segments. frames
+  /// (num_points, 3, 3), if given, replace the front's own frames (e.g.
+  /// frames fitted to a triangulated surface), interpolated the same way.
+  FrontProjection project(const Point3& p, std::span<const double> frames = {}) const;
 
 private:
   const CrackFront3D& front_;

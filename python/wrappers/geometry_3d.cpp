@@ -4,6 +4,8 @@
 // arrays (dicts of them for per-cell data, flattened with offsets).
 #include "array.h"
 
+#include <optional>
+
 #include "geometry/crack_geometry_3d.h"
 #include "geometry/crack_surface_3d.h"
 #include "quadrature/cell_quadrature_3d.h"
@@ -268,16 +270,17 @@ void declare_geometry_3d(py::module& m)
       "The same from nodal level sets (front frames from the P1 polyline).");
   m.def(
       "compute_front_projection_3d",
-      [](const CrackGeometry3D& g, const carray<double>& p)
+      [](const CrackGeometry3D& g, const carray<double>& p, std::optional<carray<double>> frames)
       {
         require_columns(p, 3, "points");
         const FrontLocator loc(g.front);
+        const std::span<const double> fr = frames ? as_span(*frames) : std::span<const double>();
         const py::ssize_t np = p.shape(0);
         std::vector<std::int32_t> seg(np), piece(np), nearest(np);
         std::vector<double> t(np), xp(3 * np), dist(np), s(np), frame(9 * np);
         for (py::ssize_t i = 0; i < np; ++i)
         {
-          const FrontProjection r = loc.project({p.data()[3 * i], p.data()[3 * i + 1], p.data()[3 * i + 2]});
+          const FrontProjection r = loc.project({p.data()[3 * i], p.data()[3 * i + 1], p.data()[3 * i + 2]}, fr);
           seg[i] = r.segment, piece[i] = r.piece, nearest[i] = r.nearest_point;
           t[i] = r.t, dist[i] = r.distance, s[i] = r.s;
           std::copy(r.x.begin(), r.x.end(), xp.begin() + 3 * i);
@@ -295,8 +298,9 @@ void declare_geometry_3d(py::module& m)
         d["frame"] = as_pyarray(std::move(frame), {np, 3, 3});
         return d;
       },
-      py::arg("geometry"), py::arg("points"),
-      "Nearest point of the front polyline to each point (n, 3), with arc length and interpolated frame.");
+      py::arg("geometry"), py::arg("points"), py::arg("frames") = py::none(),
+      "Nearest point of the front polyline to each point (n, 3), with arc length and interpolated frame (of "
+      "the front's points, or of frames (num_front_points, 3, 3) if given).");
   m.def(
       "compute_cell_quadrature_3d",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const CrackGeometry3D& g, std::int32_t cell,

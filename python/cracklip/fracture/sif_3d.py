@@ -67,7 +67,7 @@ from .. import _cracklip
 from ..errors import InputError
 from ..model.cracks.surface import split_enriched
 from ..model.loads import lip_pressure
-from ..scene.crack_surface import EllipticalCrack
+from ..scene.crack_surface import EllipticalCrack, SurfaceCrack
 from ..scene.symmetry import SymmetryCondition
 from . import front_sampling
 from .sif import complete_rows
@@ -119,10 +119,18 @@ HAT_CURVATURE = 1.0
 #: % with 2 (K_II, K_III noise 1.3 % -> 1.0 %).
 MIN_HAT_ELEMENTS = 2.0
 
-#: A domain's radius stays below this fraction of the front's radius of
-#: curvature (the curvature terms hold for 1 + kappa x1 > 0; the change of
-#: the curvature along the front is not kept).
+#: A domain's radius stays below this fraction of the smallest radius of
+#: curvature of the front and of the crack's surface (1 / max(|kappa_f|,
+#: |kappa_11|, |kappa_33|): the curvature terms hold for h = 1 + kappa_f x1
+#: - kappa_33 x2 > 0, the surface-following coordinates while the quadric
+#: describes the surface; the change of the curvatures along the front is
+#: not kept).
 CURVATURE_FRACTION = 0.75
+
+#: A triangulated crack's surface and front are fitted (frames,
+#: curvatures) over this many front element sizes around each front vertex
+#: (and at least five facet edges: SurfaceCrack.front_geometry).
+FIT_ELEMENTS = 4.0
 
 #: Spread above this fraction of the K scale is warned about.
 SPREAD_WARNING = 0.01
@@ -254,7 +262,8 @@ def cells_of_nodes(model, nodes: np.ndarray) -> np.ndarray:
     nodes = np.asarray(nodes, dtype=np.int64)
     if nodes.size == 0:
         return np.zeros(0, dtype=np.int32)
-    idx = np.concatenate([np.arange(off[n], off[n + 1]) for n in nodes])
+    counts = off[nodes + 1] - off[nodes]
+    idx = np.repeat(off[nodes] - np.concatenate([[0], np.cumsum(counts)[:-1]]), counts) + np.arange(counts.sum())
     return np.unique(cl[idx])
 
 
@@ -287,8 +296,13 @@ def lip_points(model, crack: int) -> dict:
 class Front:
     """A crack's front polyline as arrays: vertices x (n, 3), s (n,), frame
     (n, 3, 3), piece (n,), segments (m, 2), segment_cell (m,), per piece:
-    offsets, closed, length; curvature (n,) at the vertices, segment sizes
-    (m,) (mean edge of the segment's cell)."""
+    offsets, closed, length; curvature (n,) the front's (kappa_f) at the
+    vertices, curvatures (n, 4) kappa_f, kappa_11, kappa_33, tau (the
+    crack surface's too: interaction_integral_3d.h; 0 but kappa_f on a
+    planar crack), segment sizes (m,) (mean edge of the segment's cell);
+    fitted: the frames and curvatures come from the smooth fit of a
+    triangulated surface (SurfaceCrack.front_geometry), not from the
+    geometry's frames."""
     x: np.ndarray
     s: np.ndarray
     frame: np.ndarray
@@ -301,6 +315,13 @@ class Front:
     segment_size: np.ndarray
     curvature: np.ndarray
     on_boundary: np.ndarray
+    curvatures: np.ndarray | None = None
+    fitted: bool = False
+
+    def __post_init__(self):
+        if self.curvatures is None:
+            self.curvatures = np.zeros((len(self.s), 4))
+            self.curvatures[:, 0] = self.curvature
 
 
 def crack_front(model, crack: int) -> Front:
@@ -339,8 +360,18 @@ def crack_front(model, crack: int) -> Front:
         ds = sp[ahead] - sp[behind]
         de3 = e3[ahead] - e3[behind]
         curv[idx] = np.where(ds > 0, -np.einsum("ij,ij->i", de3, e1[mid]) / np.maximum(ds, 1e-300), 0.0)
-    out = Front(x, s, frame, piece, off, closed, length, segs, scell, ssize, curv,
-                np.asarray(f["on_boundary"]).astype(bool))
+    on_boundary = np.asarray(f["on_boundary"]).astype(bool)
+    surface = model.cracks[crack].crack
+    if isinstance(surface, SurfaceCrack) and len(x):
+        # A triangulated surface: frames and curvatures of the smooth
+        # surface and front through its vertices, fitted over the domains'
+        # reach (the facets' normals jump from facet to facet).
+        fit = surface.front_geometry(x, frame, FIT_ELEMENTS * h)
+        k = fit["curvatures"]
+        out = Front(x, s, fit["frame"], piece, off, closed, length, segs, scell, ssize, k[:, 0].copy(), on_boundary,
+                    k, True)
+    else:
+        out = Front(x, s, frame, piece, off, closed, length, segs, scell, ssize, curv, on_boundary)
     c[crack] = out
     return out
 
@@ -351,21 +382,30 @@ def _wrap(ds: np.ndarray, length: float, closed: bool) -> np.ndarray:
 
 def project(model, crack: int, points: np.ndarray) -> dict[str, np.ndarray]:
     """Nearest front point of points (n, 3): s, piece, distance, x (n, 3),
-    frame (n, 3, 3), curvature (n,)."""
+    frame (n, 3, 3), curvatures (n, 4) (kappa_f, kappa_11, kappa_33, tau
+    interpolated along the segment), curvature (n,) (kappa_f)."""
     fr = crack_front(model, crack)
-    p = _cracklip.compute_front_projection_3d(model.geometries[crack], np.ascontiguousarray(points, dtype=float))
+    pts = np.ascontiguousarray(points, dtype=float)
+    # (a triangulated surface: its fitted frames, interpolated as the geometry's are)
+    p = _cracklip.compute_front_projection_3d(model.geometries[crack], pts,
+                                              np.ascontiguousarray(fr.frame) if fr.fitted else None)
     seg = fr.segments[p["segment"]]
     t = p["t"]
-    kap = ((1.0 - t) * fr.curvature[seg[:, 0]] + t * fr.curvature[seg[:, 1]]) if CURVATURE_TERMS \
-        else np.zeros(len(t))
+    k = (1.0 - t)[:, None] * fr.curvatures[seg[:, 0]] + t[:, None] * fr.curvatures[seg[:, 1]]
+    if not CURVATURE_TERMS:
+        k[:] = 0.0
     # A point beyond its front point's centre of curvature (a domain too large
     # for the curvature; the domains are clipped to avoid it) gets the
-    # curvature that puts it at a tenth of the way: the kernel needs
-    # 1 + kappa x1 > 0.
-    x1 = np.einsum("ni,ni->n", np.asarray(points, dtype=float) - p["x"], p["frame"][:, 0])
-    bad = 1.0 + kap * x1 < 0.1
-    kap[bad] = -0.9 / x1[bad]
-    p["curvature"] = kap
+    # curvatures scaled so that it lies a tenth of the way: the kernel needs
+    # h = 1 + kappa_f x1 - kappa_33 x2 > 0.
+    d = pts - p["x"]
+    lin = k[:, 0] * np.einsum("ni,ni->n", d, p["frame"][:, 0])
+    if np.any(k[:, 2]):
+        lin -= k[:, 2] * np.einsum("ni,ni->n", d, p["frame"][:, 1])
+    bad = 1.0 + lin < 0.1
+    k[bad] *= (-0.9 / lin[bad])[:, None]
+    p["curvatures"] = k
+    p["curvature"] = k[:, 0].copy()
     p["curvature_clamped"] = bad
     return p
 
@@ -546,13 +586,13 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
         # the front within its reach (the hat, the radius, an element).
         near = fr.piece == piece
         near &= np.linalg.norm(fr.x - xk, axis=1) <= hat + wanted + 2.0 * h
-        kap = float(np.abs(fr.curvature[near]).max()) if np.any(near) else 0.0
+        kap = float(np.abs(fr.curvatures[near, :3]).max()) if np.any(near) else 0.0
         # (clearance: the largest radius clear of it, what, its distance)
         obstacles = []
         if kap > 0:
             room = min(CURVATURE_FRACTION / kap, 0.95 / kap - h)
-            obstacles.append((room, f"{CURVATURE_FRACTION:g} of the front's radius of curvature ({1 / kap:.3g})",
-                              room))
+            obstacles.append((room, f"{CURVATURE_FRACTION:g} of the smallest radius of curvature of the front and "
+                                    f"the crack's surface ({1 / kap:.3g})", room))
         if bpr is not None:
             same = bpr["piece"] == piece
             ds = _wrap(bpr["s"] - s0, L, d["closed"])
@@ -613,7 +653,8 @@ def _plain_rules() -> dict[int, tuple[np.ndarray, np.ndarray]]:
 
 
 def _quadrature(solution, crack: int, cells: np.ndarray, node_r: np.ndarray) -> dict[str, np.ndarray]:
-    """Quadrature points of cells: cell, ref, x, weight, side."""
+    """Quadrature points of cells: cell, ref, x, weight, side, plain (the
+    cell has no enriched node)."""
     m = solution.model
     ec, pc = split_enriched(m, cells)
     parts = []
@@ -622,7 +663,8 @@ def _quadrature(solution, crack: int, cells: np.ndarray, node_r: np.ndarray) -> 
         opts.degree = max(opts.degree, ENRICHED_DEGREE)
         opts.far_degree = max(opts.far_degree, FAR_DEGREE)
         q = _cracklip.compute_enriched_cell_quadrature_3d(m.x, m.cells, m.layout, m.geometries, ec, opts)
-        parts.append({"cell": q["cell"], "ref": q["ref"], "weight": q["weight"], "side": q["side"]})
+        parts.append({"cell": q["cell"], "ref": q["ref"], "weight": q["weight"], "side": q["side"],
+                      "plain": np.zeros(len(q["weight"]), dtype=bool)})
     if pc.size:
         xv = m.x[m.cells[pc]]
         diam = cell_sizes(m, pc) * 1.5
@@ -639,7 +681,8 @@ def _quadrature(solution, crack: int, cells: np.ndarray, node_r: np.ndarray) -> 
             detJ = np.abs(np.einsum("ci,ci->c", e[:, 0], np.cross(e[:, 1], e[:, 2])))
             parts.append({"cell": np.repeat(c, len(w)).astype(np.int32), "ref": np.tile(ref, (len(c), 1)),
                           "weight": (detJ[:, None] * w[None, :]).ravel(),
-                          "side": np.zeros(len(c) * len(w), dtype=np.int8)})
+                          "side": np.zeros(len(c) * len(w), dtype=np.int8),
+                          "plain": np.ones(len(c) * len(w), dtype=bool)})
     out = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
     N = np.column_stack([1.0 - out["ref"].sum(axis=1), out["ref"]])
     out["x"] = np.einsum("na,nai->ni", N, m.x[m.cells[out["cell"]]])
@@ -676,126 +719,150 @@ def _node_q(nd: dict, fp: FrontPoint, radius: float) -> np.ndarray:
     return qs * qr
 
 
-def _front_normalisation(model, fr: Front, fp: FrontPoint, qnode_full: typing.Callable[[np.ndarray], np.ndarray]
-                         ) -> float:
-    """int q (e1 . d) ds along the front polyline (3 Gauss points per segment)."""
-    seg = fr.segments[fr.piece[fr.segments[:, 0]] == fp.piece]
+def _front_rule(model, fr: Front, piece: int) -> dict[str, np.ndarray]:
+    """Gauss points along a piece of the front polyline (3 per segment):
+    nodes (n, 4) of their cells, shape values N (n, 4), weights (n,), e1 and
+    e2 (n, 3) interpolated from the vertices' frames."""
+    c = _cache(model).setdefault("front_rules", {})
+    key = (id(fr), piece)
+    if key in c:
+        return c[key]
+    mine = fr.piece[fr.segments[:, 0]] == piece
+    seg = fr.segments[mine]
     a, b = fr.x[seg[:, 0]], fr.x[seg[:, 1]]
     g = np.array([0.5 - math.sqrt(15) / 10, 0.5, 0.5 + math.sqrt(15) / 10])
     wg = np.array([5.0, 8.0, 5.0]) / 18.0
-    cells = fr.segment_cell[fr.piece[fr.segments[:, 0]] == fp.piece]
     pts = (a[:, None, :] * (1 - g)[None, :, None] + b[:, None, :] * g[None, :, None]).reshape(-1, 3)
-    e1 = (fr.frame[seg[:, 0], 0][:, None, :] * (1 - g)[None, :, None]
-          + fr.frame[seg[:, 1], 0][:, None, :] * g[None, :, None]).reshape(-1, 3)
-    e1 /= np.linalg.norm(e1, axis=1)[:, None]
-    c = np.repeat(cells, 3)
-    xv = model.x[model.cells[c]]
+
+    def along(k: int) -> np.ndarray:
+        e = (fr.frame[seg[:, 0], k][:, None, :] * (1 - g)[None, :, None]
+             + fr.frame[seg[:, 1], k][:, None, :] * g[None, :, None]).reshape(-1, 3)
+        return e / np.linalg.norm(e, axis=1)[:, None]
+    cells = np.repeat(fr.segment_cell[mine], 3)
+    xv = model.x[model.cells[cells]]
     J = np.transpose(xv[:, 1:] - xv[:, :1], (0, 2, 1))
     ref = np.linalg.solve(J, (pts - xv[:, 0])[:, :, None])[:, :, 0]
-    N = np.column_stack([1.0 - ref.sum(axis=1), ref])
-    q = np.einsum("na,na->n", N, qnode_full(model.cells[c]))
-    w = (np.linalg.norm(b - a, axis=1)[:, None] * wg[None, :]).ravel()
-    return float(np.sum(w * q * (e1 @ fp.frame[0])))
+    out = {"nodes": model.cells[cells], "N": np.column_stack([1.0 - ref.sum(axis=1), ref]),
+           "weight": (np.linalg.norm(b - a, axis=1)[:, None] * wg[None, :]).ravel(), "e1": along(0), "e2": along(1)}
+    c[key] = out
+    return out
+
+
+def _front_normalisation(model, fr: Front, fp: FrontPoint, qnode_full: typing.Callable[[np.ndarray], np.ndarray]
+                         ) -> tuple[np.ndarray, np.ndarray]:
+    """int q (e1 . d) ds and int q (e2 . d) ds along the front polyline (3
+    Gauss points per segment), d = e1 of the front point, per domain:
+    qnode_full(nodes (n, 4)) gives q (n, 4, domains) at cells' nodes."""
+    r = _front_rule(model, fr, fp.piece)
+    q = np.einsum("na,nad->nd", r["N"], qnode_full(r["nodes"]))
+    d = fp.frame[0]
+    return (np.einsum("n,nd,n->d", r["weight"], q, r["e1"] @ d), np.einsum("n,nd,n->d", r["weight"], q, r["e2"] @ d))
+
+
+def _domain_table(m, qn: list[np.ndarray], cells_of: list[np.ndarray], tube_index: np.ndarray
+                  ) -> dict[str, np.ndarray]:
+    """The cell -> front point table of the one-pass sums
+    (interaction_integral_3d.h FrontDomainTable) over the cells of all
+    domains: cells (c,) sorted, offsets (c + 1,), point (m,), q (m, 4,
+    domains) the point's nodal q on the cell's nodes."""
+    cell = np.concatenate(cells_of)
+    point = np.concatenate([np.full(len(c), i, dtype=np.int32) for i, c in enumerate(cells_of)])
+    q = np.empty((len(cell), 4, qn[0].shape[1]))
+    start = 0
+    for i, c in enumerate(cells_of):
+        conn = tube_index[m.cells[c]]
+        q[start:start + len(c)] = np.where(conn[:, :, None] >= 0, qn[i][np.maximum(conn, 0)], 0.0)
+        start += len(c)
+    order = np.argsort(cell, kind="stable")
+    cell, point, q = cell[order], point[order], q[order]
+    cells, counts = np.unique(cell, return_counts=True)
+    return {"cells": cells, "offsets": np.concatenate([[0], np.cumsum(counts)]).astype(np.int32),
+            "point": np.ascontiguousarray(point), "q": np.ascontiguousarray(q)}
+
+
+def _table_part(table: dict, lo: int, hi: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """offsets, point, q of the table's cells lo .. hi - 1."""
+    off = table["offsets"]
+    a, b = off[lo], off[hi]
+    return (np.ascontiguousarray(off[lo:hi + 1] - a, dtype=np.int32), table["point"][a:b], table["q"][a:b])
 
 
 def crack_front_sifs(solution, crack: int, radius: float | None = None) -> tuple[list[FrontPoint], np.ndarray]:
     """K (num_points, num_domains, 3) at every front point of a crack on every
-    domain, with the front points."""
+    domain, with the front points. One pass over the cells of all domains
+    (in chunks): each quadrature point's auxiliary fields and integrands are
+    computed once and summed into every front point whose domain reaches
+    its cell (_cracklip.front_domain_integrals_3d)."""
     m = solution.model
     mat = m.scene.material
     E, nu = mat.E, mat.nu
     lam = E * nu / ((1 + nu) * (1 - 2 * nu))
     mu = E / (2 * (1 + nu))
-    Ep = E / (1 - nu * nu)
     fps = front_points(m, crack, radius)
+    nd = len(DOMAIN_FRACTIONS)
     if not fps:
-        return fps, np.zeros((0, len(DOMAIN_FRACTIONS), 3))
+        return fps, np.zeros((0, nd, 3))
     fr = crack_front(m, crack)
     # The tube: nodes within the largest radius of the front (+ an element).
     rmax = max(fp.radius for fp in fps) + float(fr.segment_size.max())
     tree = node_tree(m)
-    samples = fr.x
     seg_len = np.linalg.norm(fr.x[fr.segments[:, 1]] - fr.x[fr.segments[:, 0]], axis=1)
     reach = rmax + 0.5 * float(seg_len.max())
-    nodes = np.unique(np.concatenate([np.asarray(i, dtype=np.int64) for i in tree.query_ball_point(samples, reach)]))
+    nodes = np.unique(np.concatenate([np.asarray(i, dtype=np.int64) for i in tree.query_ball_point(fr.x, reach)]))
     npr = project(m, crack, m.x[nodes])
     tube_index = -np.ones(m.x.shape[0], dtype=np.int64)
     tube_index[nodes] = np.arange(len(nodes))
-    nd = {"s": npr["s"], "piece": npr["piece"], "r": npr["distance"]}
+    nd_ = {"s": npr["s"], "piece": npr["piece"], "r": npr["distance"]}
     node_r = np.full(m.x.shape[0], np.inf)
     node_r[nodes] = npr["distance"]
     body = _body_force(solution)
     crk = m.cracks[crack].crack
     pressure = (callable(crk.pressure) or crk.pressure != 0.0) and solution.factor(crk.pressure_group) != 0.0
-    lips = lip_points(m, crack)
-    K = np.zeros((len(fps), len(DOMAIN_FRACTIONS), 3))
     # Per front point: its nodal q (one column per domain) and its cells.
     qn, cells_of = [], []
     for fp in fps:
-        q = np.stack([_node_q(nd, fp, r) for r in fp.radii], axis=1)
+        q = np.stack([_node_q(nd_, fp, r) for r in fp.radii], axis=1)
         qn.append(q)
         cells_of.append(cells_of_nodes(m, nodes[q[:, -1] > 0.0]))
-    # Chunks of consecutive front points, bounded by their cells.
-    order = list(range(len(fps)))
-    chunk: list[int] = []
-    est = 0
-
-    def run(chunk: list[int]) -> None:
-        cells = np.unique(np.concatenate([cells_of[i] for i in chunk]))
+    table = _domain_table(m, qn, cells_of, tube_index)
+    cells_all = table["cells"]
+    directions = np.ascontiguousarray([fp.frame[0] for fp in fps])
+    I = np.zeros((len(fps), nd, 3))
+    # Chunks of cells (sorted, as the table), bounded by their quadrature points.
+    per_cell = max(1, CHUNK_POINTS // 60)
+    for lo in range(0, len(cells_all), per_cell):
+        hi = min(lo + per_cell, len(cells_all))
+        cells = cells_all[lo:hi]
         qp = _quadrature(solution, crack, cells, node_r)
-        _, grad = solution._evaluate(qp["cell"], qp["ref"], qp["side"], gradient=True)
+        grad = _gradients(solution, qp)
         pr = project(m, crack, qp["x"])
-        T, D = _cracklip.interaction_integrand_3d(E, nu, _frames12(pr), np.ascontiguousarray(pr["curvature"]),
-                                                  np.ascontiguousarray(qp["x"]), np.ascontiguousarray(grad),
-                                                  np.ascontiguousarray(qp["side"], dtype=np.int8),
-                                                  None if body is None else tuple(body))
-        pc = np.searchsorted(cells, qp["cell"])
-        dN = _shape_gradients(m, cells)                                    # (c, 4, 3)
-        Nq = np.column_stack([1.0 - qp["ref"].sum(axis=1), qp["ref"]])     # (n, 4)
-        conn = tube_index[m.cells[cells]]                                   # (c, 4), -1 outside the tube
-        # Lip points in these cells.
-        lip_on = np.isin(lips["cell"], cells)
-        lp = {k: v[lip_on] for k, v in lips.items()}
-        lip_terms = None
-        if len(lp["weight"]):
-            lip_terms = _lip_terms(solution, crack, lp, E, nu, lam, mu, pressure)
-            lpc = np.searchsorted(cells, lp["cell"])
-            Nl = np.column_stack([1.0 - lp["ref"].sum(axis=1), lp["ref"]])
-        for i in chunk:
-            fp = fps[i]
-            d = fp.frame[0]
-            mine = np.zeros(len(cells), dtype=bool)
-            mine[np.searchsorted(cells, cells_of[i])] = True
-            sel = mine[pc]
-            qc = np.where(conn[:, :, None] >= 0, qn[i][np.maximum(conn, 0)], 0.0)   # (c, 4, domains)
-            gq_cell = np.einsum("cad,cai->cdi", qc, dN)                                # (c, domains, 3)
-            gq = gq_cell[pc[sel]]                                                     # (p, domains, 3)
-            qv = np.einsum("pa,pad->pd", Nq[sel], qc[pc[sel]])                        # (p, domains)
-            Td = np.einsum("pmjl,l->pmj", T[sel], d)
-            Dd = np.einsum("pml,l->pm", D[sel], d)
-            w = qp["weight"][sel]
-            I = np.einsum("p,pdj,pmj->dm", w, gq, Td) + np.einsum("p,pd,pm->dm", w, qv, Dd)
-            if lip_terms is not None:
-                ql = np.einsum("pa,pad->pd", Nl, qc[lpc])                             # (l, domains)
-                I -= np.einsum("p,pd,pml,l->dm", lp["weight"], ql, lip_terms, d)
-            Q = np.array([_front_normalisation(m, fr, fp, lambda cn, i=i, j=j: np.where(
-                tube_index[cn] >= 0, qn[i][np.maximum(tube_index[cn], 0), j], 0.0)) for j in range(len(fp.radii))])
-            if np.any(Q <= 0.0):
-                raise InputError(f"front point {fp.index} of crack {crk.name!r}: its q-function vanishes along the "
-                                 "front (no mesh node within its hat); use a larger spacing")
-            K[i, :, 0] = 0.5 * Ep * I[:, 0] / Q
-            K[i, :, 1] = 0.5 * Ep * I[:, 1] / Q
-            K[i, :, 2] = mu * I[:, 2] / Q
-
-    for i in order:
-        n_est = len(cells_of[i]) * 60
-        if chunk and est + n_est > CHUNK_POINTS:
-            run(chunk)
-            chunk, est = [], 0
-        chunk.append(i)
-        est += n_est
-    if chunk:
-        run(chunk)
+        offsets, point, q = _table_part(table, lo, hi)
+        _cracklip.front_domain_integrals_3d(
+            E, nu, _frames12(pr), np.ascontiguousarray(pr["curvatures"]), np.ascontiguousarray(qp["x"]),
+            np.ascontiguousarray(grad), np.ascontiguousarray(qp["side"], dtype=np.int8),
+            None if body is None else tuple(body), np.ascontiguousarray(qp["weight"]),
+            np.searchsorted(cells, qp["cell"]).astype(np.int32),
+            np.ascontiguousarray(np.column_stack([1.0 - qp["ref"].sum(axis=1), qp["ref"]])),
+            np.ascontiguousarray(_shape_gradients(m, cells)), offsets, point, q, directions, I)
+    # The lip terms (subtracted): per unit q and extension (lip point, mode, l).
+    lips = lip_points(m, crack)
+    on = np.isin(lips["cell"], cells_all)
+    lp = {k: v[on] for k, v in lips.items()}
+    if len(lp["weight"]):
+        values = -_lip_terms(solution, crack, lp, E, nu, lam, mu, pressure)
+        _cracklip.front_domain_sums_3d(
+            np.ascontiguousarray(values), np.ascontiguousarray(lp["weight"]),
+            np.searchsorted(cells_all, lp["cell"]).astype(np.int32),
+            np.ascontiguousarray(np.column_stack([1.0 - lp["ref"].sum(axis=1), lp["ref"]])), table["offsets"],
+            table["point"], table["q"], directions, I)
+    K = np.zeros((len(fps), nd, 3))
+    for i, fp in enumerate(fps):
+        Q1, Q2 = _front_normalisation(m, fr, fp, lambda cn, i=i: np.where(
+            (tube_index[cn] >= 0)[:, :, None], qn[i][np.maximum(tube_index[cn], 0)], 0.0))
+        if np.any(Q1 <= 0.0):
+            raise InputError(f"front point {fp.index} of crack {crk.name!r}: its q-function vanishes along the "
+                             "front (no mesh node within its hat); use a larger spacing")
+        K[i] = _cracklip.front_sifs_3d(E, nu, I[i], Q1, Q2)
     K = _mirror_ends(fps, K)
     if HAT_CORRECTION:
         K = _hat_correction(fps, K)
@@ -814,6 +881,23 @@ def _mirror_ends(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
         if fp.symmetry is not None:
             out[i] = K[i] * 0.5 * (1.0 + front_sampling.MIRROR_SIGNS)
     return out
+
+
+def _gradients(solution, qp: dict) -> np.ndarray:
+    """grad u (n, 3, 3) at quadrature points: once per cell where the cell
+    has no enriched node (plain P1: a constant gradient), by the enriched
+    basis elsewhere."""
+    plain = qp["plain"]
+    grad = np.empty((len(plain), 3, 3))
+    if np.any(~plain):
+        _, grad[~plain] = solution._evaluate(qp["cell"][~plain], qp["ref"][~plain], qp["side"][~plain],
+                                             gradient=True)
+    if np.any(plain):
+        cells, inverse = np.unique(qp["cell"][plain], return_inverse=True)
+        centre = np.full((len(cells), 3), 0.25)
+        _, g = solution._evaluate(cells, centre, np.zeros(len(cells), dtype=np.int8), gradient=True)
+        grad[plain] = g[inverse]
+    return grad
 
 
 def _hat_correction(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
@@ -925,18 +1009,26 @@ def hat_deconvolve(A: np.ndarray, lm: np.ndarray, lp: np.ndarray, closed: bool, 
 def _lip_terms(solution, crack: int, lp: dict, E: float, nu: float, lam: float, mu: float, pressure: bool
                ) -> np.ndarray:
     """Per lip point (n, mode, l): the lip integrand per unit q and
-    virtual-extension direction d_l, t . [grad u_aux]_l + sum_lips t_aux .
-    grad u_l (subtracted by the caller)."""
+    virtual-extension direction d_l, summed over the two lips, t . [grad
+    u_aux]_l + t_aux . [grad u]_l - (sigma : eps_aux) n_l (t = sigma n the
+    lip's traction, t_aux = sigma_aux n, n the outward normal of the lip's
+    material; the last term vanishes on a planar crack, where n . d = 0):
+    subtracted by the caller."""
     m = solution.model
     n = len(lp["weight"])
     pr = project(m, crack, lp["x"])
-    fr12, curv = _frames12(pr), np.ascontiguousarray(pr["curvature"])
+    fr12, curv = _frames12(pr), np.ascontiguousarray(pr["curvatures"])
     out = np.zeros((n, 3, 3))
     normal = lp["normal"]
     p = None
     if pressure:
         crk = m.cracks[crack].crack
         p = solution.factor(crk.pressure_group) * lip_pressure(crk, lp["x"])
+
+    def stress(G: np.ndarray) -> np.ndarray:
+        eps = 0.5 * (G + np.swapaxes(G, -1, -2))
+        tr = np.trace(eps, axis1=-2, axis2=-1)
+        return 2 * mu * eps + lam * tr[..., None, None] * np.eye(3)
     for side in (1, -1):
         sides = np.full(n, side, dtype=np.int8)
         aux = _cracklip.auxiliary_fields_3d(E, nu, fr12, curv, np.ascontiguousarray(lp["x"]), sides)
@@ -947,11 +1039,11 @@ def _lip_terms(solution, crack: int, lp: dict, E: float, nu: float, lam: float, 
             out += np.einsum("ni,nmil->nml", t, G)
         # the auxiliary field's traction on this lip (curvature terms) times grad u there
         _, g = solution._evaluate(lp["cell"], lp["ref"], sides, gradient=True)
-        eps = 0.5 * (G + np.swapaxes(G, 2, 3))
-        tr = np.trace(eps, axis1=2, axis2=3)
-        sig = 2 * mu * eps + lam * tr[:, :, None, None] * np.eye(3)
-        ta = np.einsum("nmij,nj->nmi", sig, n_out)
+        ta = np.einsum("nmij,nj->nmi", stress(G), n_out)
         out += np.einsum("nmi,nil->nml", ta, g)
+        # (sigma : eps_aux) n: a curved crack's lips are not along d
+        W = np.einsum("nij,nmij->nm", stress(g), G)
+        out -= W[:, :, None] * n_out[:, None, :]
     return out
 
 

@@ -300,6 +300,113 @@ class SurfaceCrack:
         v, t = self.vertices, self.triangles
         return 0.5 * float(np.linalg.norm(np.cross(v[t[:, 1]] - v[t[:, 0]], v[t[:, 2]] - v[t[:, 0]]), axis=1).sum())
 
+    def front_geometry(self, points: np.ndarray, frames: np.ndarray, radius: float) -> dict[str, np.ndarray]:
+        """The smooth surface and front through the triangulation near front
+        points (n, 3) whose frames (n, 3, 3) (rows e1 out of the crack, e2
+        the normal to the + side, e3 = e1 x e2: the facets') are a first
+        guess, so that quantities the facets only give piecewise (the
+        normal, the front's direction) and not at all (curvatures) follow
+        the surface the triangulation samples: per point, least squares in
+        the point's frame (x1, x2, x3), weighted by (1 - (d / radius)^2)^2,
+
+        - of the vertices within `radius` (at least 5 edges): the surface
+          x2 = c + a1 x1 + a3 x3 + (k11 x1^2 + 2 k13 x1 x3 + k33 x3^2) / 2 +
+          cubic and quartic terms (where 30 and 45 vertices allow): its
+          normal at the point, its normal curvatures across (kappa_11) and
+          along (kappa_33) the front and its geodesic torsion tau = k13 (the
+          turning of the normal along the front, d e2 / ds . e1 = -tau);
+        - of the boundary vertices (the front's) within `radius`: x1 and x2
+          as polynomials of x3 (up to degree 4 with 12 vertices): the
+          front's tangent and kappa_f = -x1''(0) (> 0 where the front bends
+          around the crack);
+
+        twice, the second time in the frame of the first fit (e2 its normal,
+        e3 the front's tangent made normal to it, e1 = e2 x e3). Returns
+        frame (n, 3, 3) and curvatures (n, 4): kappa_f, kappa_11, kappa_33,
+        tau (interaction_integral_3d.h), 0 where they are below 1e-9 of the
+        inverse size (a planar triangulation). Raises CrackGeometryError
+        where too few vertices lie within reach."""
+        import scipy.spatial
+        v, label = self.vertices, self.name or "crack"
+        pts = np.asarray(points, dtype=float).reshape(-1, 3)
+        frames = np.array(frames, dtype=float).reshape(-1, 3, 3)
+        edges = np.linalg.norm(v[self.triangles] - v[np.roll(self.triangles, 1, axis=1)], axis=2)
+        reach = max(float(radius), 5.0 * float(np.median(edges)))
+        size = float(np.ptp(v, axis=0).max())
+        front = np.unique(self.boundary_edges())
+        tree, ftree = scipy.spatial.cKDTree(v), scipy.spatial.cKDTree(v[front])
+        out_frame = np.empty_like(frames)
+        out_k = np.zeros((len(pts), 4))
+        for i, (x0, fr) in enumerate(zip(pts, frames)):
+            e1, e2, e3 = fr
+            for _ in range(2):
+                X = self._nearby(tree, v, x0, reach, 10, label)
+                Y = self._nearby(ftree, v[front], x0, reach, 5, label)
+                c = self._quadric(X, x0, e1, e2, e3, reach)
+                n = e2 - c[1] * e1 - c[2] * e3
+                n /= np.linalg.norm(n)
+                b = self._front_curve(Y, x0, e1, e2, e3, reach)
+                t = e3 + b[0] * e1 + b[1] * e2
+                t -= np.dot(t, n) * n
+                t /= np.linalg.norm(t)
+                e1, e2, e3 = np.cross(n, t), n, t
+            c = self._quadric(X, x0, e1, e2, e3, reach)
+            b = self._front_curve(Y, x0, e1, e2, e3, reach)
+            k = np.array([-b[2], c[3], c[5], c[4]])
+            k[np.abs(k) * size < 1e-9] = 0.0
+            out_frame[i] = (e1, e2, e3)
+            out_k[i] = k
+        return {"frame": out_frame, "curvatures": out_k}
+
+    @staticmethod
+    def _nearby(tree, v: np.ndarray, x0: np.ndarray, reach: float, least: int, label: str) -> np.ndarray:
+        idx = tree.query_ball_point(x0, reach)
+        if len(idx) < least:
+            _, idx = tree.query(x0, k=min(least, len(v)))
+            idx = np.atleast_1d(idx)
+        if len(idx) < least:
+            raise CrackGeometryError(f"{label}: fewer than {least} vertices of the triangulated surface near the "
+                                     f"front point {x0.tolist()}: too few to fit its curvature; give a finer "
+                                     "triangulation")
+        return v[np.asarray(idx)]
+
+    @staticmethod
+    def _weights(d: np.ndarray, reach: float) -> np.ndarray:
+        r = np.minimum(d / (1.5 * reach), 1.0)
+        return (1.0 - r * r) ** 2 + 1e-3
+
+    @classmethod
+    def _quadric(cls, X, x0, e1, e2, e3, reach) -> np.ndarray:
+        """(c, a1, a3, k11, k13, k33) of x2 = c + a1 x1 + a3 x3 + (k11 x1^2 +
+        2 k13 x1 x3 + k33 x3^2) / 2 + cubic terms (least squares)."""
+        d = X - x0
+        y1, y2, y3 = d @ e1, d @ e2, d @ e3
+        cols = [np.ones_like(y1), y1, y3, 0.5 * y1 * y1, y1 * y3, 0.5 * y3 * y3]
+        if len(X) >= 30:
+            cols += [y1 ** 3, y1 * y1 * y3, y1 * y3 * y3, y3 ** 3]
+        if len(X) >= 45:
+            cols += [y1 ** 4, y1 ** 3 * y3, y1 * y1 * y3 * y3, y1 * y3 ** 3, y3 ** 4]
+        A = np.column_stack(cols)
+        w = np.sqrt(cls._weights(np.linalg.norm(d, axis=1), reach))
+        return np.linalg.lstsq(A * w[:, None], y2 * w, rcond=None)[0][:6]
+
+    @classmethod
+    def _front_curve(cls, Y, x0, e1, e2, e3, reach) -> np.ndarray:
+        """(x1'(0), x2'(0), x1''(0)) of the front through the boundary
+        vertices Y as x1(x3), x2(x3) (least squares)."""
+        d = Y - x0
+        y1, y2, y3 = d @ e1, d @ e2, d @ e3
+        cols = [np.ones_like(y3), y3, 0.5 * y3 * y3]
+        if len(Y) >= 8:
+            cols.append(y3 ** 3)
+        if len(Y) >= 12:
+            cols.append(y3 ** 4)
+        A = np.column_stack(cols)
+        w = np.sqrt(cls._weights(np.linalg.norm(d, axis=1), reach))
+        c1 = np.linalg.lstsq(A * w[:, None], y1 * w, rcond=None)[0]
+        c2 = np.linalg.lstsq(A * w[:, None], y2 * w, rcond=None)[0]
+        return np.array([c1[1], c2[1], c1[2]])
+
     def plane(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(origin, e1, e2): the best-fitting plane of the vertices (their
         centroid and the two leading principal directions, e1 x e2 along the
