@@ -209,7 +209,7 @@ def _volumes(gmsh) -> list[int]:
     return sorted(set(physical)) if physical else [v for _, v in gmsh.model.getEntities(3)]
 
 
-def _create_3d(gmsh, path: pathlib.Path, h: float, fronts) -> MeshData:
+def _create_3d(gmsh, path: pathlib.Path, h: float, fronts, size_factor: float = 1.0) -> MeshData:
     """Tetrahedra of a 3D part (module doc); gmsh holds the opened file."""
     from .mesh_3d import _size_fields, expected_cells
     volumes = _volumes(gmsh)
@@ -233,10 +233,11 @@ def _create_3d(gmsh, path: pathlib.Path, h: float, fronts) -> MeshData:
     gmsh.option.setNumber("Mesh.SubdivisionAlgorithm", 0)
     gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay, as the generated shapes
     # The points of the size field in the kernel the part was built with.
-    _size_fields(gmsh, h, fronts, kernel="occ" if gmsh.model.occ.getEntities(3) else "geo")
+    _size_fields(gmsh, h, fronts, kernel="occ" if gmsh.model.occ.getEntities(3) else "geo", size_factor=size_factor)
     gmsh.model.mesh.generate(3)
-    md = to_dolfinx(gmsh, h, volumes, dim=3, fronts=fronts)
+    md = to_dolfinx(gmsh, h, volumes, dim=3, fronts=fronts, size_factor=size_factor)
     md.source = "geometry"
+    md.recipe = functools.partial(create_from_geometry, path, h, fronts=fronts)
     return md
 
 
@@ -262,7 +263,8 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
                          embed_points: typing.Sequence[tuple[float, float]] = (),
                          levels: typing.Sequence[typing.Sequence[float]] = (),
                          tips: typing.Sequence[tuple[float, float]] = (), tip_h: float = 0.0,
-                         tip_radius: float = 0.0, fronts: typing.Sequence = ()) -> MeshData:
+                         tip_radius: float = 0.0, fronts: typing.Sequence = (), size_factor: float = 1.0
+                         ) -> MeshData:
     """Triangles of size h (with the refinements and levels of
     cracklip.scene.size_field) of the part a .geo, STEP or BREP file
     describes; embed_points become mesh nodes; each of `tips` inside the
@@ -271,8 +273,8 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
 
     A geometry with volumes is meshed in tetrahedra instead, refined by
     `fronts` (mesh_3d.FrontRefinement items, e.g. mesh_3d.crack_refinements
-    of the cracks); refine, levels, tips and embed_points are 2D settings
-    and must be empty then."""
+    of the cracks), every size times size_factor (a similar mesh); refine,
+    levels, tips and embed_points are 2D settings and must be empty then."""
     path = pathlib.Path(path)
     if not path.is_file():
         raise MeshError(f"geometry file {path} does not exist")
@@ -288,7 +290,7 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
             raise MeshError(f"{path} is a 3D part: refine it around its cracks' fronts (fronts; in a scene file "
                             "mesh.tip_h, mesh.crack_h), not with 2D refinement points or tips")
         with _gmsh_errors(gmsh, f"{path}: gmsh could not mesh the 3D geometry"):
-            return _create_3d(gmsh, path, h, fronts)
+            return _create_3d(gmsh, path, h, fronts, size_factor)
     with _gmsh_errors(gmsh, f"{path}: gmsh could not mesh the geometry"):
         surfaces = _part_surfaces(gmsh, path)
         outlines = [surface_outline(gmsh, s) for s in surfaces]

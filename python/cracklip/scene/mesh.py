@@ -48,9 +48,14 @@ class MeshData:
         refine: the refine items of its size field (x, y, h_near, radius[,
             x1, y1]; cracklip.scene.size_field).
         levels: the refinement levels it was made with (x, y, x1, y1, D, L).
+        size_factor: every element size of its size field times this
+            (gmsh's Mesh.MeshSizeFactor; 3D): 1 as asked, others for the
+            geometrically similar meshes of an error estimate and of an
+            accuracy target (cracklip.analysis.accuracy).
         recipe: makes the same mesh again with more refinement:
-            recipe(levels=...) (a gmsh mesh of a known geometry); None for a
-            mesh read from a file (cracklip.scene.refine refines it instead).
+            recipe(levels=...) (2D), recipe(size_factor=...) (3D) (a gmsh
+            mesh of a known geometry); None for a mesh read from a file
+            (cracklip.scene.refine refines a 2D one instead).
         source: where it comes from: "generated", "geometry" (a user's .geo,
             STEP or BREP meshed by cracklip) or "file" (a .msh).
         front_refinements: in 3D, the refinements around crack fronts asked
@@ -65,6 +70,7 @@ class MeshData:
     standard_blocks: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
     refine: list = dataclasses.field(default_factory=list)
     levels: list = dataclasses.field(default_factory=list)
+    size_factor: float = 1.0
     recipe: typing.Optional[typing.Callable[..., "MeshData"]] = dataclasses.field(default=None, repr=False,
                                                                                 compare=False)
     source: str = "generated"
@@ -80,11 +86,11 @@ class MeshData:
         tag = self.tag_value(where)
         return self.facet_tags.indices[self.facet_tags.values == tag]
 
-    def nearest_node(self, point) -> tuple[float, float]:
+    def nearest_node(self, point) -> tuple[float, ...]:
         """Coordinates of the mesh node nearest to a point (for point conditions)."""
-        x = self.mesh.geometry.x[:, :2]
+        x = self.mesh.geometry.x[:, :self.gdim]
         i = int(np.argmin(np.linalg.norm(x - np.asarray(point, dtype=float), axis=1)))
-        return float(x[i, 0]), float(x[i, 1])
+        return tuple(float(v) for v in x[i])
 
     def tag_value(self, where: str | int) -> int:
         if isinstance(where, str):
@@ -108,6 +114,8 @@ def _gmsh():
         gmsh.initialize(readConfigFiles=False)
         _GMSH_READY = True
     gmsh.option.setNumber("General.Terminal", 0)
+    # gmsh's options outlive a model: every mesh starts at the sizes asked for.
+    gmsh.option.setNumber("Mesh.MeshSizeFactor", 1.0)
     return gmsh
 
 
@@ -142,12 +150,13 @@ def _msh_header(path: pathlib.Path) -> bool:
 
 
 def to_dolfinx(gmsh, h: float | None, entities: typing.Sequence[int] | None = None, dim: int = 2,
-               fronts=()) -> MeshData:
+               fronts=(), size_factor: float = 1.0) -> MeshData:
     """The current gmsh model's mesh as MeshData: its cells of dimension dim
     (triangles of the given surfaces, tetrahedra of the given volumes, all
     if None), tags from its physical groups of dimension dim - 1 (curves,
     surfaces); removes the model. fronts: the front refinements asked for
-    (3D; MeshData.front_refinements)."""
+    (3D; MeshData.front_refinements, their sizes times size_factor: what
+    the mesh was made with)."""
     names = {}
     for gd, tag in gmsh.model.getPhysicalGroups(dim - 1):
         names[gmsh.model.getPhysicalName(gd, tag) or str(tag)] = tag
@@ -158,7 +167,8 @@ def to_dolfinx(gmsh, h: float | None, entities: typing.Sequence[int] | None = No
     msh, facet_tags, _ = model_to_mesh(gmsh.model, MPI.COMM_WORLD, entities, dim=dim)
     gmsh.model.remove()
     check_mesh(msh)
-    return MeshData(msh, facet_tags, names, h, front_refinements=list(fronts))
+    fronts = [dataclasses.replace(f, h_front=f.h_front * size_factor) for f in fronts]
+    return MeshData(msh, facet_tags, names, h, front_refinements=fronts, size_factor=float(size_factor))
 
 
 #: Per cell kind: the dimension, what a cell's measure is called and what makes it non-zero.
