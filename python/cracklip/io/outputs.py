@@ -58,12 +58,14 @@ OPENING_SUBDIVISION = 2
 
 
 #: front.csv's columns (keys of the SIF rows): one line per front point (the
-#: parametric angle only for elliptical fronts, limited_by empty when the
-#: domain was not clipped, free_surface 1 where the front meets the part's
-#: boundary: K there is not the square-root singularity's and is flagged).
+#: parametric angle only for elliptical fronts, the errors empty without an
+#: error estimate, limited_by empty when the domain was not clipped,
+#: free_surface 1 where the front meets the part's boundary: K there is not
+#: the square-root singularity's and is flagged).
 FRONT_COLUMNS = ["crack", "crack_name", "point", "piece", "s", "x", "y", "z", "parametric_angle", "K_I", "K_II",
-                 "K_III", "K_I_spread", "K_II_spread", "K_III_spread", "G", "mode_mix_deg", "radius", "radius_min",
-                 "element_size", "hat", "curvature", "limited_by", "free_surface", "domain_clear"]
+                 "K_III", "K_I_error", "K_II_error", "K_III_error", "K_I_spread", "K_II_spread", "K_III_spread", "G",
+                 "mode_mix_deg", "radius", "radius_min", "element_size", "hat", "curvature", "limited_by",
+                 "free_surface", "domain_clear"]
 
 
 #: sif.csv's columns (2D tips, one line per tip and load step).
