@@ -26,12 +26,13 @@ Griffith cracks: +0.18, +0.24, 0.00 % at sizes x 1.41, 1, 0.71): a
 coarser mesh, which scatters as much, does not bound that error; a finer
 one does.
 
-3D fronts (``estimate_error``): one more solve on the geometrically
-similar mesh with every element size times RHO = sqrt(2) (coarser: about
-0.35 of the cells, so that it costs less than the run; a finer one would
-cost 2-3 runs; cracklip.scene.mesh_3d.similar_mesh: the size field times a
-factor, the enrichment radius and a given SIF radius kept, the default SIF
-domains in element sizes). The coarse mesh's K is carried to the run's
+3D fronts (``estimate_error``): one more solve on the similar mesh with
+every size setting times RHO = sqrt(2) (h, tip_h, crack_h, the grading's
+radii kept: the mesh the scene gives at those sizes; coarser: about 0.35
+of the cells, so that it costs less than the run; a finer one would cost
+2-3 runs; cracklip.scene.mesh_3d.similar_mesh; the enrichment radius and a
+given SIF radius are lengths of the part and stay, the default SIF domains
+are in element sizes and scale). The coarse mesh's K is carried to the run's
 front points (cracklip.analysis.front_match), the difference taken at each
 point, and the estimate is the largest over the point and its NEIGHBOURS
 neighbours on either side along the front, over RHO - 1: K scatters from
@@ -129,8 +130,8 @@ def scene_on(scene: Scene, mesh) -> Scene:
 
 
 def similar_scene(scene: Scene, factor: float) -> Scene:
-    """The 3D scene on the geometrically similar mesh with every element
-    size times `factor` (relative to the scene's mesh)."""
+    """The 3D scene on the similar mesh with every size setting times
+    `factor` (relative to the scene's mesh: cracklip.scene.mesh_3d.similar_mesh)."""
     try:
         return scene_on(scene, similar_mesh(scene.mesh, factor))
     except MeshError as e:
@@ -390,7 +391,7 @@ def _meshes(levels: list[Level]) -> str:
 
 def _method(levels: list[Level], of: int) -> str:
     if levels[-1].front:
-        return ("similar meshes (every element size times " + ", ".join(f"{lv.size_factor:.3g}" for lv in levels)
+        return ("similar meshes (every size setting times " + ", ".join(f"{lv.size_factor:.3g}" for lv in levels)
                 + f"); the error of the finest K is the largest |K - K of the next coarser mesh| within "
                 f"{NEIGHBOURS} front point(s) on either side, over ratio^p - 1 at the rate p = {ASSUMED_RATE:g} "
                 "(an upper bound for p >= 1)")

@@ -211,7 +211,7 @@ def _volumes(gmsh) -> list[int]:
 
 def _create_3d(gmsh, path: pathlib.Path, h: float, fronts, size_factor: float = 1.0) -> MeshData:
     """Tetrahedra of a 3D part (module doc); gmsh holds the opened file."""
-    from .mesh_3d import _size_fields, expected_cells
+    from .mesh_3d import _size_fields, expected_cells, scaled
     volumes = _volumes(gmsh)
     lo_x, lo_y, lo_z, hi_x, hi_y, hi_z = gmsh.model.getBoundingBox(-1, -1)
     scale = max(hi_x - lo_x, hi_y - lo_y, hi_z - lo_z)
@@ -235,7 +235,7 @@ def _create_3d(gmsh, path: pathlib.Path, h: float, fronts, size_factor: float = 
     # The points of the size field in the kernel the part was built with.
     _size_fields(gmsh, h, fronts, kernel="occ" if gmsh.model.occ.getEntities(3) else "geo", size_factor=size_factor)
     gmsh.model.mesh.generate(3)
-    md = to_dolfinx(gmsh, h, volumes, dim=3, fronts=fronts, size_factor=size_factor)
+    md = to_dolfinx(gmsh, h, volumes, dim=3, fronts=scaled(fronts, size_factor), size_factor=size_factor)
     md.source = "geometry"
     md.recipe = functools.partial(create_from_geometry, path, h, fronts=fronts)
     return md

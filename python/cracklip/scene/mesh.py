@@ -48,10 +48,9 @@ class MeshData:
         refine: the refine items of its size field (x, y, h_near, radius[,
             x1, y1]; cracklip.scene.size_field).
         levels: the refinement levels it was made with (x, y, x1, y1, D, L).
-        size_factor: every element size of its size field times this
-            (gmsh's Mesh.MeshSizeFactor; 3D): 1 as asked, others for the
-            geometrically similar meshes of an error estimate and of an
-            accuracy target (cracklip.analysis.accuracy).
+        size_factor: every size setting of its size field (h, h_front)
+            times this (3D): 1 as asked, others for the meshes of an error
+            estimate and of an accuracy target (cracklip.analysis.accuracy).
         recipe: makes the same mesh again with more refinement:
             recipe(levels=...) (2D), recipe(size_factor=...) (3D) (a gmsh
             mesh of a known geometry); None for a mesh read from a file
@@ -114,8 +113,6 @@ def _gmsh():
         gmsh.initialize(readConfigFiles=False)
         _GMSH_READY = True
     gmsh.option.setNumber("General.Terminal", 0)
-    # gmsh's options outlive a model: every mesh starts at the sizes asked for.
-    gmsh.option.setNumber("Mesh.MeshSizeFactor", 1.0)
     return gmsh
 
 
@@ -154,9 +151,8 @@ def to_dolfinx(gmsh, h: float | None, entities: typing.Sequence[int] | None = No
     """The current gmsh model's mesh as MeshData: its cells of dimension dim
     (triangles of the given surfaces, tetrahedra of the given volumes, all
     if None), tags from its physical groups of dimension dim - 1 (curves,
-    surfaces); removes the model. fronts: the front refinements asked for
-    (3D; MeshData.front_refinements, their sizes times size_factor: what
-    the mesh was made with)."""
+    surfaces); removes the model. fronts: the front refinements it was made
+    with (3D; MeshData.front_refinements), size_factor: MeshData.size_factor."""
     names = {}
     for gd, tag in gmsh.model.getPhysicalGroups(dim - 1):
         names[gmsh.model.getPhysicalName(gd, tag) or str(tag)] = tag
@@ -167,8 +163,7 @@ def to_dolfinx(gmsh, h: float | None, entities: typing.Sequence[int] | None = No
     msh, facet_tags, _ = model_to_mesh(gmsh.model, MPI.COMM_WORLD, entities, dim=dim)
     gmsh.model.remove()
     check_mesh(msh)
-    fronts = [dataclasses.replace(f, h_front=f.h_front * size_factor) for f in fronts]
-    return MeshData(msh, facet_tags, names, h, front_refinements=fronts, size_factor=float(size_factor))
+    return MeshData(msh, facet_tags, names, h, front_refinements=list(fronts), size_factor=float(size_factor))
 
 
 #: Per cell kind: the dimension, what a cell's measure is called and what makes it non-zero.
