@@ -32,30 +32,36 @@ radii kept: the mesh the scene gives at those sizes; coarser: about 0.35
 of the cells, so that it costs less than the run; a finer one would cost
 2-3 runs; cracklip.scene.mesh_3d.similar_mesh; the enrichment radius and a
 given SIF radius are lengths of the part and stay, the default SIF domains
-are in element sizes and scale). The coarse mesh's K is carried to the run's
-front points (cracklip.analysis.front_match), the difference taken at each
-point, and the estimate is the largest over the point and its NEIGHBOURS
-neighbours on either side along the front, over RHO - 1: K scatters from
-point to point by about 0.1 % of the K scale (hats on an unstructured
-mesh), as much as its error on fine meshes, and a difference that the
-scatter happens to cancel at one point is not taken as a small error. It
-is between 1 and (RHO^p - 1) / (RHO - 1) times a smooth error (2.4 at p =
-2), more where the scatter dominates (docs/sifs.md).
+are in element sizes and scale). K scatters from front point to front
+point by about 0.1 % of the K scale (hats on an unstructured mesh), as much
+as its error on fine meshes, and the difference of two scattered K's,
+amplified by 1 / (RHO - 1) = 2.4, would be mostly scatter. So along each
+front piece K is fitted by least squares (smooth_along: a Fourier series in
+the arc length on a loop, Legendre polynomials on an open piece, one degree
+of freedom per SMOOTH_POINTS points), each mesh's fit is carried to the
+run's front points (cracklip.analysis.front_match), and a point's estimate
+is the difference of the fits over RHO^p - 1 plus the run's own scatter
+about its fit (the largest within NEIGHBOURS points on either side). It is
+between 1 and (RHO^p - 1) / (RHO - 1) times a smooth error (2.4 at p = 2)
+plus the scatter (docs/sifs.md has the measured ratios). A fit too stiff
+for K's variation leaves it in the scatter term: the estimate grows, it
+does not hide an error.
 
 ``solve_to_accuracy``: 2D, refinement levels (every size halved within the
 regions per level, about 4 times the cells there); 3D, the RHO mesh, the
 scene's and similar meshes with every size times REFINE_3D = 2^(-1/2) per
 level (2.8 times the cells); until every K's estimate (3D: every front
 point off the free surface) is below Options.accuracy times the K scale.
-From three meshes on (the scene's and two refinements) the rate of a 2D
-tip's K is observed (the smallest over every three consecutive meshes,
-clipped to [RATE_MIN, RATE_MAX]; not when the differences change sign) and
-the error is SAFETY |K_L - K_L-1| / ((f_L-1 / f_L)^p - 1), Roache's grid
-convergence index (J. Fluids Eng. 116, 1994: safety factor 1.25 with an
-observed rate), K extrapolated K_L + (K_L - K_L-1) / ((f_L-1 / f_L)^p - 1).
-Along a front the points' differences scatter too much for a rate: the
-assumed rate stays. A 3D .msh file cannot be made again: no estimate
-(EstimateUnavailable; give the geometry).
+From three meshes on (2D: the scene's and two refinements; 3D: the
+estimate's mesh, the scene's and a refinement) the rate is observed (2D:
+of each tip's K, not when the differences change sign; 3D: of the RMS of
+the fits' differences along the front, not when they do not shrink; the
+smallest over every three consecutive meshes, clipped to [RATE_MIN,
+RATE_MAX]) and the error is SAFETY |K_L - K_L-1| / ((f_L-1 / f_L)^p - 1),
+Roache's grid convergence index (J. Fluids Eng. 116, 1994: safety factor
+1.25 with an observed rate); a tip's K extrapolated is K_L + (K_L -
+K_L-1) / ((f_L-1 / f_L)^p - 1). A 3D .msh file cannot be made again: no
+estimate (EstimateUnavailable; give the geometry).
 
 Neither function imports the solve itself (it is passed in), so
 cracklip.analysis.solve can call them.
@@ -105,9 +111,13 @@ SAFETY = 1.25
 #: enrichment; 0.5: K without tip enrichment).
 RATE_MIN, RATE_MAX = 0.5, 2.0
 
-#: Along a front, a point's estimate is the largest difference within this
-#: many points on either side (module doc).
+#: Along a front, a point's scatter is the largest within this many points
+#: on either side (module doc).
 NEIGHBOURS = 1
+
+#: Along a front, K is fitted with one degree of freedom per this many
+#: points of a piece (smooth_along).
+SMOOTH_POINTS = 4
 
 MODES = ("K_I", "K_II", "K_III")
 
@@ -201,13 +211,14 @@ class Level:
     relative to the run's (2D: within the tips' regions; 3D: everywhere),
     dofs, seconds, the SIF rows of every state of its load path
     (cracklip.fracture.sif.SIF_KEYS), whether they are front points and,
-    along 3D fronts, whether each (crack, piece) is a loop."""
+    along 3D fronts, whether each (crack, piece) is a loop and its length."""
     size_factor: float
     dofs: int
     seconds: float
     rows: list[list[dict]]
     front: bool = False
     closed: dict[tuple[int, int], bool] = dataclasses.field(default_factory=dict)
+    lengths: dict[tuple[int, int], float] = dataclasses.field(default_factory=dict)
 
 
 def _states(solution) -> list:
@@ -220,14 +231,16 @@ def _front(solution) -> bool:
 
 def level_of(solution, size_factor: float, seconds: float) -> Level:
     """The Level of a solved mesh."""
-    closed = {}
+    closed, lengths = {}, {}
     if _front(solution):
         from ..fracture.sif_3d import crack_front
         for ci in range(len(solution.model.cracks)):
             fr = crack_front(solution.model, ci)
             closed.update({(ci, k): bool(c) for k, c in enumerate(fr.closed)})
+            lengths.update({(ci, k): float(v) for k, v in enumerate(fr.length)})
     rows = [[dict(r) for r in st.stress_intensity_factors(None)] for st in _states(solution)]
-    return Level(float(size_factor), int(solution.model.num_dofs), float(seconds), rows, _front(solution), closed)
+    return Level(float(size_factor), int(solution.model.num_dofs), float(seconds), rows, _front(solution), closed,
+                 lengths)
 
 
 def _modes(rows: list[dict]) -> tuple[str, ...]:
@@ -238,18 +251,22 @@ def _values(rows: list[dict], modes) -> np.ndarray:
     return np.array([[float(r[m]) for m in modes] for r in rows]).reshape(len(rows), len(modes))
 
 
-def carried(level: Level, state: int, crack: int, rows: list[dict], modes) -> np.ndarray:
+def carried(level: Level, state: int, crack: int, rows: list[dict], modes, smooth: bool = False) -> np.ndarray:
     """K (n, modes) of `level` at the points of `rows` (another level's
     points of that crack and state): the same tip in 2D, carried along the
-    front in 3D (front_match)."""
+    front in 3D (front_match); smooth: the level's fit along its front
+    (smooth_along) carried instead."""
     mine = [r for r in level.rows[state] if r["crack"] == crack]
     if not level.front:  # tips: one point each
         by_tip = {r["tip"]: r for r in mine}
         return np.array([[float(by_tip[r["tip"]][m]) for m in modes] for r in rows]).reshape(len(rows), len(modes))
+    values = _values(mine, modes)
+    if smooth:
+        values = smooth_along(mine, values, level)
     pieces = []
     for p in sorted({r["piece"] for r in mine}):
-        pts = sorted((r for r in mine if r["piece"] == p), key=lambda r: r["s"])
-        pieces.append(FrontPiece(np.array([r["position"] for r in pts]), _values(pts, modes),
+        idx = sorted((i for i, r in enumerate(mine) if r["piece"] == p), key=lambda i: mine[i]["s"])
+        pieces.append(FrontPiece(np.array([mine[i]["position"] for i in idx]), values[idx],
                                  level.closed[(crack, p)]))
     return carry_over(np.array([r["position"] for r in rows]), pieces)
 
@@ -300,18 +317,69 @@ def neighbour_max(values: np.ndarray, rows: list[dict], closed: dict[tuple[int, 
     return out
 
 
+def smooth_along(rows: list[dict], values: np.ndarray, level: Level) -> np.ndarray:
+    """values (n, m) at front points fitted by least squares along each piece
+    (its points off the free surface; SMOOTH_POINTS points per degree of
+    freedom): a Fourier series in the arc length on a loop, Legendre
+    polynomials on an open piece; the fit at every point."""
+    out = np.array(values, dtype=float)
+    keys = [(r["crack"], r["piece"]) for r in rows]
+    for key in set(keys):
+        idx = np.array([i for i, k in enumerate(keys) if k == key])
+        s = np.array([rows[i]["s"] for i in idx], dtype=float)
+        use = ~np.array([bool(rows[i].get("free_surface")) for i in idx])
+        n = int(use.sum())
+        if n < 3:
+            continue
+        dofs = max(2, n // SMOOTH_POINTS)
+        if level.closed.get(key, False):
+            t = 2.0 * math.pi * s / level.lengths[key]
+            M = max(1, (dofs - 1) // 2)
+            basis = np.column_stack([np.ones_like(t)] + [f(k * t) for k in range(1, M + 1)
+                                                          for f in (np.cos, np.sin)])
+        else:
+            t = 2.0 * (s - s.min()) / max(float(np.ptp(s)), 1e-300) - 1.0
+            basis = np.polynomial.legendre.legvander(t, dofs - 1)
+        coef = np.linalg.lstsq(basis[use], values[idx][use], rcond=None)[0]
+        out[idx] = basis @ coef
+    return out
+
+
+def _front_rate(S: np.ndarray, factors: np.ndarray) -> float | None:
+    """The rate of the smooth K along a front over three or more similar
+    meshes: from the RMS (points and modes) of the differences between
+    consecutive meshes (S (levels, n, modes) at one mesh's points), the
+    smallest over every three, clipped to [RATE_MIN, RATE_MAX]; None when
+    the differences do not shrink."""
+    if len(S) < 3:
+        return None
+    rates = []
+    for k in range(len(S) - 2):
+        d1 = float(np.sqrt(np.mean((S[k + 1] - S[k]) ** 2)))
+        d2 = float(np.sqrt(np.mean((S[k + 2] - S[k + 1]) ** 2)))
+        ratio = factors[k + 1] / factors[k + 2]
+        if d2 <= 0.0 or d2 >= d1 or abs(factors[k] / factors[k + 1] - ratio) > 1e-6 * ratio:
+            return None
+        rates.append(math.log(d1 / d2) / math.log(ratio))
+    return float(min(max(min(rates), RATE_MIN), RATE_MAX))
+
+
 def estimate(levels: list[Level], of: int = -1) -> dict[tuple[int, int, int], dict[str, typing.Any]]:
     """Per (state, crack, point) of level `of` (levels from coarse to fine;
     by default the finest): the estimated error of each K, the rate used
     (None: not observed, ASSUMED_RATE), K on every level at that point and
-    K extrapolated (an observed rate only). The finest K errs by |K_L -
-    K_L-1| / (ratio^p - 1); a coarser one by its difference from the
-    finest plus that."""
+    K extrapolated (2D, an observed rate only). The finest K errs by the
+    difference from the next coarser mesh over (ratio^p - 1); a coarser one
+    by its difference from the finest plus that. Along a front the
+    difference is that of K's fits along it (smooth_along, each mesh's own
+    fit carried to these points), plus the point's scatter about its own
+    fit (the largest within NEIGHBOURS points): the scatter is not
+    amplified by 1 / (ratio^p - 1) as the differences of two scattered K
+    would be."""
     mine = levels[of]
-    front = mine.front
     factors = np.array([lv.size_factor for lv in levels])
     ratio = factors[-2] / factors[-1]
-    rated = factors <= 1.0  # the rate from the run's mesh and finer ones (3D: none observed)
+    rated = factors <= 1.0  # 2D: the rate from the run's mesh and finer ones (the tip regions' levels)
     out: dict[tuple[int, int, int], dict[str, typing.Any]] = {}
     for s, rows_s in enumerate(mine.rows):
         for crack in sorted({r["crack"] for r in rows_s}):
@@ -319,20 +387,30 @@ def estimate(levels: list[Level], of: int = -1) -> dict[tuple[int, int, int], di
             modes = _modes(rows)
             K = np.stack([_values(rows, modes) if lv is mine else carried(lv, s, crack, rows, modes)
                           for lv in levels])                                       # (levels, n, modes)
-            diff, off = np.abs(K[-1] - K[-2]), np.abs(K[of] - K[-1])
-            if front:
-                diff, off = neighbour_max(diff, rows, mine.closed), neighbour_max(off, rows, mine.closed)
+            if mine.front:
+                S = np.stack([smooth_along(rows, K[j], mine) if lv is mine else
+                              carried(lv, s, crack, rows, modes, smooth=True) for j, lv in enumerate(levels)])
+                observed = _front_rate(S, factors)
+                p = ASSUMED_RATE if observed is None else observed
+                factor = (1.0 if observed is None else SAFETY) / abs(ratio ** p - 1.0)
+                scatter = neighbour_max(np.abs(K[of] - S[of]), rows, mine.closed)
+                err = np.abs(S[-1] - S[-2]) * factor + np.abs(S[of] - S[-1]) + scatter
             for i, r in enumerate(rows):
                 row: dict[str, typing.Any] = {}
                 for m, mode in enumerate(modes):
-                    observed = None if front else _rate(K[rated, i, m], factors[rated])
-                    p = ASSUMED_RATE if observed is None else observed
-                    factor = 1.0 / abs(ratio ** p - 1.0)
-                    row[f"{mode}_error"] = (1.0 if observed is None else SAFETY) * diff[i, m] * factor + off[i, m]
+                    if mine.front:
+                        row[f"{mode}_error"] = float(err[i, m])
+                        row[f"{mode}_extrapolated"] = None
+                    else:
+                        observed = _rate(K[rated, i, m], factors[rated])
+                        p = ASSUMED_RATE if observed is None else observed
+                        factor = 1.0 / abs(ratio ** p - 1.0)
+                        row[f"{mode}_error"] = ((1.0 if observed is None else SAFETY) * abs(K[-1, i, m] - K[-2, i, m])
+                                                * factor + abs(K[of, i, m] - K[-1, i, m]))
+                        row[f"{mode}_extrapolated"] = (None if observed is None else
+                                                       float(K[-1, i, m] + (K[-1, i, m] - K[-2, i, m]) * factor))
                     row[f"{mode}_rate"] = observed
                     row[f"{mode}_levels"] = [float(v) for v in K[:, i, m]]
-                    row[f"{mode}_extrapolated"] = (None if observed is None else
-                                                   float(K[-1, i, m] + (K[-1, i, m] - K[-2, i, m]) * factor))
                 out[(s, crack, int(r["point"]))] = row
     return out
 
@@ -392,9 +470,10 @@ def _meshes(levels: list[Level]) -> str:
 def _method(levels: list[Level], of: int) -> str:
     if levels[-1].front:
         return ("similar meshes (every size setting times " + ", ".join(f"{lv.size_factor:.3g}" for lv in levels)
-                + f"); the error of the finest K is the largest |K - K of the next coarser mesh| within "
-                f"{NEIGHBOURS} front point(s) on either side, over ratio^p - 1 at the rate p = {ASSUMED_RATE:g} "
-                "(an upper bound for p >= 1)")
+                + "); the error of the finest K is the difference of K's least-squares fits along the front on it "
+                "and the next coarser mesh over ratio^p - 1, plus its scatter about its fit (the largest within "
+                f"{NEIGHBOURS} point(s) on either side); p observed over three meshes from the fits' differences "
+                f"(times a safety factor {SAFETY:g}), else {ASSUMED_RATE:g} (an upper bound for p >= 1)")
     text = (f"refinement levels {levels[0].size_factor:g} .. {levels[-1].size_factor:g} (every element size "
             f"halved per level within {REGION_ELEMENTS:g} element sizes of each tip and {HOLE_REGION:g} radii "
             "around a hole within that)")
