@@ -20,7 +20,8 @@ a quarter of the crack size, the iterative solver). Cases:
 
 Part "estimate": per case and mesh, the run's K with its estimate
 (cracklip.analysis.accuracy.estimate_error: one more solve with every
-element size times sqrt(2)) against the true error, per front point off the
+element size times sqrt(2), or 1 / sqrt(2) on a front coarser than a tenth
+of the crack size) against the true error, per front point off the
 free surface, as vectors (K_I, K_II, K_III) relative to the K scale: the
 estimate's norm over the true error's norm, its smallest, median and
 largest over the points (acceptance 1: 1 <= ratio <= 4 at every point of
@@ -168,7 +169,15 @@ def solve_case(case: str, n: float, estimate: bool, folder: pathlib.Path, tip_ra
         t_est = time.perf_counter() - t0
         rows = sol.stress_intensity_factors(None)
     return {"rows": rows, "dofs": int(sol.model.num_dofs), "t_mesh": t_mesh, "t_run": t_run, "t_estimate": t_est,
-            "estimate_dofs": sol.error_estimate["dofs"][0] if sol.error_estimate else None}
+            "estimate_dofs": _other_dofs(sol.error_estimate)}
+
+
+def _other_dofs(summary: dict | None) -> int | None:
+    """The dofs of the estimate's own mesh (the level whose size factor is
+    not the run's 1: coarser on a fine front, finer on a coarse one)."""
+    if not summary:
+        return None
+    return next(d for f, d in zip(summary["size_factors"], summary["dofs"]) if f != 1.0)
 
 
 def _K(rows: list[dict]) -> np.ndarray:
@@ -228,10 +237,12 @@ def compare(case: str, n: float, run: dict, reference=None) -> dict:
     return out
 
 
-def estimate_part(cases, quick: bool, folder: pathlib.Path, log) -> list[dict]:
+def estimate_part(cases, quick: bool, folder: pathlib.Path, log, sizes=None) -> list[dict]:
     out = []
     for case in cases:
         meshes = MESHES[case][0 if quick else 1]
+        if sizes:
+            meshes = tuple(n for n in meshes if any(abs(n - s) < 0.01 for s in sizes))
         if not meshes:
             continue
         runs = {n: solve_case(case, n, True, folder) for n in meshes}
@@ -373,6 +384,8 @@ def main(argv=None) -> dict:
     ap.add_argument("--parts", nargs="+", default=["estimate", "grading", "accuracy"],
                     choices=["estimate", "grading", "accuracy"])
     ap.add_argument("--cases", nargs="+", default=list(MESHES), choices=list(MESHES))
+    ap.add_argument("--sizes", nargs="+", type=float, default=None,
+                    help="only these size / tip_h of each case's meshes (to 0.01; e.g. 5 10 14.14 20)")
     ap.add_argument("--quiet", action="store_true")
     args = ap.parse_args(argv)
 
@@ -383,7 +396,7 @@ def main(argv=None) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         folder = pathlib.Path(tmp)
         if "estimate" in args.parts:
-            result["estimate"] = estimate_part(args.cases, args.quick, folder, log)
+            result["estimate"] = estimate_part(args.cases, args.quick, folder, log, args.sizes)
             result["halving"] = halving(result["estimate"])
         if "grading" in args.parts:
             result["grading"] = grading_part(args.quick, folder, log)

@@ -30,7 +30,10 @@ one does.
 every size setting times RHO = sqrt(2) (h, tip_h, crack_h, the grading's
 radii kept: the mesh the scene gives at those sizes; coarser: about 0.35
 of the cells, so that it costs less than the run; a finer one would cost
-2-3 runs; cracklip.scene.mesh_3d.similar_mesh; the enrichment radius and a
+2-3 runs; on a front coarser than FINE_FRONT of the crack size, where K is
+not yet asymptotic, the finer one, 1 / RHO, and the run's K is the coarser:
+its error is the difference plus the finer one's;
+cracklip.scene.mesh_3d.similar_mesh; the enrichment radius and a
 given SIF radius are lengths of the part and stay, the default SIF domains
 are in element sizes and scale). K scatters from front point to front
 point by about 0.1 % of the K scale (hats on an unstructured mesh), as much
@@ -99,6 +102,13 @@ RHO = math.sqrt(2.0)
 
 #: 3D: size factor per accuracy level (finer).
 REFINE_3D = 1.0 / math.sqrt(2.0)
+
+#: 3D: the estimate's mesh is the coarser one (RHO) when the front size is
+#: at most this fraction of the crack size, else the finer one (1 / RHO):
+#: below about a tenth K has not reached its asymptotic rate between the two
+#: meshes (the penny at a/7 against a/5: estimates 0.38-1.38 times the
+#: error), and a coarse front is cheap to refine.
+FINE_FRONT = 0.1
 
 #: The rate of K assumed while it cannot be observed: the slowest of the
 #: cases measured, so that the estimate bounds the error.
@@ -461,7 +471,7 @@ def _meshes(levels: list[Level]) -> str:
     """The meshes of an estimate in a few words."""
     f = [lv.size_factor for lv in levels]
     if levels[-1].front:
-        return f"every element size times {max(f):.3g}" if len(f) == 2 else \
+        return f"every element size times {[x for x in f if x != 1.0][0]:.3g}" if len(f) == 2 else \
             f"every element size times {f[0]:.3g} .. {f[-1]:.3g}"
     return (f"element sizes halved within {REGION_ELEMENTS:g} element sizes of each tip" if len(f) == 2 else
             f"element sizes times 1 .. {f[-1]:.3g} within {REGION_ELEMENTS:g} element sizes of each tip")
@@ -485,6 +495,19 @@ def _method(levels: list[Level], of: int) -> str:
                    "upper bound for p >= 1)")
 
 
+def fine_front(scene: Scene) -> bool:
+    """Whether the scene's fronts are fine enough for the coarser estimate
+    mesh (3D): the smallest front size asked for (mesh.tip_h; the mesh size
+    without one) at most FINE_FRONT times the smallest crack size
+    (cracklip.scene.mesh_3d.crack_size)."""
+    from ..scene.mesh_3d import crack_size
+    md = scene.mesh
+    sizes = [f.h_front for f in md.front_refinements] or ([md.h * md.size_factor] if md.h else [])
+    if not sizes or not scene.cracks:
+        return False
+    return min(sizes) <= FINE_FRONT * min(crack_size(c) for c in scene.cracks) * (1.0 + 1e-9)
+
+
 def _solve_timed(solve_once: Solver, scene: Scene, factor: float) -> tuple[typing.Any, Level]:
     """Solve a scene whose element sizes are `factor` times the run's."""
     t0 = time.perf_counter()
@@ -502,8 +525,9 @@ def estimate_error(scene: Scene, solution, solve_once: Solver) -> dict[str, typi
     if not any(base.rows):
         return None
     if base.front:
-        _, aux = _solve_timed(solve_once, similar_scene(scene, RHO), RHO)
-        levels, of = [aux, base], -1
+        factor = RHO if fine_front(scene) else 1.0 / RHO
+        _, aux = _solve_timed(solve_once, similar_scene(scene, factor), factor)
+        levels, of = ([aux, base], -1) if factor > 1.0 else ([base, aux], 0)
     else:
         regions = tip_regions(solution)
         _, aux = _solve_timed(solve_once, scene_on(scene, with_levels(scene.mesh, level_items(regions, 1))), 0.5)
@@ -526,7 +550,7 @@ def solve_to_accuracy(scene: Scene, accuracy: float, max_levels: int, solve_once
         logger.info("accuracy: no crack tip or front in the part, nothing to refine")
         return sol
     levels = [base]
-    if base.front:
+    if base.front and fine_front(scene):  # (a coarse front: straight to the finer meshes)
         _, coarse = _solve_timed(solve_once, similar_scene(scene, RHO), RHO)
         levels.insert(0, coarse)
         summary = _attach(sol, levels, estimate(levels), accuracy, _method(levels, -1))
@@ -534,9 +558,7 @@ def solve_to_accuracy(scene: Scene, accuracy: float, max_levels: int, solve_once
                     base.dofs, 100 * summary["largest_relative_error"], 100 * accuracy)
         if summary["reached"]:
             return sol
-        regions = None
-    else:
-        regions = tip_regions(sol)
+    regions = None if base.front else tip_regions(sol)
     factor = 1.0
     for level in range(1, max_levels + 1):
         if regions is None:
@@ -557,5 +579,6 @@ def solve_to_accuracy(scene: Scene, accuracy: float, max_levels: int, solve_once
 
 
 __all__ = ["estimate_error", "solve_to_accuracy", "estimate", "tip_regions", "region_radius", "similar_scene",
+           "fine_front",
            "scene_on", "Level", "level_of", "EstimateUnavailable", "RHO", "REGION_ELEMENTS", "ASSUMED_RATE",
            "SAFETY"]
