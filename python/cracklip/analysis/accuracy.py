@@ -107,7 +107,10 @@ REFINE_3D = 1.0 / math.sqrt(2.0)
 #: at most this fraction of the crack size, else the finer one (1 / RHO):
 #: below about a tenth K has not reached its asymptotic rate between the two
 #: meshes (the penny at a/7 against a/5: estimates 0.38-1.38 times the
-#: error), and a coarse front is cheap to refine.
+#: error; against a/10: 1.27-2.16), and a coarse front is cheap to refine.
+#: At a/5 neither brackets (0.75-1.25 against a/7: K's rate is about 0.6
+#: between a/5 and a/7, below the assumed 1); the model warns there (front
+#: elements above a fifth of the crack size).
 FINE_FRONT = 0.1
 
 #: The rate of K assumed while it cannot be observed: the slowest of the

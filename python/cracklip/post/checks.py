@@ -156,12 +156,13 @@ def estimate(solution) -> list[tuple[str, str]]:
                 what = (f"front point {r['point']} of crack {names[crack]!r} at ({r['x']:.6g}, {r['y']:.6g}, "
                         f"{r['z']:.6g})" if front else f"tip {r['tip']} of crack {names[crack]!r} at ({r['x']:.6g}, "
                         f"{r['y']:.6g})")
-                coarse = r[f"{mode}_levels"][0]
+                other = next(j for j, f in enumerate(est["size_factors"]) if f != est["of_size_factor"])
+                elsewhere = r[f"{mode}_levels"][other]
                 many = f" ({len(over)} of {len(mine)} points of its front above 1 %)" if front else ""
                 out.append(("discretisation", (
                     f"{what}: {mode} = {r[mode]:.6g} has an estimated discretisation error of {r[f'{mode}_error']:.3g} "
-                    f"({100 * r[f'{mode}_error'] / scale:.2g} % of the K scale {scale:.4g}; on a similar mesh with "
-                    f"the element sizes times {est['size_factors'][0]:.3g} it is {coarse:.6g}){many}: the mesh is too "
+                    f"({100 * r[f'{mode}_error'] / scale:.2g} % of the K scale {scale:.4g}; with {est['meshes']} it "
+                    f"is {elsewhere:.6g}){many}: the mesh is too "
                     "coarse for this crack; refine it (mesh.h around the crack, mesh.tip_h, options.radius of a few "
                     "tip elements) or let cracklip refine it: options.accuracy = 0.01 (command line --accuracy "
                     "0.01)")))

@@ -111,8 +111,10 @@ OUTPUT_KEYS: list[Key] = [
     Key("outputs.stress_component", "string", "yy", "stress shown in stress.png: `xx`, `yy`, `xy` "
         "or `von_mises`", p_choice(*STRESS_COMPONENTS)),
     Key("outputs.error_estimate", "boolean", True,
-        "estimate the discretisation error of every K with one more solve on a similar mesh, every element size "
-        "times sqrt(2) (about 1/2 (2D) or 1/3 (3D) of the dofs; a .msh file: 2D halved, 3D no estimate; "
+        "estimate the discretisation error of every K with one more solve: 2D, every element size halved within 20 "
+        "element sizes of each tip; 3D, a similar mesh with every size setting times sqrt(2) (about 1/3 of the "
+        "dofs), or times 1/sqrt(2) when mesh.tip_h is above a tenth of the crack size (K not yet asymptotic there; "
+        "about 2.5 times the dofs); a .msh file: 2D halved, 3D no estimate; "
         "results.json, sif.csv, front.csv, a warning above 1 % of the K scale); options.accuracy makes its own",
         p_bool),
     Key("outputs.condition_number", "boolean", False,
