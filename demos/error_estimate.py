@@ -62,7 +62,7 @@ def _rows(scene: cl.Scene, refs: list[tuple[str, int, int, float]], name: str, r
             "dofs": sol.model.num_dofs, "K": k0[mode], "estimate": k0[f"{mode}_error"],
             "true_error": abs(k0[mode] - ref), "seconds_with_estimate": t_est,
             "dofs_estimate": sol.error_estimate["dofs"],
-            "levels": fine.error_estimate["levels"], "dofs_levels": fine.error_estimate["dofs"],
+            "levels": fine.error_estimate["refinement_levels"], "dofs_levels": fine.error_estimate["dofs"],
             "K_accuracy": kl[mode], "estimate_accuracy": kl[f"{mode}_error"],
             "true_error_accuracy": abs(kl[mode] - ref), "K_extrapolated": kl[f"{mode}_extrapolated"],
             "reached": fine.error_estimate["reached"], "seconds_accuracy": t_acc,
@@ -144,7 +144,7 @@ def markdown(rows: list[dict]) -> str:
         lines.append(
             f"| {r['case']}, tip {r['tip']} | {r['mode']} | {r['K_ref']:.5g} ({r['reference']}) | {r['K']:.5g} "
             f"({r['dofs']}) | {100 * r['estimate'] / s:.2f} % | {100 * r['true_error'] / s:.2f} % | "
-            f"{'yes' if r['estimate'] >= r['true_error'] else 'NO'} | {r['levels'][-1]} "
+            f"{'yes' if r['estimate'] >= r['true_error'] else 'NO'} | {r['levels']} "
             f"({r['dofs_levels'][-1]}) | {r['K_accuracy']:.5g} | {100 * r['estimate_accuracy'] / s:.2f} % | "
             f"{100 * r['true_error_accuracy'] / s:.2f} % | {ext} |")
     lines += ["", "Percentages of the K scale (the reference's largest |K|). estimate: cracklip's estimated "

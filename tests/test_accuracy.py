@@ -56,8 +56,11 @@ def test_estimate_of_a_known_sequence():
     """K_L = 10 - 3 2^(-1.5 L): two levels bound the error (rate 1 assumed),
     three observe the rate 1.5, extrapolate to 10 exactly and give 1.25
     times the true error; a sequence changing direction is not trusted."""
+    def level(L: int, k: float) -> Level:
+        return Level(2.0 ** -L, 100 * 4 ** L, 0.0, [[{"crack": 0, "tip": 0, "point": 0, "K_I": k, "K_II": 0.0,
+                                                      "K_III": None}]])
     K = [10.0 - 3.0 * 2.0 ** (-1.5 * L) for L in range(4)]
-    lv = [Level(L, 100 * 4 ** L, 0.0, {(0, 0, 0): (k, 0.0)}) for L, k in enumerate(K)]
+    lv = [level(L, k) for L, k in enumerate(K)]
     two = estimate(lv[:2])[(0, 0, 0)]
     assert two["K_I_rate"] is None and ASSUMED_RATE == 1.0
     assert two["K_I_error"] == pytest.approx(K[1] - K[0]) and two["K_I_error"] >= 10.0 - K[1]
@@ -66,7 +69,7 @@ def test_estimate_of_a_known_sequence():
     assert three["K_I_rate"] == pytest.approx(1.5)
     assert three["K_I_extrapolated"] == pytest.approx(10.0, abs=1e-12)
     assert three["K_I_error"] == pytest.approx(SAFETY * (10.0 - K[3]))
-    zigzag = [Level(L, 1, 0.0, {(0, 0, 0): (k, 0.0)}) for L, k in enumerate([1.0, 1.2, 1.1])]
+    zigzag = [level(L, k) for L, k in enumerate([1.0, 1.2, 1.1])]
     assert estimate(zigzag)[(0, 0, 0)]["K_I_rate"] is None
 
 
@@ -112,7 +115,7 @@ def test_ct_at_w20_warns_and_accuracy_refines():
     fine = cl.solve(dataclasses.replace(scene, options=dataclasses.replace(scene.options, accuracy=0.01)))
     (r,) = fine.stress_intensity_factors(0)
     est = fine.error_estimate
-    assert est["reached"] and est["levels"][-1] >= 2 and len(est["dofs"]) == len(est["levels"])
+    assert est["reached"] and est["refinement_levels"] >= 2 and len(est["dofs"]) == len(est["size_factors"])
     assert abs(r["K_I"] - K_CT) <= 0.01 * K_CT
     assert r["K_I_error"] >= abs(r["K_I"] - K_CT) - 0.3
     assert r["K_I_extrapolated"] == pytest.approx(K_CT, rel=0.002)
@@ -176,7 +179,7 @@ def test_accuracy_not_reached_is_warned():
     scene = handbook.CASES["centre crack a/b = 0.2"][1](0.1)
     scene.options = dataclasses.replace(scene.options, accuracy=1e-5, accuracy_levels=1)
     sol = cl.solve(scene)
-    assert sol.error_estimate["reached"] is False and sol.error_estimate["levels"] == [0, 1]
+    assert sol.error_estimate["reached"] is False and sol.error_estimate["size_factors"] == [1.0, 0.5]
     (w,) = [w for w in sol.warnings if w.code == "accuracy"]
     assert "was not reached in 1 refinement level" in w.message and "accuracy_levels" in w.message
 
@@ -192,14 +195,14 @@ def test_command_line_accuracy_and_what_the_plus_minus_is(tmp_path, capsys):
     assert "K_I = " in out and " +- " in out and "MPa sqrt(mm)" in out and "not an error bar" in out
     res = json.loads((tmp_path / "results.json").read_text())
     assert res["error_estimate"]["reached"] and res["units"]["K"] == "MPa sqrt(mm)"
-    assert res["sifs"][0]["K_I_error"] > 0.0 and len(res["sifs"][0]["K_I_levels"]) == len(res["error_estimate"]["levels"])
+    assert res["sifs"][0]["K_I_error"] > 0.0 and len(res["sifs"][0]["K_I_levels"]) == len(res["error_estimate"]["size_factors"])
     assert "K_I_error" in (tmp_path / "sif.csv").read_text().splitlines()[0]
     # The default run: one estimate, the +- is the estimate of the K on this mesh.
     assert cli.main(args) == 0
     out = capsys.readouterr().out
     assert "K +- its estimated discretisation error" in out
     res = json.loads((tmp_path / "results.json").read_text())
-    assert res["error_estimate"]["levels"] == [0, 1] and res["error_estimate"]["target"] is None
+    assert res["error_estimate"]["size_factors"] == [1.0, 0.5] and res["error_estimate"]["target"] is None
 
 
 def test_grow_refines_every_step():
@@ -211,5 +214,5 @@ def test_grow_refines_every_step():
     result = cl.grow(sf.scene, growth, keep_solutions=True)
     assert len(result.solutions) == 2
     for sol in result.solutions:
-        assert sol.error_estimate is not None and sol.error_estimate["levels"] == [0, 1]
+        assert sol.error_estimate is not None and sol.error_estimate["size_factors"] == [1.0, 0.5]
         assert sol.model.num_dofs > 2 * sf.scene.mesh.mesh.geometry.x.shape[0]

@@ -26,6 +26,7 @@ SMALL_3D = {
     "penny_crack": ["mesh.h=2.0", "mesh.tip_h=0.2", "mesh.crack_h=0.4"],
     "surface_crack_plate": ["mesh.h=8.0", "mesh.tip_h=0.6", "mesh.crack_h=0.0", "options.radius=1.2"],
     "corner_crack_hole": ["mesh.h=8.0", "mesh.tip_h=0.3", "mesh.crack_h=0.0", "options.radius=0.6"],
+    "inclined_penny": ["mesh.h=4.0", "mesh.tip_h=0.25"],
     "quarter_ellipse": ["mesh.h=2.0"],     # run by tests/test_symmetry.py
 }
 

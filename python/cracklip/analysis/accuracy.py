@@ -1,42 +1,73 @@
-"""The discretisation error of K, and refinement to a target accuracy.
+"""The discretisation error of K, and refinement to a target accuracy: 2D
+tips and 3D front points alike.
 
-K from a displacement-based solve converges as the mesh is refined (from
-below on the handbook cases, the C(T) and the crack at a hole: a P1 part is
-too stiff). Its error is estimated from solves on refinement levels of the
-same part (cracklip.scene.size_field, levels; cracklip.scene.refine):
+K from a displacement-based solve converges as the mesh is refined. Its
+error is estimated from solves of the same part on other meshes: a Level is
+one mesh, with its element sizes relative to the run's (size_factor) where
+it differs. With K(f) = K0 + C f^p, the K of the finer of the two finest
+meshes errs by |K(f0) - K(f1)| / ((f0 / f1)^p - 1), a coarser one by its
+difference from the finest plus that. The rate is not known from two
+meshes: the slowest measured, ASSUMED_RATE = 1, is taken, which bounds the
+error from above for every p >= 1.
 
-- level L has every element size halved L times within D of each tip,
-  D = TIP_REGION x the crack's length in the part (the region whose mesh
-  sets K: measured on the handbook cases, a region of one crack length
-  left up to a third of the difference to a uniform refinement, two crack
-  lengths within 10 % of it), and around every hole within D of a tip
-  (HOLE_REGION x its radius), graded back beyond;
-- with two levels the error of the finer K is |K_1 - K_0| / (2^p - 1) at
-  the rate p = ASSUMED_RATE = 1 (and 2 |K_1 - K_0| for K_0): the rate of
-  K lies between 1 (enrichment in the tip cell only, point loads: 1.3 on
-  the C(T)) and 2 (geometric enrichment, smooth loads: 1.8-2.7 on the
-  handbook cases), so the slowest one bounds the error from above;
-- with three levels or more the rate is observed (the smallest over every
-  three consecutive levels, clipped to [RATE_MIN, RATE_MAX]; when the
-  differences change sign or do not shrink it is not observed and the
-  assumed rate stands), the error of
-  the finest K is SAFETY |K_L - K_{L-1}| / (2^p - 1), and K extrapolated
-  (Richardson) is K_L + (K_L - K_{L-1}) / (2^p - 1). This is Roache's grid
-  convergence index (Roache 1994, J. Fluids Eng. 116: safety factor 1.25
-  with an observed rate; with two grids he takes 3 at the theoretical rate
-  2, which is the 1 / (2^1 - 1) = 3 / (2^2 - 1) above). Measured: the
-  handbook cases converge at 1.8-2.7, the C(T) at 1.3, the crack at a hole
-  at 1.3-1.8 over the levels, pre-asymptotic (without the safety factor its
-  level-2 estimate was 0.9 of the true error).
+2D tips (``estimate_error``): one more solve with every element size halved
+within REGION_ELEMENTS element sizes of each tip (the region measured in
+the mesh's own elements: the largest element within it times
+REGION_ELEMENTS; and HOLE_REGION radii around a hole within it), graded
+back beyond (cracklip.scene.size_field levels). The run's K then errs by at
+most 2 |K_1 - K_0|. A region measured in crack lengths halved the whole
+part of most scenes (the Westergaard square at h = 2/320: 54.6 s with the
+estimate, 9.0 s without); one of a few elements did not see the field that
+sets K (handbook cases at h = W/20, demos/error_estimate.py: a region of 4
+elements left estimates at 0.04-0.9 of the error, 8 elements and more
+bracket every case). A single tip has no neighbours to average over, and
+its K scatters with the mesh around it (the inclined and pressurised
+Griffith cracks: +0.18, +0.24, 0.00 % at sizes x 1.41, 1, 0.71): a
+coarser mesh, which scatters as much, does not bound that error; a finer
+one does.
 
-Cost: one solve per level; a level has about 4^L times the cells of the
-refined region (the whole part when the crack is not small in it).
+3D fronts (``estimate_error``): one more solve on the similar mesh with
+every size setting times RHO = sqrt(2) (h, tip_h, crack_h, the grading's
+radii kept: the mesh the scene gives at those sizes; coarser: about 0.35
+of the cells, so that it costs less than the run; a finer one would cost
+2-3 runs; on a front coarser than FINE_FRONT of the crack size, where K is
+not yet asymptotic, the finer one, 1 / RHO, and the run's K is the coarser:
+its error is the difference plus the finer one's;
+cracklip.scene.mesh_3d.similar_mesh; the enrichment radius and a
+given SIF radius are lengths of the part and stay, the default SIF domains
+are in element sizes and scale). K scatters from front point to front
+point by about 0.1 % of the K scale (hats on an unstructured mesh), as much
+as its error on fine meshes, and the difference of two scattered K's,
+amplified by 1 / (RHO - 1) = 2.4, would be mostly scatter. So along each
+front piece K is fitted by least squares (smooth_along: a Fourier series in
+the arc length on a loop, Legendre polynomials on an open piece, one degree
+of freedom per SMOOTH_POINTS points), each mesh's fit is carried to the
+run's front points (cracklip.analysis.front_match), and a point's estimate
+is the difference of the fits over RHO^p - 1 plus the run's own scatter
+about its fit (the largest within NEIGHBOURS points on either side). It is
+between 1 and (RHO^p - 1) / (RHO - 1) times a smooth error (2.4 at p = 2)
+plus the scatter (docs/sifs.md has the measured ratios). A fit too stiff
+for K's variation leaves it in the scatter term: the estimate grows, it
+does not hide an error.
 
-``estimate_error`` adds one solve (level 1) to a solution and gives each of
-its K an estimate; ``solve_to_accuracy`` refines level by level until the
-largest estimate is below Options.accuracy (relative to the K scale), and
-returns the finest level's solution. Neither imports the solve itself (it
-is passed in), so cracklip.analysis.solve can call them.
+``solve_to_accuracy``: 2D, refinement levels (every size halved within the
+regions per level, about 4 times the cells there); 3D, the RHO mesh, the
+scene's and similar meshes with every size times REFINE_3D = 2^(-1/2) per
+level (2.8 times the cells); until every K's estimate (3D: every front
+point off the free surface) is below Options.accuracy times the K scale.
+From three meshes on (2D: the scene's and two refinements; 3D: the
+estimate's mesh, the scene's and a refinement) the rate is observed (2D:
+of each tip's K, not when the differences change sign; 3D: of the RMS of
+the fits' differences along the front, not when they do not shrink; the
+smallest over every three consecutive meshes, clipped to [RATE_MIN,
+RATE_MAX]) and the error is SAFETY |K_L - K_L-1| / ((f_L-1 / f_L)^p - 1),
+Roache's grid convergence index (J. Fluids Eng. 116, 1994: safety factor
+1.25 with an observed rate); a tip's K extrapolated is K_L + (K_L -
+K_L-1) / ((f_L-1 / f_L)^p - 1). A 3D .msh file cannot be made again: no
+estimate (EstimateUnavailable; give the geometry).
+
+Neither function imports the solve itself (it is passed in), so
+cracklip.analysis.solve can call them.
 """
 from __future__ import annotations
 
@@ -48,58 +79,125 @@ import typing
 
 import numpy as np
 
+from ..errors import InputError, MeshError
+from ..scene.mesh_3d import similar_mesh
 from ..scene.refine import with_levels
 from ..scene.scene import Scene
+from .front_match import FrontPiece, carry_over
 
 
 logger = logging.getLogger(__name__)
 
 
-#: Refined region around a tip: this many times the crack's length in the part.
-TIP_REGION = 2.0
+#: 2D: the refined region around a tip, in element sizes (the largest
+#: element within it).
+REGION_ELEMENTS = 20.0
 
-
-#: Refined region around a hole near a tip: this many times the hole's radius from its centre.
+#: 2D: the refined region around a hole within a tip's region: this many
+#: times the hole's radius from its centre.
 HOLE_REGION = 4.0
 
+#: 3D: the estimate's mesh, every element size times this (coarser).
+RHO = math.sqrt(2.0)
 
-#: The rate of K assumed while it cannot be observed (two levels): the
-#: slowest of the cases measured, so that the estimate bounds the error.
+#: 3D: size factor per accuracy level (finer).
+REFINE_3D = 1.0 / math.sqrt(2.0)
+
+#: 3D: the estimate's mesh is the coarser one (RHO) when the front size is
+#: at most this fraction of the crack size, else the finer one (1 / RHO):
+#: below about a tenth K has not reached its asymptotic rate between the two
+#: meshes (the penny at a/7 against a/5: estimates 0.38-1.38 times the
+#: error; against a/10: 1.27-2.16), and a coarse front is cheap to refine.
+#: At a/5 neither brackets (0.75-1.25 against a/7: K's rate is about 0.6
+#: between a/5 and a/7, below the assumed 1); the model warns there (front
+#: elements above a fifth of the crack size).
+FINE_FRONT = 0.1
+
+#: The rate of K assumed while it cannot be observed: the slowest of the
+#: cases measured, so that the estimate bounds the error.
 ASSUMED_RATE = 1.0
-
 
 #: Safety factor on the error estimated with an observed rate (Roache's 1.25).
 SAFETY = 1.25
-
 
 #: An observed rate is clipped to this range (2: K with geometric
 #: enrichment; 0.5: K without tip enrichment).
 RATE_MIN, RATE_MAX = 0.5, 2.0
 
+#: Along a front, a point's scatter is the largest within this many points
+#: on either side (module doc).
+NEIGHBOURS = 1
+
+#: Along a front, K is fitted with one degree of freedom per this many
+#: points of a piece (smooth_along).
+SMOOTH_POINTS = 4
+
+MODES = ("K_I", "K_II", "K_III")
 
 Solver = typing.Callable[[Scene], typing.Any]
 
 
+class EstimateUnavailable(InputError):
+    """The error estimate needs a mesh cracklip cannot make (a 3D .msh file)."""
+
+
+def scene_on(scene: Scene, mesh) -> Scene:
+    """The scene on another mesh of the same part: point conditions go to the
+    new mesh's node at (or nearest to) their point."""
+    dirichlet = []
+    for bc in scene.dirichlet:
+        if isinstance(bc.where, (tuple, list, np.ndarray)) and not isinstance(bc.where, str):
+            bc = dataclasses.replace(bc, where=mesh.nearest_node(bc.where))
+        dirichlet.append(bc)
+    return dataclasses.replace(scene, mesh=mesh, dirichlet=dirichlet)
+
+
+def similar_scene(scene: Scene, factor: float) -> Scene:
+    """The 3D scene on the similar mesh with every size setting times
+    `factor` (relative to the scene's mesh: cracklip.scene.mesh_3d.similar_mesh)."""
+    try:
+        return scene_on(scene, similar_mesh(scene.mesh, factor))
+    except MeshError as e:
+        raise EstimateUnavailable(f"no error estimate of K: {e}") from None
+
+
+def region_radius(model, point: np.ndarray, elements: float = REGION_ELEMENTS) -> float:
+    """The radius of the region `elements` element sizes around a point: D =
+    elements x the largest element (mean edge) whose centroid lies within D
+    (from the point's own element, grown until it holds; the part's size at
+    most)."""
+    x, cells = model.x, model.cells
+    xc = x[cells]
+    centroid = xc.mean(axis=1)
+    k = cells.shape[1]
+    size = np.mean([np.linalg.norm(xc[:, (i + 1) % k] - xc[:, i], axis=1) for i in range(k)], axis=0)
+    dist = np.linalg.norm(centroid - np.asarray(point, dtype=float)[:len(centroid[0])], axis=1)
+    part = float(np.ptp(x, axis=0).max())
+    D = elements * float(size[np.argmin(dist)])
+    while D < part:
+        grown = elements * float(size[dist <= D].max())
+        if grown <= D * (1.0 + 1e-9):
+            break
+        D = grown
+    return min(D, part)
+
+
 def tip_regions(solution) -> list[tuple[int, int, float, float, float]]:
-    """The regions refined per level: (crack, tip, x, y, D) of every tip, D
-    = TIP_REGION x the crack's length in the part, and (-1, k, x, y, D) of
-    every hole that comes within D of a tip: its centre, D = HOLE_REGION x
-    its radius (the hole's stress concentration sets K of a crack beside
+    """The 2D regions refined per level: (crack, tip, x, y, D) of every tip,
+    D = region_radius (REGION_ELEMENTS element sizes), and (-1, k, x, y, D)
+    of every hole that comes within D of a tip: its centre, D = HOLE_REGION
+    x its radius (the hole's stress concentration sets K of a crack beside
     it: for a 4 mm crack at a 10 mm hole, demos/scenes/hole_fatigue.toml,
     the tip's region alone gave an estimate of 1.1 for an error of 17.2;
     with the hole's region of 2 radii 13.6, of 4 radii 20.7, of the whole
     plate 23.8)."""
     from ..model.boundary import boundary_loops
-    from ..model.tip_regions import lip_points, model_boundary, segment_distance
+    from ..model.tip_regions import model_boundary, segment_distance
     m = solution.model
     out = []
     for ci, cm in enumerate(m.cracks):
-        tips = np.asarray(cm.geometry.tips).reshape(-1, 2)
-        if not len(tips):
-            continue
-        length = float(lip_points(m, ci)["weight"].sum())
-        for j, p in enumerate(tips):
-            out.append((ci, j, float(p[0]), float(p[1]), TIP_REGION * length))
+        for j, p in enumerate(np.asarray(cm.geometry.tips).reshape(-1, 2)):
+            out.append((ci, j, float(p[0]), float(p[1]), region_radius(m, p)))
     if not out:
         return out
     a, b = model_boundary(m)
@@ -120,141 +218,370 @@ def level_items(regions, level: int) -> list[tuple[float, float, float, float, f
     return [(x, y, x, y, D, level) for (_, _, x, y, D) in regions]
 
 
-def scene_on(scene: Scene, mesh) -> Scene:
-    """The scene on another mesh of the same part: point conditions go to the
-    new mesh's node at (or nearest to) their point."""
-    dirichlet = []
-    for bc in scene.dirichlet:
-        if isinstance(bc.where, (tuple, list, np.ndarray)) and not isinstance(bc.where, str):
-            bc = dataclasses.replace(bc, where=mesh.nearest_node(bc.where))
-        dirichlet.append(bc)
-    return dataclasses.replace(scene, mesh=mesh, dirichlet=dirichlet)
-
-
 @dataclasses.dataclass
 class Level:
-    """One solve of the sequence: its level, dofs, seconds and K per (state
-    of the load path, crack, tip)."""
-    level: int
+    """One solve of a sequence of meshes of the part: its element sizes
+    relative to the run's (2D: within the tips' regions; 3D: everywhere),
+    dofs, seconds, the SIF rows of every state of its load path
+    (cracklip.fracture.sif.SIF_KEYS), whether they are front points and,
+    along 3D fronts, whether each (crack, piece) is a loop and its length."""
+    size_factor: float
     dofs: int
     seconds: float
-    K: dict[tuple[int, int, int], tuple[float, float]]
+    rows: list[list[dict]]
+    front: bool = False
+    closed: dict[tuple[int, int], bool] = dataclasses.field(default_factory=dict)
+    lengths: dict[tuple[int, int], float] = dataclasses.field(default_factory=dict)
 
 
 def _states(solution) -> list:
     return solution.path or [solution]
 
 
-def _levels_K(solution) -> dict[tuple[int, int, int], tuple[float, float]]:
-    return {(s, r["crack"], r["tip"]): (r["K_I"], r["K_II"])
-            for s, st in enumerate(_states(solution)) for r in st.stress_intensity_factors(None)}
+def _front(solution) -> bool:
+    return solution.model.crack_type.END == "front"
 
 
-def _rate(values: list[float]) -> float | None:
-    """The observed rate: the smallest over every three consecutive values
-    (a rate still rising toward its asymptote is not trusted: the C(T)'s
-    1.3 then 1.8), None if any three do not converge monotonically."""
+def level_of(solution, size_factor: float, seconds: float) -> Level:
+    """The Level of a solved mesh."""
+    closed, lengths = {}, {}
+    if _front(solution):
+        from ..fracture.sif_3d import crack_front
+        for ci in range(len(solution.model.cracks)):
+            fr = crack_front(solution.model, ci)
+            closed.update({(ci, k): bool(c) for k, c in enumerate(fr.closed)})
+            lengths.update({(ci, k): float(v) for k, v in enumerate(fr.length)})
+    rows = [[dict(r) for r in st.stress_intensity_factors(None)] for st in _states(solution)]
+    return Level(float(size_factor), int(solution.model.num_dofs), float(seconds), rows, _front(solution), closed,
+                 lengths)
+
+
+def _modes(rows: list[dict]) -> tuple[str, ...]:
+    return MODES if rows and rows[0].get("K_III") is not None else MODES[:2]
+
+
+def _values(rows: list[dict], modes) -> np.ndarray:
+    return np.array([[float(r[m]) for m in modes] for r in rows]).reshape(len(rows), len(modes))
+
+
+def carried(level: Level, state: int, crack: int, rows: list[dict], modes, smooth: bool = False) -> np.ndarray:
+    """K (n, modes) of `level` at the points of `rows` (another level's
+    points of that crack and state): the same tip in 2D, carried along the
+    front in 3D (front_match); smooth: the level's fit along its front
+    (smooth_along) carried instead."""
+    mine = [r for r in level.rows[state] if r["crack"] == crack]
+    if not level.front:  # tips: one point each
+        by_tip = {r["tip"]: r for r in mine}
+        return np.array([[float(by_tip[r["tip"]][m]) for m in modes] for r in rows]).reshape(len(rows), len(modes))
+    values = _values(mine, modes)
+    if smooth:
+        values = smooth_along(mine, values, level)
+    pieces = []
+    for p in sorted({r["piece"] for r in mine}):
+        idx = sorted((i for i, r in enumerate(mine) if r["piece"] == p), key=lambda i: mine[i]["s"])
+        pieces.append(FrontPiece(np.array([mine[i]["position"] for i in idx]), values[idx],
+                                 level.closed[(crack, p)]))
+    return carry_over(np.array([r["position"] for r in rows]), pieces)
+
+
+def _rate(values: np.ndarray, factors: np.ndarray) -> float | None:
+    """The observed rate of K(f) = K0 + C f^p over three or more meshes (f
+    decreasing): the smallest over every three consecutive ones (a rate
+    still rising toward its asymptote is not trusted: the C(T)'s 1.3 then
+    1.8), None if any three do not converge monotonically."""
     if len(values) < 3:
         return None
     rates = []
     for k in range(len(values) - 2):
-        d1, d2 = values[k + 1] - values[k], values[k + 2] - values[k + 1]
-        if d1 == 0.0 or d2 == 0.0 or d1 * d2 < 0.0 or abs(d2) >= abs(d1):
+        (v0, v1, v2), (f0, f1, f2) = values[k:k + 3], factors[k:k + 3]
+        d1, d2 = v1 - v0, v2 - v1
+        if d1 == 0.0 or d2 == 0.0 or d1 * d2 < 0.0:
             return None
-        rates.append(math.log2(abs(d1) / abs(d2)))
+        ratio = d1 / d2
+
+        def g(p: float) -> float:
+            return (f0 ** p - f1 ** p) / (f1 ** p - f2 ** p) - ratio
+        lo, hi = 0.05, 8.0
+        if g(lo) * g(hi) > 0.0:
+            return None
+        for _ in range(80):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (lo, mid) if g(lo) * g(mid) <= 0.0 else (mid, hi)
+        rates.append(0.5 * (lo + hi))
+    return float(min(max(min(rates), RATE_MIN), RATE_MAX))
+
+
+def neighbour_max(values: np.ndarray, rows: list[dict], closed: dict[tuple[int, int], bool]) -> np.ndarray:
+    """values (n, m) replaced by their largest within NEIGHBOURS points on
+    either side along each front piece (a loop wraps round)."""
+    out = np.array(values, dtype=float)
+    keys = [(r["crack"], r["piece"]) for r in rows]
+    for key in set(keys):
+        idx = np.array(sorted((i for i, k in enumerate(keys) if k == key), key=lambda i: rows[i]["s"]))
+        v = values[idx]
+        best = v.copy()
+        for shift in range(1, NEIGHBOURS + 1):
+            if closed.get(key, False):
+                best = np.maximum(best, np.maximum(np.roll(v, shift, axis=0), np.roll(v, -shift, axis=0)))
+            else:
+                best[shift:] = np.maximum(best[shift:], v[:-shift])
+                best[:-shift] = np.maximum(best[:-shift], v[shift:])
+        out[idx] = best
+    return out
+
+
+def smooth_along(rows: list[dict], values: np.ndarray, level: Level) -> np.ndarray:
+    """values (n, m) at front points fitted by least squares along each piece
+    (its points off the free surface; SMOOTH_POINTS points per degree of
+    freedom): a Fourier series in the arc length on a loop, Legendre
+    polynomials on an open piece; the fit at every point."""
+    out = np.array(values, dtype=float)
+    keys = [(r["crack"], r["piece"]) for r in rows]
+    for key in set(keys):
+        idx = np.array([i for i, k in enumerate(keys) if k == key])
+        s = np.array([rows[i]["s"] for i in idx], dtype=float)
+        use = ~np.array([bool(rows[i].get("free_surface")) for i in idx])
+        n = int(use.sum())
+        if n < 3:
+            continue
+        dofs = max(2, n // SMOOTH_POINTS)
+        if level.closed.get(key, False):
+            t = 2.0 * math.pi * s / level.lengths[key]
+            M = max(1, (dofs - 1) // 2)
+            basis = np.column_stack([np.ones_like(t)] + [f(k * t) for k in range(1, M + 1)
+                                                          for f in (np.cos, np.sin)])
+        else:
+            t = 2.0 * (s - s.min()) / max(float(np.ptp(s)), 1e-300) - 1.0
+            basis = np.polynomial.legendre.legvander(t, dofs - 1)
+        coef = np.linalg.lstsq(basis[use], values[idx][use], rcond=None)[0]
+        out[idx] = basis @ coef
+    return out
+
+
+def _front_rate(S: np.ndarray, factors: np.ndarray) -> float | None:
+    """The rate of the smooth K along a front over three or more similar
+    meshes: from the RMS (points and modes) of the differences between
+    consecutive meshes (S (levels, n, modes) at one mesh's points), the
+    smallest over every three, clipped to [RATE_MIN, RATE_MAX]; None when
+    the differences do not shrink."""
+    if len(S) < 3:
+        return None
+    rates = []
+    for k in range(len(S) - 2):
+        d1 = float(np.sqrt(np.mean((S[k + 1] - S[k]) ** 2)))
+        d2 = float(np.sqrt(np.mean((S[k + 2] - S[k + 1]) ** 2)))
+        ratio = factors[k + 1] / factors[k + 2]
+        if d2 <= 0.0 or d2 >= d1 or abs(factors[k] / factors[k + 1] - ratio) > 1e-6 * ratio:
+            return None
+        rates.append(math.log(d1 / d2) / math.log(ratio))
     return float(min(max(min(rates), RATE_MIN), RATE_MAX))
 
 
 def estimate(levels: list[Level], of: int = -1) -> dict[tuple[int, int, int], dict[str, typing.Any]]:
-    """Per (state, crack, tip): the estimated error of K_I, K_II at level
-    `of` (the last by default, or 0: the first, as estimate_error gives it),
-    the rates used (None: not observed, ASSUMED_RATE used), K per level and
-    K extrapolated (when the rate is observed)."""
-    out = {}
-    for key in levels[-1].K:
-        row: dict[str, typing.Any] = {}
-        for m, mode in enumerate(("K_I", "K_II")):
-            values = [lv.K[key][m] for lv in levels if key in lv.K]
-            if len(values) < 2:
-                continue
-            observed = _rate(values)
-            p = ASSUMED_RATE if observed is None else observed
-            diff = values[-1] - values[-2]
-            factor = 1.0 / (2.0 ** p - 1.0)
-            safety = 1.0 if observed is None else SAFETY
-            row[f"{mode}_error"] = safety * abs(diff) * (factor if of == -1 else 1.0 + factor)
-            row[f"{mode}_rate"] = observed
-            row[f"{mode}_levels"] = values
-            row[f"{mode}_extrapolated"] = values[-1] + diff * factor if observed is not None else None
-        if row:
-            out[key] = row
+    """Per (state, crack, point) of level `of` (levels from coarse to fine;
+    by default the finest): the estimated error of each K, the rate used
+    (None: not observed, ASSUMED_RATE), K on every level at that point and
+    K extrapolated (2D, an observed rate only). The finest K errs by the
+    difference from the next coarser mesh over (ratio^p - 1); a coarser one
+    by its difference from the finest plus that. Along a front the
+    difference is that of K's fits along it (smooth_along, each mesh's own
+    fit carried to these points), plus the point's scatter about its own
+    fit (the largest within NEIGHBOURS points): the scatter is not
+    amplified by 1 / (ratio^p - 1) as the differences of two scattered K
+    would be."""
+    mine = levels[of]
+    factors = np.array([lv.size_factor for lv in levels])
+    ratio = factors[-2] / factors[-1]
+    rated = factors <= 1.0  # 2D: the rate from the run's mesh and finer ones (the tip regions' levels)
+    out: dict[tuple[int, int, int], dict[str, typing.Any]] = {}
+    for s, rows_s in enumerate(mine.rows):
+        for crack in sorted({r["crack"] for r in rows_s}):
+            rows = [r for r in rows_s if r["crack"] == crack]
+            modes = _modes(rows)
+            K = np.stack([_values(rows, modes) if lv is mine else carried(lv, s, crack, rows, modes)
+                          for lv in levels])                                       # (levels, n, modes)
+            if mine.front:
+                S = np.stack([smooth_along(rows, K[j], mine) if lv is mine else
+                              carried(lv, s, crack, rows, modes, smooth=True) for j, lv in enumerate(levels)])
+                observed = _front_rate(S, factors)
+                p = ASSUMED_RATE if observed is None else observed
+                factor = (1.0 if observed is None else SAFETY) / abs(ratio ** p - 1.0)
+                scatter = neighbour_max(np.abs(K[of] - S[of]), rows, mine.closed)
+                err = np.abs(S[-1] - S[-2]) * factor + np.abs(S[of] - S[-1]) + scatter
+            for i, r in enumerate(rows):
+                row: dict[str, typing.Any] = {}
+                for m, mode in enumerate(modes):
+                    if mine.front:
+                        row[f"{mode}_error"] = float(err[i, m])
+                        row[f"{mode}_extrapolated"] = None
+                    else:
+                        observed = _rate(K[rated, i, m], factors[rated])
+                        p = ASSUMED_RATE if observed is None else observed
+                        factor = 1.0 / abs(ratio ** p - 1.0)
+                        row[f"{mode}_error"] = ((1.0 if observed is None else SAFETY) * abs(K[-1, i, m] - K[-2, i, m])
+                                                * factor + abs(K[of, i, m] - K[-1, i, m]))
+                        row[f"{mode}_extrapolated"] = (None if observed is None else
+                                                       float(K[-1, i, m] + (K[-1, i, m] - K[-2, i, m]) * factor))
+                    row[f"{mode}_rate"] = observed
+                    row[f"{mode}_levels"] = [float(v) for v in K[:, i, m]]
+                out[(s, crack, int(r["point"]))] = row
     return out
 
 
-def _attach(solution, levels: list[Level], est, target: float | None, of: int) -> dict[str, typing.Any]:
-    """Put the estimate on every state of the solution's load path
-    (Solution.error_estimate, its own tips each) and return the summary of
-    the whole: the largest error relative to the largest K scale."""
-    from ..fracture.sif import k_scale
+def _scale(solution, rows: list[dict]) -> float:
+    """The K scale of a state: the largest |K| over its points, at least 1e-3
+    of a K its loads could make (cracks held closed: K = 0)."""
+    if _front(solution):
+        from ..fracture.sif_3d import natural_k
+    else:
+        from ..fracture.sif import natural_k
+    ks = [math.hypot(*(float(r[m]) for m in _modes(rows))) for r in rows]
+    return max(ks + [1e-3 * natural_k(solution), 1e-300])
+
+
+def _attach(solution, levels: list[Level], est, target: float | None, method: str, of: int = -1
+            ) -> dict[str, typing.Any]:
+    """Put the estimate of level `of` on every state of its solution's load
+    path (Solution.error_estimate, its own points each) and return the
+    summary of the whole: the largest error (front points on a free surface
+    left out) relative to the largest K scale, and where."""
     states = _states(solution)
-    scales = [k_scale(st, [v for (s, _, _), v in levels[of].K.items() if s == i]) for i, st in enumerate(states)]
-    scale = max(scales)
-    worst = max([max(r.get("K_I_error", 0.0), r.get("K_II_error", 0.0)) for r in est.values()] + [0.0])
-    summary = {"method": f"refinement levels: element sizes halved within {TIP_REGION:g} crack lengths of each "
-                         "tip per level; the rate of K observed (the smallest over three consecutive levels) where it "
-                         f"converges monotonically (times a safety factor {SAFETY:g}), else assumed {ASSUMED_RATE:g} (an "
-                         "upper bound of the error)",
-               "levels": [lv.level for lv in levels], "dofs": [lv.dofs for lv in levels],
-               "seconds": [lv.seconds for lv in levels], "of_level": levels[of].level,
-               "K_scale": scale, "largest_error": worst, "largest_relative_error": worst / scale if scale > 0 else 0.0,
+    mine = levels[of]
+    scale = max(_scale(st, rows) for st, rows in zip(states, mine.rows))
+    worst, where = 0.0, None
+    for s, rows in enumerate(mine.rows):
+        for r in rows:
+            if r.get("free_surface"):
+                continue
+            e = est[(s, r["crack"], int(r["point"]))]
+            for mode in _modes(rows):
+                if e[f"{mode}_error"] > worst:
+                    worst, where = e[f"{mode}_error"], {"state": s, "crack": r["crack"], "point": int(r["point"]),
+                                                        "mode": mode}
+    summary = {"method": method, "meshes": _meshes(levels), "of_size_factor": mine.size_factor,
+               "size_factors": [lv.size_factor for lv in levels], "dofs": [lv.dofs for lv in levels],
+               "seconds": [lv.seconds for lv in levels],
+               "refinement_levels": sum(1 for lv in levels if lv.size_factor < 1.0), "K_scale": scale,
+               "largest_error": worst,
+               "largest_relative_error": worst / scale if scale > 0 else 0.0, "largest_at": where,
                "target": target, "reached": None if target is None else bool(worst <= target * scale)}
     for i, st in enumerate(states):
-        st.error_estimate = {**summary, "tips": {f"{c}:{t}": v for (s, c, t), v in est.items() if s == i}}
+        st.error_estimate = {**summary, "points": {f"{c}:{p}": v for (s, c, p), v in est.items() if s == i}}
     return summary
 
 
-def estimate_error(scene: Scene, solution, solve_once: Solver) -> dict[str, typing.Any] | None:
-    """One more solve on level 1 (sizes halved around every tip): the error
-    estimate of every K of `solution` (level 0), attached to it (and every
-    state of its load path: Solution.error_estimate) and returned (the
-    summary). None without a tip."""
-    regions = tip_regions(solution)
-    if not regions:
-        return None
+def _meshes(levels: list[Level]) -> str:
+    """The meshes of an estimate in a few words."""
+    f = [lv.size_factor for lv in levels]
+    if levels[-1].front:
+        return f"every element size times {[x for x in f if x != 1.0][0]:.3g}" if len(f) == 2 else \
+            f"every element size times {f[0]:.3g} .. {f[-1]:.3g}"
+    return (f"element sizes halved within {REGION_ELEMENTS:g} element sizes of each tip" if len(f) == 2 else
+            f"element sizes times 1 .. {f[-1]:.3g} within {REGION_ELEMENTS:g} element sizes of each tip")
+
+
+def _method(levels: list[Level], of: int) -> str:
+    if levels[-1].front:
+        return ("similar meshes (every size setting times " + ", ".join(f"{lv.size_factor:.3g}" for lv in levels)
+                + "); the error of the finest K is the difference of K's least-squares fits along the front on it "
+                "and the next coarser mesh over ratio^p - 1, plus its scatter about its fit (the largest within "
+                f"{NEIGHBOURS} point(s) on either side); p observed over three meshes from the fits' differences "
+                f"(times a safety factor {SAFETY:g}), else {ASSUMED_RATE:g} (an upper bound for p >= 1)")
+    text = (f"refinement levels {levels[0].size_factor:g} .. {levels[-1].size_factor:g} (every element size "
+            f"halved per level within {REGION_ELEMENTS:g} element sizes of each tip and {HOLE_REGION:g} radii "
+            "around a hole within that)")
+    if of == 0:
+        return text + (f"; the error of the run's K is 2 |K_1 - K_0| (the rate {ASSUMED_RATE:g} assumed: an upper "
+                       "bound for p >= 1)")
+    return text + (f"; the error of the finest K is |K_L - K_L-1| / (2^p - 1), the rate p observed over three levels "
+                   f"where K converges monotonically (times a safety factor {SAFETY:g}), else {ASSUMED_RATE:g} (an "
+                   "upper bound for p >= 1)")
+
+
+def fine_front(scene: Scene) -> bool:
+    """Whether the scene's fronts are fine enough for the coarser estimate
+    mesh (3D): the smallest front size asked for (mesh.tip_h; the mesh size
+    without one) at most FINE_FRONT times the smallest crack size
+    (cracklip.scene.mesh_3d.crack_size)."""
+    from ..scene.mesh_3d import crack_size
+    md = scene.mesh
+    sizes = [f.h_front for f in md.front_refinements] or ([md.h * md.size_factor] if md.h else [])
+    if not sizes or not scene.cracks:
+        return False
+    return min(sizes) <= FINE_FRONT * min(crack_size(c) for c in scene.cracks) * (1.0 + 1e-9)
+
+
+def _solve_timed(solve_once: Solver, scene: Scene, factor: float) -> tuple[typing.Any, Level]:
+    """Solve a scene whose element sizes are `factor` times the run's."""
     t0 = time.perf_counter()
-    fine = solve_once(scene_on(scene, with_levels(scene.mesh, level_items(regions, 1))))
-    levels = [Level(0, solution.model.num_dofs, float(solution.timings.get("total", 0.0)), _levels_K(solution)),
-              Level(1, fine.model.num_dofs, time.perf_counter() - t0, _levels_K(fine))]
-    summary = _attach(solution, levels, estimate(levels, of=0), None, 0)
-    logger.info("error estimate: level 1 has %d dofs (%.2f s); largest estimated error %.3g %% of the K scale",
-                fine.model.num_dofs, levels[1].seconds, 100 * summary["largest_relative_error"])
+    sol = solve_once(scene)
+    return sol, level_of(sol, factor, time.perf_counter() - t0)
+
+
+def estimate_error(scene: Scene, solution, solve_once: Solver) -> dict[str, typing.Any] | None:
+    """One more solve (2D: sizes halved within the tips' regions; 3D: the
+    similar mesh with every size times RHO): the error estimate of every K
+    of `solution`, attached to it (and every state of its load path:
+    Solution.error_estimate) and returned (the summary). None without a
+    crack tip or front point; EstimateUnavailable on a 3D .msh file."""
+    base = level_of(solution, 1.0, float(solution.timings.get("total", 0.0)))
+    if not any(base.rows):
+        return None
+    if base.front:
+        factor = RHO if fine_front(scene) else 1.0 / RHO
+        _, aux = _solve_timed(solve_once, similar_scene(scene, factor), factor)
+        levels, of = ([aux, base], -1) if factor > 1.0 else ([base, aux], 0)
+    else:
+        regions = tip_regions(solution)
+        _, aux = _solve_timed(solve_once, scene_on(scene, with_levels(scene.mesh, level_items(regions, 1))), 0.5)
+        levels, of = [base, aux], 0
+    summary = _attach(solution, levels, estimate(levels, of), None, _method(levels, of), of)
+    logger.info("error estimate: %d dofs (%.2f s); largest estimated error %.3g %% of the K scale", aux.dofs,
+                aux.seconds, 100 * summary["largest_relative_error"])
     return summary
 
 
 def solve_to_accuracy(scene: Scene, accuracy: float, max_levels: int, solve_once: Solver):
-    """Solve level 0, 1, ... (sizes halved around every tip per level)
-    until the largest estimated error of K is below `accuracy` times the K
-    scale or max_levels is reached; the finest solution, with
+    """Solve the scene, then finer meshes level by level (2D: every size
+    halved within the tips' regions per level; 3D: after the estimate's
+    coarser mesh, every size times REFINE_3D per level) until the largest
+    estimated error of K is below `accuracy` times the K scale or
+    max_levels refinements are done; the finest solution, with
     Solution.error_estimate on every state of its load path."""
-    t0 = time.perf_counter()
-    sol = solve_once(scene)
-    levels = [Level(0, sol.model.num_dofs, time.perf_counter() - t0, _levels_K(sol))]
-    regions = tip_regions(sol)
-    if not regions:
-        logger.info("accuracy: no crack tip in the part, nothing to refine")
+    sol, base = _solve_timed(solve_once, scene, 1.0)
+    if not any(base.rows):
+        logger.info("accuracy: no crack tip or front in the part, nothing to refine")
         return sol
+    levels = [base]
+    if base.front and fine_front(scene):  # (a coarse front: straight to the finer meshes)
+        _, coarse = _solve_timed(solve_once, similar_scene(scene, RHO), RHO)
+        levels.insert(0, coarse)
+        summary = _attach(sol, levels, estimate(levels), accuracy, _method(levels, -1))
+        logger.info("accuracy: the scene's mesh, %d dofs, largest estimated error %.3g %% (target %.3g %%)",
+                    base.dofs, 100 * summary["largest_relative_error"], 100 * accuracy)
+        if summary["reached"]:
+            return sol
+    regions = None if base.front else tip_regions(sol)
+    factor = 1.0
     for level in range(1, max_levels + 1):
-        t0 = time.perf_counter()
-        sol = solve_once(scene_on(scene, with_levels(scene.mesh, level_items(regions, level))))
-        levels.append(Level(level, sol.model.num_dofs, time.perf_counter() - t0, _levels_K(sol)))
-        summary = _attach(sol, levels, estimate(levels), accuracy, -1)
-        logger.info("accuracy: level %d, %d dofs (%.2f s), largest estimated error %.3g %% (target %.3g %%)",
-                    level, sol.model.num_dofs, levels[-1].seconds, 100 * summary["largest_relative_error"],
+        if regions is None:
+            factor *= REFINE_3D
+            finer = similar_scene(scene, factor)
+        else:
+            factor *= 0.5
+            finer = scene_on(scene, with_levels(scene.mesh, level_items(regions, level)))
+        sol, lv = _solve_timed(solve_once, finer, factor)
+        levels.append(lv)
+        summary = _attach(sol, levels, estimate(levels), accuracy, _method(levels, -1))
+        logger.info("accuracy: level %d (sizes x %.3g), %d dofs (%.2f s), largest estimated error %.3g %% "
+                    "(target %.3g %%)", level, factor, lv.dofs, lv.seconds, 100 * summary["largest_relative_error"],
                     100 * accuracy)
         if summary["reached"]:
             break
     return sol
 
 
-__all__ = ["estimate_error", "solve_to_accuracy", "estimate", "tip_regions", "scene_on", "TIP_REGION",
-           "ASSUMED_RATE"]
+__all__ = ["estimate_error", "solve_to_accuracy", "estimate", "tip_regions", "region_radius", "similar_scene",
+           "fine_front",
+           "scene_on", "Level", "level_of", "EstimateUnavailable", "RHO", "REGION_ELEMENTS", "ASSUMED_RATE",
+           "SAFETY"]

@@ -95,10 +95,11 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--condition-number", action="store_true",
                      help="also estimate the 1-norm condition number (as outputs.condition_number = true)")
     run.add_argument("--accuracy", type=float, metavar="TARGET",
-                     help="refine around the crack tips until the estimated error of every K is below TARGET "
-                          "times the K scale, e.g. 0.01 (as options.accuracy)")
+                     help="refine the mesh (every size, tips and fronts included) until the estimated error of "
+                          "every K is below TARGET times the K scale, e.g. 0.01 (as options.accuracy)")
     run.add_argument("--no-estimate", action="store_true",
-                     help="skip the error estimate of K, one solve fewer (as outputs.error_estimate = false)")
+                     help="skip the error estimate of K, one solve fewer on a coarser mesh (as "
+                          "outputs.error_estimate = false)")
     run.set_defaults(func=cmd_run)
 
     grow = sub.add_parser("grow", help="grow a scene's cracks (its [growth] table) and write the path",
@@ -208,12 +209,13 @@ def cmd_run(args) -> int:
     cond = bool(args.condition_number or sf.outputs["condition_number"])
     logger.info("solving (%s enrichment, contact %s)", sf.scene.options.enrichment, sf.scene.options.contact)
     sol = solve(sf.scene, condition_number=cond)
-    if sol.model.crack_type.END == "front":
-        logger.info("3D part: no error estimate of K (the refinement levels it takes are 2D only in this version)")
-    elif sf.outputs["error_estimate"] and sf.scene.options.accuracy == 0.0:
-        from ..analysis.accuracy import estimate_error
-        logger.info("estimating the discretisation error of K (one more solve, element sizes halved around the tips)")
-        estimate_error(sf.scene, sol, solve)
+    if sf.outputs["error_estimate"] and sf.scene.options.accuracy == 0.0:
+        from ..analysis.accuracy import RHO, EstimateUnavailable, estimate_error
+        logger.info("estimating the discretisation error of K (one more solve, every element size times %.3g)", RHO)
+        try:
+            estimate_error(sf.scene, sol, solve)
+        except EstimateUnavailable as e:
+            logger.info("%s", e)
     phases = ", ".join(f"{k} {v:.3f} s" for k, v in sol.timings.items())
     logger.info("solve phases: %s", phases)
     if sol.contact:
@@ -236,7 +238,7 @@ def cmd_run(args) -> int:
     print(f"{sf.title}: {results['solution']['dofs']} dofs, strain energy "
           f"{results['solution']['strain_energy']:.6g}")
     if sol.model.crack_type.END == "front":
-        for line in front_summary(results["sifs"], sf.scene.units):
+        for line in front_summary(results["sifs"], results.get("error_estimate"), sf.scene.units):
             print(line)
         unit = "" if sf.scene.units is None else f" {sf.scene.units.name('length')}"
         for c in results["cracks"]:
@@ -260,13 +262,14 @@ def cmd_run(args) -> int:
     return 0
 
 
-def front_summary(rows, units) -> list[str]:
+def front_summary(rows, estimate, units) -> list[str]:
     """K along each 3D front as printed: per crack and mode, the smallest and
     largest value over its front points and where (the point's index and
-    position; the parametric angle on an elliptical front), and how many
-    points are flagged (a free surface, a domain that reaches an obstacle)."""
+    position; the parametric angle on an elliptical front), the largest
+    estimated error, and how many points are flagged (a free surface, a
+    domain that reaches an obstacle)."""
     unit = "" if units is None else f" {units.name('K')}"
-    out = []
+    out = estimate_lines(estimate)
     for c in sorted({r["crack"] for r in rows}):
         mine = [r for r in rows if r["crack"] == c]
         out.append(f"  {mine[0]['crack_name']}: K along its front at {len(mine)} points")
@@ -275,10 +278,15 @@ def front_summary(rows, units) -> list[str]:
             angle = ("" if r["parametric_angle"] is None else
                      f", parametric angle {math.degrees(r['parametric_angle']):.1f} deg")
             return f"point {r['point']} ({', '.join(f'{v:.4g}' for v in r['position'])}{angle})"
+        inner = [r for r in mine if not r["free_surface"]] or mine
         for mode in ("K_I", "K_II", "K_III"):
             lo = min(mine, key=lambda r: r[mode])
             hi = max(mine, key=lambda r: r[mode])
-            out.append(f"    {mode}: min {lo[mode]:.6g}{unit} at {where(lo)}, max {hi[mode]:.6g}{unit} at {where(hi)}")
+            line = f"    {mode}: min {lo[mode]:.6g}{unit} at {where(lo)}, max {hi[mode]:.6g}{unit} at {where(hi)}"
+            if inner[0].get(f"{mode}_error") is not None:
+                worst = max(inner, key=lambda r: r[f"{mode}_error"])
+                line += f"; estimated error up to {worst[f'{mode}_error']:.2g}{unit} (point {worst['point']})"
+            out.append(line)
         free = sum(1 for r in mine if r["free_surface"])
         unclear = sum(1 for r in mine if not r["domain_clear"])
         if free or unclear:
@@ -287,22 +295,26 @@ def front_summary(rows, units) -> list[str]:
     return out
 
 
+def estimate_lines(estimate) -> list[str]:
+    """What the run's error estimate is, as printed (none without one)."""
+    if not estimate:
+        return []
+    if estimate["target"] is None:
+        return [f"  K +- its estimated discretisation error (from one more solve, {estimate['meshes']}; the error is "
+                "at most that if K converges at least like h): largest "
+                f"{100 * estimate['largest_relative_error']:.2g} % of the K scale"]
+    return [f"  accuracy target {100 * estimate['target']:.3g} %: refinement levels 0..{estimate['refinement_levels']} "
+            f"({estimate['meshes']}; {estimate['dofs'][0]} -> {estimate['dofs'][-1]} dofs), "
+            + ("reached" if estimate["reached"] else "NOT reached")
+            + f", largest estimated error {100 * estimate['largest_relative_error']:.2g} %"]
+
+
 def sif_summary(rows, estimate, units) -> list[str]:
     """The run's K per tip as printed: K with its unit, the estimated
     discretisation error (what the "+-" is), the SIF domain spread named as
     such (it is not an error bar)."""
     unit = "" if units is None else f" {units.name('K')}"
-    out = []
-    if estimate:
-        lv = estimate["levels"]
-        if estimate["target"] is None:
-            out.append("  K +- its estimated discretisation error (from one more solve with the element sizes halved "
-                       "around the tips; the error is at most that if K converges at least like h)")
-        else:
-            out.append(f"  accuracy target {100 * estimate['target']:.3g} %: refinement levels {lv[0]}..{lv[-1]} "
-                       f"({estimate['dofs'][0]} -> {estimate['dofs'][-1]} dofs), "
-                       + ("reached" if estimate["reached"] else "NOT reached")
-                       + f", largest estimated error {100 * estimate['largest_relative_error']:.2g} %")
+    out = estimate_lines(estimate)
     for r in rows:
         mix = "n/a (K negligible)" if r["mode_mix_deg"] is None else f"{r['mode_mix_deg']:.1f} deg"
         parts = []

@@ -68,11 +68,13 @@ SIF_DEGREE = 8
 
 #: The keys of every SIF row (results.json "sifs"), tips and front points
 #: alike: a 2D tip is a front of one point (piece = tip, s = 0), with None
-#: where a key does not apply (K_III, z, hat, curvature, parametric_angle in
-#: 2D; tip, inner_radius and the error estimates in 3D).
+#: where a key does not apply (K_III and its estimate, z, hat, curvature,
+#: parametric_angle in 2D; tip, inner_radius and K extrapolated in 3D; the
+#: error estimates without one, cracklip.analysis.accuracy).
 SIF_KEYS = ("crack", "crack_name", "point", "tip", "piece", "s", "position", "x", "y", "z", "direction", "normal",
             "frame", "K_I", "K_II", "K_III", "K_I_spread", "K_II_spread", "K_III_spread", "K_I_error", "K_II_error",
-            "K_I_extrapolated", "K_II_extrapolated", "K_I_levels", "K_II_levels", "mode_mix_deg", "G", "radius",
+            "K_III_error", "K_I_extrapolated", "K_II_extrapolated", "K_III_extrapolated", "K_I_levels", "K_II_levels",
+            "K_III_levels", "mode_mix_deg", "G", "radius",
             "radii", "radius_min", "inner_radius", "element_size", "hat", "curvature", "parametric_angle",
             "limited_by", "free_surface", "domain_clear", "K_source", "requested", "symmetry", "K_domain")
 

@@ -59,12 +59,13 @@ OPENING_SUBDIVISION = 2
 
 #: front.csv's columns (keys of the SIF rows): one line per front point and
 #: per position asked for (the parametric angle only for elliptical fronts,
+#: the errors empty without an error estimate,
 #: limited_by empty when the domain was not clipped, free_surface 1 where
 #: the front meets the part's boundary off a symmetry plane: K there is the
 #: documented end value, K_source end_extrapolation; K_source and the
 #: other flags: cracklip.fracture.front_sampling, docs/sifs.md).
 FRONT_COLUMNS = ["crack", "crack_name", "point", "piece", "s", "x", "y", "z", "parametric_angle", "K_I", "K_II",
-                 "K_III", "K_I_spread", "K_II_spread", "K_III_spread", "G", "mode_mix_deg", "radius", "radius_min",
+                 "K_III", "K_I_error", "K_II_error", "K_III_error", "K_I_spread", "K_II_spread", "K_III_spread", "G", "mode_mix_deg", "radius", "radius_min",
                  "element_size", "hat", "curvature", "limited_by", "free_surface", "domain_clear", "K_source",
                  "requested", "symmetry"]
 

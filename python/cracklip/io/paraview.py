@@ -155,8 +155,9 @@ def front_sif_mesh(rows: typing.Sequence[dict], closed: typing.Callable[[int, in
     """The SIF points of 3D fronts (results.json's "sifs") as polylines per
     front piece (a closed loop closes; closed(crack, piece): whether the
     piece is a loop, default: a piece without free-surface points), carrying
-    K_I, K_II, K_III, the spreads, G, the mode mix, the domain radius, the
-    free-surface flag and the local frame, to colour the front in ParaView."""
+    K_I, K_II, K_III, their estimated errors (NaN without an estimate), the
+    spreads, G, the mode mix, the domain radius, the free-surface flag and
+    the local frame, to colour the front in ParaView."""
     if not rows:
         return VtuMesh(np.zeros((0, 3)), "line", np.zeros((0, 2), dtype=np.int64))
     x = np.array([[r["x"], r["y"], r["z"]] for r in rows], dtype=float)
@@ -167,8 +168,8 @@ def front_sif_mesh(rows: typing.Sequence[dict], closed: typing.Callable[[int, in
         if loop and len(idx) > 2:
             conn.append((idx[-1], idx[0]))
     data = {k: np.array([float(r[k]) if r[k] is not None else math.nan for r in rows])
-            for k in ("s", "K_I", "K_II", "K_III", "K_I_spread", "K_II_spread", "K_III_spread", "G", "mode_mix_deg",
-                      "radius", "element_size")}
+            for k in ("s", "K_I", "K_II", "K_III", "K_I_error", "K_II_error", "K_III_error", "K_I_spread",
+                      "K_II_spread", "K_III_spread", "G", "mode_mix_deg", "radius", "element_size")}
     data["mode_mix_deg"] = np.nan_to_num(data["mode_mix_deg"], nan=0.0)
     data["free_surface"] = np.array([int(r["free_surface"]) for r in rows], dtype=np.int32)
     data["crack"] = np.array([int(r["crack"]) for r in rows], dtype=np.int32)

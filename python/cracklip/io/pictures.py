@@ -14,8 +14,9 @@ are functions here side by side.
   it gives them); the same samples go to crack_opening.csv.
 - K along 3D fronts (``write_front_png``): front_sifs.png, K_I, K_II, K_III
   against the arc length (against the parametric angle for elliptical
-  fronts) per crack, with the spread of the three domains as error bars and
-  marked: free-surface points (their end values, K_source
+  fronts) per crack, with the estimated discretisation error as error bars
+  (when the run made the estimate; else half the spread of the three
+  domains) and marked: free-surface points (their end values, K_source
   end_extrapolation, as open diamonds) and positions asked for between
   front points (interpolated, open circles).
 """
@@ -502,8 +503,13 @@ def write_front_png(rows: typing.Sequence[dict], path: pathlib.Path, title: str 
         free = np.array([bool(r["free_surface"]) for r in mine]) & ~ends
         for name, col in (("K_I", "C0"), ("K_II", "C1"), ("K_III", "C2")):
             k = np.array([r[name] for r in mine])
-            sp = np.array([r[f"{name}_spread"] for r in mine])
-            ax.errorbar(t[o], k[o], yerr=0.5 * sp[o], fmt="o-", color=col, ms=3, lw=1, capsize=2, label=name)
+            err = [r.get(f"{name}_error") for r in mine]
+            if all(e is not None for e in err):
+                ax.errorbar(t[o], k[o], yerr=np.array(err, dtype=float)[o], fmt="o-", color=col, ms=3, lw=1,
+                            capsize=2, label=f"{name} +- estimated error")
+            else:
+                sp = np.array([r[f"{name}_spread"] for r in mine])
+                ax.errorbar(t[o], k[o], yerr=0.5 * sp[o], fmt="o-", color=col, ms=3, lw=1, capsize=2, label=name)
             for mask, style in ((free, dict(marker="x", ms=8)), (ends, dict(marker="D", ms=6, mfc="none")),
                                 (between, dict(marker="o", ms=6, mfc="none"))):
                 if mask.any():

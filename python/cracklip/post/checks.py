@@ -155,35 +155,47 @@ def point_supports(solution, reactions: dict | None = None) -> list[tuple[str, s
 
 
 def estimate(solution) -> list[tuple[str, str]]:
-    """Warnings of an error estimate (cracklip.analysis.accuracy)."""
+    """Warnings of an error estimate (cracklip.analysis.accuracy): every 2D
+    tip, and along each 3D front the worst point off the free surface
+    (with how many exceed it), whose estimated error exceeds ERROR_WARNING
+    of the K scale; an accuracy target not reached."""
     est = getattr(solution, "error_estimate", None)
     if not est:
         return []
     out = []
     scale = est["K_scale"]
     names = [cm.crack.name for cm in solution.model.cracks]
-    sifs = {(r["crack"], r["tip"]): r for r in solution.stress_intensity_factors(None)}
-    for key, row in est["tips"].items():
-        c, t = (int(v) for v in key.split(":"))
-        r = sifs.get((c, t))
-        if r is None or est["target"] is not None:
-            continue
-        mode = "K_I" if row["K_I_error"] >= row["K_II_error"] else "K_II"
-        if row[f"{mode}_error"] <= ERROR_WARNING * scale:
-            continue
-        finer = row[f"{mode}_levels"][-1]
-        out.append(("discretisation", (
-            f"tip {t} of crack {names[c]!r} at ({r['x']:.6g}, {r['y']:.6g}): {mode} = {r[mode]:.6g} has an estimated "
-            f"discretisation error of {row[f'{mode}_error']:.3g} ({100 * row[f'{mode}_error'] / scale:.2g} % of the "
-            f"K scale {scale:.4g}; with the element sizes halved around the tip it is {finer:.6g}): the mesh is too "
-            "coarse for this crack; refine it (mesh.h around the crack, mesh.tip_h, options.radius of a few tip "
-            "elements) or let cracklip refine it: options.accuracy = 0.01 (command line --accuracy 0.01)")))
-    if est["target"] is not None and not est["reached"]:
+    if est["target"] is None:
+        rows = [r for r in solution.stress_intensity_factors(None)
+                if not r["free_surface"] and r.get("K_I_error") is not None]
+        for crack in sorted({r["crack"] for r in rows}):
+            mine = [r for r in rows if r["crack"] == crack]
+            modes = [m for m in ("K_I", "K_II", "K_III") if mine[0].get(f"{m}_error") is not None]
+            over = [(r, max(modes, key=lambda m: r[f"{m}_error"])) for r in mine]
+            over = [(r, m) for r, m in over if r[f"{m}_error"] > ERROR_WARNING * scale]
+            if not over:
+                continue
+            front = mine[0]["tip"] is None
+            for r, mode in (over if not front else [max(over, key=lambda o: o[0][f"{o[1]}_error"])]):
+                what = (f"front point {r['point']} of crack {names[crack]!r} at ({r['x']:.6g}, {r['y']:.6g}, "
+                        f"{r['z']:.6g})" if front else f"tip {r['tip']} of crack {names[crack]!r} at ({r['x']:.6g}, "
+                        f"{r['y']:.6g})")
+                other = next(j for j, f in enumerate(est["size_factors"]) if f != est["of_size_factor"])
+                elsewhere = r[f"{mode}_levels"][other]
+                many = f" ({len(over)} of {len(mine)} points of its front above 1 %)" if front else ""
+                out.append(("discretisation", (
+                    f"{what}: {mode} = {r[mode]:.6g} has an estimated discretisation error of {r[f'{mode}_error']:.3g} "
+                    f"({100 * r[f'{mode}_error'] / scale:.2g} % of the K scale {scale:.4g}; with {est['meshes']} it "
+                    f"is {elsewhere:.6g}){many}: the mesh is too "
+                    "coarse for this crack; refine it (mesh.h around the crack, mesh.tip_h, options.radius of a few "
+                    "tip elements) or let cracklip refine it: options.accuracy = 0.01 (command line --accuracy "
+                    "0.01)")))
+    elif not est["reached"]:
         out.append(("accuracy", (
-            f"the accuracy target {100 * est['target']:.3g} % was not reached in {est['levels'][-1]} refinement "
-            f"level(s) ({est['dofs'][-1]} dofs): the largest estimated error of K is "
-            f"{100 * est['largest_relative_error']:.3g} % of the K scale; raise options.accuracy_levels, or start "
-            "from a finer mesh (mesh.h, mesh.tip_h)")))
+            f"the accuracy target {100 * est['target']:.3g} % was not reached in {est['refinement_levels']} "
+            f"refinement level(s) (element sizes x {est['size_factors'][-1]:.3g}, {est['dofs'][-1]} dofs): the "
+            f"largest estimated error of K is {100 * est['largest_relative_error']:.3g} % of the K scale; raise "
+            "options.accuracy_levels, or start from a finer mesh (mesh.h, mesh.tip_h)")))
     return out
 
 

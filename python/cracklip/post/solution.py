@@ -56,8 +56,10 @@ class Solution:
             Solution in order.
         path: on a load path, every step's Solution (on each of them).
         error_estimate: the discretisation-error estimate of its K, when
-            one was made (cracklip.analysis.accuracy): levels, dofs, K per
-            level and the estimate per tip.
+            one was made (cracklip.analysis.accuracy): the similar meshes'
+            size factors, dofs and seconds, the largest error, and per tip
+            or front point ("points", "crack:point") the estimate and K on
+            each mesh.
     """
     model: XfemModel
     u: np.ndarray
@@ -327,11 +329,14 @@ class Solution:
         rows = [dict(r) for r in self._sif_cache[key][0]]
         est = self.error_estimate
         for r in rows:
-            tip = est["tips"].get(f"{r['crack']}:{r['tip']}") if est and radius is None and ring is None else None
-            for mode in ("K_I", "K_II"):
-                r[f"{mode}_error"] = None if tip is None else tip[f"{mode}_error"]
-                r[f"{mode}_extrapolated"] = None if tip is None else tip[f"{mode}_extrapolated"]
-                r[f"{mode}_levels"] = None if tip is None else list(tip[f"{mode}_levels"])
+            point = est["points"].get(f"{r['crack']}:{r['point']}") if est and radius is None and ring is None \
+                else None
+            for mode in ("K_I", "K_II", "K_III"):
+                if point is None or f"{mode}_error" not in point:
+                    continue
+                r[f"{mode}_error"] = point[f"{mode}_error"]
+                r[f"{mode}_extrapolated"] = point[f"{mode}_extrapolated"]
+                r[f"{mode}_levels"] = list(point[f"{mode}_levels"])
         return complete_rows(rows)
 
     def reactions(self) -> dict[str, typing.Any]:

@@ -131,6 +131,13 @@ class EllipticalCrack:
     def area(self) -> float:
         return math.pi * self.a * self.b
 
+    @property
+    def perimeter(self) -> float:
+        """The ellipse's length (Ramanujan's second formula: 1e-9 relative
+        at b / a = 0.5, 1.2e-5 at 0.1)."""
+        t = ((self.a - self.b) / (self.a + self.b)) ** 2
+        return math.pi * (self.a + self.b) * (1.0 + 3.0 * t / (10.0 + math.sqrt(4.0 - 3.0 * t)))
+
     def plane(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(origin, e1, e2): the centre and the directions of the semi-axes
         a and b (pictures of the crack are drawn in these coordinates)."""
@@ -213,6 +220,10 @@ class PolygonCrack:
         c = self.points.mean(axis=0)
         return 0.5 * float(sum(np.dot(np.cross(self.points[i] - c, self.points[(i + 1) % len(self.points)] - c),
                                       self.normal) for i in range(len(self.points))))
+
+    @property
+    def perimeter(self) -> float:
+        return float(np.linalg.norm(np.roll(self.points, -1, axis=0) - self.points, axis=1).sum())
 
     def plane(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(origin, e1, e2): the vertices' centroid, the direction of the first
@@ -406,6 +417,12 @@ class SurfaceCrack:
         c1 = np.linalg.lstsq(A * w[:, None], y1 * w, rcond=None)[0]
         c2 = np.linalg.lstsq(A * w[:, None], y2 * w, rcond=None)[0]
         return np.array([c1[1], c2[1], c1[2]])
+
+    @property
+    def perimeter(self) -> float:
+        """The length of its boundary edges."""
+        e = self.boundary_edges()
+        return float(np.linalg.norm(self.vertices[e[:, 1]] - self.vertices[e[:, 0]], axis=1).sum())
 
     def plane(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(origin, e1, e2): the best-fitting plane of the vertices (their

@@ -209,9 +209,10 @@ def _volumes(gmsh) -> list[int]:
     return sorted(set(physical)) if physical else [v for _, v in gmsh.model.getEntities(3)]
 
 
-def _create_3d(gmsh, path: pathlib.Path, h: float, fronts, memory_limit: float | None = None) -> MeshData:
+def _create_3d(gmsh, path: pathlib.Path, h: float, fronts, memory_limit: float | None = None,
+               size_factor: float = 1.0) -> MeshData:
     """Tetrahedra of a 3D part (module doc); gmsh holds the opened file."""
-    from .mesh_3d import _size_fields, estimate_size
+    from .mesh_3d import _size_fields, estimate_size, scaled
     volumes = _volumes(gmsh)
     lo_x, lo_y, lo_z, hi_x, hi_y, hi_z = gmsh.model.getBoundingBox(-1, -1)
     scale = max(hi_x - lo_x, hi_y - lo_y, hi_z - lo_z)
@@ -224,18 +225,19 @@ def _create_3d(gmsh, path: pathlib.Path, h: float, fronts, memory_limit: float |
             gmsh.model.addPhysicalGroup(2, [s], s)
             gmsh.model.setPhysicalName(2, s, f"surface {s}")
     gmsh.model.mesh.clear()
-    est = estimate_size(gmsh, h, fronts, memory_limit, f"{path.name}")
+    est = estimate_size(gmsh, h * size_factor, scaled(fronts, size_factor), memory_limit, f"{path.name}")
     gmsh.model.mesh.clear()
     gmsh.option.setNumber("Mesh.ElementOrder", 1)
     gmsh.option.setNumber("Mesh.RecombineAll", 0)
     gmsh.option.setNumber("Mesh.SubdivisionAlgorithm", 0)
     gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay, as the generated shapes
     # The points of the size field in the kernel the part was built with.
-    _size_fields(gmsh, h, fronts, kernel="occ" if gmsh.model.occ.getEntities(3) else "geo")
+    _size_fields(gmsh, h, fronts, kernel="occ" if gmsh.model.occ.getEntities(3) else "geo", size_factor=size_factor)
     gmsh.model.mesh.generate(3)
-    md = to_dolfinx(gmsh, h, volumes, dim=3, fronts=fronts)
+    md = to_dolfinx(gmsh, h, volumes, dim=3, fronts=scaled(fronts, size_factor), size_factor=size_factor)
     md.source = "geometry"
     md.estimate = est
+    md.recipe = functools.partial(create_from_geometry, path, h, fronts=fronts)
     return md
 
 
@@ -263,7 +265,7 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
                          levels: typing.Sequence[typing.Sequence[float]] = (),
                          tips: typing.Sequence[tuple[float, float]] = (), tip_h: float = 0.0,
                          tip_radius: float = 0.0, fronts: typing.Sequence = (),
-                         memory_limit: float | None = None) -> MeshData:
+                         memory_limit: float | None = None, size_factor: float = 1.0) -> MeshData:
     """Triangles of size h (with the refinements and levels of
     cracklip.scene.size_field) of the part a .geo, STEP or BREP file
     describes; embed_points become mesh nodes; each of `tips` inside the
@@ -272,10 +274,10 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
 
     A geometry with volumes is meshed in tetrahedra instead, refined by
     `fronts` (mesh_3d.FrontRefinement items, e.g. mesh_3d.crack_refinements
-    of the cracks); refine, levels, tips and embed_points are 2D settings
-    and must be empty then; a 3D mesh whose run is estimated to need more
-    than memory_limit bytes is refused before meshing (ModelSizeError;
-    None: no limit)."""
+    of the cracks), every size times size_factor (a similar mesh); refine,
+    levels, tips and embed_points are 2D settings and must be empty then; a
+    3D mesh whose run is estimated to need more than memory_limit bytes is
+    refused before meshing (ModelSizeError; None: no limit)."""
     path = pathlib.Path(path)
     if not path.is_file():
         raise MeshError(f"geometry file {path} does not exist")
@@ -291,7 +293,7 @@ def create_from_geometry(path: str | pathlib.Path, h: float,
             raise MeshError(f"{path} is a 3D part: refine it around its cracks' fronts (fronts; in a scene file "
                             "mesh.tip_h, mesh.crack_h), not with 2D refinement points or tips")
         with _gmsh_errors(gmsh, f"{path}: gmsh could not mesh the 3D geometry"):
-            return _create_3d(gmsh, path, h, fronts, memory_limit)
+            return _create_3d(gmsh, path, h, fronts, memory_limit, size_factor)
     with _gmsh_errors(gmsh, f"{path}: gmsh could not mesh the geometry"):
         surfaces = _part_surfaces(gmsh, path)
         outlines = [surface_outline(gmsh, s) for s in surfaces]

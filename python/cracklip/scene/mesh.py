@@ -49,9 +49,13 @@ class MeshData:
         refine: the refine items of its size field (x, y, h_near, radius[,
             x1, y1]; cracklip.scene.size_field).
         levels: the refinement levels it was made with (x, y, x1, y1, D, L).
+        size_factor: every size setting of its size field (h, h_front)
+            times this (3D): 1 as asked, others for the meshes of an error
+            estimate and of an accuracy target (cracklip.analysis.accuracy).
         recipe: makes the same mesh again with more refinement:
-            recipe(levels=...) (a gmsh mesh of a known geometry); None for a
-            mesh read from a file (cracklip.scene.refine refines it instead).
+            recipe(levels=...) (2D), recipe(size_factor=...) (3D) (a gmsh
+            mesh of a known geometry); None for a mesh read from a file
+            (cracklip.scene.refine refines a 2D one instead).
         source: where it comes from: "generated", "geometry" (a user's .geo,
             STEP or BREP meshed by cracklip) or "file" (a .msh).
         front_refinements: in 3D, the refinements around crack fronts asked
@@ -68,6 +72,7 @@ class MeshData:
     standard_blocks: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
     refine: list = dataclasses.field(default_factory=list)
     levels: list = dataclasses.field(default_factory=list)
+    size_factor: float = 1.0
     recipe: typing.Optional[typing.Callable[..., "MeshData"]] = dataclasses.field(default=None, repr=False,
                                                                                 compare=False)
     source: str = "generated"
@@ -96,11 +101,11 @@ class MeshData:
         msh.topology.create_connectivity(tdim - 1, tdim)
         return msh.geometry.x[:, :tdim][dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, tdim - 1, facets, False)]
 
-    def nearest_node(self, point) -> tuple[float, float]:
+    def nearest_node(self, point) -> tuple[float, ...]:
         """Coordinates of the mesh node nearest to a point (for point conditions)."""
-        x = self.mesh.geometry.x[:, :2]
+        x = self.mesh.geometry.x[:, :self.gdim]
         i = int(np.argmin(np.linalg.norm(x - np.asarray(point, dtype=float), axis=1)))
-        return float(x[i, 0]), float(x[i, 1])
+        return tuple(float(v) for v in x[i])
 
     def tag_value(self, where: str | int) -> int:
         if isinstance(where, str):
@@ -160,12 +165,12 @@ def _msh_header(path: pathlib.Path) -> bool:
 
 
 def to_dolfinx(gmsh, h: float | None, entities: typing.Sequence[int] | None = None, dim: int = 2,
-               fronts=()) -> MeshData:
+               fronts=(), size_factor: float = 1.0) -> MeshData:
     """The current gmsh model's mesh as MeshData: its cells of dimension dim
     (triangles of the given surfaces, tetrahedra of the given volumes, all
     if None), tags from its physical groups of dimension dim - 1 (curves,
-    surfaces); removes the model. fronts: the front refinements asked for
-    (3D; MeshData.front_refinements)."""
+    surfaces); removes the model. fronts: the front refinements it was made
+    with (3D; MeshData.front_refinements), size_factor: MeshData.size_factor."""
     names = {}
     for gd, tag in gmsh.model.getPhysicalGroups(dim - 1):
         names[gmsh.model.getPhysicalName(gd, tag) or str(tag)] = tag
@@ -177,7 +182,7 @@ def to_dolfinx(gmsh, h: float | None, entities: typing.Sequence[int] | None = No
     msh, facet_tags, _ = model_to_mesh(gmsh.model, MPI.COMM_WORLD, entities, dim=dim)
     gmsh.model.remove()
     check_mesh(msh)
-    return MeshData(msh, facet_tags, names, h, front_refinements=list(fronts))
+    return MeshData(msh, facet_tags, names, h, front_refinements=list(fronts), size_factor=float(size_factor))
 
 
 #: gmsh_on_rank0's state on rank 0: inside a mesh entry (nested entries run
@@ -186,7 +191,7 @@ _GMSH_ON_RANK0 = {"inside": False, "handed_over": False}
 #: MeshData fields sent from rank 0 to the others (the mesh and tags are
 #: DOLFINx's, the recipe is a closure over rank 0's gmsh).
 _SENT_FIELDS = ("tags", "h", "refinements", "cache_standard_block", "refine", "levels", "source",
-                "front_refinements", "estimate")
+                "front_refinements", "estimate", "size_factor")
 
 
 def gmsh_on_rank0(make: typing.Callable[..., "MeshData"]) -> typing.Callable[..., "MeshData"]:

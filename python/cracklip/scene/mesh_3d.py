@@ -14,10 +14,28 @@ PLATEAU x h_front of the front and grows linearly (at most MAX_GROWTH per
 unit distance) to h away from it, as the 2D refinement around a tip. The
 front is given as points sampled along it (every front_sampling(h_front) or
 closer); gmsh's Distance field measures the distance to them.
+
+The default grading of a crack (crack_refinements without a growth) grows
+the size by FRONT_GROWTH h_front per crack size (crack_size: twice the
+crack's area over its perimeter, a penny's radius): every size near the
+crack then scales with h_front, and K converges as h_front is refined (a
+growth fixed per unit length leaves the region beyond the front as coarse
+as it was, and K's error stalls: docs/guide.md, the 3D meshing recipe).
+
+Every mesh has a recipe (MeshData.recipe) that makes it again with every
+size setting times a factor (size_factor: h and every h_front, the
+grading's radii kept, so that its plateau and its growth scale too): the
+mesh the scene gives with every size times the factor, for the error
+estimate of K and refinement to an accuracy (cracklip.analysis.accuracy).
+(gmsh's Mesh.MeshSizeFactor scales the sizes but not the plateau, 4
+h_front: on the penny at a/20 that family's K converged faster than the
+scene's own, p about 3 against 2.4, and an estimate at the rate 1 was 5
+times the error instead of 3.)
 """
 from __future__ import annotations
 
 import dataclasses
+import functools
 import logging
 import pathlib
 import typing
@@ -74,21 +92,40 @@ SURFACE_SIZE = 2.0
 #: is the bulk's: P1 tetrahedra are stiff where the crack's field decays).
 GROWTH = 0.07
 
+#: The default grading (crack_refinements without a growth): the size grows
+#: by FRONT_GROWTH h_front per crack size away from the front (GROWTH at
+#: h_front = crack size / 20; demos/front_sifs.py's meshes, on which the
+#: penny's K converges at rate 2: 0.67, 0.34, 0.16 % RMS at a/10, 14, 20).
+FRONT_GROWTH = 20.0 * GROWTH
 
-def crack_refinements(cracks, h_front: float, h: float, growth: float = GROWTH,
+
+def crack_size(crack) -> float:
+    """A crack's size for its grading: twice its area over its perimeter
+    (a circle's radius; 0.65 a for an ellipse of semi-axes a and a / 2)."""
+    return 2.0 * float(crack.area) / float(crack.perimeter)
+
+
+def default_growth(crack, h_front: float) -> float:
+    """The default grading's growth per unit distance (FRONT_GROWTH)."""
+    return FRONT_GROWTH * h_front / crack_size(crack)
+
+
+def crack_refinements(cracks, h_front: float, h: float, growth: float | None = None,
                       h_surface: float | None = None) -> list[FrontRefinement]:
     """Refinements for 3D cracks: h_front along each front, h_surface
-    (default SURFACE_SIZE h_front) over each crack's surface, sizes growing
-    by `growth` per unit distance up to h."""
-    if not (h_front > 0.0 and h > 0.0 and growth > 0.0):
+    (default SURFACE_SIZE h_front; h or more: none) over each crack's
+    surface, sizes growing by `growth` per unit distance up to h (default:
+    default_growth of each crack)."""
+    if not (h_front > 0.0 and h > 0.0 and (growth is None or growth > 0.0)):
         raise MeshError(f"crack refinements need h_front, h and growth > 0, got {h_front!r}, {h!r}, {growth!r}")
     hs = SURFACE_SIZE * h_front if h_surface is None else float(h_surface)
     out = []
     for crack in cracks:
+        g = default_growth(crack, h_front) if growth is None else growth
         out.append(FrontRefinement(crack.front_points(front_sampling(h_front)), h_front,
-                                   max(h - h_front, 0.0) / growth))
+                                   max(h - h_front, 0.0) / g))
         if hs < h:
-            out.append(FrontRefinement(crack.surface_points(0.5 * hs), hs, (h - hs) / growth, "surface"))
+            out.append(FrontRefinement(crack.surface_points(0.5 * hs), hs, (h - hs) / g, "surface"))
     return out
 
 
@@ -98,7 +135,14 @@ def front_sampling(h_front: float) -> float:
     return 0.5 * h_front
 
 
-def _size_fields(gmsh, h: float, fronts: typing.Sequence[FrontRefinement], kernel: str = "occ") -> None:
+def scaled(fronts: typing.Sequence[FrontRefinement], factor: float) -> list[FrontRefinement]:
+    """Front refinements with every h_front times factor, radii kept."""
+    return [dataclasses.replace(f, h_front=f.h_front * factor) for f in fronts]
+
+
+def _size_fields(gmsh, h: float, fronts: typing.Sequence[FrontRefinement], kernel: str = "occ",
+                 size_factor: float = 1.0) -> None:
+    h, fronts = h * size_factor, scaled(fronts, size_factor)
     gmsh.option.setNumber("Mesh.MeshSizeMax", h)
     gmsh.option.setNumber("Mesh.MeshSizeMin", min([h] + [f.h_front for f in fronts]))
     gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
@@ -169,31 +213,34 @@ def estimate_size(gmsh, h: float, fronts: typing.Sequence[FrontRefinement], memo
     return est
 
 
-def _finish(gmsh, groups: dict[str, list[int]], h: float, fronts, memory_limit: float | None = None,
-            what: str = "the part") -> MeshData:
+def _finish(gmsh, groups: dict[str, list[int]], h: float, fronts, size_factor: float, recipe,
+            memory_limit: float | None = None, what: str = "the part") -> MeshData:
     """Name the face groups as physical surfaces 1, 2, ... (in order), the
     volumes as physical volume 1, estimate the mesh (refused above
-    memory_limit bytes), mesh in 3D with the front size fields, convert."""
+    memory_limit bytes), mesh in 3D with the front size fields (every size
+    times size_factor), convert; recipe(size_factor=...) makes it again."""
     gmsh.model.addPhysicalGroup(3, [v for _, v in gmsh.model.getEntities(3)], 1)
     for tag, (name, surfaces) in enumerate(groups.items(), start=1):
         gmsh.model.addPhysicalGroup(2, surfaces, tag)
         gmsh.model.setPhysicalName(2, tag, name)
-    est = estimate_size(gmsh, h, fronts, memory_limit, what)
-    _size_fields(gmsh, h, fronts)
+    est = estimate_size(gmsh, h * size_factor, scaled(fronts, size_factor), memory_limit, what)
+    _size_fields(gmsh, h, fronts, size_factor=size_factor)
     gmsh.option.setNumber("Mesh.Algorithm3D", 1)  # Delaunay: robust, deterministic in serial
     gmsh.model.mesh.generate(3)
-    md = to_dolfinx(gmsh, h, dim=3, fronts=fronts)
+    md = to_dolfinx(gmsh, h, dim=3, fronts=scaled(fronts, size_factor), size_factor=size_factor)
+    md.recipe = recipe
     md.estimate = est
     return md
 
 
 @gmsh_on_rank0
 def create_box(x0: float, y0: float, z0: float, x1: float, y1: float, z1: float, h: float,
-               fronts: typing.Sequence[FrontRefinement] = (), memory_limit: float | None = None) -> MeshData:
+               fronts: typing.Sequence[FrontRefinement] = (), memory_limit: float | None = None,
+               size_factor: float = 1.0) -> MeshData:
     """The box [x0, x1] x [y0, y1] x [z0, z1] in tetrahedra of size h (h_front
-    around the fronts). Tags: xmin, xmax, ymin, ymax, zmin, zmax.
-    memory_limit: refuse (ModelSizeError) a mesh whose run is estimated to
-    need more bytes (None: no limit)."""
+    around the fronts; every size times size_factor). Tags: xmin, xmax,
+    ymin, ymax, zmin, zmax. memory_limit: refuse (ModelSizeError) a mesh
+    whose run is estimated to need more bytes (None: no limit)."""
     lo, hi = np.array([x0, y0, z0], dtype=float), np.array([x1, y1, z1], dtype=float)
     if not np.all(hi > lo) or not np.all(np.isfinite(lo)) or not np.all(np.isfinite(hi)):
         raise MeshError(f"empty or infinite box [{x0}, {x1}] x [{y0}, {y1}] x [{z0}, {z1}]")
@@ -212,17 +259,18 @@ def create_box(x0: float, y0: float, z0: float, x1: float, y1: float, z1: float,
                 groups[f"{name}min"].append(s)
             elif abs(c[axis] - hi[axis]) < eps:
                 groups[f"{name}max"].append(s)
-    return _finish(gmsh, groups, h, fronts, memory_limit, "the box")
+    return _finish(gmsh, groups, h, fronts, size_factor,
+                   functools.partial(create_box, x0, y0, z0, x1, y1, z1, h, fronts=fronts), memory_limit, "the box")
 
 
 @gmsh_on_rank0
 def create_cylinder(center: typing.Sequence[float], axis: typing.Sequence[float], radius: float, length: float,
                     h: float, fronts: typing.Sequence[FrontRefinement] = (),
-                    memory_limit: float | None = None) -> MeshData:
+                    memory_limit: float | None = None, size_factor: float = 1.0) -> MeshData:
     """A solid cylinder: its bottom face centred at `center`, extruded by
     `length` along the unit vector `axis`, of the given radius; tetrahedra of
-    size h (h_front around the fronts). Tags: bottom, top, side.
-    memory_limit: as create_box's."""
+    size h (h_front around the fronts; every size times size_factor). Tags:
+    bottom, top, side. memory_limit: as create_box's."""
     c = np.asarray(center, dtype=float).reshape(3)
     a = np.asarray(axis, dtype=float).reshape(3)
     if not (np.all(np.isfinite(c)) and np.linalg.norm(a) > 0 and radius > 0 and length > 0):
@@ -242,7 +290,9 @@ def create_cylinder(center: typing.Sequence[float], axis: typing.Sequence[float]
         m = np.array(gmsh.model.occ.getCenterOfMass(2, s))
         t = float(np.dot(m - c, a))
         groups["bottom" if abs(t) < eps else "top" if abs(t - length) < eps else "side"].append(s)
-    return _finish(gmsh, groups, h, fronts, memory_limit, "the cylinder")
+    return _finish(gmsh, groups, h, fronts, size_factor,
+                   functools.partial(create_cylinder, center, axis, radius, length, h, fronts=fronts), memory_limit,
+                   "the cylinder")
 
 
 @gmsh_on_rank0
@@ -270,11 +320,22 @@ def read_msh_3d(path: str | pathlib.Path) -> MeshData:
     return to_dolfinx(gmsh, None, dim=3)
 
 
+def similar_mesh(md: MeshData, factor: float) -> MeshData:
+    """The tetrahedral mesh of md's recipe with every size setting times
+    `factor` (h and every h_front, the grading's radii kept; relative to md:
+    md.size_factor x factor); MeshError for a mesh read from a .msh file."""
+    if md.recipe is None:
+        raise MeshError(f"a mesh with every element size times {factor:.3g} cannot be made from a 3D .msh file: give "
+                        "the part as a geometry (mesh.kind = \"geometry\" with its .geo, STEP or BREP file), or a box "
+                        "or cylinder, that cracklip meshes")
+    return md.recipe(size_factor=md.size_factor * factor)
+
+
 def expected_cells(volume: float, h: float) -> float:
     """About how many tetrahedra a volume meshed at size h has."""
     return TETS_PER_VOLUME_H3 * volume / h ** 3
 
 
 __all__ = ["FrontRefinement", "crack_refinements", "create_box", "create_cylinder", "read_msh_3d",
-           "front_sampling", "expected_cells"]
+           "front_sampling", "expected_cells", "crack_size", "default_growth", "FRONT_GROWTH", "similar_mesh"]
 

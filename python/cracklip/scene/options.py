@@ -111,10 +111,10 @@ class Options:
             checked accuracy) or "auto" (chosen by size and enriched
             fraction as measured: cracklip.solvers.choose_solver).
         accuracy: target of the estimated discretisation error of every K,
-            relative to the K scale (0.01: 1 %); 0: off. The mesh is refined
-            around every tip (element sizes halved within twice the crack's
-            length of it, one level per solve) until the estimate is below
-            it (cracklip.analysis.accuracy); a warning if not reached.
+            relative to the K scale (0.01: 1 %); 0: off. Similar meshes,
+            every element size halved (2D) or divided by sqrt(2) (3D) per
+            level, are solved until the estimate is below it
+            (cracklip.analysis.accuracy); a warning if not reached.
         accuracy_levels: at most this many refinement levels for accuracy.
     """
     enrichment: str = "vector"

@@ -158,10 +158,11 @@ def check_dimension(doc: dict, settings: dict, dim: int, why: str) -> None:
     if o["contact"] != "none" or o["friction"] != 0.0:
         raise InputError(f"options.contact = {o['contact']!r}, friction = {o['friction']:g}: crack-lip contact is "
                          f"not available on 3D parts yet ({part}); remove it (the lips are then traction-free)")
-    if o["accuracy"] != 0.0:
-        raise InputError(f"options.accuracy = {o['accuracy']:g} targets the estimated error of K, which is estimated "
-                         f"on 2D parts only in this version ({part}); remove it and set mesh.tip_h instead")
     if s["mesh"]["kind"] == "file":
+        if o["accuracy"] != 0.0:
+            raise InputError(f"options.accuracy = {o['accuracy']:g} refines the mesh, which a 3D .msh file cannot be "
+                             f"({part}): give the part as a geometry (mesh.kind = 'geometry' with a .geo, STEP or "
+                             "BREP file) or a box or cylinder, or remove options.accuracy")
         for key in ("tip_h", "crack_h"):
             if s["mesh"].get(key, 0.0) > 0.0:
                 raise InputError(f"mesh.{key} = {s['mesh'][key]:g}: a 3D .msh file is used as it is ({part}); "

@@ -11,7 +11,6 @@ import numpy as np
 
 from ...errors import BoundaryConditionError, MeshError
 from ...scene.mesh import MeshData, create_half_annulus, create_plate_with_holes, create_rectangle, read_msh
-from ...scene.size_field import MAX_GROWTH
 from ...scene.processes import total
 from .schema import (REQUIRED, UNSET, Key, p_box, p_choice, p_float, p_holes, p_point, p_point3, p_point_any,
                      p_segment, p_solid_box, p_str, p_vector3)
@@ -82,7 +81,9 @@ KEYS: list[Key] = [
     Key("mesh.tip_radius", "float", 0.0,
         "distance over which the size grows from tip_h to h beyond a plateau of 4 tip_h around the tip (3D: "
         "the front); never faster than 0.25 per unit length (a shorter radius is lengthened); 0: that fastest "
-        "growth (kind file: up to the file's own element size)",
+        "growth (kind file: up to the file's own element size); 3D, 0: the size grows by 1.4 tip_h per crack "
+        "size (twice the crack's area over its perimeter, a penny's radius) from the front, so that every size "
+        "near the crack scales with tip_h and K converges as tip_h is refined",
         p_float(0.0)),
     Key("mesh.crack_h", "float", 0.0,
         "3D: element size over the crack surfaces (within 4 crack_h of them), growing back to h as from the "
@@ -253,10 +254,11 @@ def mesh_3d(m: dict, cracks: list, base_dir: pathlib.Path, memory_limit: float |
     fronts = []
     if m["tip_h"] > 0.0 and cracks:
         # tip_radius as in 2D: the distance over which the size grows back to
-        # h (0: the fastest growth the mesher honours, MAX_GROWTH); no
-        # refinement over the surfaces unless crack_h asks (h_surface = h).
-        growth = (h - m["tip_h"]) / m["tip_radius"] if m["tip_radius"] > 0.0 else MAX_GROWTH
-        fronts = m3.crack_refinements(cracks, m["tip_h"], h, growth=max(growth, 1e-12),
+        # h; 0: the default grading, every size near the crack in proportion
+        # to tip_h (mesh_3d.default_growth); no refinement over the surfaces
+        # unless crack_h asks (h_surface = h).
+        growth = max((h - m["tip_h"]) / m["tip_radius"], 1e-12) if m["tip_radius"] > 0.0 else None
+        fronts = m3.crack_refinements(cracks, m["tip_h"], h, growth=growth,
                                       h_surface=m["crack_h"] if m.get("crack_h", 0.0) > 0.0 else h)
     elif m.get("crack_h", 0.0) > 0.0:
         fronts = [m3.FrontRefinement(c.surface_points(0.5 * m["crack_h"]), m["crack_h"], m["tip_radius"], "surface")

@@ -57,12 +57,12 @@ _OPTION_MEANINGS = {
                   "two ends of a corner crack (between front points: interpolated, flagged); docs/sifs.md",
     "sif_angle_step": "3D: K also every this many degrees of parametric angle along elliptical fronts (from 0); 0: off",
     "sif_arc_lengths": "3D: K also at these arc lengths from the start of every front piece (front.csv's s)",
-    "accuracy": "target of the estimated discretisation error of every K, relative to the K scale (0.01: 1 %); "
-                "0: off. Refines around every tip (sizes halved within twice the crack's length, one level per "
-                "solve) until the estimate is below it; reports the levels, the estimate and the extrapolated K; "
-                "warns if not reached (docs/guide.md)",
-    "accuracy_levels": "at most this many refinement levels for options.accuracy (each about 4 times the cells "
-                       "in the refined region)",
+    "accuracy": "target of the estimated discretisation error of every K (3D: at every front point off a free "
+                "surface), relative to the K scale (0.01: 1 %); 0: off. Solves similar meshes, every element size "
+                "halved (2D) or divided by sqrt(2) (3D) per level, until the estimate is below it; reports the "
+                "meshes, the estimate and (2D) the extrapolated K; warns if not reached (docs/guide.md)",
+    "accuracy_levels": "at most this many refinement levels for options.accuracy (each about 4 (2D) or 2.8 (3D) "
+                       "times the cells of the one before)",
     "solver": "linear solver: `direct` (MUMPS LDL^T), `iterative` (AMG in a phantom-node basis with a "
               "direct solve of the crack band; same checked accuracy) or `auto` (iterative from 5e4 "
               "dofs when 1-5 % of them are enriched and from 2e6 dofs always, else direct: the faster one as "
@@ -120,9 +120,12 @@ OUTPUT_KEYS: list[Key] = [
     Key("outputs.stress_component", "string", "yy", "stress shown in stress.png: `xx`, `yy`, `xy` "
         "or `von_mises`", p_choice(*STRESS_COMPONENTS)),
     Key("outputs.error_estimate", "boolean", True,
-        "estimate the discretisation error of every K with one more solve on a mesh whose element sizes are "
-        "halved within two crack lengths of each tip (about 2-4 times the dofs; results.json, sif.csv, a warning "
-        "above 1 % of the K scale); options.accuracy makes its own", p_bool),
+        "estimate the discretisation error of every K with one more solve: 2D, every element size halved within 20 "
+        "element sizes of each tip; 3D, a similar mesh with every size setting times sqrt(2) (about 1/3 of the "
+        "dofs), or times 1/sqrt(2) when mesh.tip_h is above a tenth of the crack size (K not yet asymptotic there; "
+        "about 2.5 times the dofs); a .msh file: 2D halved, 3D no estimate; "
+        "results.json, sif.csv, front.csv, a warning above 1 % of the K scale); options.accuracy makes its own",
+        p_bool),
     Key("outputs.condition_number", "boolean", False,
         "estimate the 1-norm condition number of the stiffness (results.json)", p_bool),
     Key("outputs.crack_points", "integer", 3, "sample points per crack segment in crack.csv (3D: per "
