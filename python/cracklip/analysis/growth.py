@@ -200,24 +200,28 @@ def _correct(scene: Scene, cracks: list[Crack], growth: Growth, k: int, N: float
     return best, best_turn, solves
 
 
-class _GrowthRun:
-    """The growth loop's state and its named steps: measure the geometry
-    (solve, K per tip), correct the increment just taken (optional), collect
-    the model's warnings, count the cycles of the increment (fatigue), check
-    the stops, advance the tips. run() repeats them until a stop."""
+class GrowthRun:
+    """The growth loop's state and its named steps, shared by 2D and 3D:
+    measure the geometry (solve, K per tip or front point), correct the
+    increment just taken (optional, 2D), collect the model's warnings,
+    count the cycles of the increment (fatigue), record the beta table,
+    check the stops, advance the cracks. run() repeats them until a stop.
+
+    What differs with the geometry (a polyline's tips against a surface's
+    front) lives in the subclasses: CurveGrowth here (2D) and
+    front_growth.SurfaceGrowth (3D) give measure, advance and record_beta
+    (and 2D the corrector)."""
 
     def __init__(self, scene: Scene, growth: Growth, keep_solutions: bool,
                  on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None, beta_table: bool = False):
-        from ..model.boundary import boundary_segments
         scene.mesh.cache_standard_block = True
         self.scene = scene
         self.growth = growth
         self.keep_solutions = keep_solutions
         self.on_step = on_step
-        self.cracks = [dataclasses.replace(c, points=np.array(c.points, dtype=float)) for c in scene.cracks]
+        self.cracks = self.initial_cracks(scene)
         if not self.cracks:
             raise InputError("growth needs at least one crack")
-        self.a_bnd, self.b_bnd = boundary_segments(scene.mesh)
         self.records: list[list[TipRecord]] = []
         self.stops: list[str] = []
         self.warnings: list[str] = []
@@ -241,31 +245,35 @@ class _GrowthRun:
         self.t0 = 0.0
         self.beta_table = beta_table
         self.beta: list[dict[str, typing.Any]] = []
-        self.life = None
-        if growth.life:
-            from .life import LifeRun
-            self.life = LifeRun(scene, growth)
+        self.life = self.create_life()
 
-    # -- the named steps ---------------------------------------------------------------------------------
+    # -- what the geometry gives (subclasses) ---------------------------------------------------------------
+    def initial_cracks(self, scene: Scene) -> list:
+        """The cracks the run grows (copies of the scene's)."""
+        raise NotImplementedError
+
+    def create_life(self):
+        """The fatigue life of the run (analysis.life.LifeRun), or None."""
+        return None
+
     def measure(self) -> Measured:
-        """Solve the current geometry and record every tip."""
-        if self.life is not None:
-            return self.life.measure(self.cracks, self.k, self.N, self.stopped)
-        return _measure(self.scene, self.cracks, self.growth, self.k, self.N, self.stopped)
+        """Solve the current geometry and record every tip or front point."""
+        raise NotImplementedError
 
     def correct(self, m: Measured) -> tuple[Measured, int]:
-        """The corrector on the increment just taken (growth.corrections):
-        the measurement of the geometry kept and the extra solves."""
-        if not (self.growth.corrections and self.k > 0 and self.grown):
-            return m, 0
-        m, turns, extra = _correct(self.scene, self.cracks, self.growth, self.k, self.N, self.stopped, self.grown, m,
-                                   measure=lambda: self.measure())
-        for r in self.records[-1]:  # the kink the last increment actually took
-            if (r.crack, r.end) in turns:
-                r.kink_deg += math.degrees(turns[r.crack, r.end])
-                self.last_kink[r.crack, r.end] = r.kink_deg
-        return m, extra
+        """The corrector on the increment just taken: the measurement of the
+        geometry kept and the extra solves (none by default)."""
+        return m, 0
 
+    def record_beta(self, m: Measured) -> int:
+        """The beta table's rows of this geometry; returns the extra solves."""
+        return 0
+
+    def advance(self, m: Measured) -> None:
+        """Advance the growing cracks by the step's increments."""
+        raise NotImplementedError
+
+    # -- the shared steps ---------------------------------------------------------------------------------
     def collect_warnings(self, m: Measured) -> None:
         """The model's warnings of every step (a kinked path can clip a SIF
         domain): the first of each code in full, the later ones counted."""
@@ -289,22 +297,6 @@ class _GrowthRun:
             for rec in m.records:  # the cycles spent to reach this geometry
                 rec.dN, rec.N = dN, self.N
 
-    def record_beta(self, m: Measured) -> int:
-        """The beta table's rows of this geometry (grow(beta_table=True)): K of
-        each load group at factor 1 (a spectrum life has them from its
-        levels; else one linear solve per group); returns the extra solves."""
-        if not self.beta_table:
-            return 0
-        from .life import basis_levels, beta_rows
-        ref = dict(self.growth.reference_stress or {})
-        if self.life is not None:
-            tips = {key: {"x": lv.x, "y": lv.y, "a": lv.a, "basis": lv.basis} for key, lv in m.levels.items()}
-            self.beta += beta_rows(self.k, tips, ref, m.levels, self.life)
-            return 0
-        tips = basis_levels(self.scene, self.cracks)
-        self.beta += beta_rows(self.k, tips, ref)
-        return len(next(iter(tips.values()))["basis"]) if tips else 0
-
     def _stop(self, reason: str, criterion: str | None = None) -> bool:
         self.stop_reason = reason
         self.stop_criterion = criterion
@@ -321,11 +313,12 @@ class _GrowthRun:
             failing = [r for r in step if r.K_eq >= growth.K_Ic]
             if failing:
                 r = failing[0]
-                return self._stop(f"final failure: K_eq = {r.K_eq:.6g} >= K_Ic = {growth.K_Ic:g} at the tip "
-                                  f"({r.x:.6g}, {r.y:.6g}) of crack {self.cracks[r.crack].name!r} (step {k})",
+                return self._stop(f"final failure: K_eq = {r.K_eq:.6g} >= K_Ic = {growth.K_Ic:g} at "
+                                  f"{self.where(r)} of crack {self.cracks[r.crack].name!r} (step {k})",
                                   "K_eq >= growth.K_Ic")
         if growth.max_length is not None and any(v >= growth.max_length * (1.0 - 1e-9) for v in m.lengths):
-            return self._stop(f"a crack reached the length {growth.max_length:g} (step {k})", "growth.max_length")
+            return self._stop(f"a crack reached the {self.SIZE_NAME} {growth.max_length:g} (step {k})",
+                              "growth.max_length")
         if self.life is not None and self.life.passes_exceeded():
             return self._stop(f"the life passed spectrum.max_passes = {self.life.max_passes:g} passes (step {k})",
                               "spectrum.max_passes")
@@ -339,17 +332,140 @@ class _GrowthRun:
                               "no tip in the part")
         if not growing:
             return self._stop(f"no tip grows any more (step {k}: " + "; ".join(
-                f"crack {self.cracks[r.crack].name!r} end {r.end}: {r.status}" for r in step) + ")",
+                f"crack {self.cracks[r.crack].name!r} {self.END} {r.end}: {r.status}" for r in step) + ")",
                 "no growing tip")
         unstable = [r for r in growing if (r.crack, r.end) in self.last_kink
                     and abs(r.kink_deg - self.last_kink[r.crack, r.end]) > growth.max_kink_change]
         if unstable:
             r = unstable[0]
-            return self._stop(f"unstable growth: the kink at ({r.x:.6g}, {r.y:.6g}) turned from "
+            return self._stop(f"unstable growth: the kink at {self.where(r, 'at')} turned from "
                               f"{self.last_kink[r.crack, r.end]:.2f} to {r.kink_deg:.2f} degrees between steps "
                               f"(more than growth.max_kink_change = {growth.max_kink_change:g})",
                               "growth.max_kink_change")
+        return self.check_geometry_stops(m)
+
+    def check_geometry_stops(self, m: Measured) -> bool:
+        """Stops of the geometry (3D: breakthrough); True to stop."""
         return False
+
+    #: What a crack's size is called in messages (growth.max_length).
+    SIZE_NAME = "length"
+    #: What a record's `end` is called in messages.
+    END = "end"
+
+    def where(self, r: TipRecord, how: str = "tip") -> str:
+        """A record's point for messages."""
+        if how == "at":
+            return f"({r.x:.6g}, {r.y:.6g})"
+        return f"the tip ({r.x:.6g}, {r.y:.6g})"
+
+    def describe_step(self, records: list[TipRecord]) -> str:
+        return "; ".join(
+            f"crack {self.cracks[r.crack].name!r} end {r.end}: a = {r.length:.4g}, K_I = {r.K_I:.4g}, "
+            f"K_II = {r.K_II:.4g}, kink {r.kink_deg:.1f} deg" + (f", N = {r.N:.4g}" if self.fatigue else "")
+            for r in records)
+
+    def final_stop(self, k: int, error: BoundaryConditionError) -> bool:
+        """A solve that failed after some growth: True when it ends the run
+        (the cracks cut the part apart), False to raise the error."""
+        if k == 0 or "cut the part into" not in str(error):
+            return False
+        self.stop_reason = f"final separation: after step {k - 1} the cracks cut the part apart ({error})"
+        self.stop_criterion = "final separation"
+        self.stops.append(self.stop_reason)
+        return True
+
+    # -- the loop ---------------------------------------------------------------------------------------
+    def run(self) -> GrowthResult:
+        for k in range(self.growth.steps + 1):
+            self.k = k
+            self.t0 = time.perf_counter()
+            try:
+                m = self.measure()
+            except BoundaryConditionError as e:
+                if not self.final_stop(k, e):
+                    raise
+                break
+            m, extra = self.correct(m)
+            extra += self.record_beta(m)
+            self.solves.append(m.solves + extra)
+            self.collect_warnings(m)
+            self.count_cycles(m)
+            self.records.append(m.records)
+            if self.on_step is not None:
+                self.on_step(k, m.records, m.sol)
+            if self.keep_solutions:
+                self.solutions.append(m.sol)
+            if self.check_stops(m):
+                break
+            self.advance(m)
+            self.step_times.append(time.perf_counter() - self.t0)
+            logger.debug("growth step %d: %s", k, self.describe_step(m.records))
+        return self.result()
+
+    def result(self) -> GrowthResult:
+        warnings = self.warnings + [
+            f"the model warning '{c}' came {n} times in all (at the steps listed in results.json per_step)"
+            for c, n in self.warning_counts.items() if n > 1]
+        return GrowthResult(self.records, self.cracks, self.stop_reason, self.stops, list(dict.fromkeys(warnings)),
+                            self.solutions, self.step_times, self.N, self.solves, self.step_warnings,
+                            stop_criterion=self.stop_criterion,
+                            life=self.life.summary(self.records) if self.life is not None else None, beta=self.beta)
+
+
+class CurveGrowth(GrowthRun):
+    """2D: polylines grown at their tips (module doc)."""
+
+    def __init__(self, scene: Scene, growth: Growth, keep_solutions: bool,
+                 on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None, beta_table: bool = False):
+        from ..model.boundary import boundary_segments
+        super().__init__(scene, growth, keep_solutions, on_step, beta_table)
+        self.a_bnd, self.b_bnd = boundary_segments(scene.mesh)
+
+    def initial_cracks(self, scene: Scene) -> list[Crack]:
+        return [dataclasses.replace(c, points=np.array(c.points, dtype=float)) for c in scene.cracks]
+
+    def create_life(self):
+        if not self.growth.life:
+            return None
+        from .life import LifeRun
+        return LifeRun(self.scene, self.growth)
+
+    # -- the named steps of a polyline ---------------------------------------------------------------------
+    def measure(self) -> Measured:
+        """Solve the current geometry and record every tip."""
+        if self.life is not None:
+            return self.life.measure(self.cracks, self.k, self.N, self.stopped)
+        return _measure(self.scene, self.cracks, self.growth, self.k, self.N, self.stopped)
+
+    def correct(self, m: Measured) -> tuple[Measured, int]:
+        """The corrector on the increment just taken (growth.corrections):
+        the measurement of the geometry kept and the extra solves."""
+        if not (self.growth.corrections and self.k > 0 and self.grown):
+            return m, 0
+        m, turns, extra = _correct(self.scene, self.cracks, self.growth, self.k, self.N, self.stopped, self.grown, m,
+                                   measure=lambda: self.measure())
+        for r in self.records[-1]:  # the kink the last increment actually took
+            if (r.crack, r.end) in turns:
+                r.kink_deg += math.degrees(turns[r.crack, r.end])
+                self.last_kink[r.crack, r.end] = r.kink_deg
+        return m, extra
+
+    def record_beta(self, m: Measured) -> int:
+        """The beta table's rows of this geometry (grow(beta_table=True)): K of
+        each load group at factor 1 (a spectrum life has them from its
+        levels; else one linear solve per group); returns the extra solves."""
+        if not self.beta_table:
+            return 0
+        from .life import basis_levels, beta_rows
+        ref = dict(self.growth.reference_stress or {})
+        if self.life is not None:
+            tips = {key: {"x": lv.x, "y": lv.y, "a": lv.a, "basis": lv.basis} for key, lv in m.levels.items()}
+            self.beta += beta_rows(self.k, tips, ref, m.levels, self.life)
+            return 0
+        tips = basis_levels(self.scene, self.cracks)
+        self.beta += beta_rows(self.k, tips, ref)
+        return len(next(iter(tips.values()))["basis"]) if tips else 0
 
     def advance(self, m: Measured) -> None:
         """Extend every growing tip: the fastest by da, the others (fatigue)
@@ -393,46 +509,6 @@ class _GrowthRun:
         if self.life is not None:
             self.life.advanced(m, {(r.crack, r.end): r.da for r in growing if (r.crack, r.end) in self.grown})
 
-    # -- the loop ---------------------------------------------------------------------------------------
-    def run(self) -> GrowthResult:
-        for k in range(self.growth.steps + 1):
-            self.k = k
-            self.t0 = time.perf_counter()
-            try:
-                m = self.measure()
-            except BoundaryConditionError as e:
-                if k == 0 or "cut the part into" not in str(e):
-                    raise
-                self.stop_reason = f"final separation: after step {k - 1} the cracks cut the part apart ({e})"
-                self.stop_criterion = "final separation"
-                self.stops.append(self.stop_reason)
-                break
-            m, extra = self.correct(m)
-            extra += self.record_beta(m)
-            self.solves.append(m.solves + extra)
-            self.collect_warnings(m)
-            self.count_cycles(m)
-            self.records.append(m.records)
-            if self.on_step is not None:
-                self.on_step(k, m.records, m.sol)
-            if self.keep_solutions:
-                self.solutions.append(m.sol)
-            if self.check_stops(m):
-                break
-            self.advance(m)
-            self.step_times.append(time.perf_counter() - self.t0)
-            logger.debug("growth step %d: %s", k, "; ".join(
-                f"crack {self.cracks[r.crack].name!r} end {r.end}: a = {r.length:.4g}, K_I = {r.K_I:.4g}, "
-                f"K_II = {r.K_II:.4g}, kink {r.kink_deg:.1f} deg" + (f", N = {r.N:.4g}" if self.fatigue else "")
-                for r in m.records))
-        warnings = self.warnings + [
-            f"the model warning '{c}' came {n} times in all (at the steps listed in results.json per_step)"
-            for c, n in self.warning_counts.items() if n > 1]
-        return GrowthResult(self.records, self.cracks, self.stop_reason, self.stops, list(dict.fromkeys(warnings)),
-                            self.solutions, self.step_times, self.N, self.solves, self.step_warnings,
-                            stop_criterion=self.stop_criterion,
-                            life=self.life.summary(self.records) if self.life is not None else None, beta=self.beta)
-
 
 def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
          on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None = None,
@@ -442,7 +518,10 @@ def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
     fatigue the solution at the maximum load); keep_solutions keeps each
     step's Solution in the result; beta_table records K / (S sqrt(pi a)) of
     every load group at every step (GrowthResult.beta)."""
-    return _GrowthRun(scene, growth, keep_solutions, on_step, beta_table).run()
+    if scene.mesh.gdim == 3:
+        from .front_growth import SurfaceGrowth
+        return SurfaceGrowth(scene, growth, keep_solutions, on_step, beta_table).run()
+    return CurveGrowth(scene, growth, keep_solutions, on_step, beta_table).run()
 
 
 def _advance(cracks: list[Crack], r: TipRecord, inc: float, model, a_bnd, b_bnd, h_tip: float) -> str | None:
