@@ -60,7 +60,10 @@ class GrowthResult:
     cycles, the solves per step (load levels solved, with the corrector's),
     the model warning codes of each step, the criterion of the stop, in
     a spectrum life its summary (analysis.life.LifeRun.summary), and the
-    beta table's rows (grow(beta_table=True); analysis.life.beta_rows)."""
+    beta table's rows (grow(beta_table=True); analysis.life.beta_rows);
+    3D: fronts, what the fronts did (front_growth.SurfaceGrowth.result:
+    per step the crack surfaces and each crack's shape, the growth
+    spacing, margin, front element size)."""
     records: list[list[TipRecord]]
     cracks: list[Crack]
     stop_reason: str
@@ -74,6 +77,7 @@ class GrowthResult:
     stop_criterion: str | None = None
     life: dict[str, typing.Any] | None = None
     beta: list[dict[str, typing.Any]] = dataclasses.field(default_factory=list)
+    fronts: dict[str, typing.Any] | None = None
 
     @property
     def rows(self) -> list[dict[str, typing.Any]]:
@@ -245,6 +249,7 @@ class GrowthRun:
         self.t0 = 0.0
         self.beta_table = beta_table
         self.beta: list[dict[str, typing.Any]] = []
+        self.pending: tuple[str, str] | None = None     # a stop found by advance: (reason, criterion)
         self.life = self.create_life()
 
     # -- what the geometry gives (subclasses) ---------------------------------------------------------------
@@ -399,6 +404,9 @@ class GrowthRun:
             if self.check_stops(m):
                 break
             self.advance(m)
+            if self.pending is not None:  # a stop the advance found (3D: breakthrough)
+                self._stop(*self.pending)
+                break
             self.step_times.append(time.perf_counter() - self.t0)
             logger.debug("growth step %d: %s", k, self.describe_step(m.records))
         return self.result()
