@@ -54,8 +54,8 @@ from ..errors import InputError
 from ..fracture.kink import equivalent_k_3d, kink_twist_3d
 from ..scene.growth import Growth
 from ..scene.scene import Scene
-from ..scene.surface_growth import GrowingSurface, extend_ends, resample, smooth
-from .growth import GrowthRun
+from ..scene.surface_growth import GrowingSurface, extend_ends, front_exit, resample, smooth
+from .growth_run import GrowthRun
 from .tips import FrontRecord, Measured
 
 logger = logging.getLogger(__name__)
@@ -246,8 +246,8 @@ class FrontPoints:
 def end_values(rows: list[dict], V: np.ndarray) -> np.ndarray:
     """V (solutions, points) with the free-surface points' values replaced
     by the linear extrapolation in arc length of the two nearest interior
-    points of the same front piece (unchanged where a piece has fewer than
-    two interior points)."""
+    points of the same front piece (with one interior point: its value;
+    none: unchanged)."""
     V = V.copy()
     pieces: dict[tuple[int, int], list[int]] = {}
     for k, r in enumerate(rows):
@@ -255,7 +255,12 @@ def end_values(rows: list[dict], V: np.ndarray) -> np.ndarray:
     for idx in pieces.values():
         s = np.array([rows[k]["s"] for k in idx])
         inner = [k for k in idx if not rows[k]["free_surface"]]
-        if len(inner) < 2:
+        if not inner:
+            continue
+        if len(inner) == 1:  # one interior point: its value
+            for k in idx:
+                if rows[k]["free_surface"]:
+                    V[:, k] = V[:, inner[0]]
             continue
         si = np.array([rows[k]["s"] for k in inner])
         for k, sk in zip(idx, s):
@@ -296,7 +301,7 @@ def _blend(a, b, w: float):
 class SurfaceGrowth(GrowthRun):
     """3D: crack surfaces grown at their fronts (module doc)."""
 
-    SIZE_NAME = "size (a front point's distance from the crack's origin)"
+    SIZE_NAME = "size (a surface or corner crack's depth a, an embedded crack's mean radius)"
     END = "point"
 
     def __init__(self, scene: Scene, growth: Growth, keep_solutions: bool, on_step=None, beta_table: bool = False):
@@ -312,6 +317,7 @@ class SurfaceGrowth(GrowthRun):
         self.faces: dict[int, dict[str, typing.Any]] = {}  # per crack: the faces it starts on (measure_shape)
         self._free: dict[tuple[int, int], bool] = {}
         self.radius_scale: list[float] = [1.0]
+        self.breakthrough: dict[str, typing.Any] | None = None
         self.surfaces_per_step: list[list[tuple[np.ndarray, np.ndarray]]] = []
         self.h_start: float | None = None
         super().__init__(scene, growth, keep_solutions, on_step, beta_table)
@@ -351,7 +357,11 @@ class SurfaceGrowth(GrowthRun):
         m = self.life.measure(self.cracks, self.k, self.N, self.stopped)
         self._free = {(r.crack, r.end): r.free_surface for r in m.records}
         self._check_resolution(m)
-        self.shape.append(self.measure_shape(m))
+        shape = self.measure_shape(m)
+        self.shape.append(shape)
+        # A crack's size (growth.max_length): a surface or corner crack's depth a, an embedded one's mean radius.
+        m.lengths = [shape[ci].get("a", shape[ci]["radius_mean"]) if ci in shape else 0.0
+                     for ci in range(len(self.surfaces))]
         self.measure_done()
         return m
 
@@ -383,11 +393,15 @@ class SurfaceGrowth(GrowthRun):
         extend the crack surfaces (module doc); a breakthrough sets the stop
         that ends the run."""
         rates = m.rates
-        rate_max = max(rates.values())
+        fast = max(rates, key=lambda q: rates[q])
+        rate_max = rates[fast]
+        if self.growth.da_fraction:
+            self.da = self.growth.da_fraction * m.levels[fast].a
         da = {key: self.da * rates.get(key, 0.0) / rate_max for key in m.levels}
         for r in m.records:
             r.da = da.get((r.crack, r.end), 0.0)
         self.advanced_to = {}
+        plans = []  # per crack: its chains and each chain's vertices and displacements
         for ci, surf in enumerate(self.surfaces):
             keys = [key for key in m.levels if key[0] == ci]
             if not keys:
@@ -399,8 +413,7 @@ class SurfaceGrowth(GrowthRun):
             if not chains:
                 continue
             e1, e2 = surf.outward()
-            news = []
-            exit_note = None
+            moves = []
             for ch in chains:
                 C = surf.loop_points[ch.positions]
                 s_v, L = _arc(C, ch.closed)
@@ -414,49 +427,73 @@ class SurfaceGrowth(GrowthRun):
                     dav = np.interp(s_v, s_pt[order], d_pt[order])
                     bv = np.interp(s_v, s_pt[order], beta[order])
                 direction = np.cos(bv)[:, None] * e1[ch.positions] + np.sin(bv)[:, None] * e2[ch.positions]
-                move = smooth(dav[:, None] * direction, SMOOTHING_PASSES, ch.closed)
-                B = resample(C + move, self.spacing, ch.closed)
-                if not ch.closed:
-                    B = extend_ends(B, self.inside, self.margin)
-                exit_note = exit_note or self._breakthrough(ci, ch, B)
-                news.append(B)
+                moves.append((C, smooth(dav[:, None] * direction, SMOOTHING_PASSES, ch.closed)))
                 self.closed_front[ci] = ch.closed
                 # Where each front point went (for the cycles' interpolation).
                 for q, x, sq in zip(keys, X, s_pt):
                     dv = np.array([np.interp(sq, s_v, direction[:, c]) for c in range(3)])
                     self.advanced_to[q] = x + da[q] * dv / max(np.linalg.norm(dv), 1e-300)
-            if exit_note is not None:
-                self._break(m, exit_note, da)
-                return
-            surf.extend(chains, news)
+            plans.append((ci, surf, chains, moves))
+        news = {ci: self._new_fronts(chains, moves, 1.0) for ci, _, chains, moves in plans}
+        notes = [n for ci, _, chains, _ in plans for n in [self._breakthrough(ci, chains, news[ci])] if n]
+        if notes:
+            # The fraction of the increment at which the front first leaves the part (bisection).
+            lo, hi = 0.0, 1.0
+            for _ in range(12):
+                mid = 0.5 * (lo + hi)
+                if any(self._breakthrough(ci, chains, self._new_fronts(chains, moves, mid), record=False)
+                       for ci, _, chains, moves in plans):
+                    hi = mid
+                else:
+                    lo = mid
+            self._break(m, notes[0], hi)
+            return
+        for ci, surf, chains, _ in plans:
+            surf.extend(chains, news[ci])
         self.cracks = [s.crack for s in self.surfaces]
         self.life.advanced(m, {q: v for q, v in da.items() if v > 0.0})
 
+    def _new_fronts(self, chains, moves, t: float) -> list[np.ndarray]:
+        """Each chain's new polyline with its displacements scaled by t:
+        re-sampled, an open one's ends carried beyond the part."""
+        out = []
+        for ch, (C, move) in zip(chains, moves):
+            B = resample(C + t * move, self.spacing, ch.closed)
+            if not ch.closed:
+                B = extend_ends(B, self.inside, self.margin)
+            out.append(B)
+        return out
+
     # -- breakthrough ---------------------------------------------------------------------------------------
-    def _breakthrough(self, ci: int, ch, B: np.ndarray) -> str | None:
-        """Where the new front leaves the part other than where it did: a note,
-        else None (and the exits are remembered)."""
-        ins = self.inside(B)
+    def _breakthrough(self, ci: int, chains, news: list[np.ndarray], record: bool = True) -> str | None:
+        """Where a crack's new fronts leave the part other than where they did:
+        a note, else None (record: the first time, the exits are remembered)."""
+        for ch, B in zip(chains, news):
+            note = self._leaves(ci, ch, B, record)
+            if note:
+                return note
+        return None
+
+    def _leaves(self, ci: int, ch, B: np.ndarray, record: bool) -> str | None:
+        (kind, i), ins = front_exit(B, ch.closed, self.inside)
+        name = self.cracks[ci].name
+        if kind == "surface":
+            return f"the front of crack {name!r} reached the part's surface near ({B[i][0]:.6g}, {B[i][1]:.6g}, " \
+                   f"{B[i][2]:.6g})"
+        if kind == "gone":
+            return f"the front of crack {name!r} left the part"
+        if kind == "split":
+            return (f"the front of crack {name!r} broke through the part's surface near ({B[i][0]:.6g}, "
+                    f"{B[i][1]:.6g}, {B[i][2]:.6g}): it is now in two pieces (a through crack)")
         if ch.closed:
-            if not ins.all():
-                p = B[int(np.flatnonzero(~ins)[0])]
-                return f"the front of crack {self.cracks[ci].name!r} reached the part's surface near " \
-                       f"({p[0]:.6g}, {p[1]:.6g}, {p[2]:.6g})"
             return None
         idx = np.flatnonzero(ins)
-        if idx.size == 0:
-            return f"the front of crack {self.cracks[ci].name!r} left the part"
-        inner = np.arange(idx[0], idx[-1] + 1)
-        gap = inner[~ins[inner]]
-        if gap.size:
-            p = B[gap[0]]
-            return (f"the front of crack {self.cracks[ci].name!r} broke through the part's surface near "
-                    f"({p[0]:.6g}, {p[1]:.6g}, {p[2]:.6g}): it is now in two pieces (a through crack)")
         normals = [self._exit_normal(B[idx[0]], B[max(idx[0] - 1, 0)]),
                    self._exit_normal(B[idx[-1]], B[min(idx[-1] + 1, len(B) - 1)])]
         known = self.exits.get(ci)
         if known is None:
-            self.exits[ci] = normals
+            if record:
+                self.exits[ci] = normals
             return None
         for end, (n0, n1) in enumerate(zip(known, normals)):
             if float(np.dot(n0, n1)) < math.cos(math.radians(45.0)):
@@ -482,22 +519,22 @@ class SurfaceGrowth(GrowthRun):
         c = verts.mean(axis=1)
         return normals[int(np.argmin(np.linalg.norm(c - lo, axis=1)))]
 
-    def _break(self, m: Measured, note: str, da: dict) -> None:
-        """Stop at a breakthrough: the cycles of the increment up to the
-        crossing at the rate of the step's start (the fastest point's)."""
+    def _break(self, m: Measured, note: str, frac: float) -> None:
+        """Stop at a breakthrough: the cycles of the fraction `frac` of the
+        increment before the front leaves the part, at the rate of the
+        step's start (the fastest point's)."""
         fast = max(m.rates, key=lambda q: m.rates[q])
-        # The fraction of the increment before the front leaves: bisect the uniform scaling of all advances.
-        frac = 1.0
         life = self.life
-        passes = frac * self.da / m.rates[fast]
-        life.passes += passes
+        life.passes += frac * self.da / m.rates[fast]
         life.N = life.passes * (life.cycles_per_pass or 0.0)
         self.N = life.N
         blocks = life.passes * life.blocks_per_pass
         self.pending = (f"breakthrough during step {self.k}: {note}; life to breakthrough {life.N:.6g} cycles = "
-                        f"{blocks:.6g} {life.spectrum.block_name}s (this step's increment counted whole at the rate "
+                        f"{blocks:.6g} {life.spectrum.block_name}s ({frac:.3g} of this step's increment, at the rate "
                         "of its start). The transition to a through crack is not modelled: the run stops here",
                         "breakthrough")
+        self.breakthrough = {"step": self.k, "fraction": frac, "cycles": life.N, "blocks": blocks,
+                             "passes": life.passes, "note": note}
 
     # -- shape of surface and corner cracks -------------------------------------------------------------------
     def measure_shape(self, m: Measured) -> dict[int, dict[str, typing.Any]]:
@@ -652,7 +689,7 @@ class SurfaceGrowth(GrowthRun):
         out.fronts = {"shape": self.shape, "surfaces": self.surfaces_per_step, "spacing": self.spacing,
                       "margin": self.margin, "h_front": self.h_front, "da": self.da,
                       "radius_scale": self.radius_scale, "faces": self.faces,
-                      "origins": [s.origin.tolist() for s in self.surfaces]}
+                      "origins": [s.origin.tolist() for s in self.surfaces], "breakthrough": self.breakthrough}
         return out
 
 

@@ -105,7 +105,7 @@ def write_front_growth_outputs(scene_file, result: GrowthResult, out_dir, growth
         "front_growth": {"da": result.fronts["da"], "spacing": result.fronts["spacing"],
                          "margin": result.fronts["margin"], "front_element_size": result.fronts["h_front"],
                          "radius_scale": result.fronts["radius_scale"],
-                         "origins": result.fronts["origins"]},
+                         "origins": result.fronts["origins"], "breakthrough": result.fronts["breakthrough"]},
         "stop_criterion": result.stop_criterion,
         "stop_reason": result.stop_reason,
         "stops": result.stops,

@@ -108,7 +108,8 @@ def write_growth_outputs(scene_file, result: GrowthResult, out_dir, growth, timi
 def growth_settings(growth) -> dict[str, typing.Any]:
     """The growth settings for results.json: the spectrum as its shape (the
     turning points are the user's file), the fatigue material with its source."""
-    out = {k: v for k, v in vars(growth).items() if k not in ("fatigue_material", "spectrum")}
+    out = {k: v for k, v in vars(growth).items() if k not in ("fatigue_material", "spectrum")
+           and not (k == "da_fraction" and not v)}  # (3D only)
     fm = growth.fatigue_material
     if fm is not None:
         out["fatigue_material"] = {**{k: v for k, v in vars(fm).items()}, "description": fm.describe()}

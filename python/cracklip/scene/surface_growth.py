@@ -372,6 +372,24 @@ def extend_ends(B: np.ndarray, inside: Inside, margin: float) -> np.ndarray:
     return B
 
 
+def front_exit(B: np.ndarray, closed: bool, inside: Inside) -> tuple[str | None, int | None, np.ndarray]:
+    """How a new front B (n, 3) meets the part's boundary where it should
+    not: ("surface", i) a closed (embedded) front with vertex i outside the
+    part; ("split", i) an open front with vertex i outside between inside
+    vertices (it broke through into two pieces); ("gone", None) no vertex
+    inside; else (None, None). Also the inside mask (n,)."""
+    ins = np.asarray(inside(B), dtype=bool)
+    if closed:
+        out = np.flatnonzero(~ins)
+        return ("surface", int(out[0])) if out.size else (None, None), ins
+    idx = np.flatnonzero(ins)
+    if idx.size == 0:
+        return ("gone", None), ins
+    inner = np.arange(idx[0], idx[-1] + 1)
+    gap = inner[~ins[inner]]
+    return (("split", int(gap[0])) if gap.size else (None, None)), ins
+
+
 def stitch(A: np.ndarray, B: np.ndarray) -> list[tuple[int, int, int]]:
     """Triangles joining two polylines A (m, 3) and B (n, 3) running the same
     way: (0, i, j) is the triangle (A_i, B_j, A_i+1), (1, i, j) is (A_i, B_j,
@@ -414,4 +432,5 @@ def _mean_normal(v: np.ndarray, tris: np.ndarray) -> np.ndarray:
     return n / max(np.linalg.norm(n), 1e-300)
 
 
-__all__ = ["GrowingSurface", "Chain", "boundary_loop", "resample", "smooth", "extend_ends", "stitch"]
+__all__ = ["GrowingSurface", "Chain", "boundary_loop", "resample", "smooth", "extend_ends", "stitch",
+           "front_exit"]

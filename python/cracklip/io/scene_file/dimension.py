@@ -135,6 +135,8 @@ def check_dimension(doc: dict, settings: dict, dim: int, why: str) -> None:
             raise InputError(f"{where} refines over 3D crack surfaces but {part}: use mesh.refine or mesh.tip_h")
         for where, _ in _parts(doc, "mesh.refine.box"):
             raise InputError(f"{where} refines a box of a solid but {part}: use mesh.refine[].point or segment")
+        for where, _ in _parts(doc, "growth.da_fraction"):
+            raise InputError(f"{where} sizes the steps of 3D fronts but {part}: a 2D tip advances growth.da")
         return
     # dim == 3: the 2D-only keys.
     two_d = {
