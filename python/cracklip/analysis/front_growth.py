@@ -504,10 +504,10 @@ class SurfaceGrowth(GrowthRun):
                         "breakthrough")
         return None
 
-    def _exit_normal(self, inside_pt: np.ndarray, outside_pt: np.ndarray) -> np.ndarray:
-        """The outward normal of the part's boundary facet nearest to where
-        the segment between the two points crosses it."""
-        from ..model.boundary import exterior_facets
+    def _crossing(self, inside_pt: np.ndarray, outside_pt: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Where the segment from a point inside the part to one outside
+        crosses its boundary: the last inside and first outside points of 40
+        bisections (2^-40 of the segment apart)."""
         lo, hi = np.asarray(inside_pt, float), np.asarray(outside_pt, float)
         for _ in range(40):
             mid = 0.5 * (lo + hi)
@@ -515,6 +515,13 @@ class SurfaceGrowth(GrowthRun):
                 lo = mid
             else:
                 hi = mid
+        return lo, hi
+
+    def _exit_normal(self, inside_pt: np.ndarray, outside_pt: np.ndarray) -> np.ndarray:
+        """The outward normal of the part's boundary facet nearest to where
+        the segment between the two points crosses it."""
+        from ..model.boundary import exterior_facets
+        lo, _ = self._crossing(inside_pt, outside_pt)
         verts, _, normals = exterior_facets(self.scene.mesh)
         c = verts.mean(axis=1)
         return normals[int(np.argmin(np.linalg.norm(c - lo, axis=1)))]
@@ -580,13 +587,7 @@ class SurfaceGrowth(GrowthRun):
             return P[:0]
         ends = []
         for inner, outer in ((best[0], (best[0] - 1) % m), (best[-1], (best[-1] + 1) % m)):
-            lo, hi = P[inner], P[outer]
-            for _ in range(40):
-                mid = 0.5 * (lo + hi)
-                if bool(self.inside(mid[None])[0]):
-                    lo = mid
-                else:
-                    hi = mid
+            lo, hi = self._crossing(P[inner], P[outer])
             ends.append(0.5 * (lo + hi))
         return np.vstack([ends[0], P[best], ends[1]])
 

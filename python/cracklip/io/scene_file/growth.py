@@ -217,11 +217,7 @@ def describe_growth(g, dim: int = 2) -> str:
     if dim == 3:
         return _describe_front_growth(g)
     if g.life:
-        sp = g.spectrum
-        load = (f"spectrum of {sp.blocks_per_pass} {sp.block_name}(s) per pass, groups {list(sp.groups)}, "
-                f"{sp.counting} counting, residue {sp.residue}" if sp is not None else
-                f"cycle max {g.cycle_max or 'every group at 1'}, min "
-                f"{g.cycle_min if g.cycle_min is not None else f'R = {g.R:g} x max'}")
+        load = _describe_load(g)
         how = f"fatigue life: {g.fatigue_material.describe()}; {load}; fastest tip da = " + \
             (f"{g.da:g}" if g.da else "3 tip elements")
     elif g.fatigue:
@@ -239,13 +235,19 @@ def describe_growth(g, dim: int = 2) -> str:
     return f"{g.criterion.replace('_', ' ')} criterion, {how}; stops: {', '.join(stops)}"
 
 
+def _describe_load(g) -> str:
+    """The cycles of a fatigue life, in words (2D and 3D)."""
+    sp = g.spectrum
+    if sp is not None:
+        return (f"spectrum of {sp.blocks_per_pass} {sp.block_name}(s) per pass, groups {list(sp.groups)}, "
+                f"{sp.counting} counting, residue {sp.residue}")
+    return (f"cycle max {g.cycle_max or 'every group at 1'}, min "
+            f"{g.cycle_min if g.cycle_min is not None else f'R = {g.R:g} x max'}")
+
+
 def _describe_front_growth(g) -> str:
     if g.life:
-        sp = g.spectrum
-        load = (f"spectrum of {sp.blocks_per_pass} {sp.block_name}(s) per pass, groups {list(sp.groups)}, "
-                f"{sp.counting} counting, residue {sp.residue}" if sp is not None else
-                f"cycle max {g.cycle_max or 'every group at 1'}, min "
-                f"{g.cycle_min if g.cycle_min is not None else f'R = {g.R:g} x max'}")
+        load = _describe_load(g)
         law = f"fatigue life: {g.fatigue_material.describe()}; {load}"
     else:
         law = (f"fatigue: Paris C = {g.paris_C:g}, m = {g.paris_m:g}"
