@@ -32,10 +32,15 @@ from h0 = min(a0, c0) / n at the crack's centre on the face by 1/n per unit
 distance, so the front stays n elements per crack size as it grows.
 
     /usr/bin/python3 demos/growth_3d.py --json out/growth_3d.json [--small] [--cases penny surface_crack]
+                                        [--starts 0.2 0.5 1]
 
 --small is the test's configuration (coarse meshes, two steps each, one
 surface crack start): it checks the machinery, not the bars. Writes per case
-a CSV of the steps and (not --small) PNGs next to the JSON.
+a CSV of the steps and (not --small) PNGs next to the JSON. The full run
+takes hours on a loaded 2-core machine: the JSON is rewritten after every
+step, each case with "complete": false until its run ends, so a run
+stopped midway keeps the figures of the steps it made (over the growth it
+reached: "steps" of "steps_asked", "a_over_t_reached").
 """
 from __future__ import annotations
 
@@ -89,7 +94,9 @@ def penny_life(a0: float, a: float, m: float = M) -> float:
     return 2.0 / ((m - 2.0) * C * k ** m) * (a0 ** (1.0 - m / 2.0) - a ** (1.0 - m / 2.0))
 
 
-def run_penny(config: str, log) -> dict:
+def run_penny(config: str, log, save=lambda case: None) -> dict:
+    """The penny's figures (module doc); save(case) after every step with
+    the figures so far (case["complete"] False until the run ends)."""
     n, L, da, steps, grading = PENNY[config]
     h = 1.0 / n
     r_max = 1.0 + da * steps + 4 * h
@@ -102,27 +109,33 @@ def run_penny(config: str, log) -> dict:
     growth = cl.Growth(da=da, steps=steps, paris_C=C, paris_m=M, R=0.0)
     run = SurfaceGrowth(scene, growth, False, None)
     t0 = time.perf_counter()
+    rows: list[dict] = []
+
+    def figures(complete: bool, res=None) -> dict:
+        last = rows[-1]
+        return {"roundness": last["roundness"], "N_rel_err": (last["N"] - last["N_exact"]) / last["N_exact"]
+                if last["N_exact"] > 0 else None, "N": last["N"], "N_exact": last["N_exact"],
+                "a0": rows[0]["radius_mean"], "a": last["radius_mean"], "steps": len(rows) - 1,
+                "steps_asked": steps, "complete": complete, "h_front": h, "half_width": L,
+                "cells": mesh.mesh.topology.index_map(3).size_global, "rows": rows,
+                "step_seconds": res.step_times if res else [r["seconds"] for r in rows],
+                "stop": res.stop_reason if res else None}
 
     def progress(k, records, sol):
         sh = run.shape[-1][0]
+        a_start = rows[0]["radius_mean"] if rows else sh["radius_mean"]  # the closed form's start
+        rows.append({
+            "step": k, "N": records[0].N, "radius_mean": sh["radius_mean"], "roundness": sh["roundness"],
+            "N_exact": penny_life(a_start, sh["radius_mean"]), "K_I_mean": float(np.mean([r.K_I for r in records])),
+            "K_exact": 2 * SIGMA * math.sqrt(sh["radius_mean"] / math.pi), "points": len(records),
+            "seconds": time.perf_counter() - t0})
         log(f"penny step {k}: N = {run.N:.6g}, mean radius {sh['radius_mean']:.5f}, roundness "
             f"{100 * sh['roundness']:.3f} %, K_I {min(r.K_I for r in records):.5f} .. {max(r.K_I for r in records):.5f}"
             f" ({time.perf_counter() - t0:.0f} s)")
+        save(figures(False))
     run.on_step = progress
     res = run.run()
-    rows = []
-    a_start = res.fronts["shape"][0][0]["radius_mean"]
-    for k, (recs, shape) in enumerate(zip(res.records, res.fronts["shape"])):
-        sh = shape[0]
-        exact = penny_life(a_start, sh["radius_mean"])
-        rows.append({"step": k, "N": recs[0].N, "radius_mean": sh["radius_mean"], "roundness": sh["roundness"],
-                     "N_exact": exact, "K_I_mean": float(np.mean([r.K_I for r in recs])),
-                     "K_exact": 2 * SIGMA * math.sqrt(sh["radius_mean"] / math.pi), "points": len(recs)})
-    last = rows[-1]
-    return {"roundness": last["roundness"], "N_rel_err": (last["N"] - last["N_exact"]) / last["N_exact"],
-            "N": last["N"], "N_exact": last["N_exact"], "a0": rows[0]["radius_mean"], "a": last["radius_mean"],
-            "steps": len(rows) - 1, "h_front": h, "half_width": L, "dofs": None, "rows": rows,
-            "step_seconds": res.step_times, "stop": res.stop_reason}
+    return figures(True, res)
 
 
 def newman_raju_path(a0: float, c0: float, t: float, b: float, a_end: float, m: float = M):
@@ -142,7 +155,9 @@ def graded_box(lo, hi, origin, h0: float, n: float, h_far: float):
     return create_box(*lo, *hi, h_far, fronts=[FrontRefinement(np.array([origin]), h0, radius)])
 
 
-def run_surface(config: str, ac0: float, log) -> dict:
+def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
+    """One start's figures (module doc); save(case) after every step as
+    run_penny's."""
     n, _, at_end, steps = SURFACE[config]
     t, b, L = 1.0, 5.0, 5.0
     a0 = 0.1 * t
@@ -155,29 +170,35 @@ def run_surface(config: str, ac0: float, log) -> dict:
                      options=cl.Options(enrichment="vector", radius=2.5 * h0))
     growth = cl.Growth(steps=steps, da_fraction=DA_FRACTION, paris_C=C, paris_m=M, R=0.0, max_length=at_end * t)
     run = SurfaceGrowth(scene, growth, False, None)
+    path = newman_raju_path(a0, c0, t, b, 0.8 * t)
     t0 = time.perf_counter()
+    rows: list[dict] = []
+
+    def figures(complete: bool, res=None) -> dict:
+        devs = [abs(r["a_over_c"] - r["a_over_c_newman_raju"]) for r in rows
+                if r["a_over_c_newman_raju"] is not None]
+        return {"a_over_c0": ac0, "a_over_c_max_dev": max(devs) if devs else None,
+                "steps": (len(res.records) - 1) if res else (rows[-1]["step"] if rows else 0), "steps_asked": steps,
+                "complete": complete, "a_over_t_reached": rows[-1]["a_over_t"] if rows else None, "rows": rows,
+                "h0": h0, "n": n, "cells": mesh.mesh.topology.index_map(3).size_global,
+                "step_seconds": res.step_times if res else [r["seconds"] for r in rows],
+                "stop": res.stop_reason if res else None}
 
     def progress(k, records, sol):
         sh = run.shape[-1][0]
         log(f"surface a/c0 {ac0:g} step {k}: a/t = {sh.get('a_over_t', float('nan')):.4f}, a/c = "
             f"{sh.get('a_over_c', float('nan')):.4f}, {len(records)} points, N = {run.N:.6g} "
             f"({time.perf_counter() - t0:.0f} s)")
+        if sh.get("a") is None:
+            return
+        a, c = sh["a"], sh["c"]
+        rows.append({"step": k, "N": records[0].N, "a": a, "c": c, "a_over_t": a / t, "a_over_c": a / c,
+                     "a_over_c_newman_raju": a / path(a) if a <= 0.8 * t else None, "points": len(records),
+                     "seconds": time.perf_counter() - t0})
+        save(figures(False))
     run.on_step = progress
     res = run.run()
-    path = newman_raju_path(a0, c0, t, b, 0.8 * t)
-    rows = []
-    for k, (recs, shape) in enumerate(zip(res.records, res.fronts["shape"])):
-        sh = shape[0]
-        if sh.get("a") is None:
-            continue
-        a, c = sh["a"], sh["c"]
-        ref = a / path(min(a, 0.8 * t)) if a <= 0.8 * t else None
-        rows.append({"step": k, "N": recs[0].N, "a": a, "c": c, "a_over_t": a / t, "a_over_c": a / c,
-                     "a_over_c_newman_raju": ref, "points": len(recs)})
-    devs = [abs(r["a_over_c"] - r["a_over_c_newman_raju"]) for r in rows if r["a_over_c_newman_raju"] is not None]
-    return {"a_over_c0": ac0, "a_over_c_max_dev": max(devs) if devs else None, "steps": len(res.records) - 1,
-            "a_over_t_reached": rows[-1]["a_over_t"] if rows else None, "rows": rows, "h0": h0, "n": n,
-            "step_seconds": res.step_times, "stop": res.stop_reason}
+    return figures(True, res)
 
 
 def main(argv=None) -> dict:
@@ -185,6 +206,8 @@ def main(argv=None) -> dict:
     ap.add_argument("--json", type=pathlib.Path)
     ap.add_argument("--small", action="store_true", help="the test's configuration (coarse, two steps)")
     ap.add_argument("--cases", nargs="+", default=["penny", "surface_crack"], choices=["penny", "surface_crack"])
+    ap.add_argument("--starts", type=float, nargs="+", help="the surface crack's starts a/c at a/t = 0.1 "
+                    "(default 0.2 0.5 1, --small 0.5)")
     args = ap.parse_args(argv)
     config = "small" if args.small else "full"
 
@@ -192,16 +215,29 @@ def main(argv=None) -> dict:
         if __name__ == "__main__":
             print(text, file=sys.stderr, flush=True)
     out: dict = {"config": config}
+
+    def save() -> None:
+        """The JSON as it stands (a long run killed midway keeps its steps)."""
+        if args.json is not None:
+            write_json(args.json, out)
     if "penny" in args.cases:
-        out["penny"] = run_penny(config, log)
+        out["penny"] = run_penny(config, log, lambda case: (out.__setitem__("penny", case), save()))
     if "surface_crack" in args.cases:
-        cases = [run_surface(config, ac0, log) for ac0 in SURFACE[config][1]]
-        devs = [c["a_over_c_max_dev"] for c in cases if c["a_over_c_max_dev"] is not None]
-        out["surface_crack"] = {"a_over_c_max_dev": max(devs) if devs else None, "cases": cases}
-    if args.json is not None:
-        write_json(args.json, out)
-        if __name__ == "__main__" and not args.small:
-            write_figures(out, args.json.parent)
+        cases: list[dict] = []
+
+        def summary(case=None) -> dict:
+            every = cases + ([case] if case is not None else [])
+            devs = [c["a_over_c_max_dev"] for c in every if c["a_over_c_max_dev"] is not None]
+            return {"a_over_c_max_dev": max(devs) if devs else None, "cases": every,
+                    "complete": case is None and len(every) == len(starts)}
+        starts = args.starts or SURFACE[config][1]
+        for ac0 in starts:
+            cases.append(run_surface(config, ac0, log,
+                                     lambda case: (out.__setitem__("surface_crack", summary(case)), save())))
+        out["surface_crack"] = summary()
+    save()
+    if args.json is not None and __name__ == "__main__" and not args.small:
+        write_figures(out, args.json.parent)
     return out
 
 
