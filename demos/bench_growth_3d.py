@@ -11,8 +11,9 @@ step = measure (model on the new surface's level sets, assembly with the
 cached standard block, the solve, K, the life's rates), count the cycles,
 advance the front (the surface's strip, re-sampling, the breakthrough
 test), as analysis.growth.GrowthRun.run times it (GrowthResult.step_times).
-Medians: of `repeats` single runs, of the steps after the first (which
-fills the standard-block cache). Also the share of the front update (the
+Medians: of `repeats` single runs (half before the growth run, half
+after, so a drift of the machine's load weighs on both), of the steps after
+the first (which fills the standard-block cache). Also the share of the front update (the
 advance step) in a step.
 
     /usr/bin/python3 demos/bench_growth_3d.py --n 8 --json docs/bench/bench_growth_3d.json
@@ -65,13 +66,20 @@ class _Timed(SurfaceGrowth):
 def measure(n: int, steps: int, repeats: int) -> dict:
     scene = scene_for(n, steps)
     singles = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        sol = cl.solve(scene)
-        sol.stress_intensity_factors(None)
-        singles.append(time.perf_counter() - t0)
+
+    def single_runs(count: int):
+        nonlocal sol
+        for _ in range(count):
+            t0 = time.perf_counter()
+            sol = cl.solve(scene)
+            sol.stress_intensity_factors(None)
+            singles.append(time.perf_counter() - t0)
+    sol = None
+    # Half the single runs before the growth and half after: a drift of the machine's load weighs on both.
+    single_runs(repeats - repeats // 2)
     run = _Timed(scene_for(n, steps), cl.Growth(da=DA, steps=steps, paris_C=1.0, paris_m=3.0, R=0.0), False, None)
     res = run.run()
+    single_runs(repeats // 2)
     per_step = res.step_times[1:-1]  # (the last entry is the final measure without an advance)
     t_single, t_step = statistics.median(singles), statistics.median(per_step)
     return {"n": n, "h_front": 1.0 / n, "ndofs": sol.model.num_dofs, "t_single_run": t_single, "t_step": t_step,
@@ -84,7 +92,7 @@ def main(argv=None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--n", type=int, nargs="+", default=[8], help="elements per crack radius at the front")
     ap.add_argument("--steps", type=int, default=5)
-    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--repeats", type=int, default=4)
     ap.add_argument("--json", type=pathlib.Path)
     args = ap.parse_args(argv)
     rows = [measure(n, args.steps, args.repeats) for n in args.n]
