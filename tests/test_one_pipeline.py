@@ -3,7 +3,7 @@ the program does in both dimensions, `run` and `check` agree on a 3D
 part's files, and a 2D tip and a 3D front point share one SIF row schema.
 
 The stale sentences of the second pipeline are looked for where a user
-meets them: `--help`, `grow`'s refusal of a 3D part, the material and
+meets them: `--help`, `grow`'s words on a 3D part, the material and
 rigid-motion messages of a 3D part, the warnings of a clipped 3D SIF
 domain, and the docs."""
 import json
@@ -40,13 +40,16 @@ def test_help_names_both_dimensions(capsys):
     assert "planar parts" in text and "solids" in text
 
 
-def test_grow_on_a_3d_part_says_it_is_not_available():
+def test_grow_on_a_3d_part_asks_for_a_growth_law():
+    """3D fronts grow (issue 37) by a law, each point by its own rate: a 3D
+    [growth] without one is told the scene keys that give it, not that
+    growth is unavailable; with a Paris law it is accepted."""
     with pytest.raises(cl.InputError) as e:
         parse_settings(_penny_doc(growth={"da": 0.1}))
     msg = str(e.value)
-    assert "not available in this version" in msg and "come first" not in msg, msg
-    with pytest.raises(cl.InputError, match="not available in this version"):
-        parse_settings(_penny_doc(spectrum={"blocks": [{"points": [0.0, 1.0]}]}))
+    assert "is 3D" in msg and "growth.paris_C" in msg and "[material.fatigue]" in msg, msg
+    assert "not available" not in msg and "come first" not in msg, msg
+    parse_settings(_penny_doc(growth={"da": 0.1, "paris_C": 1.0, "paris_m": 3.0, "R": 0.0}))
 
 
 def test_3d_material_and_rigid_motion_messages():

@@ -39,6 +39,9 @@ SMALL = {
     "drilled_plate": ["mesh.h=1.0", "mesh.refine[0].h=0.1", "mesh.refine[1].h=0.1"],
     # the fatigue life under a spectrum (grown by tests/test_life.py)
     "hole_crack_spectrum": ["mesh.h=10.0", "mesh.refine[0].h=0.5"],
+    # 3D growth (grown by tests/test_growth_3d.py)
+    "surface_crack_growth": ["mesh.h=10.0", "mesh.refine[0].h=0.3", "mesh.refine[0].radius=30.0", "growth.steps=1"],
+    "corner_crack_growth": ["mesh.h=8.0", "mesh.refine[0].h=0.12", "mesh.refine[0].radius=30.0", "growth.steps=2"],
     # lives without a mesh (run as they are by tests/test_table_life.py: a second each)
     "life_hole_crack": [],
     "life_surface_crack": [],

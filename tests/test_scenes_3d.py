@@ -395,7 +395,11 @@ def _penny_doc(**changes):
     ({"loads": {"initial_stress": {"value": [1.0, 0.0, 0.0]}}}, r"initial .* not supported on 3D parts yet"),
     ({"options": {"contact": "unilateral"}}, r"crack-lip contact is not available on 3D parts yet"),
     ({"outputs": {"stress_component": "xx"}}, r"outputs\.stress_component is a 2D setting.*ParaView"),
-    ({"growth": {"da": 0.1}}, r"growth: crack growth is 2D only for now"),
+    ({"growth": {"da": 0.1}}, r"\[growth\] without a growth law but the part is 3D"),
+    ({"growth": {"da": 0.1, "paris_C": 1.0, "paris_m": 3.0, "R": 0.0, "corrections": 2}},
+     r"growth\.corrections is a 2D growth setting but the part is 3D"),
+    ({"growth": {"paris_C": 1.0, "paris_m": 3.0, "R": 0.0, "criterion": "max_energy_release"}},
+     r"'max_energy_release' is a 2D criterion"),
 ])
 def test_2d_keys_in_a_3d_scene(changes, match):
     with pytest.raises(cl.InputError, match=match):

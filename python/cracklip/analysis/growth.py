@@ -1,6 +1,9 @@
-"""Crack growth through the fixed mesh, and fatigue life.
+"""Crack growth through the fixed mesh, and fatigue life: grow() and the
+2D steps (CurveGrowth); the loop's state and named steps shared with 3D
+are analysis.growth_run.GrowthRun, the 3D fronts' steps
+analysis.front_growth.SurfaceGrowth (grow picks by the part's dimension).
 
-The growth loop: solve the scene (with contact and friction if it has them)
+The 2D growth loop: solve the scene (with contact and friction if it has them)
 -> K_I, K_II at every tip (three domains, their spread) -> the kink angle by
 the maximum hoop stress criterion (or maximum energy release rate) -> extend
 each growing tip's polyline by its increment -> rebuild the level sets,
@@ -33,51 +36,23 @@ from __future__ import annotations
 import dataclasses
 import logging
 import math
-import time
 import typing
 
 import numpy as np
 
-from ..errors import BoundaryConditionError, InputError
+from ..errors import InputError
 from ..fracture.kink import equivalent_k, kink_angle
 from ..fracture.laws import walker_rate
 from ..scene.conditions import LoadStep
 from ..scene.crack import Crack
 from ..scene.growth import Growth
 from ..scene.scene import Scene
+from .growth_run import GrowthResult, GrowthRun  # noqa: F401 (GrowthResult: the result of grow)
 from .tips import (Measured, TipRecord, closed_fraction, crack_length, distance_to_segments,  # noqa: F401
                    part_length, segment_hit)  # noqa: F401
 
 
 logger = logging.getLogger(__name__)
-
-
-@dataclasses.dataclass
-class GrowthResult:
-    """What grow returns: the tip records of every step (records[k] at step
-    k, the last one at the final geometry), the final cracks, why it stopped,
-    the warnings met, each step's Solution if kept, seconds per step, the
-    cycles, the solves per step (load levels solved, with the corrector's),
-    the model warning codes of each step, the criterion of the stop, in
-    a spectrum life its summary (analysis.life.LifeRun.summary), and the
-    beta table's rows (grow(beta_table=True); analysis.life.beta_rows)."""
-    records: list[list[TipRecord]]
-    cracks: list[Crack]
-    stop_reason: str
-    stops: list[str]
-    warnings: list[str]
-    solutions: list
-    step_times: list[float]
-    cycles: float = 0.0
-    step_solves: list[int] = dataclasses.field(default_factory=list)
-    step_warnings: list[list[str]] = dataclasses.field(default_factory=list)
-    stop_criterion: str | None = None
-    life: dict[str, typing.Any] | None = None
-    beta: list[dict[str, typing.Any]] = dataclasses.field(default_factory=list)
-
-    @property
-    def rows(self) -> list[dict[str, typing.Any]]:
-        return [r.row() for step in self.records for r in step]
 
 
 def _cycle_scene(scene: Scene, growth: Growth) -> tuple[Scene, bool]:
@@ -200,53 +175,27 @@ def _correct(scene: Scene, cracks: list[Crack], growth: Growth, k: int, N: float
     return best, best_turn, solves
 
 
-class _GrowthRun:
-    """The growth loop's state and its named steps: measure the geometry
-    (solve, K per tip), correct the increment just taken (optional), collect
-    the model's warnings, count the cycles of the increment (fatigue), check
-    the stops, advance the tips. run() repeats them until a stop."""
+class CurveGrowth(GrowthRun):
+    """2D: polylines grown at their tips (module doc)."""
 
     def __init__(self, scene: Scene, growth: Growth, keep_solutions: bool,
                  on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None, beta_table: bool = False):
         from ..model.boundary import boundary_segments
-        scene.mesh.cache_standard_block = True
-        self.scene = scene
-        self.growth = growth
-        self.keep_solutions = keep_solutions
-        self.on_step = on_step
-        self.cracks = [dataclasses.replace(c, points=np.array(c.points, dtype=float)) for c in scene.cracks]
-        if not self.cracks:
-            raise InputError("growth needs at least one crack")
+        if growth.da_fraction:
+            raise InputError("growth.da_fraction sizes the steps of 3D fronts; a 2D tip advances growth.da")
+        super().__init__(scene, growth, keep_solutions, on_step, beta_table)
         self.a_bnd, self.b_bnd = boundary_segments(scene.mesh)
-        self.records: list[list[TipRecord]] = []
-        self.stops: list[str] = []
-        self.warnings: list[str] = []
-        self.solutions: list = []
-        self.step_times: list[float] = []
-        self.solves: list[int] = []
-        self.stopped: set[tuple[int, int]] = set()      # (crack, end) that no longer grow
-        self.grown: set[tuple[int, int]] = set()        # (crack, end) advanced by the last step
-        self.warned: set[str] = set()                   # increment warnings given (once each)
-        self.warning_counts: dict[str, int] = {}        # model warnings by code, over all steps
-        self.step_warnings: list[list[str]] = []
-        self.last_kink: dict[tuple[int, int], float] = {}
-        self.N = 0.0
-        self.prev_rate: float | None = None             # constant amplitude: the trapezoid's last rate
-        self.prev_da = 0.0
-        self.da = growth.da
-        self.fatigue = growth.fatigue
-        self.stop_reason = f"{growth.steps} steps done"
-        self.stop_criterion: str | None = None
-        self.k = 0
-        self.t0 = 0.0
-        self.beta_table = beta_table
-        self.beta: list[dict[str, typing.Any]] = []
-        self.life = None
-        if growth.life:
-            from .life import LifeRun
-            self.life = LifeRun(scene, growth)
 
-    # -- the named steps ---------------------------------------------------------------------------------
+    def initial_cracks(self, scene: Scene) -> list[Crack]:
+        return [dataclasses.replace(c, points=np.array(c.points, dtype=float)) for c in scene.cracks]
+
+    def create_life(self):
+        if not self.growth.life:
+            return None
+        from .life import LifeRun
+        return LifeRun(self.scene, self.growth)
+
+    # -- the named steps of a polyline ---------------------------------------------------------------------
     def measure(self) -> Measured:
         """Solve the current geometry and record every tip."""
         if self.life is not None:
@@ -266,29 +215,6 @@ class _GrowthRun:
                 self.last_kink[r.crack, r.end] = r.kink_deg
         return m, extra
 
-    def collect_warnings(self, m: Measured) -> None:
-        """The model's warnings of every step (a kinked path can clip a SIF
-        domain): the first of each code in full, the later ones counted."""
-        self.step_warnings.append(sorted({w.code for w in m.sol.warnings}))
-        for w in m.sol.warnings:
-            if w.code not in self.warning_counts:
-                self.warnings.append(w.message if self.k == 0 else f"step {self.k}: {w.message}")
-            self.warning_counts[w.code] = self.warning_counts.get(w.code, 0) + 1
-
-    def count_cycles(self, m: Measured) -> None:
-        """The cycles of the increment just taken: constant amplitude by the
-        trapezoidal rule between its two ends; a spectrum pass by pass with K
-        interpolated between them (cracklip.analysis.life)."""
-        if self.life is not None:
-            self.N = self.life.count(m, self.k)
-            return
-        if self.fatigue and self.k > 0 and self.prev_rate is not None:
-            rate_now = max(m.rates.values()) if m.rates else self.prev_rate
-            dN = self.prev_da * 0.5 * (1.0 / self.prev_rate + 1.0 / rate_now)
-            self.N += dN
-            for rec in m.records:  # the cycles spent to reach this geometry
-                rec.dN, rec.N = dN, self.N
-
     def record_beta(self, m: Measured) -> int:
         """The beta table's rows of this geometry (grow(beta_table=True)): K of
         each load group at factor 1 (a spectrum life has them from its
@@ -304,52 +230,6 @@ class _GrowthRun:
         tips = basis_levels(self.scene, self.cracks)
         self.beta += beta_rows(self.k, tips, ref)
         return len(next(iter(tips.values()))["basis"]) if tips else 0
-
-    def _stop(self, reason: str, criterion: str | None = None) -> bool:
-        self.stop_reason = reason
-        self.stop_criterion = criterion
-        self.stops.append(reason)
-        self.step_times.append(time.perf_counter() - self.t0)
-        return True
-
-    def check_stops(self, m: Measured) -> bool:
-        """The stops that end the run (module doc); True to stop."""
-        growth, k, step = self.growth, self.k, m.records
-        if self.life is not None and self.life.failure is not None:
-            return self._stop(self.life.failure, self.life.failure_criterion)
-        if growth.K_Ic is not None:
-            failing = [r for r in step if r.K_eq >= growth.K_Ic]
-            if failing:
-                r = failing[0]
-                return self._stop(f"final failure: K_eq = {r.K_eq:.6g} >= K_Ic = {growth.K_Ic:g} at the tip "
-                                  f"({r.x:.6g}, {r.y:.6g}) of crack {self.cracks[r.crack].name!r} (step {k})",
-                                  "K_eq >= growth.K_Ic")
-        if growth.max_length is not None and any(v >= growth.max_length * (1.0 - 1e-9) for v in m.lengths):
-            return self._stop(f"a crack reached the length {growth.max_length:g} (step {k})", "growth.max_length")
-        if self.life is not None and self.life.passes_exceeded():
-            return self._stop(f"the life passed spectrum.max_passes = {self.life.max_passes:g} passes (step {k})",
-                              "spectrum.max_passes")
-        if k == growth.steps:
-            self.step_times.append(time.perf_counter() - self.t0)
-            self.stop_criterion = "growth.steps"
-            return True
-        growing = [r for r in step if r.status == "growing"]
-        if not step:
-            return self._stop(f"no crack tip is left in the part (step {k}): the cracks run through it",
-                              "no tip in the part")
-        if not growing:
-            return self._stop(f"no tip grows any more (step {k}: " + "; ".join(
-                f"crack {self.cracks[r.crack].name!r} end {r.end}: {r.status}" for r in step) + ")",
-                "no growing tip")
-        unstable = [r for r in growing if (r.crack, r.end) in self.last_kink
-                    and abs(r.kink_deg - self.last_kink[r.crack, r.end]) > growth.max_kink_change]
-        if unstable:
-            r = unstable[0]
-            return self._stop(f"unstable growth: the kink at ({r.x:.6g}, {r.y:.6g}) turned from "
-                              f"{self.last_kink[r.crack, r.end]:.2f} to {r.kink_deg:.2f} degrees between steps "
-                              f"(more than growth.max_kink_change = {growth.max_kink_change:g})",
-                              "growth.max_kink_change")
-        return False
 
     def advance(self, m: Measured) -> None:
         """Extend every growing tip: the fastest by da, the others (fatigue)
@@ -393,46 +273,6 @@ class _GrowthRun:
         if self.life is not None:
             self.life.advanced(m, {(r.crack, r.end): r.da for r in growing if (r.crack, r.end) in self.grown})
 
-    # -- the loop ---------------------------------------------------------------------------------------
-    def run(self) -> GrowthResult:
-        for k in range(self.growth.steps + 1):
-            self.k = k
-            self.t0 = time.perf_counter()
-            try:
-                m = self.measure()
-            except BoundaryConditionError as e:
-                if k == 0 or "cut the part into" not in str(e):
-                    raise
-                self.stop_reason = f"final separation: after step {k - 1} the cracks cut the part apart ({e})"
-                self.stop_criterion = "final separation"
-                self.stops.append(self.stop_reason)
-                break
-            m, extra = self.correct(m)
-            extra += self.record_beta(m)
-            self.solves.append(m.solves + extra)
-            self.collect_warnings(m)
-            self.count_cycles(m)
-            self.records.append(m.records)
-            if self.on_step is not None:
-                self.on_step(k, m.records, m.sol)
-            if self.keep_solutions:
-                self.solutions.append(m.sol)
-            if self.check_stops(m):
-                break
-            self.advance(m)
-            self.step_times.append(time.perf_counter() - self.t0)
-            logger.debug("growth step %d: %s", k, "; ".join(
-                f"crack {self.cracks[r.crack].name!r} end {r.end}: a = {r.length:.4g}, K_I = {r.K_I:.4g}, "
-                f"K_II = {r.K_II:.4g}, kink {r.kink_deg:.1f} deg" + (f", N = {r.N:.4g}" if self.fatigue else "")
-                for r in m.records))
-        warnings = self.warnings + [
-            f"the model warning '{c}' came {n} times in all (at the steps listed in results.json per_step)"
-            for c, n in self.warning_counts.items() if n > 1]
-        return GrowthResult(self.records, self.cracks, self.stop_reason, self.stops, list(dict.fromkeys(warnings)),
-                            self.solutions, self.step_times, self.N, self.solves, self.step_warnings,
-                            stop_criterion=self.stop_criterion,
-                            life=self.life.summary(self.records) if self.life is not None else None, beta=self.beta)
-
 
 def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
          on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None = None,
@@ -442,7 +282,10 @@ def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
     fatigue the solution at the maximum load); keep_solutions keeps each
     step's Solution in the result; beta_table records K / (S sqrt(pi a)) of
     every load group at every step (GrowthResult.beta)."""
-    return _GrowthRun(scene, growth, keep_solutions, on_step, beta_table).run()
+    if scene.mesh.gdim == 3:
+        from .front_growth import SurfaceGrowth
+        return SurfaceGrowth(scene, growth, keep_solutions, on_step, beta_table).run()
+    return CurveGrowth(scene, growth, keep_solutions, on_step, beta_table).run()
 
 
 def _advance(cracks: list[Crack], r: TipRecord, inc: float, model, a_bnd, b_bnd, h_tip: float) -> str | None:

@@ -113,22 +113,25 @@ def constant_amplitude_spectrum(scene: Scene, growth: Growth) -> Spectrum:
 
 @dataclasses.dataclass
 class TipLevels:
-    """One tip at one geometry: K at every load state of the spectrum.
+    """One tip (a growth point of a 3D front) at one geometry: K at every
+    load state of the spectrum.
 
     Attributes:
-        key: (crack, end).
-        a: the tip's crack length (length in the part / tips of the crack).
+        key: (crack, end); 3D: (crack, point).
+        a: the tip's crack length (length in the part / tips of the crack);
+            3D: the point's distance from the crack's origin
+            (front_growth.SurfaceFronts).
         K_lin: K_eq (along theta) of the linear solution per state.
         K_con: K_eq with contact (= K_lin where the lips are open).
-        K_I, K_II: per state, as used (contact where closed).
-        theta: the kink (radians) at the reference state.
+        K_I, K_II: per state, as used (contact where closed); K_III too in 3D.
+        theta: the kink (radians) at the reference state; twist: 3D only.
         ref, low: the states of the largest and smallest K.
-        basis: K_I, K_II of each load group at factor 1 (linear).
+        basis: K_I, K_II (3D: and K_III) of each load group at factor 1 (linear).
         sigma_net: the mean normal stress on the ligament per state (None
             without a yield stress); sigma_basis: the same per load group at
             factor 1.
         cycles: the counted cycles (state indices).
-        x, y: the tip.
+        x, y: the tip; z: 3D only.
         closed: per state, whether the lips touch there (K from contact).
     """
     key: tuple[int, int]
@@ -147,6 +150,106 @@ class TipLevels:
     y: float
     sigma_basis: np.ndarray | None = None
     closed: np.ndarray | None = None
+    K_III: np.ndarray | None = None
+    z: float | None = None
+    twist: float = 0.0
+
+
+class TipPoints:
+    """Where a life is measured, 2D: the tips of polylines, one per SIF row
+    (a 2D tip is a front of one point). front_growth.FrontPoints is the 3D
+    counterpart (growth points along the fronts, K interpolated there from
+    the front's SIF points); LifeRun asks its points for where they are, the
+    kink, K_eq along it, the net-section stress and a record.
+
+    locate(model, rows, cracks) returns the points of one geometry (self,
+    with the model and the rows): keys, values(sifs, name) (a SIF column per
+    point, (solutions, points)), lengths (per crack), size(j) (the a of
+    point j), position(j), basis(j, ...), net_stresses(basis, wanted),
+    record(...); the functions kink, k_eq, k_eq_one, magnitude take K_III
+    (0 here) for the 3D points' sake."""
+
+    def locate(self, model, rows: list[dict], cracks) -> "TipPoints":
+        from .tips import part_length
+        out = TipPoints()
+        out.model, out.rows = model, rows
+        out.keys = []
+        for r in rows:
+            g = model.geometries[r["crack"]]
+            end = 1 if int(np.asarray(g.tip_orientation)[r["tip"]]) == 1 else 0
+            out.keys.append((r["crack"], end))
+        out.lengths = [part_length(model, ci) for ci in range(len(cracks))]
+        out.ntips = {}
+        for ci, _ in out.keys:
+            out.ntips[ci] = out.ntips.get(ci, 0) + 1
+        return out
+
+    @staticmethod
+    def values(sifs: list[list[dict]], name: str) -> np.ndarray | None:
+        """One SIF column, (solutions, points); None for K_III (2D)."""
+        if name == "K_III":
+            return None
+        return np.array([[r[name] for r in s] for s in sifs])
+
+    def size(self, j: int) -> float:
+        ci = self.keys[j][0]
+        return self.lengths[ci] / max(self.ntips[ci], 1)
+
+    def position(self, j: int) -> tuple[float, float, None]:
+        r = self.rows[j]
+        return float(r["x"]), float(r["y"]), None
+
+    def basis(self, j: int, groups, KI, KII, KIII) -> dict[str, tuple[float, ...]]:
+        return {g: (float(KI[i, j]), float(KII[i, j])) for i, g in enumerate(groups)}
+
+    @staticmethod
+    def magnitude(KI: np.ndarray, KII: np.ndarray, KIII) -> np.ndarray:
+        return np.hypot(np.maximum(KI, 0.0), KII)
+
+    @staticmethod
+    def kink(KI: float, KII: float, KIII: float, criterion: str) -> tuple[float, float]:
+        return kink_angle(KI, KII, criterion), 0.0
+
+    @staticmethod
+    def k_eq(KI: np.ndarray, KII: np.ndarray, KIII, theta: float) -> np.ndarray:
+        """K_eq along the kink at every state (linear: not clamped)."""
+        return np.array([equivalent_k(a, b, theta, clamp=False) for a, b in zip(KI, KII)])
+
+    @staticmethod
+    def k_eq_one(KI: float, KII: float, KIII: float, theta: float, clamp: bool = False) -> float:
+        """K_eq of one state (clamp: a negative K_I counts as 0)."""
+        return equivalent_k(KI, KII, theta, clamp=clamp)
+
+    @staticmethod
+    def near(x: float, y: float, *z: float) -> str:
+        return f"the tip near ({x:.6g}, {y:.6g})"
+
+    def net_stresses(self, basis, wanted: bool):
+        """s(j, theta): the mean stress normal to the kink on the ligament
+        ahead of tip j for each basis solution (G,), or None."""
+        if not wanted:
+            return None
+        from ..model.boundary import boundary_segments
+        bnd = boundary_segments(self.model.scene.mesh)
+
+        def at(j: int, theta: float) -> np.ndarray:
+            r0 = self.rows[j]
+            return np.array([_ligament_stress(b, np.array([r0["x"], r0["y"]]), r0, theta, bnd) for b in basis])
+        return at
+
+    def record(self, k: int, j: int, lv: "TipLevels", spread_I: float, spread_II: float, keq: float, closed: float,
+               N: float):
+        from .tips import TipRecord
+        r0 = self.rows[j]
+        ci, end = lv.key
+        return TipRecord(k, ci, end, r0["x"], r0["y"], self.lengths[ci], float(lv.K_I[lv.ref]), float(lv.K_II[lv.ref]),
+                         spread_I, spread_II, math.degrees(lv.theta), keq, closed, N=N, sif_radius=float(r0["radius"]))
+
+    @staticmethod
+    def carry(prev: dict, now: dict) -> dict:
+        """The levels of this geometry keyed by the previous geometry's points
+        (2D: the same tips)."""
+        return now
 
 
 class LifeRun:
@@ -154,7 +257,8 @@ class LifeRun:
     measure() (the load levels), count() (the cycles of the increment just
     taken), advanced() (the increments given) and at the end summary()."""
 
-    def __init__(self, scene: Scene, growth: Growth):
+    def __init__(self, scene: Scene, growth: Growth, points: "TipPoints | None" = None):
+        self.locator = points if points is not None else TipPoints()
         self.scene0 = scene
         self.growth = growth
         fm = growth.fatigue_material.converted(scene.units)
@@ -253,8 +357,9 @@ class LifeRun:
     # -- measure -----------------------------------------------------------------------------------------
     def measure(self, cracks, k: int, N: float, stopped: set[tuple[int, int]]):
         """Solve the load levels of the current geometry (module doc) and
-        record every tip; returns tips.Measured with .levels per tip."""
-        from .tips import Measured, TipRecord, closed_fraction, part_length
+        record every tip (2D) or growth point of a front (3D, the points of
+        self.locator); returns tips.Measured with .levels per point."""
+        from .tips import Measured, closed_fraction
         from .load_path import LevelSolver
         from ..post.solution import create_solution
         t0 = time.perf_counter()
@@ -267,15 +372,15 @@ class LifeRun:
             basis = solver.solve(unit, contact=bilateral, names=[f"unit {g}" for g in self.groups])
             model = basis[0].model
             sifs = [b.stress_intensity_factors(None) for b in basis]
-            tips = [(r["crack"], r["tip"]) for r in sifs[0]]
-            KI = np.array([[r["K_I"] for r in s] for s in sifs])      # (G, tips)
-            KII = np.array([[r["K_II"] for r in s] for s in sifs])
-            spreadI = np.array([[r["K_I_spread"] for r in s] for s in sifs])
-            spreadII = np.array([[r["K_II_spread"] for r in s] for s in sifs])
+            where = self.locator.locate(model, sifs[0], cracks)
+            KI, KII, KIII = where.values(sifs, "K_I"), where.values(sifs, "K_II"), where.values(sifs, "K_III")  # (G, pts)
+            spreadI, spreadII = where.values(sifs, "K_I_spread"), where.values(sifs, "K_II_spread")
             nstate = len(self.states)
-            self._cur_basis = (KI, KII)
-            KI_lin, KII_lin = self.F @ KI, self.F @ KII                 # (states, tips)
+            self._cur_basis = (KI, KII, KIII)
+            KI_lin, KII_lin = self.F @ KI, self.F @ KII                 # (states, pts)
+            KIII_lin = None if KIII is None else self.F @ KIII
             KI_use, KII_use = KI_lin.copy(), KII_lin.copy()
+            KIII_use = None if KIII_lin is None else KIII_lin.copy()
             closed_states: list[int] = []
             solved: list[int] = []
             sol_levels: dict[int, typing.Any] = {}
@@ -295,9 +400,10 @@ class LifeRun:
                 for s, sol in zip(solved, sols):
                     sol_levels[s] = sol
                 cs = [sol.stress_intensity_factors(None) for sol in sols]
-                KI_c = np.array([[r["K_I"] for r in x] for x in cs])
-                KII_c = np.array([[r["K_II"] for r in x] for x in cs])
-                self._fill_closed(closed_states, solved, KI_c, KII_c, KI_lin, KII_lin, KI_use, KII_use, lam_cl)
+                KI_c, KII_c, KIII_c = where.values(cs, "K_I"), where.values(cs, "K_II"), where.values(cs, "K_III")
+                for c, (Kc, Ku) in enumerate(((KI_c, KI_use), (KII_c, KII_use), (KIII_c, KIII_use))):
+                    if Kc is not None:
+                        self._fill_closed(closed_states, solved, Kc, Ku, lam_cl, self._cur_basis[c])
             self.level_solves += solver.solves
             self.load_levels.append(solver.solves)
             n_solves = solver.solves
@@ -308,44 +414,38 @@ class LifeRun:
             else:
                 u = sum(f * b.u for f, b in zip(self.F[ref_state], basis))
                 sol_ref = create_solution(model, u, dict(basis[0].timings), factors=self.factors(self.F[ref_state]))
-            lengths = [part_length(model, ci) for ci in range(len(cracks))]
-            ntips = {}
-            for ci, _ in tips:
-                ntips[ci] = ntips.get(ci, 0) + 1
+            lengths = where.lengths
             records, rates, levels = [], {}, {}
-            from ..model.boundary import boundary_segments
-            bnd = boundary_segments(scene.mesh) if self.yield_stress is not None else None
-            for j, (ci, tip) in enumerate(tips):
-                r0 = sifs[0][j]
-                g = model.geometries[ci]
-                end = 1 if int(np.asarray(g.tip_orientation)[tip]) == 1 else 0
-                key = (ci, end)
-                mag = np.hypot(np.maximum(KI_use[:, j], 0.0), KII_use[:, j])
+            nets = where.net_stresses(basis, self.yield_stress is not None)
+            zero = np.zeros(nstate)
+            for j, key in enumerate(where.keys):
+                k3_lin = zero if KIII_lin is None else KIII_lin[:, j]      # K_III per state (0 in 2D)
+                k3_use = zero if KIII_use is None else KIII_use[:, j]
+                mag = where.magnitude(KI_use[:, j], KII_use[:, j], k3_use)
                 ref = int(np.argmax(mag))
-                theta = kink_angle(KI_use[ref, j], KII_use[ref, j], self.growth.criterion)
-                K_lin = np.array([equivalent_k(a, b, theta, clamp=False) for a, b in zip(KI_lin[:, j], KII_lin[:, j])])
-                K_con = np.array([equivalent_k(a, b, theta, clamp=False) for a, b in zip(KI_use[:, j], KII_use[:, j])])
+                theta, twist = where.kink(KI_use[ref, j], KII_use[ref, j], k3_use[ref], self.growth.criterion)
+                K_lin = where.k_eq(KI_lin[:, j], KII_lin[:, j], k3_lin, theta)
+                K_con = where.k_eq(KI_use[:, j], KII_use[:, j], k3_use, theta)
                 low = int(np.argmin(K_con if self.contact_closure else K_lin))
-                a_tip = lengths[ci] / max(ntips[ci], 1)
+                a_tip = where.size(j)
                 K_cyc = K_con if self.contact_closure else K_lin
                 cycles = self.cycles if self.single else self._count_tip(K_cyc)
                 sigma_net = s_basis = None
-                if bnd is not None:
-                    s_basis = np.array([_ligament_stress(b, np.array([r0["x"], r0["y"]]), r0, theta, bnd)
-                                        for b in basis])
+                if nets is not None:
+                    s_basis = nets(j, theta)
                     sigma_net = self.F @ s_basis
+                x, y, z = where.position(j)
                 lv = TipLevels(key, a_tip, K_lin, K_con, KI_use[:, j], KII_use[:, j], theta, ref, low,
-                               {g: (float(KI[i, j]), float(KII[i, j])) for i, g in enumerate(self.groups)},
-                               sigma_net, cycles, float(r0["x"]), float(r0["y"]), s_basis,
-                               np.isin(np.arange(nstate), closed_states))
+                               where.basis(j, self.groups, KI, KII, KIII),
+                               sigma_net, cycles, x, y, s_basis,
+                               np.isin(np.arange(nstate), closed_states),
+                               K_III=None if KIII_use is None else KIII_use[:, j], z=z, twist=twist)
                 levels[key] = lv
                 spread_I = float(np.abs(self.F[ref]) @ spreadI[:, j])
                 spread_II = float(np.abs(self.F[ref]) @ spreadII[:, j])
-                keq = equivalent_k(KI_use[ref, j], KII_use[ref, j], theta)
-                closed = closed_fraction(sol_levels[ref], ci) if ref in sol_levels else 0.0
-                rec = TipRecord(k, ci, end, r0["x"], r0["y"], lengths[ci], float(KI_use[ref, j]),
-                                float(KII_use[ref, j]), spread_I, spread_II, math.degrees(theta), keq, closed, N=N,
-                                sif_radius=float(r0["radius"]))
+                keq = where.k_eq_one(KI_use[ref, j], KII_use[ref, j], k3_use[ref], theta, clamp=True)
+                closed = closed_fraction(sol_levels[ref], key[0]) if ref in sol_levels else 0.0
+                rec = where.record(k, j, lv, spread_I, spread_II, keq, closed, N)
                 rec.K_I_min, rec.K_II_min = float(KI_use[low, j]), float(KII_use[low, j])
                 rec.a = a_tip
                 self._cycle_summary(rec, lv)
@@ -367,6 +467,7 @@ class LifeRun:
         self._levels_now = levels
         self.step_seconds.append(time.perf_counter() - t0)
         m = Measured(records, rates, lengths, sol_ref, model, solves=n_solves, levels=levels)
+        m.where = where
         if k == 0:
             self._check_initial_failure(levels)
         return m
@@ -412,17 +513,20 @@ class LifeRun:
             chosen = [closed[0]]
         return sorted(chosen), lam_cl
 
-    def _fill_closed(self, closed, solved, KI_c, KII_c, KI_lin, KII_lin, KI_use, KII_use, lam_cl) -> None:
-        """K at every closed state from the solved ones (module doc)."""
+    def _fill_closed(self, closed, solved, K_c: np.ndarray, K_use: np.ndarray, lam_cl, basis: np.ndarray) -> None:
+        """One component of K (K_I, K_II or K_III) at every closed state from
+        the solved ones (module doc): K_c (solved, pts) the contact values,
+        K_use (states, pts) filled in place, basis (groups, pts) the unit
+        values (the linear K at the closure level)."""
         for i, s in enumerate(solved):
-            KI_use[s], KII_use[s] = KI_c[i], KII_c[i]
+            K_use[s] = K_c[i]
         rest = [s for s in closed if s not in solved]
         if not rest:
             return
         if self.single:
             lam = self.states[:, 0]
             xs = [lam[s] for s in solved]
-            ysI, ysII = [KI_c[i] for i in range(len(solved))], [KII_c[i] for i in range(len(solved))]
+            ys = [K_c[i] for i in range(len(solved))]
             if lam_cl is not None:
                 # The closure level: the lips just touch, K is the linear value there.
                 col = [i for i, g in enumerate(self.groups) if (self.residual_of if g == RESIDUAL_GROUP else g)
@@ -430,20 +534,18 @@ class LifeRun:
                 row = self.steady.copy()
                 row[col] = lam_cl
                 xs.append(lam_cl)
-                ysI.append(row @ self._basis_KI)
-                ysII.append(row @ self._basis_KII)
+                ys.append(row @ basis)
             order = np.argsort(xs)
             xs = np.asarray(xs)[order]
-            YI, YII = np.asarray(ysI)[order], np.asarray(ysII)[order]
+            Y = np.asarray(ys)[order]
             for s in rest:
-                for j in range(KI_use.shape[1]):
-                    KI_use[s, j] = np.interp(lam[s], xs, YI[:, j])
-                    KII_use[s, j] = np.interp(lam[s], xs, YII[:, j])
+                for j in range(K_use.shape[1]):
+                    K_use[s, j] = np.interp(lam[s], xs, Y[:, j])
         else:
             P = self.F[solved]
             for s in rest:
                 i = int(np.argmin(np.linalg.norm(P - self.F[s], axis=1)))
-                KI_use[s], KII_use[s] = KI_c[i], KII_c[i]
+                K_use[s] = K_c[i]
 
     def _cycle_summary(self, rec, lv: TipLevels) -> None:
         """The largest counted cycle of the tip: K_max, K_min, Delta K_eff, R."""
@@ -476,18 +578,11 @@ class LifeRun:
         return min(out) if out else None
 
     def _keq_basis(self, lv: TipLevels) -> np.ndarray:
-        return np.array([equivalent_k(lv.basis[g][0], lv.basis[g][1], lv.theta, clamp=False) for g in self.groups])
+        return np.array([self.locator.k_eq_one(b[0], b[1], b[2] if len(b) > 2 else 0.0, lv.theta)
+                         for b in (lv.basis[g] for g in self.groups)])
 
     def _sigma_basis(self, lv: TipLevels) -> np.ndarray:
         return lv.sigma_basis
-
-    @property
-    def _basis_KI(self) -> np.ndarray:
-        return self._cur_basis[0]
-
-    @property
-    def _basis_KII(self) -> np.ndarray:
-        return self._cur_basis[1]
 
     def _check_initial_failure(self, levels: dict) -> None:
         for key, lv in levels.items():
@@ -504,18 +599,18 @@ class LifeRun:
         return None
 
     def _fail(self, criterion: str, t: float, lv: TipLevels, key, a: float | None = None,
-              at: tuple[float, float] | None = None) -> None:
+              at: tuple[float, ...] | None = None) -> None:
         what = (f"K_max reached K_c = {self.K_crit:.6g}" if criterion == "K_max >= K_c" else
                 f"the mean stress on the ligament reached the yield stress {self.yield_stress:.6g}")
         cyc = self.N
         self.failure_criterion = criterion
-        x, y = at if at is not None else (lv.x, lv.y)
-        self.failure = (f"final failure: {what} at the tip near ({x:.6g}, {y:.6g}) of crack {key[0]}, a = "
+        x, y, *z = at if at is not None else (lv.x, lv.y) + (() if lv.z is None else (lv.z,))
+        self.failure = (f"final failure: {what} at {self.locator.near(x, y, *z)} of crack {key[0]}, a = "
                         f"{a if a is not None else lv.a:.6g}, after {cyc:.6g} cycles = {self.passes:.6g} passes = "
                         f"{self.passes * self.blocks_per_pass:.6g} {self.spectrum.block_name}s (criterion: {criterion})")
         self.failure_point = {"criterion": criterion, "a": a if a is not None else lv.a, "cycles": cyc,
                               "passes": self.passes, "blocks": self.passes * self.blocks_per_pass, "crack": key[0],
-                              "end": key[1], "x": x, "y": y}
+                              "end": key[1], "x": x, "y": y, **({"z": z[0]} if z else {})}
 
     # -- count -------------------------------------------------------------------------------------------
     def count(self, m, k: int) -> float:
@@ -523,7 +618,7 @@ class LifeRun:
         doc); set the records' N, passes, blocks; return the cycles so far."""
         now = m.levels
         if k > 0 and self.prev is not None and self.increments and self.failure is None:
-            self._integrate(self.prev, now)
+            self._integrate(self.prev, self.locator.carry(self.prev, now))
         dN = self.N - (self.steps[-1]["cycles"] if self.steps else 0.0)
         for rec in m.records:
             rec.N, rec.dN = self.N, dN
@@ -614,7 +709,8 @@ class LifeRun:
             aa = p.a + t_end * (q.a - p.a)
             lv, lp = now[fkey], prev[fkey]
             self._fail(crit, t_end, lv, fkey, a=lp.a + t_end * (lv.a - lp.a),
-                       at=(lp.x + t_end * (lv.x - lp.x), lp.y + t_end * (lv.y - lp.y)))
+                       at=(lp.x + t_end * (lv.x - lp.x), lp.y + t_end * (lv.y - lp.y))
+                       + (() if lv.z is None else (lp.z + t_end * (lv.z - lp.z),)))
             if fkey == fast:
                 self.failure_point["a"] = aa
 

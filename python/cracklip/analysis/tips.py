@@ -52,6 +52,21 @@ class TipRecord:
 
 
 @dataclasses.dataclass
+class FrontRecord(TipRecord):
+    """One growth point of a 3D front at one step: a TipRecord whose `end`
+    is the point's index along its crack's front and `length` its crack
+    size a (the distance from the crack's origin), with z, K_III and its
+    spread, the twist (degrees), whether the point is where the front meets
+    the part's boundary, and the element size there."""
+    z: float = 0.0
+    K_III: float = 0.0
+    K_III_spread: float = 0.0
+    twist_deg: float = 0.0
+    free_surface: bool = False
+    element_size: float = 0.0
+
+
+@dataclasses.dataclass
 class Measured:
     """One measurement of a geometry: the tip records, the fatigue rates (da
     per cycle, or per pass of a spectrum), the solution at the maximum load

@@ -368,6 +368,8 @@ def cmd_grow(args) -> int:
                 + ("" if r.status == "growing" else f" ({r.status})")
                 for r in records) + life + "\n")
             sys.stderr.flush()
+    if sf.scene.mesh.gdim == 3:
+        return _grow_3d(args, sf, out, series, t_start)
     result = grow(sf.scene, sf.growth, on_step=progress, beta_table=args.beta_table)
     results = write_growth_outputs(sf, result, out, sf.growth, {"total": time.perf_counter() - t_start}, series)
     print_warnings(result.warnings)
@@ -381,6 +383,54 @@ def cmd_grow(args) -> int:
             print(f"  cycles: {result.cycles:.6g}")
         if result.life is not None:
             lf = result.life
+            print(f"  life: {lf['cycles']:.6g} cycles = {lf['blocks']:.6g} {lf['block_name']}s = {lf['passes']:.6g} "
+                  f"passes; closure {lf['closure']}; {lf['level_solves']} level solves"
+                  + (f"; failure ({lf['failure']['criterion']}) at a = {lf['failure']['a']:.6g}" if lf["failure"] else ""))
+        print(f"results in {out}: {', '.join(results['files'][:6])}" + (" ..." if len(results["files"]) > 6 else ""))
+    return 0
+
+
+def _grow_3d(args, sf, out, series, t_start: float) -> int:
+    """cracklip grow on a solid part: per step a progress line per crack
+    (front points, K_I range, the largest advance, a and c of surface and
+    corner cracks, flights done), then the 3D outputs."""
+    from ..analysis.front_growth import SurfaceGrowth
+    from ..io.front_growth_outputs import write_front_growth_outputs
+    run = SurfaceGrowth(sf.scene, sf.growth, False, None, args.beta_table)
+    block = sf.growth.spectrum.block_name if sf.growth.spectrum is not None else "cycle"
+
+    def progress(k, records, solution):
+        if series is not None:
+            series.add(k, solution)
+        if args.quiet:
+            return
+        shape = run.shape[-1] if run.shape else {}
+        parts = []
+        for ci in sorted({r.crack for r in records}):
+            rs = [r for r in records if r.crack == ci]
+            sh = shape.get(ci, {})
+            size = (f"a = {sh['a']:.5g}, c = {sh['c']:.5g} (a/c {sh['a_over_c']:.3f}, a/t {sh['a_over_t']:.3f})"
+                    if sh.get("a") is not None else f"mean radius {sh.get('radius_mean', float('nan')):.5g}, "
+                    f"roundness {100 * sh.get('roundness', 0.0):.2f} %")
+            parts.append(f"{sf.scene.cracks[ci].name}: {len(rs)} front points, {size}, K_I {min(r.K_I for r in rs):.5g}"
+                         f" .. {max(r.K_I for r in rs):.5g}")
+        r0 = records[0] if records else None
+        life = f" | {r0.blocks:.6g} {block}s done, N = {r0.N:.6g} cycles" if r0 is not None else ""
+        sys.stderr.write(f"cracklip grow: step {k}: " + "; ".join(parts) + life + "\n")
+        sys.stderr.flush()
+    run.on_step = progress
+    result = run.run()
+    results = write_front_growth_outputs(sf, result, out, run.growth, {"total": time.perf_counter() - t_start}, series)
+    print_warnings(result.warnings)
+    if not args.quiet:
+        print(f"{sf.title}: {results['steps']} growth steps; {result.stop_reason}")
+        for c in results["final"]["cracks"]:
+            sh = c["shape"] or {}
+            print(f"  {c['name']}: {sh.get('kind', '')} crack"
+                  + (f", a = {sh['a']:.6g}, c = {sh['c']:.6g}, a/c = {sh['a_over_c']:.4g}, a/t = {sh['a_over_t']:.4g}"
+                     if sh.get("a") is not None else f", mean radius {sh.get('radius_mean', float('nan')):.6g}"))
+        lf = result.life
+        if lf is not None:
             print(f"  life: {lf['cycles']:.6g} cycles = {lf['blocks']:.6g} {lf['block_name']}s = {lf['passes']:.6g} "
                   f"passes; closure {lf['closure']}; {lf['level_solves']} level solves"
                   + (f"; failure ({lf['failure']['criterion']}) at a = {lf['failure']['a']:.6g}" if lf["failure"] else ""))

@@ -108,7 +108,8 @@ def write_growth_outputs(scene_file, result: GrowthResult, out_dir, growth, timi
 def growth_settings(growth) -> dict[str, typing.Any]:
     """The growth settings for results.json: the spectrum as its shape (the
     turning points are the user's file), the fatigue material with its source."""
-    out = {k: v for k, v in vars(growth).items() if k not in ("fatigue_material", "spectrum")}
+    out = {k: v for k, v in vars(growth).items() if k not in ("fatigue_material", "spectrum")
+           and not (k == "da_fraction" and not v)}  # (3D only)
     fm = growth.fatigue_material
     if fm is not None:
         out["fatigue_material"] = {**{k: v for k, v in vars(fm).items()}, "description": fm.describe()}
@@ -262,15 +263,17 @@ def write_growth_pngs(scene_file, result: GrowthResult, out: pathlib.Path, fatig
     return names
 
 
-def write_life_pngs(scene_file, result: GrowthResult, out: pathlib.Path, tips) -> list[str]:
+def write_life_pngs(scene_file, result: GrowthResult, out: pathlib.Path, tips, growth=None) -> list[str]:
     """dadN.png (da/dN against Delta K: the law's curves at the R of the
     largest cycles, and each step's largest cycle on them; the CSV adds the
     mean growth per counted cycle), life_K.png (K_max, K_min, Delta K_eff of each tip's largest cycle
-    against cycles), residual_strength.png (against a); each with its CSV."""
+    against cycles), residual_strength.png (against a); each with its CSV.
+    growth: the settings run (default the scene file's; 3D: with the
+    fatigue material made of growth.paris_C, front_growth.life_growth)."""
     from ..analysis.life import create_law
     units = getattr(scene_file.scene, "units", None)
     life = result.life
-    fm = scene_file.growth.fatigue_material.converted(units)
+    fm = (growth if growth is not None else scene_file.growth).fatigue_material.converted(units)
     law = create_law(fm)
     names = []
     fig = new_figure((7, 4.5))

@@ -11,6 +11,7 @@ import dolfinx.cpp.mesh
 import dolfinx.fem
 import dolfinx.mesh
 
+from ..errors import BoundaryConditionError
 from ..scene.mesh import MeshData
 from ..scene.processes import total
 
@@ -61,9 +62,65 @@ def tag_facets(mesh: MeshData, where: str | int) -> tuple[np.ndarray, np.ndarray
 def _tag_facets(mesh: MeshData, where: str | int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The facets of a tag: vertices (n, d, d), lengths or areas (n,),
     outward unit normals (n, d) (pointing away from the facet's cell)."""
-    verts = mesh.facet_vertices(where)                                      # (n, d, d)
-    facets, msh, tdim = mesh.facets(where), mesh.mesh, verts.shape[-1]
+    facets = mesh.facets(where)
+    if total(facets.size, mesh.mesh.comm) == 0:  # (under mpirun a process may hold none of them)
+        raise BoundaryConditionError(f"boundary {where!r} has no facets")
+    return _facet_geometry(mesh, facets)
+
+
+def exterior_facets(mesh: MeshData) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every facet of the part's boundary (holes included), as tag_facets:
+    vertices (n, d, d), lengths or areas (n,), outward unit normals (n, d);
+    computed once per mesh."""
+    return _exterior(mesh)[0]
+
+
+def exterior_facet_tags(mesh: MeshData) -> list[str | None]:
+    """The boundary tag name of each facet of exterior_facets (None where
+    the facet has no named tag)."""
+    return _exterior(mesh)[1]
+
+
+def _exterior(mesh: MeshData) -> tuple:
+    cache = mesh.__dict__.setdefault("_exterior_facets", [])
+    if not cache:
+        msh = mesh.mesh
+        tdim = msh.topology.dim
+        msh.topology.create_connectivity(tdim - 1, tdim)
+        facets = dolfinx.mesh.exterior_facet_indices(msh.topology)
+        names = {v: k for k, v in mesh.tags.items()}
+        tag_of: dict[int, str] = {}
+        if mesh.facet_tags is not None:
+            for f, v in zip(np.asarray(mesh.facet_tags.indices), np.asarray(mesh.facet_tags.values)):
+                if int(v) in names:
+                    tag_of[int(f)] = names[int(v)]
+        cache.append((_facet_geometry(mesh, facets), [tag_of.get(int(f)) for f in facets]))
+    return cache[0]
+
+
+def points_inside(mesh: MeshData, points: np.ndarray) -> np.ndarray:
+    """Whether each point (n, d) lies in a cell of the mesh (on the boundary
+    counts), any dimension; the cells' bounding-box tree is built once per mesh."""
+    import dolfinx.geometry
+    msh = mesh.mesh
+    pts = np.asarray(points, dtype=float).reshape(-1, msh.geometry.dim)
+    if not len(pts):
+        return np.zeros(0, dtype=bool)
+    cache = mesh.__dict__.setdefault("_cell_tree", [])
+    if not cache:
+        cache.append(dolfinx.geometry.BoundingBoxTree(msh, msh.topology.dim))
+    p3 = np.zeros((len(pts), 3))
+    p3[:, :pts.shape[1]] = pts
+    coll = dolfinx.geometry.compute_colliding_cells(msh, dolfinx.geometry.compute_collisions(cache[0], p3), p3)
+    return np.diff(coll.offsets) > 0
+
+
+def _facet_geometry(mesh: MeshData, facets: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    msh = mesh.mesh
+    tdim = msh.topology.dim
+    msh.topology.create_connectivity(tdim - 1, tdim)
     x = msh.geometry.x[:, :tdim]
+    verts = x[dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, tdim - 1, facets, False)]   # (n, d, d)
     edges = verts[:, 1:] - verts[:, :1]
     if tdim == 2:  # a segment's normal: its direction turned by -90 degrees
         n = np.stack([edges[:, 0, 1], -edges[:, 0, 0]], axis=1)

@@ -16,11 +16,19 @@ class Growth:
     """Growth settings.
 
     Attributes:
-        criterion: "max_hoop" (maximum hoop stress, Erdogan-Sih) or
+        criterion: "max_hoop" (maximum hoop stress, Erdogan-Sih; 3D:
+            generalised with K_III, code_aster's SITT_MAX_DEVER kink) or
             "max_energy_release" (the kink maximising k1^2 + k2^2 of the
-            first-order local stress intensity factors).
+            first-order local stress intensity factors; 2D only).
         da: the increment of a step (of the fastest tip in fatigue), in
-            length units; 0 takes 3 element sizes at the first tip.
+            length units; 0 takes 3 element sizes at the first tip. 3D: the
+            largest advance along the front in one step (each point
+            advances da times its rate over the fastest one's); 0: 2
+            element sizes at the front.
+        da_fraction: 3D fronts: the step's largest advance as this fraction
+            of the fastest point's crack size a (its distance from the
+            crack's origin), instead of growth.da: steps that keep pace with
+            a crack growing by orders of magnitude on a graded mesh (0: off).
         steps: the number of increments.
         paris_C: C of the Paris law da/dN = C (Delta K)^m; with paris_m the
             growth is fatigue (cycles integrated) and needs a load cycle.
@@ -38,11 +46,12 @@ class Growth:
         R: load ratio min / max of a proportional cycle (when cycle_min is
             unset).
         max_length: stop when a crack's length in the part reaches this
-            (unset: no limit).
+            (3D: a surface or corner crack's depth a, an embedded crack's
+            mean radius; unset: no limit).
         max_kink_change: stop when a tip's kink turns by more than this
             (degrees) between steps (instability; the first kink, off the
             initial crack, is not compared).
-        corrections: corrector solves per step (0: the explicit scheme):
+        corrections: corrector solves per step (0: the explicit scheme; 2D only):
             each increment is turned about its start until the kink wanted
             at its end is below corrector_tolerance (local symmetry at the
             end of the increment); steadies paths whose explicit kinks
@@ -63,6 +72,7 @@ class Growth:
     criterion: str = "max_hoop"
     da: float = 0.0
     steps: int = 10
+    da_fraction: float = 0.0
     paris_C: float | None = None
     paris_m: float | None = None
     threshold: float = 0.0
@@ -90,6 +100,10 @@ class Growth:
         if self.criterion not in CRITERIA:
             raise InputError(f"growth.criterion must be one of {CRITERIA}, got {self.criterion!r}")
         positive("da", self.da, allow_zero=True)
+        positive("da_fraction", self.da_fraction, allow_zero=True)
+        if self.da_fraction >= 1.0:
+            raise InputError(f"growth.da_fraction is a fraction of the crack size (below 1, e.g. 0.1), got "
+                             f"{self.da_fraction!r}")
         if isinstance(self.steps, bool) or not isinstance(self.steps, int) or self.steps < 1:
             raise InputError(f"growth.steps must be an integer >= 1, got {self.steps!r}")
         if isinstance(self.corrections, bool) or not isinstance(self.corrections, int) or self.corrections < 0:

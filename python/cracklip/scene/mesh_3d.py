@@ -83,6 +83,33 @@ class FrontRefinement:
         object.__setattr__(self, "points", pts)
 
 
+@dataclasses.dataclass(frozen=True)
+class BoxRefinement:
+    """A refinement of a box-shaped region (where a 3D crack will grow: its
+    front must stay in elements of the size it started in).
+
+    Attributes:
+        lo, hi: (3,) the box's opposite corners.
+        h_front: element size inside the box.
+        radius: the distance over which the size grows back to the mesh size
+            outside it (lengthened if the growth would exceed MAX_GROWTH).
+    """
+    lo: tuple[float, float, float]
+    hi: tuple[float, float, float]
+    h_front: float
+    radius: float
+
+    def __post_init__(self):
+        lo, hi = np.asarray(self.lo, dtype=float).reshape(-1), np.asarray(self.hi, dtype=float).reshape(-1)
+        if lo.shape != (3,) or hi.shape != (3,) or not np.all(hi > lo) or not np.all(np.isfinite(np.r_[lo, hi])):
+            raise MeshError(f"a box refinement needs corners lo < hi (3 finite numbers each), got {self.lo!r}, "
+                            f"{self.hi!r}")
+        if not (self.h_front > 0.0 and self.radius >= 0.0):
+            raise MeshError(f"a box refinement needs h > 0 and radius >= 0, got {self.h_front!r}, {self.radius!r}")
+        object.__setattr__(self, "lo", tuple(float(v) for v in lo))
+        object.__setattr__(self, "hi", tuple(float(v) for v in hi))
+
+
 #: Element size over a crack's surface, in front sizes (crack_refinements).
 SURFACE_SIZE = 2.0
 
@@ -157,6 +184,17 @@ def _size_fields(gmsh, h: float, fronts: typing.Sequence[FrontRefinement], kerne
     # points, and synchronizing would replace them.
     factory = getattr(gmsh.model, kernel)
     for fr in fronts:
+        if isinstance(fr, BoxRefinement):
+            # gmsh's Box field: h_front inside, growing linearly to h over a layer of (h - h_front) / growth.
+            plateau, growth = refinement_size(h, fr.h_front, fr.radius)
+            f = gmsh.model.mesh.field.add("Box")
+            for key, v in zip(("XMin", "YMin", "ZMin", "XMax", "YMax", "ZMax"), fr.lo + fr.hi):
+                gmsh.model.mesh.field.setNumber(f, key, float(v))
+            gmsh.model.mesh.field.setNumber(f, "VIn", float(fr.h_front))
+            gmsh.model.mesh.field.setNumber(f, "VOut", float(h))
+            gmsh.model.mesh.field.setNumber(f, "Thickness", float(max(h - fr.h_front, 0.0) / max(growth, 1e-12)))
+            fields.append(f)
+            continue
         tags = [factory.addPoint(*map(float, p)) for p in fr.points]
         factory.synchronize()
         dist = gmsh.model.mesh.field.add("Distance")
@@ -336,6 +374,6 @@ def expected_cells(volume: float, h: float) -> float:
     return TETS_PER_VOLUME_H3 * volume / h ** 3
 
 
-__all__ = ["FrontRefinement", "crack_refinements", "create_box", "create_cylinder", "read_msh_3d",
+__all__ = ["FrontRefinement", "BoxRefinement", "crack_refinements", "create_box", "create_cylinder", "read_msh_3d",
            "front_sampling", "expected_cells", "crack_size", "default_growth", "FRONT_GROWTH", "similar_mesh"]
 

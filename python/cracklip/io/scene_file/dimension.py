@@ -29,12 +29,13 @@ KIND_DIMENSION = {"rectangle": 2, "plate_with_hole": 2, "plate_with_holes": 2, "
 NOT_YET_3D = {
     "loads.initial_stress": "an initial (residual) stress is not supported on 3D parts yet",
     "load_path": "load paths are not supported on 3D parts yet: give the loads at factor 1",
-    "growth": "crack growth is 2D only for now: growing a 3D crack is not available in this version (`cracklip "
-              "run` gives K along its fronts)",
-    "spectrum": "fatigue spectra are read by `cracklip grow`, and growing a 3D crack is not available in this "
-                "version",
-    "material.fatigue": "fatigue constants are read by `cracklip grow`, and growing a 3D crack is not available in "
-                        "this version",
+}
+
+#: [growth] keys a 3D front does not take (key -> why).
+GROWTH_2D_ONLY = {
+    "growth.corrections": "the corrector turns a 2D tip's last increment; 3D fronts advance by the explicit kink "
+                          "(leave it 0)",
+    "growth.corrector_tolerance": "it belongs to growth.corrections, a 2D corrector",
 }
 
 
@@ -132,6 +133,10 @@ def check_dimension(doc: dict, settings: dict, dim: int, why: str) -> None:
     if dim == 2:
         for where, _ in _parts(doc, "mesh.crack_h"):
             raise InputError(f"{where} refines over 3D crack surfaces but {part}: use mesh.refine or mesh.tip_h")
+        for where, _ in _parts(doc, "mesh.refine.box"):
+            raise InputError(f"{where} refines a box of a solid but {part}: use mesh.refine[].point or segment")
+        for where, _ in _parts(doc, "growth.da_fraction"):
+            raise InputError(f"{where} sizes the steps of 3D fronts but {part}: a 2D tip advances growth.da")
         return
     # dim == 3: the 2D-only keys.
     two_d = {
@@ -154,6 +159,19 @@ def check_dimension(doc: dict, settings: dict, dim: int, why: str) -> None:
     for key, text in NOT_YET_3D.items():
         for where, _ in _parts(doc, key):
             raise InputError(f"{where}: {text} ({part})")
+    for key, text in GROWTH_2D_ONLY.items():
+        for where, _ in _parts(doc, key):
+            raise InputError(f"{where} is a 2D growth setting but {part}: {text}")
+    g = doc.get("growth")
+    if isinstance(g, dict):
+        if g.get("criterion") == "max_energy_release":
+            raise InputError(f"growth.criterion = 'max_energy_release' is a 2D criterion but {part}: 3D fronts kink by "
+                             "the maximum hoop stress generalised with K_III (`max_hoop`, the default)")
+        fatigue = isinstance(doc.get("material"), dict) and "fatigue" in doc["material"]
+        if "paris_C" not in g and not fatigue:
+            raise InputError(f"[growth] without a growth law but {part}: a 3D front advances each point by its own "
+                             "rate, growth.da being the largest advance in a step; give growth.paris_C, paris_m with "
+                             "growth.R (or cycle_min), or [material.fatigue] with a [spectrum] or growth.R")
     o = s["options"]
     if o["contact"] != "none" or o["friction"] != 0.0:
         raise InputError(f"options.contact = {o['contact']!r}, friction = {o['friction']:g}: crack-lip contact is "

@@ -211,14 +211,13 @@ def _spectrum(sp: dict, base_dir: pathlib.Path):
                     sp["block_name"], sp["contact_levels"], sp["max_passes"])
 
 
-def describe_growth(g) -> str:
-    """One line of the growth settings (check and the progress)."""
+def describe_growth(g, dim: int = 2) -> str:
+    """One line of the growth settings (check and the progress); dim 3: a
+    front's wording and stops."""
+    if dim == 3:
+        return _describe_front_growth(g)
     if g.life:
-        sp = g.spectrum
-        load = (f"spectrum of {sp.blocks_per_pass} {sp.block_name}(s) per pass, groups {list(sp.groups)}, "
-                f"{sp.counting} counting, residue {sp.residue}" if sp is not None else
-                f"cycle max {g.cycle_max or 'every group at 1'}, min "
-                f"{g.cycle_min if g.cycle_min is not None else f'R = {g.R:g} x max'}")
+        load = _describe_load(g)
         how = f"fatigue life: {g.fatigue_material.describe()}; {load}; fastest tip da = " + \
             (f"{g.da:g}" if g.da else "3 tip elements")
     elif g.fatigue:
@@ -234,6 +233,34 @@ def describe_growth(g) -> str:
     stops = [f"{g.steps} steps"] + ([f"K_Ic = {g.K_Ic:g}"] if g.K_Ic is not None else []) + \
         ([f"length {g.max_length:g}"] if g.max_length is not None else []) + [f"kink change > {g.max_kink_change:g} deg"]
     return f"{g.criterion.replace('_', ' ')} criterion, {how}; stops: {', '.join(stops)}"
+
+
+def _describe_load(g) -> str:
+    """The cycles of a fatigue life, in words (2D and 3D)."""
+    sp = g.spectrum
+    if sp is not None:
+        return (f"spectrum of {sp.blocks_per_pass} {sp.block_name}(s) per pass, groups {list(sp.groups)}, "
+                f"{sp.counting} counting, residue {sp.residue}")
+    return (f"cycle max {g.cycle_max or 'every group at 1'}, min "
+            f"{g.cycle_min if g.cycle_min is not None else f'R = {g.R:g} x max'}")
+
+
+def _describe_front_growth(g) -> str:
+    if g.life:
+        load = _describe_load(g)
+        law = f"fatigue life: {g.fatigue_material.describe()}; {load}"
+    else:
+        law = (f"fatigue: Paris C = {g.paris_C:g}, m = {g.paris_m:g}"
+               + (f", Walker gamma = {g.walker_gamma:g}" if g.walker_gamma != 1.0 else "")
+               + (f", threshold {g.threshold:g}" if g.threshold else "") + f"; cycle max "
+               f"{g.cycle_max or 'every group at 1'}, min {g.cycle_min if g.cycle_min is not None else f'R = {g.R:g} x max'}")
+    step = (f"{g.da_fraction:g} of the fastest point's crack size" if g.da_fraction else
+            f"{g.da:g}" if g.da else "2 front elements")
+    stops = [f"{g.steps} steps"] + ([f"K_Ic = {g.K_Ic:g}"] if g.K_Ic is not None else []) + \
+        ([f"size {g.max_length:g}"] if g.max_length is not None else []) + \
+        ["breakthrough"] + (["K_c, net-section yield"] if g.life else [])
+    return (f"3D fronts, maximum hoop stress with K_III (SITT_MAX_DEVER), {law}; largest advance per step {step}; "
+            f"stops: {', '.join(stops)}")
 
 
 def read_growth(s: dict, life: bool, units, base_dir: pathlib.Path):
@@ -283,4 +310,4 @@ def check_growth(growth, scene, notes: list[str]) -> None:
         if unknown:
             raise InputError(f"{name} names load group(s) {unknown} that no load belongs to; the scene's "
                              f"groups: {sorted(groups)}")
-    notes.append("growth: " + describe_growth(growth))
+    notes.append("growth: " + describe_growth(growth, scene.mesh.gdim))

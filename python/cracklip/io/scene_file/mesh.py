@@ -92,7 +92,10 @@ KEYS: list[Key] = [
         "segment)", p_point_any),
     Key("mesh.refine[].segment", "[[x0, y0], [x1, y1]]", UNSET, "a segment refined along its length (a band "
         "along a crack's expected path; one of point, segment; 3D: [[x0, y0, z0], [x1, y1, z1]])", p_segment),
-    Key("mesh.refine[].h", "float", REQUIRED, "element size at the point (and within 4 times that size of it)",
+    Key("mesh.refine[].box", "[x0, y0, z0, x1, y1, z1]", UNSET, "3D: a box refined throughout (the region a "
+        "crack grows into; one of point, segment, box)", p_solid_box),
+    Key("mesh.refine[].h", "float", REQUIRED, "element size at the point (and within 4 times that size of it; "
+        "a box: inside it)",
         p_float(positive=True)),
     Key("mesh.refine[].radius", "float", 0.0, "distance over which the size grows back to h beyond that "
         "plateau, never faster than 0.25 per unit length; 0: that fastest growth", p_float(0.0)),
@@ -227,9 +230,12 @@ def nearest_node(mesh: MeshData, point, where: str) -> tuple[float, ...]:
 def _refine_items(m: dict, h: float) -> list:
     """mesh.refine items of a 3D scene as front refinements (a point, or a
     segment sampled every h_near / 2)."""
-    from ...scene.mesh_3d import FrontRefinement
+    from ...scene.mesh_3d import BoxRefinement, FrontRefinement
     out = []
     for r in m["refine"]:
+        if "box" in r:
+            out.append(BoxRefinement(tuple(r["box"][:3]), tuple(r["box"][3:]), min(r["h"], h), r["radius"]))
+            continue
         if "point" in r:
             pts = np.asarray([r["point"]], dtype=float)
         else:

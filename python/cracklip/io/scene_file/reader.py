@@ -161,8 +161,8 @@ def parse_settings(doc: dict) -> dict:
     refine = _items(mesh_doc, "refine")
     s["mesh"]["refine"] = [_section(r, "mesh.refine[]", f"mesh.refine[{i}]", kind) for i, r in enumerate(refine)]
     for i, r in enumerate(s["mesh"]["refine"]):
-        if ("point" in r) == ("segment" in r):
-            raise InputError(f"mesh.refine[{i}] needs exactly one of point or segment")
+        if sum(k in r for k in ("point", "segment", "box")) != 1:
+            raise InputError(f"mesh.refine[{i}] needs exactly one of point, segment or box (3D)")
     if "units" in doc:
         s["units"] = _section(doc["units"], "units", "units")
     if "material" not in doc:

@@ -1,0 +1,270 @@
+"""The growth loop's state and its named steps, shared by 2D and 3D
+(GrowthRun), and what a run returns (GrowthResult). The geometry's own
+steps are in the subclasses: analysis.growth.CurveGrowth (2D tips) and
+analysis.front_growth.SurfaceGrowth (3D fronts); analysis.growth.grow
+picks one by the part's dimension."""
+from __future__ import annotations
+
+import dataclasses
+import logging
+import time
+import typing
+
+from ..errors import BoundaryConditionError, InputError
+from ..scene.growth import Growth
+from ..scene.scene import Scene
+from .tips import Measured, TipRecord
+
+logger = logging.getLogger("cracklip.analysis.growth")
+
+
+@dataclasses.dataclass
+class GrowthResult:
+    """What grow returns: the tip records of every step (records[k] at step
+    k, the last one at the final geometry), the final cracks, why it stopped,
+    the warnings met, each step's Solution if kept, seconds per step, the
+    cycles, the solves per step (load levels solved, with the corrector's),
+    the model warning codes of each step, the criterion of the stop, in
+    a spectrum life its summary (analysis.life.LifeRun.summary), and the
+    beta table's rows (grow(beta_table=True); analysis.life.beta_rows);
+    3D: fronts, what the fronts did (front_growth.SurfaceGrowth.result:
+    per step the crack surfaces and each crack's shape, the growth
+    spacing, margin, front element size)."""
+    records: list[list[TipRecord]]
+    cracks: list  # the final cracks: scene.crack.Crack (2D), scene.crack_surface.SurfaceCrack (3D)
+    stop_reason: str
+    stops: list[str]
+    warnings: list[str]
+    solutions: list
+    step_times: list[float]
+    cycles: float = 0.0
+    step_solves: list[int] = dataclasses.field(default_factory=list)
+    step_warnings: list[list[str]] = dataclasses.field(default_factory=list)
+    stop_criterion: str | None = None
+    life: dict[str, typing.Any] | None = None
+    beta: list[dict[str, typing.Any]] = dataclasses.field(default_factory=list)
+    fronts: dict[str, typing.Any] | None = None
+
+    @property
+    def rows(self) -> list[dict[str, typing.Any]]:
+        return [r.row() for step in self.records for r in step]
+
+
+class GrowthRun:
+    """The growth loop's state and its named steps, shared by 2D and 3D:
+    measure the geometry (solve, K per tip or front point), correct the
+    increment just taken (optional, 2D), collect the model's warnings,
+    count the cycles of the increment (fatigue), record the beta table,
+    check the stops, advance the cracks. run() repeats them until a stop.
+
+    What differs with the geometry (a polyline's tips against a surface's
+    front) lives in the subclasses: CurveGrowth here (2D) and
+    front_growth.SurfaceGrowth (3D) give measure, advance and record_beta
+    (and 2D the corrector)."""
+
+    def __init__(self, scene: Scene, growth: Growth, keep_solutions: bool,
+                 on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None, beta_table: bool = False):
+        scene.mesh.cache_standard_block = True
+        self.scene = scene
+        self.growth = growth
+        self.keep_solutions = keep_solutions
+        self.on_step = on_step
+        self.cracks = self.initial_cracks(scene)
+        if not self.cracks:
+            raise InputError("growth needs at least one crack")
+        self.records: list[list[TipRecord]] = []
+        self.stops: list[str] = []
+        self.warnings: list[str] = []
+        self.solutions: list = []
+        self.step_times: list[float] = []
+        self.solves: list[int] = []
+        self.stopped: set[tuple[int, int]] = set()      # (crack, end) that no longer grow
+        self.grown: set[tuple[int, int]] = set()        # (crack, end) advanced by the last step
+        self.warned: set[str] = set()                   # increment warnings given (once each)
+        self.warning_counts: dict[str, int] = {}        # model warnings by code, over all steps
+        self.step_warnings: list[list[str]] = []
+        self.last_kink: dict[tuple[int, int], float] = {}
+        self.N = 0.0
+        self.prev_rate: float | None = None             # constant amplitude: the trapezoid's last rate
+        self.prev_da = 0.0
+        self.da = growth.da
+        self.fatigue = growth.fatigue
+        self.stop_reason = f"{growth.steps} steps done"
+        self.stop_criterion: str | None = None
+        self.k = 0
+        self.t0 = 0.0
+        self.beta_table = beta_table
+        self.beta: list[dict[str, typing.Any]] = []
+        self.pending: tuple[str, str] | None = None     # a stop found by advance: (reason, criterion)
+        self.life = self.create_life()
+
+    # -- what the geometry gives (subclasses) ---------------------------------------------------------------
+    def initial_cracks(self, scene: Scene) -> list:
+        """The cracks the run grows (copies of the scene's)."""
+        raise NotImplementedError
+
+    def create_life(self):
+        """The fatigue life of the run (analysis.life.LifeRun), or None."""
+        return None
+
+    def measure(self) -> Measured:
+        """Solve the current geometry and record every tip or front point."""
+        raise NotImplementedError
+
+    def correct(self, m: Measured) -> tuple[Measured, int]:
+        """The corrector on the increment just taken: the measurement of the
+        geometry kept and the extra solves (none by default)."""
+        return m, 0
+
+    def record_beta(self, m: Measured) -> int:
+        """The beta table's rows of this geometry; returns the extra solves."""
+        return 0
+
+    def advance(self, m: Measured) -> None:
+        """Advance the growing cracks by the step's increments."""
+        raise NotImplementedError
+
+    # -- the shared steps ---------------------------------------------------------------------------------
+    def collect_warnings(self, m: Measured) -> None:
+        """The model's warnings of every step (a kinked path can clip a SIF
+        domain): the first of each code in full, the later ones counted."""
+        self.step_warnings.append(sorted({w.code for w in m.sol.warnings}))
+        for w in m.sol.warnings:
+            if w.code not in self.warning_counts:
+                self.warnings.append(w.message if self.k == 0 else f"step {self.k}: {w.message}")
+            self.warning_counts[w.code] = self.warning_counts.get(w.code, 0) + 1
+
+    def count_cycles(self, m: Measured) -> None:
+        """The cycles of the increment just taken: constant amplitude by the
+        trapezoidal rule between its two ends; a spectrum pass by pass with K
+        interpolated between them (cracklip.analysis.life)."""
+        if self.life is not None:
+            self.N = self.life.count(m, self.k)
+            return
+        if self.fatigue and self.k > 0 and self.prev_rate is not None:
+            rate_now = max(m.rates.values()) if m.rates else self.prev_rate
+            dN = self.prev_da * 0.5 * (1.0 / self.prev_rate + 1.0 / rate_now)
+            self.N += dN
+            for rec in m.records:  # the cycles spent to reach this geometry
+                rec.dN, rec.N = dN, self.N
+
+    def _stop(self, reason: str, criterion: str | None = None) -> bool:
+        self.stop_reason = reason
+        self.stop_criterion = criterion
+        self.stops.append(reason)
+        self.step_times.append(time.perf_counter() - self.t0)
+        return True
+
+    def check_stops(self, m: Measured) -> bool:
+        """The stops that end the run (module doc); True to stop."""
+        growth, k, step = self.growth, self.k, m.records
+        if self.life is not None and self.life.failure is not None:
+            return self._stop(self.life.failure, self.life.failure_criterion)
+        if growth.K_Ic is not None:
+            failing = [r for r in step if r.K_eq >= growth.K_Ic]
+            if failing:
+                r = failing[0]
+                return self._stop(f"final failure: K_eq = {r.K_eq:.6g} >= K_Ic = {growth.K_Ic:g} at "
+                                  f"{self.where(r)} of crack {self.cracks[r.crack].name!r} (step {k})",
+                                  "K_eq >= growth.K_Ic")
+        if growth.max_length is not None and any(v >= growth.max_length * (1.0 - 1e-9) for v in m.lengths):
+            return self._stop(f"a crack reached the {self.SIZE_NAME} {growth.max_length:g} (step {k})",
+                              "growth.max_length")
+        if self.life is not None and self.life.passes_exceeded():
+            return self._stop(f"the life passed spectrum.max_passes = {self.life.max_passes:g} passes (step {k})",
+                              "spectrum.max_passes")
+        if k == growth.steps:
+            self.step_times.append(time.perf_counter() - self.t0)
+            self.stop_criterion = "growth.steps"
+            return True
+        growing = [r for r in step if r.status == "growing"]
+        if not step:
+            return self._stop(f"no crack tip is left in the part (step {k}): the cracks run through it",
+                              "no tip in the part")
+        if not growing:
+            return self._stop(f"no tip grows any more (step {k}: " + "; ".join(
+                f"crack {self.cracks[r.crack].name!r} {self.END} {r.end}: {r.status}" for r in step) + ")",
+                "no growing tip")
+        unstable = [r for r in growing if (r.crack, r.end) in self.last_kink
+                    and abs(r.kink_deg - self.last_kink[r.crack, r.end]) > growth.max_kink_change]
+        if unstable:
+            r = unstable[0]
+            return self._stop(f"unstable growth: the kink at {self.where(r, 'at')} turned from "
+                              f"{self.last_kink[r.crack, r.end]:.2f} to {r.kink_deg:.2f} degrees between steps "
+                              f"(more than growth.max_kink_change = {growth.max_kink_change:g})",
+                              "growth.max_kink_change")
+        return self.check_geometry_stops(m)
+
+    def check_geometry_stops(self, m: Measured) -> bool:
+        """Stops of the geometry (3D: breakthrough); True to stop."""
+        return False
+
+    #: What a crack's size is called in messages (growth.max_length).
+    SIZE_NAME = "length"
+    #: What a record's `end` is called in messages.
+    END = "end"
+
+    def where(self, r: TipRecord, how: str = "tip") -> str:
+        """A record's point for messages."""
+        if how == "at":
+            return f"({r.x:.6g}, {r.y:.6g})"
+        return f"the tip ({r.x:.6g}, {r.y:.6g})"
+
+    def describe_step(self, records: list[TipRecord]) -> str:
+        return "; ".join(
+            f"crack {self.cracks[r.crack].name!r} end {r.end}: a = {r.length:.4g}, K_I = {r.K_I:.4g}, "
+            f"K_II = {r.K_II:.4g}, kink {r.kink_deg:.1f} deg" + (f", N = {r.N:.4g}" if self.fatigue else "")
+            for r in records)
+
+    def final_stop(self, k: int, error: BoundaryConditionError) -> bool:
+        """A solve that failed after some growth: True when it ends the run
+        (the cracks cut the part apart), False to raise the error."""
+        if k == 0 or "cut the part into" not in str(error):
+            return False
+        self.stop_reason = f"final separation: after step {k - 1} the cracks cut the part apart ({error})"
+        self.stop_criterion = "final separation"
+        self.stops.append(self.stop_reason)
+        return True
+
+    # -- the loop ---------------------------------------------------------------------------------------
+    def run(self) -> GrowthResult:
+        for k in range(self.growth.steps + 1):
+            self.k = k
+            self.t0 = time.perf_counter()
+            try:
+                m = self.measure()
+            except BoundaryConditionError as e:
+                if not self.final_stop(k, e):
+                    raise
+                break
+            m, extra = self.correct(m)
+            extra += self.record_beta(m)
+            self.solves.append(m.solves + extra)
+            self.collect_warnings(m)
+            self.count_cycles(m)
+            self.records.append(m.records)
+            if self.on_step is not None:
+                self.on_step(k, m.records, m.sol)
+            if self.keep_solutions:
+                self.solutions.append(m.sol)
+            if self.check_stops(m):
+                break
+            self.advance(m)
+            if self.pending is not None:  # a stop the advance found (3D: breakthrough)
+                self._stop(*self.pending)
+                break
+            self.step_times.append(time.perf_counter() - self.t0)
+            logger.debug("growth step %d: %s", k, self.describe_step(m.records))
+        return self.result()
+
+    def result(self) -> GrowthResult:
+        warnings = self.warnings + [
+            f"the model warning '{c}' came {n} times in all (at the steps listed in results.json per_step)"
+            for c, n in self.warning_counts.items() if n > 1]
+        return GrowthResult(self.records, self.cracks, self.stop_reason, self.stops, list(dict.fromkeys(warnings)),
+                            self.solutions, self.step_times, self.N, self.solves, self.step_warnings,
+                            stop_criterion=self.stop_criterion,
+                            life=self.life.summary(self.records) if self.life is not None else None, beta=self.beta)
+
+
+__all__ = ["GrowthResult", "GrowthRun"]
