@@ -34,7 +34,8 @@ curvature of the crack surface (a non-planar crack). Then
                               - int_lips (t . [grad u_aux d] + t_aux . grad u d) q dA,
 
 T, D from the C++ kernel (interaction_integrand_3d, body force included), t
-the lip pressure's traction, and K_I = E' I_I / 2, K_II = E' I_II / 2,
+the lip traction (the lip pressure's, the contact pressure and friction
+shear: fracture/lip_tractions.py), and K_I = E' I_I / 2, K_II = E' I_II / 2,
 K_III = mu I_III, E' = E / (1 - nu^2). The normalisation is the integral of
 the P1 q along the front polyline.
 
@@ -66,8 +67,8 @@ import scipy.spatial
 from .. import _cracklip
 from ..errors import InputError
 from ..model.cracks.surface import split_enriched
-from ..model.loads import lip_pressure
 from ..scene.crack_surface import EllipticalCrack
+from .lip_tractions import has_lip_traction, lip_traction
 from .sif import complete_rows
 
 logger = logging.getLogger(__name__)
@@ -678,7 +679,7 @@ def crack_front_sifs(solution, crack: int, radius: float | None = None) -> tuple
     node_r[nodes] = npr["distance"]
     body = _body_force(solution)
     crk = m.cracks[crack].crack
-    pressure = (callable(crk.pressure) or crk.pressure != 0.0) and solution.factor(crk.pressure_group) != 0.0
+    pressure = has_lip_traction(solution, crack)
     lips = lip_points(m, crack)
     K = np.zeros((len(fps), len(DOMAIN_FRACTIONS), 3))
     # Per front point: its nodal q (one column per domain) and its cells.
@@ -817,29 +818,27 @@ def hat_deconvolve(A: np.ndarray, lm: np.ndarray, lp: np.ndarray, closed: bool, 
     return np.linalg.solve(M, rhs).reshape(np.shape(A))
 
 
-def _lip_terms(solution, crack: int, lp: dict, E: float, nu: float, lam: float, mu: float, pressure: bool
+def _lip_terms(solution, crack: int, lp: dict, E: float, nu: float, lam: float, mu: float, traction: bool
                ) -> np.ndarray:
     """Per lip point (n, mode, l): the lip integrand per unit q and
     virtual-extension direction d_l, t . [grad u_aux]_l + sum_lips t_aux .
-    grad u_l (subtracted by the caller)."""
+    grad u_l (subtracted by the caller); t the lip traction (lip pressure,
+    contact pressure and friction: lip_tractions.lip_traction) where
+    `traction`."""
     m = solution.model
     n = len(lp["weight"])
     pr = project(m, crack, lp["x"])
     fr12, curv = _frames12(pr), np.ascontiguousarray(pr["curvature"])
     out = np.zeros((n, 3, 3))
     normal = lp["normal"]
-    p = None
-    if pressure:
-        crk = m.cracks[crack].crack
-        p = solution.factor(crk.pressure_group) * lip_pressure(crk, lp["x"])
+    t_plus = lip_traction(solution, crack, lp) if traction else None   # (n, 3) on the + lip
     for side in (1, -1):
         sides = np.full(n, side, dtype=np.int8)
         aux = _cracklip.auxiliary_fields_3d(E, nu, fr12, curv, np.ascontiguousarray(lp["x"]), sides)
         G = aux["G"]                                              # (n, mode, i, l)
         n_out = -side * normal                                     # outward normal of the side's material
-        if p is not None:  # the pressure's traction on this lip: -p n_out
-            t = -p[:, None] * n_out
-            out += np.einsum("ni,nmil->nml", t, G)
+        if t_plus is not None:  # the traction on this lip: the + lip's, the - lip the opposite
+            out += np.einsum("ni,nmil->nml", side * t_plus, G)
         # the auxiliary field's traction on this lip (curvature terms) times grad u there
         _, g = solution._evaluate(lp["cell"], lp["ref"], sides, gradient=True)
         eps = 0.5 * (G + np.swapaxes(G, 2, 3))

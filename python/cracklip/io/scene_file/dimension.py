@@ -28,7 +28,6 @@ KIND_DIMENSION = {"rectangle": 2, "plate_with_hole": 2, "plate_with_holes": 2, "
 #: What a 3D scene cannot have yet (key -> why), checked when given.
 NOT_YET_3D = {
     "loads.initial_stress": "an initial (residual) stress is not supported on 3D parts yet",
-    "load_path": "load paths are not supported on 3D parts yet: give the loads at factor 1",
     "growth": "crack growth is 2D only for now: growing a 3D crack is not available in this version (`cracklip "
               "run` gives K along its fronts)",
     "spectrum": "fatigue spectra are read by `cracklip grow`, and growing a 3D crack is not available in this "
@@ -155,9 +154,6 @@ def check_dimension(doc: dict, settings: dict, dim: int, why: str) -> None:
         for where, _ in _parts(doc, key):
             raise InputError(f"{where}: {text} ({part})")
     o = s["options"]
-    if o["contact"] != "none" or o["friction"] != 0.0:
-        raise InputError(f"options.contact = {o['contact']!r}, friction = {o['friction']:g}: crack-lip contact is "
-                         f"not available on 3D parts yet ({part}); remove it (the lips are then traction-free)")
     if o["accuracy"] != 0.0:
         raise InputError(f"options.accuracy = {o['accuracy']:g} targets the estimated error of K, which is estimated "
                          f"on 2D parts only in this version ({part}); remove it and set mesh.tip_h instead")
