@@ -20,8 +20,8 @@ every multiplier from the last iterate:
     closed   if p_k - c g_k / m_k > 0 (always with bilateral contact), else open;
     slip     if it stuck and |tau_k| > b_k (one that was open: |xi_k| > b_k),
              along sigma_k = xi_k / |xi_k|; if it slipped, while its
-             increment opposes its friction (2D: sigma_k ds_k <= 0, the
-             same sign) or, in 3D, while |xi_k| > b_k, along xi_k / |xi_k|;
+             increment opposes its friction (sigma_k . ds_k <= 0), along
+             xi_k / |xi_k| (in 2D that is its sign);
     stick    otherwise (a slip that would run along its friction stops),
 
 and solves one linear saddle system (unsymmetric through the slip rows):
@@ -158,8 +158,8 @@ def classify(p: np.ndarray, tau: np.ndarray, gap: np.ndarray, dslip: np.ndarray,
     test; a closed multiplier that stuck slips when |tau| exceeds the bound
     (along tau), one that was open when xi = tau - c ds / m does (along
     xi); one that slipped keeps slipping (2D: while its increment opposes
-    its friction, sigma ds <= 0, with its sign; 3D: while |xi| exceeds the
-    bound, along xi) and else sticks. `bound`: a given friction bound
+    its friction, sigma . ds <= 0: in 2D with its sign, in 3D along xi)
+    and else sticks. `bound`: a given friction bound
     (Tresca) instead of mu (p - c g / m). newton: also return beta (m,) =
     bound / |xi| (at most 1) on slipping multipliers, 0 elsewhere (the slip
     rows' Newton terms)."""
@@ -178,13 +178,10 @@ def classify(p: np.ndarray, tau: np.ndarray, gap: np.ndarray, dslip: np.ndarray,
     xi = np.where((state == STICK)[:, None] | ((state == SLIP)[:, None] & (k == 1)), tau, tau - c * ds)
     xi_size = np.linalg.norm(xi, axis=1) if k > 1 else np.abs(xi[:, 0])
     scale = max(float(xi_size.max(initial=0.0)), float(bound.max(initial=0.0)), 1e-300)
-    beyond = xi_size > bound + 1e-12 * scale
-    starts = ~was_slip & beyond
-    if k == 1:
-        ds_scale = max(float(np.abs(ds).max(initial=0.0)), 1e-300)
-        keeps = was_slip & (sign[:, 0] * ds[:, 0] <= 1e-12 * ds_scale)
-    else:
-        keeps = was_slip & beyond
+    starts = ~was_slip & (xi_size > bound + 1e-12 * scale)
+    ds_size = np.linalg.norm(ds, axis=1) if k > 1 else np.abs(ds[:, 0])
+    ds_scale = max(float(ds_size.max(initial=0.0)), 1e-300)
+    keeps = was_slip & (np.einsum("mk,mk->m", sign, ds) <= 1e-12 * ds_scale)
     slip = closed & (starts | keeps)
     along_xi = xi / np.where(xi_size > 0.0, xi_size, 1.0)[:, None]
     new_sign = along_xi if k > 1 else np.where(starts[:, None], along_xi, sign)
