@@ -28,6 +28,7 @@ SMALL_3D = {
     "corner_crack_hole": ["mesh.h=8.0", "mesh.tip_h=0.3", "mesh.crack_h=0.0", "options.radius=0.6"],
     "inclined_penny": ["mesh.h=4.0", "mesh.tip_h=0.25"],
     "quarter_ellipse": ["mesh.h=2.0"],     # run by tests/test_symmetry.py
+    "corner_crack_closure": ["mesh.h=8.0", "mesh.tip_h=0.3", "mesh.crack_h=0.0", "options.radius=0.6"],
 }
 
 FILES_3D = {"results.json", "solution.vtu", "crack_surface.vtu", "crack_front.vtu", "crack_opening.png",
@@ -188,6 +189,49 @@ def test_corner_crack_scene(tmp_path):
     g = np.array([float(q["gap"]) for q in rows])
     corner = g[np.hypot(x[:, 0] - 4, x[:, 2] - 5) < 0.3]
     assert corner.mean() > 0.8 * g.max()
+
+
+def test_corner_crack_closure_scene(tmp_path):
+    """The corner crack at a hole partly pressed shut (remote compression
+    100 MPa, lip pressure 200 MPa, unilateral contact, friction 0.2), small
+    mesh (tip_h 0.3): part of the crack closes, near the bore, the rest
+    stays open; the contact pressure is never negative, K_I >= 0 along the
+    front, and the lips barely overlap. The same run with contact off
+    (the lips pass through each other) is the contrast: its overlap is 4.5x
+    its largest opening and its K_I at the bore end is negative.
+    Measured here: closed fraction 0.40, interpenetration 1.06e-4 mm =
+    10 % of the largest opening (1.04e-3 mm) and 3.2 % of the overlap
+    without contact (3.3e-3 mm), all of it at the crack's edge on the
+    faceted bore; K_I 6.3 .. 29.5 (without contact -68 .. 22.6)."""
+    out, off = tmp_path / "contact", tmp_path / "off"
+    assert cli.main(["run", str(SCENES / "corner_crack_closure.toml"), "--out", str(out), "--quiet",
+                     *sum((["--set", o] for o in SMALL_3D["corner_crack_closure"]), [])]) == 0
+    assert cli.main(["run", str(SCENES / "corner_crack_closure.toml"), "--out", str(off), "--quiet",
+                     *sum((["--set", o] for o in SMALL_3D["corner_crack_closure"] + ["options.contact=none",
+                                                                                      "options.friction=0"]), [])]) == 0
+    res = json.loads((out / "results.json").read_text())
+    free = json.loads((off / "results.json").read_text())
+    assert "crack_contact.png" in res["files"] and (out / "crack_contact.png").read_bytes()[:4] == b"\x89PNG"
+    c, f = res["cracks"][0], free["cracks"][0]
+    # Partly closed: a real closed and a real open part, the closed part on
+    # the bore side (x < 4.9 mm, where the concentrated compression beats
+    # the lip pressure), both stick and slip in it.
+    assert 0.2 <= c["closed_fraction"] <= 0.7, c["closed_fraction"]
+    assert c["stick_area"] > 0.1 * c["closed_area"] and c["slip_area"] > 0.05 * c["closed_area"]
+    surf = meshio.read(out / "crack_surface.vtu")
+    x, state, p = surf.points, surf.point_data["state"], surf.point_data["pressure"]
+    assert np.all(p >= 0.0), p.min()
+    assert c["pressure"]["min"] >= 0.0 and c["pressure"]["max"] > 50.0
+    assert x[state > 0, 0].mean() < x[state == 0, 0].mean()
+    # The lips: without contact they overlap by several openings; with it
+    # by a tenth of the open part's largest opening at most (the bar the
+    # issue sets, 1 %, is for the demo mesh, not this one).
+    assert f["interpenetration_max"] > 3.0 * f["gap_max"]
+    assert c["interpenetration_max"] <= 0.15 * c["gap_max"], (c["interpenetration_max"], c["gap_max"])
+    assert c["interpenetration_max"] <= 0.05 * f["interpenetration_max"]
+    # K_I >= 0 along the front with contact; negative at the bore end without.
+    assert min(r["K_I"] for r in res["sifs"]) >= 0.0, [r["K_I"] for r in res["sifs"]]
+    assert min(r["K_I"] for r in free["sifs"]) < 0.0
 
 
 def test_check_reports_what_run_uses(tmp_path, capsys):
@@ -393,7 +437,6 @@ def _penny_doc(**changes):
     ({"loads": {"tractions": [{"tag": "zmax", "kirsch": {"remote_stress": 1.0, "hole_radius": 1.0}}]}},
      r"kirsch is a 2D setting"),
     ({"loads": {"initial_stress": {"value": [1.0, 0.0, 0.0]}}}, r"initial .* not supported on 3D parts yet"),
-    ({"options": {"contact": "unilateral"}}, r"crack-lip contact is not available on 3D parts yet"),
     ({"outputs": {"stress_component": "xx"}}, r"outputs\.stress_component is a 2D setting.*ParaView"),
     ({"growth": {"da": 0.1}}, r"\[growth\] without a growth law but the part is 3D"),
     ({"growth": {"da": 0.1, "paris_C": 1.0, "paris_m": 3.0, "R": 0.0, "corrections": 2}},

@@ -244,6 +244,37 @@ void declare_contact(py::module& m)
       "Values (n) of a full multiplier field at points (cell, reference (n, 3)) of a 3D crack.");
 
   m.def(
+      "tangent_basis_3d",
+      [](const CrackGeometry3D& crack, const carray<double>& normals, const std::optional<carray<double>>& reference)
+      {
+        if (normals.ndim() != 2 or normals.shape(1) != 3)
+          throw std::invalid_argument("tangent_basis_3d: normals must be (n, 3)");
+        Point3 a;
+        if (reference)
+        {
+          if (reference->size() != 3)
+            throw std::invalid_argument("tangent_basis_3d: the reference must have 3 values");
+          a = {reference->data()[0], reference->data()[1], reference->data()[2]};
+        }
+        else
+          a = default_tangent_reference(crack);
+        const py::ssize_t n = normals.shape(0);
+        std::vector<double> t1(3 * n), t2(3 * n);
+        const double* nv = normals.data();
+        for (py::ssize_t i = 0; i < n; ++i)
+        {
+          Point3 a1, a2;
+          tangent_basis({nv[3 * i], nv[3 * i + 1], nv[3 * i + 2]}, a, a1, a2);
+          std::copy(a1.begin(), a1.end(), t1.begin() + 3 * i);
+          std::copy(a2.begin(), a2.end(), t2.begin() + 3 * i);
+        }
+        return py::make_tuple(as_pyarray(std::move(t1), {n, py::ssize_t(3)}), as_pyarray(std::move(t2), {n, py::ssize_t(3)}));
+      },
+      py::arg("crack"), py::arg("normals"), py::arg("reference") = py::none(),
+      "(t1, t2), each (n, 3): the contact coupling's tangent basis (contact/contact_kernels_3d.h) at points of a "
+      "crack with unit normals (n, 3), from its reference direction (default: the crack's default_tangent_reference).");
+
+  m.def(
       "saddle_csr",
       [](const carray<std::int32_t>& k_indptr, const carray<std::int32_t>& k_indices,
          const carray<double>& k_data, const carray<std::int32_t>& b_indptr,

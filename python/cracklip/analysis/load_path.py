@@ -71,7 +71,8 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
     c = contact_constant(unit)
     n = model.num_dofs
     m = cs.num_multipliers if cs is not None else 0
-    s_old = np.zeros(m)
+    mt = cs.Bt.shape[0] if friction else m  # tangential rows: m in 2D, 2 m in 3D
+    s_old = np.zeros(mt)
     state = sign = active = None
     out: list[Solution] = []
     step_list = steps(scene)
@@ -94,7 +95,7 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
                     g_n = _combine(cs.g_groups, inc.factors, m)
                     work = dataclasses.replace(cs, g=g_n)
                     if friction:
-                        g_t = _combine(cs.gt_groups, inc.factors, m)
+                        g_t = _combine(cs.gt_groups, inc.factors, mt)
                         y, info = solve_friction(K, f, work, g_n, g_t, s_old, opts, c, state, sign, linear)
                         state, sign = info["state"], info["sign"]
                         s_old = cs.Bt @ y - g_t
@@ -128,7 +129,7 @@ def _step_solution(model, unit, physical, y, T, E, info, inc: Increment, step: L
     if physical is not None:
         system = dataclasses.replace(
             physical, g=_combine(physical.g_groups, inc.factors, physical.num_multipliers) / E,
-            gt=None if physical.Bt is None else _combine(physical.gt_groups, inc.factors, physical.num_multipliers) / E,
+            gt=None if physical.Bt is None else _combine(physical.gt_groups, inc.factors, physical.Bt.shape[0]) / E,
             g_groups={k: v / E for k, v in physical.g_groups.items()},
             gt_groups={k: v / E for k, v in physical.gt_groups.items()})
         contact = {"system": system, **{k: (v.copy() if isinstance(v, np.ndarray) else v) for k, v in info.items()},

@@ -2,32 +2,47 @@
 
 Unknowns: the displacement u, the normal multipliers lambda_n and the
 tangential multipliers lambda_t, both on the stable multiplier space (the
-same reduced space, the same P0 multiplier in a tip cell). The contact
-pressure is p = -lambda_n (>= 0), the shear traction on the + lip along the
-crack's direction t (n turned by -90 degrees) is tau = -lambda_t. With the
-weighted normal gap g_k = (B_n u - g_n)_k, the weighted slip s_k = (B_t u -
-g_t)_k and the lumped multiplier mass m_k (g_k / m_k, s_k / m_k are means
-over multiplier k's support), each iteration classifies every multiplier
-from the last iterate (Hueber, Stadler and Wohlmuth's complementarity
-functions for the normal part) with c = E / h, b_k = mu (p_k - c g_k / m_k)
-and the slip increment ds_k = s_k - s_old,k:
+same reduced space, the same P0 multipliers at tips and fronts). The
+contact pressure is p = -lambda_n (>= 0); the shear traction on the + lip
+is tau = -lambda_t, one component per tangent of the crack: in 2D along
+its direction t (n turned by -90 degrees), in 3D along t1 and t2 (the
+tangent basis of cpp/contact/contact_kernels_3d.h; Bt and lambda_t hold
+the t1 rows, then the t2 rows). Per multiplier k the shear tau_k, the
+weighted slip s_k = (B_t u - g_t)_k and the slip direction sigma_k have
+d - 1 components (2D: one, sigma = +-1). With the weighted normal gap g_k
+= (B_n u - g_n)_k and the lumped multiplier mass m_k (g_k / m_k, s_k /
+m_k are means over multiplier k's support), c = E / h, the friction bound
+b_k = mu (p_k - c g_k / m_k), the slip increment ds_k = s_k - s_old,k and
+the trial shear xi_k = tau_k - c ds_k / m_k (Alart and Curnier's, as
+Hueber, Stadler and Wohlmuth use it in 3D), each iteration classifies
+every multiplier from the last iterate:
 
     closed   if p_k - c g_k / m_k > 0 (always with bilateral contact), else open;
-    slip     if it stuck and |tau_k| > b_k (sign sigma_k = sign(tau_k)), or if it
-             slipped with sigma_k and its increment still opposes the
-             friction (sigma_k ds_k <= 0: tau = mu p sigma opposes the slip);
+    slip     if it stuck and |tau_k| > b_k (one that was open: |xi_k| > b_k),
+             along sigma_k = xi_k / |xi_k|; if it slipped, while its
+             increment opposes its friction (sigma_k . ds_k <= 0), along
+             xi_k / |xi_k| (in 2D that is its sign);
     stick    otherwise (a slip that would run along its friction stops),
 
 and solves one linear saddle system (unsymmetric through the slip rows):
 
     K u + B_n^T lambda_n + B_t^T lambda_t = f
     closed: B_n u = g_n                  open: lambda_n = 0
-    stick:  B_t u = g_t + s_old          slip: lambda_t - mu sigma lambda_n = 0     open: lambda_t = 0
+    stick:  B_t u = g_t + s_old          open: lambda_t = 0
+    slip:   (I - beta Q) tau + beta c Q ds / m - mu sigma p = 0,
 
-s_old is the slip of the previous increment of the load path: friction is
-path-dependent. The iteration stops when the states repeat; a set of states
-met before is a cycle, reported as a ContactError naming the multipliers
-whose state flips.
+the slip rows the Newton linearisation of tau = b xi / |xi| at the last
+iterate: Q = I - sigma sigma^T, beta = b / |xi| (<= 1). Along sigma the
+shear is mu p; across it (3D only: in 2D Q = 0 and the row is lambda_t -
+mu sigma lambda_n = 0) the slip and the shear are tied by the projection's
+derivative, so the slip direction is found by Newton, not by a fixed
+point on it. s_old is the slip of the previous increment of the load path:
+friction is path-dependent. The iteration stops when the states repeat
+with the same slip directions (2D: the same signs; 3D: within
+DIRECTION_TOLERANCE); a set of states met before is a cycle, reported as a
+ContactError naming the multipliers whose state flips. Every decision is
+elementwise on the reduced multipliers, so it does not depend on the order
+they are numbered in.
 """
 from __future__ import annotations
 
@@ -53,29 +68,69 @@ OPEN, STICK, SLIP = 0, 1, 2
 STATE_NAMES = {OPEN: "open", STICK: "stick", SLIP: "slip"}
 
 
+#: In 3D the iteration has settled when the states repeat and no slipping
+#: multiplier's direction sigma (a unit vector) moves by more than this:
+#: the friction traction's direction is then right to this fraction of mu p.
+DIRECTION_TOLERANCE = 1e-6
+
+
+def tangent_components(cs: ContactSystem) -> int:
+    """Components of the shear per multiplier: 1 in 2D, 2 in 3D (the rows
+    of cs.Bt per multiplier)."""
+    return cs.Bt.shape[0] // max(cs.num_multipliers, 1) if cs.num_multipliers else 1
+
+
+def per_multiplier(v: np.ndarray, k: int) -> np.ndarray:
+    """(m, k) per multiplier from the stacked (k m,) layout of Bt's rows
+    (the rows of t1, then of t2)."""
+    return np.asarray(v).reshape(k, -1).T
+
+
+def stacked(v: np.ndarray) -> np.ndarray:
+    """(k m,) in Bt's row layout from (m, k) per multiplier."""
+    return np.asarray(v).T.ravel()
+
+
 def solve_saddle_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.ndarray,
                           g_t: np.ndarray, s_old: np.ndarray, state: np.ndarray, sign: np.ndarray,
                           mu: float, residual_tol: float, bound: np.ndarray | None = None,
-                          linear: "LinearSolver | None" = None, x0: np.ndarray | None = None
+                          linear: "LinearSolver | None" = None, x0: np.ndarray | None = None,
+                          beta: np.ndarray | None = None, c: float = 0.0
                           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """One linear solve for given states (module doc). With `bound` (Tresca:
-    a given friction bound b_k per multiplier) the slip rows are
-    lambda_t = -sigma b instead of lambda_t - mu sigma lambda_n = 0.
-    linear: the solver path (cracklip.solvers; default MUMPS LU), x0 an
-    initial guess (u, lambda_n, lambda_t) for an iterative one.
-    Returns (u, lambda_n, lambda_t)."""
+    """One linear solve for given states (module doc); sign: the slip
+    directions (m, k) (2D: k = 1, +-1); beta (m,) and c the slip rows'
+    Newton terms across the direction (3D; None: 0, the direction held).
+    With `bound` (Tresca: a given friction bound b_k per multiplier) the
+    slip rows take b instead of mu p. linear: the solver path
+    (cracklip.solvers; default MUMPS LU), x0 an initial guess (u, lambda_n,
+    lambda_t) for an iterative one. Returns (u, lambda_n, lambda_t (k m,))."""
     m = cs.num_multipliers
+    k = tangent_components(cs)
+    sign = np.reshape(sign, (m, k))
     closed = state != OPEN
     stick = state == STICK
     slip = state == SLIP
+    stick_k, slip_k = np.tile(stick, k), np.tile(slip, k)
     Bn = sp.diags(closed.astype(float)) @ cs.B
-    Bt = sp.diags(stick.astype(float)) @ cs.Bt
-    coulomb = -mu * sign if bound is None else np.zeros(m)
+    Bt = sp.diags(stick_k.astype(float)) @ cs.Bt
+    T = sp.diags((~stick_k).astype(float))
+    rhs_t = np.where(stick_k, g_t + s_old, 0.0)
+    if bound is not None:  # Tresca: the shear along sigma is the given bound
+        rhs_t = rhs_t + np.where(slip_k, stacked(-sign * np.reshape(bound, (m, 1))), 0.0)
+    if k > 1 and beta is not None and np.any(slip & (beta > 0.0)):
+        # Across sigma: -beta Q lambda_t - (beta c / m) Q (B_t u - g_t - s_old).
+        lumped = np.asarray(cs.M.sum(axis=1)).ravel()
+        bq = np.where(slip, beta, 0.0)
+        W = sp.bmat([[sp.diags(bq * ((a == b) - sign[:, a] * sign[:, b])) for b in range(k)] for a in range(k)])
+        T = T - W
+        Bt = Bt - sp.diags(np.tile(c / lumped, k)) @ W @ cs.Bt
+        rhs_t = rhs_t - np.tile(c / lumped, k) * (W @ (g_t + s_old))
+    coulomb = -mu * sign if bound is None else np.zeros((m, k))
+    blocks = [sp.diags(np.where(slip, coulomb[:, c_], 0.0)) for c_ in range(k)]
     rows_n = [Bn, sp.diags((~closed).astype(float)), None]
-    rows_t = [Bt, sp.diags(np.where(slip, coulomb, 0.0)), sp.diags((~stick).astype(float))]
+    rows_t = [Bt, blocks[0] if k == 1 else sp.vstack(blocks), T]
     S = sp.bmat([[K, cs.B.T, cs.Bt.T], rows_n, rows_t], format="csr")
-    slip_rhs = np.zeros(m) if bound is None else -sign * bound
-    rhs = np.concatenate([f, np.where(closed, g_n, 0.0), np.where(stick, g_t + s_old, np.where(slip, slip_rhs, 0.0))])
+    rhs = np.concatenate([f, np.where(closed, g_n, 0.0), rhs_t])
     A = petsc_from_scipy(S)
     b = A.createVecRight()
     b.array[:] = rhs
@@ -95,31 +150,47 @@ def solve_saddle_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_
 
 def classify(p: np.ndarray, tau: np.ndarray, gap: np.ndarray, dslip: np.ndarray, lumped: np.ndarray,
              c: float, mu: float, bilateral: bool, state: np.ndarray, sign: np.ndarray,
-             bound: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """The states and slip signs of the multipliers after an iterate that
-    was solved with (state, sign) (module doc): closed by the normal test;
-    a closed multiplier that stuck slips when |tau| exceeds the bound (the
-    sign of tau), one that was open when tau - c ds / m does (its sign);
-    one that slipped keeps slipping while its slip increment opposes its
-    friction (sigma ds < 0), and sticks when the increment turns along it
-    (a slip the friction would drive). `bound`: a given friction
-    bound (Tresca) instead of mu (p - c g / m)."""
+             bound: np.ndarray | None = None, newton: bool = False
+             ) -> tuple[np.ndarray, np.ndarray] | tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The states and slip directions (m, k) of the multipliers after an
+    iterate that was solved with (state, sign) (module doc); tau, dslip,
+    sign: (m, k), k the shear's components (2D: 1). Closed by the normal
+    test; a closed multiplier that stuck slips when |tau| exceeds the bound
+    (along tau), one that was open when xi = tau - c ds / m does (along
+    xi); one that slipped keeps slipping (2D: while its increment opposes
+    its friction, sigma . ds <= 0: in 2D with its sign, in 3D along xi)
+    and else sticks. `bound`: a given friction bound
+    (Tresca) instead of mu (p - c g / m). newton: also return beta (m,) =
+    bound / |xi| (at most 1) on slipping multipliers, 0 elsewhere (the slip
+    rows' Newton terms)."""
+    m = len(p)
+    k = int(np.shape(tau)[1]) if np.ndim(tau) == 2 else 1
+    tau, dslip, sign = (np.reshape(v, (m, k)) for v in (tau, dslip, sign))
     normal = p - c * gap / lumped
     closed = np.ones(len(p), dtype=bool) if bilateral else normal > 0.0
     if bound is None:
         bound = mu * np.maximum(normal, 0.0)
     was_slip = state == SLIP
     # A sticking multiplier has no slip increment: xi = tau. One that was
-    # open closes sliding when its increment beats the bound (xi = tau - c ds / m).
-    xi = np.where(state == OPEN, tau - c * dslip / lumped, tau)
-    scale = max(float(np.abs(xi).max(initial=0.0)), float(bound.max(initial=0.0)), 1e-300)
-    starts = ~was_slip & (np.abs(xi) > bound + 1e-12 * scale)
-    ds_scale = max(float(np.abs(dslip / lumped).max(initial=0.0)), 1e-300)
-    keeps = was_slip & (sign * dslip / lumped <= 1e-12 * ds_scale)
+    # open closes sliding when its increment beats the bound, one that
+    # slipped goes on while it does (3D): xi = tau - c ds / m.
+    ds = dslip / lumped[:, None]
+    xi = np.where((state == STICK)[:, None] | ((state == SLIP)[:, None] & (k == 1)), tau, tau - c * ds)
+    xi_size = np.linalg.norm(xi, axis=1) if k > 1 else np.abs(xi[:, 0])
+    scale = max(float(xi_size.max(initial=0.0)), float(bound.max(initial=0.0)), 1e-300)
+    starts = ~was_slip & (xi_size > bound + 1e-12 * scale)
+    ds_size = np.linalg.norm(ds, axis=1) if k > 1 else np.abs(ds[:, 0])
+    ds_scale = max(float(ds_size.max(initial=0.0)), 1e-300)
+    keeps = was_slip & (np.einsum("mk,mk->m", sign, ds) <= 1e-12 * ds_scale)
     slip = closed & (starts | keeps)
-    new_sign = np.where(starts, np.sign(xi), sign)
+    along_xi = xi / np.where(xi_size > 0.0, xi_size, 1.0)[:, None]
+    new_sign = along_xi if k > 1 else np.where(starts[:, None], along_xi, sign)
     state = np.where(closed, np.where(slip, SLIP, STICK), OPEN).astype(np.int8)
-    return state, np.where(slip, new_sign, 0.0)
+    new_sign = np.where(slip[:, None], new_sign, 0.0)
+    if not newton:
+        return state, new_sign
+    beta = np.where(slip, np.minimum(bound / np.where(xi_size > 0.0, xi_size, 1.0), 1.0), 0.0)
+    return state, new_sign, beta
 
 
 def solve_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.ndarray, g_t: np.ndarray,
@@ -129,8 +200,9 @@ def solve_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.n
     """Frictional contact for one load increment: stiffness K (constraints
     applied), load f, constraint right-hand sides g_n, g_t (prescribed
     values), s_old the weighted slip B_t u_old - g_t,old of the previous
-    increment. state, sign: the starting states (default from
-    options.active_set_start: all closed and sticking, or all open).
+    increment. state, sign: the starting states and slip directions (m,
+    k) (default from options.active_set_start: all closed and sticking, or
+    all open).
 
     The semi-smooth Newton iteration on the Coulomb law (module doc) settles
     in a few iterations; where the law is at its limit (|tau| = mu p: stick
@@ -145,10 +217,11 @@ def solve_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.n
     mu = float(opts.friction)
     m = cs.num_multipliers
     bilateral = opts.contact == "bilateral"
+    k = tangent_components(cs)
     if state is None:
         state = np.full(m, STICK if bilateral or opts.active_set_start == "closed" else OPEN, dtype=np.int8)
-        sign = np.zeros(m)
-    sign = np.zeros(m) if sign is None else sign
+        sign = None
+    sign = np.zeros((m, k)) if sign is None else np.reshape(sign, (m, k))
     history: list[dict[str, int]] = []
     try:
         u, info = _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, None, linear)
@@ -198,16 +271,23 @@ def violation(p: np.ndarray, tau: np.ndarray, gap: np.ndarray, dslip: np.ndarray
     """How far an iterate solved with (state, sign) is from the contact and
     friction laws, as a traction relative to the largest pressure: tension
     on closed multipliers, c times the interpenetration of open ones, shear
-    above the bound on sticking ones, c times a slip along the friction on
-    slipping ones."""
+    above the bound on sticking ones, c times a slip along the friction or
+    across its direction on slipping ones. tau, dslip, sign: (m, k)."""
+    m = len(p)
+    k = int(np.shape(tau)[1]) if np.ndim(tau) == 2 else 1
+    tau, dslip, sign = (np.reshape(v, (m, k)) for v in (tau, dslip, sign))
     closed = state != OPEN
     b = mu * np.maximum(p, 0.0) if bound is None else bound
     v = np.zeros(len(p))
     v[closed] = np.maximum(-p[closed], 0.0)
     v[~closed] = c * np.maximum(-gap[~closed] / lumped[~closed], 0.0)
     stick, slip = state == STICK, state == SLIP
-    v[stick] = np.maximum(v[stick], np.abs(tau[stick]) - b[stick])
-    v[slip] = np.maximum(v[slip], c * np.maximum(sign[slip] * dslip[slip] / lumped[slip], 0.0))
+    tau_size = np.linalg.norm(tau, axis=1) if k > 1 else np.abs(tau[:, 0])
+    v[stick] = np.maximum(v[stick], tau_size[stick] - b[stick])
+    ds = dslip / lumped[:, None]
+    along = np.einsum("mk,mk->m", sign, ds)
+    across = np.linalg.norm(ds - along[:, None] * sign, axis=1) if k > 1 else np.zeros(m)
+    v[slip] = np.maximum(v[slip], c * (np.maximum(along[slip], 0.0) + across[slip]))
     return float(v.max(initial=0.0) / max(float(np.abs(p).max(initial=0.0)), 1e-300))
 
 
@@ -219,30 +299,49 @@ def _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, li
     mu = float(opts.friction)
     bilateral = opts.contact == "bilateral"
     lumped = np.asarray(cs.M.sum(axis=1)).ravel()
-    key = lambda st, sg: st.tobytes() + np.sign(sg).astype(np.int8).tobytes()  # noqa: E731
+    k = tangent_components(cs)
+    # States and (2D) slip signs identify an iterate; a 3D direction varies
+    # continuously (its fixed point settles within DIRECTION_TOLERANCE), so
+    # there the states alone do.
+    key = ((lambda st, sg: st.tobytes() + np.sign(sg).astype(np.int8).tobytes()) if k == 1  # noqa: E731
+           else (lambda st, sg: st.tobytes()))
     seen = {key(state, sign): len(history)}
     start = len(history)
     iterates: dict[int, tuple] = {}
     x0 = None
+    beta = None  # the slip rows' Newton terms across sigma (3D), from the last iterate
     for it in range(1, opts.max_active_set_iterations + 1):
         u, lam_n, lam_t = solve_saddle_friction(K, f, cs, g_n, g_t, s_old, state, sign, mu, opts.residual_tol,
-                                                bound, linear, x0)
+                                                bound, linear, x0, beta, c)
         x0 = np.concatenate([u, lam_n, lam_t])
         gap = cs.B @ u - g_n
-        dslip = cs.Bt @ u - g_t - s_old
+        dslip = per_multiplier(cs.Bt @ u - g_t - s_old, k)
+        tau = per_multiplier(-lam_t, k)
         iterates[len(history)] = (u, lam_n, lam_t, state, sign,
-                                  violation(-lam_n, -lam_t, gap, dslip, lumped, c, mu, state, sign, bound))
-        new_state, new_sign = classify(-lam_n, -lam_t, gap, dslip, lumped, c, mu, bilateral, state, sign, bound)
+                                  violation(-lam_n, tau, gap, dslip, lumped, c, mu, state, sign, bound))
+        new_state, new_sign, new_beta = classify(-lam_n, tau, gap, dslip, lumped, c, mu, bilateral, state, sign,
+                                                 bound, newton=True)
         counts = {name: int(np.count_nonzero(new_state == code)) for code, name in STATE_NAMES.items()}
         history.append(counts)
         logger.info("friction iteration %d: %d open, %d stick, %d slip", len(history), counts["open"],
                     counts["stick"], counts["slip"])
-        if np.array_equal(new_state, state) and np.array_equal(np.sign(new_sign), np.sign(sign)):
+        same_states = np.array_equal(new_state, state)
+        if k == 1:
+            settled = same_states and np.array_equal(np.sign(new_sign), np.sign(sign))
+        else:
+            turn = float(np.abs(new_sign - sign).max(initial=0.0))
+            settled = same_states and turn <= DIRECTION_TOLERANCE
+            if same_states and not settled:
+                logger.info("friction iteration %d: slip directions turned by up to %.2g", len(history), turn)
+        if settled:
             return u, {"lambda": lam_n, "lambda_t": lam_t, "state": state, "sign": sign,
                        "active": state != OPEN, "iterations": len(history), "history": history}
-        k = key(new_state, new_sign)
-        if k in seen:
-            first = seen[k]
+        if same_states and k > 1:  # the same states, the directions still turning: not a cycle
+            sign, beta = new_sign, new_beta
+            continue
+        this = key(new_state, new_sign)
+        if this in seen:
+            first = seen[this]
             flips = np.flatnonzero(state != new_state)
             best = min((i for i in iterates if i >= first), key=lambda i: iterates[i][5])
             bu, bn, bt, bs, bg, bv = iterates[best]
@@ -259,8 +358,8 @@ def _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, li
                          f"{len(history) - first}); multipliers {flips[:8].tolist()} flip between "
                          + ", ".join(f"{STATE_NAMES[int(a)]}/{STATE_NAMES[int(b)]}" for a, b in
                                      zip(state[flips[:8]], new_state[flips[:8]])), lam_n, new_state, new_sign)
-        seen[k] = len(history)
-        state, sign = new_state, new_sign
+        seen[this] = len(history)
+        state, sign, beta = new_state, new_sign, new_beta
     raise ContactError(f"the friction states did not settle in {opts.max_active_set_iterations} iterations "
                        f"(states per iteration: {history}); raise max_active_set_iterations or split the "
                        "load into more increments (options.load_steps)")

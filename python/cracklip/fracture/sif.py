@@ -48,9 +48,9 @@ import numpy as np
 
 from .. import _cracklip
 from ..errors import InputError
-from ..model.loads import lip_pressure
 from ..model.tip_regions import TipDomain, lip_points, node_distances, tip_domains
-from ..scene.stress_field import LinearStress, divergence, evaluate_stress
+from ..scene.stress_field import LinearStress, divergence
+from .lip_tractions import lip_traction, lip_traction_parts
 
 
 logger = logging.getLogger(__name__)
@@ -109,40 +109,6 @@ def _q_at(model, dist: np.ndarray, radius: float, cells: np.ndarray, ref: np.nda
     qn = nodal_q(dist, radius, inner_radius)[model.cells[cells]]
     N = np.stack([1.0 - ref[:, 0] - ref[:, 1], ref[:, 0], ref[:, 1]], axis=1)
     return np.einsum("na,na->n", N, qn)
-
-
-def lip_traction_parts(solution, crack: int, points: dict[str, np.ndarray]) -> list[np.ndarray]:
-    """The tractions (n, 2) on the + lip of a crack at crack points (cell,
-    ref, x, normal as from _cracklip.compute_crack_points), one array per
-    cause: the contact pressure, the crack's lip pressure, an initial
-    stress's sigma_0 n (the correction field of an initial stress sees it on
-    its lips). Each pushes the + lip along n (into the + side) when the lips
-    are pressed or pushed apart; the - lip carries the opposite."""
-    m = solution.model
-    n = points["normal"]
-    parts = []
-    if solution.contact:
-        cs = solution.contact["system"]
-        lam_full = cs.R @ solution.contact["lambda"]
-        p = -_cracklip.evaluate_multipliers(cs.space, crack, points["cell"], points["ref"], lam_full)
-        t = p[:, None] * n
-        if "lambda_t" in solution.contact:  # friction: the shear tau = -lambda_t along t = (n_y, -n_x)
-            tau = -_cracklip.evaluate_multipliers(cs.space, crack, points["cell"], points["ref"],
-                                                  cs.R @ solution.contact["lambda_t"])
-            t = t + tau[:, None] * np.stack([n[:, 1], -n[:, 0]], axis=1)
-        parts.append(t)
-    crk = m.cracks[crack].crack
-    if (callable(crk.pressure) or crk.pressure != 0.0) and solution.factor(crk.pressure_group) != 0.0:
-        parts.append(solution.factor(crk.pressure_group) * lip_pressure(crk, points["x"])[:, None] * n)
-    if m.scene.initial_stress is not None and solution.factor(m.scene.initial_stress_group) != 0.0:
-        sig = evaluate_stress(m.scene.initial_stress, points["x"], "initial stress")
-        parts.append(solution.factor(m.scene.initial_stress_group) * np.einsum("nij,nj->ni", sig, n))
-    return parts
-
-
-def lip_traction(solution, crack: int, points: dict[str, np.ndarray]) -> np.ndarray:
-    """The total traction (n, 2) on the + lip (lip_traction_parts summed)."""
-    return sum(lip_traction_parts(solution, crack, points), np.zeros_like(points["normal"]))
 
 
 def interaction_integrals(solution, domain: TipDomain, radius: float) -> np.ndarray:

@@ -34,7 +34,8 @@ curvature of the crack surface (a non-planar crack). Then
                               - int_lips (t . [grad u_aux d] + t_aux . grad u d) q dA,
 
 T, D from the C++ kernel (interaction_integrand_3d, body force included), t
-the lip pressure's traction, and K_I = E' I_I / 2, K_II = E' I_II / 2,
+the lip traction (the lip pressure's, the contact pressure and friction
+shear: fracture/lip_tractions.py), and K_I = E' I_I / 2, K_II = E' I_II / 2,
 K_III = mu I_III, E' = E / (1 - nu^2). The normalisation is the integral of
 the P1 q along the front polyline.
 
@@ -66,10 +67,10 @@ import scipy.spatial
 from .. import _cracklip
 from ..errors import InputError
 from ..model.cracks.surface import split_enriched
-from ..model.loads import lip_pressure
 from ..scene.crack_surface import EllipticalCrack, SurfaceCrack
 from ..scene.symmetry import SymmetryCondition
 from . import front_sampling
+from .lip_tractions import has_lip_traction, lip_traction
 from .sif import complete_rows
 
 logger = logging.getLogger(__name__)
@@ -817,7 +818,7 @@ def crack_front_sifs(solution, crack: int, radius: float | None = None) -> tuple
     node_r[nodes] = npr["distance"]
     body = _body_force(solution)
     crk = m.cracks[crack].crack
-    pressure = (callable(crk.pressure) or crk.pressure != 0.0) and solution.factor(crk.pressure_group) != 0.0
+    pressure = has_lip_traction(solution, crack)
     # Per front point: its nodal q (one column per domain) and its cells.
     qn, cells_of = [], []
     for fp in fps:
@@ -1006,24 +1007,22 @@ def hat_deconvolve(A: np.ndarray, lm: np.ndarray, lp: np.ndarray, closed: bool, 
     return np.linalg.solve(M, rhs).reshape(np.shape(A))
 
 
-def _lip_terms(solution, crack: int, lp: dict, E: float, nu: float, lam: float, mu: float, pressure: bool
+def _lip_terms(solution, crack: int, lp: dict, E: float, nu: float, lam: float, mu: float, traction: bool
                ) -> np.ndarray:
     """Per lip point (n, mode, l): the lip integrand per unit q and
     virtual-extension direction d_l, summed over the two lips, t . [grad
-    u_aux]_l + t_aux . [grad u]_l - (sigma : eps_aux) n_l (t = sigma n the
-    lip's traction, t_aux = sigma_aux n, n the outward normal of the lip's
-    material; the last term vanishes on a planar crack, where n . d = 0):
-    subtracted by the caller."""
+    u_aux]_l + t_aux . [grad u]_l - (sigma : eps_aux) n_l (t the lip's
+    traction where `traction`: lip pressure, contact pressure and friction,
+    lip_tractions.lip_traction; t_aux = sigma_aux n, n the outward normal of
+    the lip's material; the last term vanishes on a planar crack, where
+    n . d = 0): subtracted by the caller."""
     m = solution.model
     n = len(lp["weight"])
     pr = project(m, crack, lp["x"])
     fr12, curv = _frames12(pr), np.ascontiguousarray(pr["curvatures"])
     out = np.zeros((n, 3, 3))
     normal = lp["normal"]
-    p = None
-    if pressure:
-        crk = m.cracks[crack].crack
-        p = solution.factor(crk.pressure_group) * lip_pressure(crk, lp["x"])
+    t_plus = lip_traction(solution, crack, lp) if traction else None   # (n, 3) on the + lip
 
     def stress(G: np.ndarray) -> np.ndarray:
         eps = 0.5 * (G + np.swapaxes(G, -1, -2))
@@ -1034,9 +1033,8 @@ def _lip_terms(solution, crack: int, lp: dict, E: float, nu: float, lam: float, 
         aux = _cracklip.auxiliary_fields_3d(E, nu, fr12, curv, np.ascontiguousarray(lp["x"]), sides)
         G = aux["G"]                                              # (n, mode, i, l)
         n_out = -side * normal                                     # outward normal of the side's material
-        if p is not None:  # the pressure's traction on this lip: -p n_out
-            t = -p[:, None] * n_out
-            out += np.einsum("ni,nmil->nml", t, G)
+        if t_plus is not None:  # the traction on this lip: the + lip's, the - lip the opposite
+            out += np.einsum("ni,nmil->nml", side * t_plus, G)
         # the auxiliary field's traction on this lip (curvature terms) times grad u there
         _, g = solution._evaluate(lp["cell"], lp["ref"], sides, gradient=True)
         ta = np.einsum("nmij,nj->nmi", stress(G), n_out)

@@ -89,8 +89,14 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
             "multipliers": int(contact_system.num_multipliers),
             "full_multipliers": int(space.num_full),
             "p0_multipliers": int(np.count_nonzero(np.asarray(space.full_node) < 0)),
-            "segments": int(space.num_segments), "points_per_segment": int(opts.contact_points),
         }
+        if d == 2:
+            out["contact"].update({"segments": int(space.num_segments), "points_per_segment": int(opts.contact_points)})
+        else:  # the lip pieces (one per crack and cell), those of front cells, points per facet direction
+            pieces = space.pieces
+            out["contact"].update({"lip_pieces": int(space.num_pieces),
+                                   "front_pieces": int(np.count_nonzero(np.asarray(pieces["front"]))),
+                                   "points_per_direction": int(opts.contact_points)})
     return out
 
 

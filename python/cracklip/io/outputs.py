@@ -45,7 +45,7 @@ from .files import atomic_path
 from .results import OutputError, check_finite, ensure_output_dir, json_default, versions, write_csv  # noqa: F401
 from .model_summary import describe_model
 from .paraview import crack_lips_mesh, crack_surface_mesh, front_mesh, front_sif_mesh, subcell_mesh, write_mesh
-from .pictures import plane_coordinates, write_crack_opening_png, write_front_png, write_pngs
+from .pictures import plane_coordinates, write_crack_contact_png, write_crack_opening_png, write_front_png, write_pngs
 
 
 logger = logging.getLogger(__name__)
@@ -85,7 +85,9 @@ def output_files(model, outputs: dict) -> list[str]:
         files = ["crack_opening.csv"] + (["front.csv"] if fronts else [])
         files += (["solution.vtu", "crack_surface.vtu", "crack_front.vtu"] + (["front_sifs.vtu"] if fronts else [])
                   if vtu else [])
-        files += (["crack_opening.png"] + (["front_sifs.png"] if fronts else []) if png and model.cracks else [])
+        contact = model.scene.options.contact != "none" and bool(model.cracks)
+        files += (["crack_opening.png"] + (["crack_contact.png"] if contact else [])
+                  + (["front_sifs.png"] if fronts else []) if png and model.cracks else [])
     else:
         files = ["crack.csv", "sif.csv"] + (["solution.vtu", "crack_lips.vtu"] if vtu else []) \
             + (["deformed.png", "crack_pressure.png", "stress.png"] if png else [])
@@ -224,20 +226,58 @@ def _curve_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: list
 
 # -- 3D: the lip surfaces and the fronts ------------------------------------------------------------
 
-def crack_statistics_3d(facets: dict, samples: dict) -> dict[str, typing.Any]:
+def crack_statistics_3d(facets: dict | None, samples: dict, closed: np.ndarray | None = None,
+                        contact: str = "none") -> dict[str, typing.Any]:
     """Per crack: area in the part, opened volume int [[u]].n dA and the
     area-weighted mean opening (on the lip quadrature samples), the largest
-    opening, slip and interpenetration (on the facet vertices and samples)."""
+    opening, slip and interpenetration (on the facet vertices and samples);
+    closed (n,): which samples are closed (closed_points): the closed and
+    open areas; with contact the pressure (largest, smallest, mean over the
+    crack, normal force), the largest shear and the stick, slip and open
+    areas. facets None: from the samples alone (area their weights' sum)."""
     w, gap = samples["weight"], samples["gap"]
-    area = float(np.sum(facets["area"]))
+    area = float(np.sum(facets["area"])) if facets is not None else float(w.sum())
     volume = float(np.sum(w * gap))
-    gv = facets["gap"].reshape(-1)
-    slip = np.concatenate([facets["slip"].reshape(-1), np.linalg.norm(samples["slip"], axis=1)])
-    return {"area_in_part": area, "facets": int(len(facets["area"])), "points": int(len(w)),
-            "opening_volume": volume, "gap_mean": volume / area if area > 0 else 0.0,
-            "gap_max": float(max(gv.max(initial=0.0), gap.max(initial=0.0))),
-            "interpenetration_max": float(max(0.0, -min(gv.min(initial=0.0), gap.min(initial=0.0)))),
-            "slip_max": float(slip.max(initial=0.0))}
+    gv = facets["gap"].reshape(-1) if facets is not None else gap
+    slip = np.linalg.norm(samples["slip"], axis=1)
+    if facets is not None:
+        slip = np.concatenate([facets["slip"].reshape(-1), slip])
+    out = {"area_in_part": area, "facets": int(len(facets["area"])) if facets is not None else None,
+           "points": int(len(w)),
+           "opening_volume": volume, "gap_mean": volume / area if area > 0 else 0.0,
+           "gap_max": float(max(gv.max(initial=0.0), gap.max(initial=0.0))),
+           "interpenetration_max": float(max(0.0, -min(gv.min(initial=0.0), gap.min(initial=0.0)))),
+           "slip_max": float(slip.max(initial=0.0))}
+    if closed is not None:
+        total = float(w.sum())
+        out.update({"closed_area": float(w[closed].sum()), "open_area": float(w[~closed].sum()),
+                    "closed_fraction": float(w[closed].sum() / total) if total > 0 else 0.0})
+    if contact != "none" and len(w):
+        p = samples["pressure"]
+        pv = facets["pressure"].reshape(-1) if facets is not None and "pressure" in facets else p
+        out["pressure"] = {"max": float(max(p.max(), pv.max(initial=p.max()))),
+                           "min": float(min(p.min(), pv.min(initial=p.min()))),
+                           "mean": float((w * p).sum() / w.sum()) if w.sum() > 0 else 0.0,
+                           "normal_force": float((w * p).sum())}
+        state = samples["state"]
+        for name in ("open", "stick", "slip"):
+            out[f"{name}_area"] = float(w[state == name].sum())
+        out["shear_max"] = float(np.linalg.norm(samples["shear"], axis=1).max(initial=0.0))
+    return out
+
+
+def facet_contact(solution: Solution, crack: int, facets: dict) -> dict:
+    """The facets (SurfaceCrackModel.lip_facets) with the contact at their
+    vertices added: pressure (F, 3), shear (F, 3, 3) (the friction traction
+    on the + lip), state (F, 3) "open" / "stick" / "slip"
+    (Solution.lip_contact), and at the facets' centres centre_state (F,)
+    and centre_shear (F, 3)."""
+    nf = len(facets["cell"])
+    c = solution.lip_contact(crack, np.repeat(facets["cell"], 3), facets["ref"].reshape(-1, 3),
+                             np.repeat(facets["normal"], 3, axis=0))
+    centre = solution.lip_contact(crack, facets["cell"], facets["ref"].mean(axis=1), facets["normal"])
+    return {**facets, "pressure": c["pressure"].reshape(nf, 3), "shear": c["shear"].reshape(nf, 3, 3),
+            "state": c["state"].reshape(nf, 3), "centre_state": centre["state"], "centre_shear": centre["shear"]}
 
 
 def opening_rows(cracks: typing.Sequence, facets: typing.Sequence[dict]) -> list[list]:
@@ -269,14 +309,21 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
     cfg = scene_file.outputs
     m = solution.model
     t0 = time.perf_counter()
+    law = m.scene.options.contact if solution.contact else "none"
     facets = [cm.lip_facets(solution, i) for i, cm in enumerate(m.cracks)]
+    if solution.contact:
+        facets = [facet_contact(solution, i, f) for i, f in enumerate(facets)]
     fine = [cm.lip_facets(solution, i, OPENING_SUBDIVISION) for i, cm in enumerate(m.cracks)]
     samples = [solution.lip_samples(i, cfg["crack_points"]) for i in range(len(m.cracks))]
     for f, g, smp in zip(facets, fine, samples):
-        check_finite("the crack opening", f["jump"], g["jump"], smp["jump"])
+        check_finite("the crack opening", f["jump"], g["jump"], smp["jump"], smp["pressure"], smp["shear"])
     fronts = [g.front for g in m.geometries]
-    crack_stats = [{"crack": i, "name": cm.crack.name, **crack_statistics_3d(facets[i], samples[i]),
-                    "front": summary["cracks"][i]["front"]} for i, cm in enumerate(m.cracks)]
+    u_scale = float(np.abs(solution.standard_displacement).max()) if m.num_dofs else 0.0
+    gap_tol = 1e-6 * max(u_scale, 1e-300)
+    crack_stats = [{"crack": i, "name": cm.crack.name,
+                    **crack_statistics_3d(facets[i], samples[i], closed_points(samples[i], law, gap_tol), law),
+                    "gap_tolerance": gap_tol, "front": summary["cracks"][i]["front"]}
+                   for i, cm in enumerate(m.cracks)]
     timings["crack_post"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
@@ -309,13 +356,35 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
         t0 = time.perf_counter()
         write_crack_opening_png(cracks, fine, fronts, out / "crack_opening.png", scene_file.title, m.scene.units)
         files.append("crack_opening.png")
+        if solution.contact:
+            write_crack_contact_png(cracks, facets, fronts, out / "crack_contact.png", scene_file.title,
+                                    m.scene.units, m.scene.options.friction)
+            files.append("crack_contact.png")
         if sifs:
             write_front_png(sifs, out / "front_sifs.png", scene_file.title,
                             None if m.scene.units is None else m.scene.units.name("K"))
             files.append("front_sifs.png")
         timings["write_png"] = time.perf_counter() - t0
-        logger.info("wrote crack_opening.png" + (", front_sifs.png" if sifs else ""))
-    return {"cracks": crack_stats, "steps": None}
+        logger.info("wrote crack_opening.png" + (", crack_contact.png" if solution.contact else "")
+                    + (", front_sifs.png" if sifs else ""))
+    steps = None
+    if solution.steps:
+        steps = []
+        for k, st in enumerate(solution.steps):
+            rows = sifs if st is solution else st.stress_intensity_factors(None)
+            smps = samples if st is solution else [st.lip_samples(i, cfg["crack_points"]) for i in range(len(m.cracks))]
+            stats = [crack_statistics_3d(facets[i] if st is solution else None, smp, closed_points(smp, law, gap_tol),
+                                         law) for i, smp in enumerate(smps)]
+            steps.append({"step": k, "name": st.step["name"], "factors": st.step["factors"],
+                          "increments": st.step["increments"], "contact": contact_summary(st),
+                          "sifs": [{key: r[key] for key in ("crack", "point", "K_I", "K_II", "K_III", "K_I_spread",
+                                                            "K_II_spread", "K_III_spread")} for r in rows],
+                          "cracks": [{"crack": i, **{key: v for key, v in st_.items()
+                                                     if key in ("closed_fraction", "closed_area", "stick_area",
+                                                                "slip_area", "open_area", "slip_max",
+                                                                "interpenetration_max", "pressure")}}
+                                     for i, st_ in enumerate(stats)]})
+    return {"cracks": crack_stats, "steps": steps}
 
 
 #: The crack files of each kind of crack end (CrackModel.END): a curve's

@@ -12,8 +12,10 @@
   polylines through the crack samples, with the lip's displacement, contact
   pressure, shear, gap, slip and state; ``crack_surface_mesh`` (3D): both
   lips of every crack as triangles (each lip facet twice), with the lip's
-  displacement, the opening [[u]] (``jump``), its normal part ``gap`` and
-  the size of its tangential part ``slip``.
+  displacement, the opening [[u]] (``jump``), its normal part ``gap``, its
+  tangential part ``slip`` (a vector), and with contact the ``pressure``,
+  the friction ``shear`` on the + lip (a vector) and the ``state`` (0
+  open, 1 stick, 2 slip).
 - the fronts (3D): ``front_mesh``, every crack's front as polylines with
   the arc length ``s``, the frame ``e1``, ``e2``, ``e3`` and ``on_boundary``;
   ``front_sif_mesh``, the SIF points along them carrying K.
@@ -77,7 +79,7 @@ def crack_lips_mesh(samples: typing.Sequence[dict]) -> VtuMesh:
             for name in data:
                 v = smp[name]
                 if name == "state":  # 0 open, 1 stick, 2 slip
-                    v = np.select([v == "stick", v == "slip"], [1, 2], 0).astype(np.int32)
+                    v = _state_codes(v)
                 data[name].append(v)
             idx = offset + np.arange(n)
             conn.append(np.stack([idx[:-1], idx[1:]], axis=1))
@@ -92,29 +94,42 @@ def crack_lips_mesh(samples: typing.Sequence[dict]) -> VtuMesh:
 
 
 def crack_surface_mesh(facets: typing.Sequence[dict]) -> VtuMesh:
-    """Both lips of every 3D crack (SurfaceCrackModel.lip_facets per crack)."""
-    pts, disp, jump, gap, slip, crack, lip, normal = [], [], [], [], [], [], [], []
+    """Both lips of every 3D crack (SurfaceCrackModel.lip_facets per crack;
+    with contact, io.outputs.facet_contact's pressure, shear and state at
+    the vertices)."""
+    keys = ("u_plus", "jump", "gap", "slip_vector", "pressure", "shear", "state")
+    data: dict[str, list] = {k: [] for k in keys}
+    crack, lip, normal = [], [], []
+    contact = all("pressure" in f for f in facets)
     for c, f in enumerate(facets):
         nf = len(f["cell"])
         if nf == 0:
             continue
         for sign, key in ((1, "u_plus"), (-1, "u_minus")):
-            pts.append(f["x"].reshape(-1, 3))
-            disp.append(f[key].reshape(-1, 3))
-            jump.append(f["jump"].reshape(-1, 3))
-            gap.append(f["gap"].reshape(-1))
-            slip.append(f["slip"].reshape(-1))
+            data["u_plus"].append(f[key].reshape(-1, 3))
+            data["jump"].append(f["jump"].reshape(-1, 3))
+            data["gap"].append(f["gap"].reshape(-1))
+            data["slip_vector"].append(f["slip_vector"].reshape(-1, 3))
+            if contact:
+                data["pressure"].append(f["pressure"].reshape(-1))
+                data["shear"].append(f["shear"].reshape(-1, 3))
+                data["state"].append(_state_codes(f["state"].reshape(-1)))
             crack.append(np.full(nf, c, dtype=np.int32))
             lip.append(np.full(nf, sign, dtype=np.int32))
             normal.append(f["normal"])
-    if not pts:
+    if not crack:
         return VtuMesh(np.zeros((0, 3)), "triangle", np.zeros((0, 3), dtype=np.int64))
-    x = np.concatenate(pts)
-    return VtuMesh(x, "triangle", np.arange(len(x), dtype=np.int64).reshape(-1, 3),
-                   point_data={"displacement": np.concatenate(disp), "jump": np.concatenate(jump),
-                               "gap": np.concatenate(gap), "slip": np.concatenate(slip)},
+    x = np.concatenate([f["x"].reshape(-1, 3) for f in facets for _ in (1, -1) if len(f["cell"])])
+    names = {"u_plus": "displacement", "slip_vector": "slip"}
+    point_data = {names.get(k, k): np.concatenate(v) for k, v in data.items() if v}
+    return VtuMesh(x, "triangle", np.arange(len(x), dtype=np.int64).reshape(-1, 3), point_data=point_data,
                    cell_data={"crack": np.concatenate(crack), "lip": np.concatenate(lip),
                               "normal": np.concatenate(normal)})
+
+
+def _state_codes(state: np.ndarray) -> np.ndarray:
+    """Contact states as codes: 0 open, 1 stick, 2 slip."""
+    return np.select([state == "stick", state == "slip"], [1, 2], 0).astype(np.int32)
 
 
 def front_mesh(fronts: typing.Sequence[dict]) -> VtuMesh:

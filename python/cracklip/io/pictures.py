@@ -12,6 +12,11 @@ are functions here side by side.
   directions of a triangulated surface, onto which it is projected), with
   the front in black and a labelled colour bar (in the scene's units when
   it gives them); the same samples go to crack_opening.csv.
+- Contact on a solid's cracks (``write_crack_contact_png``):
+  crack_contact.png, one row per crack in its plane coordinates: the
+  open / stick / slip regions (the state at each lip facet's centre) with
+  the friction shear's direction on the slipping facets, and the contact
+  pressure at the facet vertices with a labelled colour bar.
 - K along 3D fronts (``write_front_png``): front_sifs.png, K_I, K_II, K_III
   against the arc length (against the parametric angle for elliptical
   fronts) per crack, with the estimated discretisation error as error bars
@@ -478,6 +483,80 @@ def write_crack_opening_png(cracks: typing.Sequence, facets: typing.Sequence[dic
         ax.set_title(f"{crack.name}: max opening {vmax:.3g}" + (f" {units.name('displacement')}" if units else "")
                      + "\ncoordinates from its centre (" + ", ".join(f"{c:.4g}" for c in origin) + ")", fontsize=10)
         axes[f"crack {k}"] = ax
+    if title:
+        fig.suptitle(title)
+    save_png(fig, path, axes)
+    return path
+
+
+#: The colours of the contact states in crack_contact.png.
+STATE_COLOURS = {"open": "#f2f2f2", "stick": "#3b75af", "slip": "#ef8636"}
+
+
+#: At most this many shear arrows per crack in crack_contact.png.
+MAX_ARROWS = 400
+
+
+def write_crack_contact_png(cracks: typing.Sequence, facets: typing.Sequence[dict], fronts: typing.Sequence[dict],
+                            path: pathlib.Path, title: str = "", units=None, friction: float = 0.0) -> pathlib.Path:
+    """crack_contact.png (module doc): cracks (the scene's crack surfaces),
+    facets (lip facets per crack with io.outputs.facet_contact's fields),
+    fronts (CrackGeometry3D.front per crack); friction: mu (0: no stick or
+    slip, the closed lips slide freely)."""
+    from matplotlib.collections import LineCollection
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+    from matplotlib.tri import Triangulation
+    from mpl_toolkits.axes_grid1 import make_axes_locatable
+    n = len(cracks)
+    uvs = [plane_coordinates(c, f["x"]) for c, f in zip(cracks, facets)]
+    aspect = max([float(np.ptp(uv[:, 1]) / max(np.ptp(uv[:, 0]), 1e-300)) for uv in uvs if len(uv)] or [1.0])
+    h = 1.4 + 4.0 * min(max(aspect, 0.35), 1.4)
+    fig = new_figure((12.0, h * n))
+    axes = {}
+    names = list(STATE_COLOURS)
+    cmap = ListedColormap([STATE_COLOURS[k] for k in names])
+    for k, (crack, f, fr, uv) in enumerate(zip(cracks, facets, fronts, uvs)):
+        ax, bx = fig.add_subplot(n, 2, 2 * k + 1), fig.add_subplot(n, 2, 2 * k + 2)
+        nf = len(f["cell"])
+        fx = np.asarray(fr["x"]).reshape(-1, 3)
+        seg = np.asarray(fr["segments"]).reshape(-1, 2)
+        origin, e1, e2 = crack.plane()
+        if nf:
+            tri = Triangulation(uv[:, 0], uv[:, 1], np.arange(len(uv)).reshape(-1, 3))
+            code = np.array([names.index(s) for s in f["centre_state"]], dtype=float)
+            ax.tripcolor(tri, facecolors=code, cmap=cmap, vmin=-0.5, vmax=2.5, edgecolors="none")
+            slipping = np.flatnonzero(f["centre_state"] == "slip")
+            if friction > 0.0 and slipping.size:
+                pick = slipping[:: max(1, slipping.size // MAX_ARROWS)]
+                c = uv.reshape(-1, 3, 2).mean(axis=1)[pick]
+                sh = f["centre_shear"][pick]
+                d = np.column_stack([sh @ e1, sh @ e2])
+                d /= np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
+                ax.quiver(c[:, 0], c[:, 1], d[:, 0], d[:, 1], color="k", width=0.002, scale=40)
+            p = f["pressure"].reshape(-1)
+            lo, hi = min(0.0, float(p.min())), float(p.max())
+            coll = bx.tripcolor(tri, p, shading="gouraud", cmap="magma_r", vmin=lo, vmax=hi if hi > lo else lo + 1.0)
+            cax = make_axes_locatable(bx).append_axes("right", size="4%", pad=0.12)
+            fig.colorbar(coll, cax=cax).set_label(unit_label(units, "stress", "contact pressure"))
+        area = {s: float(np.sum(f["area"][f["centre_state"] == s])) if nf else 0.0 for s in names}
+        total = max(sum(area.values()), 1e-300)
+        shown = names if friction > 0.0 else ["open", "slip"]
+        legend = [Patch(facecolor=STATE_COLOURS[s], edgecolor="0.5",
+                        label=f"{s if friction > 0.0 or s == 'open' else 'closed (frictionless)'} "
+                              f"{100 * area[s] / total:.0f} %") for s in shown]
+        ax.legend(handles=legend, fontsize=7, loc="upper right")
+        for a, what in ((ax, "open / stick / slip" + (" (arrows: friction on the + lip)" if friction > 0 else "")),
+                        (bx, f"contact pressure, max {float(f['pressure'].max(initial=0.0)):.4g}")):
+            if len(fx):
+                q = plane_coordinates(crack, fx)
+                a.add_collection(LineCollection(q[seg], colors="k", linewidths=1.2))
+            a.set_xlabel(unit_label(units, "length", axis_text(e1)))
+            a.set_ylabel(unit_label(units, "length", axis_text(e2)))
+            a.set_aspect("equal")
+            a.autoscale_view()
+            a.set_title(f"{crack.name}: {what}", fontsize=9)
+        axes[f"crack {k} states"], axes[f"crack {k} pressure"] = ax, bx
     if title:
         fig.suptitle(title)
     save_png(fig, path, axes)

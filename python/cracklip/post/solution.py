@@ -17,7 +17,7 @@ import numpy as np
 
 import dolfinx.geometry
 
-from .. import _cracklip
+from ..contact.tractions import contact_tractions
 from ..errors import InputError
 from ..fracture.sif import compute_sifs, complete_rows
 from ..fracture.sif_3d import compute_front_sifs
@@ -142,8 +142,9 @@ class Solution:
         jump (n, d) = u_plus - u_minus, gap (n,) = [[u]].n (> 0 open), slip
         the tangential part of the jump (2D: (n,) [[u]].t, t = n turned by
         -90 degrees; 3D: (n, 3)), pressure (n,) the contact pressure (>= 0
-        in compression; 0 without contact), shear (n,) the friction traction
-        along t, state (n,) "open", "stick" or "slip", cell (n,), ref (n,
+        in compression; 0 without contact), shear the friction traction on
+        the + lip (2D: (n,) along t; 3D: (n, 3), in the crack's plane),
+        state (n,) "open", "stick" or "slip", cell (n,), ref (n,
         d); in 2D sorted by s (n,) the arc length from the crack's first
         point (without tip enrichment the tip cell holds no crack and is
         left out), in 3D facet by facet with front_vertices (n,).
@@ -154,20 +155,33 @@ class Solution:
         cm = m.cracks[crack]
         pts = cm.lip_samples(m, int(points_per_segment))
         cells, ref, normal = pts["cell"], pts["ref"], pts["normal"]
-        pressure, shear = np.zeros(len(cells)), np.zeros(len(cells))
-        if self.contact:
-            cs = self.contact["system"]
-            pressure = -_cracklip.evaluate_multipliers(cs.space, crack, cells, ref, cs.R @ self.contact["lambda"])
-            if "lambda_t" in self.contact:
-                shear = -_cracklip.evaluate_multipliers(cs.space, crack, cells, ref, cs.R @ self.contact["lambda_t"])
         up = self._evaluate(cells, ref, np.ones(len(cells), dtype=np.int8))
         um = self._evaluate(cells, ref, -np.ones(len(cells), dtype=np.int8))
         jump = up - um
         out = {"x": pts["x"], "weight": pts["weight"], "normal": normal, "u_plus": up, "u_minus": um, "jump": jump,
-               "gap": np.einsum("ij,ij->i", jump, normal), "slip": cm.slip(jump, normal), "pressure": pressure,
-               "shear": shear, "state": self._lip_states(pressure, shear), "cell": cells, "ref": ref}
+               "gap": np.einsum("ij,ij->i", jump, normal), "slip": cm.slip(jump, normal),
+               **self.lip_contact(crack, cells, ref, normal), "cell": cells, "ref": ref}
         out.update({k: pts[k] for k in ("s", "front_vertices") if k in pts})
         return out
+
+    def lip_contact(self, crack: int, cells: np.ndarray, ref: np.ndarray, normal: np.ndarray
+                    ) -> dict[str, np.ndarray]:
+        """The contact at points (cell (n,), ref (n, d)) of a crack with unit
+        normals (n, d) into its + side: pressure (n,) (>= 0 in compression;
+        0 without contact), shear the friction traction on the + lip (2D:
+        (n,) along t; 3D: (n, 3), in the crack's plane; 0 without
+        friction), state (n,) "open", "stick" or "slip"
+        (cracklip.contact.tractions)."""
+        m = self.model
+        n = len(cells)
+        pressure = np.zeros(n)
+        shear = np.zeros(n) if m.gdim == 2 else np.zeros((n, m.gdim))
+        if self.contact:
+            ct = contact_tractions(m, self.contact, crack, cells, ref, normal)
+            pressure = ct["pressure"]
+            # 2D: the signed shear along t; 3D: the shear vector in the crack's plane.
+            shear = ct["shear"][:, 0] if m.gdim == 2 else np.einsum("nk,nkd->nd", ct["shear"], ct["tangents"])
+        return {"pressure": pressure, "shear": shear, "state": self._lip_states(pressure, shear)}
 
     def _lip_states(self, pressure: np.ndarray, shear: np.ndarray) -> np.ndarray:
         """Per point "open", "stick" or "slip" from the lip tractions: open
@@ -180,7 +194,8 @@ class Solution:
         opts = self.model.scene.options
         scale = max(float(np.abs(pressure).max(initial=0.0)), 1e-300)
         closed = np.ones(len(pressure), dtype=bool) if opts.contact == "bilateral" else pressure > 1e-9 * scale
-        stick = closed & (np.abs(shear) < opts.friction * pressure * (1.0 - 1e-6))
+        size = np.abs(shear) if shear.ndim == 1 else np.linalg.norm(shear, axis=1)
+        stick = closed & (size < opts.friction * pressure * (1.0 - 1e-6))
         out[closed] = "slip"
         out[stick] = "stick"
         return out
@@ -207,16 +222,19 @@ class Solution:
 
     def contact_pressure(self, crack: int = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
         """Contact pressure p = -lambda (>= 0 in compression) and normal gap
-        [[u]].n at points along the crack (see lip_samples), sorted along
-        it: x (n, 2), s (n,), pressure (n,), gap (n,), weight (n,) (for
-        integrals along the crack), shear (n,) the friction traction on the
-        + lip along the crack's direction t (0 without friction), slip (n,)
-        = [[u]].t accumulated over the load path, state (n,) "open",
-        "stick" or "slip"."""
+        [[u]].n at points on the crack (see lip_samples): x (n, d),
+        pressure (n,), gap (n,), weight (n,) (for integrals over the
+        crack), shear the friction traction on the + lip (2D: (n,) along
+        the crack's direction t; 3D: (n, 3) in its plane; 0 without
+        friction), slip the tangential jump accumulated over the load path
+        (2D: (n,) = [[u]].t; 3D: (n, 3)), state (n,) "open", "stick" or
+        "slip"; in 2D sorted along the crack with s (n,), in 3D facet by
+        facet with front_vertices (n,)."""
         if not self.contact:
             raise InputError("this solution has no contact (options.contact = 'none')")
         smp = self.lip_samples(crack, points_per_segment)
-        return {k: smp[k] for k in ("x", "s", "pressure", "gap", "weight", "shear", "slip", "state")}
+        keys = ("x", "s", "pressure", "gap", "weight", "shear", "slip", "state", "front_vertices")
+        return {k: smp[k] for k in keys if k in smp}
 
     # -- whole-field quantities --------------------------------------------
     def subcell_fields(self) -> dict[str, typing.Any]:

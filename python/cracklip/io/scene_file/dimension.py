@@ -28,7 +28,6 @@ KIND_DIMENSION = {"rectangle": 2, "plate_with_hole": 2, "plate_with_holes": 2, "
 #: What a 3D scene cannot have yet (key -> why), checked when given.
 NOT_YET_3D = {
     "loads.initial_stress": "an initial (residual) stress is not supported on 3D parts yet",
-    "load_path": "load paths are not supported on 3D parts yet: give the loads at factor 1",
 }
 
 #: [growth] keys a 3D front does not take (key -> why).
@@ -173,9 +172,6 @@ def check_dimension(doc: dict, settings: dict, dim: int, why: str) -> None:
                              "rate, growth.da being the largest advance in a step; give growth.paris_C, paris_m with "
                              "growth.R (or cycle_min), or [material.fatigue] with a [spectrum] or growth.R")
     o = s["options"]
-    if o["contact"] != "none" or o["friction"] != 0.0:
-        raise InputError(f"options.contact = {o['contact']!r}, friction = {o['friction']:g}: crack-lip contact is "
-                         f"not available on 3D parts yet ({part}); remove it (the lips are then traction-free)")
     if s["mesh"]["kind"] == "file":
         if o["accuracy"] != 0.0:
             raise InputError(f"options.accuracy = {o['accuracy']:g} refines the mesh, which a 3D .msh file cannot be "

@@ -32,7 +32,7 @@ _OPTION_MEANINGS = {
                "free to slide) or `unilateral` (gap >= 0, pressure >= 0; active set)",
     "multipliers": "multiplier space: `stable` (P1-, P0 in the tip cell) or `naive` (P1 on every "
                    "node of the cut cells; violates inf-sup)",
-    "contact_points": "Gauss points per crack segment for the contact terms",
+    "contact_points": "Gauss points per crack segment (2D) or per lip facet direction (3D) for the contact terms",
     "active_set_start": "initial active set of unilateral contact: `closed` or `open`",
     "max_active_set_iterations": "active-set iterations before giving up (a set that comes back stops at once as a cycle)",
     "snap_tol": "a node closer to a crack than snap_tol times its shortest edge is moved onto it",

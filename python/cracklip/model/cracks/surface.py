@@ -231,8 +231,10 @@ class SurfaceCrackModel(CrackModel):
         vertices: x (F, 3, 3) physical vertices, cell (F,), normal (F, 3)
         unit, into the + lip, area (F,), num_front (F,) vertices on the
         front (of the parent facet), u_plus, u_minus, jump (F, 3, 3)
-        (vertex, component), gap (F, 3) = [[u]].n (> 0 open), slip (F, 3) =
-        |[[u]] - gap n|. subdivide: each lip facet split into subdivide^2
+        (vertex, component), gap (F, 3) = [[u]].n (> 0 open), slip_vector
+        (F, 3, 3) = [[u]] - gap n, slip (F, 3) its size, ref (F, 3, 3) the
+        vertices' reference coordinates in their cell. subdivide: each lip
+        facet split into subdivide^2
         triangles (finer samples of the sqrt(r) opening near the front; a
         lip facet is flat in its cell, so the pieces are exact)."""
         m = solution.model
@@ -254,9 +256,10 @@ class SurfaceCrackModel(CrackModel):
         xp = physical(m, pc, pr).reshape(nf, 3, 3)
         jump = up - um
         gap = np.einsum("fvi,fi->fv", jump, normal)
-        slip = np.linalg.norm(jump - gap[:, :, None] * normal[:, None, :], axis=2)
+        slip = jump - gap[:, :, None] * normal[:, None, :]
         return {"x": xp, "cell": cell, "normal": normal, "area": area, "num_front": num_front, "u_plus": up,
-                "u_minus": um, "jump": jump, "gap": gap, "slip": slip}
+                "u_minus": um, "jump": jump, "gap": gap, "slip_vector": slip, "slip": np.linalg.norm(slip, axis=2),
+                "ref": ref}
 
 
 def crack_surface(crack) -> "_cracklip.CrackSurface3D":
