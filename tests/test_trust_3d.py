@@ -189,3 +189,16 @@ def test_mumps_out_of_memory_is_named():
     out = run.stdout
     assert "SolverError: MUMPS ran out of memory factoring the X-FEM stiffness system" in out, (out, run.stderr[-2000:])
     assert "unknowns; INFOG(1) = -13" in out and "options.solver = \"iterative\"" in out and "mesh.tip_h" in out
+
+
+def test_size_estimate_of_a_box_refinement():
+    """The size estimate before meshing knows box refinements (mesh.refine[].box,
+    where a 3D crack will grow): gmsh's Box field, h_front inside and growing
+    from the faces. Tetrahedra estimated within 10 % of those made (measured
+    -2.1 % and +1.7 % on these two boxes; the calibrated band of the point
+    refinements is -6.8 .. +4.1 %)."""
+    from cracklip.scene.mesh_3d import BoxRefinement, create_box
+    for h_in, radius in ((0.1, 0.3), (0.06, 0.2)):
+        md = create_box(0, 0, 0, 2, 1, 1, 0.25, fronts=[BoxRefinement((0.5, 0.2, 0.2), (1.2, 0.8, 0.6), h_in, radius)])
+        made = md.mesh.topology.index_map(3).size_local
+        assert abs(md.estimate.cells / made - 1.0) < 0.10, (h_in, md.estimate.cells, made)
