@@ -190,7 +190,8 @@ def test_quarter_ellipse_scene(tmp_path):
     there is within 2 % of Irwin's (measured -0.9 % at phi = 0 and -1.2 %
     at 90 degrees, the box of half-width 5 a); K asked for every 15 degrees
     is reported at every asked angle; no warning about a front point (a
-    domain too small, a free surface). Were the planes read as
+    domain too small, a free surface; the error estimate's discretisation
+    warning may rightly fire: K is about 1 % off here). Were the planes read as
     free surfaces, the ends would be extrapolated (K_source
     end_extrapolation) and flagged."""
     from test_scenes_3d import SMALL_3D
@@ -201,7 +202,8 @@ def test_quarter_ellipse_scene(tmp_path):
     results = json.loads((tmp_path / "results.json").read_text())
     with (tmp_path / "front.csv").open() as f:
         rows = list(csv.DictReader(f))
-    assert not [w for w in results["warnings"] if "front point" in w["message"] or "free surface" in w["message"]]
+    assert not [w for w in results["warnings"] if w["code"] != "discretisation"
+                and ("front point" in w["message"] or "free surface" in w["message"])]
     assert all(r["free_surface"] == "0" for r in rows)
     deg = np.array([math.degrees(float(r["parametric_angle"])) for r in rows])
     ends = {0.0: "symmetry[1]", 90.0: "symmetry[0]"}     # phi = 0 on y = 0 (ymin), 90 on x = 0 (xmin)

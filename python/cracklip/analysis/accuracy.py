@@ -83,6 +83,7 @@ from ..errors import InputError, MeshError
 from ..scene.mesh_3d import similar_mesh
 from ..scene.refine import with_levels
 from ..scene.scene import Scene
+from ..post.solution import point_label
 from .front_match import FrontPiece, carry_over
 
 
@@ -424,7 +425,7 @@ def estimate(levels: list[Level], of: int = -1) -> dict[tuple[int, int, int], di
                                                        float(K[-1, i, m] + (K[-1, i, m] - K[-2, i, m]) * factor))
                     row[f"{mode}_rate"] = observed
                     row[f"{mode}_levels"] = [float(v) for v in K[:, i, m]]
-                out[(s, crack, int(r["point"]))] = row
+                out[(s, crack, point_label(r))] = row
     return out
 
 
@@ -453,10 +454,10 @@ def _attach(solution, levels: list[Level], est, target: float | None, method: st
         for r in rows:
             if r.get("free_surface"):
                 continue
-            e = est[(s, r["crack"], int(r["point"]))]
+            e = est[(s, r["crack"], point_label(r))]
             for mode in _modes(rows):
                 if e[f"{mode}_error"] > worst:
-                    worst, where = e[f"{mode}_error"], {"state": s, "crack": r["crack"], "point": int(r["point"]),
+                    worst, where = e[f"{mode}_error"], {"state": s, "crack": r["crack"], "point": r["point"],
                                                         "mode": mode}
     summary = {"method": method, "meshes": _meshes(levels), "of_size_factor": mine.size_factor,
                "size_factors": [lv.size_factor for lv in levels], "dofs": [lv.dofs for lv in levels],

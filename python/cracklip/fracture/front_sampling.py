@@ -161,13 +161,16 @@ def _angle_positions(crack, theta: np.ndarray, x: np.ndarray, s: np.ndarray, len
 
 
 def piece_stations(s: np.ndarray, l: np.ndarray, length: float, closed: bool, floor: float, minimum: int,
-                   requested: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                   requested: np.ndarray | None = None, count_floor: float = 0.0
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Front points along a piece whose vertices at arc lengths s (from 0,
     increasing) want hat half-widths l (module doc): their arc lengths, a
     flag per point for the requested positions that are front points, and
-    the requested positions that are not (interpolated)."""
+    the requested positions that are not (interpolated). The minimum count
+    shortens the hats down to count_floor at most (the front's curvature
+    and an explicit spacing down to floor)."""
     s, l = np.asarray(s, dtype=float), np.asarray(l, dtype=float)
-    cap = length / max(minimum if closed else minimum - 1, 1)
+    cap = max(length / max(minimum if closed else minimum - 1, 1), count_floor)
     l = np.maximum(np.minimum(l, cap), floor)
     if closed:   # the loop unrolled twice, so that a gap may pass s = length
         s = np.concatenate([s, s + length, [2.0 * length]])

@@ -35,6 +35,13 @@ CHUNK = 200_000
 ERROR_DEGREE = {2: 6, 3: 4}
 
 
+def point_label(row: dict) -> str:
+    """A SIF row's point within its crack for the error estimate's table:
+    its index, or for a position asked for between front points (no index)
+    its arc length."""
+    return str(int(row["point"])) if row.get("point") is not None else f"s={float(row['s']):.12g}"
+
+
 @dataclasses.dataclass
 class Solution:
     """Displacement dofs of a model and what can be derived from them.
@@ -347,7 +354,7 @@ class Solution:
         rows = [dict(r) for r in self._sif_cache[key][0]]
         est = self.error_estimate
         for r in rows:
-            point = est["points"].get(f"{r['crack']}:{r['point']}") if est and radius is None and ring is None \
+            point = est["points"].get(f"{r['crack']}:{point_label(r)}") if est and radius is None and ring is None \
                 else None
             for mode in ("K_I", "K_II", "K_III"):
                 if point is None or f"{mode}_error" not in point:

@@ -251,7 +251,7 @@ def estimate_size(gmsh, h: float, fronts: typing.Sequence[FrontRefinement], memo
     return est
 
 
-def _finish(gmsh, groups: dict[str, list[int]], h: float, fronts, size_factor: float, recipe,
+def _finish(gmsh, groups: dict[str, list[int]], h: float, fronts, size_factor: float = 1.0, recipe=None,
             memory_limit: float | None = None, what: str = "the part") -> MeshData:
     """Name the face groups as physical surfaces 1, 2, ... (in order), the
     volumes as physical volume 1, estimate the mesh (refused above
