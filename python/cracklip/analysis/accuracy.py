@@ -38,17 +38,23 @@ given SIF radius are lengths of the part and stay, the default SIF domains
 are in element sizes and scale). K scatters from front point to front
 point by about 0.1 % of the K scale (hats on an unstructured mesh), as much
 as its error on fine meshes, and the difference of two scattered K's,
-amplified by 1 / (RHO - 1) = 2.4, would be mostly scatter. So along each
-front piece K is fitted by least squares (smooth_along: a Fourier series in
-the arc length on a loop, Legendre polynomials on an open piece, one degree
-of freedom per SMOOTH_POINTS points), each mesh's fit is carried to the
-run's front points (cracklip.analysis.front_match), and a point's estimate
-is the difference of the fits over RHO^p - 1 plus the run's own scatter
-about its fit (the largest within NEIGHBOURS points on either side). It is
-between 1 and (RHO^p - 1) / (RHO - 1) times a smooth error (2.4 at p = 2)
-plus the scatter (docs/sifs.md has the measured ratios). A fit too stiff
-for K's variation leaves it in the scatter term: the estimate grows, it
-does not hide an error.
+amplified by 1 / (RHO - 1) = 2.4, would be mostly scatter. So the other
+mesh's K is carried to the run's front points (a cubic spline along its
+front, cracklip.analysis.front_match), the difference of the two K's is
+fitted by least squares along each front piece (smooth_along: a Fourier
+series in the arc length on a loop, Legendre polynomials on an open piece,
+as many terms as leave-one-out cross-validation chooses, at most one per
+SMOOTH_POINTS points), and a point's estimate is that fit over RHO^p - 1
+plus the difference's scatter about its fit (the largest within NEIGHBOURS
+points on either side). It is between 1 and (RHO^p - 1) / (RHO - 1) times
+a smooth error (2.4 at p = 2) plus the scatter (docs/sifs.md has the
+measured ratios). The difference is fitted, not each mesh's K: K varies
+along an ellipse b/a = 0.5 from 0.73 to 1.03 of the K scale in the
+harmonics 0, 2, 4, ..., which a Fourier series in the arc length on 17-19
+points does not fit to better than 2 % (one term per four points fitted
+the first harmonic only: estimates of 12-36 % for errors of 0.1-1.2 %);
+the difference between two meshes is a few per cent of that and slowly
+varying.
 
 ``solve_to_accuracy``: 2D, refinement levels (every size halved within the
 regions per level, about 4 times the cells there); 3D, the RHO mesh, the
@@ -414,11 +420,10 @@ def estimate(levels: list[Level], of: int = -1) -> dict[tuple[int, int, int], di
     K extrapolated (2D, an observed rate only). The finest K errs by the
     difference from the next coarser mesh over (ratio^p - 1); a coarser one
     by its difference from the finest plus that. Along a front the
-    difference is that of K's fits along it (smooth_along, each mesh's own
-    fit carried to these points), plus the point's scatter about its own
-    fit (the largest within NEIGHBOURS points): the scatter is not
-    amplified by 1 / (ratio^p - 1) as the differences of two scattered K
-    would be."""
+    difference (every mesh's K carried to these points) is fitted along it
+    (smooth_along), plus the difference's scatter about its fit (the
+    largest within NEIGHBOURS points): the scatter is not amplified by 1 /
+    (ratio^p - 1) as the differences of two scattered K would be."""
     mine = levels[of]
     factors = np.array([lv.size_factor for lv in levels])
     ratio = factors[-2] / factors[-1]
@@ -437,7 +442,7 @@ def estimate(levels: list[Level], of: int = -1) -> dict[tuple[int, int, int], di
                 p = ASSUMED_RATE if observed is None else observed
                 factor = (1.0 if observed is None else SAFETY) / abs(ratio ** p - 1.0)
                 # the scatter: the difference from the adjacent mesh about its fit
-                nxt = len(levels) + of - 1 if of < 0 else of + 1
+                nxt = of % len(levels) + (1 if of % len(levels) < len(levels) - 1 else -1)
                 D = K[nxt] - K[of]
                 scatter = neighbour_max(np.abs(D - smooth_along(rows, D, mine)), rows, mine.closed)
                 to_finest = smooth_along(rows, K[-1] - K[of], mine) if mine is not levels[-1] else 0.0 * D
@@ -517,8 +522,8 @@ def _meshes(levels: list[Level]) -> str:
 def _method(levels: list[Level], of: int) -> str:
     if levels[-1].front:
         return ("similar meshes (every size setting times " + ", ".join(f"{lv.size_factor:.3g}" for lv in levels)
-                + "); the error of the finest K is the difference of K's least-squares fits along the front on it "
-                "and the next coarser mesh over ratio^p - 1, plus its scatter about its fit (the largest within "
+                + "); the error of the finest K is the least-squares fit along the front of its difference from "
+                "the next coarser mesh's K over ratio^p - 1, plus that difference's scatter about its fit (the largest within "
                 f"{NEIGHBOURS} point(s) on either side); p observed over three meshes from the fits' differences "
                 f"(times a safety factor {SAFETY:g}), else {ASSUMED_RATE:g} (an upper bound for p >= 1)")
     text = (f"refinement levels {levels[0].size_factor:g} .. {levels[-1].size_factor:g} (every element size "
