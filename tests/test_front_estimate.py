@@ -62,12 +62,11 @@ def test_estimate_of_a_front_with_scatter():
     """Two similar meshes (sizes sqrt(2) and 1) of a loop: K = 1 - 0.01 f^2
     plus a scatter of +-2e-4 alternating along the front. The estimate is
     the fit along the front of K's difference between the meshes over
-    sqrt(2) - 1 plus that difference's scatter about its fit: at least the
-    true error 0.01 + 2e-4 at every point (2.4 times it at p = 2), and
-    K_III's estimate is the scatter's only: the two meshes' together (the
-    coarse one's carried by a spline through its alternating values), below
-    6e-4 at every point, not amplified by 1 / (sqrt(2) - 1) (2.4 x 4e-4),
-    and on average at least the run's own 2e-4."""
+    sqrt(2) - 1 plus the scatter (the smaller of K's about its fit and of
+    the difference's about its fit): at least the true error 0.01 + 2e-4
+    at every point (2.4 times it at p = 2), and K_III's estimate is the
+    scatter's only, the run's own 2e-4 (less where the difference's is
+    smaller), not amplified by 1 / (sqrt(2) - 1)."""
     def level(f: float, n: int, phase: float) -> Level:
         x = _loop(n, phase)
         noise = 2e-4 * (-1.0) ** np.arange(n) * (1.0 if f == 1.0 else -1.0)
@@ -81,10 +80,10 @@ def test_estimate_of_a_front_with_scatter():
         row = est[(0, 0, i)]
         assert row["K_I_error"] >= 0.01 and row["K_I_error"] == pytest.approx(0.01 * (RHO ** 2 - 1) / (RHO - 1),
                                                                                abs=2.5e-3)
-        assert 0.0 < row["K_III_error"] < 6e-4
+        assert 0.0 < row["K_III_error"] <= 2e-4 * (1 + 1e-9)
         assert row["K_I_rate"] is None and row["K_I_extrapolated"] is None
         assert len(row["K_I_levels"]) == 2
-    assert np.mean([est[(0, 0, i)]["K_III_error"] for i in range(20)]) >= 2e-4
+    assert max(est[(0, 0, i)]["K_III_error"] for i in range(20)) == pytest.approx(2e-4, rel=1e-9)
 
 
 def _ellipse_level(f: float, n: int, phase: float, a: float = 1.0, b: float = 0.5) -> tuple[Level, np.ndarray]:

@@ -45,8 +45,10 @@ fitted by least squares along each front piece (smooth_along: a Fourier
 series in the arc length on a loop, Legendre polynomials on an open piece,
 as many terms as leave-one-out cross-validation chooses, at most one per
 SMOOTH_POINTS points), and a point's estimate is that fit over RHO^p - 1
-plus the difference's scatter about its fit (the largest within NEIGHBOURS
-points on either side). It is between 1 and (RHO^p - 1) / (RHO - 1) times
+plus the run's scatter: the smaller of its K about K's own fit (too large
+where the fit misses K's variation) and of the difference about its fit
+(too large by the other mesh's scatter), the largest within NEIGHBOURS
+points on either side. It is between 1 and (RHO^p - 1) / (RHO - 1) times
 a smooth error (2.4 at p = 2) plus the scatter (docs/sifs.md has the
 measured ratios). The difference is fitted, not each mesh's K: K varies
 along an ellipse b/a = 0.5 from 0.73 to 1.03 of the K scale in the
@@ -421,9 +423,10 @@ def estimate(levels: list[Level], of: int = -1) -> dict[tuple[int, int, int], di
     difference from the next coarser mesh over (ratio^p - 1); a coarser one
     by its difference from the finest plus that. Along a front the
     difference (every mesh's K carried to these points) is fitted along it
-    (smooth_along), plus the difference's scatter about its fit (the
-    largest within NEIGHBOURS points): the scatter is not amplified by 1 /
-    (ratio^p - 1) as the differences of two scattered K would be."""
+    (smooth_along), plus the scatter (the smaller of K's about its own fit
+    and of the difference from the adjacent mesh about its fit; the largest
+    within NEIGHBOURS points): the scatter is not amplified by 1 / (ratio^p
+    - 1) as the differences of two scattered K would be."""
     mine = levels[of]
     factors = np.array([lv.size_factor for lv in levels])
     ratio = factors[-2] / factors[-1]
@@ -441,10 +444,12 @@ def estimate(levels: list[Level], of: int = -1) -> dict[tuple[int, int, int], di
                 observed = _front_rate(dS, factors)
                 p = ASSUMED_RATE if observed is None else observed
                 factor = (1.0 if observed is None else SAFETY) / abs(ratio ** p - 1.0)
-                # the scatter: the difference from the adjacent mesh about its fit
+                # the scatter: the smaller of K's own about its fit and of the difference from the
+                # adjacent mesh about its fit (each above it: by K's misfit, by the other's scatter)
                 nxt = of % len(levels) + (1 if of % len(levels) < len(levels) - 1 else -1)
                 D = K[nxt] - K[of]
-                scatter = neighbour_max(np.abs(D - smooth_along(rows, D, mine)), rows, mine.closed)
+                scatter = neighbour_max(np.minimum(np.abs(D - smooth_along(rows, D, mine)),
+                                                   np.abs(K[of] - smooth_along(rows, K[of], mine))), rows, mine.closed)
                 to_finest = smooth_along(rows, K[-1] - K[of], mine) if mine is not levels[-1] else 0.0 * D
                 err = np.abs(dS[-1]) * factor + np.abs(to_finest) + scatter
             for i, r in enumerate(rows):
@@ -523,8 +528,8 @@ def _method(levels: list[Level], of: int) -> str:
     if levels[-1].front:
         return ("similar meshes (every size setting times " + ", ".join(f"{lv.size_factor:.3g}" for lv in levels)
                 + "); the error of the finest K is the least-squares fit along the front of its difference from "
-                "the next coarser mesh's K over ratio^p - 1, plus that difference's scatter about its fit (the largest within "
-                f"{NEIGHBOURS} point(s) on either side); p observed over three meshes from the fits' differences "
+                "the next coarser mesh's K over ratio^p - 1, plus the scatter (the smaller of K's and of that "
+                f"difference's about their fits; the largest within {NEIGHBOURS} point(s) on either side); p observed over three meshes from the fits' differences "
                 f"(times a safety factor {SAFETY:g}), else {ASSUMED_RATE:g} (an upper bound for p >= 1)")
     text = (f"refinement levels {levels[0].size_factor:g} .. {levels[-1].size_factor:g} (every element size "
             f"halved per level within {REGION_ELEMENTS:g} element sizes of each tip and {HOLE_REGION:g} radii "
