@@ -112,8 +112,9 @@ def test_estimate_along_an_ellipse_follows_k_variation():
     the front: the harmonics 0, 2, 4, ... of the angle) on 17 points (b/6)
     and the finer mesh's 24, K erring by 0.5-1.1 % (rate 2) plus a scatter of
     +-0.1 %: the estimate is at least the true error at every point and at
-    most 3 % of the K scale (the rate 1 assumed: 1.7 times a smooth error). A fit of K itself along the front with one term
-    per four points (the first harmonic only) left K's variation in the
+    most 3 % of the K scale (the rate 1 assumed: 1.7 times a smooth
+    error). A fit of K itself along the front with one term per four
+    points (the first harmonic only) left K's variation in the
     estimate: 12-36 % of the K scale on the meshes of the Irwin study."""
     run, exact = _ellipse_level(1.0, 17, 0.013)
     finer, _ = _ellipse_level(1 / RHO, 24, 0.29)

@@ -529,7 +529,8 @@ def _method(levels: list[Level], of: int) -> str:
         return ("similar meshes (every size setting times " + ", ".join(f"{lv.size_factor:.3g}" for lv in levels)
                 + "); the error of the finest K is the least-squares fit along the front of its difference from "
                 "the next coarser mesh's K over ratio^p - 1, plus the scatter (the smaller of K's and of that "
-                f"difference's about their fits; the largest within {NEIGHBOURS} point(s) on either side); p observed over three meshes from the fits' differences "
+                f"difference's about their fits; the largest within {NEIGHBOURS} point(s) on either side); p observed "
+                "over three meshes from the fits' differences "
                 f"(times a safety factor {SAFETY:g}), else {ASSUMED_RATE:g} (an upper bound for p >= 1)")
     text = (f"refinement levels {levels[0].size_factor:g} .. {levels[-1].size_factor:g} (every element size "
             f"halved per level within {REGION_ELEMENTS:g} element sizes of each tip and {HOLE_REGION:g} radii "
