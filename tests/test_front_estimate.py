@@ -61,10 +61,12 @@ def test_neighbour_max_wraps_round_a_loop_and_stops_at_open_ends():
 def test_estimate_of_a_front_with_scatter():
     """Two similar meshes (sizes sqrt(2) and 1) of a loop: K = 1 - 0.01 f^2
     plus a scatter of +-2e-4 alternating along the front. The estimate is
-    the difference of K's fits along the front over sqrt(2) - 1 plus the
-    point's scatter about its fit: at least the true error 0.01 + 2e-4 at
-    every point (2.4 times it at p = 2), and K_III's estimate is the
-    scatter's only (2e-4: not amplified by 1 / (sqrt(2) - 1))."""
+    the fit along the front of K's difference between the meshes over
+    sqrt(2) - 1 plus the scatter (the smaller of K's about its fit and of
+    the difference's about its fit): at least the true error 0.01 + 2e-4
+    at every point (2.4 times it at p = 2), and K_III's estimate is the
+    scatter's only, the run's own 2e-4 (less where the difference's is
+    smaller), not amplified by 1 / (sqrt(2) - 1)."""
     def level(f: float, n: int, phase: float) -> Level:
         x = _loop(n, phase)
         noise = 2e-4 * (-1.0) ** np.arange(n) * (1.0 if f == 1.0 else -1.0)
@@ -78,9 +80,52 @@ def test_estimate_of_a_front_with_scatter():
         row = est[(0, 0, i)]
         assert row["K_I_error"] >= 0.01 and row["K_I_error"] == pytest.approx(0.01 * (RHO ** 2 - 1) / (RHO - 1),
                                                                                abs=2.5e-3)
-        assert row["K_III_error"] == pytest.approx(2e-4, rel=0.05)
+        assert 0.0 < row["K_III_error"] <= 2e-4 * (1 + 1e-9)
         assert row["K_I_rate"] is None and row["K_I_extrapolated"] is None
         assert len(row["K_I_levels"]) == 2
+    assert max(est[(0, 0, i)]["K_III_error"] for i in range(20)) == pytest.approx(2e-4, rel=1e-9)
+
+
+def _ellipse_level(f: float, n: int, phase: float, a: float = 1.0, b: float = 0.5) -> tuple[Level, np.ndarray]:
+    """A loop of n points equally spaced in arc length (from `phase` of the
+    perimeter on) along the ellipse a x b, K_I = Irwin's exact K times (1 -
+    0.01 f^2 (1 + 0.5 cos 2 phi)) plus a scatter of +-1e-3 of K's scale
+    (alternating along the front, opposite on the two meshes); the Level
+    and the exact K_I. The error falls as f^2 (K's rate with geometric
+    enrichment)."""
+    from cracklip.exact.embedded_cracks import irwin_k
+    ph = np.linspace(0.0, 2 * math.pi, 4001)
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(a * np.cos(ph)), np.diff(b * np.sin(ph))))])
+    s = np.mod(phase + np.arange(n) / n, 1.0) * arc[-1]
+    phi = np.interp(s, arc, ph)
+    exact = irwin_k(1.0, a, b, phi)
+    noise = 1e-3 * exact.max() * (-1.0) ** np.arange(n) * (1.0 if f == 1.0 else -1.0)
+    K = exact * (1.0 - 0.01 * f ** 2 * (1.0 + 0.5 * np.cos(2 * phi))) + noise
+    rows = [{"crack": 0, "piece": 0, "point": i, "s": float(np.mod(s[i] - s[0], arc[-1])), "free_surface": False,
+             "position": [a * math.cos(phi[i]), b * math.sin(phi[i]), 0.0], "K_I": float(K[i]), "K_II": 0.0,
+             "K_III": 0.0} for i in range(n)]
+    return Level(f, 10 * n, 0.0, [rows], front=True, closed={(0, 0): True}, lengths={(0, 0): float(arc[-1])}), exact
+
+
+def test_estimate_along_an_ellipse_follows_k_variation():
+    """Irwin's ellipse b/a = 0.5 (K_I from 0.71 to 1 of its largest along
+    the front: the harmonics 0, 2, 4, ... of the angle) on 17 points (b/6)
+    and the finer mesh's 24, K erring by 0.5-1.1 % (rate 2) plus a scatter of
+    +-0.1 %: the estimate is at least the true error at every point and at
+    most 3 % of the K scale (the rate 1 assumed: 1.7 times a smooth
+    error). A fit of K itself along the front with one term per four
+    points (the first harmonic only) left K's variation in the
+    estimate: 12-36 % of the K scale on the meshes of the Irwin study."""
+    run, exact = _ellipse_level(1.0, 17, 0.013)
+    finer, _ = _ellipse_level(1 / RHO, 24, 0.29)
+    est = estimate([run, finer], of=0)
+    err = np.array([est[(0, 0, i)]["K_I_error"] for i in range(17)])
+    true = np.abs(np.array([r["K_I"] for r in run.rows[0]]) - exact)
+    scale = exact.max()
+    assert 0.008 < true.max() / scale < 0.015
+    assert np.all(err >= true)
+    assert err.max() < 0.03 * scale
+    assert np.median(err / true) < 3.0
 
 
 def test_front_rate_observed_over_three_meshes():
@@ -227,3 +272,19 @@ def test_front_estimate_demo_quick(tmp_path):
     assert r["estimate_dofs"] > r["dofs"]
     assert r["brackets"] and r["within_4"] and r["estimate_max"] >= r["true_max"] > 0.0
     assert (tmp_path / "fe" / "points.csv").is_file() and (tmp_path / "fe" / "front_estimate.png").is_file()
+
+
+def test_estimate_on_a_coarse_irwin_ellipse(tmp_path):
+    """The embedded ellipse b/a = 0.5 at b/6 (demos/front_estimate.py's
+    scene; the estimate's mesh the finer one, b/8.5), against Irwin's exact
+    K_I: K errs by up to 1.8 % of the K scale; the estimate is at least
+    0.9 times the true error at every front point (measured 1.03) and at
+    most 3 % of the K scale (measured 2.0 %; a fit of each mesh's K along
+    the front gave 60 %)."""
+    sys.path.insert(0, str(ROOT / "demos"))
+    import front_estimate as fe
+    row = fe.compare("irwin_0.5", 6.0, fe.solve_case("irwin_0.5", 6.0, True, tmp_path))
+    assert row["estimate_dofs"] > row["dofs"]
+    assert 0.005 < row["true_max"] < 0.03
+    assert row["ratio_min"] >= 0.9
+    assert row["estimate_max"] < 0.03

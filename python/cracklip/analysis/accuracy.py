@@ -38,17 +38,25 @@ given SIF radius are lengths of the part and stay, the default SIF domains
 are in element sizes and scale). K scatters from front point to front
 point by about 0.1 % of the K scale (hats on an unstructured mesh), as much
 as its error on fine meshes, and the difference of two scattered K's,
-amplified by 1 / (RHO - 1) = 2.4, would be mostly scatter. So along each
-front piece K is fitted by least squares (smooth_along: a Fourier series in
-the arc length on a loop, Legendre polynomials on an open piece, one degree
-of freedom per SMOOTH_POINTS points), each mesh's fit is carried to the
-run's front points (cracklip.analysis.front_match), and a point's estimate
-is the difference of the fits over RHO^p - 1 plus the run's own scatter
-about its fit (the largest within NEIGHBOURS points on either side). It is
-between 1 and (RHO^p - 1) / (RHO - 1) times a smooth error (2.4 at p = 2)
-plus the scatter (docs/sifs.md has the measured ratios). A fit too stiff
-for K's variation leaves it in the scatter term: the estimate grows, it
-does not hide an error.
+amplified by 1 / (RHO - 1) = 2.4, would be mostly scatter. So the other
+mesh's K is carried to the run's front points (a cubic spline along its
+front, cracklip.analysis.front_match), the difference of the two K's is
+fitted by least squares along each front piece (smooth_along: a Fourier
+series in the arc length on a loop, Legendre polynomials on an open piece,
+as many terms as leave-one-out cross-validation chooses, at most one per
+SMOOTH_POINTS points), and a point's estimate is that fit over RHO^p - 1
+plus the run's scatter: the smaller of its K about K's own fit (too large
+where the fit misses K's variation) and of the difference about its fit
+(too large by the other mesh's scatter), the largest within NEIGHBOURS
+points on either side. It is between 1 and (RHO^p - 1) / (RHO - 1) times
+a smooth error (2.4 at p = 2) plus the scatter (docs/sifs.md has the
+measured ratios). The difference is fitted, not each mesh's K: K varies
+along an ellipse b/a = 0.5 from 0.73 to 1.03 of the K scale in the
+harmonics 0, 2, 4, ..., which a Fourier series in the arc length on 17-19
+points does not fit to better than 2 % (one term per four points fitted
+the first harmonic only: estimates of 12-36 % for errors of 0.1-1.2 %);
+the difference between two meshes is a few per cent of that and slowly
+varying.
 
 ``solve_to_accuracy``: 2D, refinement levels (every size halved within the
 regions per level, about 4 times the cells there); 3D, the RHO mesh, the
@@ -129,8 +137,9 @@ RATE_MIN, RATE_MAX = 0.5, 2.0
 #: on either side (module doc).
 NEIGHBOURS = 1
 
-#: Along a front, K is fitted with one degree of freedom per this many
-#: points of a piece (smooth_along).
+#: Along a front, K is fitted with at most one degree of freedom per this
+#: many points of a piece, as many as leave-one-out cross-validation
+#: chooses (smooth_along).
 SMOOTH_POINTS = 4
 
 MODES = ("K_I", "K_II", "K_III")
@@ -265,18 +274,15 @@ def _values(rows: list[dict], modes) -> np.ndarray:
     return np.array([[float(r[m]) for m in modes] for r in rows]).reshape(len(rows), len(modes))
 
 
-def carried(level: Level, state: int, crack: int, rows: list[dict], modes, smooth: bool = False) -> np.ndarray:
+def carried(level: Level, state: int, crack: int, rows: list[dict], modes) -> np.ndarray:
     """K (n, modes) of `level` at the points of `rows` (another level's
     points of that crack and state): the same tip in 2D, carried along the
-    front in 3D (front_match); smooth: the level's fit along its front
-    (smooth_along) carried instead."""
+    front in 3D (front_match)."""
     mine = [r for r in level.rows[state] if r["crack"] == crack]
     if not level.front:  # tips: one point each
         by_tip = {r["tip"]: r for r in mine}
         return np.array([[float(by_tip[r["tip"]][m]) for m in modes] for r in rows]).reshape(len(rows), len(modes))
     values = _values(mine, modes)
-    if smooth:
-        values = smooth_along(mine, values, level)
     pieces = []
     for p in sorted({r["piece"] for r in mine}):
         idx = sorted((i for i, r in enumerate(mine) if r["piece"] == p), key=lambda i: mine[i]["s"])
@@ -331,11 +337,43 @@ def neighbour_max(values: np.ndarray, rows: list[dict], closed: dict[tuple[int, 
     return out
 
 
+def _loo_fit(basis: np.ndarray, use: np.ndarray, values: np.ndarray, sizes: typing.Iterable[int]) -> np.ndarray:
+    """values (n, m) fitted by least squares on the first k columns of
+    `basis` (n, K) over the points `use`, k chosen per column of values by
+    leave-one-out cross-validation (the smallest sum of squared residuals
+    of each point left out, r_i / (1 - h_ii) for a linear fit; Allen's
+    PRESS) among `sizes`; the fit at every point."""
+    B, V = basis[use], values[use]
+    best = np.full(values.shape[1], np.inf)
+    out = np.repeat(values[use].mean(axis=0, keepdims=True), len(values), axis=0)
+    for k in sizes:
+        if k > len(B) - 1:
+            break
+        q, _ = np.linalg.qr(B[:, :k])
+        h = np.einsum("ij,ij->i", q, q)
+        if h.max() > 1.0 - 1e-9:
+            break
+        r = V - q @ (q.T @ V)
+        press = np.sum((r / (1.0 - h)[:, None]) ** 2, axis=0)
+        better = press < best * (1.0 - 1e-12)
+        if np.any(better):
+            coef = np.linalg.lstsq(B[:, :k], V[:, better], rcond=None)[0]
+            out[:, better] = basis[:, :k] @ coef
+            best[better] = press[better]
+    return out
+
+
 def smooth_along(rows: list[dict], values: np.ndarray, level: Level) -> np.ndarray:
     """values (n, m) at front points fitted by least squares along each piece
-    (its points off the free surface; SMOOTH_POINTS points per degree of
-    freedom): a Fourier series in the arc length on a loop, Legendre
-    polynomials on an open piece; the fit at every point."""
+    (its points off the free surface): a Fourier series in the arc length on
+    a loop, Legendre polynomials on an open piece, the number of terms of
+    each mode chosen by leave-one-out cross-validation (_loo_fit) up to one
+    per SMOOTH_POINTS points; the fit at every point. K along an ellipse b/a
+    = 0.5 needs the harmonics 0, 2, 4 (K_I from 0.73 to 1.03 of its
+    largest, the fourth harmonic 1 % of it) where a penny's needs the mean
+    only and an inclined penny's the first: a fixed count of one term per
+    four points (one harmonic on 19 points) left the ellipse's variation in
+    the estimate (12-36 % of the K scale for errors of 0.1-1.2 %)."""
     out = np.array(values, dtype=float)
     keys = [(r["crack"], r["piece"]) for r in rows]
     for key in set(keys):
@@ -345,32 +383,32 @@ def smooth_along(rows: list[dict], values: np.ndarray, level: Level) -> np.ndarr
         n = int(use.sum())
         if n < 3:
             continue
-        dofs = max(2, n // SMOOTH_POINTS)
+        terms = max(2, n // SMOOTH_POINTS)
         if level.closed.get(key, False):
             t = 2.0 * math.pi * s / level.lengths[key]
-            M = max(1, (dofs - 1) // 2)
+            M = max(1, (terms - 1) // 2)
             basis = np.column_stack([np.ones_like(t)] + [f(k * t) for k in range(1, M + 1)
                                                           for f in (np.cos, np.sin)])
         else:
             t = 2.0 * (s - s.min()) / max(float(np.ptp(s)), 1e-300) - 1.0
-            basis = np.polynomial.legendre.legvander(t, dofs - 1)
-        coef = np.linalg.lstsq(basis[use], values[idx][use], rcond=None)[0]
-        out[idx] = basis @ coef
+            basis = np.polynomial.legendre.legvander(t, terms - 1)
+        sizes = range(1, basis.shape[1] + 1, 2 if level.closed.get(key, False) else 1)  # whole harmonics
+        out[idx] = _loo_fit(basis, use, values[idx], sizes)
     return out
 
 
-def _front_rate(S: np.ndarray, factors: np.ndarray) -> float | None:
+def _front_rate(dS: list[np.ndarray], factors: np.ndarray) -> float | None:
     """The rate of the smooth K along a front over three or more similar
-    meshes: from the RMS (points and modes) of the differences between
-    consecutive meshes (S (levels, n, modes) at one mesh's points), the
-    smallest over every three, clipped to [RATE_MIN, RATE_MAX]; None when
-    the differences do not shrink."""
-    if len(S) < 3:
+    meshes: from the RMS (points and modes) of the fitted differences
+    between consecutive meshes (dS[k] (n, modes): mesh k + 1's K less mesh
+    k's at one mesh's points), the smallest over every three, clipped to
+    [RATE_MIN, RATE_MAX]; None when the differences do not shrink."""
+    if len(dS) < 2:
         return None
     rates = []
-    for k in range(len(S) - 2):
-        d1 = float(np.sqrt(np.mean((S[k + 1] - S[k]) ** 2)))
-        d2 = float(np.sqrt(np.mean((S[k + 2] - S[k + 1]) ** 2)))
+    for k in range(len(dS) - 1):
+        d1 = float(np.sqrt(np.mean(dS[k] ** 2)))
+        d2 = float(np.sqrt(np.mean(dS[k + 1] ** 2)))
         ratio = factors[k + 1] / factors[k + 2]
         if d2 <= 0.0 or d2 >= d1 or abs(factors[k] / factors[k + 1] - ratio) > 1e-6 * ratio:
             return None
@@ -385,11 +423,11 @@ def estimate(levels: list[Level], of: int = -1) -> dict[tuple[int, int, int], di
     K extrapolated (2D, an observed rate only). The finest K errs by the
     difference from the next coarser mesh over (ratio^p - 1); a coarser one
     by its difference from the finest plus that. Along a front the
-    difference is that of K's fits along it (smooth_along, each mesh's own
-    fit carried to these points), plus the point's scatter about its own
-    fit (the largest within NEIGHBOURS points): the scatter is not
-    amplified by 1 / (ratio^p - 1) as the differences of two scattered K
-    would be."""
+    difference (every mesh's K carried to these points) is fitted along it
+    (smooth_along), plus the scatter (the smaller of K's about its own fit
+    and of the difference from the adjacent mesh about its fit; the largest
+    within NEIGHBOURS points): the scatter is not amplified by 1 / (ratio^p
+    - 1) as the differences of two scattered K would be."""
     mine = levels[of]
     factors = np.array([lv.size_factor for lv in levels])
     ratio = factors[-2] / factors[-1]
@@ -402,13 +440,19 @@ def estimate(levels: list[Level], of: int = -1) -> dict[tuple[int, int, int], di
             K = np.stack([_values(rows, modes) if lv is mine else carried(lv, s, crack, rows, modes)
                           for lv in levels])                                       # (levels, n, modes)
             if mine.front:
-                S = np.stack([smooth_along(rows, K[j], mine) if lv is mine else
-                              carried(lv, s, crack, rows, modes, smooth=True) for j, lv in enumerate(levels)])
-                observed = _front_rate(S, factors)
+                # K's differences between meshes at these points, fitted along the front
+                dS = [smooth_along(rows, K[j + 1] - K[j], mine) for j in range(len(levels) - 1)]
+                observed = _front_rate(dS, factors)
                 p = ASSUMED_RATE if observed is None else observed
                 factor = (1.0 if observed is None else SAFETY) / abs(ratio ** p - 1.0)
-                scatter = neighbour_max(np.abs(K[of] - S[of]), rows, mine.closed)
-                err = np.abs(S[-1] - S[-2]) * factor + np.abs(S[of] - S[-1]) + scatter
+                # the scatter: the smaller of K's own about its fit and of the difference from the
+                # adjacent mesh about its fit (each above it: by K's misfit, by the other's scatter)
+                nxt = of % len(levels) + (1 if of % len(levels) < len(levels) - 1 else -1)
+                D = K[nxt] - K[of]
+                scatter = neighbour_max(np.minimum(np.abs(D - smooth_along(rows, D, mine)),
+                                                   np.abs(K[of] - smooth_along(rows, K[of], mine))), rows, mine.closed)
+                to_finest = smooth_along(rows, K[-1] - K[of], mine) if mine is not levels[-1] else 0.0 * D
+                err = np.abs(dS[-1]) * factor + np.abs(to_finest) + scatter
             for i, r in enumerate(rows):
                 row: dict[str, typing.Any] = {}
                 for m, mode in enumerate(modes):
@@ -484,9 +528,10 @@ def _meshes(levels: list[Level]) -> str:
 def _method(levels: list[Level], of: int) -> str:
     if levels[-1].front:
         return ("similar meshes (every size setting times " + ", ".join(f"{lv.size_factor:.3g}" for lv in levels)
-                + "); the error of the finest K is the difference of K's least-squares fits along the front on it "
-                "and the next coarser mesh over ratio^p - 1, plus its scatter about its fit (the largest within "
-                f"{NEIGHBOURS} point(s) on either side); p observed over three meshes from the fits' differences "
+                + "); the error of the finest K is the least-squares fit along the front of its difference from "
+                "the next coarser mesh's K over ratio^p - 1, plus the scatter (the smaller of K's and of that "
+                f"difference's about their fits; the largest within {NEIGHBOURS} point(s) on either side); p observed "
+                "over three meshes from the fits' differences "
                 f"(times a safety factor {SAFETY:g}), else {ASSUMED_RATE:g} (an upper bound for p >= 1)")
     text = (f"refinement levels {levels[0].size_factor:g} .. {levels[-1].size_factor:g} (every element size "
             f"halved per level within {REGION_ELEMENTS:g} element sizes of each tip and {HOLE_REGION:g} radii "
