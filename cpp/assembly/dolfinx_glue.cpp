@@ -72,4 +72,17 @@ MatrixSink petsc_add_sink(Mat A)
   };
 }
 
+MatrixSink petsc_add_local_sink(Mat A)
+{
+  return [A](std::span<const std::int32_t> rows, std::span<const std::int32_t> cols,
+             std::span<const double> values)
+  {
+    PetscErrorCode ierr = MatSetValuesLocal(A, static_cast<PetscInt>(rows.size()), rows.data(),
+                                            static_cast<PetscInt>(cols.size()), cols.data(),
+                                            values.data(), ADD_VALUES);
+    if (ierr != 0)
+      throw std::runtime_error("MatSetValuesLocal failed (PETSc error " + std::to_string(ierr) + ")");
+  };
+}
+
 } // namespace cracklip
