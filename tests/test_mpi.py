@@ -174,9 +174,11 @@ def test_open_crack_same_on_one_and_two_processes():
     dofs (pseudo-nodes owned with their base node), the distributed matrix
     assembled on owned cells, parallel MUMPS, K by the interaction integral
     summed over processes. The same dofs as serial, K and the work of the
-    pressure to 1e-10 relative (the direct path's target)."""
+    pressure to 1e-10 relative (the direct path's target). Measured:
+    3082 dofs, 610 enriched; K_I 1.782554724946618 / 1.7839816078402078
+    serial, equal to 4e-15 on 2 and 3 processes."""
     script = str(ROOT / "tests" / "mpi" / "open_crack.py")
-    args = [str(SCENES / "pressurised_crack.toml"), "mesh.tip_h=0.1", "options.solver=direct"]
+    args = [str(SCENES / "pressurised_crack.toml"), "mesh.tip_h=0.05", "options.radius=0.3", "options.solver=direct"]
     runs = {}
     for n in (1, 2):
         p = python_on(n, script, *args)
@@ -184,6 +186,7 @@ def test_open_crack_same_on_one_and_two_processes():
         runs[n] = json.loads(p.stdout.strip().splitlines()[-1])
     one, two = runs[1], runs[2]
     assert two["processes"] == 2
+    assert two["split"][0] == 2 and two["split"][1] > 0, two  # the crack's dofs lie on both processes
     assert (two["dofs"], two["enriched"]) == (one["dofs"], one["enriched"]), (one, two)
     assert len(one["sifs"]) == len(two["sifs"]) == 2
     scale = max(abs(k) for ks in one["sifs"] for k in ks)

@@ -8,6 +8,8 @@ crack, the direct solver. Prints one JSON line (rank 0):
   sifs        [K_I, K_II] per tip
   energy      1/2 u . f: the work of the lip pressure (summed over processes)
   residual    the solve's relative residual
+  split       processes owning pseudo-nodes, and ghost pseudo-nodes
+              numbered from their owners (the crack crosses the partition)
 
     python3 tests/mpi/open_crack.py SCENE [KEY=VALUE ...]
 """
@@ -30,10 +32,13 @@ if m.distributed:
     dofs, enriched = m.dofs.num_global * m.gdim, None
     own = np.asarray(m.layout.node) < m.V.dofmap.index_map.size_local
     enriched = comm.allreduce(int(np.count_nonzero(own))) * m.gdim
+    ghost_numbered = np.count_nonzero(m.dofs.block[m.layout.num_std_nodes:][~own] >= 0)
+    split = [comm.allreduce(int(own.any())), comm.allreduce(int(ghost_numbered))]
 else:
     dofs, enriched = m.num_dofs, m.gdim * m.layout.num_enriched
+    split = [1, 0]
 out = {"processes": comm.size, "dofs": int(dofs), "enriched": int(enriched),
        "sifs": [[r["K_I"], r["K_II"]] for r in rows], "work": 0.5 * work,
-       "residual": sol.solver["relative_residual"]}
+       "residual": sol.solver["relative_residual"], "split": split}
 if comm.rank == 0:
     print(json.dumps(out), flush=True)
