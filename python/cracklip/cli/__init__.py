@@ -347,9 +347,12 @@ def cmd_grow(args) -> int:
     from ..io.outputs import ensure_output_dir
     t_start = time.perf_counter()
     doc = _load(args)
-    if "growth" not in doc:
-        raise InputError(f"{args.scene} has no [growth] table: give growth.da (fixed increments) or "
-                         "growth.paris_C and growth.paris_m (fatigue) and growth.steps")
+
+    def has_growth():
+        if "growth" not in doc:
+            raise InputError(f"{args.scene} has no [growth] table: give growth.da (fixed increments) or "
+                             "growth.paris_C and growth.paris_m (fatigue) and growth.steps")
+    replicated(has_growth)  # (every process finds it alike: one message under mpirun)
     out = ensure_output_dir(args.out)
     sf = _build(args, doc)
     series = SeriesWriter(out) if sf.outputs["vtu"] else None
