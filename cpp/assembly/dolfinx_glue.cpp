@@ -58,18 +58,33 @@ NodeMesh extract_node_mesh(const dolfinx::fem::FunctionSpace& V)
   return out;
 }
 
+namespace
+{
+/// A sink adding blocks through MatSetValues or MatSetValuesLocal (the same
+/// signature); a failure names the call and what it means.
+using SetValues = PetscErrorCode (*)(Mat, PetscInt, const PetscInt[], PetscInt, const PetscInt[], const PetscScalar[],
+                                     InsertMode);
+MatrixSink petsc_sink(Mat A, SetValues set, const char* name, const char* meaning)
+{
+  return [A, set, name, meaning](std::span<const std::int32_t> rows, std::span<const std::int32_t> cols,
+                                 std::span<const double> values)
+  {
+    PetscErrorCode ierr = set(A, static_cast<PetscInt>(rows.size()), rows.data(), static_cast<PetscInt>(cols.size()),
+                              cols.data(), values.data(), ADD_VALUES);
+    if (ierr != 0)
+      throw std::runtime_error(std::string(name) + " failed (PETSc error " + std::to_string(ierr) + ")" + meaning);
+  };
+}
+} // namespace
+
 MatrixSink petsc_add_sink(Mat A)
 {
-  return [A](std::span<const std::int32_t> rows, std::span<const std::int32_t> cols,
-             std::span<const double> values)
-  {
-    PetscErrorCode ierr = MatSetValues(A, static_cast<PetscInt>(rows.size()), rows.data(),
-                                       static_cast<PetscInt>(cols.size()), cols.data(),
-                                       values.data(), ADD_VALUES);
-    if (ierr != 0)
-      throw std::runtime_error("MatSetValues failed (PETSc error " + std::to_string(ierr)
-                               + "): the matrix sparsity misses an enriched coupling");
-  };
+  return petsc_sink(A, MatSetValues, "MatSetValues", ": the matrix sparsity misses an enriched coupling");
+}
+
+MatrixSink petsc_add_local_sink(Mat A)
+{
+  return petsc_sink(A, MatSetValuesLocal, "MatSetValuesLocal", "");
 }
 
 } // namespace cracklip

@@ -34,4 +34,9 @@ NodeMesh extract_node_mesh(const dolfinx::fem::FunctionSpace& V);
 /// (MatSetValues, ADD_VALUES; negative indices are skipped by PETSc).
 MatrixSink petsc_add_sink(Mat A);
 
+/// A sink that adds blocks into a PETSc matrix with this process's local
+/// scalar indices, mapped to global ones by the matrix's local-to-global map
+/// (MatSetValuesLocal, ADD_VALUES): the kernels keep their numbering under MPI.
+MatrixSink petsc_add_local_sink(Mat A);
+
 } // namespace cracklip

@@ -2,6 +2,7 @@
 
 #include "enrichment/crack_enrichment.h"
 
+#include <algorithm>
 #include <array>
 #include <stdexcept>
 #include <string>
@@ -111,6 +112,27 @@ void EnrichmentLayout::require_dimension(int d, const char* who) const
   if (dim != d)
     throw std::invalid_argument(std::string(who) + ": the enrichment layout belongs to a " + std::to_string(dim)
                                 + "D mesh, the arrays to a " + std::to_string(d) + "D one");
+}
+
+EnrichmentLayout with_cells_below(const EnrichmentLayout& layout, std::int32_t num_cells)
+{
+  EnrichmentLayout out = layout;
+  out.cells.clear();
+  out.cell_offsets.assign(1, 0);
+  out.cell_enr.clear();
+  std::fill(out.cell_index.begin(), out.cell_index.end(), -1);
+  for (std::size_t i = 0; i < layout.cells.size(); ++i)
+  {
+    const std::int32_t c = layout.cells[i];
+    if (c >= num_cells)
+      continue;
+    out.cell_index[c] = static_cast<std::int32_t>(out.cells.size());
+    out.cells.push_back(c);
+    out.cell_enr.insert(out.cell_enr.end(), layout.cell_enr.begin() + layout.cell_offsets[i],
+                        layout.cell_enr.begin() + layout.cell_offsets[i + 1]);
+    out.cell_offsets.push_back(static_cast<std::int32_t>(out.cell_enr.size()));
+  }
+  return out;
 }
 
 EnrichmentLayout create_enrichment_layout(std::span<const double> x, std::span<const std::int32_t> cells,

@@ -116,4 +116,10 @@ EnrichmentLayout create_enrichment_layout(std::span<const double> x, std::span<c
                                           std::span<const CrackGeometry3D* const> cracks,
                                           const EnrichmentOptions& options);
 
+/// The same layout with only the enriched cells below num_cells (a process's
+/// owned cells under MPI, which come first): every pseudo-node is kept, so
+/// the dof numbering is unchanged; the kernels that loop over layout.cells
+/// then integrate each cell on one process only.
+EnrichmentLayout with_cells_below(const EnrichmentLayout& layout, std::int32_t num_cells);
+
 } // namespace cracklip

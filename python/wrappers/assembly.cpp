@@ -69,12 +69,17 @@ void declare_assembly(py::module& m)
   m.def(
       "assemble_enriched_stiffness_petsc",
       [](std::uintptr_t mat_handle, const carray<double>& x, const carray<std::int32_t>& cells,
-         const EnrichmentLayout& layout, const py::sequence& cracks, double E, double nu, const py::object& options)
-      { return assemble(petsc_add_sink(reinterpret_cast<Mat>(mat_handle)), x, cells, layout, cracks, E, nu, options); },
+         const EnrichmentLayout& layout, const py::sequence& cracks, double E, double nu, const py::object& options,
+         bool local)
+      {
+        const Mat A = reinterpret_cast<Mat>(mat_handle);
+        return assemble(local ? petsc_add_local_sink(A) : petsc_add_sink(A), x, cells, layout, cracks, E, nu, options);
+      },
       py::arg("mat_handle"), py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("E"),
-      py::arg("nu"), py::arg("options"),
+      py::arg("nu"), py::arg("options"), py::arg("local") = false,
       "Add the enriched cells' stiffness (standard-standard block excluded) into a PETSc Mat (petsc4py Mat.handle). "
-      "Returns the number of cells integrated. options: QuadratureOptions (2D) or QuadratureOptions3D.");
+      "Returns the number of cells integrated. options: QuadratureOptions (2D) or QuadratureOptions3D. local: "
+      "the kernels' indices are local ones, mapped by the matrix's local-to-global map (MatSetValuesLocal; MPI).");
 
   m.def(
       "assemble_enriched_stiffness_coo",

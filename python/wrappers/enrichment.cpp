@@ -53,7 +53,10 @@ void declare_enrichment(py::module& m)
       .def_property_readonly("cells", [](const L& l) { return view(l.cells); })
       .def_property_readonly("cell_offsets", [](const L& l) { return view(l.cell_offsets); })
       .def_property_readonly("cell_enr", [](const L& l) { return view(l.cell_enr); })
-      .def_property_readonly("frame_node", [](const L& l) { return view(l.frame_node); });
+      .def_property_readonly("frame_node", [](const L& l) { return view(l.frame_node); })
+      .def("with_cells_below", &with_cells_below, py::arg("num_cells"),
+           "The same layout with only the enriched cells below num_cells (a process's owned cells under MPI): "
+           "the pseudo-nodes and their numbering are kept");
 
   m.def(
       "create_enrichment_layout",

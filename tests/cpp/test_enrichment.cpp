@@ -65,3 +65,38 @@ TEST(HeavisideLayout, TwoCracksInOneCellThrow)
   const CrackGeometry* gs[] = {&ga, &gb};
   EXPECT_THROW(create_enrichment_layout(x, cells, gs, {}), std::runtime_error);
 }
+
+TEST(HeavisideLayout, CellsBelowKeepThePseudoNodesAndTheCellsBelow)
+{
+  std::vector<double> x;
+  std::vector<std::int32_t> cells;
+  grid(10, x, cells);
+  CrackPath c{{-1.0, 0.55, 2.0, 0.55}, {false, false}};
+  const CrackGeometry g = compute_crack_geometry(x, cells, c, 1e-8);
+  const CrackGeometry* gs[] = {&g};
+  const EnrichmentLayout l = create_enrichment_layout(x, cells, gs, {});
+  const std::int32_t below = 110; // rows 0-5 of cells (20 per row): the crack row 5 is cut in half
+  const EnrichmentLayout o = with_cells_below(l, below);
+  EXPECT_EQ(o.num_enriched(), l.num_enriched());
+  EXPECT_EQ(o.node, l.node);
+  ASSERT_EQ(o.cell_offsets.size(), o.cells.size() + 1);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < l.cells.size(); ++i)
+  {
+    const std::int32_t cell = l.cells[i];
+    if (cell >= below)
+    {
+      EXPECT_EQ(o.cell_index[cell], -1);
+      continue;
+    }
+    const std::int32_t j = o.cell_index[cell];
+    ASSERT_EQ(j, static_cast<std::int32_t>(kept));
+    EXPECT_EQ(o.cells[j], cell);
+    const std::vector<std::int32_t> a(l.cell_enr.begin() + l.cell_offsets[i], l.cell_enr.begin() + l.cell_offsets[i + 1]);
+    const std::vector<std::int32_t> b(o.cell_enr.begin() + o.cell_offsets[j], o.cell_enr.begin() + o.cell_offsets[j + 1]);
+    EXPECT_EQ(a, b);
+    ++kept;
+  }
+  EXPECT_EQ(o.cells.size(), kept);
+  EXPECT_EQ(kept, 30u); // row 4 (20 cells) and the first half of the cut row 5 (10)
+}

@@ -14,10 +14,12 @@ import ufl
 
 from ..contact.frictionless import solve_contact
 from ..errors import InputError, SolverError
-from ..model.assembly import assemble_system, elasticity_form
-from ..model.model import create_model
+from ..model.assembly import assemble_distributed_system, assemble_system, elasticity_form
+from ..model.distributed import to_local
+from ..model.model import create_model, refuse_unless_distributed
 from ..post.solution import Solution, create_solution
 from ..scene.mesh_estimate import release_memory
+from ..scene.processes import not_parallel
 from ..scene.scene import Scene
 from ..solvers.checked import condition_number_1norm, record_solves, solve_checked
 from ..solvers.choice import create_linear_solver, to_solver_basis
@@ -42,6 +44,8 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     (cracklip.analysis.accuracy.solve_to_accuracy); the finest level's
     Solution is returned, its .error_estimate holds the levels.
     """
+    if scene.mesh.mesh.comm.size > 1:
+        return _solve_distributed(scene, condition_number)
     if scene.options.accuracy > 0.0:
         # Refinement levels around the tips until K's estimated error is below
         # the target (cracklip.analysis.accuracy); each level solved as usual.
@@ -110,6 +114,37 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     logger.info("solved %d dofs (%d enriched) in %.3f s", model.num_dofs,
                 model.gdim * model.layout.num_enriched, timings["total"])
     return create_solution(model, u, timings, condition, contact, solver)
+
+
+def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
+    """solve() on several processes (mpirun; issue 40 step 2): an open 2D
+    crack, the direct solver (parallel MUMPS). The Solution holds this
+    process's model and its local displacement (owned and ghost nodes);
+    K (Solution.stress_intensity_factors) is summed over processes."""
+    comm = scene.mesh.mesh.comm
+    refuse_unless_distributed(scene)
+    if condition_number:
+        not_parallel("the condition number", comm)
+    t_start = time.perf_counter()
+    model = create_model(scene)
+    E = scene.material.E  # in units of E, as solve()
+    unit = dataclasses.replace(model, scene=dataclasses.replace(scene, material=scene.material.scaled(1.0)),
+                               bc_values=model.bc_values * E,
+                               bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
+    A, b, timings = assemble_distributed_system(unit)
+    model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
+    t0 = time.perf_counter()
+    with record_solves() as solves:
+        x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system", symmetric=True)
+    timings["solve"] = time.perf_counter() - t0
+    u = to_local(model.dofs, x) / E
+    for o in (A, b, x):
+        o.destroy()
+    timings = {**model.timings, **timings}
+    timings["total"] = time.perf_counter() - t_start
+    solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None,
+              "solver": "direct", "solves": solves, "processes": comm.size}
+    return create_solution(model, u, timings, {}, {}, solver)
 
 
 def _contact_singularity(scene: Scene, A, b, error: SolverError) -> SolverError:

@@ -186,6 +186,10 @@ def _build(args, doc):
     logger.info("mesh: %d nodes, %d %s (%.2f s)", msh.topology.index_map(0).size_global,
                 msh.topology.index_map(msh.topology.dim).size_global,
                 "tetrahedra" if msh.topology.dim == 3 else "cells", sf.timings["mesh"])
+    # The commands' X-FEM path (outputs, checks, growth) is serial yet; the
+    # Python API solves an open 2D crack on several processes (cracklip.model.distributed).
+    from ..scene.processes import not_parallel
+    not_parallel("the X-FEM model (cracks, enrichment, solvers, K)", msh.comm)
     return sf
 
 
@@ -343,9 +347,12 @@ def cmd_grow(args) -> int:
     from ..io.outputs import ensure_output_dir
     t_start = time.perf_counter()
     doc = _load(args)
-    if "growth" not in doc:
-        raise InputError(f"{args.scene} has no [growth] table: give growth.da (fixed increments) or "
-                         "growth.paris_C and growth.paris_m (fatigue) and growth.steps")
+
+    def has_growth():
+        if "growth" not in doc:
+            raise InputError(f"{args.scene} has no [growth] table: give growth.da (fixed increments) or "
+                             "growth.paris_C and growth.paris_m (fatigue) and growth.steps")
+    replicated(has_growth)  # (every process finds it alike: one message under mpirun)
     out = ensure_output_dir(args.out)
     sf = _build(args, doc)
     series = SeriesWriter(out) if sf.outputs["vtu"] else None

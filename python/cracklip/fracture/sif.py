@@ -49,6 +49,7 @@ import numpy as np
 from .. import _cracklip
 from ..errors import InputError
 from ..model.tip_regions import TipDomain, lip_points, node_distances, tip_domains
+from ..scene.processes import reduced
 from ..scene.stress_field import LinearStress, divergence
 from .lip_tractions import lip_traction, lip_traction_parts
 
@@ -121,7 +122,11 @@ def interaction_integrals(solution, domain: TipDomain, radius: float) -> np.ndar
     body = _body_force(solution)
     d = _cracklip.compute_domain_points(m.x, m.cells, m.layout, m.geometries, domain.position,
                                         domain.direction, radius, q_opts, body is not None, domain.inner_radius)
-    if not np.any(d["grad_q"]):
+    distributed = getattr(m, "distributed", False)
+    if distributed:  # each process its owned cells; the integrals summed below
+        keep = m.owned_cells_only(d["cell"])
+        d = {k: v[keep] for k, v in d.items()}
+    if not (reduced(bool(np.any(d["grad_q"])), "LOR", m.V.mesh.comm) if distributed else np.any(d["grad_q"])):
         raise InputError(f"no cell crosses the SIF domain circle of radius {radius:.4g} around tip "
                          f"{domain.position.tolist()}: the q-function is constant; use a larger radius")
     _, grad = _cracklip.evaluate_displacement(m.x, m.cells, m.layout, m.geometries, solution.u,
@@ -134,6 +139,9 @@ def interaction_integrals(solution, domain: TipDomain, radius: float) -> np.ndar
         daux = _aux_derivative(mat, domain, d["x"], d["side"])
         I = I - np.einsum("n,n,nmi,ni->m", d["weight"], d["q"], daux, b)
     pts = lip_points(m, domain.crack)
+    if distributed:
+        keep = m.owned_cells_only(pts["cell"])
+        pts = {k: v[keep] for k, v in pts.items()}
     dist = node_distances(m, domain.position)
     q = _q_at(m, dist, radius, pts["cell"], pts["ref"], domain.inner_radius)
     on = q > 0.0
@@ -144,6 +152,8 @@ def interaction_integrals(solution, domain: TipDomain, radius: float) -> np.ndar
             jump = (_aux_derivative(mat, domain, sub["x"], np.ones(len(t), dtype=np.int8))
                     - _aux_derivative(mat, domain, sub["x"], -np.ones(len(t), dtype=np.int8)))
             I = I - np.einsum("n,n,nmi,ni->m", sub["weight"], q[on], jump, t)
+    if distributed:
+        I = reduced(np.asarray(I, dtype=float), "SUM", m.V.mesh.comm)
     return I
 
 
@@ -185,6 +195,8 @@ def natural_k(solution) -> float:
         pts = lip_points(m, ci)
         for t in lip_traction_parts(solution, ci, pts) if len(pts["weight"]) else []:
             k = max(k, float(np.linalg.norm(t, axis=1).max()) * math.sqrt(math.pi * 0.5 * float(pts["weight"].sum())))
+    if getattr(m, "distributed", False):  # a scale, alike on every process (each saw its part)
+        k = reduced(k, "MAX", m.V.mesh.comm)
     return k
 
 

@@ -19,6 +19,8 @@ import dolfinx.fem
 import dolfinx.fem.petsc
 import ufl
 
+from . import distributed
+from ..scene.processes import reduced
 from .loads import assemble_loads
 from .xfem_model import XfemModel
 
@@ -144,3 +146,43 @@ def assemble_system_groups(model: XfemModel) -> tuple[PETSc.Mat, dict[str, np.nd
     A.zeroRowsColumns(model.bc_dofs, diag=1.0)
     timings["load_and_constraints"] = time.perf_counter() - t0
     return A, out, timings
+
+
+def assemble_distributed_system(model: XfemModel) -> tuple[PETSc.Mat, PETSc.Vec, dict[str, float]]:
+    """assemble_system on one process's part of a distributed model
+    (model.distributed): the matrix over the global numbering
+    (model.dofs), DOLFINx's standard block and the kernels' enriched blocks
+    on the owned cells, the loads of every group at factor 1 summed over
+    processes, the Dirichlet rows and columns of the owned dofs replaced by
+    identity with lifting."""
+    dm = model.dofs
+    timings = {}
+    t0 = time.perf_counter()
+    A = distributed.create_matrix(dm, model.crack_type.sparsity(model.cells, model.layout))
+    timings["sparsity"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    E, nu = material_constants(model)
+    dolfinx.fem.petsc.assemble_matrix(A, elasticity_form(model.V, E, nu))
+    timings["assemble_standard"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    model.num_enriched_cells_integrated = model.crack_type.assemble_stiffness(A, model, E, nu)
+    A.assemble()
+    timings["assemble_enriched"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    b = distributed.vector_from_local(dm, A, sum(assemble_loads(model).values(), np.zeros(model.num_dofs)))
+    rows = dm.global_dofs(model.bc_dofs)
+    mine = dm.owned(rows)
+    rows, values = rows[mine].astype(PETSc.IntType), np.asarray(model.bc_values, dtype=float)[mine]
+    if reduced(bool(np.any(values)), "LOR", model.V.mesh.comm):
+        g, Ag = A.createVecRight(), A.createVecRight()
+        g.set(0.0)
+        g.setValues(rows, values)
+        g.assemble()
+        A.mult(g, Ag)
+        b.axpy(-1.0, Ag)
+        g.destroy(), Ag.destroy()
+    b.setValues(rows, values)
+    b.assemble()
+    A.zeroRowsColumns(rows, diag=1.0)
+    timings["load_and_constraints"] = time.perf_counter() - t0
+    return A, b, timings

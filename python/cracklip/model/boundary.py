@@ -21,9 +21,21 @@ def boundary_segments(mesh) -> tuple[np.ndarray, np.ndarray]:
     msh = mesh.mesh
     tdim = msh.topology.dim
     msh.topology.create_connectivity(tdim - 1, tdim)
-    facets = dolfinx.mesh.exterior_facet_indices(msh.topology)
+    if msh.comm.size == 1:
+        facets = dolfinx.mesh.exterior_facet_indices(msh.topology)
+    else:
+        # The facets of owned cells with one cell: every process holds the
+        # cells across its owned cells' facets (vertex-patch ghosts), so these
+        # are the part's boundary facets, each on one process; gathered below.
+        f2c = msh.topology.connectivity(tdim - 1, tdim)
+        one = np.flatnonzero(np.diff(f2c.offsets) == 1)
+        owned = msh.topology.index_map(tdim).size_local
+        facets = one[f2c.array[f2c.offsets[one]] < owned].astype(np.int32)
     verts = dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, tdim - 1, facets, False)
-    return msh.geometry.x[verts[:, 0], :2], msh.geometry.x[verts[:, 1], :2]
+    a, b = msh.geometry.x[verts[:, 0], :2], msh.geometry.x[verts[:, 1], :2]
+    if msh.comm.size > 1:
+        a, b = (np.concatenate(msh.comm.allgather(v)) for v in (a, b))
+    return a, b
 
 
 def boundary_normals(mesh: MeshData, where: str | int) -> typing.Callable[[np.ndarray], np.ndarray]:

@@ -49,6 +49,7 @@ from .. import _cracklip
 from ..errors import BoundaryConditionError, CrackGeometryError, InputError
 from ..scene.size_field import PLATEAU
 from ..scene.units import STRESSES
+from ..scene.processes import not_parallel
 from .boundary import nearest_boundary_point, where_outside
 from .constraints import ROTATIONS, rigid_motion_rank
 from .tip_regions import lip_points, model_boundary, segment_distance, tip_domains, tip_element_size
@@ -295,6 +296,9 @@ def check_pieces(model) -> None:
     cut a piece off."""
     if all(cm.ends_inside() for cm in model.cracks):
         return
+    if model.distributed:
+        not_parallel("a crack without a tip inside the part (the pieces it may cut off are checked on one "
+                     "process only)", model.V.mesh.comm)
     comp, other = _pieces(model)
     labels = np.unique(comp)
     if labels.size < 2:

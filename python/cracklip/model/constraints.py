@@ -13,7 +13,7 @@ from ..errors import BoundaryConditionError
 from ..scene.scene import Scene
 from ..scene.symmetry import SymmetryCondition
 from .symmetry import symmetry_enriched_dofs
-from ..scene.processes import total
+from ..scene.processes import mark_collective, total
 
 
 def _accepts_side(f) -> bool:
@@ -37,6 +37,16 @@ def condition_nodes(scene: Scene, V, x: np.ndarray, bc) -> np.ndarray:
     if is_point_condition(bc):
         p = np.asarray(bc.where, dtype=float)
         d = np.linalg.norm(x - p, axis=1)
+        comm = scene.mesh.mesh.comm
+        if comm.size > 1:  # the nearest node of all processes; each that holds it constrains it
+            near = min(comm.allgather((float(d.min()) if d.size else np.inf,
+                                       x[int(np.argmin(d))].tolist() if d.size else None)))
+            scale = float(max(comm.allgather(float(np.ptp(x, axis=0).max()) if d.size else 0.0)))
+            if near[0] > 1e-8 * scale:
+                raise mark_collective(BoundaryConditionError(
+                    f"Dirichlet point {p.tolist()} is not a mesh node (nearest node {near[1]} at distance "
+                    f"{near[0]:.3g}); use a node or a boundary tag"))
+            return np.flatnonzero(d == near[0]).astype(np.int32)[:1]
         node = int(np.argmin(d))
         scale = float(np.ptp(x, axis=0).max())
         if d[node] > 1e-8 * scale:
@@ -234,7 +244,7 @@ def rigid_motion_rank(x: np.ndarray, nodes: np.ndarray, comps: np.ndarray) -> tu
     return rank, free
 
 
-def check_rigid_motion(x: np.ndarray, bc_dofs: np.ndarray) -> None:
+def check_rigid_motion(x: np.ndarray, bc_dofs: np.ndarray, comm=None) -> None:
     """Raise unless the constraints remove the rigid motions (3 in the plane,
     6 in space).
 
@@ -243,6 +253,10 @@ def check_rigid_motion(x: np.ndarray, bc_dofs: np.ndarray) -> None:
     """
     d = x.shape[1]
     need = d + len(ROTATIONS[d])
+    if comm is not None and comm.size > 1:  # every process's constrained nodes, gathered
+        pts = np.concatenate(comm.allgather(x[bc_dofs // d]))
+        comps = np.concatenate(comm.allgather(bc_dofs % d))
+        x, bc_dofs = pts, np.arange(len(pts)) * d + comps
     rank, free = rigid_motion_rank(x, bc_dofs // d, bc_dofs % d)
     if rank < need:
         raise BoundaryConditionError(

@@ -80,6 +80,9 @@ def assemble_tractions(model, group: str | None = None) -> np.ndarray:
         if group is not None and tr.group != group:
             continue
         fcells, flocal = _boundary_facets(model, tr.where)
+        if model.distributed:  # each facet once: on the process owning its cell
+            keep = model.owned_cells_only(fcells)
+            fcells, flocal = fcells[keep], flocal[keep]
         fb = kind.facet_basis(model, fcells, flocal, scene.options.facet_degree)
         t = traction_values(tr, fb["points"], lambda p: evaluate_stress(tr.stress, p, f"traction on {tr.where!r}"),
                             lambda p: kind.facet_normals(model, tr.where, fb))
@@ -224,6 +227,9 @@ def assemble_lip_pressure(model, crack: int) -> np.ndarray:
     the + lip along n (into the + side) and the - lip along -n."""
     cm = model.cracks[crack]
     pts = cm.lip_points(model, cm.LIP_POINTS)
+    if model.distributed:  # each lip segment once: on the process owning its cell
+        keep = model.owned_cells_only(pts["cell"])
+        pts = {k: v[keep] for k, v in pts.items()}
     t = lip_pressure(cm.crack, pts["x"])[:, None] * pts["normal"]
     return model.crack_type.assemble_lip_load(model, crack, pts, t)
 

@@ -23,11 +23,31 @@ from ..scene.scene import Scene
 from .checks import check_units
 from .constraints import check_rigid_motion, compute_dirichlet
 from .cracks import CrackModel, crack_model_type
-from .symmetry import check_symmetry
+from .distributed import create_dof_map
+from .symmetry import SymmetryCondition, check_symmetry
 from .xfem_model import XfemModel
 
 
 logger = logging.getLogger(__name__)
+
+
+def refuse_unless_distributed(scene: Scene) -> None:
+    """Collective: refuse, by scene key, what the model does not do on
+    several processes yet. What it does (issue 40 step 2): open cracks in 2D
+    under lip pressures and boundary tractions, Dirichlet conditions, the
+    direct solver, K by the interaction integral."""
+    comm = scene.mesh.mesh.comm
+    o = scene.options
+    for what, used in [
+            ("a 3D part (tetrahedra)", scene.mesh.gdim != 2),
+            ("options.contact", o.contact != "none"), ("options.friction", o.friction > 0.0),
+            ("options.solver = 'iterative'", o.solver == "iterative"), ("options.accuracy", o.accuracy > 0.0),
+            ("options.rescale = 'nodal'", o.rescale == "nodal"),
+            ("load_path", scene.load_path is not None), ("body_force", scene.body_force is not None),
+            ("initial_stress", scene.initial_stress is not None), ("point_forces", bool(scene.point_forces)),
+            ("a symmetry condition", any(isinstance(bc, SymmetryCondition) for bc in scene.dirichlet))]:
+        if used:
+            not_parallel(what, comm)
 
 
 def create_model(scene: Scene) -> XfemModel:
@@ -38,7 +58,8 @@ def create_model(scene: Scene) -> XfemModel:
     timings: dict[str, float] = {}
     msh = scene.mesh.mesh
     check_mesh(msh)
-    not_parallel("the X-FEM model (cracks, enrichment, solvers, K)", msh.comm)
+    if msh.comm.size > 1:
+        refuse_unless_distributed(scene)
     kind = crack_model_type(scene.mesh.gdim)
     kind.check_scene(scene)
     t0 = time.perf_counter()
@@ -58,10 +79,13 @@ def create_model(scene: Scene) -> XfemModel:
 
     t0 = time.perf_counter()
     bc_dofs, bc_values, bc_group_values = compute_dirichlet(scene, V, x, layout, [c.geometry for c in cracks])
-    check_rigid_motion(x, bc_dofs[bc_dofs < x.shape[1] * x.shape[0]])
+    check_rigid_motion(x, bc_dofs[bc_dofs < x.shape[1] * x.shape[0]], msh.comm)
     timings["constraints"] = time.perf_counter() - t0
     model = XfemModel(scene, V, x, cells, cracks, layout, bc_dofs, bc_values, timings,
                       bc_group_values=bc_group_values)
+    if msh.comm.size > 1:  # one process's part: the global numbering of its dofs (model.distributed)
+        model.num_owned_cells = msh.topology.index_map(msh.topology.dim).size_local
+        model.dofs = create_dof_map(V, cells, layout, model.num_owned_cells)
     t0 = time.perf_counter()
     check_symmetry(model)
     model.warnings = kind.check_model(model) + check_units(model)  # raises on what makes the model unusable

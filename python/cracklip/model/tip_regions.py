@@ -26,6 +26,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..scene.options import check_ring
+from ..scene.processes import reduced
 from .boundary import boundary_segments
 
 
@@ -155,12 +156,27 @@ def node_distances(model, p: np.ndarray) -> np.ndarray:
 
 
 def tip_element_size(model, p: np.ndarray, dist: np.ndarray | None = None) -> float:
-    """Mean edge length of the cells around the node nearest to point p."""
+    """Mean edge length of the cells around the node nearest to point p
+    (collective on a distributed model: the nearest owned node of all
+    processes, whose patch its owner holds whole)."""
     dist = node_distances(model, p) if dist is None else dist
+    if getattr(model, "distributed", False):
+        dist = dist[:model.V.dofmap.index_map.size_local]
+        if not dist.size:
+            dist = np.array([np.inf])
     node = int(np.argmin(dist))
     cells = model.cells[np.any(model.cells == node, axis=1)]
     e = model.x[cells[:, [1, 2, 0]]] - model.x[cells]
-    return float(np.linalg.norm(e, axis=2).mean())
+    size = float(np.linalg.norm(e, axis=2).mean()) if len(cells) else math.inf
+    if getattr(model, "distributed", False):
+        return min(model.V.mesh.comm.allgather((float(dist[node]), size)))[1]
+    return size
+
+
+def nearest_node_distance(model, dist: np.ndarray) -> float:
+    """The smallest of the nodes' distances (over every process)."""
+    d = float(dist.min()) if dist.size else math.inf
+    return reduced(d, "MIN", model.V.mesh.comm) if getattr(model, "distributed", False) else d
 
 
 def admissible_radius(model, dist: np.ndarray, clearance: float) -> float:
@@ -171,6 +187,11 @@ def admissible_radius(model, dist: np.ndarray, clearance: float) -> float:
     dmin, dmax = dc.min(axis=1), dc.max(axis=1)
     near = dmin < clearance
     dmin, dmax = dmin[near], dmax[near]
+    if getattr(model, "distributed", False):
+        # = the smallest dmin of a near cell reaching the clearance: a minimum over processes
+        reach = dmin[dmax >= clearance]
+        local = float(reach.min()) if reach.size else math.inf
+        return min(float(reduced(local, "MIN", model.V.mesh.comm)), float(clearance))
     order = np.argsort(dmin, kind="stable")
     reach = np.maximum.accumulate(dmax[order])
     bad = np.flatnonzero(reach >= clearance)
@@ -222,7 +243,7 @@ def tip_domains(model, crack: int, requested: float | None = None,
             continue
         # The smallest usable radius: one element, and the smallest domain
         # (DOMAIN_FRACTIONS[0] of it) must hold the node nearest to the tip.
-        least = max(h, 1.01 * float(dist.min()) / DOMAIN_FRACTIONS[0])
+        least = max(h, 1.01 * nearest_node_distance(model, dist) / DOMAIN_FRACTIONS[0])
         clear = admissible >= least
         if not clear:
             radius = least

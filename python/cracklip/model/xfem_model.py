@@ -44,6 +44,21 @@ class XfemModel:
     timings: dict[str, float]
     warnings: list = dataclasses.field(default_factory=list)
     bc_group_values: dict = dataclasses.field(default_factory=dict)
+    #: Under MPI (model.distributed): the owned cells, first in `cells`, and
+    #: the global numbering of the local dofs; None in serial.
+    num_owned_cells: int | None = None
+    dofs: typing.Any = None
+
+    @property
+    def distributed(self) -> bool:
+        """Whether the model is one process's part of a model on several."""
+        return self.num_owned_cells is not None
+
+    def owned_cells_only(self, cells: np.ndarray) -> np.ndarray:
+        """Which of these local cells this process integrates: all in serial,
+        its owned ones under MPI (each cell is owned by one process)."""
+        cells = np.asarray(cells)
+        return np.ones(cells.shape, dtype=bool) if self.num_owned_cells is None else cells < self.num_owned_cells
 
     @property
     def gdim(self) -> int:

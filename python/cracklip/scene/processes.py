@@ -69,6 +69,17 @@ def on_all(flag: bool, comm=None) -> bool:
     return bool(flag) if comm.size == 1 else bool(comm.allreduce(bool(flag), op=_land()))
 
 
+def reduced(value, op: str, comm=None):
+    """Collective: value (a number or a numpy array) reduced over the
+    processes by the MPI operation named op ("SUM", "MIN", "MAX", "LOR");
+    value itself in serial."""
+    comm = world() if comm is None else comm
+    if comm.size == 1:
+        return value
+    from mpi4py import MPI
+    return comm.allreduce(value, op=getattr(MPI, op))
+
+
 def _land():
     from mpi4py import MPI
     return MPI.LAND

@@ -188,7 +188,12 @@ class CrackModel(abc.ABC):
     @classmethod
     def assemble_stiffness(cls, A, model, E: float, nu: float) -> int:
         """Add the enriched blocks into the PETSc matrix A; returns the
-        number of cells integrated."""
+        number of cells integrated. On a distributed model: the owned
+        enriched cells, through A's local-to-global map."""
+        if model.distributed:
+            return _cracklip.assemble_enriched_stiffness_petsc(
+                A.handle, model.x, model.cells, model.layout.with_cells_below(model.num_owned_cells),
+                model.geometries, E, nu, cls.quadrature_options(model.scene.options), local=True)
         return _cracklip.assemble_enriched_stiffness_petsc(A.handle, model.x, model.cells, model.layout,
                                                            model.geometries, E, nu,
                                                            cls.quadrature_options(model.scene.options))

@@ -20,6 +20,7 @@ from ... import _cracklip
 from ...errors import CrackGeometryError
 from ...scene.options import Options
 from ...scene.stress_field import evaluate_stress, tensor_to_voigt
+from ...scene.processes import agree, first_error, reduced, total, world
 from ..boundary import boundary_normals, boundary_segments
 from . import CrackModel
 
@@ -80,14 +81,18 @@ class CurveCrackModel(CrackModel):
             raise CrackGeometryError(f"{crack.name}: {e}") from None
         classes = geometry.cell_class
         C = cls.CELL_CLASSES
-        crossed = np.count_nonzero((classes == C["cut"]) | (classes == C["edge"]) | (classes == C["tip"]))
+        crossed = total(np.count_nonzero((classes == C["cut"]) | (classes == C["edge"]) | (classes == C["tip"])))
         if crossed == 0:
             lo, hi = x.min(axis=0), x.max(axis=0)
+            if world().size > 1:  # the part's box, not this process's
+                lo, hi = reduced(lo, "MIN"), reduced(hi, "MAX")
             raise CrackGeometryError(
                 f"{crack.name} (points {crack.points.tolist()}) does not cross any cell of the mesh "
                 f"(mesh bounding box [{lo[0]:g}, {hi[0]:g}] x [{lo[1]:g}, {hi[1]:g}]); "
                 "check its coordinates")
-        _check_off_boundary(crack, geometry, x, cells)
+        # On several processes each checks its owned cells (whose neighbours it holds).
+        owned = scene.mesh.mesh.topology.index_map(scene.mesh.mesh.topology.dim).size_local
+        agree(first_error([lambda: _check_off_boundary(crack, geometry, x, cells, owned)]))
         if geometry.num_snapped:
             logger.info("%s: %d nodes snapped onto the crack (snap_tol=%g)", crack.name,
                         geometry.num_snapped, scene.options.snap_tol)
@@ -188,10 +193,11 @@ def arc_length(points: np.ndarray, x: np.ndarray) -> np.ndarray:
     return cum[k] + t[np.arange(len(x)), k] * L[k]
 
 
-def _check_off_boundary(crack, geometry, x: np.ndarray, cells: np.ndarray) -> None:
+def _check_off_boundary(crack, geometry, x: np.ndarray, cells: np.ndarray, num_owned: int) -> None:
     """Raise if the crack runs along a boundary facet: its crack edge (the
-    two nodes on the crack of an 'edge' cell) then belongs to one cell only."""
-    edge_cells = np.flatnonzero(geometry.cell_class == CurveCrackModel.CELL_CLASSES["edge"])
+    two nodes on the crack of an 'edge' cell) then belongs to one cell only.
+    Edge cells below num_owned are checked (all in serial)."""
+    edge_cells = np.flatnonzero(geometry.cell_class[:num_owned] == CurveCrackModel.CELL_CLASSES["edge"])
     if edge_cells.size == 0:
         return
     cc = cells[edge_cells]
