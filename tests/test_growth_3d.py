@@ -265,3 +265,41 @@ def test_surface_crack_breaks_through_a_thin_plate(tmp_path):
     assert "breakthrough during step 0" in res["stop_reason"] and "not modelled" in res["stop_reason"]
     bt = res["front_growth"]["breakthrough"]
     assert 0.0 < bt["fraction"] < 1.0 and bt["cycles"] > 0 and res["life"]["cycles"] == pytest.approx(bt["cycles"])
+
+
+@pytest.mark.slow
+def test_corner_crack_closed_on_the_ground_grows_only_when_open(tmp_path):
+    """demos/scenes/corner_crack_gag.toml, small, one step: a corner crack
+    under a ground-air-ground flight -0.3 -> 1 -> -0.3 with 3D lip contact.
+    On the ground the lips close over the whole crack: at every front point
+    K_min = 0 (|K_min| < 1e-3 K_max; measured <= 5.4e-4), Delta K = K_max
+    and the growth per flight is the constant-amplitude R = 0 rate of the
+    Paris law, C K_max^m. Without contact the same scene warns that the lips
+    pass through each other on the ground, K_min = -0.3 K_max (the linear
+    value), Delta K = 1.3 K_max, each point grows 1.3^3 times faster and the
+    life to the same front is 1.3^3 = 2.197 times shorter."""
+    runs = {"contact": _grow("corner_crack_gag", tmp_path / "contact"),
+            "none": _grow("corner_crack_gag", tmp_path / "none", 'options.contact="none"',
+                          'material.fatigue.closure="none"')}
+    C_mm = 1e-10 * 1e3 / 1e3 ** 1.5      # m/cycle per (MPa sqrt(m))^3 -> mm/cycle per (MPa sqrt(mm))^3
+    con, lin = runs["contact"]["life"], runs["none"]["life"]
+    assert con["closure"] == "contact" and lin["closure"] == "none"
+    assert con["cycles_per_pass"] == 1 and con["load_states"] == 2
+    assert all("1 of 2 load states close the lips; contact solved at 1" in n for n in con["closure_per_step"])
+    for step_c, step_n in zip(con["steps"], lin["steps"]):
+        assert len(step_c["tips"]) == len(step_n["tips"]) >= 4
+        for tc, tn in zip(step_c["tips"], step_n["tips"]):
+            K = tc["K_max"]
+            assert K > 0 and abs(tc["K_min"]) < 1e-3 * K
+            assert tc["delta_K_eff"] == pytest.approx(K, rel=1e-3)
+            assert tc["da_per_pass"] == pytest.approx(C_mm * K ** 3, rel=3e-3)
+            # No contact: the same K_max (the same linear solve), the linear K_min below zero (K_eq
+            # along the kink: -0.3 K_max but for the small K_II and K_III's share, 1e-5 here).
+            assert tn["K_max"] == pytest.approx(K, rel=1e-3)
+            assert tn["K_min"] == pytest.approx(-0.3 * tn["K_max"], rel=1e-4)
+            assert tn["delta_K_eff"] == pytest.approx(1.3 * tn["K_max"], rel=1e-4)
+            assert tn["da_per_pass"] == pytest.approx(1.3 ** 3 * tc["da_per_pass"], rel=1e-2)
+    assert con["passes"] == pytest.approx(1.3 ** 3 * lin["passes"], rel=1e-2)
+    warned = [w for w in runs["none"]["warnings"] if "pass through each other" in w]
+    assert warned and "-0.3" in warned[0] and "options.contact" in warned[0]
+    assert not any("pass through each other" in w for w in runs["contact"]["warnings"])

@@ -42,6 +42,7 @@ SMALL = {
     # 3D growth (grown by tests/test_growth_3d.py)
     "surface_crack_growth": ["mesh.h=10.0", "mesh.refine[0].h=0.3", "mesh.refine[0].radius=30.0", "growth.steps=1"],
     "corner_crack_growth": ["mesh.h=8.0", "mesh.refine[0].h=0.12", "mesh.refine[0].radius=30.0", "growth.steps=2"],
+    "corner_crack_gag": ["mesh.refine[0].h=0.2", "options.radius=0.5", "growth.steps=1"],
     # lives without a mesh (run as they are by tests/test_table_life.py: a second each)
     "life_hole_crack": [],
     "life_surface_crack": [],

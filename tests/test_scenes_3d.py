@@ -266,6 +266,17 @@ def test_check_reports_what_run_uses(tmp_path, capsys):
         assert what in text, what
 
 
+
+def test_check_of_a_3d_scene_with_contact(capsys):
+    """`check` on the 3D closure scene names the contact multipliers on lip
+    pieces (it stopped with KeyError 'segments', the 2D count, before)."""
+    args = ["check", str(SCENES / "corner_crack_closure.toml")]
+    for o in SMALL_3D["corner_crack_closure"]:
+        args += ["--set", o]
+    assert cli.main(args) == 0
+    (line,) = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("contact:")]
+    assert line.startswith("contact: unilateral") and "lip pieces" in line and "points per facet direction" in line
+
 # -- 3D parts from files and geometries ---------------------------------------------------------
 
 def _box_msh(path, builtin: bool):

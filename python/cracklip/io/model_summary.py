@@ -356,9 +356,11 @@ def format_model(summary: dict[str, typing.Any]) -> list[str]:
     if c["law"] == "none":
         lines.append("contact: none (traction-free lips), 0 multipliers")
     else:
+        where = (f"{c['segments']} crack segments x {c['points_per_segment']} points" if "segments" in c else
+                 f"{c['lip_pieces']} lip pieces ({c['front_pieces']} in front cells) x {c['points_per_direction']} "
+                 "points per facet direction")
         lines.append(f"contact: {c['law']}, {c['space']} space: {c['multipliers']} multipliers "
-                     f"({c['full_multipliers']} full, {c['p0_multipliers']} P0 in tip cells) on "
-                     f"{c['segments']} crack segments x {c['points_per_segment']} points")
+                     f"({c['full_multipliers']} full, {c['p0_multipliers']} P0 in tip cells) on {where}")
     return lines
 
 

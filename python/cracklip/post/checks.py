@@ -82,13 +82,12 @@ def interpenetration(solution) -> list[tuple[str, str]]:
 
 
 #: The fix named by the interpenetration warning, per kind of crack end
-#: (CrackModel.END): contact on the lips, or the load's sign. 3D contact is
-#: named as the setting it will be, without claiming a 3D part has it.
+#: (CrackModel.END): contact on the lips, or the load's sign.
 CONTACT_FIX = {
     "tip": "Set options.contact = \"unilateral\": the lips then touch and carry the pressure; or check the sign "
            "of the load",
-    "front": "Model the contact (options.contact = \"unilateral\", when available for 3D parts: the lips then touch "
-             "and carry the pressure), or check the sign of the load",
+    "front": "Set options.contact = \"unilateral\" (3D lip contact: the lips then touch and carry the pressure), or "
+             "check the sign of the load",
 }
 
 
