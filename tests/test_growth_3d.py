@@ -287,7 +287,7 @@ def test_corner_crack_closed_on_the_ground_grows_only_when_open(tmp_path):
     assert con["cycles_per_pass"] == 1 and con["load_states"] == 2
     assert all("1 of 2 load states close the lips; contact solved at 1" in n for n in con["closure_per_step"])
     for step_c, step_n in zip(con["steps"], lin["steps"]):
-        assert len(step_c["tips"]) == len(step_n["tips"]) >= 4
+        assert len(step_c["tips"]) == len(step_n["tips"]) >= 3
         for tc, tn in zip(step_c["tips"], step_n["tips"]):
             K = tc["K_max"]
             assert K > 0 and abs(tc["K_min"]) < 1e-3 * K

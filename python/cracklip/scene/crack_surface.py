@@ -320,7 +320,7 @@ class SurfaceCrack:
         the surface the triangulation samples: per point, least squares in
         the point's frame (x1, x2, x3), weighted by (1 - (d / radius)^2)^2,
 
-        - of the vertices within `radius` (at least 5 edges): the surface
+        - of the vertices within `radius` (at least 3 edges): the surface
           x2 = c + a1 x1 + a3 x3 + (k11 x1^2 + 2 k13 x1 x3 + k33 x3^2) / 2 +
           cubic and quartic terms (where 30 and 45 vertices allow): its
           normal at the point, its normal curvatures across (kappa_11) and
@@ -342,7 +342,7 @@ class SurfaceCrack:
         pts = np.asarray(points, dtype=float).reshape(-1, 3)
         frames = np.array(frames, dtype=float).reshape(-1, 3, 3)
         edges = np.linalg.norm(v[self.triangles] - v[np.roll(self.triangles, 1, axis=1)], axis=2)
-        reach = max(float(radius), 5.0 * float(np.median(edges)))
+        reach = max(float(radius), 3.0 * float(np.median(edges)))
         size = float(np.ptp(v, axis=0).max())
         front = np.unique(self.boundary_edges())
         tree, ftree = scipy.spatial.cKDTree(v), scipy.spatial.cKDTree(v[front])
