@@ -413,7 +413,8 @@ class LifeRun:
                 sol_ref = sol_levels[ref_state]
             else:
                 u = sum(f * b.u for f, b in zip(self.F[ref_state], basis))
-                sol_ref = create_solution(model, u, dict(basis[0].timings), factors=self.factors(self.F[ref_state]))
+                sol_ref = create_solution(model, u, dict(basis[0].timings), factors=self.factors(self.F[ref_state]),
+                                          combination=[(float(f), b) for f, b in zip(self.F[ref_state], basis)])
             lengths = where.lengths
             records, rates, levels = [], {}, {}
             nets = where.net_stresses(basis, self.yield_stress is not None)
