@@ -303,3 +303,25 @@ def test_corner_crack_closed_on_the_ground_grows_only_when_open(tmp_path):
     warned = [w for w in runs["none"]["warnings"] if "pass through each other" in w]
     assert warned and "-0.3" in warned[0] and "options.contact" in warned[0]
     assert not any("pass through each other" in w for w in runs["contact"]["warnings"])
+
+
+def test_combined_solution_takes_k_from_its_parts():
+    """A growth step's reference load state u = sum w_i u_i of its unit load
+    groups (Solution.combination) gets K along the front as the weighted
+    sum of the parts' domain integrals instead of a second pass over the
+    domains (issue 37 line 4: the pass was a third of a step): the same K,
+    spreads and warnings as the pass on u itself, to rounding."""
+    import bench_growth_3d
+    from cracklip.post.solution import create_solution
+    sol = cl.solve(bench_growth_3d.scene_for(3, 0))
+    m = sol.model
+    direct = create_solution(m, 2.0 * sol.u, dict(sol.timings))
+    combined = create_solution(m, 2.0 * sol.u, dict(sol.timings), combination=[(2.5, sol), (-1.0, sol), (0.5, sol)])
+    a, b = direct.stress_intensity_factors(None), combined.stress_intensity_factors(None)
+    assert len(a) == len(b) > 5
+    for ra, rb in zip(a, b):
+        for k in ("K_I", "K_II", "K_III", "K_I_spread", "K_II_spread", "G"):
+            assert rb[k] == pytest.approx(ra[k], rel=1e-12, abs=1e-12 * abs(a[0]["K_I"])), k
+    assert [w.message for w in combined.warnings] == [w.message for w in direct.warnings]
+    # The parts' passes are kept: the single part's own K is returned unchanged (copies).
+    assert sol.stress_intensity_factors(None)[0]["K_I"] == pytest.approx(0.5 * a[0]["K_I"], rel=1e-12)

@@ -413,7 +413,8 @@ class LifeRun:
                 sol_ref = sol_levels[ref_state]
             else:
                 u = sum(f * b.u for f, b in zip(self.F[ref_state], basis))
-                sol_ref = create_solution(model, u, dict(basis[0].timings), factors=self.factors(self.F[ref_state]))
+                sol_ref = create_solution(model, u, dict(basis[0].timings), factors=self.factors(self.F[ref_state]),
+                                          combination=[(float(f), b) for f, b in zip(self.F[ref_state], basis)])
             if scene.options.contact == "none" and gap_min.size and gap_min.min() < -1e-6:
                 # Without contact the lowest state's lips pass through each other: its solution joins
                 # the reference one's path, so the interpenetration check (post.checks) warns about it.

@@ -56,6 +56,7 @@ when it moves along +e3 (e3 = e1 x e2).
 """
 from __future__ import annotations
 
+import copy
 import dataclasses
 import logging
 import math
@@ -810,7 +811,40 @@ def crack_front_sifs(solution, crack: int, radius: float | None = None) -> tuple
     domain, with the front points. One pass over the cells of all domains
     (in chunks): each quadrature point's auxiliary fields and integrands are
     computed once and summed into every front point whose domain reaches
-    its cell (_cracklip.front_domain_integrals_3d)."""
+    its cell (_cracklip.front_domain_integrals_3d). Kept on the solution
+    (its _front_sifs, copies handed out); a solution that is a weighted sum
+    of others of its model (Solution.combination: a load state of a growth
+    step from its unit load groups) gets the weighted sum of theirs: K is
+    linear in u and in the loads' factors (pressure, body force), the front
+    points and their domains depend on the model only."""
+    cache = getattr(solution, "_front_sifs", None)
+    key = (crack, radius)
+    if cache is not None and key in cache:
+        return copy.deepcopy(cache[key])
+    parts = getattr(solution, "combination", None)
+    if parts and all(p.model is solution.model for _, p in parts):
+        fps, K = _combined_front_sifs(parts, crack, radius)
+    else:
+        fps, K = _crack_front_sifs(solution, crack, radius)
+    if cache is not None:
+        cache[key] = copy.deepcopy((fps, K))
+    return fps, K
+
+
+def _combined_front_sifs(parts: list, crack: int, radius: float | None) -> tuple[list[FrontPoint], np.ndarray]:
+    """crack_front_sifs of sum_i w_i u_i from the parts' (w_i, solution_i):
+    their K (and free-surface ends' own-domain K) summed with the weights."""
+    each = [crack_front_sifs(p, crack, radius) for _, p in parts]
+    fps = each[0][0]
+    K = sum(w * k for (w, _), (_, k) in zip(parts, each))
+    for i, fp in enumerate(fps):
+        if fp.K_domain is not None:
+            fp.K_domain = sum(w * f[i].K_domain for (w, _), (f, _) in zip(parts, each))
+    return fps, np.asarray(K, dtype=float).reshape(np.shape(each[0][1]))
+
+
+def _crack_front_sifs(solution, crack: int, radius: float | None = None) -> tuple[list[FrontPoint], np.ndarray]:
+    """crack_front_sifs computed (its doc)."""
     m = solution.model
     mat = m.scene.material
     E, nu = mat.E, mat.nu

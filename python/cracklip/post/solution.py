@@ -67,6 +67,10 @@ class Solution:
             size factors, dofs and seconds, the largest error, and per tip
             or front point ("points", "crack:point") the estimate and K on
             each mesh.
+        combination: [(weight, Solution), ...] of the same model when u is
+            their weighted sum (a load state from unit load groups, linear):
+            K along 3D fronts is then the weighted sum of the parts' (their
+            domain integrals reused, fracture.sif_3d.crack_front_sifs).
     """
     model: XfemModel
     u: np.ndarray
@@ -79,7 +83,9 @@ class Solution:
     steps: typing.Optional[list] = dataclasses.field(default=None, repr=False)
     path: typing.Optional[list] = dataclasses.field(default=None, repr=False, compare=False)
     error_estimate: typing.Optional[dict] = dataclasses.field(default=None, repr=False, compare=False)
+    combination: typing.Optional[list] = dataclasses.field(default=None, repr=False, compare=False)
     _sif_cache: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
+    _front_sifs: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
 
     def factor(self, group: str) -> float:
         """The factor of a load group at this state (1 without a load path)."""

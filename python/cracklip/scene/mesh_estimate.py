@@ -106,49 +106,42 @@ class MeshEstimate:
 
 class SizeField:
     """The size field of the mesh (mesh_3d._size_fields): h, or less near
-    the refinements' points (a k-d tree of each refinement's points)."""
+    the refinements: a front refinement's points (a k-d tree of them), a
+    box refinement's box (h_front inside, growing with the distance from
+    the box as gmsh's Box field does, no plateau)."""
 
     def __init__(self, h: float, fronts: typing.Sequence, floor: float = 0.0):
-        from scipy.spatial import cKDTree
         self.h = float(h)
         self.floor = float(floor)
-        self.items = [(_Box(fr) if _is_box(fr) else cKDTree(thinned(fr.points, 0.5 * self.floor)), fr.h_front,
-                       *_plateau_growth(h, fr)) for fr in fronts]
+        self.items = []
+        for fr in fronts:
+            plateau, growth = refinement_size(h, fr.h_front, fr.radius)
+            self.items.append((self._distance(fr), fr.h_front, 0.0 if is_box(fr) else plateau, growth))
+
+    def _distance(self, fr) -> typing.Callable[[np.ndarray, float], np.ndarray]:
+        """d(points, reach): the distance of points (n, 3) from the refinement
+        (inf or any value >= reach beyond reach)."""
+        if is_box(fr):
+            lo, hi = np.asarray(fr.lo, dtype=float), np.asarray(fr.hi, dtype=float)
+            return lambda p, reach: np.linalg.norm(np.maximum(np.maximum(lo - p, p - hi), 0.0), axis=1)
+        from scipy.spatial import cKDTree
+        tree = cKDTree(thinned(fr.points, 0.5 * self.floor))
+        return lambda p, reach: tree.query(p, distance_upper_bound=reach)[0]
 
     def __call__(self, points: np.ndarray) -> np.ndarray:
         """The size at points (n, 3), at least the floor."""
         out = np.full(len(points), self.h)
-        for tree, h_front, plateau, growth in self.items:
+        for distance, h_front, plateau, growth in self.items:
             reach = plateau + (self.h - h_front) / growth  # the size is h beyond
-            d, _ = tree.query(points, distance_upper_bound=reach)
+            d = distance(points, reach)
             out = np.minimum(out, h_front + growth * np.maximum(0.0, np.minimum(d, reach) - plateau))
         return np.maximum(out, self.floor)
 
 
-def _is_box(fr) -> bool:
+def is_box(fr) -> bool:
     """A box refinement (mesh_3d.BoxRefinement: corners lo, hi) rather than
-    one around points."""
+    one by points (FrontRefinement)."""
     return hasattr(fr, "lo") and hasattr(fr, "hi")
-
-
-def _plateau_growth(h: float, fr) -> tuple[float, float]:
-    """The refinement's plateau and growth as mesh_3d._size_fields gives
-    them to gmsh (a box: h_front inside, growing from its faces, no plateau
-    outside)."""
-    plateau, growth = refinement_size(h, fr.h_front, fr.radius)
-    return (0.0, growth) if _is_box(fr) else (plateau, growth)
-
-
-class _Box:
-    """A box's distance in the k-d tree's query interface (0 inside)."""
-
-    def __init__(self, fr):
-        self.lo, self.hi = np.asarray(fr.lo, dtype=float), np.asarray(fr.hi, dtype=float)
-
-    def query(self, points: np.ndarray, distance_upper_bound: float = np.inf):
-        p = np.asarray(points, dtype=float)
-        d = np.linalg.norm(np.maximum(np.maximum(self.lo - p, p - self.hi), 0.0), axis=1)
-        return np.where(d <= distance_upper_bound, d, np.inf), None
 
 
 def thinned(points: np.ndarray, cell: float) -> np.ndarray:
@@ -177,10 +170,10 @@ def below_floor(fr, h: float, floor: float) -> float:
     or balls around points (4 pi s^2 each); L and A from the points' mean
     spacing (their nearest-neighbour distance). Parts of it outside the
     part are counted too (at most a few floor sizes at a front's ends)."""
-    plateau, growth = _plateau_growth(h, fr)
+    plateau, growth = refinement_size(h, fr.h_front, fr.radius)
     if fr.h_front >= floor:
         return 0.0
-    if _is_box(fr):  # inside the box, then a layer over its faces
+    if is_box(fr):  # inside the box, then a layer over its faces
         side = np.asarray(fr.hi, dtype=float) - np.asarray(fr.lo, dtype=float)
         s = np.linspace(0.0, (floor - fr.h_front) / growth, 2001)
         layer = 2.0 * (side[0] * side[1] + side[1] * side[2] + side[0] * side[2])
