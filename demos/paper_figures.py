@@ -40,12 +40,14 @@ import error_estimate  # noqa: E402
 import fatigue_checks  # noqa: E402
 import friction_crack  # noqa: E402
 import front_sifs  # noqa: E402
+import growth_3d  # noqa: E402
 import growth_benchmarks  # noqa: E402
 import handbook  # noqa: E402
 import life_inputs  # noqa: E402
 import growth_paths  # noqa: E402
 import hard_cases  # noqa: E402
 import block_uniform_pressure  # noqa: E402
+import contact_3d  # noqa: E402
 import hole_crack  # noqa: E402
 import patch_test  # noqa: E402
 import penny_crack  # noqa: E402
@@ -73,13 +75,13 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     summary: dict = {}
 
-    log("[1/18] through-crack patch test")
+    log("[1/20] through-crack patch test")
     pt = patch_test.main(["--h", "0.2" if args.quick else "0.05", "--out", str(out / "patch_test")])
     summary["patch_test"] = {k: pt[k] for k in ("h", "ndofs", "enriched_dofs", "displacement_rel_error_top",
                                                  "displacement_rel_error_bottom", "opening_rel_error",
                                                  "strain_energy", "strain_energy_exact")}
 
-    log("[2/18] Westergaard mode I sweep (vector and scalar tip enrichment)")
+    log("[2/20] Westergaard mode I sweep (vector and scalar tip enrichment)")
     if args.quick:
         wg = {"runs": [westergaard.run(10, e) for e in ("vector", "scalar")], "summary": {}}
     else:
@@ -89,7 +91,7 @@ def main(argv=None) -> int:
                                                           "K_II", "cond_1norm", "cond_1norm_jacobi")}
                                        for r in wg["runs"]]}
 
-    log("[3/18] condition number vs h, with and without the nodal rescaling")
+    log("[3/20] condition number vs h, with and without the nodal rescaling")
     cond = conditioning.main(["--n", *(["10", "20", "40"] if args.quick else ["10", "20", "40", "80"]),
                               "--spectrum-n", *(["20", "40"] if args.quick else ["20", "40", "80"]),
                               "--out", str(out / "conditioning"), "--quiet"])
@@ -97,11 +99,11 @@ def main(argv=None) -> int:
                                                   "exponent_nodal")} for c in cond["configs"]]
     summary["conditioning_spectrum"] = cond["spectrum"]["rows"]
 
-    log("[4/18] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
+    log("[4/20] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
     tq = tip_quadrature.main(["--json", str(out / "tip_quadrature.json")])
     summary["tip_quadrature"] = tq["rows"]
 
-    log("[5/18] paper section 5.1: block under uniform pressure (contact)")
+    log("[5/20] paper section 5.1: block under uniform pressure (contact)")
     blk = {}
     for n in ((21,) if args.quick else (21, 42, 84)):
         for enr in ("none", "scalar", "vector"):
@@ -113,7 +115,7 @@ def main(argv=None) -> int:
         summary["inf_sup"] = fig["inf_sup"]
     summary["block"] = blk
 
-    log("[6/18] paper section 5.2: crack from a hole")
+    log("[6/20] paper section 5.2: crack from a hole")
     if args.quick:
         hole = {"runs": [hole_crack.run(0.2, enrichment="vector")[0]], "summary": {}}
     else:
@@ -122,29 +124,29 @@ def main(argv=None) -> int:
                        "runs": [{k: r[k] for k in ("enrichment", "h", "ndofs", "energy_error", "pressure_l2_error",
                                                    "K_I_normalised", "cond_1norm")} for r in hole["runs"]]}
 
-    log("[7/18] closed inclined crack, frictionless sliding")
+    log("[7/20] closed inclined crack, frictionless sliding")
     summary["sliding"] = sliding_crack.main(["--ns", *(["20"] if args.quick else ["20", "40", "80"]),
                                              "--json", str(out / "sliding_crack.json")])
 
-    log("[8/18] core benchmark (X-FEM vs plain DOLFINx P1, MUMPS)")
+    log("[8/20] core benchmark (X-FEM vs plain DOLFINx P1, MUMPS)")
     sizes = ["2e3"] if args.quick else ["2e4", "2e5"]
     bench_core.main(["--sizes", *sizes, "--repeats", "1" if args.quick else "3",
                      "--json", str(out / "bench_core.json"), "--quiet"])
     bench = json.loads((out / "bench_core.json").read_text())
     summary["bench_core"] = [{k: s[k] for k in ("ndofs", "t_xfem", "t_plain", "ratio")} for s in bench["sizes"]]
 
-    log("[9/18] stress intensity factors against handbook and exact values")
+    log("[9/20] stress intensity factors against handbook and exact values")
     hb = handbook.main(["--out", str(out / "handbook"), *(["--divisions", "20", "--cases",
                                                             "centre crack a/b = 0.5", "pressurised crack, plane stress"]
                                                            if args.quick else [])])
     if not args.quick:
         handbook.plot(hb["rows"], out / "handbook" / "handbook.png")
     summary["handbook"] = hb["rows"]
-    log("[9/18] the error estimate of K against its true error (issue 26)")
+    log("[9/20] the error estimate of K against its true error (issue 26)")
     ee = error_estimate.main(["--out", str(out / "error_estimate"), *(["--quick"] if args.quick else [])])
     summary["error_estimate"] = ee["rows"]
 
-    log("[10/18] Coulomb friction: closed inclined crack, load-unload cycle, inf-sup")
+    log("[10/20] Coulomb friction: closed inclined crack, load-unload cycle, inf-sup")
     fr = friction_crack.main(["--out", str(out / "friction"), "--inf-sup",
                               *(["--ns", "20", "--betas", "30", "--mus", "0", "0.5", "--no-hysteresis"]
                                 if args.quick else ["--ns", "40", "80"])])
@@ -152,40 +154,48 @@ def main(argv=None) -> int:
         friction_crack.plot(fr["rows"], out / "friction" / "friction.png")
     summary["friction"] = fr
     if not args.quick:
-        log("[11/18] cost of friction at 2e5 dofs")
+        log("[11/20] cost of friction at 2e5 dofs")
         summary["bench_friction"] = bench_friction.main(["--ns", "300", "--json", str(out / "bench_friction.json")])["rows"]
 
-    log("[12/18] crack growth: first kinks, straight mode I growth, Paris law, closure")
+    log("[12/20] crack growth: first kinks, straight mode I growth, Paris law, closure")
     summary["growth"] = growth_benchmarks.main(["--out", str(out / "growth"), *(["--quick"] if args.quick else [])])
 
-    log("[13/18] published crack paths")
+    log("[13/20] published crack paths")
     summary["growth_paths"] = growth_paths.main(["--out", str(out / "growth"), *(["--quick"] if args.quick else [])])
-    log("[13/18] SIF rings at the drilled plate's final tip (the DCB's rings: demos/ring_study.py without --no-dcb)")
+    log("[13/20] SIF rings at the drilled plate's final tip (the DCB's rings: demos/ring_study.py without --no-dcb)")
     summary["ring_study"] = ring_study.main(["--out", str(out / "growth"), "--no-dcb",
                                              *(["--quick"] if args.quick else [])])
 
-    log("[14/18] cost of a growth step against a single solve")
+    log("[14/20] cost of a growth step against a single solve")
     summary["bench_growth"] = bench_growth.main(["--hs", *(["0.05"] if args.quick else ["0.025", "0.008"]),
                                                  "--repeats", "1" if args.quick else "3",
                                                  "--json", str(out / "bench_growth.json")])["rows"]
 
-    log("[15/18] fatigue life: rainflow, block life, NASGRO, Wheeler, a flight spectrum with contact, beta tables")
+    log("[15/20] fatigue life: rainflow, block life, NASGRO, Wheeler, a flight spectrum with contact, beta tables")
     summary["fatigue"] = fatigue_checks.main(["--out", str(out / "fatigue"), *(["--quick"] if args.quick else [])])
-    log("[15/18] fatigue life without a mesh: beta and da/dN table files, turning-point files, compiled speed")
+    log("[15/20] fatigue life without a mesh: beta and da/dN table files, turning-point files, compiled speed")
     summary["life_inputs"] = life_inputs.main(["--json", str(out / "life_inputs.json"),
                                                *(["--quick"] if args.quick else [])])
 
-    log("[16/18] 3D: penny crack opening against Sneddon (tetrahedra, a/h = 10, 14, 20 at the front)")
+    log("[16/20] 3D: penny crack opening against Sneddon (tetrahedra, a/h = 10, 14, 20 at the front)")
     summary["penny_crack"] = penny_crack.main(["--json", str(out / "penny" / "penny_crack.json"), "--quiet",
                                                *(["--divisions", "6", "8"] if args.quick else [])])
 
-    log("[17/18] 3D: K_I, K_II, K_III along crack fronts (penny, inclined penny, Irwin ellipses, surface cracks; "
+    log("[17/20] 3D: K_I, K_II, K_III along crack fronts (penny, inclined penny, Irwin ellipses, surface cracks; "
         "coarse meshes: demos/front_sifs.py --full for three)")
     summary["front_sifs"] = front_sifs.main(["--json", str(out / "front_sifs" / "front_sifs.json"), "--quiet",
                                              *(["--cases", "penny", "irwin_0.5"] if args.quick else [])])
 
+    log("[18/20] 3D: a closed penny under inclined compression with lip contact and Coulomb friction "
+        "(K along the front and the pressure against the exact solution, a/h = 6; demos/contact_3d.py --full)")
+    summary["contact_3d"] = contact_3d.main(["--json", str(out / "contact_3d" / "contact_3d.json"), "--quiet",
+                                             "--sizes", "6", "--cases", "beta30_mu0", "beta45_mu0.3",
+                                             "beta30_stick"])
+    log("[19/20] 3D: a penny grown under Paris' law against the closed form (two steps, a/4; demos/growth_3d.py)")
+    summary["growth_3d"] = growth_3d.main(["--small", "--cases", "penny", "--json", str(out / "growth_3d.json")])
+
     if not args.quick:
-        log("[18/18] hard cases (degenerate geometry, extreme parameters, contact sign changes)")
+        log("[20/20] hard cases (degenerate geometry, extreme parameters, contact sign changes)")
         hc = hard_cases.main(["--json", str(out / "hard_cases.json")])
         summary["hard_cases"] = {k: hc[k] for k in ("all_finite", "max_relative_residual", "all_converge")}
     summary["wall_time"] = time.perf_counter() - t0
@@ -325,6 +335,15 @@ def markdown(s: dict) -> str:
     if s.get("front_sifs"):
         lines += ["", "## 3D: K along crack fronts against exact and Newman-Raju values (`demos/front_sifs.py`)", "",
                   front_sifs.markdown(s["front_sifs"]).rstrip("\n")]
+    if s.get("contact_3d"):
+        lines += ["", "## 3D: closed penny under inclined compression, lip contact and friction "
+                  "(`demos/contact_3d.py`; errors relative to the frictionless K_II amplitude A0)", "",
+                  contact_3d.markdown(s["contact_3d"]).rstrip("\n")]
+    if s.get("growth_3d"):
+        p = s["growth_3d"]["penny"]
+        lines += ["", "## 3D: penny grown under Paris' law (`demos/growth_3d.py --small`)", "",
+                  f"Radius {p['a0']:g} -> {p['a']:.4f} in {p['steps']} steps ({p['cells']} cells): roundness "
+                  f"{100 * p['roundness']:.3f} %, life {100 * p['N_rel_err']:+.2f} % from the closed form."]
     lines += ["", "## Speed: whole X-FEM solve vs plain DOLFINx P1 solve (same mesh, same MUMPS)", "",
               "| dofs | X-FEM (s) | plain (s) | ratio |", "|---|---|---|---|"]
     lines += [f"| {b['ndofs']} | {b['t_xfem']:.3f} | {b['t_plain']:.3f} | {b['ratio']:.3f} |"
