@@ -34,7 +34,6 @@
 """
 from __future__ import annotations
 
-import json
 import math
 import pathlib
 import typing
@@ -45,7 +44,8 @@ from ..analysis.growth import GrowthResult
 from ..scene.units import label
 from .files import atomic_path
 from .growth_outputs import SeriesWriter, growth_settings, write_life_pngs  # noqa: F401 (SeriesWriter re-exported)
-from .outputs import ensure_output_dir, json_default, versions, write_csv
+from .outputs import ensure_output_dir, versions, write_csv
+from .results import write_results_json
 from .paraview import write_mesh
 from .pictures import new_figure, save_png
 from .vtu import VtuMesh
@@ -128,9 +128,7 @@ def write_front_growth_outputs(scene_file, result: GrowthResult, out_dir, growth
         "timings": dict(timings or {}),
         "files": files + ["results.json"],
     }
-    text = json.dumps(results, indent=2, allow_nan=False, default=json_default)
-    with atomic_path(out / "results.json") as tmp:
-        tmp.write_text(text + "\n")
+    write_results_json(out, results)
     return results
 
 

@@ -8,7 +8,6 @@ Files are written through cracklip.io.files.atomic_path (complete or absent), li
 """
 from __future__ import annotations
 
-import json
 import pathlib
 import typing
 
@@ -16,7 +15,8 @@ import numpy as np
 
 from ..analysis.growth import GrowthResult, TipRecord
 from .files import atomic_path
-from .outputs import ensure_output_dir, json_default, versions, write_csv
+from .outputs import ensure_output_dir, versions, write_csv
+from .results import write_results_json
 from .paraview import subcell_mesh, write_mesh
 from ..scene.units import label
 from .pictures import new_figure, save_png, window_around
@@ -99,9 +99,7 @@ def write_growth_outputs(scene_file, result: GrowthResult, out_dir, growth, timi
         "timings": dict(timings or {}),
         "files": files + ["results.json"],
     }
-    text = json.dumps(results, indent=2, allow_nan=False, default=json_default)
-    with atomic_path(out / "results.json") as tmp:
-        tmp.write_text(text + "\n")
+    write_results_json(out, results)
     return results
 
 

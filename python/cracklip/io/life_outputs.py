@@ -8,7 +8,6 @@ cracklip.io.files.atomic_path, like a run's.
 """
 from __future__ import annotations
 
-import json
 import math
 import pathlib
 import typing
@@ -16,8 +15,8 @@ import typing
 import numpy as np
 
 from ..scene.units import label
-from .files import atomic_path
-from .outputs import ensure_output_dir, json_default, versions, write_csv
+from .outputs import ensure_output_dir, versions, write_csv
+from .results import write_results_json
 from .pictures import new_figure, save_png
 
 
@@ -45,9 +44,7 @@ def write_life_outputs(life_file, setup, result, summary: dict, out_dir, timings
         "timings": dict(timings or {}),
         "files": files + ["results.json"],
     }
-    text = json.dumps(_finite(results), indent=2, allow_nan=False, default=json_default)
-    with atomic_path(out / "results.json") as tmp:
-        tmp.write_text(text + "\n")
+    write_results_json(out, _finite(results))
     return results
 
 

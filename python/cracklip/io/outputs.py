@@ -30,7 +30,6 @@ from the same model and contact system objects the solver uses.
 """
 from __future__ import annotations
 
-import json
 import logging
 import pathlib
 import time
@@ -39,10 +38,9 @@ import typing
 import numpy as np
 
 from ..contact.friction import STATE_NAMES
-from ..errors import SolverError
 from ..post.solution import Solution
-from .files import atomic_path
-from .results import OutputError, check_finite, ensure_output_dir, json_default, versions, write_csv  # noqa: F401
+from .results import (OutputError, check_finite, ensure_output_dir, json_default, versions, write_csv,  # noqa: F401
+                      write_results_json)
 from .model_summary import describe_model
 from .paraview import crack_lips_mesh, crack_surface_mesh, front_mesh, front_sif_mesh, subcell_mesh, write_mesh
 from .pictures import plane_coordinates, write_crack_contact_png, write_crack_opening_png, write_front_png, write_pngs
@@ -450,12 +448,7 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
     timings["outputs_total"] = time.perf_counter() - t_outputs
     timings = {**timings, **{f"solve.{k}": v for k, v in solution.timings.items()}}
     results["timings"] = timings
-    try:
-        text = json.dumps(results, indent=2, allow_nan=False, default=json_default)
-    except ValueError as e:
-        raise SolverError(f"results.json would hold NaN or infinity ({e}); nothing written") from None
-    with atomic_path(out / "results.json") as tmp:
-        tmp.write_text(text + "\n")
+    write_results_json(out, results)
     logger.info("wrote %s", ", ".join(results["files"]))
     return results
 

@@ -4,6 +4,7 @@ that no NaN reaches a file, JSON values of numpy types, CSV rows."""
 from __future__ import annotations
 
 import csv
+import json
 import pathlib
 import platform
 import tempfile
@@ -55,6 +56,18 @@ def json_default(value):
     if isinstance(value, np.ndarray):
         return value.tolist()
     raise TypeError(f"cannot write {type(value).__name__} to JSON")
+
+
+def write_results_json(out: pathlib.Path, results: dict) -> None:
+    """out/results.json of a command: strict JSON (no NaN or infinity: a
+    SolverError, nothing written), numpy values as numbers, complete or
+    not at all."""
+    try:
+        text = json.dumps(results, indent=2, allow_nan=False, default=json_default)
+    except ValueError as e:
+        raise SolverError(f"results.json would hold NaN or infinity ({e}); nothing written") from None
+    with atomic_path(pathlib.Path(out) / "results.json") as tmp:
+        tmp.write_text(text + "\n")
 
 
 def write_csv(path: pathlib.Path, header: list[str], rows: list[list]) -> None:
