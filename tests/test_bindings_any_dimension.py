@@ -65,7 +65,8 @@ def test_one_layout_class_and_one_name_per_kernel(model_2d, model_3d):
     for old in ("EnrichmentLayout3D", "create_enrichment_layout_3d", "create_sparsity_3d",
                 "assemble_enriched_stiffness_3d_petsc", "assemble_enriched_stiffness_3d_coo",
                 "compute_facet_basis_3d", "assemble_lip_load_3d", "assemble_cell_load_3d",
-                "evaluate_displacement_3d", "compute_crack_points", "compute_lip_points_3d"):
+                "evaluate_displacement_3d", "compute_crack_points", "compute_lip_points_3d",
+                "compute_enriched_cell_quadrature_3d"):
         assert not hasattr(_cracklip, old), old
     assert not hasattr(model_3d[3], "piece")
 

@@ -129,8 +129,6 @@ void declare_assembly(py::module& m)
       },
       py::arg("x"), py::arg("cells"), py::arg("layout"), py::arg("cracks"), py::arg("cell_list"), py::arg("options"),
       "The stiffness's quadrature points of the given cells: cell, ref (n, dim), weight, side.");
-  // The old 3D name, kept only while fracture/sif_3d.py calls it (remove with that call).
-  m.attr("compute_enriched_cell_quadrature_3d") = m.attr("compute_enriched_cell_quadrature");
 
   m.def(
       "nodal_block_transform",

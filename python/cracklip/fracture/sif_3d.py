@@ -681,7 +681,7 @@ def _quadrature(solution, crack: int, cells: np.ndarray, node_r: np.ndarray) -> 
         opts = m.scene.options.quadrature_options_3d()
         opts.degree = max(opts.degree, ENRICHED_DEGREE)
         opts.far_degree = max(opts.far_degree, FAR_DEGREE)
-        q = _cracklip.compute_enriched_cell_quadrature_3d(m.x, m.cells, m.layout, m.geometries, ec, opts)
+        q = _cracklip.compute_enriched_cell_quadrature(m.x, m.cells, m.layout, m.geometries, ec, opts)
         parts.append({"cell": q["cell"], "ref": q["ref"], "weight": q["weight"], "side": q["side"],
                       "plain": np.zeros(len(q["weight"]), dtype=bool)})
     if pc.size:
