@@ -35,11 +35,11 @@ CHUNK = 200_000
 ERROR_DEGREE = {2: 6, 3: 4}
 
 
-def point_label(row: dict) -> str:
+def point_label(row: dict) -> int | str:
     """A SIF row's point within its crack for the error estimate's table:
     its index, or for a position asked for between front points (no index)
-    its arc length."""
-    return str(int(row["point"])) if row.get("point") is not None else f"s={float(row['s']):.12g}"
+    its arc length ("s=...")."""
+    return int(row["point"]) if row.get("point") is not None else f"s={float(row['s']):.12g}"
 
 
 @dataclasses.dataclass
