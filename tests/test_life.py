@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import logging
 import math
 import re
 import sys
@@ -531,3 +532,23 @@ def test_arrest_inside_an_increment_stops_with_finite_numbers():
                          {}, None, ct, a, 0.0)
     run._integrate({(0, 1): table(1.0, 1.0)}, {(0, 1): table(1.1, 0.8)})
     assert run.failure_criterion == "arrest" and math.isfinite(run.N) and run.N == 0.0
+
+
+@pytest.mark.parametrize("closure", ["none", "newman"])
+def test_contact_left_out_of_the_life_is_said(caplog, closure):
+    """options.contact on with closure 'none' or 'newman': the life takes the
+    linear K (Newman's f, or the full range), not the contact K; a warning
+    names both keys rather than leaving the contact silently unused."""
+    from cracklip.analysis.life import LifeRun
+    fm = FatigueMaterial("paris", {"C": 1e-3, "m": 3.0}, closure=closure)
+    with caplog.at_level(logging.WARNING, logger="cracklip.analysis.life"):
+        run = LifeRun(two_group_plate(contact="unilateral"), Growth(da=0.05, steps=1, fatigue_material=fm, R=0.0))
+    assert not run.contact_closure
+    said = [r.getMessage() for r in caplog.records if "material.fatigue.closure" in r.getMessage()]
+    assert len(said) == 1 and "options.contact = 'unilateral'" in said[0] and f"'{closure}'" in said[0]
+    caplog.clear()
+    with caplog.at_level(logging.WARNING, logger="cracklip.analysis.life"):
+        run = LifeRun(two_group_plate(contact="unilateral"),
+                      Growth(da=0.05, steps=1, fatigue_material=FatigueMaterial("paris", {"C": 1e-3, "m": 3.0}),
+                             R=0.0))
+    assert run.contact_closure and not [r for r in caplog.records if "material.fatigue.closure" in r.getMessage()]

@@ -319,6 +319,14 @@ class LifeRun:
         else:
             self.cycles_per_pass = None
         self.contact_closure = fm.closure == "contact" and scene.options.contact != "none"
+        if scene.options.contact != "none" and fm.closure != "contact":
+            # Said once: the contact the scene asks for does not enter K here (Newman's f or the full range
+            # on the linear K); closure = 'contact' would use it.
+            logger.warning("options.contact = '%s' but material.fatigue.closure = '%s': the life takes the linear "
+                           "K at every load state (%s); set closure = 'contact' to take K_min from crack-lip "
+                           "contact", scene.options.contact, fm.closure,
+                           "Newman's opening function accounts for closure" if fm.closure == "newman" else
+                           "the full range, the lips free to pass through each other")
         self.K_crit = self._critical_k()
         self.yield_stress = fm.yield_stress
         self.retardation = None

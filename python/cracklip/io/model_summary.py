@@ -359,8 +359,10 @@ def format_model(summary: dict[str, typing.Any]) -> list[str]:
         where = (f"{c['segments']} crack segments x {c['points_per_segment']} points" if "segments" in c else
                  f"{c['lip_pieces']} lip pieces ({c['front_pieces']} in front cells) x {c['points_per_direction']} "
                  "points per facet direction")
+        cells = "tip" if "segments" in c else "front"
         lines.append(f"contact: {c['law']}, {c['space']} space: {c['multipliers']} multipliers "
-                     f"({c['full_multipliers']} full, {c['p0_multipliers']} P0 in tip cells) on {where}")
+                     f"({c['full_multipliers']} full, {c['p0_multipliers']} P0 in {cells} cells, "
+                     f"grouped into the {c['multipliers']} unknowns) on {where}")
     return lines
 
 
