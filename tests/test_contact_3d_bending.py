@@ -14,6 +14,7 @@ import pathlib
 
 import meshio
 import numpy as np
+import pytest
 
 from cracklip import cli
 
@@ -63,6 +64,7 @@ def _run(args, out):
     return json.loads((out / "results.json").read_text())
 
 
+@pytest.mark.slow
 def test_bending_crack_closure_against_its_plane_strain_section(tmp_path):
     """Measured (tip_h = crack_h = 0.15 as shipped, 53 814 dofs): overlap
     3.15e-6 mm = 0.33 % of the largest opening 9.44e-4 mm (0.5: 2.7 %,
