@@ -22,7 +22,7 @@ from ..scene.mesh_estimate import release_memory
 from ..scene.processes import not_parallel
 from ..scene.scene import Scene
 from ..solvers.checked import condition_number_1norm, record_solves, solve_checked
-from ..solvers.choice import create_linear_solver, to_solver_basis
+from ..solvers.choice import choose_solver, create_linear_solver, to_solver_basis
 from .load_path import solve_path
 
 
@@ -133,6 +133,12 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
                                bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
     A, b, timings = assemble_distributed_system(unit)
     model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
+    if scene.options.solver == "auto":
+        n = A.getSize()[0]
+        enriched = n - model.gdim * model.V.dofmap.index_map.size_global
+        if choose_solver(scene.options, n, enriched, model.gdim) == "iterative":
+            logger.info("options.solver = 'auto' would take the iterative solver at %d dofs; under mpirun the "
+                        "direct one (parallel MUMPS) solves: the iterative path is serial yet", n)
     t0 = time.perf_counter()
     with record_solves() as solves:
         x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system", symmetric=True)

@@ -186,10 +186,18 @@ def _build(args, doc):
     logger.info("mesh: %d nodes, %d %s (%.2f s)", msh.topology.index_map(0).size_global,
                 msh.topology.index_map(msh.topology.dim).size_global,
                 "tetrahedra" if msh.topology.dim == 3 else "cells", sf.timings["mesh"])
-    # The commands' X-FEM path (outputs, checks, growth) is serial yet; the
-    # Python API solves an open 2D crack on several processes (cracklip.model.distributed).
-    from ..scene.processes import not_parallel
-    not_parallel("the X-FEM model (cracks, enrichment, solvers, K)", msh.comm)
+    # Under mpirun `run` solves what the distributed model does (an open 2D
+    # crack, the direct solver: cracklip.model.distributed) and refuses the
+    # rest by its scene key; `check` and `grow` of an X-FEM model are serial yet.
+    if msh.comm.size > 1:
+        from ..scene.processes import not_parallel
+        if args.command == "run":
+            from ..model.model import refuse_unless_distributed
+            refuse_unless_distributed(sf.scene)
+        else:
+            not_parallel({"grow": "crack growth (`cracklip grow`) of the X-FEM model",
+                          "check": "`cracklip check` of the X-FEM model (its summary and checks)"}[args.command],
+                         msh.comm)
     return sf
 
 
@@ -237,7 +245,8 @@ def cmd_run(args) -> int:
     print_warnings(w["message"] for w in results["warnings"])
     logger.info("outputs written (%.2f s); total %.2f s", time.perf_counter() - t0,
                 time.perf_counter() - t_start)
-    if args.quiet:
+    comm = _processes()
+    if args.quiet or (comm is not None and comm.rank != 0):  # (under mpirun rank 0 prints the summary)
         return 0
     print(f"{sf.title}: {results['solution']['dofs']} dofs, strain energy "
           f"{results['solution']['strain_energy']:.6g}")

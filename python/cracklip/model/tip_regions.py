@@ -276,3 +276,13 @@ def tip_domains(model, crack: int, requested: float | None = None,
 def lip_points(model, crack: int):
     """The crack's lip points of the SIFs' lip terms (LIP_POINTS per segment), computed once."""
     return model.cracks[crack].lip_points(model, LIP_POINTS)
+
+
+def length_in_part(model, crack: int) -> float:
+    """The length (2D; area in 3D) of a crack inside the part: its lip
+    points' weights (collective under mpirun: the owned cells' summed)."""
+    pts = lip_points(model, crack)
+    w = np.asarray(pts["weight"])
+    if getattr(model, "distributed", False):
+        return float(reduced(float(w[model.owned_cells_only(pts["cell"])].sum()), "SUM", model.V.mesh.comm))
+    return float(w.sum())
