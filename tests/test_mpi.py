@@ -234,7 +234,9 @@ def _relative(a: float, b: float, scale: float) -> float:
     # with the error estimate: its second mesh (the recipe, gmsh on rank 0 again) solved on 2 processes too
     ("pressurised_crack.toml", ["--set", "mesh.tip_h=0.1"]),
     ("westergaard.toml", ["--no-estimate"]),  # non-zero Dirichlet values on every side
-    ("edge_notch_bending.toml", ["--set", "mesh.h=0.1", "--set", "mesh.tip_h=0.03", "--no-estimate"])])
+    ("edge_notch_bending.toml", ["--set", "mesh.h=0.1", "--set", "mesh.tip_h=0.03", "--no-estimate"]),
+    # point forces (each on the nearest owned node of all processes, added by its owner)
+    ("three_point_bending.toml", ["--set", "mesh.h=0.1", "--set", "mesh.tip_h=0.03", "--no-estimate"])])
 def test_run_open_crack_same_on_one_and_two_processes(scene, settings, tmp_path):
     """`cracklip run` of a shipped open 2D crack scene under mpirun -n 2: one
     summary printed (rank 0), results.json, crack.csv, sif.csv and
@@ -243,7 +245,8 @@ def test_run_open_crack_same_on_one_and_two_processes(scene, settings, tmp_path)
     exactly, the energy, the crack's opening and the error estimate to
     1e-10; what is serial-only yet (the field VTU, the PNGs, the reactions)
     listed in results.json's "parallel". Measured: K equal to 3e-15
-    (pressurised crack), 5e-15 (Westergaard), 7e-13 (edge notch)."""
+    (pressurised crack), 5e-15 (Westergaard), 3e-12 (edge notch), 1.4e-14
+    (three-point bending)."""
     out, serial = tmp_path / "mpi", tmp_path / "serial"
     p = mpirun("run", str(SCENES / scene), *settings, "--out", str(out))
     assert_clean(p, 0)
