@@ -101,8 +101,8 @@ def output_files(model, outputs: dict) -> list[str]:
 
 
 #: What a run under mpirun does not write yet: the sub-cell field (solution.vtu
-#: and the PNGs drawn from it, crack_pressure.png with them) and the reactions.
-SERIAL_ONLY = ["solution.vtu", "deformed.png", "crack_pressure.png", "stress.png", "reactions"]
+#: and the PNGs drawn from it, crack_pressure.png with them).
+SERIAL_ONLY = ["solution.vtu", "deformed.png", "crack_pressure.png", "stress.png"]
 
 
 def writes_files(model) -> bool:
@@ -470,7 +470,7 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
     contact = contact_summary(solution)
     solver = getattr(solution, "solver", None) or {}
     t0 = time.perf_counter()
-    reactions = solution.reactions() if m.scene.dirichlet and not m.distributed else None
+    reactions = solution.reactions() if m.scene.dirichlet else None
     timings["reactions"] = time.perf_counter() - t0
     units = m.scene.units
     u_scale = largest_displacement(solution)
@@ -504,8 +504,7 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
     timings = {**timings, **{f"solve.{k}": v for k, v in solution.timings.items()}}
     results["timings"] = timings
     if m.distributed:  # what the processes did together, and what they did not write
-        results["parallel"] = {"processes": m.V.mesh.comm.size,
-                               "serial_only": [f for f in SERIAL_ONLY if f != "reactions" or m.scene.dirichlet]}
+        results["parallel"] = {"processes": m.V.mesh.comm.size, "serial_only": list(SERIAL_ONLY)}
     if writes_files(m):
         write_results_json(out, results)
     logger.info("wrote %s", ", ".join(results["files"]))

@@ -25,6 +25,7 @@ from ..model.checks import ModelWarning
 from ..model.model import XfemModel
 from ..scene.material import strain, stress
 from ..scene.mesh_estimate import release_memory
+from ..scene.processes import reduced
 
 #: Cells per chunk of the whole-mesh field loops (bounded memory at 1e6 cells).
 CHUNK = 200_000
@@ -402,7 +403,10 @@ class Solution:
         extra = [ModelWarning("sif_spread", m) for m in self._sif_cache[(None, None, None)][1]
                  if m not in model_messages]
         extra += [ModelWarning(code, m) for code, m in solution_warnings(self)]
-        if self.model.scene.dirichlet and np.any(self.u) and not self.model.distributed:  # (reactions: serial)
+        moving = np.any(self.u)
+        if self.model.distributed:  # (each process its part of u)
+            moving = reduced(bool(moving), "LOR", self.model.V.mesh.comm)
+        if self.model.scene.dirichlet and moving:
             extra += [ModelWarning(code, m) for code, m in point_supports(self, self.reactions())]
         return list(self.model.warnings) + extra
 

@@ -89,18 +89,22 @@ class MeshData:
         tag = self.tag_value(where)
         return self.facet_tags.indices[self.facet_tags.values == tag]
 
-    def num_facets(self, where: str | int) -> int:
-        """How many facets a boundary tag has (collective under mpirun: each
-        counted by the process owning its cell)."""
+    def owned_facets(self, where: str | int) -> np.ndarray:
+        """The facets of a boundary tag this process counts: all in serial,
+        under mpirun those of its owned cells (each facet on one process)."""
         facets = self.facets(where)
         msh = self.mesh
         if msh.comm.size == 1:
-            return int(facets.size)
+            return facets
         tdim = msh.topology.dim
         msh.topology.create_connectivity(tdim - 1, tdim)
         f2c = msh.topology.connectivity(tdim - 1, tdim)
         cell = f2c.array[f2c.offsets[facets]]  # (a boundary facet has one cell)
-        return total(np.count_nonzero(cell < msh.topology.index_map(tdim).size_local), msh.comm)
+        return facets[cell < msh.topology.index_map(tdim).size_local]
+
+    def num_facets(self, where: str | int) -> int:
+        """How many facets a boundary tag has (collective under mpirun)."""
+        return total(self.owned_facets(where).size, self.mesh.comm)
 
     def facet_vertices(self, where: str | int) -> np.ndarray:
         """Vertex coordinates (n, d, d) of a boundary tag's facets (segments
