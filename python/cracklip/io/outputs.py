@@ -100,9 +100,9 @@ def output_files(model, outputs: dict) -> list[str]:
     return ["results.json"] + files
 
 
-#: What a run under mpirun does not write yet: the sub-cell field (solution.vtu
-#: and the PNGs drawn from it, crack_pressure.png with them).
-SERIAL_ONLY = ["solution.vtu", "deformed.png", "crack_pressure.png", "stress.png"]
+#: What a run under mpirun does not write yet: the PNGs (drawn from the
+#: process's own part of the mesh).
+SERIAL_ONLY = ["deformed.png", "crack_pressure.png", "stress.png"]
 
 
 def writes_files(model) -> bool:
@@ -211,16 +211,41 @@ def _curve_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: list
     files += ["crack.csv", "sif.csv"]
     timings["write_csv"] = time.perf_counter() - t0
     if m.distributed:
-        if cfg["vtu"] and write:
+        if cfg["vtu"]:
             t0 = time.perf_counter()
-            write_mesh(crack_lips_mesh(samples), out / "crack_lips.vtu")
+            fields = gathered_subcell_fields(solution)
+            if write:
+                write_mesh(subcell_mesh(solution, fields), out / "solution.vtu")
+                write_mesh(crack_lips_mesh(samples), out / "crack_lips.vtu")
+            files += ["solution.vtu", "crack_lips.vtu"]
             timings["write_vtu"] = time.perf_counter() - t0
-        files += ["crack_lips.vtu"] if cfg["vtu"] else []
         logger.info("under mpirun (%d processes) these outputs are serial-only yet, not written: %s",
                     m.V.mesh.comm.size, ", ".join(SERIAL_ONLY))
     else:
         _write_fields(scene_file, solution, out, samples, timings, files)
     return {"cracks": crack_stats, "steps": _curve_steps(solution, per_step, step_sifs, gap_tol, law)}
+
+
+def gathered_subcell_fields(solution: Solution) -> dict | None:
+    """Under mpirun: the sub-cell fields (Solution.subcell_fields) of every
+    process's owned cells on rank 0 (None on the others), the sub-cells in
+    rank order; parent is the cell's input index (the mesh generator's)."""
+    m = solution.model
+    comm = m.V.mesh.comm
+    f = solution.subcell_fields()
+    own = f["parent"] < m.num_owned_cells
+    original = np.asarray(m.scene.mesh.mesh.topology.original_cell_index, dtype=np.int64)
+    mine = {"points": f["points"].reshape(-1, 3, f["points"].shape[1])[own], "parent": original[f["parent"][own]],
+            "displacement": f["displacement"].reshape(-1, 3, f["displacement"].shape[1])[own],
+            **{k: f[k][own] for k in ("stress", "side", "von_mises")}}
+    parts = comm.gather(mine, root=0)
+    if parts is None:
+        return None
+    out = {k: np.concatenate([p[k] for p in parts]) for k in mine}
+    n = len(out["parent"])
+    out["points"], out["displacement"] = out["points"].reshape(3 * n, -1), out["displacement"].reshape(3 * n, -1)
+    out["cells"] = np.arange(3 * n, dtype=np.int64).reshape(-1, 3)
+    return out
 
 
 def _write_curve_csv(out: pathlib.Path, per_step: list, step_sifs: list) -> None:
