@@ -31,9 +31,9 @@ from the same model and contact system objects the solver uses.
 Under mpirun (a distributed model, 2D) every process computes the results
 together (K, the lip samples, the energy and the counts summed over the
 processes) and rank 0 writes them: results.json, crack.csv, sif.csv,
-crack_lips.vtu. What needs the whole field on one process is not written
-yet (SERIAL_ONLY): results.json's "parallel" entry lists it, one log line
-says so.
+crack_lips.vtu, and from the owned cells' sub-cell fields gathered on rank
+0 solution.vtu and the PNGs. What is not written yet under mpirun
+(SERIAL_ONLY) results.json's "parallel" entry lists.
 """
 from __future__ import annotations
 
@@ -100,9 +100,8 @@ def output_files(model, outputs: dict) -> list[str]:
     return ["results.json"] + files
 
 
-#: What a run under mpirun does not write yet: the PNGs (drawn from the
-#: process's own part of the mesh).
-SERIAL_ONLY = ["deformed.png", "crack_pressure.png", "stress.png"]
+#: What a run under mpirun does not write yet.
+SERIAL_ONLY: list[str] = []
 
 
 def writes_files(model) -> bool:
@@ -210,19 +209,16 @@ def _curve_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: list
         _write_curve_csv(out, per_step, step_sifs)
     files += ["crack.csv", "sif.csv"]
     timings["write_csv"] = time.perf_counter() - t0
-    if m.distributed:
-        if cfg["vtu"]:
-            t0 = time.perf_counter()
-            fields = gathered_subcell_fields(solution)
-            if write:
-                write_mesh(subcell_mesh(solution, fields), out / "solution.vtu")
-                write_mesh(crack_lips_mesh(samples), out / "crack_lips.vtu")
-            files += ["solution.vtu", "crack_lips.vtu"]
-            timings["write_vtu"] = time.perf_counter() - t0
-        logger.info("under mpirun (%d processes) these outputs are serial-only yet, not written: %s",
-                    m.V.mesh.comm.size, ", ".join(SERIAL_ONLY))
-    else:
+    if not m.distributed:
         _write_fields(scene_file, solution, out, samples, timings, files)
+    elif cfg["vtu"] or cfg["png"]:  # the sub-cell fields gathered on rank 0, which writes and draws them
+        t0 = time.perf_counter()
+        fields = gathered_subcell_fields(solution)
+        timings["subcell_fields"] = time.perf_counter() - t0
+        written: list[str] = []
+        if write:
+            _write_fields(scene_file, solution, out, samples, timings, written, fields)
+        files += m.V.mesh.comm.bcast(written, root=0)
     return {"cracks": crack_stats, "steps": _curve_steps(solution, per_step, step_sifs, gap_tol, law)}
 
 
@@ -264,13 +260,17 @@ def _write_curve_csv(out: pathlib.Path, per_step: list, step_sifs: list) -> None
 
 
 def _write_fields(scene_file, solution: Solution, out: pathlib.Path, samples: list[dict], timings: dict,
-                  files: list[str]) -> None:
-    """solution.vtu, crack_lips.vtu and the PNGs of 2D cracks (module doc)."""
+                  files: list[str], fields: dict | None = None) -> None:
+    """solution.vtu, crack_lips.vtu and the PNGs of 2D cracks (module doc);
+    fields: the sub-cell fields if the caller has them (under mpirun rank 0
+    the gathered ones; it alone calls this, which then makes no collective
+    call)."""
     cfg = scene_file.outputs
     # The sub-cell fields, shared by the ParaView file and the PNGs.
-    t0 = time.perf_counter()
-    fields = solution.subcell_fields() if cfg["vtu"] or cfg["png"] else None
-    timings["subcell_fields"] = time.perf_counter() - t0
+    if fields is None:
+        t0 = time.perf_counter()
+        fields = solution.subcell_fields() if cfg["vtu"] or cfg["png"] else None
+        timings["subcell_fields"] = time.perf_counter() - t0
     if cfg["vtu"]:
         t0 = time.perf_counter()
         write_mesh(subcell_mesh(solution, fields), out / "solution.vtu")
