@@ -8,7 +8,7 @@ patches), its checks, a plain P1 solve (equal to serial), `run` of an open
 crack_lips.vtu, the PNGs written once, equal to serial), and the commands that need
 no mesh (`life`, `check` of a life scene, `reference`), run by rank 0 with
 their files written once. What the distributed model does not do yet
-(contact, friction, the iterative solver, 3D, growth, `check` of a model)
+(contact, friction, the iterative solver, 3D, growth)
 is refused with one ``cracklip: error: ... is not available under MPI
 yet`` naming it (rank 0) and exit status 2 on every process. Each case runs `mpirun --allow-run-as-root
 --oversubscribe -n 2 /usr/bin/python3 -m cracklip ...` with a timeout: a
@@ -68,7 +68,7 @@ def test_mpirun_is_installed():
 
 
 @pytest.mark.parametrize("command, missing", [("run", "options.contact"),
-                                              ("check", "`cracklip check` of the X-FEM model"),
+                                              ("check", "options.contact"),
                                               ("grow", "crack growth (`cracklip grow`)")])
 def test_2d_model_refused_not_crashed(command, missing, tmp_path):
     """The issue's reproducer crashed both processes with SEGV (every process
@@ -227,6 +227,17 @@ def _run_serial(*args: str) -> subprocess.CompletedProcess:
                           text=True, timeout=600)
 
 
+def _same(a, b, tol: float) -> bool:
+    """a == b, numbers to tol relative."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_same(a[k], b[k], tol) for k in a)
+    if isinstance(a, list) and isinstance(b, list):
+        return len(a) == len(b) and all(_same(x, y, tol) for x, y in zip(a, b))
+    if isinstance(a, float) or isinstance(b, float):
+        return abs(a - b) <= tol * max(abs(a), abs(b))
+    return a == b
+
+
 def _relative(a: float, b: float, scale: float) -> float:
     return abs(a - b) / scale
 
@@ -311,3 +322,24 @@ def test_run_open_crack_same_on_one_and_two_processes(scene, settings, tmp_path)
         assert max(_relative(x, y, load) for x, y in zip(ia["resultant"], ib["resultant"])) <= 1e-10, (ia, ib)
     rows = [(d / "sif.csv").read_text().splitlines() for d in (serial, out)]
     assert rows[0][0] == rows[1][0] and len(rows[0]) == len(rows[1])
+
+
+def test_check_open_crack_same_on_one_and_two_processes():
+    """`cracklip check` of an open 2D crack under mpirun -n 2: the model built
+    as `run` builds it, its summary (every count over the processes' owned
+    cells and nodes), the scene notes and the model warnings printed once by
+    rank 0, equal to serial (snapped_nodes, a per-process count, null)."""
+    args = ["check", str(SCENES / "interacting_cracks.toml"), "--set", "mesh.h=0.1", "--set", "mesh.tip_h=0.02"]
+    p = mpirun(*args, "--json")
+    assert_clean(p, 0)
+    s = _run_serial(*args, "--json")
+    assert s.returncode == 0, s.stderr
+    a, b = json.loads(s.stdout), json.loads(p.stdout)
+    assert [c.pop("snapped_nodes") for c in b["model"]["cracks"]] == [None, None]
+    for c in a["model"]["cracks"]:
+        c.pop("snapped_nodes")
+    assert _same(a, b, 1e-12), (a, b)  # (lengths and sizes summed in another order: round-off)
+    p = mpirun(*args)
+    assert_clean(p, 0)
+    assert p.stdout.count(": valid") == 1 and p.stdout.count("run writes: ") == 1, p.stdout
+    assert p.stderr.count("cracklip: warning:") == 4, p.stderr

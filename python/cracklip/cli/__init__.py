@@ -186,18 +186,15 @@ def _build(args, doc):
     logger.info("mesh: %d nodes, %d %s (%.2f s)", msh.topology.index_map(0).size_global,
                 msh.topology.index_map(msh.topology.dim).size_global,
                 "tetrahedra" if msh.topology.dim == 3 else "cells", sf.timings["mesh"])
-    # Under mpirun `run` solves what the distributed model does (an open 2D
-    # crack, the direct solver: cracklip.model.distributed) and refuses the
-    # rest by its scene key; `check` and `grow` of an X-FEM model are serial yet.
+    # Under mpirun `run` and `check` build what the distributed model does (an
+    # open 2D crack, the direct solver: cracklip.model.distributed) and refuse
+    # the rest by its scene key; `grow` of an X-FEM model is serial yet.
     if msh.comm.size > 1:
         from ..scene.processes import not_parallel
-        if args.command == "run":
-            from ..model.model import refuse_unless_distributed
-            refuse_unless_distributed(sf.scene)
-        else:
-            not_parallel({"grow": "crack growth (`cracklip grow`) of the X-FEM model",
-                          "check": "`cracklip check` of the X-FEM model (its summary and checks)"}[args.command],
-                         msh.comm)
+        if args.command == "grow":
+            not_parallel("crack growth (`cracklip grow`) of the X-FEM model", msh.comm)
+        from ..model.model import refuse_unless_distributed
+        refuse_unless_distributed(sf.scene)
     return sf
 
 
@@ -469,11 +466,17 @@ def cmd_check(args) -> int:
         check_life(args, doc, quiet=True)  # its files too, before the mesh
     sf = _build(args, doc)
     scene = sf.scene
+    comm = _processes()
+    if comm is not None and args.nodes:
+        from ..scene.processes import not_parallel
+        not_parallel("`cracklip check --nodes` (the list of enriched nodes)", comm)
     model = create_model(scene)  # runs the model checks of a run (cracklip.model.checks)
     cs = create_contact_system(model) if scene.options.contact != "none" and model.cracks else None
     summary = describe_model(model, cs)
     nodes = enriched_nodes(model) if args.nodes else None
     print_warnings(model.warnings)
+    if comm is not None and comm.rank != 0:  # (under mpirun rank 0 prints)
+        return 0
     if args.json:
         doc = {"title": sf.title, "notes": sf.notes, "model": summary,
                "warnings": [w.as_dict() for w in model.warnings]}
