@@ -32,8 +32,8 @@ Under mpirun (a distributed model, 2D) every process computes the results
 together (K, the lip samples, the energy and the counts summed over the
 processes) and rank 0 writes them: results.json, crack.csv, sif.csv,
 crack_lips.vtu, and from the owned cells' sub-cell fields gathered on rank
-0 solution.vtu and the PNGs. What is not written yet under mpirun
-(SERIAL_ONLY) results.json's "parallel" entry lists.
+0 solution.vtu and the PNGs; results.json's "parallel" entry gives the
+number of processes.
 """
 from __future__ import annotations
 
@@ -98,10 +98,6 @@ def output_files(model, outputs: dict) -> list[str]:
         files = ["crack.csv", "sif.csv"] + (["solution.vtu", "crack_lips.vtu"] if vtu else []) \
             + (["deformed.png", "crack_pressure.png", "stress.png"] if png else [])
     return ["results.json"] + files
-
-
-#: What a run under mpirun does not write yet.
-SERIAL_ONLY: list[str] = []
 
 
 def writes_files(model) -> bool:
@@ -528,8 +524,8 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
     timings["outputs_total"] = time.perf_counter() - t_outputs
     timings = {**timings, **{f"solve.{k}": v for k, v in solution.timings.items()}}
     results["timings"] = timings
-    if m.distributed:  # what the processes did together, and what they did not write
-        results["parallel"] = {"processes": m.V.mesh.comm.size, "serial_only": list(SERIAL_ONLY)}
+    if m.distributed:  # how many processes solved it
+        results["parallel"] = {"processes": m.V.mesh.comm.size}
     if writes_files(m):
         write_results_json(out, results)
     logger.info("wrote %s", ", ".join(results["files"]))
