@@ -44,8 +44,6 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     (cracklip.analysis.accuracy.solve_to_accuracy); the finest level's
     Solution is returned, its .error_estimate holds the levels.
     """
-    if scene.mesh.mesh.comm.size > 1:
-        return _solve_distributed(scene, condition_number)
     if scene.options.accuracy > 0.0:
         # Refinement levels around the tips until K's estimated error is below
         # the target (cracklip.analysis.accuracy); each level solved as usual.
@@ -56,6 +54,8 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
             sol = solve(dataclasses.replace(sc, options=once.options), condition_number)
             return sol
         return solve_to_accuracy(once, scene.options.accuracy, scene.options.accuracy_levels, solve_level)
+    if scene.mesh.mesh.comm.size > 1:
+        return _solve_distributed(scene, condition_number)
     if scene.load_path is not None or scene.options.friction > 0.0:
         return solve_path(scene, condition_number)[-1]
     t_start = time.perf_counter()

@@ -41,7 +41,7 @@ def refuse_unless_distributed(scene: Scene) -> None:
     for what, used in [
             ("a 3D part (tetrahedra)", scene.mesh.gdim != 2),
             ("options.contact", o.contact != "none"), ("options.friction", o.friction > 0.0),
-            ("options.solver = 'iterative'", o.solver == "iterative"), ("options.accuracy", o.accuracy > 0.0),
+            ("options.solver = 'iterative'", o.solver == "iterative"),
             ("options.rescale = 'nodal'", o.rescale == "nodal"),
             ("load_path", scene.load_path is not None), ("body_force", scene.body_force is not None),
             ("initial_stress", scene.initial_stress is not None),
