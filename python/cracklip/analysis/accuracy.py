@@ -91,7 +91,7 @@ from ..errors import InputError, MeshError
 from ..scene.mesh_3d import similar_mesh
 from ..scene.refine import with_levels
 from ..scene.scene import Scene
-from ..scene.processes import reduced
+from ..scene.processes import mark_collective, reduced
 from ..post.solution import point_label
 from .front_match import FrontPiece, carry_over
 
@@ -161,6 +161,19 @@ def scene_on(scene: Scene, mesh) -> Scene:
             bc = dataclasses.replace(bc, where=mesh.nearest_node(bc.where))
         dirichlet.append(bc)
     return dataclasses.replace(scene, mesh=mesh, dirichlet=dirichlet)
+
+
+def refined_scene(scene: Scene, regions: list, level: int) -> Scene:
+    """The 2D scene with every size halved `level` times in the tips'
+    regions (tip_regions): its mesh made again by its recipe, or a file's
+    mesh refined. Under mpirun a file's mesh (no recipe) is refused
+    (EstimateUnavailable, on every process alike): refining a distributed
+    mesh read from a file is serial yet."""
+    if scene.mesh.recipe is None and scene.mesh.mesh.comm.size > 1:
+        raise mark_collective(EstimateUnavailable(
+            "no error estimate of K and no options.accuracy under mpirun for a mesh read from a file (refining "
+            "it is serial yet): run without mpirun, or let cracklip mesh the part ([mesh] kind)"))
+    return scene_on(scene, with_levels(scene.mesh, level_items(regions, level)))
 
 
 def similar_scene(scene: Scene, factor: float) -> Scene:
@@ -603,7 +616,7 @@ def estimate_error(scene: Scene, solution, solve_once: Solver) -> dict[str, typi
         levels, of = ([aux, base], -1) if factor > 1.0 else ([base, aux], 0)
     else:
         regions = tip_regions(solution)
-        _, aux = _solve_timed(solve_once, scene_on(scene, with_levels(scene.mesh, level_items(regions, 1))), 0.5)
+        _, aux = _solve_timed(solve_once, refined_scene(scene, regions, 1), 0.5)
         levels, of = [base, aux], 0
     summary = _attach(solution, levels, estimate(levels, of), None, _method(levels, of), of)
     logger.info("error estimate: %d dofs (%.2f s); largest estimated error %.3g %% of the K scale", aux.dofs,
@@ -639,7 +652,7 @@ def solve_to_accuracy(scene: Scene, accuracy: float, max_levels: int, solve_once
             finer = similar_scene(scene, factor)
         else:
             factor *= 0.5
-            finer = scene_on(scene, with_levels(scene.mesh, level_items(regions, level)))
+            finer = refined_scene(scene, regions, level)
         sol, lv = _solve_timed(solve_once, finer, factor)
         levels.append(lv)
         summary = _attach(sol, levels, estimate(levels), accuracy, _method(levels, -1))
