@@ -91,6 +91,7 @@ from ..errors import InputError, MeshError
 from ..scene.mesh_3d import similar_mesh
 from ..scene.refine import with_levels
 from ..scene.scene import Scene
+from ..scene.processes import mark_collective, reduced
 from ..post.solution import point_label
 from .front_match import FrontPiece, carry_over
 
@@ -162,6 +163,19 @@ def scene_on(scene: Scene, mesh) -> Scene:
     return dataclasses.replace(scene, mesh=mesh, dirichlet=dirichlet)
 
 
+def refined_scene(scene: Scene, regions: list, level: int) -> Scene:
+    """The 2D scene with every size halved `level` times in the tips'
+    regions (tip_regions): its mesh made again by its recipe, or a file's
+    mesh refined. Under mpirun a file's mesh (no recipe) is refused
+    (EstimateUnavailable, on every process alike): refining a distributed
+    mesh read from a file is serial yet."""
+    if scene.mesh.recipe is None and scene.mesh.mesh.comm.size > 1:
+        raise mark_collective(EstimateUnavailable(
+            "no error estimate of K and no options.accuracy under mpirun for a mesh read from a file (refining "
+            "it is serial yet): run without mpirun, or let cracklip mesh the part ([mesh] kind)"))
+    return scene_on(scene, with_levels(scene.mesh, level_items(regions, level)))
+
+
 def similar_scene(scene: Scene, factor: float) -> Scene:
     """The 3D scene on the similar mesh with every size setting times
     `factor` (relative to the scene's mesh: cracklip.scene.mesh_3d.similar_mesh)."""
@@ -175,17 +189,33 @@ def region_radius(model, point: np.ndarray, elements: float = REGION_ELEMENTS) -
     """The radius of the region `elements` element sizes around a point: D =
     elements x the largest element (mean edge) whose centroid lies within D
     (from the point's own element, grown until it holds; the part's size at
-    most)."""
+    most). Collective under mpirun: over every process's owned cells."""
     x, cells = model.x, model.cells
+    distributed = getattr(model, "distributed", False)
+    if distributed:
+        cells = cells[:model.num_owned_cells]
     xc = x[cells]
     centroid = xc.mean(axis=1)
     k = cells.shape[1]
     size = np.mean([np.linalg.norm(xc[:, (i + 1) % k] - xc[:, i], axis=1) for i in range(k)], axis=0)
-    dist = np.linalg.norm(centroid - np.asarray(point, dtype=float)[:len(centroid[0])], axis=1)
-    part = float(np.ptp(x, axis=0).max())
-    D = elements * float(size[np.argmin(dist)])
+    dist = np.linalg.norm(centroid - np.asarray(point, dtype=float)[:x.shape[1]], axis=1)
+    if not distributed:
+        part = float(np.ptp(x, axis=0).max())
+        D = elements * float(size[np.argmin(dist)])
+
+        def largest(D: float) -> float:
+            return float(size[dist <= D].max())
+    else:
+        comm = model.V.mesh.comm
+        part = max(reduced(float(hi), "MAX", comm) - reduced(float(lo), "MIN", comm)
+                   for hi, lo in zip(x.max(axis=0), x.min(axis=0)))
+        i = int(np.argmin(dist)) if dist.size else -1
+        D = elements * min(comm.allgather((float(dist[i]), float(size[i])) if dist.size else (np.inf, 0.0)))[1]
+
+        def largest(D: float) -> float:
+            return float(reduced(float(size[dist <= D].max(initial=0.0)), "MAX", comm))
     while D < part:
-        grown = elements * float(size[dist <= D].max())
+        grown = elements * largest(D)
         if grown <= D * (1.0 + 1e-9):
             break
         D = grown
@@ -252,6 +282,13 @@ def _front(solution) -> bool:
     return solution.model.crack_type.END == "front"
 
 
+def _num_dofs(model) -> int:
+    """The model's dofs (over every process under mpirun)."""
+    if not getattr(model, "distributed", False):
+        return int(model.num_dofs)
+    return int(model.dofs.num_global * model.gdim)
+
+
 def level_of(solution, size_factor: float, seconds: float) -> Level:
     """The Level of a solved mesh."""
     closed, lengths = {}, {}
@@ -262,7 +299,7 @@ def level_of(solution, size_factor: float, seconds: float) -> Level:
             closed.update({(ci, k): bool(c) for k, c in enumerate(fr.closed)})
             lengths.update({(ci, k): float(v) for k, v in enumerate(fr.length)})
     rows = [[dict(r) for r in st.stress_intensity_factors(None)] for st in _states(solution)]
-    return Level(float(size_factor), int(solution.model.num_dofs), float(seconds), rows, _front(solution), closed,
+    return Level(float(size_factor), _num_dofs(solution.model), float(seconds), rows, _front(solution), closed,
                  lengths)
 
 
@@ -579,7 +616,7 @@ def estimate_error(scene: Scene, solution, solve_once: Solver) -> dict[str, typi
         levels, of = ([aux, base], -1) if factor > 1.0 else ([base, aux], 0)
     else:
         regions = tip_regions(solution)
-        _, aux = _solve_timed(solve_once, scene_on(scene, with_levels(scene.mesh, level_items(regions, 1))), 0.5)
+        _, aux = _solve_timed(solve_once, refined_scene(scene, regions, 1), 0.5)
         levels, of = [base, aux], 0
     summary = _attach(solution, levels, estimate(levels, of), None, _method(levels, of), of)
     logger.info("error estimate: %d dofs (%.2f s); largest estimated error %.3g %% of the K scale", aux.dofs,
@@ -615,7 +652,7 @@ def solve_to_accuracy(scene: Scene, accuracy: float, max_levels: int, solve_once
             finer = similar_scene(scene, factor)
         else:
             factor *= 0.5
-            finer = scene_on(scene, with_levels(scene.mesh, level_items(regions, level)))
+            finer = refined_scene(scene, regions, level)
         sol, lv = _solve_timed(solve_once, finer, factor)
         levels.append(lv)
         summary = _attach(sol, levels, estimate(levels), accuracy, _method(levels, -1))

@@ -22,7 +22,7 @@ from ..scene.mesh_estimate import release_memory
 from ..scene.processes import not_parallel
 from ..scene.scene import Scene
 from ..solvers.checked import condition_number_1norm, record_solves, solve_checked
-from ..solvers.choice import create_linear_solver, to_solver_basis
+from ..solvers.choice import choose_solver, create_linear_solver, to_solver_basis
 from .load_path import solve_path
 
 
@@ -44,8 +44,6 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     (cracklip.analysis.accuracy.solve_to_accuracy); the finest level's
     Solution is returned, its .error_estimate holds the levels.
     """
-    if scene.mesh.mesh.comm.size > 1:
-        return _solve_distributed(scene, condition_number)
     if scene.options.accuracy > 0.0:
         # Refinement levels around the tips until K's estimated error is below
         # the target (cracklip.analysis.accuracy); each level solved as usual.
@@ -56,6 +54,8 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
             sol = solve(dataclasses.replace(sc, options=once.options), condition_number)
             return sol
         return solve_to_accuracy(once, scene.options.accuracy, scene.options.accuracy_levels, solve_level)
+    if scene.mesh.mesh.comm.size > 1:
+        return _solve_distributed(scene, condition_number)
     if scene.load_path is not None or scene.options.friction > 0.0:
         return solve_path(scene, condition_number)[-1]
     t_start = time.perf_counter()
@@ -133,6 +133,12 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
                                bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
     A, b, timings = assemble_distributed_system(unit)
     model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
+    if scene.options.solver == "auto":
+        n = A.getSize()[0]
+        enriched = n - model.gdim * model.V.dofmap.index_map.size_global
+        if choose_solver(scene.options, n, enriched, model.gdim) == "iterative":
+            logger.info("options.solver = 'auto' would take the iterative solver at %d dofs; under mpirun the "
+                        "direct one (parallel MUMPS) solves: the iterative path is serial yet", n)
     t0 = time.perf_counter()
     with record_solves() as solves:
         x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system", symmetric=True)

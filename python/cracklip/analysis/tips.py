@@ -107,8 +107,8 @@ def crack_length(points: np.ndarray) -> float:
 
 def part_length(model, crack: int) -> float:
     """The length of a crack inside the part (its polyline may run beyond the boundary)."""
-    from ..model.tip_regions import lip_points
-    return float(lip_points(model, crack)["weight"].sum())
+    from ..model.tip_regions import length_in_part
+    return length_in_part(model, crack)
 
 
 def closed_fraction(sol, crack: int) -> float:

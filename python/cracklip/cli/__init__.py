@@ -186,10 +186,15 @@ def _build(args, doc):
     logger.info("mesh: %d nodes, %d %s (%.2f s)", msh.topology.index_map(0).size_global,
                 msh.topology.index_map(msh.topology.dim).size_global,
                 "tetrahedra" if msh.topology.dim == 3 else "cells", sf.timings["mesh"])
-    # The commands' X-FEM path (outputs, checks, growth) is serial yet; the
-    # Python API solves an open 2D crack on several processes (cracklip.model.distributed).
-    from ..scene.processes import not_parallel
-    not_parallel("the X-FEM model (cracks, enrichment, solvers, K)", msh.comm)
+    # Under mpirun `run` and `check` build what the distributed model does (an
+    # open 2D crack, the direct solver: cracklip.model.distributed) and refuse
+    # the rest by its scene key; `grow` of an X-FEM model is serial yet.
+    if msh.comm.size > 1:
+        from ..scene.processes import not_parallel
+        if args.command == "grow":
+            not_parallel("crack growth (`cracklip grow`) of the X-FEM model", msh.comm)
+        from ..model.model import refuse_unless_distributed
+        refuse_unless_distributed(sf.scene)
     return sf
 
 
@@ -237,7 +242,8 @@ def cmd_run(args) -> int:
     print_warnings(w["message"] for w in results["warnings"])
     logger.info("outputs written (%.2f s); total %.2f s", time.perf_counter() - t0,
                 time.perf_counter() - t_start)
-    if args.quiet:
+    comm = _processes()
+    if args.quiet or (comm is not None and comm.rank != 0):  # (under mpirun rank 0 prints the summary)
         return 0
     print(f"{sf.title}: {results['solution']['dofs']} dofs, strain energy "
           f"{results['solution']['strain_energy']:.6g}")
@@ -460,11 +466,17 @@ def cmd_check(args) -> int:
         check_life(args, doc, quiet=True)  # its files too, before the mesh
     sf = _build(args, doc)
     scene = sf.scene
+    comm = _processes()
+    if comm is not None and args.nodes:
+        from ..scene.processes import not_parallel
+        not_parallel("`cracklip check --nodes` (the list of enriched nodes)", comm)
     model = create_model(scene)  # runs the model checks of a run (cracklip.model.checks)
     cs = create_contact_system(model) if scene.options.contact != "none" and model.cracks else None
     summary = describe_model(model, cs)
     nodes = enriched_nodes(model) if args.nodes else None
     print_warnings(model.warnings)
+    if comm is not None and comm.rank != 0:  # (under mpirun rank 0 prints)
+        return 0
     if args.json:
         doc = {"title": sf.title, "notes": sf.notes, "model": summary,
                "warnings": [w.as_dict() for w in model.warnings]}

@@ -4,7 +4,10 @@ counts come from the same model and contact system objects the solver uses.
 One summary for both dimensions: the mesh, dofs, enriched nodes, boundary
 tags and quadrature groups alike; per crack a polyline's tips in 2D, a
 surface's cut cells, front (pieces, points, length, boundary ends) and the
-element size reached along it in 3D."""
+element size reached along it in 3D.
+
+Under MPI (a distributed model) every count is over the processes' owned
+nodes and cells, summed: the serial run's numbers."""
 from __future__ import annotations
 
 import typing
@@ -13,6 +16,7 @@ import numpy as np
 
 from ..model.model import XfemModel
 from ..post.solution import Solution, enriched_chunks
+from ..scene.processes import reduced
 
 
 def _kind(tips: int, pieces: list[dict], model: XfemModel) -> str:
@@ -43,6 +47,20 @@ def _kind(tips: int, pieces: list[dict], model: XfemModel) -> str:
     return f"{len(pieces)} pieces in the part ({across}): " + "; ".join(parts)
 
 
+def _owned(model: XfemModel) -> tuple[int, int]:
+    """(nodes, cells) this process counts: its owned ones, first in the
+    local arrays (all of them in serial)."""
+    if not model.distributed:
+        return int(model.layout.num_std_nodes), int(model.cells.shape[0])
+    return int(model.V.dofmap.index_map.size_local), int(model.num_owned_cells)
+
+
+def _summed(model: XfemModel, value, op: str = "SUM"):
+    """A count (or an array of counts) over every process's owned entities
+    (itself in serial)."""
+    return reduced(value, op, model.V.mesh.comm) if model.distributed else value
+
+
 def _tip_cells(model: XfemModel) -> np.ndarray:
     cells = [np.asarray(g.tip_cells["cell"]) for g in model.geometries]
     return np.unique(np.concatenate(cells)) if cells else np.zeros(0, dtype=np.int32)
@@ -58,19 +76,21 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
     give the counts (computed otherwise)."""
     layout = model.layout
     opts = model.scene.options
+    own_nodes, own_cells = _owned(model)
     node = np.asarray(layout.node)
+    node = node[node < own_nodes]
+    nodes, pseudo = int(_summed(model, own_nodes)), int(_summed(model, node.size))
     d = model.gdim
     describe_cracks = _DESCRIBE[model.crack_type.END]
     out: dict[str, typing.Any] = {
         "dimension": d,
-        "nodes": int(layout.num_std_nodes),
-        "cells": int(model.cells.shape[0]),
+        "nodes": nodes,
+        "cells": int(_summed(model, own_cells)),
         "mean_edge": model.h,
-        "dofs": {"standard": int(d * layout.num_std_nodes), "enriched": int(d * layout.num_enriched),
-                 "total": int(model.num_dofs)},
-        "enriched_nodes": int(np.unique(node).size),
-        "enriched_pseudo_nodes": int(layout.num_enriched),
-        "enriched_cells": int(np.asarray(layout.cells).size),
+        "dofs": {"standard": d * nodes, "enriched": d * pseudo, "total": d * (nodes + pseudo)},
+        "enriched_nodes": int(_summed(model, np.unique(node).size)),
+        "enriched_pseudo_nodes": pseudo,
+        "enriched_cells": int(_summed(model, np.count_nonzero(np.asarray(layout.cells) < own_cells))),
         "enrichment": {"tip": opts.enrichment, "radius": opts.radius, "blending": opts.blending},
         "boundary_tags": {name: int(v) for name, v in sorted(model.scene.mesh.tags.items())},
         "cracks": describe_cracks(model),
@@ -100,27 +120,34 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
     return out
 
 
-def _enriched_counts(layout, ci: int, cell_class: np.ndarray, classes: dict[str, int], prefix: str,
+def _enriched_counts(model: XfemModel, ci: int, cell_class: np.ndarray, classes: dict[str, int], prefix: str,
                      d: int) -> dict[str, typing.Any]:
     """Cells of each class, and Heaviside and tip/front nodes and dofs of
     crack ci (keys `<prefix>_nodes`, ...: "tip" in 2D, "front" in 3D; d
     dofs per pseudo-node)."""
-    kind = np.asarray(layout.kind)
-    crack_of = np.asarray(layout.crack)
+    layout = model.layout
+    own_nodes, own_cells = _owned(model)
     node = np.asarray(layout.node)
-    core = np.asarray(layout.core)
-    cls = np.bincount(np.asarray(cell_class), minlength=len(classes))
+    own = node < own_nodes
+    node = node[own]
+    kind = np.asarray(layout.kind)[own]
+    crack_of = np.asarray(layout.crack)[own]
+    core = np.asarray(layout.core)[own]
+    cls = np.bincount(np.asarray(cell_class)[:own_cells], minlength=len(classes))
     heav = (crack_of == ci) & (kind == 0)
     tip = (crack_of == ci) & (kind != 0)
     tip_nodes = np.unique(node[tip])
     core_nodes = np.unique(node[tip & (core == 1)])
+    counts = _summed(model, np.array([np.unique(node[heav]).size, np.count_nonzero(heav), tip_nodes.size,
+                                      core_nodes.size, np.count_nonzero(tip)], dtype=np.int64))
+    cls = _summed(model, cls.astype(np.int64))
     return {"cells": {name: int(cls[v]) for name, v in classes.items() if name != "plain"},
-            "heaviside_nodes": int(np.unique(node[heav]).size),
-            "heaviside_dofs": int(d * np.count_nonzero(heav)),
-            f"{prefix}_nodes": int(tip_nodes.size),
-            f"{prefix}_core_nodes": int(core_nodes.size),
-            f"{prefix}_blending_nodes": int(tip_nodes.size - core_nodes.size),
-            f"{prefix}_dofs": int(d * np.count_nonzero(tip))}
+            "heaviside_nodes": int(counts[0]),
+            "heaviside_dofs": int(d * counts[1]),
+            f"{prefix}_nodes": int(counts[2]),
+            f"{prefix}_core_nodes": int(counts[3]),
+            f"{prefix}_blending_nodes": int(counts[2] - counts[3]),
+            f"{prefix}_dofs": int(d * counts[4])}
 
 
 def _describe_cracks_2d(model: XfemModel) -> list[dict[str, typing.Any]]:
@@ -148,8 +175,8 @@ def _describe_cracks_2d(model: XfemModel) -> list[dict[str, typing.Any]]:
             "sif_inner_radius": [d.inner_radius for d in domains],
             "sif_limited_by": [d.obstacle if d.limited or not d.clear else None for d in domains],
             "lip_pressure": "function" if callable(cm.crack.pressure) else float(cm.crack.pressure),
-            **_enriched_counts(layout, ci, g.cell_class, cm.CELL_CLASSES, "tip", 2),
-            "snapped_nodes": int(g.num_snapped),
+            **_enriched_counts(model, ci, g.cell_class, cm.CELL_CLASSES, "tip", 2),
+            "snapped_nodes": None if model.distributed else int(g.num_snapped),  # (a per-process count)
         })
     return cracks
 
@@ -188,13 +215,13 @@ def _describe_cracks_3d(model: XfemModel) -> list[dict[str, typing.Any]]:
             "area": float(cm.crack.area),
             "area_in_part": area,
             "lip_pressure": "function" if callable(cm.crack.pressure) else float(cm.crack.pressure),
-            **_enriched_counts(layout, ci, g.cell_class, cm.CELL_CLASSES, "front", 3),
+            **_enriched_counts(model, ci, g.cell_class, cm.CELL_CLASSES, "front", 3),
             "front": {"points": int(len(x)), "segments": int(len(seg)), "pieces": pieces,
                       "length": float(sum(p["length"] for p in pieces)),
                       "branch_points": int(fr["num_branch_points"])},
             "front_element_size": ({"mean": float(sizes.mean()), "min": float(sizes.min()), "max": float(sizes.max()),
                                     "cells": int(sizes.size)} if sizes.size else None),
-            "snapped_nodes": int(g.num_snapped),
+            "snapped_nodes": None if model.distributed else int(g.num_snapped),  # (a per-process count)
             "degenerate_front_cells": int(g.num_degenerate_front_cells),
         })
     return out
@@ -221,8 +248,8 @@ def enriched_nodes(model: XfemModel) -> list[dict[str, typing.Any]]:
     return list(out.values())
 
 
-def _plain_group(ncells: int, enr_cells: np.ndarray) -> dict[str, typing.Any]:
-    return {"cells": "plain cells (standard block only)", "count": int(ncells - enr_cells.size),
+def _plain_group(ncells: int, num_enriched: int) -> dict[str, typing.Any]:
+    return {"cells": "plain cells (standard block only)", "count": int(ncells - num_enriched),
             "rule": "DOLFINx's rule for the P1 stiffness", "points": None}
 
 
@@ -239,14 +266,18 @@ def _enriched_flags(layout, ncells: int) -> tuple[np.ndarray, np.ndarray]:
     return enriched, has_tip
 
 
-def _rule_groups(per_cell: np.ndarray, rows: list[tuple[str, np.ndarray, str]]) -> list[dict[str, typing.Any]]:
+def _rule_groups(model: XfemModel, per_cell: np.ndarray, rows: list[tuple[str, np.ndarray, str]]
+                 ) -> list[dict[str, typing.Any]]:
     """One group per (label, cell mask, rule) holding cells: count, points and their range per cell."""
     groups = []
     for label, mask, rule in rows:
         n = per_cell[mask]
-        if n.size:
-            groups.append({"cells": label, "count": int(n.size), "rule": rule, "points": int(n.sum()),
-                           "points_per_cell": [int(n.min()), int(n.max())]})
+        count, points = (int(v) for v in _summed(model, np.array([n.size, n.sum()], dtype=np.int64)))
+        lo = _summed(model, int(n.min()) if n.size else np.iinfo(np.int64).max, "MIN")
+        hi = _summed(model, int(n.max()) if n.size else -1, "MAX")
+        if count:
+            groups.append({"cells": label, "count": count, "rule": rule, "points": points,
+                           "points_per_cell": [int(lo), int(hi)]})
     return groups
 
 
@@ -257,9 +288,11 @@ def _describe_quadrature(model: XfemModel, solution: Solution | None = None) -> 
     ones by kind (_RULES of the crack's end, tips or fronts)."""
     layout = model.layout
     ncells = model.cells.shape[0]
+    own_cells = _owned(model)[1]
     enr_cells = np.asarray(layout.cells, dtype=np.int32)
-    groups = [_plain_group(ncells, enr_cells)]
-    if enr_cells.size == 0:
+    num_enriched = int(_summed(model, np.count_nonzero(enr_cells < own_cells)))
+    groups = [_plain_group(int(_summed(model, own_cells)), num_enriched)]
+    if num_enriched == 0:
         return groups
     if solution is not None:
         per_cell = solution.enriched_quadrature()[1]
@@ -268,12 +301,13 @@ def _describe_quadrature(model: XfemModel, solution: Solution | None = None) -> 
         for chunk in enriched_chunks(model):
             per_cell += np.bincount(model.crack_type.enriched_cell_points(model, chunk, 0)["cell"], minlength=ncells)
     enriched, has_tip = _enriched_flags(layout, ncells)
+    enriched[own_cells:] = False  # (under MPI: each process its owned cells)
     classes = model.crack_type.CELL_CLASSES
     cls = {name: np.zeros(ncells, dtype=bool) for name in classes}
     for g in model.geometries:
         for name, code in classes.items():
             cls[name] |= np.asarray(g.cell_class) == code
-    return groups + _rule_groups(per_cell, _RULES[model.crack_type.END](model, enriched, has_tip, cls))
+    return groups + _rule_groups(model, per_cell, _RULES[model.crack_type.END](model, enriched, has_tip, cls))
 
 
 def _tip_rules(model: XfemModel, enriched: np.ndarray, has_tip: np.ndarray, cls: dict) -> list:

@@ -27,6 +27,13 @@ folder never holds a half-written output; a folder that cannot be written
 raises ``OutputError`` naming it. ``describe_model`` is the model summary
 that ``cracklip check`` prints and results.json records: the counts come
 from the same model and contact system objects the solver uses.
+
+Under mpirun (a distributed model, 2D) every process computes the results
+together (K, the lip samples, the energy and the counts summed over the
+processes) and rank 0 writes them: results.json, crack.csv, sif.csv,
+crack_lips.vtu, and from the owned cells' sub-cell fields gathered on rank
+0 solution.vtu and the PNGs; results.json's "parallel" entry gives the
+number of processes.
 """
 from __future__ import annotations
 
@@ -39,6 +46,7 @@ import numpy as np
 
 from ..contact.friction import STATE_NAMES
 from ..post.solution import Solution
+from ..scene.processes import reduced
 from .results import (OutputError, check_finite, ensure_output_dir, json_default, versions, write_csv,  # noqa: F401
                       write_results_json)
 from .model_summary import describe_model
@@ -90,6 +98,20 @@ def output_files(model, outputs: dict) -> list[str]:
         files = ["crack.csv", "sif.csv"] + (["solution.vtu", "crack_lips.vtu"] if vtu else []) \
             + (["deformed.png", "crack_pressure.png", "stress.png"] if png else [])
     return ["results.json"] + files
+
+
+def writes_files(model) -> bool:
+    """Whether this process writes the output files: rank 0 under mpirun, always in serial."""
+    return not model.distributed or model.V.mesh.comm.rank == 0
+
+
+def largest_displacement(solution: Solution) -> float:
+    """The largest standard dof (over every process under mpirun)."""
+    m = solution.model
+    u = solution.standard_displacement
+    if not m.distributed:
+        return float(np.abs(u).max()) if m.num_dofs else 0.0
+    return float(reduced(float(np.abs(u).max(initial=0.0)), "MAX", m.V.mesh.comm))
 
 
 # -- 2D: the lips along each crack ------------------------------------------------------------------
@@ -160,9 +182,10 @@ def _curve_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: list
     m = solution.model
     states = solution.steps or [solution]
     t0 = time.perf_counter()
-    u_scale = float(np.abs(solution.standard_displacement).max()) if m.num_dofs else 0.0
+    u_scale = largest_displacement(solution)
     gap_tol = 1e-6 * max(u_scale, 1e-300)
     law = m.scene.options.contact if solution.contact else "none"
+    write = writes_files(m)
     per_step = []
     for st in states:
         smps = [crack_samples(st, i, cfg["crack_points"]) for i in range(len(m.cracks))]
@@ -176,25 +199,74 @@ def _curve_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: list
     timings["crack_post"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
+    step_sifs = [(k, st.stress_intensity_factors(None) if st is not solution else sifs)
+                 for k, (st, _, _) in enumerate(per_step)]
+    if write:
+        _write_curve_csv(out, per_step, step_sifs)
+    files += ["crack.csv", "sif.csv"]
+    timings["write_csv"] = time.perf_counter() - t0
+    if not m.distributed:
+        _write_fields(scene_file, solution, out, samples, timings, files)
+    elif cfg["vtu"] or cfg["png"]:  # the sub-cell fields gathered on rank 0, which writes and draws them
+        t0 = time.perf_counter()
+        fields = gathered_subcell_fields(solution)
+        timings["subcell_fields"] = time.perf_counter() - t0
+        written: list[str] = []
+        if write:
+            _write_fields(scene_file, solution, out, samples, timings, written, fields)
+        files += m.V.mesh.comm.bcast(written, root=0)
+    return {"cracks": crack_stats, "steps": _curve_steps(solution, per_step, step_sifs, gap_tol, law)}
+
+
+def gathered_subcell_fields(solution: Solution) -> dict | None:
+    """Under mpirun: the sub-cell fields (Solution.subcell_fields) of every
+    process's owned cells on rank 0 (None on the others), the sub-cells in
+    rank order; parent is the cell's input index (the mesh generator's)."""
+    m = solution.model
+    comm = m.V.mesh.comm
+    f = solution.subcell_fields()
+    own = f["parent"] < m.num_owned_cells
+    original = np.asarray(m.scene.mesh.mesh.topology.original_cell_index, dtype=np.int64)
+    mine = {"points": f["points"].reshape(-1, 3, f["points"].shape[1])[own], "parent": original[f["parent"][own]],
+            "displacement": f["displacement"].reshape(-1, 3, f["displacement"].shape[1])[own],
+            **{k: f[k][own] for k in ("stress", "side", "von_mises")}}
+    parts = comm.gather(mine, root=0)
+    if parts is None:
+        return None
+    out = {k: np.concatenate([p[k] for p in parts]) for k in mine}
+    n = len(out["parent"])
+    out["points"], out["displacement"] = out["points"].reshape(3 * n, -1), out["displacement"].reshape(3 * n, -1)
+    out["cells"] = np.arange(3 * n, dtype=np.int64).reshape(-1, 3)
+    return out
+
+
+def _write_curve_csv(out: pathlib.Path, per_step: list, step_sifs: list) -> None:
+    """crack.csv and sif.csv of 2D cracks (module doc)."""
     write_csv(out / "crack.csv", ["step", "crack", "s", "x", "y", "pressure", "shear", "gap", "slip", "state",
                                    "closed"],
               [[k, i, smp["s"][j], smp["x"][j, 0], smp["x"][j, 1], smp["pressure"][j], smp["shear"][j],
                 smp["gap"][j], smp["slip"][j], smp["state"][j], int(shut[i][j])]
                for k, (_, smps, shut) in enumerate(per_step) for i, smp in enumerate(smps)
                for j in range(len(smp["s"]))])
-    step_sifs = [(k, st.stress_intensity_factors(None) if st is not solution else sifs)
-                 for k, (st, _, _) in enumerate(per_step)]
     write_csv(out / "sif.csv", SIF_COLUMNS,
               [[k, r["crack"], r["tip"], r["x"], r["y"], r["direction"][0], r["direction"][1], r["K_I"],
                 r["K_II"], r["K_I_error"], r["K_II_error"], r["K_I_extrapolated"], r["K_II_extrapolated"],
                 r["K_I_spread"], r["K_II_spread"], r["mode_mix_deg"], r["G"], r["radius"],
                 r["element_size"], r["limited_by"], int(r["domain_clear"])] for k, rows in step_sifs for r in rows])
-    files += ["crack.csv", "sif.csv"]
-    timings["write_csv"] = time.perf_counter() - t0
+
+
+def _write_fields(scene_file, solution: Solution, out: pathlib.Path, samples: list[dict], timings: dict,
+                  files: list[str], fields: dict | None = None) -> None:
+    """solution.vtu, crack_lips.vtu and the PNGs of 2D cracks (module doc);
+    fields: the sub-cell fields if the caller has them (under mpirun rank 0
+    the gathered ones; it alone calls this, which then makes no collective
+    call)."""
+    cfg = scene_file.outputs
     # The sub-cell fields, shared by the ParaView file and the PNGs.
-    t0 = time.perf_counter()
-    fields = solution.subcell_fields() if cfg["vtu"] or cfg["png"] else None
-    timings["subcell_fields"] = time.perf_counter() - t0
+    if fields is None:
+        t0 = time.perf_counter()
+        fields = solution.subcell_fields() if cfg["vtu"] or cfg["png"] else None
+        timings["subcell_fields"] = time.perf_counter() - t0
     if cfg["vtu"]:
         t0 = time.perf_counter()
         write_mesh(subcell_mesh(solution, fields), out / "solution.vtu")
@@ -208,6 +280,10 @@ def _curve_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: list
                             scene_file.title, fields)
         timings["write_png"] = time.perf_counter() - t0
         logger.info("wrote PNGs")
+
+
+def _curve_steps(solution: Solution, per_step: list, step_sifs: list, gap_tol: float, law: str) -> list | None:
+    """results.json's load-path steps of 2D cracks (None without a load path)."""
     steps = None
     if solution.steps:
         steps = [{"step": k, "name": st.step["name"], "factors": st.step["factors"],
@@ -219,7 +295,7 @@ def _curve_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: list
                                                          "open_length", "slip_max_abs")}}
                              for i, smp in enumerate(smps)]}
                  for k, ((st, smps, shut), (_, rows)) in enumerate(zip(per_step, step_sifs))]
-    return {"cracks": crack_stats, "steps": steps}
+    return steps
 
 
 # -- 3D: the lip surfaces and the fronts ------------------------------------------------------------
@@ -316,7 +392,7 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
     for f, g, smp in zip(facets, fine, samples):
         check_finite("the crack opening", f["jump"], g["jump"], smp["jump"], smp["pressure"], smp["shear"])
     fronts = [g.front for g in m.geometries]
-    u_scale = float(np.abs(solution.standard_displacement).max()) if m.num_dofs else 0.0
+    u_scale = largest_displacement(solution)
     gap_tol = 1e-6 * max(u_scale, 1e-300)
     crack_stats = [{"crack": i, "name": cm.crack.name,
                     **crack_statistics_3d(facets[i], samples[i], closed_points(samples[i], law, gap_tol), law),
@@ -418,7 +494,7 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
     reactions = solution.reactions() if m.scene.dirichlet else None
     timings["reactions"] = time.perf_counter() - t0
     units = m.scene.units
-    u_scale = float(np.abs(solution.standard_displacement).max()) if m.num_dofs else 0.0
+    u_scale = largest_displacement(solution)
     estimate = None
     if solution.error_estimate:
         estimate = {k: v for k, v in solution.error_estimate.items() if k != "tips"}
@@ -429,7 +505,7 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
         "versions": versions(),
         "model": summary,
         "boundary_conditions_and_loads": scene_file.notes,
-        "solution": {"dofs": int(m.num_dofs), "strain_energy": energy, "max_displacement": u_scale,
+        "solution": {"dofs": int(summary["dofs"]["total"]), "strain_energy": energy, "max_displacement": u_scale,
                      "relative_residual": solver.get("relative_residual"),
                      "solver": solver.get("solver"), "solves": solver.get("solves", [])},
         "units": None if units is None else {q: units.name(q) for q in ("length", "force", "stress", "K", "G")},
@@ -448,7 +524,10 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
     timings["outputs_total"] = time.perf_counter() - t_outputs
     timings = {**timings, **{f"solve.{k}": v for k, v in solution.timings.items()}}
     results["timings"] = timings
-    write_results_json(out, results)
+    if m.distributed:  # how many processes solved it
+        results["parallel"] = {"processes": m.V.mesh.comm.size}
+    if writes_files(m):
+        write_results_json(out, results)
     logger.info("wrote %s", ", ".join(results["files"]))
     return results
 

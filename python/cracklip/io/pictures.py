@@ -134,7 +134,7 @@ def magnification(solution: Solution, fields: dict, requested: float) -> float:
     largest displacement is 5 % of the part's size."""
     if requested > 0.0:
         return requested
-    size = float(np.ptp(solution.model.x, axis=0).max())
+    size = float(np.ptp(part_points(solution, fields), axis=0).max())
     umax = float(np.linalg.norm(fields["displacement"], axis=1).max()) if len(fields["displacement"]) else 0.0
     return _scale_for(0.05 * size, umax)
 
@@ -164,13 +164,21 @@ ZOOM_FRACTION = 0.25
 STRESS_PERCENTILE = 99.0
 
 
-def crack_window(solution: Solution) -> tuple[np.ndarray, np.ndarray] | None:
+def crack_window(solution: Solution, fields: dict | None = None) -> tuple[np.ndarray, np.ndarray] | None:
     """(lower, upper) corners of a window around the cracks for a zoomed
     view, or None when the cracks are not much smaller than the part."""
     m = solution.model
     if not m.cracks:
         return None
-    return window_around([cm.crack.points for cm in m.cracks], m.x)
+    return window_around([cm.crack.points for cm in m.cracks], part_points(solution, fields))
+
+
+def part_points(solution: Solution, fields: dict | None) -> np.ndarray:
+    """Points spanning the whole part: the mesh nodes, or under mpirun (each
+    process holding its part of them) the gathered sub-cell fields' points."""
+    if getattr(solution.model, "distributed", False):
+        return fields["points"]
+    return solution.model.x
 
 
 def window_around(polylines, x: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
@@ -276,9 +284,9 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
     disp = f["displacement"].reshape(-1, 3, 2)
     mag = magnification(solution, f, scale)
     names = []
-    extent = np.ptp(solution.model.x, axis=0)
+    extent = np.ptp(part_points(solution, f), axis=0)
     height = float(np.clip(8.0 * extent[1] / max(extent[0], 1e-300), 3.0, 8.0))
-    window = crack_window(solution)
+    window = crack_window(solution, f)
     umag = np.linalg.norm(disp, axis=2).mean(axis=1)
     moving = bool(np.any(umag > 0.0))
 

@@ -52,7 +52,7 @@ from ..scene.units import STRESSES
 from ..scene.processes import not_parallel
 from .boundary import nearest_boundary_point, where_outside
 from .constraints import ROTATIONS, rigid_motion_rank
-from .tip_regions import lip_points, model_boundary, segment_distance, tip_domains, tip_element_size
+from .tip_regions import length_in_part, model_boundary, segment_distance, tip_domains, tip_element_size
 
 
 #: A refinement whose achieved element size exceeds the asked one by this factor is warned about.
@@ -114,7 +114,7 @@ def check_tips(model) -> list[ModelWarning]:
         tips = np.asarray(g.tips).reshape(-1, 2)
         if not len(tips):
             continue
-        length = float(lip_points(model, ci)["weight"].sum())
+        length = length_in_part(model, ci)
         name = cm.crack.name
         for j, p in enumerate(tips):
             where = f"tip {j} of crack {name!r} at ({p[0]:.6g}, {p[1]:.6g})"
@@ -175,10 +175,11 @@ TIP_ELEMENTS = 40.0
 
 
 def _cell_sizes(model) -> tuple[np.ndarray, np.ndarray]:
-    """(mean edge (n,), centroid (n, 2)) of every cell, computed once per model."""
+    """(mean edge (n,), centroid (n, 2)) of every cell (under mpirun: of the
+    owned cells), computed once per model."""
     cached = model.__dict__.get("_cell_sizes_cache")
     if cached is None:
-        xv = model.x[model.cells]
+        xv = model.x[model.cells if not model.distributed else model.cells[:model.num_owned_cells]]
         cached = (np.linalg.norm(xv[:, [1, 2, 0]] - xv, axis=2).mean(axis=1), xv.mean(axis=1))
         model._cell_sizes_cache = cached
     return cached
@@ -190,8 +191,10 @@ def _tip_region(model, ci: int, dom, length: float, radius: float) -> ModelWarni
     if not scale > 0.0:
         return None
     size, centroid = _cell_sizes(model)
-    near = np.linalg.norm(centroid - dom.position, axis=1) < REGION_EXTENT * scale
-    coarse = float(np.percentile(size[near], REGION_PERCENTILE)) if near.any() else dom.element_size
+    near = size[np.linalg.norm(centroid - dom.position, axis=1) < REGION_EXTENT * scale]
+    if model.distributed:  # every process's near cells (a percentile does not add up)
+        near = np.concatenate(model.V.mesh.comm.allgather(near))
+    coarse = float(np.percentile(near, REGION_PERCENTILE)) if near.size else dom.element_size
     name = model.cracks[ci].crack.name
     where = f"tip {dom.tip} of crack {name!r} at ({dom.position[0]:.6g}, {dom.position[1]:.6g})"
     what = (f"the crack scale there is {scale:.3g} (" + ("the crack's length in the part" if scale == length else

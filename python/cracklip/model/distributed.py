@@ -158,9 +158,13 @@ def create_matrix(dm: DofMap, csr: tuple[np.ndarray, np.ndarray]) -> PETSc.Mat:
     return A
 
 
-def vector_from_local(dm: DofMap, A: PETSc.Mat, local: np.ndarray) -> PETSc.Vec:
-    """The distributed vector summing every process's local (kernel-ordered) vector."""
-    b = A.createVecRight()
+def vector_from_local(dm: DofMap, A: PETSc.Mat | None, local: np.ndarray) -> PETSc.Vec:
+    """The distributed vector summing every process's local (kernel-ordered)
+    vector (laid out as A's columns, or by dm without A)."""
+    if A is not None:
+        b = A.createVecRight()
+    else:
+        b = PETSc.Vec().createMPI((dm.num_owned * dm.d, dm.num_global * dm.d), bsize=dm.d, comm=dm.comm)
     b.set(0.0)
     g = dm.global_dofs(np.arange(len(local)))
     ok = (g >= 0) & (local != 0.0)
@@ -182,4 +186,14 @@ def to_local(dm: DofMap, x: PETSc.Vec) -> np.ndarray:
     out[~ok] = 0.0
     for o in (scatter, src, y):
         o.destroy()
+    return out
+
+
+def summed(dm: DofMap, local: np.ndarray) -> np.ndarray:
+    """Every local dof's value summed over the processes' local vectors
+    (each process's part of an assembled vector made whole; 0 where
+    unnumbered)."""
+    v = vector_from_local(dm, None, np.asarray(local, dtype=float))
+    out = to_local(dm, v)
+    v.destroy()
     return out

@@ -27,7 +27,7 @@ import typing
 import numpy as np
 
 from ..errors import InputError
-from ..scene.processes import total
+from ..scene.processes import agree, reduced, total
 from ..scene.stress_field import LinearStress, evaluate_stress, tensor_to_voigt
 
 
@@ -94,24 +94,40 @@ def assemble_tractions(model, group: str | None = None) -> np.ndarray:
 def assemble_point_forces(model, group: str | None = None) -> np.ndarray:
     """Each force on the standard dofs of the node nearest to its point (every
     enriched function vanishes at the nodes: the enrichment is shifted);
-    only the forces of `group` if given."""
+    only the forces of `group` if given. Under mpirun (collective) the
+    nearest owned node of all processes takes it, on its owner (whose patch
+    of cells is whole there; a tie goes to the lowest rank)."""
     b = np.zeros(model.num_dofs)
     if not model.scene.point_forces:
         return b
     d = model.gdim
-    scale = float(np.ptp(model.x, axis=0).max())
+    comm = model.V.mesh.comm if model.distributed else None
+    n_own = model.V.dofmap.index_map.size_local if comm is not None else len(model.x)
+    x = model.x[:n_own]
+    scale = float(np.ptp(x, axis=0).max()) if n_own else 0.0
+    if comm is not None:
+        scale = float(reduced(scale, "MAX", comm))
     ea, eb = (list(v) for v in zip(*model.crack_type.EDGES))
     for k, pf in enumerate(model.scene.point_forces):
         if group is not None and pf.group != group:
             continue
-        dist = np.linalg.norm(model.x - np.asarray(pf.point), axis=1)
-        node = int(np.argmin(dist))
-        cells = model.cells[np.any(model.cells == node, axis=1)]
-        edge = float(np.linalg.norm(model.x[cells[:, eb]] - model.x[cells[:, ea]], axis=2).max())
-        if dist[node] > max(edge, 1e-12 * scale):
-            raise InputError(f"point force {k} at {list(pf.point)}: the nearest mesh node {model.x[node].tolist()} "
-                             f"is {dist[node]:.3g} away, more than an element ({edge:.3g}); put the point on the part")
-        b[d * node:d * node + d] += pf.value
+        dist = np.linalg.norm(x - np.asarray(pf.point), axis=1)
+        node = int(np.argmin(dist)) if n_own else -1
+        mine = comm is None or min(comm.allgather((float(dist[node]) if n_own else np.inf, comm.rank)))[1] == comm.rank
+        error = None
+        if mine:
+            cells = model.cells[np.any(model.cells == node, axis=1)]
+            edge = float(np.linalg.norm(model.x[cells[:, eb]] - model.x[cells[:, ea]], axis=2).max())
+            if dist[node] > max(edge, 1e-12 * scale):
+                error = InputError(f"point force {k} at {list(pf.point)}: the nearest mesh node "
+                                   f"{model.x[node].tolist()} is {dist[node]:.3g} away, more than an element "
+                                   f"({edge:.3g}); put the point on the part")
+            else:
+                b[d * node:d * node + d] += pf.value
+        if comm is not None:
+            agree(error, comm)
+        elif error is not None:
+            raise error
     return b
 
 

@@ -35,16 +35,16 @@ def refuse_unless_distributed(scene: Scene) -> None:
     """Collective: refuse, by scene key, what the model does not do on
     several processes yet. What it does (issue 40 step 2): open cracks in 2D
     under lip pressures and boundary tractions, Dirichlet conditions, the
-    direct solver, K by the interaction integral."""
+    direct solver, K by the interaction integral; point forces."""
     comm = scene.mesh.mesh.comm
     o = scene.options
     for what, used in [
             ("a 3D part (tetrahedra)", scene.mesh.gdim != 2),
             ("options.contact", o.contact != "none"), ("options.friction", o.friction > 0.0),
-            ("options.solver = 'iterative'", o.solver == "iterative"), ("options.accuracy", o.accuracy > 0.0),
+            ("options.solver = 'iterative'", o.solver == "iterative"),
             ("options.rescale = 'nodal'", o.rescale == "nodal"),
             ("load_path", scene.load_path is not None), ("body_force", scene.body_force is not None),
-            ("initial_stress", scene.initial_stress is not None), ("point_forces", bool(scene.point_forces)),
+            ("initial_stress", scene.initial_stress is not None),
             ("a symmetry condition", any(isinstance(bc, SymmetryCondition) for bc in scene.dirichlet))]:
         if used:
             not_parallel(what, comm)

@@ -276,3 +276,17 @@ def tip_domains(model, crack: int, requested: float | None = None,
 def lip_points(model, crack: int):
     """The crack's lip points of the SIFs' lip terms (LIP_POINTS per segment), computed once."""
     return model.cracks[crack].lip_points(model, LIP_POINTS)
+
+
+def length_in_part(model, crack: int) -> float:
+    """The length (2D; area in 3D) of a crack inside the part: its lip
+    points' weights summed exactly rounded (math.fsum: the same whatever
+    their order; collective under mpirun: every process's owned cells'
+    weights). The tip checks compare it with distances (a crack as long as
+    its tip is far from the boundary): the same bits on any number of
+    processes."""
+    pts = lip_points(model, crack)
+    w = np.asarray(pts["weight"], dtype=float)
+    if getattr(model, "distributed", False):
+        w = np.concatenate(model.V.mesh.comm.allgather(w[model.owned_cells_only(pts["cell"])]))
+    return math.fsum(w.tolist())

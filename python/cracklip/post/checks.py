@@ -21,6 +21,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..scene.processes import reduced
+
 
 #: Overlap of the lips (largest -gap) above this fraction of the largest
 #: |jump| of a crack is interpenetration (below it: round-off of a crack
@@ -108,7 +110,11 @@ def _negative_k(rows: list[dict], end: str) -> str:
 
 def no_load(solution) -> list[tuple[str, str]]:
     """Every state's displacement exactly zero: no load at all."""
-    if any(np.any(st.u) for st in _states(solution)):
+    moving = any(np.any(st.u) for st in _states(solution))
+    m = solution.model
+    if getattr(m, "distributed", False):  # (each process its part of u)
+        moving = bool(reduced(moving, "LOR", m.V.mesh.comm))
+    if moving:
         return []
     return [("no_load", "every load and prescribed displacement of the scene is zero (tractions, pressures, point "
                         "forces, body force, lip pressures, initial stress, Dirichlet values): the displacement and "

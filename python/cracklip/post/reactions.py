@@ -12,6 +12,12 @@ Each condition gets its own dofs (a dof shared by two conditions, a corner
 of two tagged sides, goes to the first); conditions with the same label
 (the nodes of a scene file's box) are summed. The moment is about the
 origin: in 2D its z component x R_y - y R_x, in 3D the vector x x R.
+
+Under mpirun (a distributed model) each process integrates its owned cells
+and facets (its point forces), so its rows and loads are parts that add up:
+forces and moments are summed over the processes, and what is not linear in
+the loads (the sizes of nodal loads) is taken on the owned nodes of the
+loads summed over the processes (model.distributed.summed).
 """
 from __future__ import annotations
 
@@ -21,10 +27,34 @@ import numpy as np
 
 from ..model.boundary import tag_facets
 from ..model.constraints import condition_dofs, is_point_condition
+from ..model.distributed import summed
 from ..model.loads import (assemble_body_force, assemble_initial_stress, assemble_loads, assemble_point_forces,
                            assemble_tractions, traction_values)
 from ..scene.material import strain, stress
+from ..scene.processes import reduced
 from ..scene.stress_field import evaluate_stress
+
+
+class _Parts:
+    """What the processes' parts add up to (identity in serial): sums of
+    linear parts, nodal loads made whole on the owned nodes."""
+
+    def __init__(self, model):
+        self.model = model
+        self.on = bool(getattr(model, "distributed", False))
+        self.owned = model.V.dofmap.index_map.size_local if self.on else model.x.shape[0]
+
+    def sum(self, value):
+        if not self.on:
+            return value
+        return reduced(np.asarray(value, dtype=float), "SUM", self.model.V.mesh.comm)
+
+    def nodal(self, f: np.ndarray) -> np.ndarray:
+        """(owned nodes, d) standard part of a load vector, whole."""
+        m = self.model
+        N, d = m.x.shape
+        whole = summed(m.dofs, f) if self.on else f
+        return whole[: d * N].reshape(N, d)[:self.owned]
 
 
 def _load_vector(solution) -> np.ndarray:
@@ -43,16 +73,17 @@ def load_items(solution) -> list[dict[str, typing.Any]]:
     at the centroids of its tag's facets times their lengths or areas)."""
     m = solution.model
     sc = m.scene
+    parts = _Parts(m)
     out = []
     for pf in sc.point_forces:
         out.append({"kind": "point force", "where": f"point {list(pf.point)}",
                     "resultant": solution.factor(pf.group) * np.asarray(pf.value, dtype=float)})
     for tr in sc.tractions:
-        centroid, size, normal = tag_facets(sc.mesh, tr.where)
+        centroid, size, normal = tag_facets(sc.mesh, tr.where, owned=parts.on)
         t = traction_values(tr, centroid, lambda p: evaluate_stress(tr.stress, p, f"traction on {tr.where!r}"),
                             lambda p: normal)
         out.append({"kind": "traction", "where": f"tag {tr.where!r}",
-                    "resultant": solution.factor(tr.group) * (t * size[:, None]).sum(axis=0)})
+                    "resultant": solution.factor(tr.group) * parts.sum((t * size[:, None]).sum(axis=0))})
     return out
 
 
@@ -63,7 +94,7 @@ def _load_magnitude(solution) -> float:
     the tractions it puts on the boundary)."""
     m = solution.model
     sc = m.scene
-    N, d = m.x.shape
+    whole = _Parts(m)
     parts = []
     for group in {t.group for t in sc.tractions} | {p.group for p in sc.point_forces}:
         parts.append(solution.factor(group) * (assemble_tractions(m, group) + assemble_point_forces(m, group)))
@@ -71,7 +102,7 @@ def _load_magnitude(solution) -> float:
         parts.append(solution.factor(sc.body_force_group) * assemble_body_force(m, sc.body_force))
     if sc.initial_stress is not None:
         parts.append(solution.factor(sc.initial_stress_group) * assemble_initial_stress(m, sc.initial_stress))
-    return float(sum(np.linalg.norm(b[: d * N].reshape(N, d), axis=1).sum() for b in parts))
+    return float(whole.sum(sum(np.linalg.norm(whole.nodal(b), axis=1).sum() for b in parts)))
 
 
 def _stiffness_rows(solution, dofs: np.ndarray) -> np.ndarray:
@@ -81,6 +112,7 @@ def _stiffness_rows(solution, dofs: np.ndarray) -> np.ndarray:
     d = m.gdim
     nodes = np.unique(dofs // d)
     touched = np.flatnonzero(np.isin(m.cells, nodes).any(axis=1)).astype(np.int32)
+    touched = touched[m.owned_cells_only(touched)]  # (under mpirun each process its owned cells: parts)
     out = np.zeros(d * m.x.shape[0])
     if touched.size == 0:
         return out[dofs]
@@ -115,6 +147,7 @@ def compute_reactions(solution) -> dict[str, typing.Any]:
     on its own (before they add up)."""
     m = solution.model
     N, d = m.x.shape
+    parts = _Parts(m)
     per = condition_dofs(m)
     every = np.unique(np.concatenate(per)) if per else np.zeros(0, dtype=np.int64)
     f = _load_vector(solution)
@@ -129,25 +162,29 @@ def compute_reactions(solution) -> dict[str, typing.Any]:
                                       "nodes": set(), "force": np.zeros(d),
                                       "moment": _moment(np.zeros((0, d)), np.zeros(0, int), np.zeros(0))})
         nodes, comps = dofs // d, dofs % d
-        g["nodes"].update(int(n) for n in nodes)
+        g["nodes"].update(int(n) for n in nodes[nodes < parts.owned])
         np.add.at(g["force"], comps, r[dofs])
         g["moment"] = g["moment"] + _moment(m.x[nodes], comps, r[dofs])
-    f_std = f[: d * N].reshape(N, d)
-    applied = f_std.sum(axis=0)
+    for g in groups.values():  # (the processes' parts added up; each node counted by its owner)
+        g["force"], g["moment"] = parts.sum(g["force"]), parts.sum(g["moment"])
+        g["count"] = int(parts.sum(len(g["nodes"])))
+    f_part = f[: d * N].reshape(N, d)
+    f_std = parts.nodal(f)
+    applied = parts.sum(f_part.sum(axis=0))
     total = np.sum([g["force"] for g in groups.values()], axis=0) if groups else np.zeros(d)
-    gross = float(np.linalg.norm(f_std, axis=1).sum())
+    gross = float(parts.sum(float(np.linalg.norm(f_std, axis=1).sum())))
     for g in groups.values():  # several nodes under one label of point conditions: a scene file's box
-        if g["kind"] == "point" and len(g["nodes"]) > 1:
+        if g["kind"] == "point" and g["count"] > 1:
             g["kind"] = "box"
-    rows = [{"condition": g["condition"], "kind": g["kind"], "nodes": len(g["nodes"]),
+    rows = [{"condition": g["condition"], "kind": g["kind"], "nodes": g["count"],
              "force": g["force"].tolist(), "moment": np.asarray(g["moment"]).tolist()} for g in groups.values()]
     if d == 2:  # the z component in the plane
-        moment_applied = float(np.sum(m.x[:, 0] * f_std[:, 1] - m.x[:, 1] * f_std[:, 0]))
+        moment_applied = float(parts.sum(float(np.sum(m.x[:, 0] * f_part[:, 1] - m.x[:, 1] * f_part[:, 0]))))
     else:
-        moment_applied = np.cross(m.x, f_std).sum(axis=0).tolist()
+        moment_applied = parts.sum(np.cross(m.x, f_part).sum(axis=0)).tolist()
     return {"conditions": rows, "sum": total.tolist(), "applied_load": applied.tolist(),
             "applied_moment": moment_applied, "gross_load": gross, "load_magnitude": _load_magnitude(solution),
             "load_items": [{**item, "resultant": item["resultant"].tolist()} for item in load_items(solution)],
             "balance": float(np.linalg.norm(total + applied) / gross) if gross > 0 else float(np.linalg.norm(total)),
-            "load_components": {"positive": np.maximum(f_std, 0.0).sum(axis=0).tolist(),
-                                "negative": np.minimum(f_std, 0.0).sum(axis=0).tolist()}}
+            "load_components": {"positive": parts.sum(np.maximum(f_std, 0.0).sum(axis=0)).tolist(),
+                                "negative": parts.sum(np.minimum(f_std, 0.0).sum(axis=0)).tolist()}}

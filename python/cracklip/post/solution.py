@@ -25,6 +25,7 @@ from ..model.checks import ModelWarning
 from ..model.model import XfemModel
 from ..scene.material import strain, stress
 from ..scene.mesh_estimate import release_memory
+from ..scene.processes import reduced
 
 #: Cells per chunk of the whole-mesh field loops (bounded memory at 1e6 cells).
 CHUNK = 200_000
@@ -160,13 +161,18 @@ class Solution:
         state (n,) "open", "stick" or "slip", cell (n,), ref (n,
         d); in 2D sorted by s (n,) the arc length from the crack's first
         point (without tip enrichment the tip cell holds no crack and is
-        left out), in 3D facet by facet with front_vertices (n,).
+        left out), in 3D facet by facet with front_vertices (n,). Under MPI
+        (a distributed model) every process gets every process's samples
+        (those of its owned cells), cell -1.
         """
         m = self.model
         if not 0 <= crack < len(m.cracks):
             raise InputError(f"crack index {crack} out of range: the scene has {len(m.cracks)} cracks")
         cm = m.cracks[crack]
         pts = cm.lip_samples(m, int(points_per_segment))
+        if m.distributed:  # the points of this process's owned cells (each cell's once over the processes)
+            keep = m.owned_cells_only(pts["cell"])
+            pts = {k: v[keep] for k, v in pts.items()}
         cells, ref, normal = pts["cell"], pts["ref"], pts["normal"]
         up = self._evaluate(cells, ref, np.ones(len(cells), dtype=np.int8))
         um = self._evaluate(cells, ref, -np.ones(len(cells), dtype=np.int8))
@@ -175,6 +181,8 @@ class Solution:
                "gap": np.einsum("ij,ij->i", jump, normal), "slip": cm.slip(jump, normal),
                **self.lip_contact(crack, cells, ref, normal), "cell": cells, "ref": ref}
         out.update({k: pts[k] for k in ("s", "front_vertices") if k in pts})
+        if m.distributed:
+            out = _gathered_samples(out, m.V.mesh.comm)
         return out
 
     def lip_contact(self, crack: int, cells: np.ndarray, ref: np.ndarray, normal: np.ndarray
@@ -289,6 +297,8 @@ class Solution:
         m = self.model
         plain = np.ones(m.cells.shape[0], dtype=bool)
         plain[np.asarray(m.layout.cells, dtype=np.int32)] = False
+        if m.distributed:  # each process its owned cells
+            plain[m.num_owned_cells:] = False
         cells = np.flatnonzero(plain).astype(np.int32)
         return np.array_split(cells, max(1, -(-len(cells) // CHUNK))) if len(cells) else []
 
@@ -297,7 +307,8 @@ class Solution:
         enriched cells' part is enriched_quadrature()'s, shared with
         results.json's quadrature counts)."""
         mat = self.model.scene.material
-        return self.enriched_quadrature()[0] + sum(_energy(self.field_points(c), mat) for c in self._plain_chunks())
+        energy = self.enriched_quadrature()[0] + sum(_energy(self.field_points(c), mat) for c in self._plain_chunks())
+        return float(self.model.V.mesh.comm.allreduce(energy)) if self.model.distributed else energy
 
     def energy_error(self, exact_gradient: typing.Callable[[np.ndarray, np.ndarray], np.ndarray],
                      degree: int | None = None) -> tuple[float, float]:
@@ -392,7 +403,10 @@ class Solution:
         extra = [ModelWarning("sif_spread", m) for m in self._sif_cache[(None, None, None)][1]
                  if m not in model_messages]
         extra += [ModelWarning(code, m) for code, m in solution_warnings(self)]
-        if self.model.scene.dirichlet and np.any(self.u):
+        moving = np.any(self.u)
+        if self.model.distributed:  # (each process its part of u)
+            moving = reduced(bool(moving), "LOR", self.model.V.mesh.comm)
+        if self.model.scene.dirichlet and moving:
             extra += [ModelWarning(code, m) for code, m in point_supports(self, self.reactions())]
         return list(self.model.warnings) + extra
 
@@ -420,6 +434,7 @@ def enriched_chunks(model) -> list[np.ndarray]:
     a pass over their points (with gradients: 150 bytes a point) holds one
     chunk at a time."""
     cells = np.asarray(model.layout.cells, dtype=np.int32)
+    cells = cells[model.owned_cells_only(cells)]  # (under MPI each process its owned cells)
     if not cells.size:
         return []
     kind = model.crack_type
@@ -440,6 +455,20 @@ def _energy(f: dict, material) -> float:
         return 0.0
     eps = strain(f["grad_u"])
     return float(0.5 * np.sum(f["weight"] * np.einsum("nij,nij->n", stress(eps, material), eps)))
+
+
+def _gathered_samples(local: dict[str, np.ndarray], comm) -> dict[str, np.ndarray]:
+    """Every process's lip samples (those of its owned cells) on every
+    process, in the serial order: sorted by the arc length s in 2D (3D:
+    in rank order). Cell indices are each process's own: "cell" is -1 in
+    the gathered samples."""
+    parts = comm.allgather(local)
+    out = {k: np.concatenate([p[k] for p in parts]) for k in local}
+    out["cell"] = np.full(len(out["cell"]), -1, dtype=np.asarray(local["cell"]).dtype)
+    if "s" in out:
+        o = np.argsort(out["s"], kind="stable")
+        out = {k: v[o] for k, v in out.items()}
+    return out
 
 
 def create_solution(model, u: np.ndarray, timings: dict, *args, **kwargs) -> Solution:

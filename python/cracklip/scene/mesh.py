@@ -89,6 +89,23 @@ class MeshData:
         tag = self.tag_value(where)
         return self.facet_tags.indices[self.facet_tags.values == tag]
 
+    def owned_facets(self, where: str | int) -> np.ndarray:
+        """The facets of a boundary tag this process counts: all in serial,
+        under mpirun those of its owned cells (each facet on one process)."""
+        facets = self.facets(where)
+        msh = self.mesh
+        if msh.comm.size == 1:
+            return facets
+        tdim = msh.topology.dim
+        msh.topology.create_connectivity(tdim - 1, tdim)
+        f2c = msh.topology.connectivity(tdim - 1, tdim)
+        cell = f2c.array[f2c.offsets[facets]]  # (a boundary facet has one cell)
+        return facets[cell < msh.topology.index_map(tdim).size_local]
+
+    def num_facets(self, where: str | int) -> int:
+        """How many facets a boundary tag has (collective under mpirun)."""
+        return total(self.owned_facets(where).size, self.mesh.comm)
+
     def facet_vertices(self, where: str | int) -> np.ndarray:
         """Vertex coordinates (n, d, d) of a boundary tag's facets (segments
         in 2D, triangles in 3D); a tag without facets is an error."""
@@ -189,7 +206,7 @@ def to_dolfinx(gmsh, h: float | None, entities: typing.Sequence[int] | None = No
 #: plainly), and whether to_dolfinx has handed the mesh to DOLFINx yet.
 _GMSH_ON_RANK0 = {"inside": False, "handed_over": False}
 #: MeshData fields sent from rank 0 to the others (the mesh and tags are
-#: DOLFINx's, the recipe is a closure over rank 0's gmsh).
+#: DOLFINx's; the recipe, when it pickles, is added).
 _SENT_FIELDS = ("tags", "h", "refinements", "cache_standard_block", "refine", "levels", "source",
                 "front_refinements", "estimate", "size_factor")
 
@@ -219,7 +236,11 @@ def gmsh_on_rank0(make: typing.Callable[..., "MeshData"]) -> typing.Callable[...
                         agree(e, comm)  # the others wait in model_to_mesh's first agree
                     comm.bcast(("error", type(e), str(e)), root=0)
                     raise mark_collective(e)
-                comm.bcast(("ok", {f: getattr(md, f) for f in _SENT_FIELDS}), root=0)
+                fields = {f: getattr(md, f) for f in _SENT_FIELDS}
+                # The recipe too when it pickles (a partial of a mesh entry: it
+                # meshes on rank 0 again); else no process has one.
+                md.recipe = fields["recipe"] = md.recipe if _picklable(md.recipe) else None
+                comm.bcast(("ok", fields), root=0)
                 return md
             from .mesh_import import model_to_mesh
             msh, facet_tags, names = model_to_mesh(None, comm, None, dim=0)
@@ -234,6 +255,15 @@ def gmsh_on_rank0(make: typing.Callable[..., "MeshData"]) -> typing.Callable[...
         finally:
             _GMSH_ON_RANK0.update(inside=False, handed_over=False)
     return entry
+
+
+def _picklable(value) -> bool:
+    import pickle
+    try:
+        pickle.dumps(value)
+    except Exception:  # (a closure, a lambda: whatever pickle refuses)
+        return False
+    return True
 
 
 def _several_processes() -> bool:

@@ -154,7 +154,7 @@ def build_dirichlet(bc: dict, i: int, mesh: MeshData, material: Material, cracks
     if "tag" in bc:
         check_tag(mesh, bc["tag"], where)
         targets = [bc["tag"]]
-        notes.append(f"{where}: tag {bc['tag']!r} ({mesh.facets(bc['tag']).size} facets), {what}")
+        notes.append(f"{where}: tag {bc['tag']!r} ({mesh.num_facets(bc['tag'])} facets), {what}")
     elif "point" in bc:
         node = nearest_node(mesh, bc["point"], f"{where}.point")
         targets = [node]
@@ -180,7 +180,7 @@ def build_traction(tr: dict, i: int, mesh: MeshData, material: Material, cracks:
     where = f"loads.tractions[{i}]"
     check_tag(mesh, tr["tag"], where)
     tag = tr["tag"]
-    nf = mesh.facets(tag).size
+    nf = mesh.num_facets(tag)
     if "value" in tr:
         notes.append(f"{where}: tag {tag!r} ({nf} facets), traction {tr['value']}")
         return Traction(tag, tuple(tr["value"]), group=tr["group"])
@@ -220,7 +220,7 @@ def build_pressure(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Tracti
     check_tag(mesh, pr["tag"], where)
     normals = boundary_normals(mesh, pr["tag"])
     p = pr["value"]
-    notes.append(f"{where}: tag {pr['tag']!r} ({mesh.facets(pr['tag']).size} facets), pressure {p:g}")
+    notes.append(f"{where}: tag {pr['tag']!r} ({mesh.num_facets(pr['tag'])} facets), pressure {p:g}")
     return Traction(pr["tag"], lambda x: -p * normals(x), group=pr["group"])
 
 
@@ -228,7 +228,7 @@ def build_pressure(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Tracti
 def traction_3d(tr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
     where = f"loads.tractions[{i}]"
     tag = tr["tag"]
-    nf = mesh.facets(tag).size
+    nf = mesh.num_facets(tag)
     if "value" in tr:
         notes.append(f"{where}: tag {tag!r} ({nf} facets), traction {tr['value']}")
         return Traction(tag, tuple(tr["value"]), group=tr["group"])
@@ -240,7 +240,7 @@ def traction_3d(tr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
 def pressure_3d(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
     """-p n on a tag (the facets' own normals: sigma = -p I)."""
     p = pr["value"]
-    notes.append(f"loads.pressures[{i}]: tag {pr['tag']!r} ({mesh.facets(pr['tag']).size} facets), pressure {p:g}")
+    notes.append(f"loads.pressures[{i}]: tag {pr['tag']!r} ({mesh.num_facets(pr['tag'])} facets), pressure {p:g}")
     return Traction(pr["tag"], stress=UniformStress3D.pressure(p), group=pr["group"])
 
 
@@ -259,7 +259,7 @@ def build_symmetry(s: dict, mesh: MeshData, notes: list[str]) -> list[Symmetry]:
         where = f"symmetry[{i}]"
         check_tag(mesh, sym["tag"], where)
         out.append(Symmetry(sym["tag"], label=where))
-        notes.append(f"{where}: tag {sym['tag']!r} ({mesh.facets(sym['tag']).size} facets), a plane of symmetry: "
+        notes.append(f"{where}: tag {sym['tag']!r} ({mesh.num_facets(sym['tag'])} facets), a plane of symmetry: "
                      "normal displacement 0")
     return out
 
