@@ -218,6 +218,7 @@ def cmd_run(args) -> int:
     cond = bool(args.condition_number or sf.outputs["condition_number"])
     logger.info("solving (%s enrichment, contact %s)", sf.scene.options.enrichment, sf.scene.options.contact)
     sol = solve(sf.scene, condition_number=cond)
+    no_estimate = "outputs.error_estimate = false"  # why a K has no error estimate, as the summary says
     if sf.outputs["error_estimate"] and sf.scene.options.accuracy == 0.0:
         from ..analysis.accuracy import RHO, EstimateUnavailable, estimate_error
         logger.info("estimating the discretisation error of K (one more solve, every element size times %.3g)", RHO)
@@ -225,6 +226,7 @@ def cmd_run(args) -> int:
             estimate_error(sf.scene, sol, solve)
         except EstimateUnavailable as e:
             logger.info("%s", e)
+            no_estimate = "not available for this mesh (see the log line above)"
     phases = ", ".join(f"{k} {v:.3f} s" for k, v in sol.timings.items())
     logger.info("solve phases: %s", phases)
     if sol.contact:
@@ -261,7 +263,7 @@ def cmd_run(args) -> int:
                   f"(mean {c['gap_mean']:.4g}){overlap}, opened volume {c['opening_volume']:.4g}; front "
                   f"{fr['points']} points, length {fr['length']:.4g}: {shape}")
     else:
-        for line in sif_summary(results["sifs"], results.get("error_estimate"), sf.scene.units):
+        for line in sif_summary(results["sifs"], results.get("error_estimate"), sf.scene.units, no_estimate):
             print(line)
         for c in results["cracks"]:
             line = f"  {c['name']}: closed {c['closed_fraction'] * 100:.0f} % of {c['length_in_part']:.4g}"
@@ -319,10 +321,10 @@ def estimate_lines(estimate) -> list[str]:
             + f", largest estimated error {100 * estimate['largest_relative_error']:.2g} %"]
 
 
-def sif_summary(rows, estimate, units) -> list[str]:
+def sif_summary(rows, estimate, units, no_estimate: str = "outputs.error_estimate = false") -> list[str]:
     """The run's K per tip as printed: K with its unit, the estimated
     discretisation error (what the "+-" is), the SIF domain spread named as
-    such (it is not an error bar)."""
+    such (it is not an error bar); `no_estimate` says why a K has none."""
     unit = "" if units is None else f" {units.name('K')}"
     out = estimate_lines(estimate)
     for r in rows:
@@ -342,7 +344,7 @@ def sif_summary(rows, estimate, units) -> list[str]:
             continue
         out.append(f"    SIF domain spread (K over 3 domains; not an error bar): K_I {r['K_I_spread']:.2g}, "
                    f"K_II {r['K_II_spread']:.2g}" + ("" if r.get("K_I_error") is not None else
-                                                     "; no error estimate (outputs.error_estimate = false)"))
+                                                     f"; no error estimate ({no_estimate})"))
     return out
 
 
