@@ -1005,10 +1005,15 @@ def _free_surface_ends(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
             if not fp.free_surface or fp.source == "end_extrapolation":
                 continue
             if len(inner) < 2:
+                # One interior point: its K (end_value's polynomial of degree 0) rather than the end's own domain
+                # value, which belongs to the vertex singularity (on closed lips it is not even 0).
                 fp.warnings.append(f"front point {fp.index} of crack {fp.crack}: the front piece has too few other "
-                                   "points for an end value at the free surface (front_sampling); K there is its own "
-                                   "domain's, which depends on the mesh: refine along the front (mesh.tip_h)")
-                continue
+                                   "points for an end value at the free surface (front_sampling); K there is "
+                                   + ("the one interior point's" if len(inner) else
+                                      "its own domain's, which depends on the mesh") + ": refine along the front "
+                                   "(mesh.tip_h)")
+                if not len(inner):
+                    continue
             s = np.array([fps[j].s for j in inner])
             near = np.abs(s - fp.s) <= front_sampling.END_WINDOW * fp.length
             window = front_sampling.end_window(fp.length, [fp.curvature] + [fps[j].curvature for j in inner[near]])
