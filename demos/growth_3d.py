@@ -65,6 +65,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
 from cracklip.analysis.front_growth import SurfaceGrowth  # noqa: E402
+from cracklip.errors import CracklipError  # noqa: E402
 from cracklip.fracture.handbook import surface_crack_beta  # noqa: E402
 from cracklip.io.files import write_json  # noqa: E402
 from cracklip.scene.crack_surface import EllipticalCrack  # noqa: E402
@@ -179,7 +180,7 @@ def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
     t0 = time.perf_counter()
     rows: list[dict] = []
 
-    def figures(complete: bool, res=None) -> dict:
+    def figures(complete: bool, res=None, broke: str | None = None) -> dict:
         devs = [abs(r["a_over_c"] - r["a_over_c_newman_raju"]) for r in rows
                 if r["a_over_c_newman_raju"] is not None]
         return {"a_over_c0": ac0, "a_over_c_max_dev": max(devs) if devs else None,
@@ -187,7 +188,7 @@ def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
                 "complete": complete, "a_over_t_reached": rows[-1]["a_over_t"] if rows else None, "rows": rows,
                 "h0": h0, "n": n, "cells": mesh.mesh.topology.index_map(3).size_global,
                 "step_seconds": res.step_times if res else [r["seconds"] for r in rows],
-                "stop": res.stop_reason if res else None}
+                "stop": res.stop_reason if res else broke}
 
     def progress(k, records, sol):
         sh = run.shape[-1][0]
@@ -202,7 +203,12 @@ def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
                      "seconds": time.perf_counter() - t0})
         save(figures(False))
     run.on_step = progress
-    res = run.run()
+    try:
+        res = run.run()
+    except CracklipError as e:
+        # The steps made so far keep their figures (complete false), with why the run broke off.
+        log(f"surface a/c0 {ac0:g}: the run broke off after step {rows[-1]['step'] if rows else 0}: {e}")
+        return figures(False, broke=f"the run broke off: {e}")
     return figures(True, res)
 
 
@@ -234,7 +240,7 @@ def main(argv=None) -> dict:
             every = cases + ([case] if case is not None else [])
             devs = [c["a_over_c_max_dev"] for c in every if c["a_over_c_max_dev"] is not None]
             return {"a_over_c_max_dev": max(devs) if devs else None, "cases": every,
-                    "complete": case is None and len(every) == len(starts)}
+                    "complete": case is None and len(every) == len(starts) and all(c["complete"] for c in every)}
         starts = args.starts or SURFACE[config][1]
         for ac0 in starts:
             cases.append(run_surface(config, ac0, log,
