@@ -27,9 +27,18 @@ table of notes/contact_growth_mpi_3d.md §2.5 to the digit). Figure:
 a_over_c_max_dev = max |a/c - a/c_NR(a/t)| over the steps with a/t <= 0.8
 (a and c measured on the tracked front: a the largest depth below the face,
 c half the distance between the front's ends on the face). Bar 0.03 (Newman
-and Raju is a +-5 % fit of K). The mesh is graded: the element size grows
-from h0 = min(a0, c0) / n at the crack's centre on the face by 1/n per unit
-distance, so the front stays n elements per crack size as it grows.
+and Raju is a +-5 % fit of K). The mesh is graded from the start's front
+(scene.mesh_3d.crack_refinements, the regular 3D scenes' front grading):
+h0 = min(a0, c0) / n along the front, the size growing by 1/n per unit
+distance from it. Why: a front point that has advanced by d sits in elements
+of h0 + d / n; at the deepest point d = a - a0, so the size is a / n (n
+elements per depth all the way), and at the surface ends d = c - c0, the
+size (a0 + c - c0) / n: along Newman and Raju's paths 0.58-0.86 a / n
+(a/c0 = 0.2), 0.85-1.16 a / n (0.5), 1.11-1.28 a / n (1): the whole front
+keeps n / 1.3 to n elements per depth. A mesh graded from the crack's centre instead (h0 there, + 1/n per
+unit distance) put the ends of the a/c0 = 0.2 start (c0 = 5 a0) in
+elements of 0.8 a, and its surface K was 27 % above Newman and Raju's at
+the start (docs/growth.md).
 
     /usr/bin/python3 demos/growth_3d.py --json out/growth_3d.json [--small] [--cases penny surface_crack]
                                         [--starts 0.2 0.5 1]
@@ -56,13 +65,16 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 
 import cracklip as cl  # noqa: E402
 from cracklip.analysis.front_growth import SurfaceGrowth  # noqa: E402
+from cracklip.errors import CracklipError  # noqa: E402
 from cracklip.fracture.handbook import surface_crack_beta  # noqa: E402
 from cracklip.io.files import write_json  # noqa: E402
 from cracklip.scene.crack_surface import EllipticalCrack  # noqa: E402
-from cracklip.scene.mesh_3d import BoxRefinement, FrontRefinement, create_box  # noqa: E402
+from cracklip.scene.mesh_3d import BoxRefinement, crack_refinements, create_box  # noqa: E402
 
 E, NU, SIGMA, C, M = 1.0, 0.3, 1.0, 1.0, 3.0
 H_FAR = 2.0
+#: The surface crack's plate: the largest element size (the thickness t = 1).
+H_SURFACE = 1.0
 #: The surface crack's step: this fraction of the fastest point's crack size.
 DA_FRACTION = 0.1
 
@@ -149,12 +161,6 @@ def newman_raju_path(a0: float, c0: float, t: float, b: float, a_end: float, m: 
     return lambda a: float(sol.sol(a)[0])
 
 
-def graded_box(lo, hi, origin, h0: float, n: float, h_far: float):
-    """A box meshed h0 near `origin`, the size growing by 1/n per unit distance."""
-    radius = (h_far - h0) * n
-    return create_box(*lo, *hi, h_far, fronts=[FrontRefinement(np.array([origin]), h0, radius)])
-
-
 def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
     """One start's figures (module doc); save(case) after every step as
     run_penny's."""
@@ -164,8 +170,8 @@ def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
     c0 = a0 / ac0
     lo, hi = (-b, 0.0, -L), (b, t, L)
     h0 = min(a0, c0) / n
-    mesh = graded_box(lo, hi, (0.0, t, 0.0), h0, n, 1.0)
     crack = EllipticalCrack((0.0, t, 0.0), (0.0, 0.0, 1.0), c0, b=a0, axis=(1.0, 0.0, 0.0), name=f"a/c {ac0:g}")
+    mesh = create_box(*lo, *hi, H_SURFACE, fronts=crack_refinements([crack], h0, H_SURFACE, growth=1.0 / n))
     scene = cl.Scene(mesh, cl.Material(E, NU), cracks=[crack], dirichlet=_supports(lo, hi), tractions=_tension(),
                      options=cl.Options(enrichment="vector", radius=2.5 * h0))
     growth = cl.Growth(steps=steps, da_fraction=DA_FRACTION, paris_C=C, paris_m=M, R=0.0, max_length=at_end * t)
@@ -174,7 +180,7 @@ def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
     t0 = time.perf_counter()
     rows: list[dict] = []
 
-    def figures(complete: bool, res=None) -> dict:
+    def figures(complete: bool, res=None, broke: str | None = None) -> dict:
         devs = [abs(r["a_over_c"] - r["a_over_c_newman_raju"]) for r in rows
                 if r["a_over_c_newman_raju"] is not None]
         return {"a_over_c0": ac0, "a_over_c_max_dev": max(devs) if devs else None,
@@ -182,7 +188,7 @@ def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
                 "complete": complete, "a_over_t_reached": rows[-1]["a_over_t"] if rows else None, "rows": rows,
                 "h0": h0, "n": n, "cells": mesh.mesh.topology.index_map(3).size_global,
                 "step_seconds": res.step_times if res else [r["seconds"] for r in rows],
-                "stop": res.stop_reason if res else None}
+                "stop": res.stop_reason if res else broke}
 
     def progress(k, records, sol):
         sh = run.shape[-1][0]
@@ -197,7 +203,12 @@ def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
                      "seconds": time.perf_counter() - t0})
         save(figures(False))
     run.on_step = progress
-    res = run.run()
+    try:
+        res = run.run()
+    except CracklipError as e:
+        # The steps made so far keep their figures (complete false), with why the run broke off.
+        log(f"surface a/c0 {ac0:g}: the run broke off after step {rows[-1]['step'] if rows else 0}: {e}")
+        return figures(False, broke=f"the run broke off: {e}")
     return figures(True, res)
 
 
@@ -229,7 +240,7 @@ def main(argv=None) -> dict:
             every = cases + ([case] if case is not None else [])
             devs = [c["a_over_c_max_dev"] for c in every if c["a_over_c_max_dev"] is not None]
             return {"a_over_c_max_dev": max(devs) if devs else None, "cases": every,
-                    "complete": case is None and len(every) == len(starts)}
+                    "complete": case is None and len(every) == len(starts) and all(c["complete"] for c in every)}
         starts = args.starts or SURFACE[config][1]
         for ac0 in starts:
             cases.append(run_surface(config, ac0, log,

@@ -54,7 +54,8 @@ checked]. The rule here (END_*): K at a free-surface end is the
 least-squares quadratic in the arc length through K at the interior
 points within END_WINDOW of the piece's length from the end (at least the
 END_POINTS points nearest it; the end's own value left out), evaluated at
-the end; K_source "end_extrapolation", the end's own domain value kept as
+the end (a piece with one interior point: that point's K, with a warning);
+K_source "end_extrapolation", the end's own domain value kept as
 K_domain. On the surface crack a/c = 1, a/t = 0.2 at a/12 it gives
 1.3204 against Newman-Raju's 1.3198 at phi = 0 (the end's own domain
 value: 1.011).

@@ -323,7 +323,8 @@ class SurfaceCrack:
         guess, so that quantities the facets only give piecewise (the
         normal, the front's direction) and not at all (curvatures) follow
         the surface the triangulation samples: per point, least squares in
-        the point's frame (x1, x2, x3), weighted by (1 - (d / radius)^2)^2,
+        the point's frame (x1, x2, x3), weighted by (1 - (d / radius)^2)^2
+        (radius: one for all points or one per point),
 
         - of the vertices within `radius` (at least 3 edges): the surface
           x2 = c + a1 x1 + a3 x3 + (k11 x1^2 + 2 k13 x1 x3 + k33 x3^2) / 2 +
@@ -347,7 +348,8 @@ class SurfaceCrack:
         pts = np.asarray(points, dtype=float).reshape(-1, 3)
         frames = np.array(frames, dtype=float).reshape(-1, 3, 3)
         edges = np.linalg.norm(v[self.triangles] - v[np.roll(self.triangles, 1, axis=1)], axis=2)
-        reach = max(float(radius), 3.0 * float(np.median(edges)))
+        least = 3.0 * float(np.median(edges))
+        radii = np.broadcast_to(np.asarray(radius, dtype=float), (len(pts),))
         size = float(np.ptp(v, axis=0).max())
         front = np.unique(self.boundary_edges())
         tree, ftree = scipy.spatial.cKDTree(v), scipy.spatial.cKDTree(v[front])
@@ -355,6 +357,7 @@ class SurfaceCrack:
         out_k = np.zeros((len(pts), 4))
         for i, (x0, fr) in enumerate(zip(pts, frames)):
             e1, e2, e3 = fr
+            reach = max(float(radii[i]), least)
             for _ in range(2):
                 X = self._nearby(tree, v, x0, reach, 10, label)
                 Y = self._nearby(ftree, v[front], x0, reach, 5, label)
