@@ -369,3 +369,17 @@ def test_fitted_k_on_a_small_penny(tmp_path):
     r = run["rows"][0]
     Ep = 1.0 / (1 - 0.3 ** 2)
     assert r["G"] == pytest.approx((r["K_I"] ** 2 + r["K_II"] ** 2) / Ep + r["K_III"] ** 2 * (1 + 0.3), rel=1e-12)
+
+
+def test_front_summary_names_the_fitted_modes():
+    """The printed summary says which modes are reported fitted along the
+    front and where the computed K is."""
+    from cracklip.cli import front_summary
+    rows = [{"crack": 0, "crack_name": "c", "point": i, "position": [float(i), 0.0, 0.0], "parametric_angle": None,
+             "free_surface": False, "domain_clear": True, "K_I": 1.0, "K_II": 0.1 * i, "K_III": 0.0,
+             "K_I_unsmoothed": 1.0 + 0.01 * (-1) ** i, "K_II_unsmoothed": 0.1 * i, "K_III_unsmoothed": 0.0}
+            for i in range(4)]
+    text = "\n".join(front_summary(rows, None, None))
+    assert 'K_I fitted along the front (options.sif_smoothing = "fit"' in text and "K_II," not in text
+    assert not any("fitted" in line for line in front_summary([{k: v for k, v in r.items() if "unsmoothed" not in k}
+                                                               for r in rows], None, None))
