@@ -58,6 +58,18 @@ def test_neighbour_max_wraps_round_a_loop_and_stops_at_open_ends():
     assert out[5:, 0].tolist() == [2.0, 2.0, 2.0, 0.0]        # the open piece's ends do not wrap
 
 
+def _scattered_level(f: float, n: int, phase: float) -> Level:
+    """A loop of n points at element sizes f: K_I = 1 - 0.01 f^2 and K_III =
+    0, both with a scatter of +-2e-4 alternating along the front (opposite
+    on the run's mesh, f = 1, and the other)."""
+    x = _loop(n, phase)
+    noise = 2e-4 * (-1.0) ** np.arange(n) * (1.0 if f == 1.0 else -1.0)
+    rows = [{"crack": 0, "piece": 0, "point": i, "s": 2 * math.pi * i / n, "position": x[i].tolist(),
+             "K_I": 1.0 - 0.01 * f ** 2 + noise[i], "K_II": 0.0, "K_III": noise[i], "free_surface": False}
+            for i in range(n)]
+    return Level(f, 10 * n, 0.0, [rows], front=True, closed={(0, 0): True}, lengths={(0, 0): 2 * math.pi})
+
+
 def test_estimate_of_a_front_with_scatter():
     """Two similar meshes (sizes sqrt(2) and 1) of a loop: K = 1 - 0.01 f^2
     plus a scatter of +-2e-4 alternating along the front. The estimate is
@@ -67,14 +79,7 @@ def test_estimate_of_a_front_with_scatter():
     at every point (2.4 times it at p = 2), and K_III's estimate is the
     scatter's only, the run's own 2e-4 (less where the difference's is
     smaller), not amplified by 1 / (sqrt(2) - 1)."""
-    def level(f: float, n: int, phase: float) -> Level:
-        x = _loop(n, phase)
-        noise = 2e-4 * (-1.0) ** np.arange(n) * (1.0 if f == 1.0 else -1.0)
-        rows = [{"crack": 0, "piece": 0, "point": i, "s": 2 * math.pi * i / n, "position": x[i].tolist(),
-                 "K_I": 1.0 - 0.01 * f ** 2 + noise[i], "K_II": 0.0, "K_III": noise[i], "free_surface": False}
-                for i in range(n)]
-        return Level(f, 10 * n, 0.0, [rows], front=True, closed={(0, 0): True}, lengths={(0, 0): 2 * math.pi})
-    coarse, fine = level(RHO, 14, 0.05), level(1.0, 20, 0.0)
+    coarse, fine = _scattered_level(RHO, 14, 0.05), _scattered_level(1.0, 20, 0.0)
     est = estimate([coarse, fine])
     for i in range(20):
         row = est[(0, 0, i)]
@@ -138,14 +143,7 @@ def test_smoothed_front_k_and_its_estimate():
     sqrt(2) - 1 plus a standard deviation of the fit: 2.4 times the true
     error at every point (p = 2), within [1, 4]; the estimate without the
     fit is kept beside it."""
-    def level(f: float, n: int, phase: float) -> Level:
-        x = _loop(n, phase)
-        noise = 2e-4 * (-1.0) ** np.arange(n) * (1.0 if f == 1.0 else -1.0)
-        rows = [{"crack": 0, "piece": 0, "point": i, "s": 2 * math.pi * i / n, "position": x[i].tolist(),
-                 "K_I": 1.0 - 0.01 * f ** 2 + noise[i], "K_II": 0.0, "K_III": noise[i], "free_surface": False}
-                for i in range(n)]
-        return Level(f, 10 * n, 0.0, [rows], front=True, closed={(0, 0): True}, lengths={(0, 0): 2 * math.pi})
-    coarse, fine = level(RHO, 14, 0.05), level(1.0, 20, 0.0)
+    coarse, fine = _scattered_level(RHO, 14, 0.05), _scattered_level(1.0, 20, 0.0)
     plain = estimate([coarse, fine])
     est = estimate([coarse, fine], smooth=True)
     for i in range(20):

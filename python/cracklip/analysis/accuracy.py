@@ -58,6 +58,16 @@ the first harmonic only: estimates of 12-36 % for errors of 0.1-1.2 %);
 the difference between two meshes is a few per cent of that and slowly
 varying.
 
+With Options.sif_smoothing = "fit" K itself is reported as its fit along
+each front piece where the fit passes the check against the other mesh
+(fitted_along; cracklip.fracture.front_fit): every mesh's K projected on
+that fit, the error the projection's difference over RHO^p - 1 plus
+FIT_SPREAD standard deviations of the fit, the computed K and its own
+estimate kept beside (K_I_unsmoothed, K_I_error_unsmoothed, ...). The
+fitted K's error is smooth along the front, so the estimate follows it
+(the penny at a/14: 2.33 times it at every point, docs/guide.md); modes no
+fit passes (an ellipse's K_I on few points) keep the estimate above.
+
 ``solve_to_accuracy``: 2D, refinement levels (every size halved within the
 regions per level, about 4 times the cells there); 3D, the RHO mesh, the
 scene's and similar meshes with every size times REFINE_3D = 2^(-1/2) per
@@ -354,18 +364,27 @@ def smooth_along(rows: list[dict], values: np.ndarray, level: Level) -> np.ndarr
     four points (one harmonic on 19 points) left the ellipse's variation in
     the estimate (12-36 % of the K scale for errors of 0.1-1.2 %)."""
     out = np.array(values, dtype=float)
+    for idx, use, basis, sizes in _piece_bases(rows, level, 3):
+        out[idx] = loo_fit(basis, use, values[idx], sizes)[0]
+    return out
+
+
+def _piece_bases(rows: list[dict], level: Level, fewest: int):
+    """Per front piece of rows with at least `fewest` points off the free
+    surface: its rows' indices, which of them are off the free surface, the
+    fit basis at them (front_fit.piece_basis, at most one term per
+    SMOOTH_POINTS of those points) and the fit sizes to try."""
     keys = [(r["crack"], r["piece"]) for r in rows]
-    for key in set(keys):
+    for key in sorted(set(keys)):
         idx = np.array([i for i, k in enumerate(keys) if k == key])
         s = np.array([rows[i]["s"] for i in idx], dtype=float)
         use = ~np.array([bool(rows[i].get("free_surface")) for i in idx])
         n = int(use.sum())
-        if n < 3:
+        if n < fewest:
             continue
         basis, sizes = piece_basis(s, level.closed.get(key, False), level.lengths.get(key, 1.0),
                                    max(2, n // SMOOTH_POINTS))
-        out[idx] = loo_fit(basis, use, values[idx], sizes)[0]
-    return out
+        yield idx, use, basis, sizes
 
 
 def fitted_along(rows: list[dict], K: np.ndarray, of: int, other: int, level: Level
@@ -383,16 +402,7 @@ def fitted_along(rows: list[dict], K: np.ndarray, of: int, other: int, level: Le
     out = np.array(K, dtype=float)
     terms = np.zeros(K.shape[1:], dtype=int)
     spread = np.full(K.shape[1:], np.nan)
-    keys = [(r["crack"], r["piece"]) for r in rows]
-    for key in set(keys):
-        idx = np.array([i for i, k in enumerate(keys) if k == key])
-        s = np.array([rows[i]["s"] for i in idx], dtype=float)
-        use = ~np.array([bool(rows[i].get("free_surface")) for i in idx])
-        n = int(use.sum())
-        if n < 2 * SMOOTH_POINTS:
-            continue
-        basis, sizes = piece_basis(s, level.closed.get(key, False), level.lengths.get(key, 1.0),
-                                   max(2, n // SMOOTH_POINTS))
+    for idx, use, basis, sizes in _piece_bases(rows, level, 2 * SMOOTH_POINTS):
         _, chosen = loo_fit(basis, use, K[of][idx], sizes, other=K[other][idx])
         for m, k in enumerate(chosen):
             if k == 0:
