@@ -12,11 +12,12 @@ that shape leaves it in the residual on both meshes alike: with r and r'
 the residuals of the two meshes' K at the same points, |r + r'| is about
 |r - r'| when they are scatter and much larger when they are shape
 (SHAPE_RATIO). code_aster smooths G and K along a front by default in the
-same spirit (CALC_G, LISSAGE: LISSAGE_G = LEGENDRE of a fixed DEGRE = 5 on an
-open front; Lagrange, i.e. none, on a closed one); cracklip chooses the size
-of the fit per quantity and checks it on the second mesh, and fits nothing
-where no size passes (the ellipse b/a = 0.5 at b/8: K_I varies within one
-point spacing at the ends of the major axis).
+same spirit (CALC_G's LISSAGE: LISSAGE_G = LEGENDRE, polynomials up to a
+fixed DEGRE = 5, on an open front; on a closed front Legendre is refused and
+LAGRANGE, piecewise linear between the front's nodes, is asked for);
+cracklip chooses the size of the fit per quantity and checks it on the
+second mesh, and fits nothing where no size passes (the ellipse b/a = 0.5 at
+b/8: K_I varies within one point spacing at the ends of the major axis).
 """
 from __future__ import annotations
 
