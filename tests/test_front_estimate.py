@@ -187,10 +187,15 @@ def test_front_rate_observed_over_three_meshes():
         rows = [{"crack": 0, "piece": 0, "point": i, "s": 2 * math.pi * i / n, "position": x[i].tolist(),
                  "K_I": 1.0 - 0.01 * f ** 2, "K_II": 0.0, "K_III": 0.0, "free_surface": False} for i in range(n)]
         return Level(f, 10 * n, 0.0, [rows], front=True, closed={(0, 0): True}, lengths={(0, 0): 2 * math.pi})
-    est = estimate([level(RHO, 14), level(1.0, 20), level(1 / RHO, 28)])
+    levels = [level(RHO, 14), level(1.0, 20), level(1 / RHO, 28)]
+    est = estimate(levels)
     row = est[(0, 0, 5)]
     assert row["K_I_rate"] == pytest.approx(2.0, abs=1e-6)
     assert row["K_I_error"] == pytest.approx(1.25 * 0.01 * 0.5, rel=1e-6)
+    # K fitted along the front (--accuracy with options.sif_smoothing = "fit"): the same, K itself fitted exactly
+    fitted = estimate(levels, smooth=True)[(0, 0, 5)]
+    assert fitted["K_I_smoothed"] == pytest.approx(1.0 - 0.01 * 0.5, abs=1e-12)
+    assert fitted["K_I_error"] == pytest.approx(1.25 * 0.01 * 0.5, rel=1e-6)
 
 
 def test_crack_size_and_the_default_grading():
