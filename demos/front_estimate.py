@@ -270,7 +270,8 @@ def compare(case: str, n: float, run: dict, reference=None) -> dict:
     return out
 
 
-def estimate_part(cases, quick: bool, folder: pathlib.Path, log, sizes=None, smoothing: str = "none") -> list[dict]:
+def estimate_part(cases, quick: bool, folder: pathlib.Path, log, sizes=None, smoothing: str = "none",
+                  reference_meshes=REFERENCE) -> list[dict]:
     out = []
     for case in cases:
         meshes = MESHES[case][0 if quick else 1]
@@ -282,9 +283,9 @@ def estimate_part(cases, quick: bool, folder: pathlib.Path, log, sizes=None, smo
         reference = None
         if case.startswith("surface") and not quick:
             ref_runs = [runs[n] if n in runs and smoothing == "none" else solve_case(case, n, False, folder)
-                        for n in REFERENCE]
+                        for n in reference_meshes]
             K0, p, spread = richardson_reference(ref_runs)
-            reference = {"meshes": list(REFERENCE), "rate": p, "uncertainty_abs": spread}
+            reference = {"meshes": list(reference_meshes), "rate": p, "uncertainty_abs": spread}
         for n in meshes:
             ref = None
             if reference is not None:
@@ -432,6 +433,9 @@ def main(argv=None) -> dict:
                     help="only these size / tip_h of each case's meshes (to 0.01; e.g. 5 10 14.14 20)")
     ap.add_argument("--smoothing", choices=["none", "fit"], default="none",
                     help="options.sif_smoothing of every scene (fit: K reported fitted along the front)")
+    ap.add_argument("--reference", nargs=3, type=float, default=list(REFERENCE),
+                    help="the surface crack's three reference meshes (a / tip_h, ratio sqrt(2)), default "
+                         + " ".join(f"{v:.4g}" for v in REFERENCE))
     ap.add_argument("--quiet", action="store_true")
     args = ap.parse_args(argv)
 
@@ -442,7 +446,8 @@ def main(argv=None) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         folder = pathlib.Path(tmp)
         if "estimate" in args.parts:
-            result["estimate"] = estimate_part(args.cases, args.quick, folder, log, args.sizes, args.smoothing)
+            result["estimate"] = estimate_part(args.cases, args.quick, folder, log, args.sizes, args.smoothing,
+                                               tuple(args.reference))
             result["halving"] = halving(result["estimate"])
         if "grading" in args.parts:
             result["grading"] = grading_part(args.quick, folder, log)

@@ -398,11 +398,16 @@ def fitted_along(rows: list[dict], K: np.ndarray, of: int, other: int, level: Le
     (every mesh's K projected on that fit's basis, the mode unchanged where
     no fit passed; the number of terms (n, modes), 0: not fitted; the fit's
     standard deviation from the scatter (n, modes), NaN where not fitted).
-    Points on a free surface are not fitted and keep their K."""
+    Points on a free surface are not fitted and keep their K, nor are
+    pieces with an end on a symmetry plane (K_III and the mirror's odd
+    modes vanish there, which a Legendre fit would not keep: a quarter
+    ellipse's K_III at its ends went from 0 to 3e-5)."""
     out = np.array(K, dtype=float)
     terms = np.zeros(K.shape[1:], dtype=int)
     spread = np.full(K.shape[1:], np.nan)
     for idx, use, basis, sizes in _piece_bases(rows, level, 2 * SMOOTH_POINTS):
+        if any(rows[i].get("symmetry") is not None for i in idx):
+            continue  # an end on a symmetry plane: K_III = 0 there by the mirror, which the basis does not keep
         _, chosen = loo_fit(basis, use, K[of][idx], sizes, other=K[other][idx])
         for m, k in enumerate(chosen):
             if k == 0:
