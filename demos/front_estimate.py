@@ -10,6 +10,10 @@ a quarter of the crack size, the iterative solver). Cases:
   the infinite body (cracklip.exact.embedded_cracks);
 - irwin_0.5: the embedded ellipse b / a = 0.5 (sizes in units of b): Irwin's
   exact K_I;
+- spherical_cap: the curved crack of demos/front_sifs.py (a spherical cap
+  of base radius a = 1 cut at 45 degrees, triangulated at half the front
+  size and given as an STL, nu = 0.22, hydrostatic tension 1 on all six
+  faces): the reference K of cracklip.exact.spherical_cap;
 - surface_crack_1_0.2: a semicircular surface crack (a = c = 1) in a plate
   of thickness t = 5 (a/c = 1, a/t = 0.2): no exact K (Newman-Raju is +-5
   %), so the reference is this demo's own: K on three finer meshes
@@ -74,6 +78,7 @@ import cracklip as cl  # noqa: E402
 import front_sifs  # noqa: E402
 from cracklip.analysis.accuracy import estimate_error  # noqa: E402
 from cracklip.analysis.front_match import FrontPiece, carry_over  # noqa: E402
+from cracklip.exact import spherical_cap  # noqa: E402
 from cracklip.io.files import write_json  # noqa: E402
 from cracklip.io.scene_file import load_scene_file  # noqa: E402
 
@@ -85,6 +90,7 @@ MESHES = {
     "inclined_penny_45": ((), (5.0, 5 * SQ2, 10.0, 10 * SQ2, 20.0)),
     "irwin_0.5": ((), (4 * SQ2, 8.0, 8 * SQ2)),
     "surface_crack_1_0.2": ((), (5 * SQ2, 10.0, 10 * SQ2)),
+    "spherical_cap": ((), (10 * SQ2, 20.0)),
 }
 
 #: The surface crack's reference meshes (Richardson, module doc).
@@ -109,7 +115,14 @@ TRUE_ERROR = ("|K - K_exact| over the K scale: the norm of the error vector (K_I
 def scene_text(case: str, n: float, tip_radius: float = 0.0, smoothing: str = "none") -> str:
     """The scene file of a case with mesh.tip_h = size / n (options.sif_smoothing = smoothing)."""
     supports = ""
-    if case.startswith("surface"):
+    nu, axes = 0.3, "z"
+    if case == "spherical_cap":
+        # the cap of demos/front_sifs.py (base radius a = 1, alpha = 45 degrees, nu = 0.22, hydrostatic tension),
+        # its triangulation in cap.stl next to the scene (scene_files)
+        box = [-10.0, -10.0, -10.0, 10.0, 10.0, 10.0]
+        crack = 'surface = "cap.stl"'
+        size, nu, axes = 1.0, spherical_cap.REFERENCE_NU, "xyz"
+    elif case.startswith("surface"):
         a, c, t = 1.0, 1.0, 5.0
         b, L = 10.0 * c, max(10.0 * c, 4.0 * t)
         box = [-b, 0.0, -L, b, t, L]
@@ -128,6 +141,15 @@ def scene_text(case: str, n: float, tip_radius: float = 0.0, smoothing: str = "n
         crack = (f"ellipse = {{ center = [0.0, 0.0, 0.0], normal = [{normal[0]!r}, {normal[1]!r}, {normal[2]!r}], "
                  f"a = {a}, b = {b}, a_direction = [{axis[0]}, {axis[1]}, {axis[2]}] }}")
         size = min(a, b)
+    tractions = ""
+    for i, ax in enumerate("xyz"):
+        if ax in axes:
+            t = ["0.0"] * 3
+            t[i] = "1.0"
+            m = ["0.0"] * 3
+            m[i] = "-1.0"
+            tractions += (f'[[loads.tractions]]\ntag = "{ax}max"\nvalue = [{", ".join(t)}]\n'
+                          f'[[loads.tractions]]\ntag = "{ax}min"\nvalue = [{", ".join(m)}]\n')
     x0, y0, z0, x1, y1, _ = box
     for p, comp in (((x0, y0, z0), None), ((x1, y0, z0), "y"), ((x1, y0, z0), "z"), ((x0, y1, z0), "z")):
         supports += f"\n[[dirichlet]]\npoint = [{p[0]}, {p[1]}, {p[2]}]\n" + (f'component = "{comp}"\n' if comp else "")
@@ -140,17 +162,12 @@ tip_h = {size / n!r}
 tip_radius = {tip_radius!r}
 [material]
 E = 1.0
-nu = 0.3
+nu = {nu!r}
 [[cracks]]
 name = "{case}"
 {crack}
 {supports}
-[[loads.tractions]]
-tag = "zmax"
-value = [0.0, 0.0, 1.0]
-[[loads.tractions]]
-tag = "zmin"
-value = [0.0, 0.0, -1.0]
+{tractions}
 [options]
 radius = {0.25 * size!r}
 solver = "iterative"
@@ -160,6 +177,8 @@ sif_smoothing = "{smoothing}"
 
 def info(case: str) -> dict:
     """What front_sifs.exact needs for a case."""
+    if case == "spherical_cap":
+        return {"kind": "cap"}
     if case.startswith("surface"):
         return {"kind": "surface", "a": 1.0, "c": 1.0, "t": 5.0, "b": 10.0}
     if case.startswith("irwin"):
@@ -174,6 +193,11 @@ def solve_case(case: str, n: float, estimate: bool, folder: pathlib.Path, tip_ra
     """Solve (and estimate) one mesh; the rows and timings."""
     path = folder / f"{case}_{n:.3f}_{tip_radius:g}_{smoothing}.toml"
     path.write_text(scene_text(case, n, tip_radius, smoothing))
+    if case == "spherical_cap":  # the triangulation at half the front size, as front_sifs.build makes it
+        alpha = spherical_cap.REFERENCE_ALPHA_DEG
+        depth = (1.0 - math.cos(math.radians(alpha))) / math.sin(math.radians(alpha))
+        v, t = spherical_cap.cap_triangulation(1.0, alpha, 0.5 / n, pole=(0.0, 0.0, -0.5 * depth))
+        spherical_cap.write_stl(folder / "cap.stl", v, t)
     t0 = time.perf_counter()
     sf = load_scene_file(path)
     t_mesh = time.perf_counter() - t0

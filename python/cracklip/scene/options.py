@@ -119,8 +119,8 @@ class Options:
             level, are solved until the estimate is below it
             (cracklip.analysis.accuracy); a warning if not reached.
         accuracy_levels: at most this many refinement levels for accuracy.
-        sif_smoothing: 3D: "none" (K as computed at every front point) or
-            "fit": with the error estimate (or accuracy), K reported as its
+        sif_smoothing: 3D: "fit" (default) or "none" (K as computed at every
+            front point). "fit": with the error estimate (or accuracy), K reported as its
             least-squares fit along each front piece (Fourier on a loop,
             Legendre on an open piece, the size by leave-one-out, checked
             against the estimate's second mesh; a mode no fit passes is
@@ -156,7 +156,7 @@ class Options:
     solver: str = "auto"
     accuracy: float = 0.0
     accuracy_levels: int = 3
-    sif_smoothing: str = "none"
+    sif_smoothing: str = "fit"
 
     def __post_init__(self):
         if self.enrichment not in ENRICHMENTS:

@@ -63,11 +63,11 @@ _OPTION_MEANINGS = {
                 "meshes, the estimate and (2D) the extrapolated K; warns if not reached (docs/guide.md)",
     "accuracy_levels": "at most this many refinement levels for options.accuracy (each about 4 (2D) or 2.8 (3D) "
                        "times the cells of the one before)",
-    "sif_smoothing": "3D: `none` (K as computed at every front point) or `fit`: with the error estimate (or accuracy), "
+    "sif_smoothing": "3D: `fit` or `none` (K as computed at every front point). `fit`: with the error estimate (or accuracy), "
                      "K reported as its least-squares fit along each front piece (Fourier / Legendre, the size by "
                      "leave-one-out, checked against the estimate's second mesh; a mode no fit passes stays as "
                      "computed; the computed K kept as K_I_unsmoothed ...); the estimate then follows the fitted K "
-                     "(docs/sifs.md)",
+                     "(docs/guide.md)",
     "solver": "linear solver: `direct` (MUMPS LDL^T), `iterative` (AMG in a phantom-node basis with a "
               "direct solve of the crack band; same checked accuracy) or `auto` (iterative from 5e4 "
               "dofs when 1-5 % of them are enriched and from 2e6 dofs always, else direct: the faster one as "
