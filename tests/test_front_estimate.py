@@ -386,3 +386,20 @@ def test_front_summary_names_the_fitted_modes():
     assert 'K_I fitted along the front (options.sif_smoothing = "fit"' in text and "K_II," not in text
     assert not any("fitted" in line for line in front_summary([{k: v for k, v in r.items() if "unsmoothed" not in k}
                                                                for r in rows], None, None))
+
+
+def test_demo_cap_scene_loads(tmp_path):
+    """demos/front_estimate.py's spherical cap: the STL next to the scene,
+    nu = 0.22, hydrostatic tension on all six faces."""
+    sys.path.insert(0, str(ROOT / "demos"))
+    import front_estimate as fe
+    from cracklip.exact import spherical_cap
+    from cracklip.scene.crack_surface import SurfaceCrack
+    path = tmp_path / "cap.toml"
+    path.write_text(fe.scene_text("spherical_cap", 5.0))
+    alpha = spherical_cap.REFERENCE_ALPHA_DEG
+    v, t = spherical_cap.cap_triangulation(1.0, alpha, 0.1)
+    spherical_cap.write_stl(tmp_path / "cap.stl", v, t)
+    sf = load_scene_file(path)
+    assert isinstance(sf.scene.cracks[0], SurfaceCrack) and sf.scene.material.nu == pytest.approx(0.22)
+    assert sorted(tr.where for tr in sf.scene.tractions) == ["xmax", "xmin", "ymax", "ymin", "zmax", "zmin"]
