@@ -10,6 +10,10 @@ a quarter of the crack size, the iterative solver). Cases:
   the infinite body (cracklip.exact.embedded_cracks);
 - irwin_0.5: the embedded ellipse b / a = 0.5 (sizes in units of b): Irwin's
   exact K_I;
+- spherical_cap: the curved crack of demos/front_sifs.py (a spherical cap
+  of base radius a = 1 cut at 45 degrees, triangulated at half the front
+  size and given as an STL, nu = 0.22, hydrostatic tension 1 on all six
+  faces): the reference K of cracklip.exact.spherical_cap;
 - surface_crack_1_0.2: a semicircular surface crack (a = c = 1) in a plate
   of thickness t = 5 (a/c = 1, a/t = 0.2): no exact K (Newman-Raju is +-5
   %), so the reference is this demo's own: K on three finer meshes
@@ -29,6 +33,15 @@ the two finest meshes), and the largest true error per mesh (acceptance 3:
 it falls at least 1.5 times per halving of tip_h; penny and inclined penny
 at a/5, a/10, a/20).
 
+--smoothing fit: every scene with options.sif_smoothing = "fit" (K reported
+as its fit along the front where one passes the check against the
+estimate's mesh, cracklip.analysis.accuracy.fitted_along); each row then
+also has the computed K's true error and its own estimate ("unsmoothed",
+from the same solves) and the modes fitted. The true error throughout is
+TRUE_ERROR (the norm of the error vector over the K scale; a component's
+error crossing zero along the front, as the inclined penny's K_II and
+K_III may, does not make it vanish unless all three do).
+
 Part "grading": the penny's mean and largest K error as tip_h is halved,
 with the default grading (the size grows 1.4 tip_h per crack size from the
 front) and with the former one (0.25 per unit length: mesh.tip_radius = (h
@@ -37,7 +50,7 @@ front) and with the former one (0.25 per unit length: mesh.tip_radius = (h
 Part "accuracy": `run demos/scenes/inclined_penny.toml --accuracy 0.01`
 (acceptance 4): every front point's error to the exact K.
 
-    /usr/bin/python3 demos/front_estimate.py --json out/front_estimate.json [--quick] [--parts ...]
+    /usr/bin/python3 demos/front_estimate.py --json out/front_estimate.json [--quick] [--parts ...] [--smoothing fit]
 
 main(argv) returns the result (written to --json, with a CSV of the points
 per case and mesh and a PNG of estimate and true error along the finest
@@ -65,6 +78,7 @@ import cracklip as cl  # noqa: E402
 import front_sifs  # noqa: E402
 from cracklip.analysis.accuracy import estimate_error  # noqa: E402
 from cracklip.analysis.front_match import FrontPiece, carry_over  # noqa: E402
+from cracklip.exact import spherical_cap  # noqa: E402
 from cracklip.io.files import write_json  # noqa: E402
 from cracklip.io.scene_file import load_scene_file  # noqa: E402
 
@@ -76,6 +90,7 @@ MESHES = {
     "inclined_penny_45": ((), (5.0, 5 * SQ2, 10.0, 10 * SQ2, 20.0)),
     "irwin_0.5": ((), (4 * SQ2, 8.0, 8 * SQ2)),
     "surface_crack_1_0.2": ((), (5 * SQ2, 10.0, 10 * SQ2)),
+    "spherical_cap": ((), (10 * SQ2, 20.0)),
 }
 
 #: The surface crack's reference meshes (Richardson, module doc).
@@ -89,11 +104,25 @@ OLD_GROWTH = 0.25
 
 H_FAR = 2.0
 
+MODES = ("K_I", "K_II", "K_III")
 
-def scene_text(case: str, n: float, tip_radius: float = 0.0) -> str:
-    """The scene file of a case with mesh.tip_h = size / n."""
+#: What "true error" and "estimate" mean in the JSON (per front point).
+TRUE_ERROR = ("|K - K_exact| over the K scale: the norm of the error vector (K_I, K_II, K_III) at the point over "
+              "the largest |K_exact| along the front; the estimate likewise the norm of (K_I_error, K_II_error, "
+              "K_III_error) over the same scale; front points on a free surface left out")
+
+
+def scene_text(case: str, n: float, tip_radius: float = 0.0, smoothing: str = "none") -> str:
+    """The scene file of a case with mesh.tip_h = size / n (options.sif_smoothing = smoothing)."""
     supports = ""
-    if case.startswith("surface"):
+    nu, axes = 0.3, "z"
+    if case == "spherical_cap":
+        # the cap of demos/front_sifs.py (base radius a = 1, alpha = 45 degrees, nu = 0.22, hydrostatic tension),
+        # its triangulation in cap.stl next to the scene (scene_files)
+        box = [-10.0, -10.0, -10.0, 10.0, 10.0, 10.0]
+        crack = 'surface = "cap.stl"'
+        size, nu, axes = 1.0, spherical_cap.REFERENCE_NU, "xyz"
+    elif case.startswith("surface"):
         a, c, t = 1.0, 1.0, 5.0
         b, L = 10.0 * c, max(10.0 * c, 4.0 * t)
         box = [-b, 0.0, -L, b, t, L]
@@ -112,6 +141,15 @@ def scene_text(case: str, n: float, tip_radius: float = 0.0) -> str:
         crack = (f"ellipse = {{ center = [0.0, 0.0, 0.0], normal = [{normal[0]!r}, {normal[1]!r}, {normal[2]!r}], "
                  f"a = {a}, b = {b}, a_direction = [{axis[0]}, {axis[1]}, {axis[2]}] }}")
         size = min(a, b)
+    tractions = ""
+    for i, ax in enumerate("xyz"):
+        if ax in axes:
+            t = ["0.0"] * 3
+            t[i] = "1.0"
+            m = ["0.0"] * 3
+            m[i] = "-1.0"
+            tractions += (f'[[loads.tractions]]\ntag = "{ax}max"\nvalue = [{", ".join(t)}]\n'
+                          f'[[loads.tractions]]\ntag = "{ax}min"\nvalue = [{", ".join(m)}]\n')
     x0, y0, z0, x1, y1, _ = box
     for p, comp in (((x0, y0, z0), None), ((x1, y0, z0), "y"), ((x1, y0, z0), "z"), ((x0, y1, z0), "z")):
         supports += f"\n[[dirichlet]]\npoint = [{p[0]}, {p[1]}, {p[2]}]\n" + (f'component = "{comp}"\n' if comp else "")
@@ -124,25 +162,23 @@ tip_h = {size / n!r}
 tip_radius = {tip_radius!r}
 [material]
 E = 1.0
-nu = 0.3
+nu = {nu!r}
 [[cracks]]
 name = "{case}"
 {crack}
 {supports}
-[[loads.tractions]]
-tag = "zmax"
-value = [0.0, 0.0, 1.0]
-[[loads.tractions]]
-tag = "zmin"
-value = [0.0, 0.0, -1.0]
+{tractions}
 [options]
 radius = {0.25 * size!r}
 solver = "iterative"
+sif_smoothing = "{smoothing}"
 """
 
 
 def info(case: str) -> dict:
     """What front_sifs.exact needs for a case."""
+    if case == "spherical_cap":
+        return {"kind": "cap"}
     if case.startswith("surface"):
         return {"kind": "surface", "a": 1.0, "c": 1.0, "t": 5.0, "b": 10.0}
     if case.startswith("irwin"):
@@ -152,10 +188,16 @@ def info(case: str) -> dict:
     return {"kind": "penny", "beta": beta, "normal": normal}
 
 
-def solve_case(case: str, n: float, estimate: bool, folder: pathlib.Path, tip_radius: float = 0.0) -> dict:
+def solve_case(case: str, n: float, estimate: bool, folder: pathlib.Path, tip_radius: float = 0.0,
+               smoothing: str = "none") -> dict:
     """Solve (and estimate) one mesh; the rows and timings."""
-    path = folder / f"{case}_{n:.3f}_{tip_radius:g}.toml"
-    path.write_text(scene_text(case, n, tip_radius))
+    path = folder / f"{case}_{n:.3f}_{tip_radius:g}_{smoothing}.toml"
+    path.write_text(scene_text(case, n, tip_radius, smoothing))
+    if case == "spherical_cap":  # the triangulation at half the front size, as front_sifs.build makes it
+        alpha = spherical_cap.REFERENCE_ALPHA_DEG
+        depth = (1.0 - math.cos(math.radians(alpha))) / math.sin(math.radians(alpha))
+        v, t = spherical_cap.cap_triangulation(1.0, alpha, 0.5 / n, pole=(0.0, 0.0, -0.5 * depth))
+        spherical_cap.write_stl(folder / "cap.stl", v, t)
     t0 = time.perf_counter()
     sf = load_scene_file(path)
     t_mesh = time.perf_counter() - t0
@@ -225,11 +267,25 @@ def compare(case: str, n: float, run: dict, reference=None) -> dict:
     true = np.linalg.norm(K - Kx, axis=1) / scale
     eta = np.linalg.norm(est, axis=1) / scale
     ratio = eta / np.maximum(true, 1e-300)
+    fitted = {}
+    if any(r.get("K_I_unsmoothed") is not None for r in rows):
+        # options.sif_smoothing = "fit": the computed K and its own estimate, beside the fitted ones
+        K0 = np.array([[r[f"{m}_unsmoothed"] if r.get(f"{m}_unsmoothed") is not None else r[m] for m in MODES]
+                       for r in rows])
+        e0 = np.array([[r[f"{m}_error_unsmoothed"] if r.get(f"{m}_error_unsmoothed") is not None else r[f"{m}_error"]
+                        for m in MODES] for r in rows])
+        t0, n0 = np.linalg.norm(K0 - Kx, axis=1) / scale, np.linalg.norm(e0, axis=1) / scale
+        r0 = n0[inner] / np.maximum(t0[inner], 1e-300)
+        fitted = {"unsmoothed": {"true_max": float(t0[inner].max()), "true_min": float(t0[inner].min()),
+                                 "ratio_min": float(r0.min()), "ratio_median": float(np.median(r0)),
+                                 "ratio_max": float(r0.max()), "true": t0.tolist(), "estimate": n0.tolist()},
+                  "fitted_modes": [m for m in MODES if any(r.get(f"{m}_unsmoothed") is not None
+                                                           and r[m] != r[f"{m}_unsmoothed"] for r in rows)]}
     out = {"case": case, "size_over_h": n, "dofs": run["dofs"], "estimate_dofs": run["estimate_dofs"],
            "points": int(inner.sum()), "t_run": run["t_run"], "t_estimate": run["t_estimate"],
            "true_max": float(true[inner].max()), "true_min": float(true[inner].min()),
            "K_I_mean_error": float(np.mean((K - Kx)[inner, 0]) / scale),
-           "angle": ang.tolist(), "true": true.tolist(), "free": (~inner).tolist()}
+           "angle": ang.tolist(), "true": true.tolist(), "free": (~inner).tolist(), **fitted}
     if np.all(np.isfinite(eta[inner])):
         out.update({"estimate_max": float(eta[inner].max()), "ratio_min": float(ratio[inner].min()),
                     "ratio_median": float(np.median(ratio[inner])), "ratio_max": float(ratio[inner].max()),
@@ -238,7 +294,8 @@ def compare(case: str, n: float, run: dict, reference=None) -> dict:
     return out
 
 
-def estimate_part(cases, quick: bool, folder: pathlib.Path, log, sizes=None) -> list[dict]:
+def estimate_part(cases, quick: bool, folder: pathlib.Path, log, sizes=None, smoothing: str = "none",
+                  reference_meshes=REFERENCE) -> list[dict]:
     out = []
     for case in cases:
         meshes = MESHES[case][0 if quick else 1]
@@ -246,12 +303,13 @@ def estimate_part(cases, quick: bool, folder: pathlib.Path, log, sizes=None) -> 
             meshes = tuple(n for n in meshes if any(abs(n - s) < 0.01 for s in sizes))
         if not meshes:
             continue
-        runs = {n: solve_case(case, n, True, folder) for n in meshes}
+        runs = {n: solve_case(case, n, True, folder, smoothing=smoothing) for n in meshes}
         reference = None
         if case.startswith("surface") and not quick:
-            ref_runs = [runs[n] if n in runs else solve_case(case, n, False, folder) for n in REFERENCE]
+            ref_runs = [runs[n] if n in runs and smoothing == "none" else solve_case(case, n, False, folder)
+                        for n in reference_meshes]
             K0, p, spread = richardson_reference(ref_runs)
-            reference = {"meshes": list(REFERENCE), "rate": p, "uncertainty_abs": spread}
+            reference = {"meshes": list(reference_meshes), "rate": p, "uncertainty_abs": spread}
         for n in meshes:
             ref = None
             if reference is not None:
@@ -264,6 +322,9 @@ def estimate_part(cases, quick: bool, folder: pathlib.Path, log, sizes=None) -> 
             log(f"{case:22s} size/h {n:6.2f} {row['dofs']:8d} dofs  true max {100 * row['true_max']:.3f} %  "
                 + (f"estimate max {100 * row['estimate_max']:.3f} %  ratio {row['ratio_min']:.2f} .. "
                    f"{row['ratio_median']:.2f} .. {row['ratio_max']:.2f}" if "ratio_min" in row else "")
+                + (f"  (unsmoothed: true max {100 * row['unsmoothed']['true_max']:.3f} %, ratio "
+                   f"{row['unsmoothed']['ratio_min']:.2f} .. {row['unsmoothed']['ratio_median']:.2f} .. "
+                   f"{row['unsmoothed']['ratio_max']:.2f}; fitted {row['fitted_modes']})" if "unsmoothed" in row else "")
                 + f"  run {row['t_run']:.1f} s, estimate {row['t_estimate']:.1f} s")
     return out
 
@@ -352,13 +413,20 @@ def halving(rows: list[dict]) -> dict:
 
 
 def markdown(result: dict) -> str:
+    fit = any("unsmoothed" in r for r in result.get("estimate", []))
     lines = ["| case | size/h | dofs (estimate's) | true max | estimate max | estimate / true: min, median, max | "
-             "run s | estimate s |", "|---|---|---|---|---|---|---|---|"]
+             + ("K computed: true max | its estimate / true | fitted modes | " if fit else "")
+             + "run s | estimate s |", "|---|---|---|---|---|---|" + ("---|---|---|" if fit else "") + "---|---|"]
     for r in result.get("estimate", []):
         ratio = (f"{r['ratio_min']:.2f}, {r['ratio_median']:.2f}, {r['ratio_max']:.2f}" if "ratio_min" in r else "-")
         est = f"{100 * r['estimate_max']:.3f} %" if "estimate_max" in r else "-"
+        extra = ""
+        if fit:
+            u = r.get("unsmoothed")
+            extra = (f"{100 * u['true_max']:.3f} % | {u['ratio_min']:.2f}, {u['ratio_median']:.2f}, "
+                     f"{u['ratio_max']:.2f} | {', '.join(r['fitted_modes']) or '-'} | " if u else "- | - | - | ")
         lines.append(f"| {r['case']} | {r['size_over_h']:.3g} | {r['dofs']} ({r['estimate_dofs']}) | "
-                     f"{100 * r['true_max']:.3f} % | {est} | {ratio} | {r['t_run']:.1f} | {r['t_estimate']:.1f} |")
+                     f"{100 * r['true_max']:.3f} % | {est} | {ratio} | {extra}{r['t_run']:.1f} | {r['t_estimate']:.1f} |")
     if result.get("grading"):
         lines += ["", "| grading | a/tip_h | dofs | K_I mean error | largest error |", "|---|---|---|---|---|"]
         for r in result["grading"]:
@@ -387,17 +455,23 @@ def main(argv=None) -> dict:
     ap.add_argument("--cases", nargs="+", default=list(MESHES), choices=list(MESHES))
     ap.add_argument("--sizes", nargs="+", type=float, default=None,
                     help="only these size / tip_h of each case's meshes (to 0.01; e.g. 5 10 14.14 20)")
+    ap.add_argument("--smoothing", choices=["none", "fit"], default="none",
+                    help="options.sif_smoothing of every scene (fit: K reported fitted along the front)")
+    ap.add_argument("--reference", nargs=3, type=float, default=list(REFERENCE),
+                    help="the surface crack's three reference meshes (a / tip_h, ratio sqrt(2)), default "
+                         + " ".join(f"{v:.4g}" for v in REFERENCE))
     ap.add_argument("--quiet", action="store_true")
     args = ap.parse_args(argv)
 
     def log(text: str) -> None:
         if not args.quiet:
             print(text, flush=True)
-    result: dict = {"quick": bool(args.quick)}
+    result: dict = {"quick": bool(args.quick), "smoothing": args.smoothing, "true_error": TRUE_ERROR}
     with tempfile.TemporaryDirectory() as tmp:
         folder = pathlib.Path(tmp)
         if "estimate" in args.parts:
-            result["estimate"] = estimate_part(args.cases, args.quick, folder, log, args.sizes)
+            result["estimate"] = estimate_part(args.cases, args.quick, folder, log, args.sizes, args.smoothing,
+                                               tuple(args.reference))
             result["halving"] = halving(result["estimate"])
         if "grading" in args.parts:
             result["grading"] = grading_part(args.quick, folder, log)

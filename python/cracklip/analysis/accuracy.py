@@ -58,6 +58,16 @@ the first harmonic only: estimates of 12-36 % for errors of 0.1-1.2 %);
 the difference between two meshes is a few per cent of that and slowly
 varying.
 
+With Options.sif_smoothing = "fit" K itself is reported as its fit along
+each front piece where the fit passes the check against the other mesh
+(fitted_along; cracklip.fracture.front_fit): every mesh's K projected on
+that fit, the error the projection's difference over RHO^p - 1 plus
+FIT_SPREAD standard deviations of the fit, the computed K and its own
+estimate kept beside (K_I_unsmoothed, K_I_error_unsmoothed, ...). The
+fitted K's error is smooth along the front, so the estimate follows it
+(the penny at a/14: 2.33 times it at every point, docs/guide.md); modes no
+fit passes (an ellipse's K_I on few points) keep the estimate above.
+
 ``solve_to_accuracy``: 2D, refinement levels (every size halved within the
 regions per level, about 4 times the cells there); 3D, the RHO mesh, the
 scene's and similar meshes with every size times REFINE_3D = 2^(-1/2) per
@@ -93,6 +103,7 @@ from ..scene.refine import with_levels
 from ..scene.scene import Scene
 from ..scene.processes import mark_collective, reduced
 from ..post.solution import point_label
+from ..fracture.front_fit import fit_spread, loo_fit, piece_basis
 from .front_match import FrontPiece, carry_over
 
 
@@ -142,6 +153,10 @@ NEIGHBOURS = 1
 #: many points of a piece, as many as leave-one-out cross-validation
 #: chooses (smooth_along).
 SMOOTH_POINTS = 4
+
+#: Options.sif_smoothing = "fit": the error of a fitted K includes this
+#: many standard deviations of the fit from the scatter about it.
+FIT_SPREAD = 1.0
 
 MODES = ("K_I", "K_II", "K_III")
 
@@ -374,37 +389,11 @@ def neighbour_max(values: np.ndarray, rows: list[dict], closed: dict[tuple[int, 
     return out
 
 
-def _loo_fit(basis: np.ndarray, use: np.ndarray, values: np.ndarray, sizes: typing.Iterable[int]) -> np.ndarray:
-    """values (n, m) fitted by least squares on the first k columns of
-    `basis` (n, K) over the points `use`, k chosen per column of values by
-    leave-one-out cross-validation (the smallest sum of squared residuals
-    of each point left out, r_i / (1 - h_ii) for a linear fit; Allen's
-    PRESS) among `sizes`; the fit at every point."""
-    B, V = basis[use], values[use]
-    best = np.full(values.shape[1], np.inf)
-    out = np.repeat(values[use].mean(axis=0, keepdims=True), len(values), axis=0)
-    for k in sizes:
-        if k > len(B) - 1:
-            break
-        q, _ = np.linalg.qr(B[:, :k])
-        h = np.einsum("ij,ij->i", q, q)
-        if h.max() > 1.0 - 1e-9:
-            break
-        r = V - q @ (q.T @ V)
-        press = np.sum((r / (1.0 - h)[:, None]) ** 2, axis=0)
-        better = press < best * (1.0 - 1e-12)
-        if np.any(better):
-            coef = np.linalg.lstsq(B[:, :k], V[:, better], rcond=None)[0]
-            out[:, better] = basis[:, :k] @ coef
-            best[better] = press[better]
-    return out
-
-
 def smooth_along(rows: list[dict], values: np.ndarray, level: Level) -> np.ndarray:
     """values (n, m) at front points fitted by least squares along each piece
     (its points off the free surface): a Fourier series in the arc length on
     a loop, Legendre polynomials on an open piece, the number of terms of
-    each mode chosen by leave-one-out cross-validation (_loo_fit) up to one
+    each mode chosen by leave-one-out cross-validation (front_fit.loo_fit) up to one
     per SMOOTH_POINTS points; the fit at every point. K along an ellipse b/a
     = 0.5 needs the harmonics 0, 2, 4 (K_I from 0.73 to 1.03 of its
     largest, the fourth harmonic 1 % of it) where a penny's needs the mean
@@ -412,26 +401,61 @@ def smooth_along(rows: list[dict], values: np.ndarray, level: Level) -> np.ndarr
     four points (one harmonic on 19 points) left the ellipse's variation in
     the estimate (12-36 % of the K scale for errors of 0.1-1.2 %)."""
     out = np.array(values, dtype=float)
+    for idx, use, basis, sizes in _piece_bases(rows, level, 3):
+        out[idx] = loo_fit(basis, use, values[idx], sizes)[0]
+    return out
+
+
+def _piece_bases(rows: list[dict], level: Level, fewest: int):
+    """Per front piece of rows with at least `fewest` points off the free
+    surface: its rows' indices, which of them are off the free surface, the
+    fit basis at them (front_fit.piece_basis, at most one term per
+    SMOOTH_POINTS of those points) and the fit sizes to try."""
     keys = [(r["crack"], r["piece"]) for r in rows]
-    for key in set(keys):
+    for key in sorted(set(keys)):
         idx = np.array([i for i, k in enumerate(keys) if k == key])
         s = np.array([rows[i]["s"] for i in idx], dtype=float)
         use = ~np.array([bool(rows[i].get("free_surface")) for i in idx])
         n = int(use.sum())
-        if n < 3:
+        if n < fewest:
             continue
-        terms = max(2, n // SMOOTH_POINTS)
-        if level.closed.get(key, False):
-            t = 2.0 * math.pi * s / level.lengths[key]
-            M = max(1, (terms - 1) // 2)
-            basis = np.column_stack([np.ones_like(t)] + [f(k * t) for k in range(1, M + 1)
-                                                          for f in (np.cos, np.sin)])
-        else:
-            t = 2.0 * (s - s.min()) / max(float(np.ptp(s)), 1e-300) - 1.0
-            basis = np.polynomial.legendre.legvander(t, terms - 1)
-        sizes = range(1, basis.shape[1] + 1, 2 if level.closed.get(key, False) else 1)  # whole harmonics
-        out[idx] = _loo_fit(basis, use, values[idx], sizes)
-    return out
+        basis, sizes = piece_basis(s, level.closed.get(key, False), level.lengths.get(key, 1.0),
+                                   max(2, n // SMOOTH_POINTS))
+        yield idx, use, basis, sizes
+
+
+def fitted_along(rows: list[dict], K: np.ndarray, of: int, other: int, level: Level
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The fit of K along each front piece (Options.sif_smoothing = "fit"):
+    K (levels, n, modes) of every mesh at the points of level `of`; per
+    piece and mode, the fit of K[of] (front_fit.loo_fit: Fourier or
+    Legendre, at most one term per SMOOTH_POINTS points, the size by
+    leave-one-out) that passes the check against K[other] (the adjacent
+    mesh: the two residuals scatter, they do not share a shape). Returns
+    (every mesh's K projected on that fit's basis, the mode unchanged where
+    no fit passed; the number of terms (n, modes), 0: not fitted; the fit's
+    standard deviation from the scatter (n, modes), NaN where not fitted).
+    Points on a free surface are not fitted and keep their K, nor are
+    pieces with an end on a symmetry plane (K_III and the mirror's odd
+    modes vanish there, which a Legendre fit would not keep: a quarter
+    ellipse's K_III at its ends went from 0 to 3e-5)."""
+    out = np.array(K, dtype=float)
+    terms = np.zeros(K.shape[1:], dtype=int)
+    spread = np.full(K.shape[1:], np.nan)
+    for idx, use, basis, sizes in _piece_bases(rows, level, 2 * SMOOTH_POINTS):
+        if any(rows[i].get("symmetry") is not None for i in idx):
+            continue  # an end on a symmetry plane: K_III = 0 there by the mirror, which the basis does not keep
+        _, chosen = loo_fit(basis, use, K[of][idx], sizes, other=K[other][idx])
+        for m, k in enumerate(chosen):
+            if k == 0:
+                continue
+            B = basis[use, :k]
+            coef = np.linalg.lstsq(B, K[:, idx[use], m].T, rcond=None)[0]          # (k, levels)
+            fitted = (basis[:, :k] @ coef).T                                     # (levels, piece points)
+            out[:, idx[use], m] = fitted[:, use]
+            terms[idx[use], m] = k
+        spread[idx[use]] = fit_spread(basis, use, K[of][idx], chosen)[use]
+    return out, terms, spread
 
 
 def _front_rate(dS: list[np.ndarray], factors: np.ndarray) -> float | None:
@@ -453,7 +477,8 @@ def _front_rate(dS: list[np.ndarray], factors: np.ndarray) -> float | None:
     return float(min(max(min(rates), RATE_MIN), RATE_MAX))
 
 
-def estimate(levels: list[Level], of: int = -1) -> dict[tuple[int, int, int], dict[str, typing.Any]]:
+def estimate(levels: list[Level], of: int = -1, smooth: bool = False
+             ) -> dict[tuple[int, int, int], dict[str, typing.Any]]:
     """Per (state, crack, point) of level `of` (levels from coarse to fine;
     by default the finest): the estimated error of each K, the rate used
     (None: not observed, ASSUMED_RATE), K on every level at that point and
@@ -464,7 +489,15 @@ def estimate(levels: list[Level], of: int = -1) -> dict[tuple[int, int, int], di
     (smooth_along), plus the scatter (the smaller of K's about its own fit
     and of the difference from the adjacent mesh about its fit; the largest
     within NEIGHBOURS points): the scatter is not amplified by 1 / (ratio^p
-    - 1) as the differences of two scattered K would be."""
+    - 1) as the differences of two scattered K would be.
+
+    smooth (Options.sif_smoothing = "fit"): along a front, K of level `of`
+    is also fitted along each piece (fitted_along), reported as
+    <mode>_smoothed where a fit passed (None elsewhere), and its error is the
+    same fit of every mesh's K: its difference from the next coarser mesh's
+    over (ratio^p - 1), plus its difference from the finest's, plus
+    FIT_SPREAD standard deviations of the fit from the scatter; modes no
+    fit passed keep the estimate above."""
     mine = levels[of]
     factors = np.array([lv.size_factor for lv in levels])
     ratio = factors[-2] / factors[-1]
@@ -490,12 +523,20 @@ def estimate(levels: list[Level], of: int = -1) -> dict[tuple[int, int, int], di
                                                    np.abs(K[of] - smooth_along(rows, K[of], mine))), rows, mine.closed)
                 to_finest = smooth_along(rows, K[-1] - K[of], mine) if mine is not levels[-1] else 0.0 * D
                 err = np.abs(dS[-1]) * factor + np.abs(to_finest) + scatter
+                terms, raw = np.zeros(err.shape, dtype=int), err
+                if smooth:
+                    F, terms, spread = fitted_along(rows, K, of, nxt, mine)
+                    fit_err = np.abs(F[-1] - F[-2]) * factor + np.abs(F[-1] - F[of]) + FIT_SPREAD * spread
+                    err = np.where(terms > 0, fit_err, err)
             for i, r in enumerate(rows):
                 row: dict[str, typing.Any] = {}
                 for m, mode in enumerate(modes):
                     if mine.front:
                         row[f"{mode}_error"] = float(err[i, m])
                         row[f"{mode}_extrapolated"] = None
+                        if smooth:
+                            row[f"{mode}_smoothed"] = float(F[of, i, m]) if terms[i, m] > 0 else None
+                            row[f"{mode}_error_unsmoothed"] = float(raw[i, m])
                     else:
                         observed = _rate(K[rated, i, m], factors[rated])
                         p = ASSUMED_RATE if observed is None else observed
@@ -562,7 +603,20 @@ def _meshes(levels: list[Level]) -> str:
             f"element sizes times 1 .. {f[-1]:.3g} within {REGION_ELEMENTS:g} element sizes of each tip")
 
 
-def _method(levels: list[Level], of: int) -> str:
+def _smooth(scene: Scene) -> bool:
+    """Whether K along 3D fronts is reported fitted (Options.sif_smoothing)."""
+    return getattr(scene.options, "sif_smoothing", "none") == "fit"
+
+
+def _method(levels: list[Level], of: int, smooth: bool = False) -> str:
+    if levels[-1].front and smooth:
+        return ("similar meshes (every size setting times " + ", ".join(f"{lv.size_factor:.3g}" for lv in levels)
+                + "); K reported fitted along each front piece (Fourier or Legendre, the size by leave-one-out, "
+                "checked against the other mesh's K; options.sif_smoothing = \"fit\") where a fit passed: its error "
+                "is the same fit's difference between the meshes over ratio^p - 1 plus "
+                f"{FIT_SPREAD:g} standard deviation(s) of the fit; elsewhere the least-squares fit along the front "
+                "of the difference over ratio^p - 1 plus the scatter; p observed over three meshes "
+                f"(times a safety factor {SAFETY:g}), else {ASSUMED_RATE:g} (an upper bound for p >= 1)")
     if levels[-1].front:
         return ("similar meshes (every size setting times " + ", ".join(f"{lv.size_factor:.3g}" for lv in levels)
                 + "); the error of the finest K is the least-squares fit along the front of its difference from "
@@ -618,7 +672,8 @@ def estimate_error(scene: Scene, solution, solve_once: Solver) -> dict[str, typi
         regions = tip_regions(solution)
         _, aux = _solve_timed(solve_once, refined_scene(scene, regions, 1), 0.5)
         levels, of = [base, aux], 0
-    summary = _attach(solution, levels, estimate(levels, of), None, _method(levels, of), of)
+    smooth = _smooth(scene)
+    summary = _attach(solution, levels, estimate(levels, of, smooth), None, _method(levels, of, smooth), of)
     logger.info("error estimate: %d dofs (%.2f s); largest estimated error %.3g %% of the K scale", aux.dofs,
                 aux.seconds, 100 * summary["largest_relative_error"])
     return summary
@@ -639,7 +694,8 @@ def solve_to_accuracy(scene: Scene, accuracy: float, max_levels: int, solve_once
     if base.front and fine_front(scene):  # (a coarse front: straight to the finer meshes)
         _, coarse = _solve_timed(solve_once, similar_scene(scene, RHO), RHO)
         levels.insert(0, coarse)
-        summary = _attach(sol, levels, estimate(levels), accuracy, _method(levels, -1))
+        summary = _attach(sol, levels, estimate(levels, smooth=_smooth(scene)), accuracy,
+                          _method(levels, -1, _smooth(scene)))
         logger.info("accuracy: the scene's mesh, %d dofs, largest estimated error %.3g %% (target %.3g %%)",
                     base.dofs, 100 * summary["largest_relative_error"], 100 * accuracy)
         if summary["reached"]:
@@ -655,7 +711,8 @@ def solve_to_accuracy(scene: Scene, accuracy: float, max_levels: int, solve_once
             finer = refined_scene(scene, regions, level)
         sol, lv = _solve_timed(solve_once, finer, factor)
         levels.append(lv)
-        summary = _attach(sol, levels, estimate(levels), accuracy, _method(levels, -1))
+        summary = _attach(sol, levels, estimate(levels, smooth=_smooth(scene)), accuracy,
+                          _method(levels, -1, _smooth(scene)))
         logger.info("accuracy: level %d (sizes x %.3g), %d dofs (%.2f s), largest estimated error %.3g %% "
                     "(target %.3g %%)", level, factor, lv.dofs, lv.seconds, 100 * summary["largest_relative_error"],
                     100 * accuracy)

@@ -285,6 +285,11 @@ def front_summary(rows, estimate, units) -> list[str]:
     for c in sorted({r["crack"] for r in rows}):
         mine = [r for r in rows if r["crack"] == c]
         out.append(f"  {mine[0]['crack_name']}: K along its front at {len(mine)} points")
+        fitted = [m for m in ("K_I", "K_II", "K_III")
+                  if any(r.get(f"{m}_unsmoothed") is not None and r[m] != r[f"{m}_unsmoothed"] for r in mine)]
+        if fitted:
+            out.append(f"    {', '.join(fitted)} fitted along the front (options.sif_smoothing = \"fit\"; as computed: "
+                       "results.json's K_I_unsmoothed ...)")
 
         def where(r) -> str:
             angle = ("" if r["parametric_angle"] is None else

@@ -11,6 +11,7 @@ schema.
 from __future__ import annotations
 
 import dataclasses
+import math
 import typing
 
 import numpy as np
@@ -379,7 +380,27 @@ class Solution:
                 r[f"{mode}_error"] = point[f"{mode}_error"]
                 r[f"{mode}_extrapolated"] = point[f"{mode}_extrapolated"]
                 r[f"{mode}_levels"] = list(point[f"{mode}_levels"])
+            if point is not None and any(point.get(f"{m}_smoothed") is not None for m in ("K_I", "K_II", "K_III")):
+                self._fitted(r, point)
         return complete_rows(rows)
+
+    def _fitted(self, row: dict[str, typing.Any], point: dict[str, typing.Any]) -> None:
+        """A front point's K replaced by its fit along the front where the
+        estimate made one (Options.sif_smoothing = "fit"), the computed K
+        kept as K_I_unsmoothed ... and its own estimate (the one without the
+        fit) as K_I_error_unsmoothed ...; G and the mode mix from the fitted
+        K."""
+        for mode in ("K_I", "K_II", "K_III"):
+            row[f"{mode}_unsmoothed"] = row[mode]
+            row[f"{mode}_error_unsmoothed"] = point.get(f"{mode}_error_unsmoothed")
+            if point.get(f"{mode}_smoothed") is not None:
+                row[mode] = point[f"{mode}_smoothed"]
+        mat = self.model.scene.material
+        Ep, mu = mat.E / (1 - mat.nu ** 2), mat.E / (2 * (1 + mat.nu))
+        kI, kII, kIII = row["K_I"], row["K_II"], row["K_III"]
+        row["G"] = (kI ** 2 + kII ** 2) / Ep + kIII ** 2 / (2 * mu)
+        if row.get("mode_mix_deg") is not None:
+            row["mode_mix_deg"] = math.degrees(math.atan2(math.hypot(kII, kIII), kI))
 
     def reactions(self) -> dict[str, typing.Any]:
         """Reaction forces per Dirichlet condition and point support, their

@@ -23,6 +23,9 @@ TIP_QUADRATURES = ("collapsed", "gauss")
 
 SOLVERS = ("auto", "direct", "iterative")
 
+#: Options.sif_smoothing: K along 3D fronts as computed, or fitted along them.
+SIF_SMOOTHINGS = ("none", "fit")
+
 
 def check_ring(ring, what: str = "ring") -> tuple[float, float]:
     """A SIF ring (r_in, r_out) as two floats with 0 <= r_in <= r_out, r_out > 0."""
@@ -116,6 +119,13 @@ class Options:
             level, are solved until the estimate is below it
             (cracklip.analysis.accuracy); a warning if not reached.
         accuracy_levels: at most this many refinement levels for accuracy.
+        sif_smoothing: 3D: "fit" (default) or "none" (K as computed at every
+            front point). "fit": with the error estimate (or accuracy), K reported as its
+            least-squares fit along each front piece (Fourier on a loop,
+            Legendre on an open piece, the size by leave-one-out, checked
+            against the estimate's second mesh; a mode no fit passes is
+            reported as computed), its error estimated from the same fit on
+            both meshes (cracklip.analysis.accuracy.fitted_along).
     """
     enrichment: str = "vector"
     radius: float = 0.0
@@ -146,6 +156,7 @@ class Options:
     solver: str = "auto"
     accuracy: float = 0.0
     accuracy_levels: int = 3
+    sif_smoothing: str = "fit"
 
     def __post_init__(self):
         if self.enrichment not in ENRICHMENTS:
@@ -156,6 +167,8 @@ class Options:
             raise InputError(f"contact must be 'none', 'bilateral' or 'unilateral', got {self.contact!r}")
         if self.rescale not in ("none", "nodal"):
             raise InputError(f"rescale must be 'none' or 'nodal', got {self.rescale!r}")
+        if self.sif_smoothing not in SIF_SMOOTHINGS:
+            raise InputError(f"sif_smoothing must be one of {SIF_SMOOTHINGS}, got {self.sif_smoothing!r}")
         if self.solver not in SOLVERS:
             raise InputError(f"solver must be one of {SOLVERS}, got {self.solver!r}")
         if self.multipliers not in ("stable", "naive"):

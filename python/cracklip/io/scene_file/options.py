@@ -7,7 +7,7 @@ from __future__ import annotations
 import dataclasses
 import typing
 
-from ...scene.options import ENRICHMENTS, Options, SOLVERS, TIP_QUADRATURES
+from ...scene.options import ENRICHMENTS, Options, SIF_SMOOTHINGS, SOLVERS, TIP_QUADRATURES
 from .schema import (UNSET, Key, docstring_attributes, p_bool, p_choice, p_float, p_int, p_number_list,
                      p_numbers, p_str)
 
@@ -63,6 +63,11 @@ _OPTION_MEANINGS = {
                 "meshes, the estimate and (2D) the extrapolated K; warns if not reached (docs/guide.md)",
     "accuracy_levels": "at most this many refinement levels for options.accuracy (each about 4 (2D) or 2.8 (3D) "
                        "times the cells of the one before)",
+    "sif_smoothing": "3D: `fit` or `none` (K as computed at every front point). `fit`: with the error estimate (or accuracy), "
+                     "K reported as its least-squares fit along each front piece (Fourier / Legendre, the size by "
+                     "leave-one-out, checked against the estimate's second mesh; a mode no fit passes stays as "
+                     "computed; the computed K kept as K_I_unsmoothed ...); the estimate then follows the fitted K "
+                     "(docs/guide.md)",
     "solver": "linear solver: `direct` (MUMPS LDL^T), `iterative` (AMG in a phantom-node basis with a "
               "direct solve of the crack band; same checked accuracy) or `auto` (iterative from 5e4 "
               "dofs when 1-5 % of them are enriched and from 2e6 dofs always, else direct: the faster one as "
@@ -74,7 +79,7 @@ _OPTION_CHOICES = {
     "enrichment": ENRICHMENTS, "blending": ("corrected", "standard"), "quadrature": TIP_QUADRATURES,
     "contact": ("none", "bilateral", "unilateral"), "multipliers": ("stable", "naive"),
     "active_set_start": ("closed", "open"), "rescale": ("none", "nodal"),
-    "solver": SOLVERS,
+    "solver": SOLVERS, "sif_smoothing": SIF_SMOOTHINGS,
 }
 
 
