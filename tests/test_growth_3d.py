@@ -317,3 +317,41 @@ def test_combined_solution_takes_k_from_its_parts():
     assert [w.message for w in combined.warnings] == [w.message for w in direct.warnings]
     # The parts' passes are kept: the single part's own K is returned unchanged (copies).
     assert sol.stress_intensity_factors(None)[0]["K_I"] == pytest.approx(0.5 * a[0]["K_I"], rel=1e-12)
+
+
+def test_turned_over_strip_retries_with_half_the_increment(monkeypatch):
+    """A step whose strip turns over is retried with the increment halved
+    (SurfaceGrowth._extend) instead of ending the run: here a strip 'turns
+    over' beyond an advance of 0.06 (GrowingSurface.extend wrapped); a
+    penny advanced by 0.1 takes 0.5 of it (radius 1.05, one warning), and
+    after TURNED_OVER_HALVINGS halvings the run stops on the error, saying so;
+    the surface is unchanged by the failed tries."""
+    import types
+
+    from cracklip.analysis import front_growth
+    from cracklip.scene import surface_growth
+    original = surface_growth.GrowingSurface.extend
+    limit = {"da": 0.06}
+
+    def extend(self, chains, new):
+        if np.linalg.norm(new[0], axis=1).max() - 1.0 > limit["da"]:
+            raise surface_growth.StripTurnedOver("crack: the grown strip turned over (test)")
+        return original(self, chains, new)
+    monkeypatch.setattr(surface_growth.GrowingSurface, "extend", extend)
+    g = GrowingSurface.from_crack(EllipticalCrack((0, 0, 0), (0, 0, 1), 1.0, axis=(1, 0, 0)), 0.05)
+    run = types.SimpleNamespace(surfaces=[g], warnings=[], k=3, spacing=0.05, margin=0.2, inside=_everywhere)
+    run._new_fronts = types.MethodType(front_growth.SurfaceGrowth._new_fronts, run)
+    chains = g.chains(_everywhere, 0.2)
+    moves = [(g.loop_points[chains[0].positions], 0.1 * g.outward()[0][chains[0].positions])]
+    plans = [(0, g, chains, moves)]
+    news = {0: run._new_fronts(chains, moves, 1.0)}
+    assert front_growth.SurfaceGrowth._extend(run, plans, news) == 0.5
+    assert np.abs(np.linalg.norm(run.surfaces[0].loop_points, axis=1) - 1.05).max() < 1e-7
+    assert len(run.warnings) == 1 and "step 3" in run.warnings[0] and "took 0.5 of it" in run.warnings[0]
+    limit["da"] = 1e-3
+    g2 = run.surfaces[0]
+    chains = g2.chains(_everywhere, 0.2)
+    moves = [(g2.loop_points[chains[0].positions], 0.1 * g2.outward()[0][chains[0].positions])]
+    with pytest.raises(surface_growth.StripTurnedOver, match="halved 4 times"):
+        front_growth.SurfaceGrowth._extend(run, [(0, g2, chains, moves)], {0: run._new_fronts(chains, moves, 1.0)})
+    assert run.surfaces[0] is g2 and np.abs(np.linalg.norm(g2.loop_points, axis=1) - 1.05).max() < 1e-7

@@ -43,6 +43,7 @@ start, a warning names the point and the size needed.
 """
 from __future__ import annotations
 
+import copy
 import dataclasses
 import logging
 import math
@@ -54,7 +55,7 @@ from ..errors import InputError
 from ..fracture.kink import equivalent_k_3d, kink_twist_3d
 from ..scene.growth import Growth
 from ..scene.scene import Scene
-from ..scene.surface_growth import GrowingSurface, extend_ends, front_exit, resample, smooth
+from ..scene.surface_growth import GrowingSurface, StripTurnedOver, extend_ends, front_exit, resample, smooth
 from .growth_run import GrowthRun
 from .tips import FrontRecord, Measured
 
@@ -76,6 +77,11 @@ RESOLUTION_FACTOR = 1.5
 
 #: Smoothing sweeps of the advanced front's displacements (surface_growth.smooth).
 SMOOTHING_PASSES = 1
+
+#: A step whose grown strip turns over (its triangles face the other way:
+#: the increment too large for the front's curvature) is retried with the
+#: increment halved, at most this many times, before the run stops on it.
+TURNED_OVER_HALVINGS = 4
 
 
 def life_growth(scene: Scene, growth: Growth) -> Growth:
@@ -420,10 +426,41 @@ class SurfaceGrowth(GrowthRun):
                     lo = mid
             self._break(m, notes[0], hi)
             return
-        for ci, surf, chains, _ in plans:
-            surf.extend(chains, news[ci])
+        scale = self._extend(plans, news)
+        if scale < 1.0:
+            da = {q: scale * v for q, v in da.items()}
+            for r in m.records:
+                r.da *= scale
+            for q, x in self.advanced_to.items():
+                x0 = np.array([m.levels[q].x, m.levels[q].y, m.levels[q].z])
+                self.advanced_to[q] = x0 + scale * (x - x0)
         self.cracks = [s.crack for s in self.surfaces]
         self.life.advanced(m, {q: v for q, v in da.items() if v > 0.0})
+
+    def _extend(self, plans, news) -> float:
+        """Extend every crack's surface by its new fronts; where a grown strip
+        turns over, every crack's increment is halved and the step retried
+        (TURNED_OVER_HALVINGS times at most, warned): the fraction of the
+        increment taken."""
+        t = 1.0
+        for halving in range(TURNED_OVER_HALVINGS + 1):
+            trials = [copy.deepcopy(surf) for _, surf, _, _ in plans]
+            try:
+                for trial, (ci, _, chains, _) in zip(trials, plans):
+                    trial.extend(chains, news[ci])
+            except StripTurnedOver as e:
+                if halving == TURNED_OVER_HALVINGS:
+                    raise StripTurnedOver(f"{e} (also with the increment halved {halving} times)") from e
+                t *= 0.5
+                news = {ci: self._new_fronts(chains, moves, t) for ci, _, chains, moves in plans}
+                continue
+            for trial, (ci, _, _, _) in zip(trials, plans):
+                self.surfaces[ci] = trial
+            if t < 1.0:
+                self.warnings.append(f"step {self.k}: the grown strip turned over at the full increment (too large "
+                                     f"for the front's curvature); the step took {t:g} of it")
+            return t
+        raise AssertionError("unreachable")
 
     def _new_fronts(self, chains, moves, t: float) -> list[np.ndarray]:
         """Each chain's new polyline with its displacements scaled by t:

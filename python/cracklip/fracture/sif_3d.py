@@ -145,6 +145,20 @@ FIT_ELEMENTS = 4.0
 #: curvature (from the mesh's front polyline).
 FIT_CURVATURE = 0.5
 
+#: The fit assumes a smooth surface. Where a grown surface is kinked within
+#: the fit's reach (a strip that kinked by 30 degrees next to a free-surface
+#: end, the next one back in plane) the quadric cannot follow it: on the
+#: surface crack a/c0 = 1 grown to a/t = 0.24 on a mesh of a/8 it turned the
+#: normal by 90-127 degrees from the mesh's (kappa_11 up to 9e3 against an
+#: element size of 0.035), e1 pointed into the crack, int q (e1 . d) ds came
+#: out negative and the run broke off. Where the fitted normal departs from
+#: the mesh's (the level sets' gradient in the front's cell) by more than
+#: FIT_TURN degrees, the vertex keeps the mesh's frame and the polyline's
+#: kappa_f (the surface's curvatures 0), as an elliptical crack's front does,
+#: with a warning. On that front the fit's turn was below 10 degrees at the
+#: 78 smooth vertices, 23-127 at the 24 in the kinked part.
+FIT_TURN = 15.0
+
 #: Spread above this fraction of the K scale is warned about.
 SPREAD_WARNING = 0.01
 
@@ -315,7 +329,8 @@ class Front:
     planar crack), segment sizes (m,) (mean edge of the segment's cell);
     fitted: the frames and curvatures come from the smooth fit of a
     triangulated surface (SurfaceCrack.front_geometry), not from the
-    geometry's frames."""
+    geometry's frames; unfitted, fit_turn: where the fit was not kept
+    (FIT_TURN)."""
     x: np.ndarray
     s: np.ndarray
     frame: np.ndarray
@@ -330,6 +345,10 @@ class Front:
     on_boundary: np.ndarray
     curvatures: np.ndarray | None = None
     fitted: bool = False
+    #: (n,) bool: a fitted front's vertices where the fit was not kept (FIT_TURN), and (n,) the fit's turn
+    #: of the normal from the mesh's in degrees (None unfitted)
+    unfitted: np.ndarray | None = None
+    fit_turn: np.ndarray | None = None
 
     def __post_init__(self):
         if self.curvatures is None:
@@ -395,9 +414,16 @@ def crack_front(model, crack: int) -> Front:
             if kmax > 0.0:
                 reach[i] = min(reach[i], FIT_CURVATURE / kmax)
         fit = surface.front_geometry(x, frame, reach)
-        k = fit["curvatures"]
-        out = Front(x, s, fit["frame"], piece, off, closed, length, segs, scell, ssize, k[:, 0].copy(), on_boundary,
-                    k, True)
+        fframe, k = fit["frame"], fit["curvatures"]
+        turn = np.degrees(np.arccos(np.clip(np.einsum("ni,ni->n", fframe[:, 1], frame[:, 1]), -1.0, 1.0)))
+        kinked = turn > FIT_TURN
+        if np.any(kinked):
+            fframe, k = fframe.copy(), k.copy()
+            fframe[kinked] = frame[kinked]
+            k[kinked] = 0.0
+            k[kinked, 0] = curv[kinked]
+        out = Front(x, s, fframe, piece, off, closed, length, segs, scell, ssize, k[:, 0].copy(), on_boundary,
+                    k, True, kinked, turn)
     else:
         out = Front(x, s, frame, piece, off, closed, length, segs, scell, ssize, curv, on_boundary)
     c[crack] = out
@@ -570,6 +596,13 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
         return []
     name = model.cracks[crack].crack.name
     st, _, notes = _stations(model, crack, spacing)
+    if fr.unfitted is not None and np.any(fr.unfitted):
+        bad = np.flatnonzero(fr.unfitted)
+        notes = notes + [
+            f"crack {name!r}: the triangulated surface is kinked near {len(bad)} front vertices (arc lengths "
+            f"{fr.s[bad].min():.4g} .. {fr.s[bad].max():.4g}): a smooth fit through it turned the normal by up to "
+            f"{fr.fit_turn[bad].max():.0f} degrees from the mesh's there (more than {FIT_TURN:g}); those vertices "
+            "keep the mesh's frame and the front's own curvature, the surface's curvatures taken as 0"]
     xs = np.array([_point_at(fr, d["piece"], d["s"]) for d in st])
     pr = project(model, crack, xs)
     # The front's own segments within each hat: element size and curvature.
@@ -920,7 +953,11 @@ def _crack_front_sifs(solution, crack: int, radius: float | None = None) -> tupl
     for i, fp in enumerate(fps):
         Q1, Q2 = _front_normalisation(m, fr, fp, lambda cn, i=i: np.where(
             (tube_index[cn] >= 0)[:, :, None], qn[i][np.maximum(tube_index[cn], 0)], 0.0))
-        if np.any(Q1 <= 0.0):
+        if np.any(Q1 < 0.0):
+            raise InputError(f"front point {fp.index} of crack {crk.name!r} at {fp.x.round(6).tolist()}: its "
+                             "direction of propagation e1 points against the front's within its hat (int q e1 . "
+                             f"e1_point ds = {float(Q1.min()):.3g} < 0): the front's frames there are inconsistent")
+        if np.any(Q1 == 0.0):
             raise InputError(f"front point {fp.index} of crack {crk.name!r}: its q-function vanishes along the "
                              "front (no mesh node within its hat); use a larger spacing")
         K[i] = _cracklip.front_sifs_3d(E, nu, I[i], Q1, Q2)

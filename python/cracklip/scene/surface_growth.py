@@ -43,6 +43,12 @@ from .crack_surface import EllipticalCrack, PolygonCrack, SurfaceCrack
 Inside = typing.Callable[[np.ndarray], np.ndarray]
 
 
+class StripTurnedOver(CrackGeometryError):
+    """A grown strip's triangles face the other way (``extend``): the
+    increment is too large for the front's curvature; the caller may retry
+    with a smaller one (the surface is left unchanged)."""
+
+
 @dataclasses.dataclass
 class Chain:
     """Loop positions (indices into GrowingSurface.loop, in loop order) of a
@@ -243,7 +249,7 @@ class GrowingSurface:
             old_n = _mean_normal(verts, self.triangles[[i for i in _boundary_triangles(self.triangles, loop)]])
             nn = np.cross(verts[new_tris[:, 1]] - verts[new_tris[:, 0]], verts[new_tris[:, 2]] - verts[new_tris[:, 0]])
             if float(np.einsum("ij,j->i", nn, old_n).sum()) < 0.0:
-                raise CrackGeometryError(f"{self.name}: the grown strip turned over (its triangles face the other "
+                raise StripTurnedOver(f"{self.name}: the grown strip turned over (its triangles face the other "
                                          "way): the increment is too large for the front's curvature")
         self.vertices = verts
         self.triangles = np.concatenate([self.triangles, new_tris]).astype(np.int32)
