@@ -402,6 +402,10 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
 
     t0 = time.perf_counter()
     cracks = [cm.crack for cm in m.cracks]
+    if not writes_files(m):  # under mpirun rank 0 writes the files (every process computed their content)
+        files += m.V.mesh.comm.bcast(None, root=0)
+        return {"cracks": crack_stats, "steps": _surface_steps(solution, samples, facets, sifs, cfg, law, gap_tol)}
+    written = len(files)
     write_csv(out / "crack_opening.csv", ["crack", "facet", "vertex", "x", "y", "z", "p1", "p2", "weight", "gap",
                                            "slip", "jump_x", "jump_y", "jump_z"], opening_rows(cracks, fine))
     files.append("crack_opening.csv")
@@ -409,23 +413,31 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
         write_csv(out / "front.csv", FRONT_COLUMNS, front_csv_rows(sifs))
         files.append("front.csv")
     timings["write_csv"] = time.perf_counter() - t0
+    if cfg["vtu"] and m.distributed:  # (the sub-tetrahedral field is one process's part there)
+        logger.info("under mpirun solution.vtu of a 3D part is not written yet: run without mpirun for it")
     if cfg["vtu"]:
         t0 = time.perf_counter()
-        fields = solution.subcell_fields()
-        check_finite("the sub-tetrahedral fields", fields["displacement"], fields["stress"])
-        timings["subcell_fields"] = time.perf_counter() - t0
-        t0 = time.perf_counter()
-        write_mesh(subcell_mesh(solution, fields), out / "solution.vtu")
-        write_mesh(crack_surface_mesh(facets), out / "crack_surface.vtu")
-        write_mesh(front_mesh(fronts), out / "crack_front.vtu")
-        files += ["solution.vtu", "crack_surface.vtu", "crack_front.vtu"]
+        if m.distributed:
+            write_mesh(crack_surface_mesh(facets), out / "crack_surface.vtu")
+            write_mesh(front_mesh(fronts), out / "crack_front.vtu")
+            files += ["crack_surface.vtu", "crack_front.vtu"]
+        else:
+            fields = solution.subcell_fields()
+            check_finite("the sub-tetrahedral fields", fields["displacement"], fields["stress"])
+            timings["subcell_fields"] = time.perf_counter() - t0
+            t0 = time.perf_counter()
+            write_mesh(subcell_mesh(solution, fields), out / "solution.vtu")
+            write_mesh(crack_surface_mesh(facets), out / "crack_surface.vtu")
+            write_mesh(front_mesh(fronts), out / "crack_front.vtu")
+            files += ["solution.vtu", "crack_surface.vtu", "crack_front.vtu"]
+            logger.info("wrote ParaView files solution.vtu (%d points, %d cells: %d sub-tetrahedra), "
+                        "crack_surface.vtu, crack_front.vtu", len(fields["points"]), len(fields["cells"]),
+                        fields["num_sub"])
         if sifs:
             write_mesh(front_sif_mesh(sifs, lambda c, p: bool(m.cracks[c].geometry.front["closed"][p])),
                        out / "front_sifs.vtu")
             files.append("front_sifs.vtu")
         timings["write_vtu"] = time.perf_counter() - t0
-        logger.info("wrote ParaView files solution.vtu (%d points, %d cells: %d sub-tetrahedra), crack_surface.vtu, "
-                    "crack_front.vtu", len(fields["points"]), len(fields["cells"]), fields["num_sub"])
     if cfg["png"] and cracks:
         t0 = time.perf_counter()
         write_crack_opening_png(cracks, fine, fronts, out / "crack_opening.png", scene_file.title, m.scene.units)
@@ -441,6 +453,15 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
         timings["write_png"] = time.perf_counter() - t0
         logger.info("wrote crack_opening.png" + (", crack_contact.png" if solution.contact else "")
                     + (", front_sifs.png" if sifs else ""))
+    if m.distributed:  # the others' list of files
+        m.V.mesh.comm.bcast(files[written:], root=0)
+    return {"cracks": crack_stats, "steps": _surface_steps(solution, samples, facets, sifs, cfg, law, gap_tol)}
+
+
+def _surface_steps(solution: Solution, samples: list, facets: list, sifs: list, cfg: dict, law: str,
+                   gap_tol: float) -> list | None:
+    """results.json's steps of a 3D load path (None without one)."""
+    m = solution.model
     steps = None
     if solution.steps:
         steps = []
@@ -458,7 +479,7 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
                                                                 "slip_area", "open_area", "slip_max",
                                                                 "interpenetration_max", "pressure")}}
                                      for i, st_ in enumerate(stats)]})
-    return {"cracks": crack_stats, "steps": steps}
+    return steps
 
 
 #: The crack files of each kind of crack end (CrackModel.END): a curve's
