@@ -361,21 +361,26 @@ def test_run_open_crack_same_on_one_and_two_processes(scene, settings, tmp_path)
     assert rows[0][0] == rows[1][0] and len(rows[0]) == len(rows[1])
 
 
-def test_run_3d_open_crack_same_on_one_and_two_processes(tmp_path):
-    """`cracklip run` of the shipped penny crack (small mesh, with the error
+@pytest.mark.parametrize("scene, settings", [
+    ("penny_crack.toml", SMALL_3D),  # a closed front
+    # an open front ending on the free surface (its ends' K from their own domains)
+    ("surface_crack_plate.toml", ["--set", "mesh.h=8.0", "--set", "mesh.tip_h=0.6", "--set", "mesh.crack_h=0.0",
+                                  "--set", "options.radius=1.2"])])
+def test_run_3d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_path):
+    """`cracklip run` of a shipped open 3D crack (small mesh, with the error
     estimate's second mesh) under mpirun -n 2: K along the front equal to
     the serial K to 1e-10 of the K scale (the direct path's target), with
     the same front points; the model's counts, the energy, the crack's
     statistics, front.csv and crack_opening.csv's rows equal; every file
     of the serial run but solution.vtu written once (rank 0). Measured: K
-    to 9e-15 (tip_h 0.5) and 2.3e-14 (tip_h 0.2, 8 front points)."""
-    settings = SMALL_3D
+    to 9e-15 (penny, tip_h 0.5), 2.3e-14 (penny, tip_h 0.2, 8 front
+    points), 5e-14 (surface crack, 7 front points)."""
     out, serial = tmp_path / "mpi", tmp_path / "serial"
-    p = mpirun("run", str(SCENES / "penny_crack.toml"), *settings, "--out", str(out))
+    p = mpirun("run", str(SCENES / scene), *settings, "--out", str(out))
     assert_clean(p, 0)
     assert p.stdout.count("results in ") == 1, p.stdout
     assert p.stderr.count("solution.vtu of a 3D part is not written yet") == 1, p.stderr
-    s = _run_serial("run", str(SCENES / "penny_crack.toml"), *settings, "--out", str(serial), "-q")
+    s = _run_serial("run", str(SCENES / scene), *settings, "--out", str(serial), "-q")
     assert s.returncode == 0, s.stderr
     a, b = (json.loads((d / "results.json").read_text()) for d in (serial, out))
     assert b["parallel"]["processes"] == 2
@@ -404,6 +409,21 @@ def test_run_3d_open_crack_same_on_one_and_two_processes(tmp_path):
     for f in ("front.csv", "crack_opening.csv"):
         rows = [(d / f).read_text().splitlines() for d in (serial, out)]
         assert rows[0][0] == rows[1][0] and len(rows[0]) == len(rows[1]), f
+
+
+def test_check_3d_open_crack_same_on_one_and_two_processes():
+    """`cracklip check` of the penny under mpirun -n 2: the 3D model's summary
+    (counts, front, front element sizes, crack area, quadrature) and its
+    warnings equal to serial (snapped_nodes, a per-process count, null)."""
+    args = ["check", str(SCENES / "penny_crack.toml"), *SMALL_3D]
+    p = mpirun(*args, "--json")
+    assert_clean(p, 0)
+    s = _run_serial(*args, "--json")
+    assert s.returncode == 0, s.stderr
+    a, b = json.loads(s.stdout), json.loads(p.stdout)
+    assert [c.pop("snapped_nodes") for c in b["model"]["cracks"]] == [None]
+    a["model"]["cracks"][0].pop("snapped_nodes")
+    assert _same(a, b, 1e-12), (a, b)
 
 
 def test_check_open_crack_same_on_one_and_two_processes():
