@@ -411,6 +411,28 @@ def test_run_3d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_pa
         assert rows[0][0] == rows[1][0] and len(rows[0]) == len(rows[1]), f
 
 
+def test_3d_crack_in_one_corner_and_outside(tmp_path):
+    """A small penny near the top face (most likely on one process's cells
+    only; the other's part holds none of it) gives the serial K; a penny
+    outside the part is one error, printed once, on every process (exit 2)."""
+    small = [*SMALL_3D, "--set", "cracks[0].ellipse.center=[0.0,0.0,3.5]", "--set", "cracks[0].ellipse.a=0.2",
+             "--no-estimate"]
+    out, serial = tmp_path / "mpi", tmp_path / "serial"
+    p = mpirun("run", str(SCENES / "penny_crack.toml"), *small, "--out", str(out))
+    assert_clean(p, 0)
+    s = _run_serial("run", str(SCENES / "penny_crack.toml"), *small, "--out", str(serial), "-q")
+    assert s.returncode == 0, s.stderr
+    a, b = (json.loads((d / "results.json").read_text())["sifs"] for d in (serial, out))
+    scale = max(abs(r[k]) for r in a for k in ("K_I", "K_II", "K_III"))
+    assert len(a) == len(b) > 0
+    assert max(_relative(ra[k], rb[k], scale) for ra, rb in zip(a, b) for k in ("K_I", "K_II", "K_III")) <= 1e-10
+    p = mpirun("run", str(SCENES / "penny_crack.toml"), *SMALL_3D, "--set", "cracks[0].ellipse.center=[0.0,0.0,30]",
+               "--out", str(tmp_path / "outside"))
+    assert_clean(p, 2)
+    errors = [line for line in p.stderr.splitlines() if line.startswith("cracklip: error:")]
+    assert len(errors) == 1 and "no cell of the mesh is cut by the crack" in errors[0], p.stderr
+
+
 def test_check_3d_open_crack_same_on_one_and_two_processes():
     """`cracklip check` of the penny under mpirun -n 2: the 3D model's summary
     (counts, front, front element sizes, crack area, quadrature) and its

@@ -378,7 +378,7 @@ private:
 
 CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<const std::int32_t> cells,
                                           std::span<const double> phi, std::span<const double> psi, double snap_tol,
-                                          std::span<const std::int64_t> node_keys)
+                                          std::span<const std::int64_t> node_keys, bool require_crack)
 {
   if (x.size() % 3 != 0 or cells.size() % 4 != 0)
     throw std::invalid_argument("compute_crack_geometry_3d: x must be (n, 3) and cells (m, 4)");
@@ -504,7 +504,7 @@ CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<c
     g.crack_cells.push_back(std::move(cc));
   }
 
-  if (g.crack_cells.empty())
+  if (g.crack_cells.empty() and require_crack)
   {
     std::array<double, 6> box = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                                  std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
@@ -553,13 +553,13 @@ void surface_frames(CrackFront3D& f, const CrackSurface3D& surface)
 
 CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<const std::int32_t> cells,
                                           const CrackSurface3D& surface, double snap_tol,
-                                          std::span<const std::int64_t> node_keys)
+                                          std::span<const std::int64_t> node_keys, bool require_crack)
 {
   const LevelSets3D ls = compute_level_sets_3d(x, surface);
   CrackGeometry3D g;
   try
   {
-    g = compute_crack_geometry_3d(x, cells, ls.phi, ls.psi, snap_tol, node_keys);
+    g = compute_crack_geometry_3d(x, cells, ls.phi, ls.psi, snap_tol, node_keys, require_crack);
   }
   catch (const CrackOutsideMesh& e)
   {

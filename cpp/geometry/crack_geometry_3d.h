@@ -135,10 +135,12 @@ public:
 /// empty: the node indices): the order in which each cell's vertices are
 /// cut, which decides its sub-tetrahedra; a numbering independent of the
 /// local one (the mesh's input node indices) gives the same sub-tetrahedra
-/// on any number of processes.
+/// on any number of processes. require_crack false: no CrackOutsideMesh
+/// (one process's part of a mesh may hold none of the crack; the caller
+/// decides over all processes).
 CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<const std::int32_t> cells,
                                           std::span<const double> phi, std::span<const double> psi, double snap_tol,
-                                          std::span<const std::int64_t> node_keys = {});
+                                          std::span<const std::int64_t> node_keys = {}, bool require_crack = true);
 
 /// The same from a crack surface (compute_level_sets_3d, then the above);
 /// a crack outside the part is reported with both bounding boxes, and the
@@ -147,7 +149,7 @@ CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<c
 /// accurate point) instead of the P1 polyline's (O(h)).
 CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<const std::int32_t> cells,
                                           const CrackSurface3D& surface, double snap_tol,
-                                          std::span<const std::int64_t> node_keys = {});
+                                          std::span<const std::int64_t> node_keys = {}, bool require_crack = true);
 
 /// Replace g's front by the one joined from the given segments (in the
 /// order given: their points merge first-come, so one order gives one front)

@@ -302,17 +302,20 @@ void declare_geometry_3d(py::module& m)
   m.def(
       "compute_crack_geometry_3d",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const CrackSurface3D& s, double snap_tol,
-         std::optional<carray<std::int64_t>> node_keys)
+         std::optional<carray<std::int64_t>> node_keys, bool require_crack)
       {
         require_columns(x, 3, "x (node coordinates)");
         require_columns(cells, 4, "cells (node indices per tetrahedron)");
         return compute_crack_geometry_3d(as_span(x), as_span(cells), s, snap_tol,
-                                         node_keys ? as_span(*node_keys) : std::span<const std::int64_t>());
+                                         node_keys ? as_span(*node_keys) : std::span<const std::int64_t>(),
+                                         require_crack);
       },
       py::arg("x"), py::arg("cells"), py::arg("surface"), py::arg("snap_tol") = 1e-6, py::arg("node_keys") = py::none(),
+      py::arg("require_crack") = true,
       "Level sets, cell classes, sub-tetrahedra, lip facets and front of a crack surface; node_keys (n) int64: the "
       "order each cell's vertices are cut in (default the node indices; the mesh's input indices give the same "
-      "sub-tetrahedra on any number of processes).");
+      "sub-tetrahedra on any number of processes); require_crack False: no error when no cell is cut (one "
+      "process's part of a mesh).");
   m.def(
       "compute_crack_geometry_3d",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const carray<double>& phi,

@@ -39,6 +39,7 @@ from ...scene.crack_surface import EllipticalCrack, PolygonCrack, SurfaceCrack
 from ...scene.material import strain, stress
 from ...scene.options import Options
 from ...scene.partition import node_input_indices
+from ...scene.processes import agree, total
 from . import CrackModel
 from .shared_front import join_front
 
@@ -105,10 +106,18 @@ class SurfaceCrackModel(CrackModel):
         # every process's cells: the same sub-tetrahedra and front on any
         # number of processes)
         node_input = node_input_indices(scene.mesh.mesh, cells, x.shape[0])
-        try:
-            geometry = _cracklip.compute_crack_geometry_3d(x, cells, surface, scene.options.snap_tol, node_input)
+        comm = scene.mesh.mesh.comm
+        try:  # (under MPI a process's part may hold none of the crack: decided over all processes below)
+            geometry = _cracklip.compute_crack_geometry_3d(x, cells, surface, scene.options.snap_tol, node_input,
+                                                           comm.size == 1)
         except (ValueError, RuntimeError) as e:
             raise CrackGeometryError(f"{crack.name}: {e}") from None
+        if comm.size > 1:
+            counts = geometry.class_counts
+            crossed = total(counts["cut"] + counts["face"] + counts["front"], comm)
+            agree(None if crossed else CrackGeometryError(
+                f"{crack.name}: {surface!r}: no cell of the mesh is cut by the crack: the crack surface lies outside "
+                "the part; move the crack into the part or check its units"), comm)
         join_front(geometry, surface, scene.mesh.mesh, x, cells, node_input)
         if geometry.num_snapped:
             logger.info("%s: %d nodes snapped onto the crack (snap_tol=%g)", crack.name, geometry.num_snapped,
