@@ -278,6 +278,21 @@ def _relative(a: float, b: float, scale: float) -> float:
     return abs(a - b) / scale
 
 
+def _run_both(scene: str, settings: list[str], tmp_path) -> tuple:
+    """`cracklip run` of a shipped scene under mpirun -n 2 (one summary
+    printed) and serially: (the two output directories, serial and mpi
+    results.json)."""
+    out, serial = tmp_path / "mpi", tmp_path / "serial"
+    p = mpirun("run", str(SCENES / scene), *settings, "--out", str(out))
+    assert_clean(p, 0)
+    assert p.stdout.count("results in ") == 1, p.stdout
+    s = _run_serial("run", str(SCENES / scene), *settings, "--out", str(serial), "-q")
+    assert s.returncode == 0, s.stderr
+    a, b = (json.loads((d / "results.json").read_text()) for d in (serial, out))
+    assert b["parallel"]["processes"] == 2
+    return out, serial, a, b
+
+
 @pytest.mark.parametrize("scene, settings", [
     # with the error estimate: its second mesh (the recipe, gmsh on rank 0 again) solved on 2 processes too
     ("pressurised_crack.toml", ["--set", "mesh.tip_h=0.1"]),
@@ -298,14 +313,7 @@ def test_run_open_crack_same_on_one_and_two_processes(scene, settings, tmp_path)
     Measured: K equal to 3e-15 (pressurised crack), 1.5e-14 (the same to
     an accuracy of 0.5 %), 5e-15 (Westergaard), 3e-12 (edge notch), 1.4e-14
     (three-point bending)."""
-    out, serial = tmp_path / "mpi", tmp_path / "serial"
-    p = mpirun("run", str(SCENES / scene), *settings, "--out", str(out))
-    assert_clean(p, 0)
-    assert p.stdout.count("results in ") == 1, p.stdout
-    s = _run_serial("run", str(SCENES / scene), *settings, "--out", str(serial), "-q")
-    assert s.returncode == 0, s.stderr
-    a, b = (json.loads((d / "results.json").read_text()) for d in (serial, out))
-    assert b["parallel"]["processes"] == 2
+    out, serial, a, b = _run_both(scene, settings, tmp_path)
     assert b["files"] == a["files"] == ["crack.csv", "sif.csv", "solution.vtu", "crack_lips.vtu", "deformed.png",
                                         "crack_pressure.png", "stress.png", "results.json"]
     assert all((out / f).is_file() for f in b["files"])
@@ -376,14 +384,7 @@ def test_run_3d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_pa
     sub-tetrahedra and stresses (each cell with its own vertices). Measured: K
     to 9e-15 (penny, tip_h 0.5), 2.3e-14 (penny, tip_h 0.2, 8 front
     points), 5e-14 (surface crack, 7 front points)."""
-    out, serial = tmp_path / "mpi", tmp_path / "serial"
-    p = mpirun("run", str(SCENES / scene), *settings, "--out", str(out))
-    assert_clean(p, 0)
-    assert p.stdout.count("results in ") == 1, p.stdout
-    s = _run_serial("run", str(SCENES / scene), *settings, "--out", str(serial), "-q")
-    assert s.returncode == 0, s.stderr
-    a, b = (json.loads((d / "results.json").read_text()) for d in (serial, out))
-    assert b["parallel"]["processes"] == 2
+    out, serial, a, b = _run_both(scene, settings, tmp_path)
     assert b["files"] == a["files"] and "solution.vtu" in a["files"]
     assert all((out / f).is_file() for f in b["files"])
     import meshio
