@@ -79,7 +79,8 @@ int front_first(std::array<Vertex, N>& v, std::array<bool, N>& front)
 class CellCutter
 {
 public:
-  CellCutter(const P1Tetrahedron& T, std::int32_t c, const std::array<double, 4>& f, const std::array<double, 4>& g)
+  CellCutter(const P1Tetrahedron& T, std::int32_t c, const std::array<double, 4>& f, const std::array<double, 4>& g,
+             std::span<const std::int64_t> node_keys)
       : T_(T), c_(c)
   {
     for (int a = 0; a < 4; ++a)
@@ -89,10 +90,15 @@ public:
     }
     grad_phi_ = T.gradient(f);
     grad_psi_ = T.gradient(g);
-    // Vertices in ascending global node order: cut points on an edge shared
-    // by several cells are then computed from the same numbers in each.
+    // Vertices in ascending node order (node_keys' if given): cut points on
+    // an edge shared by several cells are then computed from the same
+    // numbers in each, and the sub-tetrahedra do not depend on how the
+    // nodes are numbered locally.
+    std::array<std::int64_t, 4> key;
+    for (int a = 0; a < 4; ++a)
+      key[a] = node_keys.empty() ? T.nodes[a] : node_keys[T.nodes[a]];
     std::array<int, 4> perm = {0, 1, 2, 3};
-    std::sort(perm.begin(), perm.end(), [&](int a, int b) { return T.nodes[a] < T.nodes[b]; });
+    std::sort(perm.begin(), perm.end(), [&](int a, int b) { return key[a] < key[b]; });
     for (int k = 0; k < 4; ++k)
     {
       for (int d = 0; d < 3; ++d)
@@ -371,7 +377,8 @@ private:
 } // namespace
 
 CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<const std::int32_t> cells,
-                                          std::span<const double> phi, std::span<const double> psi, double snap_tol)
+                                          std::span<const double> phi, std::span<const double> psi, double snap_tol,
+                                          std::span<const std::int64_t> node_keys, bool require_crack)
 {
   if (x.size() % 3 != 0 or cells.size() % 4 != 0)
     throw std::invalid_argument("compute_crack_geometry_3d: x must be (n, 3) and cells (m, 4)");
@@ -384,6 +391,8 @@ CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<c
     throw std::invalid_argument("compute_crack_geometry_3d: snap_tol must be in [0, 0.5), got "
                                 + std::to_string(snap_tol));
   check_mesh_arrays(x, 3, cells, 4, "compute_crack_geometry_3d");
+  if (!node_keys.empty() and node_keys.size() != num_nodes)
+    throw std::invalid_argument("compute_crack_geometry_3d: node_keys must have one value per node");
   for (std::size_t i = 0; i < num_nodes; ++i)
     if (!std::isfinite(phi[i]) or !std::isfinite(psi[i]))
       throw std::invalid_argument("compute_crack_geometry_3d: a level set is not finite at node "
@@ -436,7 +445,7 @@ CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<c
       continue;
     }
     const P1Tetrahedron T(x, cells, static_cast<std::int32_t>(c));
-    const CellCutter cutter(T, static_cast<std::int32_t>(c), f, gv);
+    const CellCutter cutter(T, static_cast<std::int32_t>(c), f, gv, node_keys);
     const ZeroSet kind = cutter.kind();
     const int side = kind == ZeroSet::cut ? 0 : (npos > 0 ? 1 : -1);
     // psi over the zero set of phi in the closed cell.
@@ -495,7 +504,7 @@ CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<c
     g.crack_cells.push_back(std::move(cc));
   }
 
-  if (g.crack_cells.empty())
+  if (g.crack_cells.empty() and require_crack)
   {
     std::array<double, 6> box = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                                  std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
@@ -517,27 +526,18 @@ CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<c
     if (entry.first == 1)
       boundary_faces.insert(boundary_faces.end(), entry.second.begin(), entry.second.end());
   if (!segments.empty())
-    g.front = create_crack_front_3d(segments, boundary_faces, 1e-9 * h_front);
+    g.front = create_crack_front_3d(segments, boundary_faces, JOIN_TOLERANCE * h_front);
+  g.front_segments = std::move(segments);
+  g.front_cell_size = h_front;
   return g;
 }
 
-CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<const std::int32_t> cells,
-                                          const CrackSurface3D& surface, double snap_tol)
+namespace
 {
-  const LevelSets3D ls = compute_level_sets_3d(x, surface);
-  CrackGeometry3D g;
-  try
-  {
-    g = compute_crack_geometry_3d(x, cells, ls.phi, ls.psi, snap_tol);
-  }
-  catch (const CrackOutsideMesh& e)
-  {
-    throw CrackOutsideMesh(surface.describe() + ", bounding box " + fmt_box(surface.bounding_box()) + ": "
-                           + e.what());
-  }
-  // Frames from the surface: its analytic directions at each front point
-  // (O(h^2) accurate, as the point) instead of the P1 polyline's (O(h)).
-  CrackFront3D& f = g.front;
+/// Frames from the surface: its analytic directions at each front point
+/// (O(h^2) accurate, as the point) instead of the P1 polyline's (O(h)).
+void surface_frames(CrackFront3D& f, const CrackSurface3D& surface)
+{
   for (std::int32_t i = 0; i < f.num_points(); ++i)
   {
     const auto [d1, d2] = surface.front_directions({f.x[3 * i], f.x[3 * i + 1], f.x[3 * i + 2]});
@@ -548,7 +548,43 @@ CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<c
     std::copy(e2.begin(), e2.end(), f.frame.begin() + 9 * i + 3);
     std::copy(e3.begin(), e3.end(), f.frame.begin() + 9 * i + 6);
   }
+}
+} // namespace
+
+CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<const std::int32_t> cells,
+                                          const CrackSurface3D& surface, double snap_tol,
+                                          std::span<const std::int64_t> node_keys, bool require_crack)
+{
+  const LevelSets3D ls = compute_level_sets_3d(x, surface);
+  CrackGeometry3D g;
+  try
+  {
+    g = compute_crack_geometry_3d(x, cells, ls.phi, ls.psi, snap_tol, node_keys, require_crack);
+  }
+  catch (const CrackOutsideMesh& e)
+  {
+    throw CrackOutsideMesh(surface.describe() + ", bounding box " + fmt_box(surface.bounding_box()) + ": "
+                           + e.what());
+  }
+  surface_frames(g.front, surface);
   return g;
+}
+
+void set_crack_front_3d(CrackGeometry3D& g, std::span<const FrontSegment> segments,
+                        std::span<const double> boundary_faces, double h_front, const CrackSurface3D* surface)
+{
+  if (boundary_faces.size() % 9 != 0)
+    throw std::invalid_argument("set_crack_front_3d: boundary_faces must be (n, 3, 3)");
+  if (segments.empty())
+  {
+    g.front = CrackFront3D();
+    return;
+  }
+  if (!(h_front > 0.0) or !std::isfinite(h_front))
+    throw std::invalid_argument("set_crack_front_3d: h_front must be finite and > 0");
+  g.front = create_crack_front_3d(segments, boundary_faces, JOIN_TOLERANCE * h_front);
+  if (surface)
+    surface_frames(g.front, *surface);
 }
 
 } // namespace cracklip

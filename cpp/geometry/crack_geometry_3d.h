@@ -19,6 +19,7 @@
 #include "geometry/crack_surface_3d.h"
 
 #include <array>
+#include <limits>
 #include <cstdint>
 #include <span>
 #include <stdexcept>
@@ -96,6 +97,13 @@ struct CrackGeometry3D
   std::vector<std::int32_t> crack_cell_index;
   /// The front: ordered pieces of front points with frames.
   CrackFront3D front;
+  /// The front segments the front was joined from (one per front cell where
+  /// the crack is present, by cell), and the smallest front cell's size
+  /// (largest edge; the scale of the joining tolerance, infinity without
+  /// front cells): a front held by several processes is joined again from
+  /// every process's segments (set_crack_front_3d).
+  std::vector<FrontSegment> front_segments;
+  double front_cell_size = std::numeric_limits<double>::infinity();
   /// Number of nodes whose phi or psi was snapped to zero.
   std::int32_t num_snapped = 0;
   /// Front cells where P1 psi vanishes on the whole zero set of phi (a
@@ -123,9 +131,16 @@ public:
 /// Throws CrackOutsideMesh (an std::invalid_argument) when no cell is cut,
 /// face or front, std::invalid_argument for bad arrays, and
 /// std::runtime_error for a cell with phi = 0 at all four nodes (a
-/// degenerate cell, or snap_tol too large).
+/// degenerate cell, or snap_tol too large). node_keys (num_nodes, or
+/// empty: the node indices): the order in which each cell's vertices are
+/// cut, which decides its sub-tetrahedra; a numbering independent of the
+/// local one (the mesh's input node indices) gives the same sub-tetrahedra
+/// on any number of processes. require_crack false: no CrackOutsideMesh
+/// (one process's part of a mesh may hold none of the crack; the caller
+/// decides over all processes).
 CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<const std::int32_t> cells,
-                                          std::span<const double> phi, std::span<const double> psi, double snap_tol);
+                                          std::span<const double> phi, std::span<const double> psi, double snap_tol,
+                                          std::span<const std::int64_t> node_keys = {}, bool require_crack = true);
 
 /// The same from a crack surface (compute_level_sets_3d, then the above);
 /// a crack outside the part is reported with both bounding boxes, and the
@@ -133,6 +148,21 @@ CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<c
 /// points (CrackSurface3D::front_directions: exact directions at an O(h^2)
 /// accurate point) instead of the P1 polyline's (O(h)).
 CrackGeometry3D compute_crack_geometry_3d(std::span<const double> x, std::span<const std::int32_t> cells,
-                                          const CrackSurface3D& surface, double snap_tol);
+                                          const CrackSurface3D& surface, double snap_tol,
+                                          std::span<const std::int64_t> node_keys = {}, bool require_crack = true);
+
+/// Replace g's front by the one joined from the given segments (in the
+/// order given: their points merge first-come, so one order gives one front)
+/// and the part's boundary faces near the front (n, 3, 3) within
+/// JOIN_TOLERANCE * h_front; frames from the surface's directions when
+/// surface is given (as compute_crack_geometry_3d from a surface), else the
+/// polyline's. For a front whose cells are spread over processes: every
+/// process passes every process's segments in one canonical order and gets
+/// the same front.
+void set_crack_front_3d(CrackGeometry3D& g, std::span<const FrontSegment> segments,
+                        std::span<const double> boundary_faces, double h_front, const CrackSurface3D* surface);
+
+/// Front points within JOIN_TOLERANCE * (smallest front cell size) are one.
+inline constexpr double JOIN_TOLERANCE = 1e-9;
 
 } // namespace cracklip

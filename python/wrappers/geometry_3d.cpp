@@ -243,20 +243,79 @@ void declare_geometry_3d(py::module& m)
                              "reference coordinates, facet_area (F), facet_normal (F, 3), facet_num_front (F); "
                              "front_segment (m, 2, 3) reference coordinates, front_length (m).")
       .def_property_readonly(
+          "front_segments",
+          [](const CrackGeometry3D& g)
+          {
+            const py::ssize_t m = n(g.front_segments.size());
+            std::vector<double> p(3 * m), q(3 * m), gphi(3 * m), gpsi(3 * m);
+            std::vector<std::int32_t> cell(m);
+            for (py::ssize_t i = 0; i < m; ++i)
+            {
+              const FrontSegment& sg = g.front_segments[i];
+              std::copy(sg.p.begin(), sg.p.end(), p.begin() + 3 * i);
+              std::copy(sg.q.begin(), sg.q.end(), q.begin() + 3 * i);
+              std::copy(sg.grad_phi.begin(), sg.grad_phi.end(), gphi.begin() + 3 * i);
+              std::copy(sg.grad_psi.begin(), sg.grad_psi.end(), gpsi.begin() + 3 * i);
+              cell[i] = sg.cell;
+            }
+            py::dict d;
+            d["p"] = as_pyarray(std::move(p), {m, 3});
+            d["q"] = as_pyarray(std::move(q), {m, 3});
+            d["cell"] = as_pyarray(std::move(cell));
+            d["grad_phi"] = as_pyarray(std::move(gphi), {m, 3});
+            d["grad_psi"] = as_pyarray(std::move(gpsi), {m, 3});
+            d["cell_size"] = g.front_cell_size;
+            return d;
+          },
+          "The segments the front was joined from: p, q (m, 3) physical end points (P -> Q along e3), cell (m), "
+          "grad_phi, grad_psi (m, 3); cell_size the smallest front cell's largest edge (inf without front).")
+      .def(
+          "set_front",
+          [](CrackGeometry3D& g, const carray<double>& p, const carray<double>& q, const carray<std::int32_t>& cell,
+             const carray<double>& grad_phi, const carray<double>& grad_psi, const carray<double>& boundary_faces,
+             double h_front, const CrackSurface3D* surface)
+          {
+            for (const auto* a : {&p, &q, &grad_phi, &grad_psi})
+              require_columns(*a, 3, "front segment arrays");
+            const py::ssize_t m = p.shape(0);
+            if (q.shape(0) != m or grad_phi.shape(0) != m or grad_psi.shape(0) != m or cell.size() != m)
+              throw std::invalid_argument("set_front: the segment arrays differ in length");
+            std::vector<FrontSegment> segs(m);
+            for (py::ssize_t i = 0; i < m; ++i)
+              for (int k = 0; k < 3; ++k)
+              {
+                segs[i].p[k] = p.data()[3 * i + k], segs[i].q[k] = q.data()[3 * i + k];
+                segs[i].grad_phi[k] = grad_phi.data()[3 * i + k], segs[i].grad_psi[k] = grad_psi.data()[3 * i + k];
+                segs[i].cell = cell.data()[i];
+              }
+            set_crack_front_3d(g, segs, as_span(boundary_faces), h_front, surface);
+          },
+          py::arg("p"), py::arg("q"), py::arg("cell"), py::arg("grad_phi"), py::arg("grad_psi"),
+          py::arg("boundary_faces"), py::arg("h_front"), py::arg("surface") = nullptr,
+          "Replace the front by the one joined from these segments, in this order (set_crack_front_3d): "
+          "boundary_faces (n, 3, 3) the part's boundary faces near the front; frames from surface if given.")
+      .def_property_readonly(
           "front", [](const CrackGeometry3D& g) { return front_dict(g.front); },
           "The front: x (n, 3), s (n), frame (n, 3, 3) rows e1 e2 e3, cell (n), on_boundary (n), "
           "piece_offsets (pieces + 1), closed (pieces), segments (k, 2), segment_cell (k), num_branch_points.");
 
   m.def(
       "compute_crack_geometry_3d",
-      [](const carray<double>& x, const carray<std::int32_t>& cells, const CrackSurface3D& s, double snap_tol)
+      [](const carray<double>& x, const carray<std::int32_t>& cells, const CrackSurface3D& s, double snap_tol,
+         std::optional<carray<std::int64_t>> node_keys, bool require_crack)
       {
         require_columns(x, 3, "x (node coordinates)");
         require_columns(cells, 4, "cells (node indices per tetrahedron)");
-        return compute_crack_geometry_3d(as_span(x), as_span(cells), s, snap_tol);
+        return compute_crack_geometry_3d(as_span(x), as_span(cells), s, snap_tol,
+                                         node_keys ? as_span(*node_keys) : std::span<const std::int64_t>(),
+                                         require_crack);
       },
-      py::arg("x"), py::arg("cells"), py::arg("surface"), py::arg("snap_tol") = 1e-6,
-      "Level sets, cell classes, sub-tetrahedra, lip facets and front of a crack surface.");
+      py::arg("x"), py::arg("cells"), py::arg("surface"), py::arg("snap_tol") = 1e-6, py::arg("node_keys") = py::none(),
+      py::arg("require_crack") = true,
+      "Level sets, cell classes, sub-tetrahedra, lip facets and front of a crack surface; node_keys (n) int64: the "
+      "order each cell's vertices are cut in (default the node indices; the mesh's input indices give the same "
+      "sub-tetrahedra on any number of processes); require_crack False: no error when no cell is cut (one "
+      "process's part of a mesh).");
   m.def(
       "compute_crack_geometry_3d",
       [](const carray<double>& x, const carray<std::int32_t>& cells, const carray<double>& phi,

@@ -69,6 +69,7 @@ from .. import _cracklip
 from ..errors import InputError
 from ..model.cracks.surface import split_enriched
 from ..scene.crack_surface import EllipticalCrack, SurfaceCrack
+from ..scene.processes import reduced
 from ..scene.symmetry import SymmetryCondition
 from . import front_sampling
 from .lip_tractions import has_lip_traction, lip_traction
@@ -295,15 +296,41 @@ def cells_of_nodes(model, nodes: np.ndarray) -> np.ndarray:
 
 
 def boundary_nodes(model) -> np.ndarray:
-    """Nodes on the part's boundary (faces held by one tetrahedron)."""
+    """Nodes on the part's boundary (faces held by one tetrahedron). Under
+    MPI this process's part of them: the faces of its owned cells (whose
+    neighbours it holds), not the faces where its ghost cells end."""
     c = _cache(model)
     if "boundary_nodes" not in c:
         cells = model.cells
         faces = np.sort(np.concatenate([cells[:, [1, 2, 3]], cells[:, [0, 2, 3]], cells[:, [0, 1, 3]],
                                         cells[:, [0, 1, 2]]]), axis=1)
         _, idx, counts = np.unique(faces, axis=0, return_index=True, return_counts=True)
-        c["boundary_nodes"] = np.unique(faces[idx[counts == 1]])
+        one = idx[counts == 1]
+        one = one[model.owned_cells_only(one % len(cells))]  # (faces are stacked face-type by face-type)
+        c["boundary_nodes"] = np.unique(faces[one])
     return c["boundary_nodes"]
+
+
+def _comm(model):
+    """The model's communicator under MPI, else None."""
+    return model.V.mesh.comm if getattr(model, "distributed", False) else None
+
+
+def _all_points(model, points: np.ndarray) -> np.ndarray:
+    """Every process's points (n, 3), without repeats, in one order (the
+    points themselves in serial)."""
+    comm = _comm(model)
+    if comm is None:
+        return points
+    allp = np.concatenate(comm.allgather(np.asarray(points, dtype=float).reshape(-1, 3)))
+    return np.unique(allp, axis=0) if len(allp) else allp
+
+
+def _owned_segments(model, fr: "Front") -> np.ndarray:
+    """Which front segments this process integrates: those of its owned
+    cells (each segment's cell is owned by one process; all in serial)."""
+    cell = np.asarray(fr.segment_cell)
+    return (cell >= 0) & model.owned_cells_only(cell)
 
 
 def cell_sizes(model, cells: np.ndarray) -> np.ndarray:
@@ -316,6 +343,12 @@ def cell_sizes(model, cells: np.ndarray) -> np.ndarray:
 def lip_points(model, crack: int) -> dict:
     """The crack's lip points of the lip terms (LIP_POINTS per facet direction), computed once."""
     return model.cracks[crack].lip_points(model, LIP_POINTS)
+
+
+def _owned_lip_points(model, crack: int) -> np.ndarray:
+    """The lip points (n, 3) in this process's owned cells (all in serial)."""
+    lp = lip_points(model, crack)
+    return lp["x"][model.owned_cells_only(lp["cell"])]
 
 
 # -- the front --------------------------------------------------------------
@@ -369,7 +402,12 @@ def crack_front(model, crack: int) -> Front:
                        for k in range(len(closed))])
     segs = np.asarray(f["segments"]).reshape(-1, 2)
     scell = np.asarray(f["segment_cell"])
-    ssize = cell_sizes(model, scell) if len(scell) else np.zeros(0)
+    ssize = np.zeros(len(scell))
+    if len(scell):  # (under MPI each segment's size from the process owning its cell)
+        own = (scell >= 0) & model.owned_cells_only(scell)
+        ssize[own] = cell_sizes(model, scell[own])
+        if _comm(model) is not None:
+            ssize = reduced(ssize, "SUM", _comm(model))
     h = float(np.median(ssize)) if len(ssize) else 0.0
     curv = np.zeros(len(s))
     for k in range(len(closed)):
@@ -620,19 +658,23 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
     bnodes = boundary_nodes(model)
     near_b = np.unique(np.concatenate([np.asarray(i, dtype=np.int64) for i in
                                        scipy.spatial.cKDTree(model.x[bnodes]).query_ball_point(fr.x, reach)]
-                                      + [np.zeros(0, np.int64)]))
-    bpr = project(model, crack, model.x[bnodes[near_b]]) if near_b.size else None
+                                      + [np.zeros(0, np.int64)])) if bnodes.size else np.zeros(0, np.int64)
+    bx = _all_points(model, model.x[bnodes[near_b]])  # (every process's under MPI)
+    bpr = project(model, crack, bx) if len(bx) else None
     # A symmetry plane that a piece ends on is no obstacle of that piece's
     # domains: they continue in the mirror image.
-    size = float(np.ptp(model.x, axis=0).max())
+    lo, hi = model.x.min(axis=0), model.x.max(axis=0)
+    if _comm(model) is not None:
+        lo, hi = reduced(lo, "MIN", _comm(model)), reduced(hi, "MAX", _comm(model))
+    size = float((hi - lo).max())
     mirror_of = {}
     for bc in symmetry_planes(model):
-        on = np.abs((model.x[bnodes[near_b]] - np.asarray(bc.origin)) @ np.asarray(bc.normal)) <= 1e-9 * size
+        on = np.abs((bx - np.asarray(bc.origin)) @ np.asarray(bc.normal)) <= 1e-9 * size
         pieces = {d["piece"] for d in st if d["symmetry"] == bc.label}
         mirror_of[bc.label] = (on, pieces)
     others = [ci for ci in range(len(model.cracks)) if ci != crack]
-    other_pts = [(ci, np.vstack([lip_points(model, ci)["x"], np.asarray(model.geometries[ci].front["x"])]))
-                 for ci in others]
+    other_pts = [(ci, np.vstack([_all_points(model, _owned_lip_points(model, ci)),
+                                 np.asarray(model.geometries[ci].front["x"])])) for ci in others]
     out = []
     for k, d in enumerate(st):
         piece, s0, hat, L = d["piece"], d["s"], d["hat"], d["length"]
@@ -788,7 +830,7 @@ def _front_rule(model, fr: Front, piece: int) -> dict[str, np.ndarray]:
     key = (id(fr), piece)
     if key in c:
         return c[key]
-    mine = fr.piece[fr.segments[:, 0]] == piece
+    mine = (fr.piece[fr.segments[:, 0]] == piece) & _owned_segments(model, fr)  # (summed over processes)
     seg = fr.segments[mine]
     a, b = fr.x[seg[:, 0]], fr.x[seg[:, 1]]
     g = np.array([0.5 - math.sqrt(15) / 10, 0.5, 0.5 + math.sqrt(15) / 10])
@@ -917,7 +959,8 @@ def _crack_front_sifs(solution, crack: int, radius: float | None = None) -> tupl
     for fp in fps:
         q = np.stack([_node_q(nd_, fp, r) for r in fp.radii], axis=1)
         qn.append(q)
-        cells_of.append(cells_of_nodes(m, nodes[q[:, -1] > 0.0]))
+        c = cells_of_nodes(m, nodes[q[:, -1] > 0.0])
+        cells_of.append(c[m.owned_cells_only(c)])  # (under MPI the owned cells: the integrals summed below)
     table = _domain_table(m, qn, cells_of, tube_index)
     cells_all = table["cells"]
     directions = np.ascontiguousarray([fp.frame[0] for fp in fps])
@@ -949,10 +992,13 @@ def _crack_front_sifs(solution, crack: int, radius: float | None = None) -> tupl
             np.searchsorted(cells_all, lp["cell"]).astype(np.int32),
             np.ascontiguousarray(np.column_stack([1.0 - lp["ref"].sum(axis=1), lp["ref"]])), table["offsets"],
             table["point"], table["q"], directions, I)
+    Q = np.array([_front_normalisation(m, fr, fp, lambda cn, i=i: np.where(
+        (tube_index[cn] >= 0)[:, :, None], qn[i][np.maximum(tube_index[cn], 0)], 0.0)) for i, fp in enumerate(fps)])
+    if _comm(m) is not None:  # each process's owned cells and front segments
+        I, Q = reduced(I, "SUM", _comm(m)), reduced(Q, "SUM", _comm(m))
     K = np.zeros((len(fps), nd, 3))
     for i, fp in enumerate(fps):
-        Q1, Q2 = _front_normalisation(m, fr, fp, lambda cn, i=i: np.where(
-            (tube_index[cn] >= 0)[:, :, None], qn[i][np.maximum(tube_index[cn], 0)], 0.0))
+        Q1, Q2 = Q[i]
         if np.any(Q1 < 0.0):
             raise InputError(f"front point {fp.index} of crack {crk.name!r} at {fp.x.round(6).tolist()}: its "
                              "direction of propagation e1 points against the front's within its hat (int q e1 . "

@@ -206,7 +206,9 @@ def _describe_cracks_3d(model: XfemModel) -> list[dict[str, typing.Any]]:
             pieces.append({"points": last - first + 1, "closed": bool(closed), "length": length,
                            "ends_on_boundary": 0 if closed else int(on[first]) + int(on[last])})
         sizes = front_element_sizes(model, ci)
-        area = float(np.asarray(g.crack_cells["facet_area"]).sum())
+        cc = g.crack_cells  # (the facets of the owned cells, summed over the processes)
+        own = np.repeat(np.asarray(cc["cell"]) < _owned(model)[1], np.diff(np.asarray(cc["facet_offsets"])))
+        area = float(_summed(model, float(np.asarray(cc["facet_area"])[own].sum())))
         out.append({
             "name": cm.crack.name,
             "kind": {"EllipticalCrack": "ellipse", "PolygonCrack": "polygon"}.get(type(cm.crack).__name__,

@@ -221,22 +221,23 @@ def _curve_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: list
 def gathered_subcell_fields(solution: Solution) -> dict | None:
     """Under mpirun: the sub-cell fields (Solution.subcell_fields) of every
     process's owned cells on rank 0 (None on the others), the sub-cells in
-    rank order; parent is the cell's input index (the mesh generator's)."""
+    rank order, each with its own vertices; parent is the cell's input index
+    (the mesh generator's)."""
     m = solution.model
     comm = m.V.mesh.comm
     f = solution.subcell_fields()
     own = f["parent"] < m.num_owned_cells
     original = np.asarray(m.scene.mesh.mesh.topology.original_cell_index, dtype=np.int64)
-    mine = {"points": f["points"].reshape(-1, 3, f["points"].shape[1])[own], "parent": original[f["parent"][own]],
-            "displacement": f["displacement"].reshape(-1, 3, f["displacement"].shape[1])[own],
-            **{k: f[k][own] for k in ("stress", "side", "von_mises")}}
+    conn = f["cells"][own]  # (each sub-cell with its own vertices: a 3D plain cell's are the mesh's nodes)
+    mine = {"points": f["points"][conn], "parent": original[f["parent"][own]], "displacement": f["displacement"][conn],
+            **{k: f[k][own] for k in ("stress", "side", "von_mises", "crack") if k in f}}
     parts = comm.gather(mine, root=0)
     if parts is None:
         return None
     out = {k: np.concatenate([p[k] for p in parts]) for k in mine}
-    n = len(out["parent"])
-    out["points"], out["displacement"] = out["points"].reshape(3 * n, -1), out["displacement"].reshape(3 * n, -1)
-    out["cells"] = np.arange(3 * n, dtype=np.int64).reshape(-1, 3)
+    n, nv = len(out["parent"]), conn.shape[1]
+    out["points"], out["displacement"] = out["points"].reshape(nv * n, -1), out["displacement"].reshape(nv * n, -1)
+    out["cells"] = np.arange(nv * n, dtype=np.int64).reshape(-1, nv)
     return out
 
 
@@ -402,6 +403,11 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
 
     t0 = time.perf_counter()
     cracks = [cm.crack for cm in m.cracks]
+    gathered = gathered_subcell_fields(solution) if m.distributed and cfg["vtu"] else None
+    if not writes_files(m):  # under mpirun rank 0 writes the files (every process computed their content)
+        files += m.V.mesh.comm.bcast(None, root=0)
+        return {"cracks": crack_stats, "steps": _surface_steps(solution, samples, facets, sifs, cfg, law, gap_tol)}
+    written = len(files)
     write_csv(out / "crack_opening.csv", ["crack", "facet", "vertex", "x", "y", "z", "p1", "p2", "weight", "gap",
                                            "slip", "jump_x", "jump_y", "jump_z"], opening_rows(cracks, fine))
     files.append("crack_opening.csv")
@@ -411,7 +417,8 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
     timings["write_csv"] = time.perf_counter() - t0
     if cfg["vtu"]:
         t0 = time.perf_counter()
-        fields = solution.subcell_fields()
+        # (under mpirun the owned cells' sub-tetrahedral fields gathered on rank 0)
+        fields = gathered if m.distributed else solution.subcell_fields()
         check_finite("the sub-tetrahedral fields", fields["displacement"], fields["stress"])
         timings["subcell_fields"] = time.perf_counter() - t0
         t0 = time.perf_counter()
@@ -419,13 +426,14 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
         write_mesh(crack_surface_mesh(facets), out / "crack_surface.vtu")
         write_mesh(front_mesh(fronts), out / "crack_front.vtu")
         files += ["solution.vtu", "crack_surface.vtu", "crack_front.vtu"]
+        logger.info("wrote ParaView files solution.vtu (%d points, %d cells: %d sub-tetrahedra), "
+                    "crack_surface.vtu, crack_front.vtu", len(fields["points"]), len(fields["cells"]),
+                    fields.get("num_sub", np.count_nonzero(fields["side"])))
         if sifs:
             write_mesh(front_sif_mesh(sifs, lambda c, p: bool(m.cracks[c].geometry.front["closed"][p])),
                        out / "front_sifs.vtu")
             files.append("front_sifs.vtu")
         timings["write_vtu"] = time.perf_counter() - t0
-        logger.info("wrote ParaView files solution.vtu (%d points, %d cells: %d sub-tetrahedra), crack_surface.vtu, "
-                    "crack_front.vtu", len(fields["points"]), len(fields["cells"]), fields["num_sub"])
     if cfg["png"] and cracks:
         t0 = time.perf_counter()
         write_crack_opening_png(cracks, fine, fronts, out / "crack_opening.png", scene_file.title, m.scene.units)
@@ -441,6 +449,15 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
         timings["write_png"] = time.perf_counter() - t0
         logger.info("wrote crack_opening.png" + (", crack_contact.png" if solution.contact else "")
                     + (", front_sifs.png" if sifs else ""))
+    if m.distributed:  # the others' list of files
+        m.V.mesh.comm.bcast(files[written:], root=0)
+    return {"cracks": crack_stats, "steps": _surface_steps(solution, samples, facets, sifs, cfg, law, gap_tol)}
+
+
+def _surface_steps(solution: Solution, samples: list, facets: list, sifs: list, cfg: dict, law: str,
+                   gap_tol: float) -> list | None:
+    """results.json's steps of a 3D load path (None without one)."""
+    m = solution.model
     steps = None
     if solution.steps:
         steps = []
@@ -458,7 +475,7 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
                                                                 "slip_area", "open_area", "slip_max",
                                                                 "interpenetration_max", "pressure")}}
                                      for i, st_ in enumerate(stats)]})
-    return {"cracks": crack_stats, "steps": steps}
+    return steps
 
 
 #: The crack files of each kind of crack end (CrackModel.END): a curve's

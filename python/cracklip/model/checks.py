@@ -396,9 +396,14 @@ def front_cells(geometry) -> np.ndarray:
 
 
 def front_element_sizes(model, crack: int) -> np.ndarray:
-    """The element size (mean edge length) of every cell holding a crack's front (empty without a front)."""
+    """The element size (mean edge length) of every cell holding a crack's
+    front (empty without a front). Collective under MPI: every process's
+    owned front cells, in rank order."""
     fc = front_cells(model.geometries[crack])
-    return cell_sizes(model.x, model.cells[fc])
+    if not getattr(model, "distributed", False):
+        return cell_sizes(model.x, model.cells[fc])
+    fc = fc[model.owned_cells_only(fc)]
+    return np.concatenate(model.V.mesh.comm.allgather(cell_sizes(model.x, model.cells[fc])))
 
 
 def crack_size(crack) -> float:

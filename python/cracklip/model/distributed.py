@@ -11,8 +11,8 @@ Numbering. A pseudo-node belongs to the owner of its base node. Process r
 owns the global node blocks [start_r, start_r + n_r): its owned standard
 nodes in DOLFINx's order, then its owned pseudo-nodes by (base node, the
 layout's order). A ghost node takes its owner's numbers (standard block,
-first pseudo block, count and a signature of its pseudo-nodes' crack, kind
-and function) by one forward scatter; a ghost whose pseudo-nodes differ from
+first pseudo block, count and a signature of its pseudo-nodes' crack, kind,
+function and core flag) by one forward scatter; a ghost whose pseudo-nodes differ from
 its owner's (its patch is cut by the partition) is left unnumbered (-1), and
 the assembly never reaches it: it is in no owned cell (checked).
 
@@ -72,11 +72,12 @@ class DofMap:
 
 
 def _signature(layout, pseudo: np.ndarray, position: np.ndarray) -> np.ndarray:
-    """A number per pseudo-node naming its crack, kind, function and position
-    at its node; summed per node it tells two processes' pseudo-nodes of a
+    """A number per pseudo-node naming its crack, kind, function, core flag
+    (core or blending: the ramp of the corrected blending) and position at
+    its node; summed per node it tells two processes' pseudo-nodes of a
     node apart (exact in doubles)."""
-    code = (np.asarray(layout.crack)[pseudo].astype(np.int64) * 64 + np.asarray(layout.kind)[pseudo] * 8
-            + np.asarray(layout.function)[pseudo] + 1)
+    code = ((np.asarray(layout.crack)[pseudo].astype(np.int64) * 64 + np.asarray(layout.kind)[pseudo] * 8
+             + np.asarray(layout.function)[pseudo]) * 2 + np.asarray(layout.core)[pseudo] + 1)
     return (code * (position + 1) * 1009 + position).astype(float)
 
 

@@ -1,5 +1,6 @@
 """The mesh's cells over MPI processes, with vertex patches: every process
-also holds (as ghosts) every cell that shares a vertex with one of its own.
+also holds (as ghosts) every cell that shares a vertex with one of its own
+(in 3D also the next layer: RINGS).
 
 X-FEM decides per node from the node's whole patch of cells (is the node's
 support cut by the crack, does it hold a tip, which pieces of its support
@@ -19,6 +20,15 @@ It works on meshes given on rank 0 (cracklip meshes there: gmsh runs once).
 from __future__ import annotations
 
 import numpy as np
+
+#: Layers of cells around a process's own cells that it holds as ghosts, per
+#: cell dimension: 1 = the vertex patches of its cells' nodes. A 3D node's
+#: front enrichment also depends on cells one layer further: a node of an
+#: extension cell is a core node when another node of that cell lies on a
+#: cut cell (cpp/enrichment/crack_enrichment_3d.cpp). With one layer, 1-3
+#: nodes of a 2-process penny (21617 cells) were enriched differently by two
+#: processes; with two, none (model/distributed.py checks every run).
+RINGS = {2: 1, 3: 2}
 
 
 def vertex_patch_partitioner(comm, nparts: int, tdim: int, cells, ghost_mode):
@@ -44,7 +54,10 @@ def vertex_patch_partitioner(comm, nparts: int, tdim: int, cells, ghost_mode):
     # owning a cell at each vertex (V x P), then at each cell's vertices (n x P).
     cv = scipy.sparse.csr_matrix((ones, (np.repeat(np.arange(n), c.shape[1]), c.ravel())), shape=(n, num_vertices))
     cp = scipy.sparse.csr_matrix((np.ones(n, dtype=np.int8), (np.arange(n), owner)), shape=(n, nparts))
-    reach = (cv @ (cv.T @ cp)).tocsr()
+    reach = cp
+    for _ in range(RINGS[tdim]):  # (0/1 entries: bool products)
+        reach = (cv @ (cv.T @ reach)).astype(bool).astype(np.int8)
+    reach = reach.tocsr()
     reach.sum_duplicates()
     reach.sort_indices()
     # Each cell's row: its owner first, then the other processes reaching it (ascending).
@@ -61,6 +74,16 @@ def vertex_patch_partitioner(comm, nparts: int, tdim: int, cells, ghost_mode):
     return dolfinx.cpp.graph.AdjacencyList_int32(dest, offsets)
 
 
+def node_input_indices(msh, cells: np.ndarray, num_nodes: int) -> np.ndarray:
+    """The input index (the mesh's node order as given to DOLFINx, the same
+    on any number of processes) of each of num_nodes P1 nodes numbered by
+    cells (num_cells, tdim + 1): a P1 space's dofs, in the mesh's cell order."""
+    out = np.empty(num_nodes, dtype=np.int64)
+    out[np.asarray(cells).ravel()] = np.asarray(msh.geometry.input_global_indices, dtype=np.int64)[
+        msh.geometry.dofmap.array]
+    return out
+
+
 def incomplete_patches(V) -> int:
     """Collective: how many owned nodes of a P1 space V (over all processes)
     have fewer local cells (owned and ghost) than cells at them in the whole
@@ -71,9 +94,7 @@ def incomplete_patches(V) -> int:
     dofs = V.dofmap.list.array.reshape(-1, tdim + 1)
     imap = V.dofmap.index_map
     owned = imap.size_local
-    node_input = np.empty(owned + imap.num_ghosts, dtype=np.int64)
-    node_input[dofs.ravel()] = np.asarray(msh.geometry.input_global_indices, dtype=np.int64)[
-        msh.geometry.dofmap.array]
+    node_input = node_input_indices(msh, dofs, owned + imap.num_ghosts)
     num_inputs = comm.allreduce(int(node_input.max(initial=-1)) + 1, op=_max())
     own_cells = msh.topology.index_map(tdim).size_local
     whole = np.bincount(node_input[dofs[:own_cells]].ravel(), minlength=num_inputs).astype(np.int64)

@@ -77,6 +77,12 @@ def reduced(value, op: str, comm=None):
     if comm.size == 1:
         return value
     from mpi4py import MPI
+    if hasattr(value, "shape") and getattr(value, "ndim", 0) > 0:  # a numpy array: element by element
+        import numpy as np
+        a = np.ascontiguousarray(value)
+        out = np.empty_like(a)
+        comm.Allreduce(a, out, op=getattr(MPI, op))
+        return out
     return comm.allreduce(value, op=getattr(MPI, op))
 
 

@@ -38,7 +38,10 @@ from ...errors import CrackGeometryError, InputError
 from ...scene.crack_surface import EllipticalCrack, PolygonCrack, SurfaceCrack
 from ...scene.material import strain, stress
 from ...scene.options import Options
+from ...scene.partition import node_input_indices
+from ...scene.processes import agree, total
 from . import CrackModel
+from .shared_front import join_front
 
 logger = logging.getLogger(__name__)
 
@@ -99,10 +102,23 @@ class SurfaceCrackModel(CrackModel):
     @classmethod
     def create(cls, scene, crack, x: np.ndarray, cells: np.ndarray) -> "SurfaceCrackModel":
         surface = crack_surface(crack)
-        try:
-            geometry = _cracklip.compute_crack_geometry_3d(x, cells, surface, scene.options.snap_tol)
+        # (cells cut in the mesh's input node order and the front joined from
+        # every process's cells: the same sub-tetrahedra and front on any
+        # number of processes)
+        node_input = node_input_indices(scene.mesh.mesh, cells, x.shape[0])
+        comm = scene.mesh.mesh.comm
+        try:  # (under MPI a process's part may hold none of the crack: decided over all processes below)
+            geometry = _cracklip.compute_crack_geometry_3d(x, cells, surface, scene.options.snap_tol, node_input,
+                                                           comm.size == 1)
         except (ValueError, RuntimeError) as e:
             raise CrackGeometryError(f"{crack.name}: {e}") from None
+        if comm.size > 1:
+            counts = geometry.class_counts
+            crossed = total(counts["cut"] + counts["face"] + counts["front"], comm)
+            agree(None if crossed else CrackGeometryError(
+                f"{crack.name}: {surface!r}: no cell of the mesh is cut by the crack: the crack surface lies outside "
+                "the part; move the crack into the part or check its units"), comm)
+        join_front(geometry, surface, scene.mesh.mesh, x, cells, node_input)
         if geometry.num_snapped:
             logger.info("%s: %d nodes snapped onto the crack (snap_tol=%g)", crack.name, geometry.num_snapped,
                         scene.options.snap_tol)
@@ -245,6 +261,9 @@ class SurfaceCrackModel(CrackModel):
         normal = np.asarray(cc["facet_normal"]).reshape(-1, 3)
         area = np.asarray(cc["facet_area"])
         num_front = np.asarray(cc["facet_num_front"])
+        if m.distributed:  # this process's owned cells' facets; every process's gathered below
+            own = m.owned_cells_only(cell)
+            cell, ref, normal, area, num_front = cell[own], ref[own], normal[own], area[own], num_front[own]
         if subdivide > 1:
             ref, parent = subdivide_triangles(ref, int(subdivide))
             cell, normal, num_front = cell[parent], normal[parent], num_front[parent]
@@ -257,9 +276,14 @@ class SurfaceCrackModel(CrackModel):
         jump = up - um
         gap = np.einsum("fvi,fi->fv", jump, normal)
         slip = jump - gap[:, :, None] * normal[:, None, :]
-        return {"x": xp, "cell": cell, "normal": normal, "area": area, "num_front": num_front, "u_plus": up,
-                "u_minus": um, "jump": jump, "gap": gap, "slip_vector": slip, "slip": np.linalg.norm(slip, axis=2),
-                "ref": ref}
+        out = {"x": xp, "cell": cell, "normal": normal, "area": area, "num_front": num_front, "u_plus": up,
+               "u_minus": um, "jump": jump, "gap": gap, "slip_vector": slip, "slip": np.linalg.norm(slip, axis=2),
+               "ref": ref}
+        if m.distributed:  # every process's facets, in rank order, their cells -1 (as Solution.lip_samples')
+            parts = m.V.mesh.comm.allgather(out)
+            out = {k: np.concatenate([q[k] for q in parts]) for k in out}
+            out["cell"] = np.full(len(out["cell"]), -1, dtype=np.int32)
+        return out
 
 
 def crack_surface(crack) -> "_cracklip.CrackSurface3D":
