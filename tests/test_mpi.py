@@ -474,3 +474,30 @@ def test_check_open_crack_same_on_one_and_two_processes():
     assert_clean(p, 0)
     assert p.stdout.count(": valid") == 1 and p.stdout.count("run writes: ") == 1, p.stdout
     assert p.stderr.count("cracklip: warning:") == 4, p.stderr
+
+
+def test_no_import_thread_under_a_launcher(monkeypatch):
+    """Under mpirun the command line imports PETSc in the main thread: the
+    background import beside the first collective (the scene's agreement)
+    killed 6 of 8 four-process runs of the pressurised crack at start-up
+    (UnpicklingError, 'General MPI error'); 0 of 6 without the thread."""
+    from cracklip.cli import prefetch
+    for name in prefetch.LAUNCHER_SIZE:
+        monkeypatch.delenv(name, raising=False)
+    assert not prefetch.launched_in_parallel()
+    monkeypatch.setenv("OMPI_COMM_WORLD_SIZE", "1")
+    assert not prefetch.launched_in_parallel()
+    monkeypatch.setenv("OMPI_COMM_WORLD_SIZE", "4")
+    assert prefetch.launched_in_parallel()
+    loading = prefetch.start(("json",))
+    assert loading.thread is None
+    loading.close()
+    monkeypatch.delenv("OMPI_COMM_WORLD_SIZE")
+    monkeypatch.setenv("PMI_SIZE", "2")
+    assert prefetch.start(("json",)).thread is None
+    monkeypatch.delenv("PMI_SIZE")
+    loading = prefetch.start(("json",))
+    assert loading.thread is not None
+    loading.close()
+    loading.thread.join(5.0)
+    assert not loading.thread.is_alive()

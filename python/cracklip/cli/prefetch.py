@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import importlib
 import logging
+import os
 import queue
 import threading
 import typing
@@ -29,11 +30,13 @@ class Prefetch:
     """A daemon thread importing the modules put to it, in order, until
     close()."""
 
-    def __init__(self, modules: typing.Sequence[str]):
+    def __init__(self, modules: typing.Sequence[str], thread: bool = True):
         self._queue: queue.SimpleQueue = queue.SimpleQueue()
         self.add(*modules)
-        self.thread = threading.Thread(target=self._load, name="cracklip-prefetch", daemon=True)
-        self.thread.start()
+        self.thread = None
+        if thread:
+            self.thread = threading.Thread(target=self._load, name="cracklip-prefetch", daemon=True)
+            self.thread.start()
 
     def add(self, *modules: str) -> None:
         """Import these too, after those already asked for."""
@@ -52,6 +55,27 @@ class Prefetch:
                 logger.debug("prefetch of %s failed: %s", name, e)
 
 
+#: Environment variables in which MPI launchers give the number of
+#: processes (Open MPI, MPICH / Hydra, Slurm).
+LAUNCHER_SIZE = ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_NTASKS")
+
+
+def launched_in_parallel() -> bool:
+    """Whether an MPI launcher started this process as one of several (read
+    from the environment: MPI itself may not be initialised yet)."""
+    for name in LAUNCHER_SIZE:
+        try:
+            if int(os.environ.get(name, "1")) > 1:
+                return True
+        except ValueError:
+            pass
+    return False
+
+
 def start(modules: typing.Sequence[str] = RUN_MODULES) -> Prefetch:
-    """Import `modules` in a daemon thread (more with add(); close() when done)."""
-    return Prefetch(modules)
+    """Import `modules` in a daemon thread (more with add(); close() when done).
+    Under mpirun no thread: PETSc's import initialises MPI-aware state while
+    the main thread's first collective (the scene's agreement) runs, and 1 in 3
+    four-process runs died at start-up with a garbled message (UnpicklingError:
+    invalid load key); the modules are then imported by the main thread."""
+    return Prefetch(modules, thread=not launched_in_parallel())
