@@ -482,13 +482,14 @@ def test_no_import_thread_under_a_launcher(monkeypatch):
     killed 6 of 8 four-process runs of the pressurised crack at start-up
     (UnpicklingError, 'General MPI error'); 0 of 6 without the thread."""
     from cracklip.cli import prefetch
-    for name in prefetch.LAUNCHER_SIZE:
+    from cracklip.scene.processes import LAUNCHER_SIZE, launched_on_several
+    for name in LAUNCHER_SIZE:
         monkeypatch.delenv(name, raising=False)
-    assert not prefetch.launched_in_parallel()
+    assert not launched_on_several()
     monkeypatch.setenv("OMPI_COMM_WORLD_SIZE", "1")
-    assert not prefetch.launched_in_parallel()
+    assert not launched_on_several()
     monkeypatch.setenv("OMPI_COMM_WORLD_SIZE", "4")
-    assert prefetch.launched_in_parallel()
+    assert launched_on_several()
     loading = prefetch.start(("json",))
     assert loading.thread is None
     loading.close()

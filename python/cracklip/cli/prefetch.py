@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import importlib
 import logging
-import os
 import queue
 import threading
 import typing
@@ -55,27 +54,11 @@ class Prefetch:
                 logger.debug("prefetch of %s failed: %s", name, e)
 
 
-#: Environment variables in which MPI launchers give the number of
-#: processes (Open MPI, MPICH / Hydra, Slurm).
-LAUNCHER_SIZE = ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_NTASKS")
-
-
-def launched_in_parallel() -> bool:
-    """Whether an MPI launcher started this process as one of several (read
-    from the environment: MPI itself may not be initialised yet)."""
-    for name in LAUNCHER_SIZE:
-        try:
-            if int(os.environ.get(name, "1")) > 1:
-                return True
-        except ValueError:
-            pass
-    return False
-
-
 def start(modules: typing.Sequence[str] = RUN_MODULES) -> Prefetch:
     """Import `modules` in a daemon thread (more with add(); close() when done).
     Under mpirun no thread: PETSc's import initialises MPI-aware state while
-    the main thread's first collective (the scene's agreement) runs, and 1 in 3
+    the main thread's first collective (the scene's agreement) runs, and 6 of 8
     four-process runs died at start-up with a garbled message (UnpicklingError:
     invalid load key); the modules are then imported by the main thread."""
-    return Prefetch(modules, thread=not launched_in_parallel())
+    from ..scene.processes import launched_on_several
+    return Prefetch(modules, thread=not launched_on_several())

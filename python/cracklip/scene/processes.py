@@ -111,12 +111,17 @@ def first_error(checks: typing.Iterable[typing.Callable[[], None]]) -> CracklipE
     return None
 
 
+#: Environment variables in which MPI launchers give the number of
+#: processes (Open MPI, MPICH / Hydra, Slurm).
+LAUNCHER_SIZE = ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_NTASKS")
+
+
 def launched_on_several() -> bool:
-    """Whether mpirun (Open MPI, or an MPICH-style PMI launcher) started
-    this process as one of several, read from the launcher's environment
-    (nothing is imported)."""
+    """Whether mpirun (Open MPI, an MPICH-style PMI launcher, or Slurm)
+    started this process as one of several, read from the launcher's
+    environment (nothing is imported: MPI may not be initialised yet)."""
     import os
-    for name in ("OMPI_COMM_WORLD_SIZE", "PMI_SIZE"):
+    for name in LAUNCHER_SIZE:
         try:
             if int(os.environ.get(name, "1")) > 1:
                 return True
