@@ -232,6 +232,30 @@ def _draw_field(ax, tris: np.ndarray, values: np.ndarray, cmap: str, clim: tuple
                      interpolation="nearest", aspect="equal")
 
 
+def _part_and_zoom(extent: np.ndarray, window, height: float):
+    """The figure and its panels: the part alone (8 in wide, `height` tall),
+    or the part and the zoom on the cracks side by side, each panel as wide
+    as its own aspect ratio asks at a common height (equal-width halves left
+    a slender part's panel half empty beside a tall zoom, a gap between
+    them), the whole about 14 in wide."""
+    if window is None:
+        fig = new_figure((8.0, height))
+        return fig, [fig.add_subplot()]
+    span = np.ptp(np.asarray(window, dtype=float), axis=0)
+    ratios = [float(np.clip(extent[0] / max(extent[1], 1e-300), 0.2, 8.0)),
+              float(np.clip(span[0] / max(span[1], 1e-300), 0.2, 8.0))]
+    ratios[1] = max(ratios[1], 0.75)  # room for a tall zoom's labels and title
+    panel_height = float(np.clip(12.0 / sum(ratios), 2.5, 7.0))
+    width = float(np.clip(panel_height * sum(ratios) + 3.0, 8.0, 16.0))
+    fig = new_figure((width, panel_height + 1.6))
+    grid = fig.add_gridspec(1, 2, width_ratios=ratios)
+    panels = [fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[0, 1])]
+    if span[0] < 0.75 * span[1]:  # a narrow zoom: fewer ticks along x
+        from matplotlib.ticker import MaxNLocator
+        panels[1].xaxis.set_major_locator(MaxNLocator(3))
+    return fig, panels
+
+
 def _fit(ax, points: np.ndarray) -> None:
     """Limits around the drawn points with matplotlib's default margins, on
     both paths of _draw_field (imshow's limits are the image's edges, so an
@@ -290,8 +314,7 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
     umag = np.linalg.norm(disp, axis=2).mean(axis=1)
     moving = bool(np.any(umag > 0.0))
 
-    fig = new_figure((15.0, height) if window is not None else (8.0, height))
-    panels = [fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)] if window is not None else [fig.add_subplot()]
+    fig, panels = _part_and_zoom(extent, window, height)
     for k, ax in enumerate(panels):
         zoom = k == 1
         sel, m, shift = slice(None), mag, np.zeros(2)
@@ -314,7 +337,7 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
         if zoom:
             ax.set_xlim(window[0][0], window[1][0])
             ax.set_ylim(window[0][1], window[1][1])
-            ax.set_title("around the cracks, displacement relative to the window's mean, " f"x{m:g}", fontsize=9)
+            ax.set_title("around the cracks: displacement\nrelative to the window's mean, " f"x{m:g}", fontsize=9)
         elif window is not None:
             ax.add_patch(_rectangle(window))
             ax.set_title(f"displacement x{mag:g}", fontsize=9)
@@ -388,8 +411,7 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
     save_png(fig, out / "crack_pressure.png", {"along": ax})
     names.append("crack_pressure.png")
 
-    fig = new_figure((15.0, height) if window is not None else (8.0, height))
-    panels = [fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)] if window is not None else [fig.add_subplot()]
+    fig, panels = _part_and_zoom(extent, window, height)
     s = f["stress"]
     values = {"xx": s[:, 0], "yy": s[:, 1], "xy": s[:, 2]}.get(component)
     if values is None:
@@ -420,7 +442,7 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
         _label_axes(ax, units)
     unit_text = (f"[{units.name('stress')}]" if units is not None else "(the input's stress units")
     bar = fig.colorbar(coll, ax=panels, extend="max" if component == "von_mises" else "both",
-                       label=f"{name} {unit_text}" + ("; " if units is None else " (")
+                       label=f"{name} {unit_text}" + (";\n" if units is None else "\n(")
                              + f"scale clipped at the {STRESS_PERCENTILE:g}th percentile)")
     if window is None:
         panels[0].set_title(f"{title}\n{name}", fontsize=10)
