@@ -326,10 +326,11 @@ def _all_points(model, points: np.ndarray) -> np.ndarray:
     return np.unique(allp, axis=0) if len(allp) else allp
 
 
-def _owned_segments(model, fr: "Front") -> np.ndarray:
-    """Which front segments this process integrates: those of its owned
-    cells (each segment's cell is owned by one process; all in serial)."""
-    cell = np.asarray(fr.segment_cell)
+def _owned_segments(model, segment_cell: np.ndarray) -> np.ndarray:
+    """Which front segments (by their cells, -1: none) this process
+    integrates: those of its owned cells (each segment's cell is owned by
+    one process; all in serial)."""
+    cell = np.asarray(segment_cell)
     return (cell >= 0) & model.owned_cells_only(cell)
 
 
@@ -404,7 +405,7 @@ def crack_front(model, crack: int) -> Front:
     scell = np.asarray(f["segment_cell"])
     ssize = np.zeros(len(scell))
     if len(scell):  # (under MPI each segment's size from the process owning its cell)
-        own = (scell >= 0) & model.owned_cells_only(scell)
+        own = _owned_segments(model, scell)
         ssize[own] = cell_sizes(model, scell[own])
         if _comm(model) is not None:
             ssize = reduced(ssize, "SUM", _comm(model))
@@ -830,7 +831,7 @@ def _front_rule(model, fr: Front, piece: int) -> dict[str, np.ndarray]:
     key = (id(fr), piece)
     if key in c:
         return c[key]
-    mine = (fr.piece[fr.segments[:, 0]] == piece) & _owned_segments(model, fr)  # (summed over processes)
+    mine = (fr.piece[fr.segments[:, 0]] == piece) & _owned_segments(model, fr.segment_cell)  # (summed over processes)
     seg = fr.segments[mine]
     a, b = fr.x[seg[:, 0]], fr.x[seg[:, 1]]
     g = np.array([0.5 - math.sqrt(15) / 10, 0.5, 0.5 + math.sqrt(15) / 10])
