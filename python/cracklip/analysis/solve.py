@@ -117,14 +117,17 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
 
 
 def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
-    """solve() on several processes (mpirun; issue 40 step 2): an open 2D
-    crack, the direct solver (parallel MUMPS). The Solution holds this
-    process's model and its local displacement (owned and ghost nodes);
-    K (Solution.stress_intensity_factors) is summed over processes."""
+    """solve() on several processes (mpirun; issue 40 steps 2 and 4): open
+    cracks in 2D and 3D, the direct solver (parallel MUMPS); a load path
+    by load_path.solve_path on the same distributed matrix. The Solution
+    holds this process's model and its local displacement (owned and ghost
+    nodes); K (Solution.stress_intensity_factors) is summed over processes."""
     comm = scene.mesh.mesh.comm
     refuse_unless_distributed(scene)
     if condition_number:
         not_parallel("the condition number", comm)
+    if scene.load_path is not None:
+        return solve_path(scene)[-1]
     t_start = time.perf_counter()
     model = create_model(scene)
     E = scene.material.E  # in units of E, as solve()
