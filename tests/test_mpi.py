@@ -439,8 +439,13 @@ HALF_GRIFFITH = ["--set", "mesh.domain=[0.0,-10.0,10.0,10.0]", "--set", "mesh.ti
     ("penny_crack.toml", [*SMALL_3D, "--set", "loads.body_force=[0.05,0.02,-0.1]"], None),
     # a load path without contact: three steps of two load groups on one matrix
     ("frictional_crack.toml", ["--set", "mesh.h=0.2", "--set", "mesh.tip_h=0.05", "--set", "options.contact=none",
-                               "--set", "options.friction=0"], None)])
-def test_run_symmetry_cell_loads_load_path_same_on_one_and_two_processes(scene, settings, exact, tmp_path):
+                               "--set", "options.friction=0"], None),
+    # the nodal rescaling (each enriched node's group transformed by the process owning it), 2D and 3D
+    ("pressurised_crack.toml", ["--set", "mesh.tip_h=0.1", "--set", "options.radius=0.3",
+                                "--set", 'options.rescale="nodal"'], ((1.7835,), 0.01)),
+    ("quarter_ellipse.toml", ["--set", "mesh.h=2.0", "--set", "mesh.tip_h=0.2", "--set", "mesh.crack_h=0.3",
+                              "--set", 'options.rescale="nodal"'], None)])
+def test_run_symmetry_cell_loads_load_path_rescale_same_on_one_and_two_processes(scene, settings, exact, tmp_path):
     """`cracklip run` under mpirun -n 2 of what the distributed model took
     on after open cracks: symmetry planes (the normal component and the
     enriched dofs that would move the plane's nodes out of it fixed on the
@@ -448,13 +453,16 @@ def test_run_symmetry_cell_loads_load_path_same_on_one_and_two_processes(scene, 
     force and an initial stress (integrated on the owned cells, enriched
     ones included, each once), a load path (each group's right-hand side
     assembled once on the distributed matrix, every step solved by parallel
-    MUMPS). K per point (per step) to 1e-10 of the K scale, the energy to
-    1e-10, the dofs and front points exactly, each condition's reaction to
-    1e-10 of the loads. Measured: quarter ellipse 8e-15, half Griffith 5e-15,
-    residual stress 1.5e-12, body force 2D 1.8e-13, 3D 2.8e-13, load path
-    1.6e-14 (its worst step)."""
+    MUMPS), the nodal rescaling (T^T A T with T built per enriched node by
+    its owner). K per point (per step) to 1e-10 of the K scale, the energy
+    to 1e-10, the dofs and front points exactly, each condition's reaction
+    to 1e-10 of the loads. Measured: quarter ellipse 8e-15, half Griffith
+    5e-15, residual stress 1.5e-12, body force 2D 1.8e-13, 3D 2.8e-13, load
+    path 1.6e-14 (its worst step), nodal rescaling 7e-16 (2D), 1.3e-14
+    (quarter ellipse)."""
     out, serial, a, b = _run_both(scene, [*settings, "--no-estimate"], tmp_path)
     assert a["solution"]["dofs"] == b["solution"]["dofs"]
+    assert ("solve.rescale" in b["timings"]) == ('options.rescale="nodal"' in settings), b["timings"]
     for key in ("strain_energy", "max_displacement"):
         assert _relative(a["solution"][key], b["solution"][key], abs(a["solution"][key])) <= 1e-10, key
     modes = [k for k in ("K_I", "K_II", "K_III") if a["sifs"][0].get(k) is not None]

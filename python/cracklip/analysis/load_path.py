@@ -28,6 +28,7 @@ from ..scene.scene import Scene
 from ..solvers.checked import condition_number_1norm, record_solves, scipy_from_petsc
 from ..solvers.choice import create_linear_solver, to_solver_basis
 from ..solvers.direct import DirectSolver
+from ..solvers.rescaling import from_basis, rescale_distributed
 
 
 logger = logging.getLogger(__name__)
@@ -55,8 +56,12 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
     if model.distributed:  # (mpirun: the distributed matrix, owned entries per group; the direct path)
         A, rhs, timings = assemble_distributed_system_groups(unit)
         model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
+        A, values, T_mpi, t_basis = rescale_distributed(unit, A, list(rhs.values()))  # options.rescale
+        rhs = dict(zip(rhs.keys(), values))
+        timings.update(t_basis)
         linear, T = DirectSolver(), None
     else:
+        T_mpi = None
         A, rhs, timings = assemble_system_groups(unit)
         linear = create_linear_solver(unit)  # Options.solver, as solve.solve (cracklip.solvers)
         A, values, T, t_basis = to_solver_basis(unit, linear, A, list(rhs.values()))
@@ -95,7 +100,11 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
                     A_f = A.createVecRight()
                     A_f.array[:] = f
                     x = linear.solve(A, A_f, opts.residual_tol, what="X-FEM stiffness system")
-                    y = to_local(model.dofs, x) if model.distributed else x.array.copy()
+                    if model.distributed:
+                        x = from_basis(T_mpi, x)
+                        y = to_local(model.dofs, x)
+                    else:
+                        y = x.array.copy()
                     A_f.destroy()
                     x.destroy()
                 else:
@@ -121,6 +130,8 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
     if condition_number:
         out[-1].condition = condition_number_1norm(A)
     A.destroy()
+    if T_mpi is not None:
+        T_mpi.destroy()
     timings["total"] = time.perf_counter() - t_start
     for sol in out:
         sol.timings = {**model.timings, **timings}

@@ -14,7 +14,7 @@ import ufl
 
 from ..contact.frictionless import solve_contact
 from ..errors import InputError, SolverError
-from ..model.assembly import assemble_distributed_system, assemble_system, elasticity_form
+from ..model.assembly import assemble_distributed_system_groups, assemble_system, elasticity_form
 from ..model.distributed import to_local
 from ..model.model import create_model, refuse_unless_distributed
 from ..post.solution import Solution, create_solution
@@ -23,6 +23,7 @@ from ..scene.processes import not_parallel
 from ..scene.scene import Scene
 from ..solvers.checked import condition_number_1norm, record_solves, solve_checked
 from ..solvers.choice import choose_solver, create_linear_solver, to_solver_basis
+from ..solvers.rescaling import from_basis, rescale_distributed
 from .load_path import solve_path
 
 
@@ -134,8 +135,12 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     unit = dataclasses.replace(model, scene=dataclasses.replace(scene, material=scene.material.scaled(1.0)),
                                bc_values=model.bc_values * E,
                                bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
-    A, b, timings = assemble_distributed_system(unit)
+    A, rhs, timings = assemble_distributed_system_groups(unit)
     model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
+    A, rhs, T, t_basis = rescale_distributed(unit, A, list(rhs.values()))  # options.rescale
+    timings.update(t_basis)
+    b = A.createVecRight()
+    b.array[:] = sum(rhs, np.zeros(b.getLocalSize()))
     if scene.options.solver == "auto":
         n = A.getSize()[0]
         enriched = n - model.gdim * model.V.dofmap.index_map.size_global
@@ -146,8 +151,9 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     with record_solves() as solves:
         x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system", symmetric=True)
     timings["solve"] = time.perf_counter() - t0
+    x = from_basis(T, x)
     u = to_local(model.dofs, x) / E
-    for o in (A, b, x):
+    for o in (A, b, x) + ((T,) if T is not None else ()):
         o.destroy()
     timings = {**model.timings, **timings}
     timings["total"] = time.perf_counter() - t_start

@@ -148,24 +148,14 @@ def assemble_system_groups(model: XfemModel) -> tuple[PETSc.Mat, dict[str, np.nd
     return A, out, timings
 
 
-def assemble_distributed_system(model: XfemModel) -> tuple[PETSc.Mat, PETSc.Vec, dict[str, float]]:
-    """assemble_system on one process's part of a distributed model
-    (model.distributed): the matrix over the global numbering
-    (model.dofs), DOLFINx's standard block and the kernels' enriched blocks
-    on the owned cells, the loads of every group at factor 1 summed over
-    processes, the Dirichlet rows and columns of the owned dofs replaced by
-    identity with lifting."""
-    A, loads, timings = assemble_distributed_system_groups(model)
-    b = A.createVecRight()
-    b.array[:] = sum(loads.values(), np.zeros(b.getLocalSize()))
-    return A, b, timings
-
-
 def assemble_distributed_system_groups(model: XfemModel) -> tuple[PETSc.Mat, dict[str, np.ndarray], dict[str, float]]:
     """assemble_system_groups on one process's part of a distributed model
-    (collective): the distributed matrix as assemble_distributed_system
-    makes it, and per load group its right-hand side (loads and prescribed
-    values of that group, lifted) as this process's owned entries of A's
+    (model.distributed; collective): the matrix over the global numbering
+    (model.dofs), DOLFINx's standard block and the kernels' enriched blocks
+    on the owned cells, the Dirichlet rows and columns of the owned dofs
+    replaced by identity; per load group its right-hand side (the group's
+    loads on the owned cells and facets summed over processes, its
+    prescribed values lifted) as this process's owned entries of A's
     column layout (A.createVecRight().array)."""
     dm = model.dofs
     comm = model.V.mesh.comm

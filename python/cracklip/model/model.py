@@ -37,13 +37,12 @@ def refuse_unless_distributed(scene: Scene) -> None:
     cracks in 2D and 3D under lip pressures, boundary tractions, point
     forces, a body force and an initial stress; Dirichlet conditions and
     symmetry planes; a load path (each step on the one matrix); the direct
-    solver; K by the interaction integral (2D tips, 3D front points)."""
+    solver, also with options.rescale = "nodal"; K by the interaction integral (2D tips, 3D front points)."""
     comm = scene.mesh.mesh.comm
     o = scene.options
     for what, used in [
             ("options.contact", o.contact != "none"), ("options.friction", o.friction > 0.0),
-            ("options.solver = 'iterative'", o.solver == "iterative"),
-            ("options.rescale = 'nodal'", o.rescale == "nodal")]:
+            ("options.solver = 'iterative'", o.solver == "iterative")]:
         if used:
             not_parallel(what, comm)
 
