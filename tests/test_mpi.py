@@ -3,12 +3,14 @@ traceback, one clear message.
 
 What runs on several processes today: the mesh (gmsh meshes on rank 0,
 its cells and facet tags go into DOLFINx, which partitions them with vertex
-patches), its checks, a plain P1 solve (equal to serial), `run` of an open
-2D crack on the direct path (results.json, crack.csv, sif.csv, solution.vtu,
-crack_lips.vtu, the PNGs written once, equal to serial), and the commands that need
+patches), its checks, a plain P1 solve (equal to serial), `run` and `check`
+of open 2D and 3D cracks on the direct path (results.json, crack.csv,
+sif.csv, solution.vtu, crack_lips.vtu, the PNGs written once, equal to
+serial), also with symmetry planes, a body force, an initial stress, a load
+path without contact and the nodal rescaling, and the commands that need
 no mesh (`life`, `check` of a life scene, `reference`), run by rank 0 with
 their files written once. What the distributed model does not do yet
-(contact, friction, the iterative solver, 3D, growth)
+(contact, friction, the iterative solver, growth)
 is refused with one ``cracklip: error: ... is not available under MPI
 yet`` naming it (rank 0) and exit status 2 on every process. Each case runs `mpirun --allow-run-as-root
 --oversubscribe -n 2 /usr/bin/python3 -m cracklip ...` with a timeout: a
