@@ -14,7 +14,7 @@ import ufl
 
 from ..contact.frictionless import solve_contact
 from ..errors import InputError, SolverError
-from ..model.assembly import assemble_distributed_system_groups, assemble_system, elasticity_form
+from ..model.assembly import assemble_distributed_system, assemble_system, elasticity_form
 from ..model.distributed import to_local
 from ..model.model import create_model, refuse_unless_distributed
 from ..post.solution import Solution, create_solution
@@ -135,12 +135,11 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     unit = dataclasses.replace(model, scene=dataclasses.replace(scene, material=scene.material.scaled(1.0)),
                                bc_values=model.bc_values * E,
                                bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
-    A, rhs, timings = assemble_distributed_system_groups(unit)
+    A, b, timings = assemble_distributed_system(unit)
     model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
-    A, rhs, T, t_basis = rescale_distributed(unit, A, list(rhs.values()))  # options.rescale
+    A, (b_t,), T, t_basis = rescale_distributed(unit, A, [b.array])  # options.rescale
+    b.array[:] = b_t
     timings.update(t_basis)
-    b = A.createVecRight()
-    b.array[:] = sum(rhs, np.zeros(b.getLocalSize()))
     if scene.options.solver == "auto":
         n = A.getSize()[0]
         enriched = n - model.gdim * model.V.dofmap.index_map.size_global

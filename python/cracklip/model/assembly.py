@@ -148,6 +148,17 @@ def assemble_system_groups(model: XfemModel) -> tuple[PETSc.Mat, dict[str, np.nd
     return A, out, timings
 
 
+def assemble_distributed_system(model: XfemModel) -> tuple[PETSc.Mat, PETSc.Vec, dict[str, float]]:
+    """assemble_system on one process's part of a distributed model: the
+    matrix of assemble_distributed_system_groups and the right-hand side of
+    every load group at factor 1, summed (a distributed vector laid out as
+    A's columns)."""
+    A, loads, timings = assemble_distributed_system_groups(model)
+    b = A.createVecRight()
+    b.array[:] = sum(loads.values(), np.zeros(b.getLocalSize()))
+    return A, b, timings
+
+
 def assemble_distributed_system_groups(model: XfemModel) -> tuple[PETSc.Mat, dict[str, np.ndarray], dict[str, float]]:
     """assemble_system_groups on one process's part of a distributed model
     (model.distributed; collective): the matrix over the global numbering

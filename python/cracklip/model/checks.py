@@ -443,29 +443,28 @@ def check_front_ends(name: str, front: dict) -> None:
 
 
 def check_enrichment_radius(model) -> None:
-    """Raise InputError when options.radius > 0 reaches no node of a crack's
-    front (collective under mpirun: the nodes of every process)."""
+    """Raise InputError when options.radius > 0 reaches no node of a crack's front."""
     opts = model.scene.options
     if opts.radius <= 0.0 or opts.enrichment == "none":
         return
     r = opts.radius
-    comm = model.V.mesh.comm if getattr(model, "distributed", False) else None
-    for ci, cm in enumerate(model.cracks):
+    comm = model.V.mesh.comm  # (a serial model's: one process)
+    for cm in model.cracks:
         g = cm.geometry
-        if not len(g.front["x"]):
+        if not len(g.front["x"]):  # (the joined front: alike on every process)
             continue
         phi, psi = np.asarray(g.phi), np.asarray(g.psi)
         cand = np.flatnonzero((np.abs(phi) <= r) & (np.abs(psi) <= r))
         reached = bool(cand.size) and bool(np.any(
             _cracklip.compute_front_projection_3d(g, np.ascontiguousarray(model.x[cand]))["distance"] <= r))
-        if reached if comm is None else reduced(reached, "LOR", comm):
+        # Under MPI a process may hold no node near the front: the verdict and
+        # the nearest node are the whole mesh's.
+        if reduced(reached, "LOR", comm):
             continue
         nodes = np.unique(model.cells[front_cells(g)])
-        nearest = float(_cracklip.compute_front_projection_3d(g, np.ascontiguousarray(model.x[nodes]))["distance"].min()
-                        ) if nodes.size else np.inf
-        if comm is not None:
-            nearest = float(reduced(nearest, "MIN", comm))
-        h = float(front_element_sizes(model, ci).mean())
+        d = _cracklip.compute_front_projection_3d(g, np.ascontiguousarray(model.x[nodes]))["distance"]
+        nearest = float(reduced(float(np.min(d, initial=np.inf)), "MIN", comm))
+        h = float(front_element_sizes(model, model.cracks.index(cm)).mean())
         raise InputError(
             f"{cm.crack.name}: the enrichment radius options.radius = {r:.3g} reaches no node (the nearest node is "
             f"{nearest:.3g} from the front, where the elements are {h:.3g}): only the front cells' own nodes would "
