@@ -494,6 +494,28 @@ def test_run_symmetry_cell_loads_load_path_rescale_same_on_one_and_two_processes
         assert max(_relative(x, y, load) for x, y in zip(ca["force"], cb["force"])) <= 1e-10, (ca, cb)
 
 
+def test_symmetry_refusal_and_check_as_serial(tmp_path):
+    """A crack meeting a line of symmetry at 73 degrees is refused with the
+    serial message, once (each process checks the cells it holds; all raise
+    the first finding), exit 2; `cracklip check` of the quarter ellipse (two
+    symmetry planes) prints the serial summary."""
+    bad = [*HALF_GRIFFITH, "--set", "cracks[0].points=[[0.0,0.0],[1.0,0.3]]"]
+    p = mpirun("run", str(SCENES / "pressurised_crack.toml"), *bad, "--out", str(tmp_path / "bad"))
+    assert_clean(p, 2)
+    errors = [line for line in p.stderr.splitlines() if line.startswith("cracklip: error:")]
+    assert len(errors) == 1 and "meets it at 73.3 degrees instead of 90" in errors[0], p.stderr
+    args = ["check", str(SCENES / "quarter_ellipse.toml"), "--set", "mesh.h=2.0", "--set", "mesh.tip_h=0.2",
+            "--set", "mesh.crack_h=0.3", "--json"]
+    p = mpirun(*args)
+    assert_clean(p, 0)
+    s = _run_serial(*args)
+    assert s.returncode == 0, s.stderr
+    a, b = json.loads(s.stdout), json.loads(p.stdout)
+    assert [c.pop("snapped_nodes") for c in b["model"]["cracks"]] == [None]
+    a["model"]["cracks"][0].pop("snapped_nodes")
+    assert _same(a, b, 1e-12), (a, b)
+
+
 def test_3d_crack_in_one_corner_and_outside(tmp_path):
     """A small penny near the top face (most likely on one process's cells
     only; the other's part holds none of it) gives the serial K; a penny
