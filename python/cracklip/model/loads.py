@@ -19,6 +19,9 @@ through model.crack_type, cracklip.model.cracks).
   supported on 3D parts yet (the scene refuses it).
 - ``lip_pressure(crack, x)`` and ``assemble_lip_pressure(model, crack)``: a
   pressure p on both lips, the load int p [[phi_j]] . n over the lips.
+- Under mpirun (a distributed model) each process integrates its owned
+  cells, facets and lip points only (each once): its vector is a part, the
+  processes' parts sum to the load (model.distributed.vector_from_local).
 """
 from __future__ import annotations
 
