@@ -3,12 +3,14 @@ traceback, one clear message.
 
 What runs on several processes today: the mesh (gmsh meshes on rank 0,
 its cells and facet tags go into DOLFINx, which partitions them with vertex
-patches), its checks, a plain P1 solve (equal to serial), `run` of an open
-2D crack on the direct path (results.json, crack.csv, sif.csv, solution.vtu,
-crack_lips.vtu, the PNGs written once, equal to serial), and the commands that need
+patches), its checks, a plain P1 solve (equal to serial), `run` and `check`
+of open 2D and 3D cracks on the direct path (results.json, crack.csv,
+sif.csv, solution.vtu, crack_lips.vtu, the PNGs written once, equal to
+serial), also with symmetry planes, a body force, an initial stress, a load
+path without contact and the nodal rescaling, and the commands that need
 no mesh (`life`, `check` of a life scene, `reference`), run by rank 0 with
 their files written once. What the distributed model does not do yet
-(contact, friction, the iterative solver, 3D, growth)
+(contact, friction, the iterative solver, growth)
 is refused with one ``cracklip: error: ... is not available under MPI
 yet`` naming it (rank 0) and exit status 2 on every process. Each case runs `mpirun --allow-run-as-root
 --oversubscribe -n 2 /usr/bin/python3 -m cracklip ...` with a timeout: a
@@ -416,6 +418,102 @@ def test_run_3d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_pa
     for f in ("front.csv", "crack_opening.csv"):
         rows = [(d / f).read_text().splitlines() for d in (serial, out)]
         assert rows[0][0] == rows[1][0] and len(rows[0]) == len(rows[1]), f
+
+
+#: Half of the pressurised Griffith crack (Tada: K_I = 1.7835 for the plate's width) on x >= 0, the line x = 0
+#: of symmetry ([[symmetry]] by --set) meeting the crack at right angles.
+HALF_GRIFFITH = ["--set", "mesh.domain=[0.0,-10.0,10.0,10.0]", "--set", "mesh.tip_h=0.05",
+                 "--set", "cracks[0].points=[[0.0,0.0],[1.0,0.0]]", "--set", 'symmetry=[{tag="left"}]',
+                 "--set", 'dirichlet=[{point=[10.0,-10.0],component="y"}]', "--set", "options.radius=0.3"]
+
+
+@pytest.mark.parametrize("scene, settings, exact", [
+    # 3D, two symmetry planes: the front's ends on them (K from the domain and its mirror image); Irwin's
+    # K_I = 0.7318 at x = a, 1.0349 at y = b (the least and largest K_I; this coarse front: +4.3 %, -1.5 %)
+    ("quarter_ellipse.toml", ["--set", "mesh.h=2.0", "--set", "mesh.tip_h=0.2", "--set", "mesh.crack_h=0.3"],
+     ((0.7318, 1.0349), 0.05)),
+    ("pressurised_crack.toml", HALF_GRIFFITH, ((1.7835,), 0.01)),  # 2D, a line of symmetry (measured -0.07 %)
+    # an initial (residual) stress, 2D; without its contact (the lips overlap: a K_I < 0, equal all the same)
+    ("residual_stress.toml", ["--set", "mesh.h=0.1", "--set", "mesh.tip_h=0.02", "--set", "options.contact=none"],
+     None),
+    # a body force, 2D and 3D
+    ("pressurised_crack.toml", ["--set", "mesh.tip_h=0.1", "--set", "loads.body_force=[0.3,-0.5]"], None),
+    ("penny_crack.toml", [*SMALL_3D, "--set", "loads.body_force=[0.05,0.02,-0.1]"], None),
+    # a load path without contact: three steps of two load groups on one matrix
+    ("frictional_crack.toml", ["--set", "mesh.h=0.2", "--set", "mesh.tip_h=0.05", "--set", "options.contact=none",
+                               "--set", "options.friction=0"], None),
+    ("penny_crack.toml", [*SMALL_3D, "--set", 'load_path=[{name="half",factors={default=0.5}},'
+                                              '{name="full",factors={default=1.0}}]'], None),  # 3D
+    # the nodal rescaling (each enriched node's group transformed by the process owning it), 2D and 3D
+    ("pressurised_crack.toml", ["--set", "mesh.tip_h=0.1", "--set", "options.radius=0.3",
+                                "--set", 'options.rescale="nodal"'], ((1.7835,), 0.01)),
+    ("quarter_ellipse.toml", ["--set", "mesh.h=2.0", "--set", "mesh.tip_h=0.2", "--set", "mesh.crack_h=0.3",
+                              "--set", 'options.rescale="nodal"'], None)])
+def test_run_symmetry_cell_loads_load_path_rescale_same_on_one_and_two_processes(scene, settings, exact, tmp_path):
+    """`cracklip run` under mpirun -n 2 of what the distributed model took
+    on after open cracks: symmetry planes (the normal component and the
+    enriched dofs that would move the plane's nodes out of it fixed on the
+    owners' rows; the plane found from every process's tag nodes), a body
+    force and an initial stress (integrated on the owned cells, enriched
+    ones included, each once), a load path (each group's right-hand side
+    assembled once on the distributed matrix, every step solved by parallel
+    MUMPS), the nodal rescaling (T^T A T with T built per enriched node by
+    its owner). K per point (per step) to 1e-10 of the K scale, the energy
+    to 1e-10, the dofs and front points exactly, each condition's reaction
+    to 1e-10 of the loads. Measured: quarter ellipse 8e-15, half Griffith
+    5e-15, residual stress 1.5e-12, body force 2D 1.8e-13, 3D 2.8e-13, load
+    path 1.6e-14 (2D, its worst step), 2.3e-14 (3D), nodal rescaling 7e-16 (2D), 1.3e-14
+    (quarter ellipse)."""
+    out, serial, a, b = _run_both(scene, [*settings, "--no-estimate"], tmp_path)
+    assert a["solution"]["dofs"] == b["solution"]["dofs"]
+    assert ("solve.rescale" in b["timings"]) == ('options.rescale="nodal"' in settings), b["timings"]
+    for key in ("strain_energy", "max_displacement"):
+        assert _relative(a["solution"][key], b["solution"][key], abs(a["solution"][key])) <= 1e-10, key
+    modes = [k for k in ("K_I", "K_II", "K_III") if a["sifs"][0].get(k) is not None]
+    states = [(a["sifs"], b["sifs"])] + [(sa["sifs"], sb["sifs"]) for sa, sb in zip(a["steps"] or [], b["steps"] or [])]
+    assert len(a["steps"] or []) == len(b["steps"] or []) == (3 if scene == "frictional_crack.toml" else 2
+                                                              if "load_path" in str(settings) else 0)
+    for sa, sb in states:
+        assert len(sa) == len(sb) > 0
+        scale = max(abs(r[k]) for r in sa for k in modes)
+        for ra, rb in zip(sa, sb):
+            for k in modes:
+                assert _relative(ra[k], rb[k], scale) <= 1e-10, (k, ra, rb)
+    if exact is not None:  # the method, not just agreement: the least and largest K_I against the closed form
+        k_i = sorted(r["K_I"] for r in a["sifs"])
+        for got, want in zip((k_i[0], k_i[-1]) if len(exact[0]) > 1 else (k_i[0],), exact[0]):
+            assert abs(got / want - 1.0) < exact[1], (got, want)
+    if scene == "quarter_ellipse.toml":  # both ends on the planes: their K from the mirrored domains
+        ends = [r for r in b["sifs"] if r.get("K_source") == "mirrored_domain"]
+        assert len(ends) == 2 and all(abs(r["K_III"]) <= 1e-12 for r in ends), b["sifs"]
+    ra, rb = a["reactions"], b["reactions"]
+    load = max(ra["load_magnitude"], 2 * a["solution"]["strain_energy"] / a["solution"]["max_displacement"])
+    assert [(c["condition"], c["nodes"]) for c in ra["conditions"]] == [(c["condition"], c["nodes"])
+                                                                       for c in rb["conditions"]]
+    for ca, cb in zip(ra["conditions"], rb["conditions"]):
+        assert max(_relative(x, y, load) for x, y in zip(ca["force"], cb["force"])) <= 1e-10, (ca, cb)
+
+
+def test_symmetry_refusal_and_check_as_serial(tmp_path):
+    """A crack meeting a line of symmetry at 73 degrees is refused with the
+    serial message, once (each process checks the cells it holds; all raise
+    the first finding), exit 2; `cracklip check` of the quarter ellipse (two
+    symmetry planes) prints the serial summary."""
+    bad = [*HALF_GRIFFITH, "--set", "cracks[0].points=[[0.0,0.0],[1.0,0.3]]"]
+    p = mpirun("run", str(SCENES / "pressurised_crack.toml"), *bad, "--out", str(tmp_path / "bad"))
+    assert_clean(p, 2)
+    errors = [line for line in p.stderr.splitlines() if line.startswith("cracklip: error:")]
+    assert len(errors) == 1 and "meets it at 73.3 degrees instead of 90" in errors[0], p.stderr
+    args = ["check", str(SCENES / "quarter_ellipse.toml"), "--set", "mesh.h=2.0", "--set", "mesh.tip_h=0.2",
+            "--set", "mesh.crack_h=0.3", "--json"]
+    p = mpirun(*args)
+    assert_clean(p, 0)
+    s = _run_serial(*args)
+    assert s.returncode == 0, s.stderr
+    a, b = json.loads(s.stdout), json.loads(p.stdout)
+    assert [c.pop("snapped_nodes") for c in b["model"]["cracks"]] == [None]
+    a["model"]["cracks"][0].pop("snapped_nodes")
+    assert _same(a, b, 1e-12), (a, b)
 
 
 def test_3d_crack_in_one_corner_and_outside(tmp_path):

@@ -4,7 +4,9 @@ The matrix is assembled once; each group's right-hand side too (its loads
 and its prescribed values, lifted), so an increment costs only the contact
 iteration. Frictional contact carries its slip and states from increment to
 increment (friction is path-dependent); frictionless contact starts each
-increment from the last active set.
+increment from the last active set. Under mpirun (without contact) the
+distributed matrix and each group's owned right-hand side are assembled
+once and every increment is solved by parallel MUMPS.
 """
 from __future__ import annotations
 
@@ -17,7 +19,8 @@ import numpy as np
 
 from ..contact.friction import STATE_NAMES, solve_friction
 from ..contact.frictionless import contact_constant, create_contact_system, solve_frictionless
-from ..model.assembly import assemble_system_groups
+from ..model.assembly import assemble_distributed_system_groups, assemble_system_groups
+from ..model.distributed import to_local
 from ..model.model import create_model
 from ..post.solution import Solution, create_solution
 from ..errors import InputError
@@ -26,6 +29,8 @@ from ..scene.load_path import Increment, increments, steps
 from ..scene.scene import Scene
 from ..solvers.checked import condition_number_1norm, record_solves, scipy_from_petsc
 from ..solvers.choice import create_linear_solver, to_solver_basis
+from ..solvers.direct import DirectSolver
+from ..solvers.rescaling import from_basis, rescale_distributed
 
 
 logger = logging.getLogger(__name__)
@@ -50,11 +55,20 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
     unit = dataclasses.replace(model, scene=dataclasses.replace(scene, material=scene.material.scaled(1.0)),
                                bc_values=model.bc_values * E,
                                bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
-    A, rhs, timings = assemble_system_groups(unit)
-    linear = create_linear_solver(unit)  # Options.solver, as solve.solve (cracklip.solvers)
-    A, values, T, t_basis = to_solver_basis(unit, linear, A, list(rhs.values()))
-    rhs = dict(zip(rhs.keys(), values))
-    timings.update(t_basis)
+    if model.distributed:  # (mpirun: the distributed matrix, owned entries per group; the direct path)
+        A, rhs, timings = assemble_distributed_system_groups(unit)
+        model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
+        A, values, T_mpi, t_basis = rescale_distributed(unit, A, list(rhs.values()))  # options.rescale
+        rhs = dict(zip(rhs.keys(), values))
+        timings.update(t_basis)
+        linear, T = DirectSolver(), None
+    else:
+        T_mpi = None
+        A, rhs, timings = assemble_system_groups(unit)
+        linear = create_linear_solver(unit)  # Options.solver, as solve.solve (cracklip.solvers)
+        A, values, T, t_basis = to_solver_basis(unit, linear, A, list(rhs.values()))
+        rhs = dict(zip(rhs.keys(), values))
+        timings.update(t_basis)
     contact = opts.contact != "none" and bool(model.cracks)
     friction = contact and opts.friction > 0.0
     # The stiffness as the contact solves take it: friction assembles its
@@ -69,7 +83,7 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
             cs = dataclasses.replace(physical, B=(physical.B @ T).tocsr(),
                                      Bt=None if physical.Bt is None else (physical.Bt @ T).tocsr())
     c = contact_constant(unit)
-    n = model.num_dofs
+    n = A.getLocalSize()[0]  # (the model's dofs in serial; this process's owned ones under mpirun)
     m = cs.num_multipliers if cs is not None else 0
     mt = cs.Bt.shape[0] if friction else m  # tangential rows: m in 2D, 2 m in 3D
     s_old = np.zeros(mt)
@@ -88,7 +102,11 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
                     A_f = A.createVecRight()
                     A_f.array[:] = f
                     x = linear.solve(A, A_f, opts.residual_tol, what="X-FEM stiffness system")
-                    y = x.array.copy()
+                    if model.distributed:
+                        x = from_basis(T_mpi, x)
+                        y = to_local(model.dofs, x)
+                    else:
+                        y = x.array.copy()
                     A_f.destroy()
                     x.destroy()
                 else:
@@ -114,6 +132,8 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
     if condition_number:
         out[-1].condition = condition_number_1norm(A)
     A.destroy()
+    if T_mpi is not None:
+        T_mpi.destroy()
     timings["total"] = time.perf_counter() - t_start
     for sol in out:
         sol.timings = {**model.timings, **timings}
@@ -137,6 +157,8 @@ def _step_solution(model, unit, physical, y, T, E, info, inc: Increment, step: L
         contact["iterations"] = int(sum(iterations))
     solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None, "solver": solver_name,
               "solves": list(solves)}
+    if model.distributed:
+        solver["processes"] = model.V.mesh.comm.size
     sol = create_solution(model, u, dict(timings), {}, contact, solver)
     sol.factors = dict(inc.factors)
     sol.step = {"index": inc.step, "name": step.name, "factors": dict(inc.factors),

@@ -23,6 +23,7 @@ from ..scene.processes import not_parallel
 from ..scene.scene import Scene
 from ..solvers.checked import condition_number_1norm, record_solves, solve_checked
 from ..solvers.choice import choose_solver, create_linear_solver, to_solver_basis
+from ..solvers.rescaling import from_basis, rescale_distributed
 from .load_path import solve_path
 
 
@@ -117,14 +118,17 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
 
 
 def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
-    """solve() on several processes (mpirun; issue 40 step 2): an open 2D
-    crack, the direct solver (parallel MUMPS). The Solution holds this
-    process's model and its local displacement (owned and ghost nodes);
-    K (Solution.stress_intensity_factors) is summed over processes."""
+    """solve() on several processes (mpirun; issue 40 steps 2 and 4): open
+    cracks in 2D and 3D, the direct solver (parallel MUMPS); a load path
+    by load_path.solve_path on the same distributed matrix. The Solution
+    holds this process's model and its local displacement (owned and ghost
+    nodes); K (Solution.stress_intensity_factors) is summed over processes."""
     comm = scene.mesh.mesh.comm
     refuse_unless_distributed(scene)
     if condition_number:
         not_parallel("the condition number", comm)
+    if scene.load_path is not None:
+        return solve_path(scene)[-1]
     t_start = time.perf_counter()
     model = create_model(scene)
     E = scene.material.E  # in units of E, as solve()
@@ -133,6 +137,9 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
                                bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
     A, b, timings = assemble_distributed_system(unit)
     model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
+    A, (b_t,), T, t_basis = rescale_distributed(unit, A, [b.array])  # options.rescale
+    b.array[:] = b_t
+    timings.update(t_basis)
     if scene.options.solver == "auto":
         n = A.getSize()[0]
         enriched = n - model.gdim * model.V.dofmap.index_map.size_global
@@ -143,8 +150,9 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     with record_solves() as solves:
         x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system", symmetric=True)
     timings["solve"] = time.perf_counter() - t0
+    x = from_basis(T, x)
     u = to_local(model.dofs, x) / E
-    for o in (A, b, x):
+    for o in (A, b, x) + ((T,) if T is not None else ()):
         o.destroy()
     timings = {**model.timings, **timings}
     timings["total"] = time.perf_counter() - t_start

@@ -172,7 +172,10 @@ def _body_force(solution) -> typing.Callable[[np.ndarray], np.ndarray] | None:
         return None
     if isinstance(s0, LinearStress) and s0.is_uniform and (f is None or not np.any(f)):
         return None
-    size = float(np.ptp(model.x, axis=0).max())
+    lo, hi = model.x.min(axis=0), model.x.max(axis=0)
+    if getattr(model, "distributed", False):  # the part's size, alike on every process
+        lo, hi = reduced(lo, "MIN", model.V.mesh.comm), reduced(hi, "MAX", model.V.mesh.comm)
+    size = float((hi - lo).max())
 
     def b(x):
         out = np.zeros((len(x), 2)) if f is None else np.broadcast_to(f, (len(x), 2)).copy()

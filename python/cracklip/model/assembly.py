@@ -149,13 +149,27 @@ def assemble_system_groups(model: XfemModel) -> tuple[PETSc.Mat, dict[str, np.nd
 
 
 def assemble_distributed_system(model: XfemModel) -> tuple[PETSc.Mat, PETSc.Vec, dict[str, float]]:
-    """assemble_system on one process's part of a distributed model
-    (model.distributed): the matrix over the global numbering
+    """assemble_system on one process's part of a distributed model: the
+    matrix of assemble_distributed_system_groups and the right-hand side of
+    every load group at factor 1, summed (a distributed vector laid out as
+    A's columns)."""
+    A, loads, timings = assemble_distributed_system_groups(model)
+    b = A.createVecRight()
+    b.array[:] = sum(loads.values(), np.zeros(b.getLocalSize()))
+    return A, b, timings
+
+
+def assemble_distributed_system_groups(model: XfemModel) -> tuple[PETSc.Mat, dict[str, np.ndarray], dict[str, float]]:
+    """assemble_system_groups on one process's part of a distributed model
+    (model.distributed; collective): the matrix over the global numbering
     (model.dofs), DOLFINx's standard block and the kernels' enriched blocks
-    on the owned cells, the loads of every group at factor 1 summed over
-    processes, the Dirichlet rows and columns of the owned dofs replaced by
-    identity with lifting."""
+    on the owned cells, the Dirichlet rows and columns of the owned dofs
+    replaced by identity; per load group its right-hand side (the group's
+    loads on the owned cells and facets summed over processes, its
+    prescribed values lifted) as this process's owned entries of A's
+    column layout (A.createVecRight().array)."""
     dm = model.dofs
+    comm = model.V.mesh.comm
     timings = {}
     t0 = time.perf_counter()
     A = distributed.create_matrix(dm, model.crack_type.sparsity(model.cells, model.layout))
@@ -169,20 +183,31 @@ def assemble_distributed_system(model: XfemModel) -> tuple[PETSc.Mat, PETSc.Vec,
     A.assemble()
     timings["assemble_enriched"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    b = distributed.vector_from_local(dm, A, sum(assemble_loads(model).values(), np.zeros(model.num_dofs)))
+    loads = assemble_loads(model)
     rows = dm.global_dofs(model.bc_dofs)
     mine = dm.owned(rows)
-    rows, values = rows[mine].astype(PETSc.IntType), np.asarray(model.bc_values, dtype=float)[mine]
-    if reduced(bool(np.any(values)), "LOR", model.V.mesh.comm):
-        g, Ag = A.createVecRight(), A.createVecRight()
-        g.set(0.0)
-        g.setValues(rows, values)
-        g.assemble()
-        A.mult(g, Ag)
-        b.axpy(-1.0, Ag)
-        g.destroy(), Ag.destroy()
-    b.setValues(rows, values)
-    b.assemble()
+    rows = rows[mine].astype(PETSc.IntType)
+    # every process the same groups, in the same order (the collective calls below)
+    groups = sorted(set().union(*comm.allgather(set(loads) | {g for g, v in model.bc_group_values.items()
+                                                              if np.any(v)})))
+    out: dict[str, np.ndarray] = {}
+    g, Ag = A.createVecRight(), A.createVecRight()
+    for group in groups:
+        b = distributed.vector_from_local(dm, A, loads.get(group, np.zeros(model.num_dofs)))
+        values = np.asarray(model.bc_group_values.get(group, np.zeros(len(model.bc_dofs))), dtype=float)[mine]
+        if reduced(bool(np.any(values)), "LOR", comm):
+            # Lifting: b - A g over the free rows, the prescribed values on the constrained ones.
+            g.set(0.0)
+            g.setValues(rows, values)
+            g.assemble()
+            A.mult(g, Ag)
+            b.axpy(-1.0, Ag)
+        b.setValues(rows, values)
+        b.assemble()
+        out[group] = b.array.copy()
+        b.destroy()
+    for v in (g, Ag):
+        v.destroy()
     A.zeroRowsColumns(rows, diag=1.0)
     timings["load_and_constraints"] = time.perf_counter() - t0
-    return A, b, timings
+    return A, out, timings

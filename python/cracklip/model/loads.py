@@ -19,6 +19,9 @@ through model.crack_type, cracklip.model.cracks).
   supported on 3D parts yet (the scene refuses it).
 - ``lip_pressure(crack, x)`` and ``assemble_lip_pressure(model, crack)``: a
   pressure p on both lips, the load int p [[phi_j]] . n over the lips.
+- Under mpirun (a distributed model) each process integrates its owned
+  cells, facets and lip points only (each once): its vector is a part, the
+  processes' parts sum to the load (model.distributed.vector_from_local).
 """
 from __future__ import annotations
 
@@ -154,8 +157,9 @@ def _enriched_points(model) -> dict:
     the stiffness's rules, at least degree LOAD_DEGREE."""
     cache = model.__dict__.get("_enriched_points_cache")
     if cache is None:
-        cache = model.crack_type.enriched_cell_points(model, np.asarray(model.layout.cells, dtype=np.int32),
-                                                      LOAD_DEGREE)
+        cells = np.asarray(model.layout.cells, dtype=np.int32)
+        cells = cells[model.owned_cells_only(cells)]  # under MPI each cell once: on its owner
+        cache = model.crack_type.enriched_cell_points(model, cells, LOAD_DEGREE)
         model._enriched_points_cache = cache
     return cache
 
@@ -166,12 +170,13 @@ def _cell_loads(model, force: np.ndarray | None, stress_field) -> np.ndarray:
     b = np.zeros(model.num_dofs)
     d = model.gdim
     nv = d + 1
+    cells = model.cells if not model.distributed else model.cells[:model.num_owned_cells]  # each cell once
     if force is not None:
-        measure = model.crack_type.cell_measures(model.x, model.cells)
+        measure = model.crack_type.cell_measures(model.x, cells)
         for c in range(d):
-            np.add.at(b, d * model.cells.ravel() + c, np.repeat(force[c] * measure / nv, nv))
+            np.add.at(b, d * cells.ravel() + c, np.repeat(force[c] * measure / nv, nv))
     if stress_field is not None:
-        _add_initial_stress_standard(b, model, stress_field)
+        _add_initial_stress_standard(b, model.x, cells, stress_field)
     if model.layout.num_enriched == 0:
         return b
     fp = _enriched_points(model)
@@ -184,11 +189,12 @@ def _cell_loads(model, force: np.ndarray | None, stress_field) -> np.ndarray:
     return b
 
 
-def _add_initial_stress_standard(b: np.ndarray, model, stress_field) -> None:
-    """Add -int sigma_0 : eps(N_a e_d) on the standard dofs of triangles to
-    b: the mean of sigma_0 per cell (exact for a LinearStress, a degree-4
-    rule else) against the P1 gradients (initial stresses are 2D only)."""
-    xv = model.x[model.cells]
+def _add_initial_stress_standard(b: np.ndarray, x: np.ndarray, cells: np.ndarray, stress_field) -> None:
+    """Add -int sigma_0 : eps(N_a e_d) over triangles (cells: node indices
+    into x) on their standard dofs to b: the mean of sigma_0 per cell
+    (exact for a LinearStress, a degree-4 rule else) against the P1
+    gradients (initial stresses are 2D only)."""
+    xv = x[cells]
     e1, e2 = xv[:, 1] - xv[:, 0], xv[:, 2] - xv[:, 0]
     det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
     area = 0.5 * np.abs(det)
@@ -205,8 +211,8 @@ def _add_initial_stress_standard(b: np.ndarray, model, stress_field) -> None:
     sxx, syy, sxy = mean[:, 0], mean[:, 1], mean[:, 2]
     fx = -(sxx[:, None] * grads[:, :, 0] + sxy[:, None] * grads[:, :, 1]) * area[:, None]
     fy = -(sxy[:, None] * grads[:, :, 0] + syy[:, None] * grads[:, :, 1]) * area[:, None]
-    np.add.at(b, 2 * model.cells.ravel(), fx.ravel())
-    np.add.at(b, 2 * model.cells.ravel() + 1, fy.ravel())
+    np.add.at(b, 2 * cells.ravel(), fx.ravel())
+    np.add.at(b, 2 * cells.ravel() + 1, fy.ravel())
 
 
 def assemble_body_force(model, force: typing.Sequence[float]) -> np.ndarray:

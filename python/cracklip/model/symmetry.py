@@ -16,6 +16,7 @@ import numpy as np
 
 from .. import _cracklip
 from ..errors import CrackGeometryError
+from ..scene.processes import agree, first_error, reduced
 from ..scene.symmetry import SymmetryCondition
 
 #: The crack's normal may deviate this much (degrees) from lying in the
@@ -70,10 +71,22 @@ def plane_nodes(model, bc: SymmetryCondition) -> np.ndarray:
 def check_symmetry(model) -> None:
     """Raise CrackGeometryError naming the crack and the plane if a crack
     meets a symmetry plane at other than right angles, lies in it, or (3D)
-    has a front that meets it obliquely."""
+    has a front that meets it obliquely. Collective under mpirun: each
+    process checks the cells it holds, and all raise the first finding."""
     planes = [bc for bc in model.scene.dirichlet if isinstance(bc, SymmetryCondition)]
     if not planes or not model.cracks:
         return
+    if model.distributed:
+        h = [_front_cell_size(model, np.asarray(cm.geometry.front["segment_cell"])) if model.gdim == 3 else 0.0
+             for cm in model.cracks]  # (collective: before any process may stop at a finding)
+        agree(first_error([lambda: _check_planes(model, planes, h)]), model.V.mesh.comm)
+        return
+    _check_planes(model, planes, None)
+
+
+def _check_planes(model, planes: list, front_h: list | None) -> None:
+    """check_symmetry's findings on this process's cells (front_h: each
+    crack's front cell size, computed here if None)."""
     kind = type(model.cracks[0])
     gdim = model.x.shape[1]
     tol = math.sin(math.radians(CRACK_ANGLE_DEG))
@@ -81,7 +94,7 @@ def check_symmetry(model) -> None:
         normal = np.asarray(bc.normal, dtype=float)
         on_plane = np.zeros(model.x.shape[0], dtype=bool)
         on_plane[plane_nodes(model, bc)] = True
-        for cm in model.cracks:
+        for ic, cm in enumerate(model.cracks):
             # the cells the crack crosses where its trace meets the plane: phi
             # of both signs (or 0) at their nodes on the plane
             cells = np.flatnonzero(cm.crossed())
@@ -105,19 +118,21 @@ def check_symmetry(model) -> None:
                         f"crack {cm.crack.name!r} and {bc.label} (tag {bc.where!r}): the crack {what}; a crack must "
                         "meet a symmetry plane at right angles, so that its mirror image continues it")
             if gdim == 3:
-                _check_front_ends(model, cm, bc, normal)
+                _check_front_ends(model, cm, bc, normal, None if front_h is None else front_h[ic])
 
 
-def _check_front_ends(model, cm, bc: SymmetryCondition, normal: np.ndarray) -> None:
+def _check_front_ends(model, cm, bc: SymmetryCondition, normal: np.ndarray, h: float | None) -> None:
     """A 3D front ending on the plane must meet it at right angles
-    (CRACK_ANGLE_DEG, or FRONT_FIT_ANGLE_DEG for a fitted tangent)."""
+    (CRACK_ANGLE_DEG, or FRONT_FIT_ANGLE_DEG for a fitted tangent); h: the
+    front's cell size (None: computed here)."""
     f = cm.geometry.front
     x = np.asarray(f["x"])
     off = np.asarray(f["piece_offsets"])
     closed = np.asarray(f["closed"]).astype(bool)
     if not len(x):
         return
-    h = model.crack_type.mean_edge(model.x, model.cells[np.asarray(f["segment_cell"])])
+    if h is None:
+        h = _front_cell_size(model, np.asarray(f["segment_cell"]))
     origin = np.asarray(bc.origin, dtype=float)
     for k in np.flatnonzero(~closed):
         idx = np.arange(off[k], off[k + 1])
@@ -132,6 +147,18 @@ def _check_front_ends(model, cm, bc: SymmetryCondition, normal: np.ndarray) -> N
                     f"({', '.join(f'{v:.6g}' for v in x[end[0]])}) {angle:.3g} degrees off the plane's normal (at "
                     f"most {limit:g}): mirrored, the front would have a kink there; a crack must meet a symmetry "
                     "plane at right angles (an ellipse centred on the plane with an axis in it does)")
+
+
+def _front_cell_size(model, segment_cell: np.ndarray) -> float:
+    """Mean edge of the front segments' cells; under mpirun (collective)
+    each segment counted by the process owning its cell (-1: not on this
+    process)."""
+    if not model.distributed:
+        return model.crack_type.mean_edge(model.x, model.cells[segment_cell])
+    own = segment_cell[(segment_cell >= 0) & model.owned_cells_only(segment_cell)]
+    total, count = reduced(np.array([model.crack_type.mean_edge(model.x, model.cells[own]) * len(own), len(own)]),
+                           "SUM", model.V.mesh.comm)
+    return float(total / count) if count else 0.0
 
 
 def front_tangent(crack, pts: np.ndarray, h: float) -> tuple[np.ndarray, float]:

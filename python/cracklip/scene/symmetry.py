@@ -21,6 +21,7 @@ import numpy as np
 
 from ..errors import BoundaryConditionError
 from .conditions import Dirichlet
+from .processes import reduced
 
 #: The tag's nodes must lie within this fraction of the part's size of one
 #: plane (line), its normal within this of an axis.
@@ -59,18 +60,37 @@ class SymmetryCondition(Dirichlet):
 
 
 def tag_nodes(mesh, where) -> np.ndarray:
-    """Coordinates (n, d) of the nodes of a boundary tag's facets."""
+    """Coordinates (n, d) of the nodes of a boundary tag's facets (collective
+    under mpirun: every process's, gathered)."""
     verts = mesh.facet_vertices(where)
-    return np.unique(verts.reshape(-1, verts.shape[-1]), axis=0)
+    x = verts.reshape(-1, verts.shape[-1])
+    comm = mesh.mesh.comm
+    if comm.size > 1:
+        x = np.concatenate(comm.allgather(x))
+    return np.unique(x, axis=0)
+
+
+def _part_centre_and_size(mesh) -> tuple[np.ndarray, float]:
+    """The mean of the part's nodes and its size (largest extent); collective
+    under mpirun (each node counted once, by its owner)."""
+    geo = mesh.mesh.geometry
+    pts = geo.x[:, :mesh.gdim]
+    comm = mesh.mesh.comm
+    own = pts[:geo.index_map().size_local]
+    total = reduced(np.append(own.sum(axis=0), len(own)), "SUM", comm)
+    lo, hi = reduced(pts.min(axis=0), "MIN", comm), reduced(pts.max(axis=0), "MAX", comm)
+    return total[:-1] / total[-1], float((hi - lo).max())
 
 
 def symmetry_plane(mesh, sym: Symmetry) -> tuple[np.ndarray, np.ndarray, int]:
     """The plane (line) of a symmetry tag: a point on it, its unit normal
     (pointing out of the part) and the axis of the normal; an error naming
-    the tag if it is not planar or its normal is not along x, y or z."""
+    the tag if it is not planar or its normal is not along x, y or z.
+    Collective under mpirun (the tag's nodes of every process: the same
+    plane and verdict on all)."""
     x = tag_nodes(mesh, sym.where)
-    pts = mesh.mesh.geometry.x[:, :mesh.gdim]
-    size = float(np.ptp(pts, axis=0).max()) or 1.0
+    centre, size = _part_centre_and_size(mesh)
+    size = size or 1.0
     origin = x.mean(axis=0)
     _, sv, vt = np.linalg.svd(x - origin, full_matrices=False)
     normal = vt[-1]
@@ -90,7 +110,7 @@ def symmetry_plane(mesh, sym: Symmetry) -> tuple[np.ndarray, np.ndarray, int]:
             "normal to an axis (turn the part)")
     normal = np.zeros(mesh.gdim)
     # outward: away from the part's centre
-    normal[axis] = 1.0 if origin[axis] >= pts[:, axis].mean() else -1.0
+    normal[axis] = 1.0 if origin[axis] >= centre[axis] else -1.0
     origin = origin.copy()
     origin[axis] = float(np.mean(x[:, axis]))
     return origin, normal, axis

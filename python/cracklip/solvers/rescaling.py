@@ -11,6 +11,8 @@ only the rows of grouped dofs are extracted from the matrix.
 """
 from __future__ import annotations
 
+import time
+
 import numpy as np
 import scipy.sparse as sp
 from petsc4py import PETSc
@@ -87,3 +89,85 @@ def rescale_system(A: PETSc.Mat, b: PETSc.Vec, T: sp.csr_matrix) -> tuple[PETSc.
     bs = b.duplicate()
     bs.array[:] = T.T @ b.array
     return rescale_matrix(A, T), bs
+
+
+def nodal_transform_distributed(model: XfemModel, A: PETSc.Mat) -> PETSc.Mat:
+    """nodal_transform on one process's part of a distributed model
+    (model.distributed; collective): T as a distributed matrix laid out as A.
+    A group (an enriched node's standard and pseudo-node dofs) is built by
+    the process owning its node, which owns all its dofs (a pseudo-node
+    belongs to its base node's owner), from the owned diagonal block of A
+    on the groups' dofs; the other owned dofs are Jacobi-scaled."""
+    from ..scene.processes import agree
+    dm = model.dofs
+    d = model.gdim
+    offsets, dofs = nodal_groups(model)
+    sizes = np.diff(offsets)
+    mine = dofs[offsets[:-1]] // d < model.V.dofmap.index_map.size_local  # (a group's first dof: its node's x)
+    g = dm.global_dofs(dofs[np.repeat(mine, sizes)])
+    offsets = np.concatenate([[0], np.cumsum(sizes[mine])]).astype(np.int32)
+    lo, hi = A.getOwnershipRange()
+    if np.any((g < lo) | (g >= hi)):
+        raise RuntimeError("a nodal group has dofs owned by another process")  # (the numbering's invariant)
+    grouped = np.unique(g)
+    diag = np.abs(A.getDiagonal().array)
+    scale = np.where(diag > 0.0, 1.0 / np.sqrt(np.where(diag > 0.0, diag, 1.0)), 1.0)
+    rest = np.setdiff1d(np.arange(lo, hi), grouped)
+    rows, cols, vals = [rest], [rest], [scale[rest - lo]]
+    iset = PETSc.IS().createGeneral(grouped.astype(PETSc.IntType), comm=A.getComm())
+    S = A.createSubMatrix(iset, iset)
+    D = S.getDiagonalBlock()  # the owned groups' rows and columns, in grouped's order
+    indptr, indices, data = D.getValuesCSR()
+    for o in (S, iset):
+        o.destroy()
+    error = None
+    if grouped.size:
+        try:
+            r, c, v = _cracklip.nodal_block_transform(indptr.astype(np.int32), indices.astype(np.int32), data,
+                                                      offsets, np.searchsorted(grouped, g).astype(np.int32))
+        except RuntimeError as e:
+            error = SolverError(f"{e}; use rescale='none'")
+        else:
+            rows.append(grouped[r])
+            cols.append(grouped[c])
+            vals.append(v)
+    agree(error, A.getComm().tompi4py())
+    n, N = A.getSizes()[0]
+    T = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows) - lo, np.concatenate(cols))), shape=(n, N))
+    T.sort_indices()
+    return PETSc.Mat().createAIJ(((n, N), (n, N)), csr=(T.indptr.astype(PETSc.IntType),
+                                                        T.indices.astype(PETSc.IntType), T.data), comm=A.getComm())
+
+
+def rescale_distributed(model: XfemModel, A: PETSc.Mat, rhs: list[np.ndarray]
+                        ) -> tuple[PETSc.Mat, list[np.ndarray], PETSc.Mat | None, dict[str, float]]:
+    """choice.to_solver_basis on a distributed model's direct path: with
+    Options.rescale = "nodal" (T^T A T, [T^T b for b in rhs], T, timings),
+    the right-hand sides as this process's owned entries; else (A, rhs,
+    None, {}). A is consumed."""
+    if model.scene.options.rescale != "nodal":
+        return A, rhs, None, {}
+    t0 = time.perf_counter()
+    T = nodal_transform_distributed(model, A)
+    A_t = A.PtAP(T)
+    A.destroy()
+    out = []
+    b, bt = T.createVecLeft(), T.createVecRight()
+    for v in rhs:
+        b.array[:] = v
+        T.multTranspose(b, bt)
+        out.append(bt.array.copy())
+    for o in (b, bt):
+        o.destroy()
+    return A_t, out, T, {"rescale": time.perf_counter() - t0}
+
+
+def from_basis(T: PETSc.Mat | None, x: PETSc.Vec) -> PETSc.Vec:
+    """The dofs u = T y of a solution y in rescale_distributed's basis (x
+    itself without T; a new vector with it, x destroyed)."""
+    if T is None:
+        return x
+    u = T.createVecLeft()
+    T.mult(x, u)
+    x.destroy()
+    return u
