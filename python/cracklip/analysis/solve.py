@@ -23,6 +23,7 @@ from ..scene.processes import not_parallel
 from ..scene.scene import Scene
 from ..solvers.checked import condition_number_1norm, record_solves, solve_checked
 from ..solvers.choice import choose_solver, create_linear_solver, to_solver_basis
+from ..solvers.distributed_iterative import DistributedIterativeSolver
 from .load_path import solve_path
 
 
@@ -117,8 +118,9 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
 
 
 def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
-    """solve() on several processes (mpirun; issue 40 step 2): an open 2D
-    crack, the direct solver (parallel MUMPS). The Solution holds this
+    """solve() on several processes (mpirun; issue 40 step 2): an open
+    crack, the direct solver (parallel MUMPS) or the iterative one
+    (Options.solver, choose_solver; solvers.distributed_iterative). The Solution holds this
     process's model and its local displacement (owned and ghost nodes);
     K (Solution.stress_intensity_factors) is summed over processes."""
     comm = scene.mesh.mesh.comm
@@ -133,23 +135,36 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
                                bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
     A, b, timings = assemble_distributed_system(unit)
     model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
-    if scene.options.solver == "auto":
-        n = A.getSize()[0]
-        enriched = n - model.gdim * model.V.dofmap.index_map.size_global
-        if choose_solver(scene.options, n, enriched, model.gdim) == "iterative":
-            logger.info("options.solver = 'auto' would take the iterative solver at %d dofs; under mpirun the "
-                        "direct one (parallel MUMPS) solves: the iterative path is serial yet", n)
-    t0 = time.perf_counter()
+    n = A.getSize()[0]
+    which = choose_solver(scene.options, n, n - model.gdim * model.V.dofmap.index_map.size_global, model.gdim)
+    what = "X-FEM stiffness system"
     with record_solves() as solves:
-        x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system", symmetric=True)
+        if which == "iterative":  # the serial path's solver on the global numbering
+            t0 = time.perf_counter()
+            linear = DistributedIterativeSolver(unit, fallback=scene.options.solver == "auto")
+            try:
+                A_t, _ = linear.transform(A)
+                b_t = linear.to_phantom(b)
+                timings["phantom_transform"] = time.perf_counter() - t0
+                t0 = time.perf_counter()
+                y = linear.solve(A_t, b_t, scene.options.residual_tol, what=what)
+                x = linear.from_phantom(y)
+                for o in (A_t, b_t, y):
+                    o.destroy()
+            finally:
+                linear.destroy()
+        else:
+            t0 = time.perf_counter()
+            x = solve_checked(A, b, scene.options.residual_tol, what=what, symmetric=True)
     timings["solve"] = time.perf_counter() - t0
     u = to_local(model.dofs, x) / E
     for o in (A, b, x):
         o.destroy()
+    release_memory()
     timings = {**model.timings, **timings}
     timings["total"] = time.perf_counter() - t_start
     solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None,
-              "solver": "direct", "solves": solves, "processes": comm.size}
+              "solver": which, "solves": solves, "processes": comm.size}
     return create_solution(model, u, timings, {}, {}, solver)
 
 
