@@ -507,7 +507,8 @@ class IterativeSolver(LinearSolver):
         method = (f"{'CG' if krylov == 'cg' else f'GMRES({GMRES_RESTART})'} + "
                   "Schwarz {MUMPS crack band | GAMG | band} (phantom basis)")
         record_solve({"what": what, "size": size, "relative_residual": rel, "solver": "iterative",
-                      "method": method, "iterations": int(its), "band": int(band_dofs.size),
+                      "method": method, "iterations": int(its),
+                      "band": int(A.getComm().tompi4py().allreduce(band_dofs.size)),  # (over the processes)
                       "amg_dofs": self.n, "setup_reused": reused,
                       "t_setup": t_setup, "t_total": time.perf_counter() - t0})
         logger.info("%s: %d iterations (%s), relative residual %.3g", what, its, method, rel)
