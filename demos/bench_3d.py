@@ -87,7 +87,8 @@ def _plain(scene) -> dict:
     t1 = time.perf_counter()
     n = A.getSize()[0]
     import bench_solvers
-    x, its, rel, t_setup = bench_solvers.plain_cg_gamg(A, b, V.tabulate_dof_coordinates(), "plain3d_")
+    owned = V.dofmap.index_map.size_local  # (all nodes in serial)
+    x, its, rel, t_setup = bench_solvers.plain_cg_gamg(A, b, V.tabulate_dof_coordinates()[:owned], "plain3d_")
     t_solve = time.perf_counter() - t1
     for obj in (A, b, x):
         obj.destroy()
@@ -96,13 +97,20 @@ def _plain(scene) -> dict:
 
 
 def _xfem(scene) -> dict:
+    import numpy as np
     import cracklip as cl
     t0 = time.perf_counter()
     sol = cl.solve(scene)
     t_total = time.perf_counter() - t0
     tm = sol.timings
     s = sol.solver["solves"][-1]
-    return {"ndofs": int(sol.model.num_dofs), "enriched_dofs": int(3 * sol.model.layout.num_enriched),
+    m = sol.model
+    if m.distributed:  # (under mpirun: the global counts)
+        ndofs = m.dofs.num_global * 3
+        enriched = 3 * m.V.mesh.comm.allreduce(int((np.asarray(m.layout.node) < m.V.dofmap.index_map.size_local).sum()))
+    else:
+        ndofs, enriched = m.num_dofs, 3 * m.layout.num_enriched
+    return {"ndofs": int(ndofs), "enriched_dofs": int(enriched),
             "t_solve": tm.get("phantom_transform", 0.0) + tm["solve"], "t_setup": s.get("t_setup"),
             "t_total": t_total, "t_assemble_enriched": tm["assemble_enriched"],
             "t_assemble_standard": tm["assemble_standard"], "iterations": int(s["iterations"]),

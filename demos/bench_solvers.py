@@ -112,19 +112,21 @@ def plain_cg_gamg(A, b, x_nodes, prefix: str) -> tuple:
     import numpy as np
     from petsc4py import PETSc
     from cracklip.solvers import iterative
-    n = A.getSize()[0]
-    Q = iterative.rigid_motions(x_nodes - x_nodes.mean(axis=0), np.arange(len(x_nodes)), n)
+    comm = A.getComm().tompi4py()  # under mpirun: x_nodes are this process's owned nodes
+    n = A.getLocalSize()[0]
+    total = comm.allreduce(np.concatenate([x_nodes.sum(axis=0), [len(x_nodes)]]))
+    Q = iterative.rigid_motions(x_nodes - total[:-1] / total[-1], np.arange(len(x_nodes)), n, comm)
     vecs = []
     for j in range(Q.shape[1]):
         w = A.createVecRight()
         w.array[:] = Q[:, j]
         vecs.append(w)
-    A.setNearNullSpace(PETSc.NullSpace().create(vectors=vecs))
+    A.setNearNullSpace(PETSc.NullSpace().create(vectors=vecs, comm=A.getComm()))
     A.setOption(PETSc.Mat.Option.SPD, True)
     opts = PETSc.Options()
     for k, val in iterative.GAMG_OPTIONS.items():
         opts[prefix + k] = val
-    ksp = PETSc.KSP().create(PETSc.COMM_SELF)
+    ksp = PETSc.KSP().create(A.getComm())
     ksp.setOptionsPrefix(prefix)
     ksp.setOperators(A)
     ksp.setType("cg")

@@ -23,6 +23,7 @@ from ..scene.processes import not_parallel
 from ..scene.scene import Scene
 from ..solvers.checked import condition_number_1norm, record_solves, solve_checked
 from ..solvers.choice import choose_solver, create_linear_solver, to_solver_basis
+from ..solvers.distributed_iterative import DistributedIterativeSolver
 from ..solvers.rescaling import from_basis, rescale_distributed
 from .load_path import solve_path
 
@@ -119,10 +120,12 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
 
 def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     """solve() on several processes (mpirun; issue 40 steps 2 and 4): open
-    cracks in 2D and 3D, the direct solver (parallel MUMPS); a load path
-    by load_path.solve_path on the same distributed matrix. The Solution
-    holds this process's model and its local displacement (owned and ghost
-    nodes); K (Solution.stress_intensity_factors) is summed over processes."""
+    cracks in 2D and 3D, the direct solver (parallel MUMPS) or the
+    iterative one (Options.solver, choose_solver;
+    solvers.distributed_iterative); a load path by load_path.solve_path on
+    the same distributed matrix. The Solution holds this process's model
+    and its local displacement (owned and ghost nodes); K
+    (Solution.stress_intensity_factors) is summed over processes."""
     comm = scene.mesh.mesh.comm
     refuse_unless_distributed(scene)
     if condition_number:
@@ -137,27 +140,41 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
                                bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
     A, b, timings = assemble_distributed_system(unit)
     model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
-    A, (b_t,), T, t_basis = rescale_distributed(unit, A, [b.array])  # options.rescale
+    A, (b_t,), T, t_basis = rescale_distributed(unit, A, [b.array])  # options.rescale (direct path)
     b.array[:] = b_t
     timings.update(t_basis)
-    if scene.options.solver == "auto":
-        n = A.getSize()[0]
-        enriched = n - model.gdim * model.V.dofmap.index_map.size_global
-        if choose_solver(scene.options, n, enriched, model.gdim) == "iterative":
-            logger.info("options.solver = 'auto' would take the iterative solver at %d dofs; under mpirun the "
-                        "direct one (parallel MUMPS) solves: the iterative path is serial yet", n)
-    t0 = time.perf_counter()
+    n = A.getSize()[0]
+    which = choose_solver(scene.options, n, n - model.gdim * model.V.dofmap.index_map.size_global, model.gdim)
+    what = "X-FEM stiffness system"
     with record_solves() as solves:
-        x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system", symmetric=True)
+        if which == "iterative":  # the serial path's solver on the global numbering
+            t0 = time.perf_counter()
+            linear = DistributedIterativeSolver(unit, fallback=scene.options.solver == "auto")
+            try:
+                A_t, _ = linear.transform(A)
+                A.destroy()  # (T^T A T is a new matrix: A is not needed again)
+                b_t = linear.to_phantom(b)
+                timings["phantom_transform"] = time.perf_counter() - t0
+                t0 = time.perf_counter()
+                y = linear.solve(A_t, b_t, scene.options.residual_tol, what=what)
+                x = linear.from_phantom(y)
+                for o in (A_t, b_t, y):
+                    o.destroy()
+            finally:
+                linear.destroy()
+        else:
+            t0 = time.perf_counter()
+            x = solve_checked(A, b, scene.options.residual_tol, what=what, symmetric=True)
     timings["solve"] = time.perf_counter() - t0
     x = from_basis(T, x)
     u = to_local(model.dofs, x) / E
     for o in (A, b, x) + ((T,) if T is not None else ()):
         o.destroy()
+    release_memory()
     timings = {**model.timings, **timings}
     timings["total"] = time.perf_counter() - t_start
     solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None,
-              "solver": "direct", "solves": solves, "processes": comm.size}
+              "solver": which, "solves": solves, "processes": comm.size}
     return create_solution(model, u, timings, {}, {}, solver)
 
 

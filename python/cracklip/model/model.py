@@ -36,13 +36,16 @@ def refuse_unless_distributed(scene: Scene) -> None:
     several processes yet. What it does (issue 40 steps 2 and 4): open
     cracks in 2D and 3D under lip pressures, boundary tractions, point
     forces, a body force and an initial stress; Dirichlet conditions and
-    symmetry planes; a load path (each step on the one matrix); the direct
-    solver, also with options.rescale = "nodal"; K by the interaction integral (2D tips, 3D front points)."""
+    symmetry planes; a load path (each step on the one matrix, by the direct
+    solver); the direct solver, also with options.rescale = "nodal", and
+    the iterative one; K by the interaction integral (2D tips, 3D front
+    points)."""
     comm = scene.mesh.mesh.comm
     o = scene.options
     for what, used in [
             ("options.contact", o.contact != "none"), ("options.friction", o.friction > 0.0),
-            ("options.solver = 'iterative'", o.solver == "iterative")]:
+            ("options.solver = 'iterative' with a load_path",
+             o.solver == "iterative" and scene.load_path is not None)]:
         if used:
             not_parallel(what, comm)
 

@@ -23,12 +23,17 @@ import numpy as np
 
 #: Layers of cells around a process's own cells that it holds as ghosts, per
 #: cell dimension: 1 = the vertex patches of its cells' nodes. A 3D node's
-#: front enrichment also depends on cells one layer further: a node of an
+#: front enrichment also depends on cells further out: a node of an
 #: extension cell is a core node when another node of that cell lies on a
-#: cut cell (cpp/enrichment/crack_enrichment_3d.cpp). With one layer, 1-3
-#: nodes of a 2-process penny (21617 cells) were enriched differently by two
-#: processes; with two, none (model/distributed.py checks every run).
-RINGS = {2: 1, 3: 2}
+#: cut cell (cpp/enrichment/crack_enrichment_3d.cpp), and a node next to a
+#: core node carries the blending ramp. So a node of an own cell (layer 0)
+#: needs its neighbour's patch (layer 2) and whether that patch's nodes lie
+#: on cut cells (layer 3). With one layer, 1-3 nodes of a 2-process penny
+#: (21617 cells) were enriched differently by two processes; with two, a
+#: blending node of the bench penny (a/h = 8, radius 2 h) was, in 1 of 7
+#: runs (the run refused: model/distributed.py checks every run); with
+#: three, none in 8.
+RINGS = {2: 1, 3: 3}
 
 
 def vertex_patch_partitioner(comm, nparts: int, tdim: int, cells, ghost_mode):

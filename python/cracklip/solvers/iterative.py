@@ -61,6 +61,7 @@ from .phantom import phantom_basis, transform_matrix
 from .saddle import SaddleOperator
 from .checked import scipy_from_petsc
 from .checked import factor_call, create_lu_solver, out_of_memory
+from ..scene.processes import on_all
 
 
 logger = logging.getLogger(__name__)
@@ -184,12 +185,13 @@ def rigid_modes(model: "XfemModel", size: int | None = None) -> np.ndarray:
     return rigid_motions(xy - model.x.mean(axis=0), nodes, n)
 
 
-def rigid_motions(x: np.ndarray, nodes: np.ndarray, n: int) -> np.ndarray:
+def rigid_motions(x: np.ndarray, nodes: np.ndarray, n: int, comm=None) -> np.ndarray:
     """(n, 3) in 2D or (n, 6) in 3D: the rigid motions of the points x
     (m, d), carried by the blocked dofs d nodes + c, orthonormalised; 0 on
     every other dof (x centred by the caller: the rotations are about 0).
     Columns: the translations along x, y(, z), then the rotations of
-    model.constraints.ROTATIONS."""
+    model.constraints.ROTATIONS. comm: as orthonormal_columns (rows of
+    this process: nodes in its local numbering of the owned rows)."""
     d = x.shape[1]
     rotations = ROTATIONS[d]
     R = np.zeros((n, d + len(rotations)))
@@ -198,19 +200,24 @@ def rigid_motions(x: np.ndarray, nodes: np.ndarray, n: int) -> np.ndarray:
     for r, (i, j) in enumerate(rotations):  # -x_j e_i + x_i e_j
         R[d * nodes + i, d + r] = -x[:, j]
         R[d * nodes + j, d + r] = x[:, i]
-    return orthonormal_columns(R)
+    return orthonormal_columns(R, comm)
 
 
-def orthonormal_columns(R: np.ndarray) -> np.ndarray:
+def orthonormal_columns(R: np.ndarray, comm=None) -> np.ndarray:
     """R's columns orthonormalised (twice-repeated modified Gram-Schmidt: a
     few vector operations on a tall (n, 3) R, where LAPACK's QR took 0.3 s at
-    1e6 dofs)."""
+    1e6 dofs). comm (mpi4py, under MPI): R holds this process's rows of
+    columns distributed over the processes; the inner products are summed
+    over them (collective)."""
     Q = np.array(R, dtype=np.float64, order="F", copy=True)  # contiguous columns
+
+    def dot(a: np.ndarray, b: np.ndarray) -> float:
+        return float(a @ b) if comm is None or comm.size == 1 else float(comm.allreduce(float(a @ b)))
     for j in range(Q.shape[1]):
         for _ in range(2):
             for i in range(j):
-                Q[:, j] -= (Q[:, i] @ Q[:, j]) * Q[:, i]
-        norm = float(np.linalg.norm(Q[:, j]))
+                Q[:, j] -= dot(Q[:, i], Q[:, j]) * Q[:, i]
+        norm = float(np.sqrt(dot(Q[:, j], Q[:, j])))
         if norm == 0.0:
             raise SolverError("the rigid modes are linearly dependent (a mesh with a single node?)")
         Q[:, j] /= norm
@@ -233,7 +240,8 @@ def decoupled(K: PETSc.Mat, dofs: np.ndarray) -> PETSc.Mat:
     idx = dofs.astype(PETSc.IntType)
     Kc.zeroRowsColumns(idx, diag=1.0)
     d = Kc.getDiagonal()
-    d.array[idx] = diag.array[idx]
+    lo = K.getOwnershipRange()[0]  # (dofs: owned rows of a distributed K)
+    d.array[idx - lo] = diag.array[idx - lo]
     Kc.setDiagonal(d, addv=PETSc.InsertMode.INSERT_VALUES)
     diag.destroy()
     d.destroy()
@@ -314,9 +322,9 @@ class IterativeSolver(LinearSolver):
     def __init__(self, model: "XfemModel", fallback: bool = False):
         self.model = model
         self.fallback = fallback
-        self.basis = phantom_basis(model)
-        self.n = model.num_dofs
-        self._band_k = crack_band(model, BAND_RINGS[model.gdim])
+        self.basis = self._phantom_basis()
+        self.n = self._num_dofs()
+        self._band_k = self._crack_band(BAND_RINGS[self.model.gdim])
         self._bands: dict[int, np.ndarray] = {}
         self._T_inv_t: sp.csr_matrix | None = None
         self._K: PETSc.Mat | None = None
@@ -329,6 +337,28 @@ class IterativeSolver(LinearSolver):
         # the interpreter exits.
         self._owned: list[typing.Any] = []
         self._release = weakref.finalize(self, _release, self._owned)
+
+    #: Whether GAMG's coarsest solve is replaced by _ConstrainedCoarse (the
+    #: contact solves' constrained coarse space; a serial LU of the coarse
+    #: operator).
+    constrained_coarse = True
+
+    # What the model's numbering gives (serial: the kernels' local dofs;
+    # solvers.distributed_iterative overrides them with the global, owned ones).
+    def _phantom_basis(self):
+        return phantom_basis(self.model)
+
+    def _num_dofs(self) -> int:
+        return self.model.num_dofs
+
+    def _crack_band(self, rings: int) -> np.ndarray:
+        return crack_band(self.model, rings)
+
+    def _rigid_modes(self) -> np.ndarray:
+        return rigid_modes(self.model)
+
+    def _tip_dofs(self) -> np.ndarray:
+        return tip_dofs(self.model)
 
     # The system in the phantom basis.
     def transform(self, A: PETSc.Mat) -> tuple[PETSc.Mat, sp.csr_matrix]:
@@ -381,13 +411,15 @@ class IterativeSolver(LinearSolver):
         if self._K is None:
             raise SolverError("IterativeSolver.solve needs the system from IterativeSolver.transform")
         K = self._K
-        tip = tip_dofs(self.model)
-        if DECOUPLE_TIP_DOFS[self.model.gdim] and tip.size:
+        tip = self._tip_dofs()
+        if DECOUPLE_TIP_DOFS[self.model.gdim] and K.getComm().tompi4py().allreduce(tip.size):
             K = self._K_amg = decoupled(self._K, tip)
             self._owned.append(K)
-        self._amg = self._gamg(K, rigid_modes(self.model))
-        self._coarse = _ConstrainedCoarse(self._amg)
-        self._owned += [self._amg, self._coarse]
+        self._amg = self._gamg(K, self._rigid_modes())
+        self._owned.append(self._amg)
+        if self.constrained_coarse:
+            self._coarse = _ConstrainedCoarse(self._amg)
+            self._owned.append(self._coarse)
         return self._amg, False
 
     def _gamg(self, A: PETSc.Mat, modes: np.ndarray) -> PETSc.PC:
@@ -398,9 +430,9 @@ class IterativeSolver(LinearSolver):
             v = A.createVecRight()
             v.array[:] = modes[:, j]
             vecs.append(v)
-        A.setNearNullSpace(PETSc.NullSpace().create(vectors=vecs, comm=PETSc.COMM_SELF))
+        A.setNearNullSpace(PETSc.NullSpace().create(vectors=vecs, comm=A.getComm()))
         prefix = f"cracklip_amg{next(_prefixes)}_"
-        pc = PETSc.PC().create(PETSc.COMM_SELF)
+        pc = PETSc.PC().create(A.getComm())
         pc.setOptionsPrefix(prefix)
         pc.setOperators(A)
         _set_options(prefix, GAMG_OPTIONS)
@@ -447,7 +479,7 @@ class IterativeSolver(LinearSolver):
             band_dofs = np.concatenate([self._contact_band(m if contact_points is None else contact_points),
                                         np.arange(self.n, size)])
             shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric)
-            if A.getType() == PETSc.Mat.Type.PYTHON and m > 0:
+            if A.getType() == PETSc.Mat.Type.PYTHON and m > 0 and self._coarse is not None:
                 self._coarse.constrain(A.getPythonContext().Ba_petsc)
             t_setup = time.perf_counter() - t0
             # CG also for the saddle point: the sweep ends with an exact solve
@@ -461,7 +493,7 @@ class IterativeSolver(LinearSolver):
             for krylov in attempts:
                 y, its, reason = self._krylov(A, b, shell, krylov, x0, what)
                 rel = self._original_residual(A, y, b)
-                ok = bool(np.all(np.isfinite(y.array))) and rel <= residual_tol
+                ok = on_all(bool(np.all(np.isfinite(y.array))), y.getComm().tompi4py()) and rel <= residual_tol
                 if ok or krylov == attempts[-1]:
                     break
                 logger.info("%s: CG stopped at relative residual %.3g after %d iterations (reason %s); "
@@ -475,7 +507,8 @@ class IterativeSolver(LinearSolver):
         method = (f"{'CG' if krylov == 'cg' else f'GMRES({GMRES_RESTART})'} + "
                   "Schwarz {MUMPS crack band | GAMG | band} (phantom basis)")
         record_solve({"what": what, "size": size, "relative_residual": rel, "solver": "iterative",
-                      "method": method, "iterations": int(its), "band": int(band_dofs.size),
+                      "method": method, "iterations": int(its),
+                      "band": int(A.getComm().tompi4py().allreduce(band_dofs.size)),  # (over the processes)
                       "amg_dofs": self.n, "setup_reused": reused,
                       "t_setup": t_setup, "t_total": time.perf_counter() - t0})
         logger.info("%s: %d iterations (%s), relative residual %.3g", what, its, method, rel)
@@ -494,7 +527,7 @@ class IterativeSolver(LinearSolver):
     def _krylov(self, A: PETSc.Mat, b: PETSc.Vec, shell: "_Schwarz", krylov: str, x0: np.ndarray | None,
                 what: str) -> tuple[PETSc.Vec, int, int]:
         """One Krylov solve of A y = b preconditioned by the Schwarz sweep: (y, iterations, reason)."""
-        ksp = PETSc.KSP().create(PETSc.COMM_SELF)
+        ksp = PETSc.KSP().create(A.getComm())
         try:
             ksp.setOperators(A)
             ksp.setType(krylov)
@@ -509,7 +542,8 @@ class IterativeSolver(LinearSolver):
             # the PC, and the PC the matrix (K' leaked, 0.2 GB per solve at
             # 1e6 dofs).
             del pc
-            y = PETSc.Vec().createSeq(A.getSize()[0], comm=PETSc.COMM_SELF)
+            y = b.duplicate()
+            y.set(0.0)
             if x0 is not None:
                 y.array[:] = x0
             if krylov == "cg":
@@ -562,16 +596,19 @@ class _Schwarz:
     is skipped: one band solve per iteration."""
 
     def __init__(self, A: PETSc.Mat, amg: PETSc.PC, n0: int, band_dofs: np.ndarray, symmetric: bool = True):
-        comm = PETSc.COMM_SELF
+        # Under MPI (a distributed A) band_dofs are this process's owned band
+        # rows (global numbers) and block 0 its owned rows below n0.
+        comm = A.getComm()
         size = A.getSize()[0]
+        lo, hi = A.getOwnershipRange()
         self.amg = amg
         band = np.sort(band_dofs).astype(PETSc.IntType)
         self.is1 = PETSc.IS().createGeneral(band, comm=comm)
-        self.is0 = PETSc.IS().createStride(n0, 0, 1, comm=comm)
+        self.is0 = PETSc.IS().createStride(max(0, min(hi, n0) - lo), lo, 1, comm=comm)
         if A.getType() == PETSc.Mat.Type.PYTHON:  # IterativeSolver.saddle_matrix's
             self.A1, self.A01, A11 = A.getPythonContext().band_blocks(band)
         else:
-            all_cols = PETSc.IS().createStride(size, 0, 1, comm=comm)
+            all_cols = PETSc.IS().createStride(hi - lo, lo, 1, comm=comm)  # (the owned columns)
             self.A1 = A.createSubMatrix(self.is1, all_cols)  # band rows, all columns
             all_cols.destroy()
             # Block 0's rows and the band's columns: for a symmetric A the
@@ -580,10 +617,14 @@ class _Schwarz:
             A11 = A.createSubMatrix(self.is1, self.is1)
         self.band = _factor_band(A11, symmetric)
         A11.destroy()
-        self.r0 = PETSc.Vec().createSeq(n0, comm=comm)
+        self.r0 = PETSc.Vec().create(comm)
+        self.r0.setSizes((self.is0.getLocalSize(), n0))
+        self.r0.setUp()
         self.r1, self.z1, self.t1 = (self.A1.createVecLeft() for _ in range(3))
         self.full = self.A1.createVecRight() if self.A01 is None else None  # A1^T z1
-        r = PETSc.Vec().createSeq(size, comm=comm)
+        r = PETSc.Vec().create(comm)
+        r.setSizes((hi - lo, size))
+        r.setUp()
         self.s1 = PETSc.Scatter().create(r, self.is1, self.r1, None)
         r.destroy()
         #: The CG KSP this sweep preconditions (set by IterativeSolver._krylov
@@ -594,6 +635,7 @@ class _Schwarz:
         fwd, rev = PETSc.ScatterMode.FORWARD, PETSc.ScatterMode.REVERSE
         ins, add = PETSc.InsertMode.INSERT_VALUES, PETSc.InsertMode.ADD_VALUES
         n0 = self.r0.getSize()
+        n0_local = self.r0.getLocalSize()
         self.s1.scatter(r, self.r1, ins, fwd)
         # ||r||: CG has just computed it (unpreconditioned norm) before
         # calling the preconditioner.
@@ -609,7 +651,7 @@ class _Schwarz:
             self.z1.scale(-1.0)
             if self.A01 is None:  # A01 = (A1's block-0 columns)^T
                 self.A1.multTranspose(self.z1, self.full)
-                self.r0.array[:] = r0.array + self.full.array[:n0]  # r0 - A01 z1
+                self.r0.array[:] = r0.array + self.full.array[:n0_local]  # r0 - A01 z1
             else:
                 self.A01.multAdd(self.z1, r0, self.r0)  # r0 - A01 z1
             self.z1.scale(-1.0)
