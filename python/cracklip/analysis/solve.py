@@ -117,8 +117,9 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
 
 
 def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
-    """solve() on several processes (mpirun; issue 40 step 2): an open 2D
-    crack, the direct solver (parallel MUMPS). The Solution holds this
+    """solve() on several processes (mpirun; issue 40 steps 2 and 4): open
+    cracks and frictionless contact (the saddle point by parallel MUMPS, the
+    active set the same on every process), the direct solver. The Solution holds this
     process's model and its local displacement (owned and ghost nodes);
     K (Solution.stress_intensity_factors) is summed over processes."""
     comm = scene.mesh.mesh.comm
@@ -140,9 +141,17 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
             logger.info("options.solver = 'auto' would take the iterative solver at %d dofs; under mpirun the "
                         "direct one (parallel MUMPS) solves: the iterative path is serial yet", n)
     t0 = time.perf_counter()
+    contact = {}
     with record_solves() as solves:
-        x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system", symmetric=True)
-    timings["solve"] = time.perf_counter() - t0
+        if scene.options.contact != "none" and model.cracks:  # the saddle point distributed, the active set alike
+            u_owned, contact = solve_contact(unit, A, b)
+            contact["system"].g = contact["system"].g / E  # B u = g in the scene's units
+            x = A.createVecRight()
+            x.array[:] = u_owned
+            timings["contact_solve"] = time.perf_counter() - t0
+        else:
+            x = solve_checked(A, b, scene.options.residual_tol, what="X-FEM stiffness system", symmetric=True)
+            timings["solve"] = time.perf_counter() - t0
     u = to_local(model.dofs, x) / E
     for o in (A, b, x):
         o.destroy()
@@ -150,7 +159,7 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     timings["total"] = time.perf_counter() - t_start
     solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None,
               "solver": "direct", "solves": solves, "processes": comm.size}
-    return create_solution(model, u, timings, {}, {}, solver)
+    return create_solution(model, u, timings, {}, contact, solver)
 
 
 def _contact_singularity(scene: Scene, A, b, error: SolverError) -> SolverError:

@@ -35,12 +35,13 @@ def refuse_unless_distributed(scene: Scene) -> None:
     """Collective: refuse, by scene key, what the model does not do on
     several processes yet. What it does (issue 40 steps 2 and 4): open
     cracks in 2D and 3D under lip pressures and boundary tractions,
-    Dirichlet conditions, the direct solver, K by the interaction integral
-    (2D tips, 3D front points); point forces."""
+    frictionless crack-lip contact (options.contact), Dirichlet conditions,
+    the direct solver, K by the interaction integral (2D tips, 3D front
+    points); point forces."""
     comm = scene.mesh.mesh.comm
     o = scene.options
     for what, used in [
-            ("options.contact", o.contact != "none"), ("options.friction", o.friction > 0.0),
+            ("options.friction", o.friction > 0.0),
             ("options.solver = 'iterative'", o.solver == "iterative"),
             ("options.rescale = 'nodal'", o.rescale == "nodal"),
             ("load_path", scene.load_path is not None), ("body_force", scene.body_force is not None),
