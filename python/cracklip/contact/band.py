@@ -40,7 +40,7 @@ import scipy.sparse as sp
 from .. import _cracklip
 from ..errors import SolverError
 from ..scene.partition import node_input_indices
-from ..scene.processes import gathered
+from ..scene.processes import agree, gathered
 
 #: cpp/enrichment/enrichment_selection.h EnrichmentKind::heaviside, and a
 #: kind standing for any other enrichment (the band space only tells
@@ -231,10 +231,9 @@ def prolongation(model, space, band: BandSpace, used: np.ndarray) -> sp.csr_matr
     order = np.argsort(band_keys)
     at = np.clip(np.searchsorted(band_keys[order], keys), 0, max(len(band_keys) - 1, 0))
     found = (band_keys[order][at] == keys) if len(band_keys) else np.zeros(len(keys), bool)
-    missing = int(np.count_nonzero(used & ~found))
-    if missing:  # (each process's own pieces are in the band: a broken invariant)
-        raise SolverError(f"{missing} contact multiplier(s) of this process's cells are missing from the gathered "
-                          "crack band")
+    missing = int(np.count_nonzero(used & ~found))  # (each process's own pieces are in the band: an invariant)
+    agree(SolverError(f"{missing} contact multiplier(s) of this process's cells are missing from the gathered crack "
+                      "band") if missing else None, msh.comm)
     rows = np.flatnonzero(found)
     reduced = np.asarray(band.space.full_to_reduced)[order][at]
     return sp.csr_matrix((np.ones(len(rows)), (rows, reduced[rows])), shape=(len(keys), band.num_reduced))

@@ -57,6 +57,9 @@ class ContactSystem:
             cpp/contact/contact_kernels_3d.h).
         gt: (Bt rows,) its right-hand side (zeros without friction).
         g_groups, gt_groups: g and gt of each load group's prescribed values.
+        band: the space of the gathered crack band (contact/band.py): the
+            whole crack's pieces and groups, the same on every process
+            (space is this process's, on its local mesh).
     """
     space: typing.Any
     R: sp.csr_matrix
@@ -67,6 +70,7 @@ class ContactSystem:
     gt: typing.Optional[np.ndarray] = None
     g_groups: dict = dataclasses.field(default_factory=dict)
     gt_groups: dict = dataclasses.field(default_factory=dict)
+    band: typing.Any = None
 
     @property
     def num_multipliers(self) -> int:
@@ -127,7 +131,8 @@ def create_contact_system(model: XfemModel) -> ContactSystem:
     (br, bc, bv), (mr, mc, mv), tangential = _full_coupling(model, owned, friction)
     used = np.zeros(nf, dtype=bool)
     used[mr] = True
-    R = prolongation(model, space, create_band_space(model), used)
+    band = create_band_space(model)
+    R = prolongation(model, space, band, used)
     nr = R.shape[1]
     column, n = _columns(model)
     Bf = sp.csr_matrix((bv, (br, column[bc])), shape=(nf, n))
@@ -161,7 +166,7 @@ def create_contact_system(model: XfemModel) -> ContactSystem:
         raise SolverError(f"{dead.size} contact multiplier(s) see no jump of the displacement (e.g. "
                           f"reduced multiplier {int(dead[0])}): the crack there has no enriched dofs "
                           "(check the enrichment and the Dirichlet conditions near the crack)")
-    return ContactSystem(space, R, B.tocsr(), M, g, Bt, gt, g_groups, gt_groups)
+    return ContactSystem(space, R, B.tocsr(), M, g, Bt, gt, g_groups, gt_groups, band.space)
 
 
 def _columns(model: XfemModel) -> tuple[np.ndarray, int]:
@@ -320,6 +325,8 @@ def distributed_saddle(A: PETSc.Mat, b: PETSc.Vec, cs: ContactSystem, residual_t
     holder = comm.size - 1  # (the multiplier rows follow the stiffness's last rows)
 
     def solve(active: np.ndarray, x0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        if cs.space.kind == "naive":
+            check_constraint_rank(cs.B[np.flatnonzero(active)])
         S = distributed_saddle_matrix(A, cs.B, active)
         rhs = S.createVecLeft()
         rhs.array[:hi - lo] = b.array_r
