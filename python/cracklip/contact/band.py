@@ -79,16 +79,6 @@ def _full_key(crack: np.ndarray, p0: np.ndarray, ids: np.ndarray) -> np.ndarray:
     return ((crack.astype(np.int64) * 2 + p0) << _ID_BITS) + ids.astype(np.int64)
 
 
-def _canonical(keys: np.ndarray, ref: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Vertices of every cell (k, d + 1) sorted by input index, and
-    reference points ref (k, p, d) in that vertex order (barycentric
-    coordinates permuted)."""
-    perm = np.argsort(keys, axis=1, kind="stable")
-    bary = np.concatenate([1.0 - ref.sum(axis=2, keepdims=True), ref], axis=2)   # (k, p, d + 1)
-    bary = np.take_along_axis(bary, perm[:, None, :], axis=2)
-    return perm, bary[:, :, 1:]
-
-
 def _enriched_flags(model, nodes: np.ndarray, crack: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Whether local nodes (k, v) carry enriched, and Heaviside, dofs of crack (k,)."""
     lay = model.layout
@@ -120,11 +110,8 @@ def _local_pieces(model) -> dict[str, np.ndarray]:
         else:
             nf = np.diff(cc["facet_offsets"])
             keep = (nf > 0) & model.owned_cells_only(cc["cell"])
-            facets = cc["facets"].reshape(-1, 3, 3)
-            pick = np.concatenate([np.arange(a, b) for a, b in zip(cc["facet_offsets"][:-1][keep],
-                                                                   cc["facet_offsets"][1:][keep])] or [[]]).astype(int)
-            parts = [(cc["cell"][keep], cc["cls"][keep], np.full(keep.sum(), -1), nf[keep],
-                      facets[pick].reshape(-1, 3, 3))]
+            facets = cc["facets"].reshape(-1, 3, 3)[np.repeat(keep, nf)]
+            parts = [(cc["cell"][keep], cc["cls"][keep], np.full(keep.sum(), -1), nf[keep], facets)]
         for cell, cls, tip, nfacets, ref in parts:
             rows["crack"].append(np.full(len(cell), ic))
             rows["cell"].append(np.asarray(cell, dtype=np.int64))
@@ -154,15 +141,24 @@ def create_band_space(model) -> BandSpace:
     names = ("crack", "cell", "cls", "tip", "nfacets", "ref", "node", "x", "phi", "enriched", "heaviside")
     mine = _local_pieces(model)
     p = dict(zip(names, gathered(comm, [mine[k] for k in names])))
-    order = np.lexsort((p["cls"] == -1, p["cell"], p["crack"]))  # by crack, then cell (crack cells before tip cells)
-    refs = np.split(p["ref"], np.cumsum(p["nfacets"] * (2 if d == 2 else 3))[:-1])  # (2D: P, Q; 3D: 3 per facet)
-    p = {k: v[order] for k, v in p.items() if k != "ref"}
-    refs = [refs[i] for i in order]
+    k = len(p["cell"])
+    # Every cell's vertices in input order, its pieces' reference points
+    # (2D: P, Q; 3D: 3 per facet) with them (barycentric coordinates permuted).
+    perm = np.argsort(p["node"], axis=1, kind="stable")
+    per_piece = p["nfacets"] * (2 if d == 2 else 3)
+    piece_of = np.repeat(np.arange(k), per_piece)
+    bary = np.column_stack([1.0 - p["ref"].sum(axis=1), p["ref"]])
+    ref = np.take_along_axis(bary, perm[piece_of], axis=1)[:, 1:]
+    # Pieces by crack, then cell (crack cells before tip cells); their points along.
+    order = np.lexsort((p["cls"] == -1, p["cell"], p["crack"]))
+    first = np.cumsum(per_piece) - per_piece
+    ref = ref[np.repeat(first[order] - (np.cumsum(per_piece[order]) - per_piece[order]), per_piece[order])
+              + np.arange(len(ref))]
+    p = {key: v[order] for key, v in p.items() if key != "ref"}
+    perm = perm[order]
     cell_key, cell_at = np.unique(p["cell"], return_inverse=True)
     node_key, node_at = np.unique(p["node"], return_inverse=True)
     node_at = node_at.reshape(p["node"].shape)
-    k = len(p["cell"])
-    perm, _ = _canonical(p["node"], np.zeros((k, 1, d)))
     x = np.zeros((len(node_key), d))
     x[node_at.ravel()] = p["x"].reshape(-1, d)
     cells = np.zeros((len(cell_key), d + 1), dtype=np.int32)
@@ -180,22 +176,19 @@ def create_band_space(model) -> BandSpace:
         lay_kind.append(np.full(len(pairs), kind))
     layout = [np.concatenate(a).astype(t) for a, t in zip((lay_node, lay_crack, lay_kind),
                                                           (np.int32, np.int32, np.int8))]
-    # Reference coordinates in the canonical vertex order.
-    ref = [(_canonical(p["node"][i:i + 1], r.reshape(1, -1, d))[1].reshape(-1, d) if len(r) else r)
-           for i, r in enumerate(refs)]
     pieces = p["cls"] >= 0 if d == 2 else np.ones(k, dtype=bool)
     if d == 2:
         tips_of = [np.asarray(g.tips).reshape(-1, 2) for g in model.geometries]
         tip_offsets = np.concatenate([[0], np.cumsum([len(t) for t in tips_of])]).astype(np.int32)
         tips = np.concatenate(tips_of + [np.zeros((0, 2))])
-        seg = np.array([r.ravel() for r in ref]).reshape(k, 4) if k else np.zeros((0, 4))
+        seg = ref.reshape(k, 4)
         tc = ~pieces
         space = _cracklip.create_band_multiplier_space(
             x, cells, phi, tips, tip_offsets, p["crack"][pieces].astype(np.int32), cell_at[pieces].astype(np.int32),
             p["cls"][pieces], seg[pieces], p["crack"][tc].astype(np.int32), cell_at[tc].astype(np.int32),
             p["tip"][tc], seg[tc], *layout, opts.multipliers, opts.enrichment != "none")
     else:
-        facets = np.concatenate([r.reshape(-1, 9) for r in ref] + [np.zeros((0, 9))])
+        facets = ref.reshape(-1, 9)
         offsets = np.concatenate([[0], np.cumsum(p["nfacets"])]).astype(np.int32)
         area = _facet_areas(x, cells[cell_at], facets, p["nfacets"])
         space = _cracklip.create_band_multiplier_space_3d(
