@@ -79,6 +79,16 @@ def _full_key(crack: np.ndarray, p0: np.ndarray, ids: np.ndarray) -> np.ndarray:
     return ((crack.astype(np.int64) * 2 + p0) << _ID_BITS) + ids.astype(np.int64)
 
 
+def _node_keys(model) -> np.ndarray:
+    """The input index of every local node."""
+    return node_input_indices(model.V.mesh, model.cells, len(model.x))
+
+
+def _cell_keys(model) -> np.ndarray:
+    """The input index of every local cell."""
+    return np.asarray(model.V.mesh.topology.original_cell_index, dtype=np.int64)
+
+
 def _enriched_flags(model, nodes: np.ndarray, crack: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Whether local nodes (k, v) carry enriched, and Heaviside, dofs of crack (k,)."""
     lay = model.layout
@@ -91,10 +101,8 @@ def _enriched_flags(model, nodes: np.ndarray, crack: np.ndarray) -> tuple[np.nda
 
 def _local_pieces(model) -> dict[str, np.ndarray]:
     """This process's pieces on its owned cells (module doc), one row each."""
-    msh = model.V.mesh
     cells = model.cells
-    node_input = node_input_indices(msh, cells, len(model.x))
-    original = np.asarray(msh.topology.original_cell_index, dtype=np.int64)
+    node_input, original = _node_keys(model), _cell_keys(model)
     tdim = model.gdim
     rows = {k: [] for k in ("crack", "cell", "cls", "tip", "nfacets", "ref")}
     for ic, g in enumerate(model.geometries):
@@ -214,9 +222,7 @@ def prolongation(model, space, band: BandSpace, used: np.ndarray) -> sp.csr_matr
     multiplier belongs to a band group (module doc). used: the full
     multipliers the process integrates (on its owned cells' pieces), which
     must all be in the band."""
-    msh = model.V.mesh
-    node_input = node_input_indices(msh, model.cells, len(model.x))
-    original = np.asarray(msh.topology.original_cell_index, dtype=np.int64)
+    node_input, original = _node_keys(model), _cell_keys(model)
     node, cell = np.asarray(space.full_node), np.asarray(space.full_cell)
     ids = np.where(node >= 0, node_input[np.maximum(node, 0)], original[np.maximum(cell, 0)])
     keys = _full_key(np.asarray(space.full_crack), node < 0, ids)
@@ -226,7 +232,7 @@ def prolongation(model, space, band: BandSpace, used: np.ndarray) -> sp.csr_matr
     found = (band_keys[order][at] == keys) if len(band_keys) else np.zeros(len(keys), bool)
     missing = int(np.count_nonzero(used & ~found))  # (each process's own pieces are in the band: an invariant)
     agree(SolverError(f"{missing} contact multiplier(s) of this process's cells are missing from the gathered crack "
-                      "band") if missing else None, msh.comm)
+                      "band") if missing else None, model.V.mesh.comm)
     rows = np.flatnonzero(found)
     reduced = np.asarray(band.space.full_to_reduced)[order][at]
     return sp.csr_matrix((np.ones(len(rows)), (rows, reduced[rows])), shape=(len(keys), band.num_reduced))
