@@ -594,6 +594,26 @@ def test_check_open_crack_same_on_one_and_two_processes():
     assert p.stderr.count("cracklip: warning:") == 4, p.stderr
 
 
+@pytest.mark.parametrize("scene, settings", [("block_uniform_pressure.toml", ["--set", "mesh.h=0.1"]),
+                                             (PENNY_BENT_3D, [])], ids=["block", "penny-bent-3d"])
+def test_check_contact_same_on_one_and_two_processes(scene, settings, tmp_path):
+    """`cracklip check --json` of a contact scene under mpirun -n 2: the
+    contact summary (multipliers, full and P0 multipliers, segments or lip
+    pieces) is the gathered band's, the whole crack's, equal to serial (5
+    of 10 full on 8 segments for the block; 5 for the bent penny)."""
+    if scene.startswith("title"):
+        path = tmp_path / "scene.toml"
+        path.write_text(scene)
+        scene = str(path)
+    args = ["check", str(SCENES / scene), *settings, "--json"]
+    p = mpirun(*args)
+    assert_clean(p, 0)
+    s = _run_serial(*args)
+    assert s.returncode == 0, s.stderr
+    a, b = json.loads(s.stdout)["model"]["contact"], json.loads(p.stdout)["model"]["contact"]
+    assert a == b and a["multipliers"] == 5, (a, b)
+
+
 def test_no_import_thread_under_a_launcher(monkeypatch):
     """Under mpirun the command line imports PETSc in the main thread: the
     background import beside the first collective (the scene's agreement)
