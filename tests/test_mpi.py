@@ -486,7 +486,13 @@ contact = "unilateral"
                           "--set", "options.contact=unilateral", "--set", "loads.tractions[0].value=[0.0,0.3,-1.0]",
                           "--set", "loads.tractions[1].value=[0.0,-0.3,1.0]"], 5e-10),
     (PENNY_BENT_3D, [], 1e-10),                                          # unilateral, partly open
-], ids=["block-bilateral", "hole-unilateral", "cantilever-partly-open", "penny-closed-3d", "penny-bent-3d"])
+    # a corner crack at a hole (a geometry file), lip pressure and remote compression, without its friction:
+    # unilateral, partly closed (2, 1, 1 of 4)
+    ("corner_crack_closure.toml", ["--set", "options.friction=0.0", "--set", "mesh.tip_h=0.5", "--set",
+                                   "mesh.crack_h=0.5", "--set", "mesh.refine[0].h=0.5", "--set", "options.radius=1.0"],
+     1e-10),
+], ids=["block-bilateral", "hole-unilateral", "cantilever-partly-open", "penny-closed-3d", "penny-bent-3d",
+        "corner-crack-3d"])
 def test_run_contact_same_on_one_and_two_processes(scene, settings, k_tol, tmp_path):
     """Crack-lip contact (frictionless, the direct path) under mpirun -n 2
     equals the serial run: the same multipliers, active-set history and
@@ -496,8 +502,9 @@ def test_run_contact_same_on_one_and_two_processes(scene, settings, k_tol, tmp_p
     p_max sqrt(pi a)), the energy to 1e-10. The P1- groups come from the
     crack band gathered onto every process in input order (contact/band.py),
     the serial run's too. Measured (several runs: the partition varies): K
-    to 3e-15 (block), 1e-15 (hole), 3e-13 (cantilever), 3e-14 (penny bent);
-    pressure to 2e-14, 1e-14, 1e-12, 3e-14. The closed penny: K to 2e-11 ..
+    to 3e-15 (block), 1e-15 (hole), 3e-13 (cantilever), 3e-14 (penny bent),
+    1e-14 (corner crack); pressure to 2e-14, 1e-14, 1e-12, 3e-14, 2e-13.
+    The closed penny: K to 2e-11 ..
     6e-11, pressure and the multipliers to 5e-11 .. 3e-10 (at tip_h 0.3,
     5 multipliers: K to 1.2e-10, the multipliers to 4e-10) while the
     energy agrees to 1e-13: the multipliers of a closed 3D front are

@@ -49,7 +49,7 @@ from .. import _cracklip
 from ..errors import BoundaryConditionError, CrackGeometryError, InputError
 from ..scene.size_field import PLATEAU
 from ..scene.units import STRESSES
-from ..scene.processes import not_parallel
+from ..scene.processes import not_parallel, reduced
 from .boundary import nearest_boundary_point, where_outside
 from .constraints import ROTATIONS, rigid_motion_rank
 from .tip_regions import length_in_part, model_boundary, segment_distance, tip_domains, tip_element_size
@@ -443,23 +443,28 @@ def check_front_ends(name: str, front: dict) -> None:
 
 
 def check_enrichment_radius(model) -> None:
-    """Raise InputError when options.radius > 0 reaches no node of a crack's front."""
+    """Raise InputError when options.radius > 0 reaches no node of a crack's
+    front. Collective under MPI: a node of any process's part counts (a
+    process whose part is away from the front reaches none)."""
     opts = model.scene.options
     if opts.radius <= 0.0 or opts.enrichment == "none":
         return
     r = opts.radius
+    comm = model.V.mesh.comm if getattr(model, "distributed", False) else None
     for cm in model.cracks:
         g = cm.geometry
-        if not len(g.front["x"]):
+        if not len(g.front["x"]):  # (the front is joined alike on every process)
             continue
         phi, psi = np.asarray(g.phi), np.asarray(g.psi)
         cand = np.flatnonzero((np.abs(phi) <= r) & (np.abs(psi) <= r))
-        if cand.size:
-            d = _cracklip.compute_front_projection_3d(g, np.ascontiguousarray(model.x[cand]))["distance"]
-            if np.any(d <= r):
-                continue
+        reached = bool(cand.size) and bool(np.any(
+            _cracklip.compute_front_projection_3d(g, np.ascontiguousarray(model.x[cand]))["distance"] <= r))
+        if (reached if comm is None else reduced(reached, "LOR", comm)):
+            continue
         nodes = np.unique(model.cells[front_cells(g)])
-        nearest = float(_cracklip.compute_front_projection_3d(g, np.ascontiguousarray(model.x[nodes]))["distance"].min())
+        d = _cracklip.compute_front_projection_3d(g, np.ascontiguousarray(model.x[nodes]))["distance"]
+        nearest = float(d.min(initial=np.inf))
+        nearest = nearest if comm is None else float(reduced(nearest, "MIN", comm))
         h = float(front_element_sizes(model, model.cracks.index(cm)).mean())
         raise InputError(
             f"{cm.crack.name}: the enrichment radius options.radius = {r:.3g} reaches no node (the nearest node is "
