@@ -8,7 +8,9 @@ of open 2D and 3D cracks on the direct path (results.json, crack.csv,
 sif.csv, solution.vtu, crack_lips.vtu, the PNGs written once, equal to
 serial), also with symmetry planes, a body force, an initial stress, a load
 path without contact and the nodal rescaling, and on the iterative path
-(equal to the serial iterative K to the Krylov tolerance), and the
+(equal to the serial iterative K to the Krylov tolerance); `run` with
+frictionless crack-lip contact in 2D and 3D (bilateral and unilateral: the
+same multipliers, active sets, pressures and K as serial); and the
 commands that need no mesh (`life`, `check` of a life scene, `reference`),
 run by rank 0 with their files written once. What the distributed model
 does not do yet (model.refuse_unless_distributed)
@@ -70,28 +72,32 @@ def test_mpirun_is_installed():
     assert shutil.which("mpirun", path=ENV["PATH"]) is not None
 
 
-@pytest.mark.parametrize("command, missing", [("run", "options.contact"),
-                                              ("check", "options.contact"),
+#: Coulomb friction on the lips, not distributed yet.
+FRICTION = ["--set", "options.contact=unilateral", "--set", "options.friction=0.3"]
+
+
+@pytest.mark.parametrize("command, missing", [("run", "options.friction"),
+                                              ("check", "options.friction"),
                                               ("grow", "crack growth (`cracklip grow`)")])
 def test_2d_model_refused_not_crashed(command, missing, tmp_path):
     """The issue's reproducer crashed both processes with SEGV (every process
     passed the whole mesh to DOLFINx); now the mesh is made and what is not
-    distributed yet is refused collectively, by name (here the block's
-    bilateral contact)."""
+    distributed yet is refused collectively, by name (here friction on the
+    block's lips)."""
     scene = {"grow": "fatigue_edge_crack.toml"}.get(command, "block_uniform_pressure.toml")
     extra = ["--out", str(tmp_path / "out")] if command != "check" else []
-    p = mpirun(command, str(SCENES / scene), *extra)
+    p = mpirun(command, str(SCENES / scene), *(FRICTION if command != "grow" else []), *extra)
     assert_refused(p)
     assert f"cracklip: error: {missing}" in p.stderr, p.stderr
 
 
 @pytest.mark.parametrize("command", ["run", "check"])
-def test_3d_contact_refused_not_crashed(command, tmp_path):
-    """What a 3D part does not do under mpirun yet (here contact) is refused collectively, by its key."""
+def test_3d_friction_refused_not_crashed(command, tmp_path):
+    """What a 3D part does not do under mpirun yet (here friction) is refused collectively, by its key."""
     extra = ["--out", str(tmp_path / "out")] if command == "run" else []
-    p = mpirun(command, str(SCENES / "penny_crack.toml"), *SMALL_3D, "--set", "options.contact=bilateral", *extra)
+    p = mpirun(command, str(SCENES / "penny_crack.toml"), *SMALL_3D, *FRICTION, *extra)
     assert_refused(p)
-    assert "cracklip: error: options.contact is not available under MPI yet" in p.stderr, p.stderr
+    assert "cracklip: error: options.friction is not available under MPI yet" in p.stderr, p.stderr
 
 
 def test_3d_grow_without_growth_table_printed_once(tmp_path):
@@ -286,11 +292,11 @@ def test_iterative_path_same_on_one_and_two_processes(scene, settings, exact):
 
 def test_open_crack_refusals_by_scene_key(tmp_path):
     """What the distributed model does not do yet stops with one message
-    naming the scene key (here contact), on every process, no hang."""
+    naming the scene key (here friction), on every process, no hang."""
     p = python_on(2, str(ROOT / "tests" / "mpi" / "open_crack.py"), str(SCENES / "pressurised_crack.toml"),
-                  "mesh.tip_h=0.1", "options.contact=bilateral")
+                  "mesh.tip_h=0.1", "options.contact=unilateral", "options.friction=0.3")
     assert p.returncode != 0
-    assert "options.contact is not available under MPI yet (2 processes)" in p.stderr, p.stderr[-3000:]
+    assert "options.friction is not available under MPI yet (2 processes)" in p.stderr, p.stderr[-3000:]
     assert "MPI_ABORT" not in p.stderr and "signal" not in p.stderr
 
 
@@ -565,6 +571,126 @@ def test_run_inclined_penny_iterative_same_on_one_and_two_processes(tmp_path):
         for k in ("K_I", "K_II", "K_III"):
             assert _relative(ra[k], rb[k], scale) <= 1e-6, (k, ra, rb)
             assert _relative(ra[k + "_error"], rb[k + "_error"], scale) <= 1e-6, (k, ra, rb)
+#: A 2D cantilever under an end shear, its vertical crack across the neutral
+#: axis partly closed: the active set changes (7, 6, 5, 4, 4 of 12).
+CANTILEVER_2D = """title = "cracked cantilever under an end shear"
+[mesh]
+kind = "rectangle"
+domain = [0.0, 0.0, 4.0, 1.0]
+h = 0.1
+tip_h = 0.04
+tip_radius = 0.2
+[material]
+E = 1.0
+nu = 0.3
+[[cracks]]
+points = [[1.0, 0.2], [1.0, 0.8]]
+[[dirichlet]]
+tag = "left"
+[[loads.tractions]]
+tag = "right"
+value = [0.0, -1.0e-5]
+[options]
+enrichment = "vector"
+radius = 0.1
+contact = "unilateral"
+multipliers = "stable"
+sif_radius = 0.1
+"""
+
+#: A penny across a bent beam (clamped at x = -4, end shear at x = 4): its
+#: lower half pressed shut, the active set changes (2, 1, 1 of 5).
+PENNY_BENT_3D = """title = "penny across a bent beam"
+[mesh]
+kind = "box"
+box = [-4.0, -2.0, -2.0, 4.0, 2.0, 2.0]
+h = 1.0
+tip_h = 0.3
+crack_h = 0.3
+[material]
+E = 1.0
+nu = 0.3
+[[cracks]]
+ellipse = { center = [0.0, 0.0, 0.0], normal = [1.0, 0.0, 0.0], a = 1.0, a_direction = [0.0, 0.0, 1.0] }
+[[dirichlet]]
+tag = "xmin"
+[[loads.tractions]]
+tag = "xmax"
+value = [0.0, 0.0, -0.01]
+[options]
+radius = 0.3
+contact = "unilateral"
+"""
+
+
+@pytest.mark.parametrize("scene, settings, k_tol", [
+    ("block_uniform_pressure.toml", ["--set", "mesh.h=0.1"], 1e-10),   # bilateral, K = 0, p = 0.01 exactly
+    ("hole_crack.toml", ["--set", "mesh.h=0.15"], 1e-10),               # unilateral, closed (7 of 7)
+    (CANTILEVER_2D, [], 1e-10),                                          # unilateral, partly open
+    # a penny under compression and shear: unilateral, closed (19 of 19 multipliers)
+    ("penny_crack.toml", ["--set", "mesh.h=2.0", "--set", "mesh.tip_h=0.25", "--set", "mesh.crack_h=0.25",
+                          "--set", "options.contact=unilateral", "--set", "loads.tractions[0].value=[0.0,0.3,-1.0]",
+                          "--set", "loads.tractions[1].value=[0.0,-0.3,1.0]"], 5e-10),
+    (PENNY_BENT_3D, [], 1e-10),                                          # unilateral, partly open
+    # a corner crack at a hole (a geometry file), lip pressure and remote compression, without its friction:
+    # unilateral, partly closed (2, 1, 1 of 4)
+    ("corner_crack_closure.toml", ["--set", "options.friction=0.0", "--set", "mesh.tip_h=0.5", "--set",
+                                   "mesh.crack_h=0.5", "--set", "mesh.refine[0].h=0.5", "--set", "options.radius=1.0"],
+     1e-10),
+], ids=["block-bilateral", "hole-unilateral", "cantilever-partly-open", "penny-closed-3d", "penny-bent-3d",
+        "corner-crack-3d"])
+def test_run_contact_same_on_one_and_two_processes(scene, settings, k_tol, tmp_path):
+    """Crack-lip contact (frictionless, the direct path) under mpirun -n 2
+    equals the serial run: the same multipliers, active-set history and
+    active count, the contact pressure at every lip sample (2D crack.csv
+    with the gap; 3D the crack's pressure statistics) to 1e-8 of its
+    largest value, K to k_tol of the K scale (the larger of max |K| and
+    p_max sqrt(pi a)), the energy to 1e-10. The P1- groups come from the
+    crack band gathered onto every process in input order (contact/band.py),
+    the serial run's too. Measured (several runs: the partition varies): K
+    to 3e-15 (block), 1e-15 (hole), 3e-13 (cantilever), 3e-14 (penny bent),
+    1e-14 (corner crack); pressure to 2e-14, 1e-14, 1e-12, 3e-14, 2e-13.
+    The closed penny: K to 2e-11 ..
+    6e-11, pressure and the multipliers to 5e-11 .. 3e-10 (at tip_h 0.3,
+    5 multipliers: K to 1.2e-10, the multipliers to 4e-10) while the
+    energy agrees to 1e-13: the multipliers of a closed 3D front are
+    ill-conditioned (a small inf-sup constant), so two MUMPS pivot orders
+    give them to ~1e-10 (serial with and without MUMPS iterative refinement
+    agree to 6e-14, 2 processes with it differ as much): the 1e-10 target of
+    the direct path is not met there; its bound is 5e-10."""
+    if scene.startswith("title"):
+        path = tmp_path / "scene.toml"
+        path.write_text(scene)
+        scene = str(path)
+    out, serial, a, b = _run_both(scene, [*settings, "--no-estimate"], tmp_path)
+    assert a["contact"] == b["contact"] and a["contact"]["multipliers"] > 0, (a["contact"], b["contact"])
+    assert b["files"] == a["files"]
+    pa, pb = a["cracks"][0]["pressure"], b["cracks"][0]["pressure"]
+    p_max = pa["max"]
+    assert p_max > 0.0
+    for key in pa:
+        assert _relative(pa[key], pb[key], p_max) <= 1e-8, (key, pa, pb)
+    three_d = a["dimension"] == 3
+    if three_d:  # the pressure at every lip facet vertex (crack_surface.vtu; facets in rank order: sorted)
+        import meshio
+        pa_v, pb_v = (np.sort(meshio.read(d / "crack_surface.vtu").point_data["pressure"]) for d in (serial, out))
+        assert pa_v.shape == pb_v.shape and np.abs(pa_v - pb_v).max() <= 1e-8 * p_max
+    else:  # every lip sample's pressure and gap (rows sorted by crack and s)
+        rows = [np.loadtxt(d / "crack.csv", delimiter=",", skiprows=1, usecols=(1, 2, 5, 7)) for d in (serial, out)]
+        rows = [r[np.lexsort((r[:, 1], r[:, 0]))] for r in rows]
+        assert rows[0].shape == rows[1].shape
+        assert np.abs(rows[0][:, 2] - rows[1][:, 2]).max() <= 1e-8 * p_max
+        u_scale = a["cracks"][0]["gap_tolerance"] / 1e-6   # (the largest displacement: io/outputs.py)
+        assert np.abs(rows[0][:, 3] - rows[1][:, 3]).max() <= 1e-8 * max(np.abs(rows[0][:, 3]).max(), u_scale)
+    size = np.sqrt(a["cracks"][0]["area_in_part"]) if three_d else a["cracks"][0]["length_in_part"]
+    comps = ("K_I", "K_II", "K_III") if three_d else ("K_I", "K_II")
+    scale = max(max(abs(r[k]) for r in a["sifs"] for k in comps), p_max * np.sqrt(np.pi * size))
+    assert len(a["sifs"]) == len(b["sifs"]) > 0
+    for ra, rb in zip(a["sifs"], b["sifs"]):
+        for k in comps:
+            assert _relative(ra[k], rb[k], scale) <= k_tol, (k, ra, rb)
+    assert _relative(a["solution"]["strain_energy"], b["solution"]["strain_energy"],
+                     a["solution"]["strain_energy"]) <= 1e-10
 
 
 def test_3d_crack_in_one_corner_and_outside(tmp_path):
@@ -623,6 +749,26 @@ def test_check_open_crack_same_on_one_and_two_processes():
     assert_clean(p, 0)
     assert p.stdout.count(": valid") == 1 and p.stdout.count("run writes: ") == 1, p.stdout
     assert p.stderr.count("cracklip: warning:") == 4, p.stderr
+
+
+@pytest.mark.parametrize("scene, settings", [("block_uniform_pressure.toml", ["--set", "mesh.h=0.1"]),
+                                             (PENNY_BENT_3D, [])], ids=["block", "penny-bent-3d"])
+def test_check_contact_same_on_one_and_two_processes(scene, settings, tmp_path):
+    """`cracklip check --json` of a contact scene under mpirun -n 2: the
+    contact summary (multipliers, full and P0 multipliers, segments or lip
+    pieces) is the gathered band's, the whole crack's, equal to serial (5
+    of 10 full on 8 segments for the block; 5 for the bent penny)."""
+    if scene.startswith("title"):
+        path = tmp_path / "scene.toml"
+        path.write_text(scene)
+        scene = str(path)
+    args = ["check", str(SCENES / scene), *settings, "--json"]
+    p = mpirun(*args)
+    assert_clean(p, 0)
+    s = _run_serial(*args)
+    assert s.returncode == 0, s.stderr
+    a, b = json.loads(s.stdout)["model"]["contact"], json.loads(p.stdout)["model"]["contact"]
+    assert a == b and a["multipliers"] == 5, (a, b)
 
 
 def test_no_import_thread_under_a_launcher(monkeypatch):

@@ -10,6 +10,7 @@ void declare_assembly(pybind11::module& m);
 void declare_fields(pybind11::module& m);
 void declare_fracture(pybind11::module& m);
 void declare_contact(pybind11::module& m);
+void declare_contact_band(pybind11::module& m);
 void declare_loads(pybind11::module& m);
 void declare_life(pybind11::module& m);
 } // namespace cracklip_wrappers
@@ -24,6 +25,7 @@ PYBIND11_MODULE(_cracklip, m)
   cracklip_wrappers::declare_fields(m);
   cracklip_wrappers::declare_fracture(m);
   cracklip_wrappers::declare_contact(m);
+  cracklip_wrappers::declare_contact_band(m);
   cracklip_wrappers::declare_loads(m);
   cracklip_wrappers::declare_life(m);
 }

@@ -120,12 +120,14 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
 
 def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     """solve() on several processes (mpirun; issue 40 steps 2 and 4): open
-    cracks in 2D and 3D, the direct solver (parallel MUMPS) or the
-    iterative one (Options.solver, choose_solver;
-    solvers.distributed_iterative); a load path by load_path.solve_path on
-    the same distributed matrix. The Solution holds this process's model
-    and its local displacement (owned and ghost nodes); K
-    (Solution.stress_intensity_factors) is summed over processes."""
+    cracks in 2D and 3D and frictionless contact (the saddle point by
+    parallel MUMPS, the active set the same on every process); the direct
+    solver (parallel MUMPS) or, without contact, the iterative one
+    (Options.solver, choose_solver; solvers.distributed_iterative); a load
+    path by load_path.solve_path on the same distributed matrix. The
+    Solution holds this process's model and its local displacement (owned
+    and ghost nodes); K (Solution.stress_intensity_factors) is summed over
+    processes."""
     comm = scene.mesh.mesh.comm
     refuse_unless_distributed(scene)
     if condition_number:
@@ -145,9 +147,22 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     timings.update(t_basis)
     n = A.getSize()[0]
     which = choose_solver(scene.options, n, n - model.gdim * model.V.dofmap.index_map.size_global, model.gdim)
+    contacting = scene.options.contact != "none" and bool(model.cracks)
+    if contacting and which == "iterative":  # (an explicit 'iterative' with contact is refused)
+        logger.info("options.solver = 'auto' would take the iterative solver at %d dofs; under mpirun contact "
+                    "is solved by the direct one (parallel MUMPS)", n)
+        which = "direct"
     what = "X-FEM stiffness system"
+    contact = {}
     with record_solves() as solves:
-        if which == "iterative":  # the serial path's solver on the global numbering
+        if contacting:  # the saddle point distributed, the active set alike on every process
+            t0 = time.perf_counter()
+            u_owned, contact = solve_contact(unit, A, b)
+            contact["system"].g = contact["system"].g / E  # B u = g in the scene's units
+            x = A.createVecRight()
+            x.array[:] = u_owned
+            timings["contact_solve"] = time.perf_counter() - t0
+        elif which == "iterative":  # the serial path's solver on the global numbering
             t0 = time.perf_counter()
             linear = DistributedIterativeSolver(unit, fallback=scene.options.solver == "auto")
             try:
@@ -162,10 +177,11 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
                     o.destroy()
             finally:
                 linear.destroy()
+            timings["solve"] = time.perf_counter() - t0
         else:
             t0 = time.perf_counter()
             x = solve_checked(A, b, scene.options.residual_tol, what=what, symmetric=True)
-    timings["solve"] = time.perf_counter() - t0
+            timings["solve"] = time.perf_counter() - t0
     x = from_basis(T, x)
     u = to_local(model.dofs, x) / E
     for o in (A, b, x) + ((T,) if T is not None else ()):
@@ -175,7 +191,7 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     timings["total"] = time.perf_counter() - t_start
     solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None,
               "solver": which, "solves": solves, "processes": comm.size}
-    return create_solution(model, u, timings, {}, {}, solver)
+    return create_solution(model, u, timings, {}, contact, solver)
 
 
 def _contact_singularity(scene: Scene, A, b, error: SolverError) -> SolverError:

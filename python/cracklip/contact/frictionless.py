@@ -28,7 +28,9 @@ from ..model.model import XfemModel
 from ..solvers.checked import scipy_from_petsc, solve_checked
 if typing.TYPE_CHECKING:
     from ..solvers.direct import LinearSolver
-from ..solvers.saddle import saddle_matrix
+from ..scene.processes import gathered, reduced
+from ..solvers.saddle import distributed_saddle_matrix, saddle_matrix
+from .band import create_band_space, prolongation
 
 
 logger = logging.getLogger(__name__)
@@ -55,6 +57,9 @@ class ContactSystem:
             cpp/contact/contact_kernels_3d.h).
         gt: (Bt rows,) its right-hand side (zeros without friction).
         g_groups, gt_groups: g and gt of each load group's prescribed values.
+        band: the space of the gathered crack band (contact/band.py): the
+            whole crack's pieces and groups, the same on every process
+            (space is this process's, on its local mesh).
     """
     space: typing.Any
     R: sp.csr_matrix
@@ -65,6 +70,7 @@ class ContactSystem:
     gt: typing.Optional[np.ndarray] = None
     g_groups: dict = dataclasses.field(default_factory=dict)
     gt_groups: dict = dataclasses.field(default_factory=dict)
+    band: typing.Any = None
 
     @property
     def num_multipliers(self) -> int:
@@ -110,26 +116,39 @@ def _full_coupling(model: XfemModel, space, tangential: bool) -> tuple[tuple, tu
 
 def create_contact_system(model: XfemModel) -> ContactSystem:
     """Multiplier space and B, M for the model's cracks (options.multipliers);
-    with friction (options.friction > 0) also the tangential coupling Bt."""
+    with friction (options.friction > 0) also the tangential coupling Bt.
+
+    The groups (reduced multipliers) come from the gathered crack band
+    (contact/band.py), the same on any number of processes; the coupling is
+    integrated on the process's own space, on its owned cells under MPI,
+    and summed over the processes: B, M and g are then whole on every
+    process, B's columns the global dofs (model.dofs)."""
     opts = model.scene.options
     space = create_multiplier_space(model)
-    nf, nr = space.num_full, space.num_reduced
-    R = sp.csr_matrix((np.ones(nf), (np.arange(nf), space.full_to_reduced)), shape=(nf, nr))
+    nf = space.num_full
     friction = opts.friction > 0.0
-    (br, bc, bv), (mr, mc, mv), tangential = _full_coupling(model, space, friction)
-    Bf = sp.csr_matrix((bv, (br, bc)), shape=(nf, model.num_dofs))
+    owned = _cracklip.multiplier_space_on_cells(space, model.num_owned_cells) if model.distributed else space
+    (br, bc, bv), (mr, mc, mv), tangential = _full_coupling(model, owned, friction)
+    used = np.zeros(nf, dtype=bool)
+    used[mr] = True
+    band = create_band_space(model)
+    R = prolongation(model, space, band, used)
+    nr = R.shape[1]
+    column, n = _columns(model)
+    Bf = sp.csr_matrix((bv, (br, column[bc])), shape=(nf, n))
     Mf = sp.csr_matrix((mv, (mr, mc)), shape=(nf, nf))
-    B = (R.T @ Bf).tocsr()
-    M = (R.T @ Mf @ R).tocsr()
-    Bts = [(R.T @ sp.csr_matrix((v, (r, c)), shape=(nf, model.num_dofs))).tocsr() for r, c, v in tangential]
+    B = _summed(model, (R.T @ Bf).tocsr())
+    M = _summed(model, (R.T @ Mf @ R).tocsr())
+    Bts = [_summed(model, (R.T @ sp.csr_matrix((v, (r, column[c])), shape=(nf, n))).tocsr()) for r, c, v in tangential]
     Bt = (Bts[0] if len(Bts) == 1 else sp.vstack(Bts).tocsr()) if friction else None
     # Dirichlet dofs: move their known values to the right-hand side, per load group.
-    fixed = np.zeros(model.num_dofs, dtype=bool)
-    fixed[model.bc_dofs] = True
+    bc_dofs, group_values = _dirichlet_columns(model, column)
+    fixed = np.zeros(n, dtype=bool)
+    fixed[bc_dofs] = True
     g_groups, gt_groups = {}, {}
-    for group, values in sorted(model.bc_group_values.items()):
-        ufix = np.zeros(model.num_dofs)
-        ufix[model.bc_dofs] = values
+    for group, values in sorted(group_values.items()):
+        ufix = np.zeros(n)
+        ufix[bc_dofs] = values
         g_groups[group] = -(B @ ufix)
         if friction:
             gt_groups[group] = -(Bt @ ufix)
@@ -147,7 +166,40 @@ def create_contact_system(model: XfemModel) -> ContactSystem:
         raise SolverError(f"{dead.size} contact multiplier(s) see no jump of the displacement (e.g. "
                           f"reduced multiplier {int(dead[0])}): the crack there has no enriched dofs "
                           "(check the enrichment and the Dirichlet conditions near the crack)")
-    return ContactSystem(space, R, B.tocsr(), M, g, Bt, gt, g_groups, gt_groups)
+    return ContactSystem(space, R, B.tocsr(), M, g, Bt, gt, g_groups, gt_groups, band.space)
+
+
+def _columns(model: XfemModel) -> tuple[np.ndarray, int]:
+    """The column of B of every local dof and the number of columns: the dof
+    itself in serial, its global dof under MPI (model.dofs)."""
+    if not model.distributed:
+        return np.arange(model.num_dofs), model.num_dofs
+    dm = model.dofs
+    return dm.global_dofs(np.arange(model.num_dofs)), dm.num_global * dm.d
+
+
+def _summed(model: XfemModel, A: sp.csr_matrix) -> sp.csr_matrix:
+    """Collective: the sum of every process's A (A in serial)."""
+    if not model.distributed:
+        return A
+    coo = A.tocoo()
+    r, c, v = gathered(model.V.mesh.comm, [coo.row, coo.col, coo.data])
+    return sp.csr_matrix((v, (r, c)), shape=A.shape)
+
+
+def _dirichlet_columns(model: XfemModel, column: np.ndarray) -> tuple[np.ndarray, dict]:
+    """Collective: the prescribed dofs as columns of B and each load group's
+    values there (under MPI every process's, gathered)."""
+    if not model.distributed:
+        return model.bc_dofs, model.bc_group_values
+    comm = model.V.mesh.comm
+    cols = column[model.bc_dofs]
+    ok = cols >= 0
+    groups = sorted(set().union(*comm.allgather(set(model.bc_group_values))))
+    zero = np.zeros(len(cols))
+    parts = gathered(comm, [cols[ok]] + [np.asarray(model.bc_group_values.get(k, zero))[ok] for k in groups])
+    dofs, first = np.unique(parts[0], return_index=True)  # (a dof prescribed on its owner and its ghosts)
+    return dofs, {k: v[first] for k, v in zip(groups, parts[1:])}
 
 
 def solve_saddle(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: ContactSystem, active: np.ndarray,
@@ -245,6 +297,12 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
     the unscaled B. linear: the solver path of every saddle-point solve
     (cracklip.solvers; default: solve_checked's MUMPS LU)."""
     physical = create_contact_system(model)
+    if model.distributed:  # (direct path, no transform)
+        saddle = distributed_saddle(A, b, physical, model.scene.options.residual_tol)
+        u, info = solve_frictionless(A, b.array_r.copy(), physical, model.scene.options, contact_constant(model),
+                                     saddle=saddle)
+        info["system"] = physical
+        return u, info
     cs = physical if transform is None else dataclasses.replace(physical, B=(physical.B @ transform).tocsr())
     K = scipy_from_petsc(A) if linear is None else linear.stiffness(A)
     u, info = solve_frictionless(K, b.array.copy(), cs, model.scene.options,
@@ -253,21 +311,58 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
     return u, info
 
 
+def distributed_saddle(A: PETSc.Mat, b: PETSc.Vec, cs: ContactSystem, residual_tol: float):
+    """The saddle solve of solve_frictionless on several processes: A, b the
+    distributed stiffness and load (constraints applied), cs whole on every
+    process (create_contact_system). Returns solve(active, x0) -> (u, lambda,
+    gap): u this process's owned dofs, lambda and the gap B u - g the same
+    on every process (the multipliers broadcast by the process owning them,
+    the gap summed over the processes' owned dofs and broadcast by rank 0),
+    so every process takes the same active set."""
+    comm = A.getComm().tompi4py()
+    lo, hi = A.getOwnershipRange()
+    B_own = cs.B[:, lo:hi]
+    holder = comm.size - 1  # (the multiplier rows follow the stiffness's last rows)
+
+    def solve(active: np.ndarray, x0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        if cs.space.kind == "naive":
+            check_constraint_rank(cs.B[np.flatnonzero(active)])
+        S = distributed_saddle_matrix(A, cs.B, active)
+        rhs = S.createVecLeft()
+        rhs.array[:hi - lo] = b.array_r
+        if comm.rank == holder:
+            rhs.array[hi - lo:] = np.where(active, cs.g, 0.0)
+        x = solve_checked(S, rhs, residual_tol, what="contact saddle-point system")
+        u = x.array_r[:hi - lo].copy()
+        lam = comm.bcast(x.array_r[hi - lo:].copy() if comm.rank == holder else None, root=holder)
+        gap = comm.bcast(reduced(B_own @ u, "SUM", comm) - cs.g, root=0)
+        for o in (S, rhs, x):
+            o.destroy()
+        return u, lam, gap
+    return solve
+
+
 def solve_frictionless(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: ContactSystem, opts,
                        c: float, active: np.ndarray | None = None,
-                       linear: "LinearSolver | None" = None) -> tuple[np.ndarray, dict]:
+                       linear: "LinearSolver | None" = None, saddle=None) -> tuple[np.ndarray, dict]:
     """Frictionless contact on the stiffness K (constraints applied; as
     linear.stiffness() gives it, scipy CSR without linear), load f
     and the constraints B u = cs.g: bilateral (all multipliers active) or
     unilateral by the primal-dual active set, a multiplier active when its
     pressure exceeds c times its mean gap. active: the starting set (default
     options.active_set_start). linear: the solver path of every
-    saddle-point solve (default: solve_checked's MUMPS LU). Returns (u, info: lambda,
+    saddle-point solve (default: solve_checked's MUMPS LU). saddle: the solve
+    itself, solve(active, x0) -> (u, lambda, gap B u - g) (default: by
+    solve_saddle; under MPI distributed_saddle's). Returns (u, info: lambda,
     active, iterations, history)."""
     m = cs.num_multipliers
+    if saddle is None:
+        def saddle(act: np.ndarray, x0: np.ndarray | None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+            u, lam = solve_saddle(K, f, cs, act, opts.residual_tol, linear, x0)
+            return u, lam, cs.B @ u - cs.g
     if opts.contact == "bilateral":
         active = np.ones(m, dtype=bool)
-        u, lam = solve_saddle(K, f, cs, active, opts.residual_tol, linear)
+        u, lam, _ = saddle(active, None)
         return u, {"lambda": lam, "active": active, "iterations": 1, "history": [m]}
     if active is None:
         active = np.full(m, opts.active_set_start == "closed")
@@ -276,9 +371,8 @@ def solve_frictionless(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: Contac
     seen = _VisitedSets(active)
     x0 = None
     for it in range(1, opts.max_active_set_iterations + 1):
-        u, lam = solve_saddle(K, f, cs, active, opts.residual_tol, linear, x0)
+        u, lam, gap = saddle(active, x0)       # gap: weighted normal gap (>= 0 open)
         x0 = np.concatenate([u, lam])
-        gap = cs.B @ u - cs.g                  # weighted normal gap (>= 0 open)
         pressure = -lam                        # >= 0 in compression
         new_active = pressure - c * gap / lumped > 0.0
         history.append(int(new_active.sum()))

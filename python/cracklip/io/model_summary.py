@@ -103,7 +103,7 @@ def describe_model(model: XfemModel, contact_system=None, solution: Solution | N
     if contact_system is None:
         out["contact"] = {"law": "none" if not model.cracks else opts.contact, "multipliers": 0}
     else:
-        space = contact_system.space
+        space = contact_system.band  # (the whole crack's, the same on every process)
         out["contact"] = {
             "law": opts.contact, "space": opts.multipliers,
             "multipliers": int(contact_system.num_multipliers),

@@ -385,9 +385,8 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
     m = solution.model
     t0 = time.perf_counter()
     law = m.scene.options.contact if solution.contact else "none"
-    facets = [cm.lip_facets(solution, i) for i, cm in enumerate(m.cracks)]
-    if solution.contact:
-        facets = [facet_contact(solution, i, f) for i, f in enumerate(facets)]
+    facets = [cm.lip_facets(solution, i, fields=(lambda f, i=i: facet_contact(solution, i, f))
+                            if solution.contact else None) for i, cm in enumerate(m.cracks)]
     fine = [cm.lip_facets(solution, i, OPENING_SUBDIVISION) for i, cm in enumerate(m.cracks)]
     samples = [solution.lip_samples(i, cfg["crack_points"]) for i in range(len(m.cracks))]
     for f, g, smp in zip(facets, fine, samples):

@@ -69,6 +69,16 @@ def on_all(flag: bool, comm=None) -> bool:
     return bool(flag) if comm.size == 1 else bool(comm.allreduce(bool(flag), op=_land()))
 
 
+def gathered(comm, arrays: list) -> list:
+    """Collective: every process's arrays (numpy, same columns) concatenated
+    in rank order (the arrays themselves in serial)."""
+    if comm.size == 1:
+        return arrays
+    import numpy as np
+    parts = comm.allgather(arrays)
+    return [np.concatenate([p[i] for p in parts]) for i in range(len(arrays))]
+
+
 def reduced(value, op: str, comm=None):
     """Collective: value (a number or a numpy array) reduced over the
     processes by the MPI operation named op ("SUM", "MIN", "MAX", "LOR");

@@ -34,6 +34,30 @@ def saddle_matrix(K: sp.csr_matrix, B: sp.csr_matrix, active: np.ndarray) -> PET
     return A
 
 
+def distributed_saddle_matrix(K: PETSc.Mat, B: sp.csr_matrix, active: np.ndarray) -> PETSc.Mat:
+    """[K B_a^T; B_a D] (saddle_matrix) on K's processes (mpirun): K
+    distributed over its processes, B (m, N) whole on every process (columns
+    K's global dofs). Each process holds its rows of K with B_a^T's entries
+    at the columns N + k; the multiplier rows (few) go to the last process,
+    after K's last rows."""
+    comm = K.getComm()
+    N, m = K.getSize()[0], B.shape[0]
+    lo, hi = K.getOwnershipRange()
+    indptr, indices, data = K.getValuesCSR()
+    Ba = (sp.diags(np.asarray(active, dtype=float)) @ B).tocsr()
+    rows = sp.hstack([sp.csr_matrix((data, indices, indptr), shape=(hi - lo, N)), Ba[:, lo:hi].T], format="csr")
+    if comm.getRank() == comm.getSize() - 1:
+        D = sp.diags((~np.asarray(active, dtype=bool)).astype(float))
+        rows = sp.vstack([rows, sp.hstack([Ba, D], format="csr")], format="csr")
+    rows.sort_indices()
+    idx = PETSc.IntType
+    n = rows.shape[0]
+    A = PETSc.Mat().createAIJWithArrays(((n, N + m), (n, N + m)), (rows.indptr.astype(idx), rows.indices.astype(idx),
+                                                                  rows.data), comm=comm)
+    A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
+    return A
+
+
 class SaddleOperator:
     """Python-matrix context of IterativeSolver.saddle_matrix: the
     frictionless saddle point [K B_a^T; B_a D] (B_a = B with the rows of

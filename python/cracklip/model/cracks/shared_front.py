@@ -23,21 +23,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...scene.processes import reduced
+from ...scene.processes import gathered, reduced
 
 #: cpp/geometry/crack_geometry_3d.h CellClass3D::front.
 FRONT = 3
 
 #: The faces of a tetrahedron (local vertices), as the C++ lists them.
 FACES = np.array([[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]])
-
-
-def _gathered(comm, arrays: list[np.ndarray]) -> list[np.ndarray]:
-    """Every process's arrays concatenated in rank order (the arrays alone in serial)."""
-    if comm.size == 1:
-        return arrays
-    parts = comm.allgather(arrays)
-    return [np.concatenate([p[i] for p in parts]) for i in range(len(arrays))]
 
 
 def join_front(geometry, surface, msh, x: np.ndarray, cells: np.ndarray, node_input: np.ndarray) -> None:
@@ -59,7 +51,7 @@ def join_front(geometry, surface, msh, x: np.ndarray, cells: np.ndarray, node_in
     tri = cells[front_cells][:, FACES].reshape(-1, 3)                      # (4 f, 3) local nodes
     face_key = np.sort(node_input[tri], axis=1)
     face_x = x[tri].reshape(-1, 9)
-    key, rows, face_key, face_x = _gathered(comm, [key, rows, face_key.reshape(-1, 3), face_x])
+    key, rows, face_key, face_x = gathered(comm, [key, rows, face_key.reshape(-1, 3), face_x])
     order = np.argsort(key, kind="stable")
     key, rows = key[order], rows[order]
     # Faces held by one front cell of the whole mesh, in input-node order.

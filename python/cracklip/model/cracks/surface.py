@@ -242,7 +242,7 @@ class SurfaceCrackModel(CrackModel):
                 "crack": np.concatenate([np.full(plain.size + whole.size, -1, np.int32), sub["crack"]]),
                 "num_nodes": int(nn), "num_whole_enriched": int(whole.size), "num_sub": int(nsub)}
 
-    def lip_facets(self, solution, crack: int, subdivide: int = 1) -> dict[str, np.ndarray]:
+    def lip_facets(self, solution, crack: int, subdivide: int = 1, fields=None) -> dict[str, np.ndarray]:
         """This crack's lip facets (F triangles) with the opening at their
         vertices: x (F, 3, 3) physical vertices, cell (F,), normal (F, 3)
         unit, into the + lip, area (F,), num_front (F,) vertices on the
@@ -252,7 +252,10 @@ class SurfaceCrackModel(CrackModel):
         vertices' reference coordinates in their cell. subdivide: each lip
         facet split into subdivide^2
         triangles (finer samples of the sqrt(r) opening near the front; a
-        lip facet is flat in its cell, so the pieces are exact)."""
+        lip facet is flat in its cell, so the pieces are exact). fields:
+        fields(facets) -> facets with more per-facet arrays, evaluated in
+        their cells (under MPI before the facets are gathered: e.g. the
+        contact pressure, io.outputs.facet_contact)."""
         m = solution.model
         cc = self.geometry.crack_cells
         counts = np.diff(np.asarray(cc["facet_offsets"]))
@@ -279,6 +282,8 @@ class SurfaceCrackModel(CrackModel):
         out = {"x": xp, "cell": cell, "normal": normal, "area": area, "num_front": num_front, "u_plus": up,
                "u_minus": um, "jump": jump, "gap": gap, "slip_vector": slip, "slip": np.linalg.norm(slip, axis=2),
                "ref": ref}
+        if fields is not None:
+            out = fields(out)
         if m.distributed:  # every process's facets, in rank order, their cells -1 (as Solution.lip_samples')
             parts = m.V.mesh.comm.allgather(out)
             out = {k: np.concatenate([q[k] for q in parts]) for k in out}
