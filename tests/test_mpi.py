@@ -82,12 +82,12 @@ FRICTION = ["--set", "options.contact=unilateral", "--set", "options.friction=0.
 
 @pytest.mark.parametrize("command, missing", [("run", "options.friction"),
                                               ("check", "options.friction"),
-                                              ("grow", "crack growth (`cracklip grow`)")])
+                                              ("grow", "load_path with options.contact")])
 def test_2d_model_refused_not_crashed(command, missing, tmp_path):
     """The issue's reproducer crashed both processes with SEGV (every process
     passed the whole mesh to DOLFINx); now the mesh is made and what is not
     distributed yet is refused collectively, by name (here friction on the
-    block's lips)."""
+    block's lips; the fatigue edge crack's cycle closed by contact)."""
     scene = {"grow": "fatigue_edge_crack.toml"}.get(command, "block_uniform_pressure.toml")
     extra = ["--out", str(tmp_path / "out")] if command != "check" else []
     p = mpirun(command, str(SCENES / scene), *(FRICTION if command != "grow" else []), *extra)
@@ -102,6 +102,16 @@ def test_3d_friction_refused_not_crashed(command, tmp_path):
     p = mpirun(command, str(SCENES / "penny_crack.toml"), *SMALL_3D, *FRICTION, *extra)
     assert_refused(p)
     assert "cracklip: error: options.friction is not available under MPI yet" in p.stderr, p.stderr
+
+
+def test_grow_life_with_contact_refused(tmp_path):
+    """A fatigue life whose load levels close the lips by contact (a flight
+    spectrum at a hole) is not grown on several processes yet: one message
+    naming options.contact, exit 2 on every process."""
+    p = mpirun("grow", str(SCENES / "hole_crack_spectrum.toml"), "--set", "mesh.refine[0].h=1.0", "--set",
+               "mesh.h=10", "--out", str(tmp_path / "out"))
+    assert_refused(p)
+    assert "cracklip: error: options.contact in a fatigue life's load levels" in p.stderr, p.stderr
 
 
 def test_3d_grow_without_growth_table_printed_once(tmp_path):

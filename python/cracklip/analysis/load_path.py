@@ -212,6 +212,8 @@ class LevelSolver:
         # (under mpirun the distributed system, each group's owned entries, parallel MUMPS)
         self.A, self.rhs, self.T, self.T_mpi, self.linear, self.timings = _assembled_groups(model, self.unit)
         self.has_contact = self.scene.options.contact != "none" and bool(model.cracks)
+        if self.has_contact and model.distributed:  # (a fatigue life's or beta table's load levels with contact)
+            not_parallel("options.contact in a fatigue life's load levels", model.V.mesh.comm)
         self.K = self.physical = self.cs = None
         self.active = None
         self.solves = 0
@@ -230,8 +232,6 @@ class LevelSolver:
         """One Solution per state (its .factors the state's; .step its name)."""
         opts = self.scene.options
         contact = contact and self.has_contact
-        if contact and self.model.distributed:
-            not_parallel("options.contact", self.model.V.mesh.comm)
         n = self.A.getLocalSize()[0] if self.model.distributed else self.model.num_dofs
         out = []
         with record_solves() as solves:
