@@ -10,17 +10,21 @@ serial), also with symmetry planes, a body force, an initial stress, a load
 path without contact and the nodal rescaling, and on the iterative path
 (equal to the serial iterative K to the Krylov tolerance); `run` with
 frictionless crack-lip contact in 2D and 3D (bilateral and unilateral: the
-same multipliers, active sets, pressures and K as serial); and the
-commands that need no mesh (`life`, `check` of a life scene, `reference`),
-run by rank 0 with their files written once. What the distributed model
-does not do yet (model.refuse_unless_distributed)
-is refused with one ``cracklip: error: ... is not available under MPI
-yet`` naming it (rank 0) and exit status 2 on every process. Each case runs `mpirun --allow-run-as-root
+same multipliers, active sets, pressures and K as serial); `grow` of open
+2D and 3D cracks (fixed increments, fatigue cycles, spectrum lives: the
+path, K per step and the cycles equal to serial, the files written once);
+and the commands that need no mesh (`life`, `check` of a life scene,
+`reference`), run by rank 0 with their files written once. What the
+distributed model does not do yet (model.refuse_unless_distributed) is
+refused with one ``cracklip: error: ... is not available under MPI yet``
+naming its scene key (rank 0) and exit status 2 on every process. Each
+case runs `mpirun --allow-run-as-root
 --oversubscribe -n 2 /usr/bin/python3 -m cracklip ...` with a timeout: a
 hang fails the test instead of stalling the suite.
 """
 from __future__ import annotations
 
+import csv
 import json
 import shutil
 import subprocess
@@ -78,12 +82,12 @@ FRICTION = ["--set", "options.contact=unilateral", "--set", "options.friction=0.
 
 @pytest.mark.parametrize("command, missing", [("run", "options.friction"),
                                               ("check", "options.friction"),
-                                              ("grow", "crack growth (`cracklip grow`)")])
+                                              ("grow", "load_path with options.contact")])
 def test_2d_model_refused_not_crashed(command, missing, tmp_path):
     """The issue's reproducer crashed both processes with SEGV (every process
     passed the whole mesh to DOLFINx); now the mesh is made and what is not
     distributed yet is refused collectively, by name (here friction on the
-    block's lips)."""
+    block's lips; the fatigue edge crack's cycle closed by contact)."""
     scene = {"grow": "fatigue_edge_crack.toml"}.get(command, "block_uniform_pressure.toml")
     extra = ["--out", str(tmp_path / "out")] if command != "check" else []
     p = mpirun(command, str(SCENES / scene), *(FRICTION if command != "grow" else []), *extra)
@@ -98,6 +102,16 @@ def test_3d_friction_refused_not_crashed(command, tmp_path):
     p = mpirun(command, str(SCENES / "penny_crack.toml"), *SMALL_3D, *FRICTION, *extra)
     assert_refused(p)
     assert "cracklip: error: options.friction is not available under MPI yet" in p.stderr, p.stderr
+
+
+def test_grow_life_with_contact_refused(tmp_path):
+    """A fatigue life whose load levels close the lips by contact (a flight
+    spectrum at a hole) is not grown on several processes yet: one message
+    naming options.contact, exit 2 on every process."""
+    p = mpirun("grow", str(SCENES / "hole_crack_spectrum.toml"), "--set", "mesh.refine[0].h=1.0", "--set",
+               "mesh.h=10", "--out", str(tmp_path / "out"))
+    assert_refused(p)
+    assert "cracklip: error: options.contact in a fatigue life's load levels" in p.stderr, p.stderr
 
 
 def test_3d_grow_without_growth_table_printed_once(tmp_path):
@@ -797,3 +811,117 @@ def test_no_import_thread_under_a_launcher(monkeypatch):
     loading.close()
     loading.thread.join(5.0)
     assert not loading.thread.is_alive()
+
+
+def _grow_both(scene: str, settings: list[str], tmp_path) -> tuple:
+    """`cracklip grow` of a shipped scene under mpirun -n 2 (the progress
+    lines and the summary printed once) and serially: (the two output
+    directories, serial and mpi results.json)."""
+    out, serial = tmp_path / "mpi", tmp_path / "serial"
+    p = mpirun("grow", str(SCENES / scene), *settings, "--out", str(out))
+    assert_clean(p, 0)
+    assert p.stdout.count("results in ") == 1, p.stdout
+    assert p.stderr.count("cracklip grow: step 1:") == 1, p.stderr
+    s = _run_serial("grow", str(SCENES / scene), *settings, "--out", str(serial), "-q")
+    assert s.returncode == 0, s.stderr
+    a, b = (json.loads((d / "results.json").read_text()) for d in (serial, out))
+    assert b["files"] == a["files"] and all((out / f).is_file() for f in a["files"])
+    assert (a["steps"], a["stop_reason"], a["stops"]) == (b["steps"], b["stop_reason"], b["stops"])
+    assert a["warnings"] == b["warnings"] and a["step_solves"] == b["step_solves"]
+    return out, serial, a, b
+
+
+def _largest_difference(a: list[float], b: list[float]) -> float:
+    """max |a - b| over the largest |a|."""
+    x, y = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    assert x.shape == y.shape
+    return float(np.abs(x - y).max() / max(np.abs(x).max(), 1e-300))
+
+
+@pytest.mark.parametrize("scene, settings", [
+    # fatigue at R = -1: the cycle's two loads on one distributed assembly; the ParaView series and PNGs
+    ("hole_fatigue.toml", ["--set", "mesh.refine[0].h=1.0", "--set", "mesh.h=40", "--set", "growth.steps=3"]),
+    # fixed increments, point forces, three holes (the path's clipping at the boundary from every process)
+    ("drilled_plate.toml", ["--set", "mesh.refine[0].h=0.08", "--set", "mesh.refine[1].h=0.08", "--set", "mesh.h=0.8",
+                            "--set", "growth.steps=4", "--set", "growth.da=0.3", "--set", "outputs.vtu=false"]),
+    # a flight-spectrum life without contact (Newman closure): the ligament's net-section stress from the
+    # processes owning its points (Solution.gradient_anywhere)
+    ("hole_crack_spectrum.toml", ["--set", "options.contact=none", "--set", "material.fatigue.closure=newman",
+                                  "--set", "mesh.refine[0].h=1.0", "--set", "mesh.h=10", "--set", "growth.steps=2",
+                                  "--set", "outputs.vtu=false"])])
+def test_grow_2d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_path):
+    """`cracklip grow` of a shipped open 2D crack under mpirun -n 2: every
+    decision (kink, increment, stops, warnings) taken alike on both
+    processes from K summed over them, the files written once (rank 0), the
+    path equal to the serial one: tip positions to 1e-8 of the part's
+    coordinates, K and the kink to 1e-8 of their largest values, the cycles
+    to 1e-8 (issue 40 asks 1e-6). Measured (the largest of three runs):
+    hole_fatigue (K_I 652.8 -> 692.4 over 3 steps) positions equal to 7e-15
+    of the part, K_I to 1e-13, K_II to 1e-11 of its largest, N to 2.4e-13;
+    drilled plate K_I to 6e-14, K_II 7e-13; the spectrum life (K_I 308 ->
+    351, 2 steps) K_I to 4e-14, N to 9e-14, the residual strength to 4e-14. (The hole_fatigue path left the serial one by
+    2.3e-4 in K at step 1 in half of the runs until the SIF domain's
+    admissible radius stopped short of its bounding node:
+    tip_regions.RADIUS_MARGIN.)"""
+    out, serial, a, b = _grow_both(scene, settings, tmp_path)
+    tips = [[r for step in res["per_step"] for r in step["tips"]] for res in (a, b)]
+    assert [(r["crack"], r["end"], r["status"]) for r in tips[0]] == \
+        [(r["crack"], r["end"], r["status"]) for r in tips[1]]
+    assert len(tips[0]) >= 3
+    size = max(abs(v) for r in tips[0] for v in (r["x"], r["y"]))
+    for key in ("x", "y", "length"):
+        assert max(abs(ra[key] - rb[key]) for ra, rb in zip(*tips)) <= 1e-8 * size, key
+    for key in ("K_I", "K_II", "kink_deg", "N"):
+        assert _largest_difference([r[key] for r in tips[0]], [r[key] for r in tips[1]]) <= 1e-8, key
+    if a["cycles"] is not None:
+        assert _relative(a["cycles"], b["cycles"], a["cycles"]) <= 1e-8
+    if a["life"] is not None:  # the residual strength per step (from the ligament's net-section stress)
+        rs = [[c["multiple"] for c in res["life"]["residual_strength"]] for res in (a, b)]
+        assert len(rs[0]) > 0 and _largest_difference(*rs) <= 1e-8
+    pa, pb = (np.asarray(res["final"]["cracks"][0]["points"]) for res in (a, b))
+    assert pa.shape == pb.shape and np.abs(pa - pb).max() <= 1e-8 * size
+    rows = [(d / "path.csv").read_text().splitlines() for d in (serial, out)]
+    assert rows[0][0] == rows[1][0] and len(rows[0]) == len(rows[1])
+
+
+@pytest.mark.parametrize("scene, settings", [
+    # constant amplitude (Paris), net-section yield watched: the front's ends on the free surface
+    ("surface_crack_growth.toml", ["--set", "mesh.h=10", "--set", "mesh.refine[0].h=1.0",
+                                   "--set", "mesh.refine[0].radius=12", "--set", "growth.steps=3"]),
+    # a flight spectrum, Newman closure, a geometry file: a corner crack at a bore
+    ("corner_crack_growth.toml", ["--set", "mesh.h=8", "--set", "mesh.refine[0].h=0.4",
+                                  "--set", "mesh.refine[0].radius=10", "--set", "growth.steps=2",
+                                  "--set", "outputs.vtu=false"])])
+def test_grow_3d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_path):
+    """`cracklip grow` of a shipped open 3D crack under mpirun -n 2: the
+    crack surface grown alike on both processes (the inside-tests, the
+    part's faces, the front's element size and the net-section stress over
+    every process), the files written once, equal to the serial run: the
+    front points, K along the front and the crack's shape (a, c) to 1e-8,
+    the cycles and flights to 1e-8 (issue 40 asks 1e-6). Measured (the
+    largest of three runs): surface crack (a 2.0 -> 3.08 in 3 steps, 4-5
+    front points) K_I to 4e-12, K_II to 1.5e-10 of its largest, a to
+    1.1e-12, the cycles to 5e-12; corner crack (flight spectrum, Newman
+    closure, 2 steps) K_I to 3.5e-12, K_III to 1.3e-10 of its largest, the
+    cycles to 4e-12."""
+    out, serial, a, b = _grow_both(scene, settings, tmp_path)
+    assert a["cycles"] > 0 and _relative(a["cycles"], b["cycles"], a["cycles"]) <= 1e-8
+    for sa, sb in zip(a["per_step"], b["per_step"]):
+        assert _relative(sa["cycles"], sb["cycles"], a["cycles"]) <= 1e-8
+        assert _largest_difference(sa["K_I_range"], sb["K_I_range"]) <= 1e-8
+        assert sa["shape"].keys() == sb["shape"].keys()
+        for c in sa["shape"]:
+            ka, kb = sa["shape"][c], sb["shape"][c]
+            assert (ka["kind"], ka["points"]) == (kb["kind"], kb["points"])
+            for key in ("a", "c", "radius_mean"):
+                if ka.get(key) is not None:
+                    assert _relative(ka[key], kb[key], ka[key]) <= 1e-8, key
+    assert len(a["per_step"]) == a["steps"] + 1 > 2
+    rows = [list(csv.DictReader((d / "front_path.csv").open())) for d in (serial, out)]
+    assert len(rows[0]) == len(rows[1]) > 4
+    assert [(r["step"], r["point"]) for r in rows[0]] == [(r["step"], r["point"]) for r in rows[1]]
+    size = max(abs(float(r[k])) for r in rows[0] for k in ("x", "y", "z"))
+    for key in ("x", "y", "z"):
+        assert max(abs(float(ra[key]) - float(rb[key])) for ra, rb in zip(*rows)) <= 1e-8 * size, key
+    for key in ("K_I", "K_II", "K_III", "da", "cycles"):
+        assert _largest_difference([float(r[key]) for r in rows[0]], [float(r[key]) for r in rows[1]]) <= 1e-8, key

@@ -54,6 +54,7 @@ import numpy as np
 from ..errors import InputError
 from ..fracture.kink import equivalent_k_3d, kink_twist_3d
 from ..scene.growth import Growth
+from ..scene.processes import reduced
 from ..scene.scene import Scene
 from ..scene.surface_growth import GrowingSurface, StripTurnedOver, extend_ends, front_exit, resample, smooth
 from .growth_run import GrowthRun
@@ -109,21 +110,39 @@ def life_growth(scene: Scene, growth: Growth) -> Growth:
 
 def front_element_size(mesh, cracks) -> float:
     """The mean edge of the cells at the cracks' fronts (before any model:
-    the cells of the mesh nodes nearest to points sampled along the fronts)."""
+    the cells of the mesh nodes nearest to points sampled along the fronts).
+    Collective under mpirun: each point's nearest node of every process's
+    owned nodes (found alike on all by its position), the edges of the owned
+    cells around them summed over the processes."""
     import scipy.spatial
     msh = mesh.mesh
+    comm = msh.comm
     x = msh.geometry.x
     cells = msh.geometry.dofmap.array.reshape(-1, 4)
-    tree = scipy.spatial.cKDTree(x)
     pts = []
     for c in cracks:
         size = float(np.sqrt(max(c.area, 1e-300)))
         pts.append(c.front_points(0.05 * size))
-    _, nodes = tree.query(np.concatenate(pts))
+    pts = np.concatenate(pts)
+    if comm.size == 1:
+        _, nodes = scipy.spatial.cKDTree(x).query(pts)
+    else:
+        owned = msh.geometry.index_map().size_local
+        d, i = scipy.spatial.cKDTree(x[:owned]).query(pts) if owned else (np.full(len(pts), np.inf), None)
+        best = np.array(comm.allgather(d))                       # (processes, points)
+        wins = np.argmin(best, axis=0) == comm.rank              # (the lowest rank on a tie)
+        near_x = np.zeros((len(pts), 3))
+        near_x[wins] = x[i[wins]]
+        near_x = reduced(near_x, "SUM", comm)                    # each point's nearest node, on every process
+        d_local, nodes = scipy.spatial.cKDTree(x).query(near_x)
+        nodes = nodes[d_local == 0.0]                            # those this process holds (owned or ghost)
+        cells = cells[:msh.topology.index_map(3).size_local]     # each cell counted by its owner
     near = np.isin(cells, np.unique(nodes)).any(axis=1)
     xv = x[cells[near]]
-    e = [np.linalg.norm(xv[:, j] - xv[:, i], axis=1) for i, j in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))]
-    return float(np.mean(e))
+    e = np.array([np.linalg.norm(xv[:, j] - xv[:, i], axis=1)
+                  for i, j in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))])
+    total, count = reduced(np.array([e.sum(), float(e.size)]), "SUM", comm)
+    return float(total / count)
 
 
 class FrontPoints:

@@ -10,8 +10,9 @@ import logging
 import time
 import typing
 
-from ..errors import BoundaryConditionError, InputError
+from ..errors import BoundaryConditionError, CracklipError, InputError
 from ..scene.growth import Growth
+from ..scene.processes import mark_collective
 from ..scene.scene import Scene
 from .tips import Measured, TipRecord
 
@@ -249,7 +250,10 @@ class GrowthRun:
                 self.solutions.append(m.sol)
             if self.check_stops(m):
                 break
-            self.advance(m)
+            try:
+                self.advance(m)
+            except CracklipError as e:  # (from the geometry every process holds alike: raised on every one)
+                raise mark_collective(e)
             if self.pending is not None:  # a stop the advance found (3D: breakthrough)
                 self._stop(*self.pending)
                 break

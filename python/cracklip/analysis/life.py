@@ -69,6 +69,7 @@ from ..fracture.rainflow import count_cycles
 from ..fracture.retardation import OverloadState, Retardation, constraint_beta
 from ..scene.fatigue import FatigueMaterial
 from ..scene.growth import Growth
+from ..scene.processes import reduced
 from ..scene.scene import Scene, load_groups
 from ..scene.spectrum import Spectrum, SpectrumBlock
 
@@ -397,8 +398,10 @@ class LifeRun:
                 gaps = np.array([np.concatenate([b.lip_samples(ci, 2)["gap"] for ci in range(len(model.cracks))])
                                  for b in basis])                     # (G, points)
                 gstate = self.F @ gaps
-                scale = np.maximum(np.abs(gstate).max(axis=1), 1e-300)
-                gap_min = gstate.min(axis=1) / scale
+                # (under mpirun each process samples the lips of its cells: the extremes over all of them)
+                comm = model.V.mesh.comm
+                scale = np.maximum(reduced(np.abs(gstate).max(axis=1, initial=0.0), "MAX", comm), 1e-300)
+                gap_min = reduced(gstate.min(axis=1, initial=np.inf), "MIN", comm) / scale
                 if self.contact_closure and not bilateral:
                     closed_states = [int(s) for s in np.flatnonzero(gap_min < -1e-6)]
             if closed_states:
@@ -897,7 +900,7 @@ def _ligament_stress(sol, tip: np.ndarray, r0: dict, theta: float, bnd) -> float
     u, w = np.polynomial.legendre.leggauss(24)
     u, w = 0.5 * (u + 1.0), 0.5 * w
     pts = tip + (L * u ** 2)[:, None] * d
-    grad = sol.displacement_gradient(pts)
+    grad = sol.gradient_anywhere(pts)  # (under mpirun from the processes holding the points)
     sig = stress(strain(grad), sol.model.scene.material)
     scene = sol.model.scene
     if scene.initial_stress is not None and sol.factor(scene.initial_stress_group) != 0.0:

@@ -31,6 +31,7 @@ from ..solvers.checked import condition_number_1norm, record_solves, scipy_from_
 from ..solvers.choice import create_linear_solver, to_solver_basis
 from ..solvers.direct import DirectSolver
 from ..solvers.rescaling import from_basis, rescale_distributed
+from ..scene.processes import not_parallel
 
 
 logger = logging.getLogger(__name__)
@@ -41,6 +42,41 @@ def _combine(vectors: dict[str, np.ndarray], factors: dict[str, float], size: in
     for g, v in vectors.items():
         out += factors.get(g, 0.0) * v
     return out
+
+
+def _assembled_groups(model, unit) -> tuple:
+    """The matrix and each load group's right-hand side in the solver's
+    basis, assembled once: (A, {group: b_g}, T, T_mpi, linear, timings).
+    Serial: the scene's solver path (T its basis, or None). Under mpirun:
+    the distributed matrix and each group's owned entries, nodal rescaling
+    by T_mpi (options.rescale), the direct path (parallel MUMPS)."""
+    if model.distributed:
+        A, rhs, timings = assemble_distributed_system_groups(unit)
+        model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
+        A, values, T_mpi, t_basis = rescale_distributed(unit, A, list(rhs.values()))  # options.rescale
+        linear, T = DirectSolver(), None
+    else:
+        T_mpi = None
+        A, rhs, timings = assemble_system_groups(unit)
+        linear = create_linear_solver(unit)  # Options.solver, as solve.solve (cracklip.solvers)
+        A, values, T, t_basis = to_solver_basis(unit, linear, A, list(rhs.values()))
+    timings.update(t_basis)
+    return A, dict(zip(rhs.keys(), values)), T, T_mpi, linear, timings
+
+
+def _solved(model, linear, A, A_f, T_mpi, residual_tol: float) -> np.ndarray:
+    """Solve A x = A_f (both destroyed with the solution): x in the solver's
+    basis (serial; its T applied by the caller), or this process's local
+    dofs (mpirun)."""
+    x = linear.solve(A, A_f, residual_tol, what="X-FEM stiffness system")
+    A_f.destroy()
+    if model.distributed:
+        x = from_basis(T_mpi, x)
+        y = to_local(model.dofs, x)
+    else:
+        y = x.array.copy()
+    x.destroy()
+    return y
 
 
 def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
@@ -55,20 +91,7 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
     unit = dataclasses.replace(model, scene=dataclasses.replace(scene, material=scene.material.scaled(1.0)),
                                bc_values=model.bc_values * E,
                                bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
-    if model.distributed:  # (mpirun: the distributed matrix, owned entries per group; the direct path)
-        A, rhs, timings = assemble_distributed_system_groups(unit)
-        model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
-        A, values, T_mpi, t_basis = rescale_distributed(unit, A, list(rhs.values()))  # options.rescale
-        rhs = dict(zip(rhs.keys(), values))
-        timings.update(t_basis)
-        linear, T = DirectSolver(), None
-    else:
-        T_mpi = None
-        A, rhs, timings = assemble_system_groups(unit)
-        linear = create_linear_solver(unit)  # Options.solver, as solve.solve (cracklip.solvers)
-        A, values, T, t_basis = to_solver_basis(unit, linear, A, list(rhs.values()))
-        rhs = dict(zip(rhs.keys(), values))
-        timings.update(t_basis)
+    A, rhs, T, T_mpi, linear, timings = _assembled_groups(model, unit)
     contact = opts.contact != "none" and bool(model.cracks)
     friction = contact and opts.friction > 0.0
     # The stiffness as the contact solves take it: friction assembles its
@@ -101,14 +124,7 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
                 if not contact:
                     A_f = A.createVecRight()
                     A_f.array[:] = f
-                    x = linear.solve(A, A_f, opts.residual_tol, what="X-FEM stiffness system")
-                    if model.distributed:
-                        x = from_basis(T_mpi, x)
-                        y = to_local(model.dofs, x)
-                    else:
-                        y = x.array.copy()
-                    A_f.destroy()
-                    x.destroy()
+                    y = _solved(model, linear, A, A_f, T_mpi, opts.residual_tol)
                 else:
                     g_n = _combine(cs.g_groups, inc.factors, m)
                     work = dataclasses.replace(cs, g=g_n)
@@ -193,12 +209,11 @@ class LevelSolver:
                                                                          material=self.scene.material.scaled(1.0)),
                                         bc_values=model.bc_values * E,
                                         bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
-        A, rhs, self.timings = assemble_system_groups(self.unit)
-        self.linear = create_linear_solver(self.unit)
-        self.A, values, self.T, t_basis = to_solver_basis(self.unit, self.linear, A, list(rhs.values()))
-        self.rhs = dict(zip(rhs.keys(), values))
-        self.timings.update(t_basis)
+        # (under mpirun the distributed system, each group's owned entries, parallel MUMPS)
+        self.A, self.rhs, self.T, self.T_mpi, self.linear, self.timings = _assembled_groups(model, self.unit)
         self.has_contact = self.scene.options.contact != "none" and bool(model.cracks)
+        if self.has_contact and model.distributed:  # (a fatigue life's or beta table's load levels with contact)
+            not_parallel("options.contact in a fatigue life's load levels", model.V.mesh.comm)
         self.K = self.physical = self.cs = None
         self.active = None
         self.solves = 0
@@ -217,7 +232,7 @@ class LevelSolver:
         """One Solution per state (its .factors the state's; .step its name)."""
         opts = self.scene.options
         contact = contact and self.has_contact
-        n = self.model.num_dofs
+        n = self.A.getLocalSize()[0] if self.model.distributed else self.model.num_dofs
         out = []
         with record_solves() as solves:
             for k, factors in enumerate(states):
@@ -227,10 +242,7 @@ class LevelSolver:
                 if not contact:
                     A_f = self.A.createVecRight()
                     A_f.array[:] = f
-                    x = self.linear.solve(self.A, A_f, opts.residual_tol, what="X-FEM stiffness system")
-                    y = x.array.copy()
-                    A_f.destroy()
-                    x.destroy()
+                    y = _solved(self.model, self.linear, self.A, A_f, self.T_mpi, opts.residual_tol)
                     physical = None
                 else:
                     cs = self._contact_system()
@@ -250,6 +262,8 @@ class LevelSolver:
     def close(self) -> None:
         self.linear.destroy()
         self.A.destroy()
+        if self.T_mpi is not None:
+            self.T_mpi.destroy()
 
 
 def state_names(codes: np.ndarray) -> list[str]:

@@ -186,13 +186,10 @@ def _build(args, doc):
     logger.info("mesh: %d nodes, %d %s (%.2f s)", msh.topology.index_map(0).size_global,
                 msh.topology.index_map(msh.topology.dim).size_global,
                 "tetrahedra" if msh.topology.dim == 3 else "cells", sf.timings["mesh"])
-    # Under mpirun `run` and `check` build what the distributed model does (an
-    # open 2D crack, the direct solver: cracklip.model.distributed) and refuse
-    # the rest by its scene key; `grow` of an X-FEM model is serial yet.
+    # Under mpirun `run`, `grow` and `check` build what the distributed model
+    # does (open 2D and 3D cracks, the direct solver: cracklip.model.distributed)
+    # and refuse the rest by its scene key.
     if msh.comm.size > 1:
-        from ..scene.processes import not_parallel
-        if args.command == "grow":
-            not_parallel("crack growth (`cracklip grow`) of the X-FEM model", msh.comm)
         from ..model.model import refuse_unless_distributed
         refuse_unless_distributed(sf.scene)
     return sf
@@ -369,11 +366,13 @@ def cmd_grow(args) -> int:
     out = ensure_output_dir(args.out)
     sf = _build(args, doc)
     series = SeriesWriter(out) if sf.outputs["vtu"] else None
+    comm = _processes()
+    quiet = args.quiet or (comm is not None and comm.rank != 0)  # (under mpirun rank 0 prints)
 
     def progress(k, records, solution):
         if series is not None:
             series.add(k, solution)
-        if not args.quiet:
+        if not quiet:
             life = ""
             if sf.growth.life and records:
                 r0 = records[0]
@@ -389,11 +388,12 @@ def cmd_grow(args) -> int:
                 for r in records) + life + "\n")
             sys.stderr.flush()
     if sf.scene.mesh.gdim == 3:
-        return _grow_3d(args, sf, out, series, t_start)
+        return _grow_3d(args, sf, out, series, t_start, quiet)
     result = grow(sf.scene, sf.growth, on_step=progress, beta_table=args.beta_table)
-    results = write_growth_outputs(sf, result, out, sf.growth, {"total": time.perf_counter() - t_start}, series)
+    results = _on_rank0(lambda: write_growth_outputs(sf, result, out, sf.growth,
+                                                     {"total": time.perf_counter() - t_start}, series))
     print_warnings(result.warnings)
-    if not args.quiet:
+    if not quiet:
         print(f"{sf.title}: {results['steps']} growth steps; {result.stop_reason}")
         for c in results["final"]["cracks"]:
             a = c["length_in_part"]
@@ -410,7 +410,17 @@ def cmd_grow(args) -> int:
     return 0
 
 
-def _grow_3d(args, sf, out, series, t_start: float) -> int:
+def _on_rank0(write: typing.Callable[[], typing.Any]) -> typing.Any:
+    """write() (the files of a growth run, from the results every process
+    holds alike) by rank 0 under mpirun, its return value on all."""
+    comm = _processes()
+    if comm is None:
+        return write()
+    from ..scene.processes import on_rank0
+    return on_rank0(write, comm)
+
+
+def _grow_3d(args, sf, out, series, t_start: float, quiet: bool) -> int:
     """cracklip grow on a solid part: per step a progress line per crack
     (front points, K_I range, the largest advance, a and c of surface and
     corner cracks, flights done), then the 3D outputs."""
@@ -422,7 +432,7 @@ def _grow_3d(args, sf, out, series, t_start: float) -> int:
     def progress(k, records, solution):
         if series is not None:
             series.add(k, solution)
-        if args.quiet:
+        if quiet:
             return
         shape = run.shape[-1] if run.shape else {}
         parts = []
@@ -440,9 +450,10 @@ def _grow_3d(args, sf, out, series, t_start: float) -> int:
         sys.stderr.flush()
     run.on_step = progress
     result = run.run()
-    results = write_front_growth_outputs(sf, result, out, run.growth, {"total": time.perf_counter() - t_start}, series)
+    results = _on_rank0(lambda: write_front_growth_outputs(sf, result, out, run.growth,
+                                                           {"total": time.perf_counter() - t_start}, series))
     print_warnings(result.warnings)
-    if not args.quiet:
+    if not quiet:
         print(f"{sf.title}: {results['steps']} growth steps; {result.stop_reason}")
         for c in results["final"]["cracks"]:
             sh = c["shape"] or {}

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..analysis.growth import GrowthResult, TipRecord
 from .files import atomic_path
-from .outputs import ensure_output_dir, versions, write_csv
+from .outputs import ensure_output_dir, gathered_subcell_fields, versions, write_csv, writes_files
 from .results import write_results_json
 from .paraview import subcell_mesh, write_mesh
 from ..scene.units import label
@@ -32,7 +32,8 @@ LIFE_COLUMNS = ["a", "K_max", "K_min", "delta_K_eff", "R", "da_per_pass", "passe
 class SeriesWriter:
     """The ParaView time series: step k's sub-cell mesh as growth_k.vtu, the
     collection growth.pvd listing them (rewritten at every step, so an
-    interrupted run leaves a readable series)."""
+    interrupted run leaves a readable series). Under mpirun add is
+    collective: the owned cells' sub-cells gathered on rank 0, which writes."""
 
     def __init__(self, out: pathlib.Path):
         self.out = out
@@ -40,8 +41,14 @@ class SeriesWriter:
 
     def add(self, k: int, solution) -> None:
         name = f"growth_{k:04d}.vtu"
-        write_mesh(subcell_mesh(solution), self.out / name)
         self.files.append((k, name))
+        if solution.model.distributed:
+            fields = gathered_subcell_fields(solution)
+            if not writes_files(solution.model):
+                return
+            write_mesh(subcell_mesh(solution, fields), self.out / name)
+        else:
+            write_mesh(subcell_mesh(solution), self.out / name)
         lines = ['<?xml version="1.0"?>', '<VTKFile type="Collection" version="0.1">', "  <Collection>"]
         lines += [f'    <DataSet timestep="{s}" group="" part="0" file="{f}"/>' for s, f in self.files]
         lines += ["  </Collection>", "</VTKFile>"]

@@ -13,29 +13,43 @@ import dolfinx.mesh
 
 from ..errors import BoundaryConditionError
 from ..scene.mesh import MeshData
-from ..scene.processes import total
+from ..scene.processes import reduced, total
 
 
 def boundary_segments(mesh) -> tuple[np.ndarray, np.ndarray]:
-    """End points (n, 2), (n, 2) of the boundary facets (holes included) of a MeshData."""
+    """End points (n, 2), (n, 2) of the boundary facets (holes included) of a
+    MeshData; computed once per mesh (under mpirun the first call is
+    collective: every process's facets gathered on all, in rank order)."""
+    cache = mesh.__dict__.setdefault("_boundary_segments", [])
+    if not cache:
+        cache.append(_segments(mesh))
+    return cache[0]
+
+
+def _segments(mesh) -> tuple[np.ndarray, np.ndarray]:
     msh = mesh.mesh
     tdim = msh.topology.dim
-    msh.topology.create_connectivity(tdim - 1, tdim)
-    if msh.comm.size == 1:
-        facets = dolfinx.mesh.exterior_facet_indices(msh.topology)
-    else:
-        # The facets of owned cells with one cell: every process holds the
-        # cells across its owned cells' facets (vertex-patch ghosts), so these
-        # are the part's boundary facets, each on one process; gathered below.
-        f2c = msh.topology.connectivity(tdim - 1, tdim)
-        one = np.flatnonzero(np.diff(f2c.offsets) == 1)
-        owned = msh.topology.index_map(tdim).size_local
-        facets = one[f2c.array[f2c.offsets[one]] < owned].astype(np.int32)
+    facets = _boundary_facets(msh)
     verts = dolfinx.cpp.mesh.entities_to_geometry(msh._mesh, tdim - 1, facets, False)
     a, b = msh.geometry.x[verts[:, 0], :2], msh.geometry.x[verts[:, 1], :2]
     if msh.comm.size > 1:
         a, b = (np.concatenate(msh.comm.allgather(v)) for v in (a, b))
     return a, b
+
+
+def _boundary_facets(msh) -> np.ndarray:
+    """The part's boundary facets on this process: all in serial; under
+    mpirun the facets of owned cells with one cell (every process holds the
+    cells across its owned cells' facets: vertex-patch ghosts), so that each
+    boundary facet is on one process."""
+    tdim = msh.topology.dim
+    msh.topology.create_connectivity(tdim - 1, tdim)
+    if msh.comm.size == 1:
+        return dolfinx.mesh.exterior_facet_indices(msh.topology)
+    f2c = msh.topology.connectivity(tdim - 1, tdim)
+    one = np.flatnonzero(np.diff(f2c.offsets) == 1)
+    owned = msh.topology.index_map(tdim).size_local
+    return one[f2c.array[f2c.offsets[one]] < owned].astype(np.int32)
 
 
 def boundary_normals(mesh: MeshData, where: str | int) -> typing.Callable[[np.ndarray], np.ndarray]:
@@ -95,25 +109,33 @@ def exterior_facet_tags(mesh: MeshData) -> list[str | None]:
 
 
 def _exterior(mesh: MeshData) -> tuple:
+    """(exterior_facets, exterior_facet_tags), computed once per mesh
+    (collective under mpirun: every process's boundary facets gathered on
+    all, in rank order)."""
     cache = mesh.__dict__.setdefault("_exterior_facets", [])
     if not cache:
         msh = mesh.mesh
-        tdim = msh.topology.dim
-        msh.topology.create_connectivity(tdim - 1, tdim)
-        facets = dolfinx.mesh.exterior_facet_indices(msh.topology)
+        facets = _boundary_facets(msh)
         names = {v: k for k, v in mesh.tags.items()}
         tag_of: dict[int, str] = {}
         if mesh.facet_tags is not None:
             for f, v in zip(np.asarray(mesh.facet_tags.indices), np.asarray(mesh.facet_tags.values)):
                 if int(v) in names:
                     tag_of[int(f)] = names[int(v)]
-        cache.append((_facet_geometry(mesh, facets), [tag_of.get(int(f)) for f in facets]))
+        geometry, tags = _facet_geometry(mesh, facets), [tag_of.get(int(f)) for f in facets]
+        if msh.comm.size > 1:
+            parts = msh.comm.allgather((geometry, tags))
+            geometry = tuple(np.concatenate([p[0][k] for p in parts]) for k in range(3))
+            tags = [t for p in parts for t in p[1]]
+        cache.append((geometry, tags))
     return cache[0]
 
 
 def points_inside(mesh: MeshData, points: np.ndarray) -> np.ndarray:
     """Whether each point (n, d) lies in a cell of the mesh (on the boundary
-    counts), any dimension; the cells' bounding-box tree is built once per mesh."""
+    counts), any dimension; the cells' bounding-box tree is built once per
+    mesh. Collective under mpirun (in a cell of any process: every process
+    asks with the same points)."""
     import dolfinx.geometry
     msh = mesh.mesh
     pts = np.asarray(points, dtype=float).reshape(-1, msh.geometry.dim)
@@ -125,7 +147,8 @@ def points_inside(mesh: MeshData, points: np.ndarray) -> np.ndarray:
     p3 = np.zeros((len(pts), 3))
     p3[:, :pts.shape[1]] = pts
     coll = dolfinx.geometry.compute_colliding_cells(msh, dolfinx.geometry.compute_collisions(cache[0], p3), p3)
-    return np.diff(coll.offsets) > 0
+    inside = np.diff(coll.offsets) > 0
+    return reduced(inside.astype(np.uint8), "MAX", msh.comm) > 0 if msh.comm.size > 1 else inside
 
 
 def _facet_geometry(mesh: MeshData, facets: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

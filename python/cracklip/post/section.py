@@ -20,6 +20,7 @@ import numpy as np
 
 from .. import _cracklip
 from ..scene.material import strain, stress
+from ..scene.processes import reduced
 
 
 def section_polygons(x: np.ndarray, cells: np.ndarray, point: np.ndarray, normal: np.ndarray
@@ -74,18 +75,21 @@ def net_section_stress(solution, crack_surface, point: np.ndarray, normal: np.nd
     key = (tuple(np.round(point, 12)), tuple(np.round(normal, 12)), id(crack_surface))
     if key in cache:
         return cache[key]
-    cent, area = section_polygons(m.x, m.cells, point, normal)
-    if area.size == 0:
-        return 0.0
-    _, psi = _cracklip.compute_level_sets_3d(np.ascontiguousarray(cent), crack_surface)
-    keep = np.asarray(psi) > 0.0
-    if not keep.any():
-        return 0.0
-    grad = solution.displacement_gradient(cent[keep])
-    sig = stress(strain(grad), m.scene.material)
-    nn = np.asarray(normal, dtype=float) / np.linalg.norm(normal)
-    snn = np.einsum("i,nij,j->n", nn, sig, nn)
-    out = float(np.sum(snn * area[keep]) / np.sum(area[keep]))
+    # (under mpirun each process cuts its owned cells; the sums are over every process)
+    cent, area = section_polygons(m.x, m.cells[m.owned_cells_only(np.arange(len(m.cells)))], point, normal)
+    force, intact = 0.0, 0.0
+    if area.size:
+        _, psi = _cracklip.compute_level_sets_3d(np.ascontiguousarray(cent), crack_surface)
+        keep = np.asarray(psi) > 0.0
+        if keep.any():
+            grad = solution.displacement_gradient(cent[keep])
+            sig = stress(strain(grad), m.scene.material)
+            nn = np.asarray(normal, dtype=float) / np.linalg.norm(normal)
+            snn = np.einsum("i,nij,j->n", nn, sig, nn)
+            force, intact = float(np.sum(snn * area[keep])), float(np.sum(area[keep]))
+    if m.distributed:
+        force, intact = reduced(np.array([force, intact]), "SUM", m.V.mesh.comm)
+    out = float(force / intact) if intact > 0.0 else 0.0
     cache[key] = out
     return out
 

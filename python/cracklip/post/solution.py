@@ -94,11 +94,13 @@ class Solution:
         return 1.0 if self.factors is None else float(self.factors.get(group, 0.0))
 
     # -- point values -------------------------------------------------------
-    def locate(self, points: np.ndarray, prefer_crossed: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    def locate(self, points: np.ndarray, prefer_crossed: bool = True,
+               owned: bool = False) -> tuple[np.ndarray, np.ndarray]:
         """Cell and reference coordinates of each point (n, d).
 
         A point on a cell boundary goes to a cell crossed by a crack if there
-        is one (so that both lips can be evaluated there).
+        is one (so that both lips can be evaluated there). owned: among this
+        process's owned cells only (under mpirun), -1 where none holds it.
         """
         m = self.model
         d = m.gdim
@@ -114,14 +116,39 @@ class Solution:
         cells = np.empty(len(pts), dtype=np.int32)
         for i in range(len(pts)):
             links = coll.links(i)
+            if owned:
+                links = links[m.owned_cells_only(links)]
+                if len(links) == 0:
+                    cells[i] = -1
+                    continue
             if len(links) == 0:
                 raise InputError(f"point {pts[i].tolist()} is outside the mesh")
             hit = links[crossed[links]] if prefer_crossed else links[:0]
             cells[i] = hit[0] if len(hit) else links[0]
-        xv = m.x[m.cells[cells]]
+        xv = m.x[m.cells[np.maximum(cells, 0)]]
         J = np.stack([xv[:, k] - xv[:, 0] for k in range(1, d + 1)], axis=2)
         ref = np.linalg.solve(J, (pts - xv[:, 0])[:, :, None])[:, :, 0]
         return cells, np.clip(ref, 0.0, 1.0)
+
+    def gradient_anywhere(self, points: np.ndarray) -> np.ndarray:
+        """displacement_gradient at points anywhere in the part; collective
+        under mpirun: each point evaluated by the lowest process owning a
+        cell that holds it, the values on every process."""
+        m = self.model
+        if not m.distributed:
+            return self.displacement_gradient(points)
+        comm = m.V.mesh.comm
+        pts = np.asarray(points, dtype=float).reshape(-1, m.gdim)
+        cells, ref = self.locate(pts, owned=True)
+        holder = reduced(np.where(cells >= 0, comm.rank, comm.size).astype(np.int64), "MIN", comm)
+        if np.any(holder == comm.size):
+            raise InputError(f"point {pts[holder == comm.size][0].tolist()} is outside the mesh")
+        out = np.zeros((len(pts), m.gdim, m.gdim))
+        mine = holder == comm.rank
+        if mine.any():
+            out[mine] = self._evaluate(cells[mine], ref[mine], np.zeros(int(mine.sum()), dtype=np.int8),
+                                       gradient=True)[1]
+        return reduced(out, "SUM", comm)
 
     def displacement(self, points: np.ndarray, side: int = 0) -> np.ndarray:
         """Displacement (n, d) at points; side +1 / -1 picks a lip of a crack
