@@ -22,7 +22,7 @@ Per step (the named steps of GrowthRun):
   inside the increment), the step count, no growing point, and the
   breakthrough found by the last advance;
 - advance: every front point by da_i = growth.da x rate_i / max_j rate_j
-  (the step's cycles from the fastest point), along its kink; the growth
+  (the step's cycles from the fastest point), along its kink (front_kinks); the growth
   per front point interpolated along the crack's boundary loop
   (scene.surface_growth: the chains of the loop inside the part with a
   margin beyond the part's boundary), the advanced loop smoothed, re-sampled
