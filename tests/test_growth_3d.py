@@ -18,7 +18,8 @@ import pytest
 import cracklip as cl
 from cracklip import _cracklip, cli
 from cracklip.analysis.front_growth import crack_shape
-from cracklip.fracture.kink import equivalent_k, equivalent_k_3d, kink_angle, kink_twist_3d
+from cracklip.fracture.kink import (FRONT_KINK_SHARE, equivalent_k, equivalent_k_3d, front_kinks, kink_angle,
+                                   kink_twist_3d)
 from cracklip.post.section import section_polygons
 from cracklip.scene.crack_surface import EllipticalCrack, PolygonCrack
 from cracklip.scene.surface_growth import GrowingSurface, boundary_loop, extend_ends, front_exit, resample
@@ -78,6 +79,49 @@ def test_twist_at_no_kink_closed_form():
 def test_equivalent_k_3d_adds_mode_iii_energy():
     assert equivalent_k_3d(1.0, 0.0, 0.5, 0.0, 0.3) == pytest.approx(math.sqrt(1.0 + 0.25 / 0.7), abs=1e-14)
     assert equivalent_k_3d(-1.0, 0.0, 0.5, 0.0, 0.3, clamp=False) == -1.0  # a closed kink: no mode III share
+
+
+def test_front_kinks_end_from_the_interior_and_half_the_kink():
+    """The kinks a front takes (fracture.kink.front_kinks): a free-surface
+    end takes its nearest interior point's kink (its own K_II is an
+    extrapolation), every point half the criterion's; a mixed-mode front
+    (K_II = cos(phi) along a half ellipse) still turns everywhere, each
+    point by half its own kink, the same sign."""
+    phi = np.linspace(0.0, math.pi, 9)
+    X = np.column_stack([np.cos(phi), np.zeros(9), -0.5 * np.sin(phi)])
+    free = np.zeros(9, dtype=bool)
+    free[[0, -1]] = True
+    theta = np.array([kink_angle(1.0, k) for k in 0.3 * np.cos(phi)])
+    theta[0] = math.radians(22.0)  # an end's extrapolated K_II, of the other sign than its neighbour's
+    out = front_kinks(theta, free, X)
+    assert FRONT_KINK_SHARE == 0.5
+    assert out[1:-1] == pytest.approx(0.5 * theta[1:-1], abs=1e-15)
+    assert out[0] == pytest.approx(0.5 * theta[1], abs=1e-15) and out[-1] == pytest.approx(0.5 * theta[-2], abs=1e-15)
+    assert np.all(np.sign(out[1:-1]) == np.sign(theta[1:-1]))
+    # A front with no interior point keeps its own kinks (halved).
+    assert front_kinks([0.2, -0.1], [True, True], X[:2]) == pytest.approx([0.1, -0.05])
+
+
+def test_front_kink_damps_the_zig_zag_of_an_over_responding_end():
+    """The zig-zag of the surface crack a/c0 = 1 at its free-surface end
+    (docs/growth.md): after a kink of +10.9 degrees K_II / K_I went from
+    -0.10 to +0.20, three times (G = 3.15) the 0.095 the kink aimed to
+    remove. In that response, k' = k + G theta / 2, the criterion's full
+    kink doubles |k| each step (1 - G = -2.15; +0.21, -0.39, then a limit
+    cycle of +-0.61 where the kink saturates) and front_kinks' half kink
+    shrinks it (1 - G / 2 = -0.58): after 6 steps 0.0034.
+    Where the response is exact (G = 1) the half kink still removes K_II,
+    by half a step."""
+    def run(G, rule, k=-0.10, steps=6):
+        for _ in range(steps):
+            k = k + G * rule(kink_angle(1.0, k)) / 2.0
+        return k
+    G = (0.20 + 0.10) / (math.radians(10.9) / 2.0)
+    assert 3.0 < G < 3.3
+    full = run(G, lambda th: th)
+    half = run(G, lambda th: float(front_kinks([th], [False], np.zeros((1, 3)))[0]))
+    assert abs(full) > 0.5 and abs(half) < 0.005
+    assert abs(run(1.0, lambda th: float(front_kinks([th], [False], np.zeros((1, 3)))[0]))) < 0.1 * 0.5 ** 5
 
 
 # -- the growing surface ------------------------------------------------------------------------------------
@@ -355,3 +399,30 @@ def test_turned_over_strip_retries_with_half_the_increment(monkeypatch):
     with pytest.raises(surface_growth.StripTurnedOver, match="halved 4 times"):
         front_growth.SurfaceGrowth._extend(run, [(0, g2, chains, moves)], {0: run._new_fronts(chains, moves, 1.0)})
     assert run.surfaces[0] is g2 and np.abs(np.linalg.norm(g2.loop_points, axis=1) - 1.05).max() < 1e-7
+
+
+def test_advance_takes_the_front_kinks(monkeypatch):
+    """SurfaceGrowth.advance moves the front along front_kinks' kinks, not
+    the criterion's: a penny whose 16 front points all ask for a kink of
+    0.2 rad, advanced by 0.1, leaves its plane by 0.1 sin(0.1) (half the
+    kink), not 0.1 sin(0.2); the records carry the kink taken."""
+    import types
+
+    from cracklip.analysis import front_growth
+    g = GrowingSurface.from_crack(EllipticalCrack((0, 0, 0), (0, 0, 1), 1.0, axis=(1, 0, 0)), 0.05)
+    phi = np.linspace(0.0, 2 * math.pi, 16, endpoint=False)
+    keys = [(0, j) for j in range(16)]
+    levels = {key: types.SimpleNamespace(x=math.cos(p), y=math.sin(p), z=0.0, theta=0.2, a=1.0)
+              for key, p in zip(keys, phi)}
+    records = [types.SimpleNamespace(crack=0, end=j, da=0.0, kink_deg=math.degrees(0.2)) for j in range(16)]
+    m = types.SimpleNamespace(rates={key: 1.0 for key in keys}, levels=levels, records=records)
+    run = types.SimpleNamespace(surfaces=[g], warnings=[], k=1, spacing=0.05, margin=0.2, inside=_everywhere,
+                                growth=types.SimpleNamespace(da_fraction=None), da=0.1, _free={}, closed_front={},
+                                advanced_to={}, exits={}, pending=None, cracks=[g.crack],
+                                life=types.SimpleNamespace(advanced=lambda m, inc: None))
+    for name in ("_new_fronts", "_breakthrough", "_leaves", "_extend"):
+        setattr(run, name, types.MethodType(getattr(front_growth.SurfaceGrowth, name), run))
+    front_growth.SurfaceGrowth.advance(run, m)
+    z = np.abs(run.surfaces[0].loop_points[:, 2])
+    assert z == pytest.approx(0.1 * math.sin(0.1), rel=1e-6)
+    assert all(r.kink_deg == pytest.approx(math.degrees(0.1)) and r.da == pytest.approx(0.1) for r in records)

@@ -22,7 +22,7 @@ Per step (the named steps of GrowthRun):
   inside the increment), the step count, no growing point, and the
   breakthrough found by the last advance;
 - advance: every front point by da_i = growth.da x rate_i / max_j rate_j
-  (the step's cycles from the fastest point), along its kink; the growth
+  (the step's cycles from the fastest point), along its kink (front_kinks); the growth
   per front point interpolated along the crack's boundary loop
   (scene.surface_growth: the chains of the loop inside the part with a
   margin beyond the part's boundary), the advanced loop smoothed, re-sampled
@@ -52,7 +52,7 @@ import typing
 import numpy as np
 
 from ..errors import InputError
-from ..fracture.kink import equivalent_k_3d, kink_twist_3d
+from ..fracture.kink import equivalent_k_3d, front_kinks, kink_twist_3d
 from ..scene.growth import Growth
 from ..scene.processes import reduced
 from ..scene.scene import Scene
@@ -405,7 +405,10 @@ class SurfaceGrowth(GrowthRun):
                 continue
             X = np.array([[m.levels[q].x, m.levels[q].y, m.levels[q].z] for q in keys])
             d_pt = np.array([da[q] for q in keys])
-            beta = np.array([m.levels[q].theta for q in keys])
+            beta = front_kinks([m.levels[q].theta for q in keys], [self._free.get(q, False) for q in keys], X)
+            for r in m.records:  # the kink each point takes (fracture.kink.front_kinks), not the criterion's
+                if r.crack == ci and (r.crack, r.end) in keys:
+                    r.kink_deg = math.degrees(float(beta[keys.index((r.crack, r.end))]))
             chains = surf.chains(self.inside, self.margin)
             if not chains:
                 continue

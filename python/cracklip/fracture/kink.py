@@ -123,3 +123,36 @@ def equivalent_k_3d(K_I, K_II, K_III, theta: float, nu: float, clamp: bool = Tru
     k3 = np.asarray(K_III, dtype=float)
     out = np.where(ktt > 0.0, np.sqrt(ktt * ktt + k3 * k3 / (1.0 - nu)), ktt)
     return float(out) if np.ndim(out) == 0 else out
+
+
+#: The share of the criterion's kink a 3D front point takes per step
+#: (front_kinks). The explicit kink annuls K_II at the new front only to
+#: first order in a field K_II measures exactly; on the surface crack a/c0 =
+#: 1 (increments below the element size at a free-surface end) the K_II it
+#: left behind was 2-3 times the one it removed, of the other sign: a
+#: zig-zag growing by that factor each step. A half kink (as 2D's corrector
+#: tries first, analysis.growth._correct) turns a response gain G (K_II
+#: removed over K_II the kink aims to remove) into a factor 1 - G/2 per
+#: step: stable up to G = 4, and a mixed-mode front still turns (K_II falls
+#: by half a step where G = 1).
+FRONT_KINK_SHARE = 0.5
+
+
+def front_kinks(theta, free, X, share: float = FRONT_KINK_SHARE) -> np.ndarray:
+    """The kinks (radians) a crack's front points take in one step, from the
+    criterion's kinks theta (n,) at points X (n, 3), free (n,) marking the
+    points where the front meets the part's boundary: a free-surface point
+    takes the kink of its nearest point off the free surface (its K_II is
+    not measured there but extrapolated from the interior,
+    fracture.sif_3d, and the kink it gave led a zig-zag: a/c0 = 1, K_II /
+    K_I -0.10, +0.20, -0.21 at steps 9-11), then every point `share` of it
+    (FRONT_KINK_SHARE). A front without interior points keeps its own
+    kinks (times share)."""
+    th = np.asarray(theta, dtype=float).reshape(-1).copy()
+    fr = np.asarray(free, dtype=bool).reshape(-1)
+    P = np.asarray(X, dtype=float).reshape(len(th), -1)
+    inner = np.flatnonzero(~fr)
+    if inner.size:
+        for j in np.flatnonzero(fr):
+            th[j] = th[inner[np.argmin(np.linalg.norm(P[inner] - P[j], axis=1))]]
+    return share * th
