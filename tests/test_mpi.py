@@ -55,6 +55,17 @@ def python_on(n: int, *args: str, timeout: float = 600) -> subprocess.CompletedP
     return subprocess.run(cmd, cwd=ROOT, env=ENV, capture_output=True, text=True, timeout=timeout)
 
 
+def script_on_one_and_two(script: str, *args: str) -> tuple[dict, dict]:
+    """The JSON line a tests/mpi script prints (rank 0) run alone and on 2
+    processes, each run clean: (serial, 2 processes)."""
+    runs = {}
+    for n in (1, 2):
+        p = python_on(n, str(ROOT / "tests" / "mpi" / script), *args)
+        assert_clean(p, 0)
+        runs[n] = json.loads(p.stdout.strip().splitlines()[-1])
+    return runs[1], runs[2]
+
+
 def assert_clean(p: subprocess.CompletedProcess, status: int) -> None:
     """Exit status `status`, no Python traceback, no signal, no MPI abort."""
     report = f"exit {p.returncode}\nstdout:\n{p.stdout[-3000:]}\nstderr:\n{p.stderr[-3000:]}"
@@ -177,13 +188,7 @@ def test_plain_solve_same_on_one_and_two_processes(dim):
     MUMPS) gives the serial strain energy and largest displacement to 1e-10;
     every owned node's patch is whole on its process; extract_node_mesh
     gives the owned and ghost nodes at V's dof coordinates."""
-    script = str(ROOT / "tests" / "mpi" / "plain_solve.py")
-    runs = {}
-    for n in (1, 2):
-        p = python_on(n, script, str(dim))
-        assert_clean(p, 0)
-        runs[n] = json.loads(p.stdout.strip().splitlines()[-1])
-    one, two = runs[1], runs[2]
+    one, two = script_on_one_and_two("plain_solve.py", str(dim))
     assert two["processes"] == 2 and one["dofs"] == two["dofs"]
     assert two["gmsh_processes"] == 1  # gmsh meshes on rank 0 only
     assert two["incomplete"] == 0 and one["incomplete"] == 0
@@ -193,7 +198,7 @@ def test_plain_solve_same_on_one_and_two_processes(dim):
     assert abs(two["energy"] - one["energy"]) <= 1e-10 * abs(one["energy"]), (one, two)
     assert abs(two["u_max"] - one["u_max"]) <= 1e-10 * abs(one["u_max"]), (one, two)
     if dim == 3:  # what the vertex patches change: ghosts across facets only leave patches incomplete (24 measured)
-        p = python_on(2, script, str(dim), "facet")
+        p = python_on(2, str(ROOT / "tests" / "mpi" / "plain_solve.py"), str(dim), "facet")
         assert_clean(p, 0)
         assert json.loads(p.stdout.strip().splitlines()[-1])["incomplete"] > 0
 
@@ -209,13 +214,7 @@ def test_3d_front_same_on_one_and_two_processes(scene, settings):
     frames (to round-off of the segments' end points: 1e-12 of the part),
     pieces, closed loops and boundary ends, while each process holds the
     cells of only part of it."""
-    script = str(ROOT / "tests" / "mpi" / "front_3d.py")
-    runs = {}
-    for n in (1, 2):
-        p = python_on(n, script, str(SCENES / scene), *settings)
-        assert_clean(p, 0)
-        runs[n] = json.loads(p.stdout.strip().splitlines()[-1])
-    one, two = runs[1], runs[2]
+    one, two = script_on_one_and_two("front_3d.py", str(SCENES / scene), *settings)
     assert two["processes"] == 2 and two["same"]
     a, b = one["front"], two["front"]
     assert len(a["s"]) == len(b["s"]) > 10
@@ -249,14 +248,7 @@ def test_open_crack_same_on_one_and_two_processes(scene, settings, exact):
     enriched), K_I 1.782554724946618 / 1.7839816078402078 serial, equal to
     6e-15 on 2 processes (4e-15 on 3); Westergaard 4122 dofs (252
     enriched), K_I 1.0007752004528616 serial, ...558 on 2."""
-    script = str(ROOT / "tests" / "mpi" / "open_crack.py")
-    args = [str(SCENES / scene), *settings, "options.solver=direct"]
-    runs = {}
-    for n in (1, 2):
-        p = python_on(n, script, *args)
-        assert_clean(p, 0)
-        runs[n] = json.loads(p.stdout.strip().splitlines()[-1])
-    one, two = runs[1], runs[2]
+    one, two = script_on_one_and_two("open_crack.py", str(SCENES / scene), *settings, "options.solver=direct")
     assert two["processes"] == 2
     assert two["split"][0] == 2 and two["split"][1] > 0, two  # the crack's dofs lie on both processes
     assert (two["dofs"], two["enriched"]) == (one["dofs"], one["enriched"]), (one, two)
@@ -283,15 +275,9 @@ def test_iterative_path_same_on_one_and_two_processes(scene, settings, exact):
     serial iterative K to 1e-6 relative (issue 40's bar for the iterative
     path; both solves stop at a Krylov residual of 1e-10). Measured:
     Westergaard K_I 1.0007752004575963 serial, ...403845 on 2 processes
-    (5e-11), 21 iterations on both; penny (9216 dofs, 6 front points) 3e-11,
+    (5e-11), 21 iterations on both; penny (6 front points) 3e-11,
     23 / 21 iterations."""
-    script = str(ROOT / "tests" / "mpi" / "iterative.py")
-    runs = {}
-    for n in (1, 2):
-        p = python_on(n, script, str(SCENES / scene), *settings)
-        assert_clean(p, 0)
-        runs[n] = json.loads(p.stdout.strip().splitlines()[-1])
-    one, two = runs[1], runs[2]
+    one, two = script_on_one_and_two("iterative.py", str(SCENES / scene), *settings)
     assert two["processes"] == 2
     for run in (one, two):
         assert run["solver"] == "iterative" and "GAMG" in run["method"], run
