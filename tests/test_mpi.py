@@ -248,7 +248,17 @@ def test_open_crack_same_on_one_and_two_processes(scene, settings, exact):
     enriched), K_I 1.782554724946618 / 1.7839816078402078 serial, equal to
     6e-15 on 2 processes (4e-15 on 3); Westergaard 4122 dofs (252
     enriched), K_I 1.0007752004528616 serial, ...558 on 2."""
-    one, two = script_on_one_and_two("open_crack.py", str(SCENES / scene), *settings, "options.solver=direct")
+    args = (str(SCENES / scene), *settings, "options.solver=direct")
+    one, two = script_on_one_and_two("open_crack.py", *args)
+    # The case under test is a crack whose dofs lie on both processes. DOLFINx's
+    # partition varies from run to run and, rarely, leaves the crack on one
+    # process (1 run in about 10 of the pressurised crack): run again then.
+    for _ in range(3):
+        if two["split"][0] == 2 and two["split"][1] > 0:
+            break
+        p = python_on(2, str(ROOT / "tests" / "mpi" / "open_crack.py"), *args)
+        assert_clean(p, 0)
+        two = json.loads(p.stdout.strip().splitlines()[-1])
     assert two["processes"] == 2
     assert two["split"][0] == 2 and two["split"][1] > 0, two  # the crack's dofs lie on both processes
     assert (two["dofs"], two["enriched"]) == (one["dofs"], one["enriched"]), (one, two)
