@@ -232,7 +232,7 @@ class LevelSolver:
         """One Solution per state (its .factors the state's; .step its name)."""
         opts = self.scene.options
         contact = contact and self.has_contact
-        n = self.A.getLocalSize()[0] if self.model.distributed else self.model.num_dofs
+        n = self.A.getLocalSize()[0]  # (the model's dofs in serial; this process's owned ones under mpirun)
         out = []
         with record_solves() as solves:
             for k, factors in enumerate(states):

@@ -34,7 +34,7 @@ import numpy as np
 import scipy.sparse as sp
 from petsc4py import PETSc
 
-from .iterative import IterativeSolver, rigid_motions
+from .iterative import IterativeSolver, crack_band, rigid_mode_nodes, rigid_motions, tip_dofs
 if typing.TYPE_CHECKING:
     from ..model.model import XfemModel
 
@@ -105,7 +105,6 @@ class DistributedIterativeSolver(IterativeSolver):
         """The owned band rows: every process's marks (crack_band on its own
         cells) summed, so that each owner sees the rings another process
         found around its enriched nodes."""
-        from .iterative import crack_band
         dm = self.model.dofs
         mark = PETSc.Vec().createMPI((dm.num_owned * dm.d, dm.num_global * dm.d), bsize=dm.d, comm=dm.comm)
         mark.set(0.0)
@@ -118,21 +117,14 @@ class DistributedIterativeSolver(IterativeSolver):
         return band.astype(np.int64)
 
     def _tip_dofs(self) -> np.ndarray:
-        lay = self.model.layout
-        d = self.model.gdim
-        k = np.flatnonzero(np.asarray(lay.kind) != 0)
-        return self._owned_rows((d * (lay.num_std_nodes + k)[:, None] + np.arange(d)).ravel())
+        return self._owned_rows(tip_dofs(self.model))
 
     def _rigid_modes(self) -> np.ndarray:
         """(owned rows, 3 or 6): the rigid motions on the owned standard and
         Heaviside rows (about the mean of all owned nodes), orthonormal
         over the processes."""
         model, dm = self.model, self.model.dofs
-        lay = model.layout
-        nstd = lay.num_std_nodes
-        heav = np.flatnonzero(np.asarray(lay.kind) == 0)
-        local = np.concatenate([np.arange(nstd), nstd + heav])
-        xy = np.concatenate([model.x, model.x[np.asarray(lay.node)[heav]]])
+        local, xy = rigid_mode_nodes(model)
         block = dm.block[local]
         mine = (block >= dm.start) & (block < dm.start + dm.num_owned)
         comm = dm.comm

@@ -176,13 +176,20 @@ def rigid_modes(model: "XfemModel", size: int | None = None) -> np.ndarray:
     standard dofs and the phantom (Heaviside) dofs, evaluated at the base
     node; 0 on tip dofs and on any dof beyond the stiffness (multipliers).
     size defaults to model.num_dofs."""
-    lay = model.layout
     n = model.num_dofs if size is None else size
+    nodes, xy = rigid_mode_nodes(model)
+    return rigid_motions(xy - model.x.mean(axis=0), nodes, n)
+
+
+def rigid_mode_nodes(model: "XfemModel") -> tuple[np.ndarray, np.ndarray]:
+    """The node blocks that carry the rigid modes (the kernels' local
+    numbering: every standard node, then the Heaviside pseudo-nodes) and
+    their points (a pseudo-node's: its base node's)."""
+    lay = model.layout
     nstd = lay.num_std_nodes
     heav = np.flatnonzero(np.asarray(lay.kind) == 0)
     nodes = np.concatenate([np.arange(nstd), nstd + heav])
-    xy = np.concatenate([model.x, model.x[np.asarray(lay.node)[heav]]])
-    return rigid_motions(xy - model.x.mean(axis=0), nodes, n)
+    return nodes, np.concatenate([model.x, model.x[np.asarray(lay.node)[heav]]])
 
 
 def rigid_motions(x: np.ndarray, nodes: np.ndarray, n: int, comm=None) -> np.ndarray:
