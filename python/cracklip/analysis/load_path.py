@@ -4,9 +4,11 @@ The matrix is assembled once; each group's right-hand side too (its loads
 and its prescribed values, lifted), so an increment costs only the contact
 iteration. Frictional contact carries its slip and states from increment to
 increment (friction is path-dependent); frictionless contact starts each
-increment from the last active set. Under mpirun (without contact) the
-distributed matrix and each group's owned right-hand side are assembled
-once and every increment is solved by parallel MUMPS.
+increment from the last active set. Under mpirun the distributed matrix
+and each group's owned right-hand side are assembled once and every
+increment is solved by parallel MUMPS, with contact and friction on the
+distributed saddle point (the states, slips and active set carried from
+increment to increment are the same on every process).
 """
 from __future__ import annotations
 
@@ -18,7 +20,8 @@ import typing
 import numpy as np
 
 from ..contact.friction import STATE_NAMES, solve_friction
-from ..contact.frictionless import contact_constant, create_contact_system, solve_frictionless
+from ..contact.frictionless import (contact_constant, create_contact_system, distributed_saddle, owned_product,
+                                   solve_frictionless)
 from ..model.assembly import assemble_distributed_system_groups, assemble_system_groups
 from ..model.distributed import to_local
 from ..model.model import create_model
@@ -71,10 +74,17 @@ def _solved(model, linear, A, A_f, T_mpi, residual_tol: float) -> np.ndarray:
     x = linear.solve(A, A_f, residual_tol, what="X-FEM stiffness system")
     A_f.destroy()
     if model.distributed:
-        x = from_basis(T_mpi, x)
-        y = to_local(model.dofs, x)
-    else:
-        y = x.array.copy()
+        return _local(model, T_mpi, x)
+    y = x.array.copy()
+    x.destroy()
+    return y
+
+
+def _local(model, T_mpi, x) -> np.ndarray:
+    """This process's local dofs (owned and ghost, to_local) of a
+    distributed solution x in the solver's basis (x destroyed)."""
+    x = from_basis(T_mpi, x)
+    y = to_local(model.dofs, x)
     x.destroy()
     return y
 
@@ -97,7 +107,9 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
     # The stiffness as the contact solves take it: friction assembles its
     # own (unsymmetric) saddle point from a scipy copy; frictionless contact
     # lets the solver path build it (the iterative path around A, no copy).
-    K = None if not contact else scipy_from_petsc(A) if friction else linear.stiffness(A)
+    # Under mpirun both border the distributed A itself.
+    distributed = model.distributed
+    K = None if not contact else A if distributed else scipy_from_petsc(A) if friction else linear.stiffness(A)
     physical = cs = None
     if contact:
         physical = create_contact_system(unit)
@@ -130,13 +142,19 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
                     work = dataclasses.replace(cs, g=g_n)
                     if friction:
                         g_t = _combine(cs.gt_groups, inc.factors, mt)
-                        y, info = solve_friction(K, f, work, g_n, g_t, s_old, opts, c, state, sign, linear)
+                        y, info = solve_friction(K, f, work, g_n, g_t, s_old, opts, c, state, sign, linear,
+                                                 distributed)
                         state, sign = info["state"], info["sign"]
-                        s_old = cs.Bt @ y - g_t
+                        s_old = (owned_product(A, cs.Bt, y) if distributed else cs.Bt @ y) - g_t
                     else:
-                        y, info = solve_frictionless(K, f, work, opts, c, active, linear)
+                        saddle = distributed_saddle(A, f, work, opts.residual_tol) if distributed else None
+                        y, info = solve_frictionless(K, f, work, opts, c, active, linear, saddle)
                         active = info["active"]
                     iterations.append(int(info["iterations"]))
+                    if distributed:  # (y this process's owned dofs: its local ones, owned and ghost)
+                        x = A.createVecRight()
+                        x.array[:] = y
+                        y = _local(model, T_mpi, x)
                 if inc.index == opts.load_steps:
                     out.append(_step_solution(model, unit, physical, y, T, E, info, inc, step_list[inc.step],
                                               iterations, timings, solves, linear.name))

@@ -124,7 +124,8 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     parallel MUMPS, the active set the same on every process); the direct
     solver (parallel MUMPS) or, without contact, the iterative one
     (Options.solver, choose_solver; solvers.distributed_iterative); a load
-    path by load_path.solve_path on the same distributed matrix. The
+    path, with or without contact, and friction by load_path.solve_path on
+    the same distributed matrix. The
     Solution holds this process's model and its local displacement (owned
     and ghost nodes); K (Solution.stress_intensity_factors) is summed over
     processes."""
@@ -132,7 +133,7 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     refuse_unless_distributed(scene)
     if condition_number:
         not_parallel("the condition number", comm)
-    if scene.load_path is not None:
+    if scene.load_path is not None or scene.options.friction > 0.0:
         return solve_path(scene)[-1]
     t_start = time.perf_counter()
     model = create_model(scene)

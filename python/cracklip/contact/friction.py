@@ -53,8 +53,10 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..solvers.checked import petsc_from_scipy, solve_checked
-from .frictionless import ContactError, ContactSystem
+from ..solvers.saddle import bordered_matrix
+from .frictionless import ContactError, ContactSystem, owned_product, solve_bordered
 if typing.TYPE_CHECKING:
+    from petsc4py import PETSc
     from ..solvers.direct import LinearSolver
 
 
@@ -105,6 +107,37 @@ def solve_saddle_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_
     (cracklip.solvers; default MUMPS LU), x0 an initial guess (u, lambda_n,
     lambda_t) for an iterative one. Returns (u, lambda_n, lambda_t (k m,))."""
     m = cs.num_multipliers
+    rows_n, rows_t, rhs_rows = friction_rows(cs, g_n, g_t, s_old, state, sign, mu, bound, beta, c)
+    S = sp.bmat([[K, cs.B.T, cs.Bt.T], rows_n, rows_t], format="csr")
+    rhs = np.concatenate([f, rhs_rows])
+    A = petsc_from_scipy(S)
+    b = A.createVecRight()
+    b.array[:] = rhs
+    # Unsymmetric: open and slipping rows are masked while B^T, B_t^T are whole,
+    # and the Coulomb slip rows couple lambda_t to lambda_n.
+    if linear is None:
+        x = solve_checked(A, b, residual_tol, what=WHAT, symmetric=False)
+    else:
+        x = linear.solve(A, b, residual_tol, what=WHAT, x0=x0, symmetric=False, contact_points=m)
+    sol = x.array.copy()
+    for obj in (A, b, x):
+        obj.destroy()
+    n = K.shape[0]
+    return sol[:n], sol[n:n + m], sol[n + m:]
+
+
+WHAT = "frictional contact system"
+
+
+def friction_rows(cs: ContactSystem, g_n: np.ndarray, g_t: np.ndarray, s_old: np.ndarray, state: np.ndarray,
+                  sign: np.ndarray, mu: float, bound: np.ndarray | None = None, beta: np.ndarray | None = None,
+                  c: float = 0.0) -> tuple[list, list, np.ndarray]:
+    """The multipliers' rows of one linear solve for given states (module
+    doc; the arguments solve_saddle_friction's): the normal rows and the
+    tangential rows as block rows [u, lambda_n, lambda_t], each a list of
+    sparse blocks (None: zero), and their right-hand side. The rows above
+    them are [K B^T B_t^T] (B and B_t whole, unmasked)."""
+    m = cs.num_multipliers
     k = tangent_components(cs)
     sign = np.reshape(sign, (m, k))
     closed = state != OPEN
@@ -129,23 +162,39 @@ def solve_saddle_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_
     blocks = [sp.diags(np.where(slip, coulomb[:, c_], 0.0)) for c_ in range(k)]
     rows_n = [Bn, sp.diags((~closed).astype(float)), None]
     rows_t = [Bt, blocks[0] if k == 1 else sp.vstack(blocks), T]
-    S = sp.bmat([[K, cs.B.T, cs.Bt.T], rows_n, rows_t], format="csr")
-    rhs = np.concatenate([f, np.where(closed, g_n, 0.0), rhs_t])
-    A = petsc_from_scipy(S)
-    b = A.createVecRight()
-    b.array[:] = rhs
-    what = "frictional contact system"
-    # Unsymmetric: open and slipping rows are masked while B^T, B_t^T are whole,
-    # and the Coulomb slip rows couple lambda_t to lambda_n.
-    if linear is None:
-        x = solve_checked(A, b, residual_tol, what=what, symmetric=False)
-    else:
-        x = linear.solve(A, b, residual_tol, what=what, x0=x0, symmetric=False, contact_points=m)
-    sol = x.array.copy()
-    for obj in (A, b, x):
-        obj.destroy()
-    n = K.shape[0]
-    return sol[:n], sol[n:n + m], sol[n + m:]
+    return rows_n, rows_t, np.concatenate([np.where(closed, g_n, 0.0), rhs_t])
+
+
+def friction_saddle(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: ContactSystem, g_n: np.ndarray,
+                    g_t: np.ndarray, s_old: np.ndarray, mu: float, c: float, residual_tol: float,
+                    linear: "LinearSolver | None" = None, distributed: bool = False):
+    """The linear solve of the state iteration, solve(state, sign, bound,
+    beta, x0) -> (u, lambda_n, lambda_t, B u, B_t u). Serial: by
+    solve_saddle_friction on the scipy K. distributed (mpirun: K the
+    distributed PETSc stiffness, f this process's owned entries, cs whole
+    on every process): friction_rows border K as one distributed matrix
+    (solvers/saddle.py bordered_matrix, the rows on the last process) solved
+    by parallel MUMPS (frictionless.solve_bordered): u this process's owned
+    dofs, the multipliers broadcast by the process holding their rows, B u
+    and B_t u summed over the processes' owned dofs and broadcast by rank 0
+    (owned_product), so every process classifies the same numbers and takes
+    the same states and slip directions."""
+    if not distributed:
+        def solve(state, sign, bound, beta, x0):
+            u, lam_n, lam_t = solve_saddle_friction(K, f, cs, g_n, g_t, s_old, state, sign, mu, residual_tol,
+                                                    bound, linear, x0, beta, c)
+            return u, lam_n, lam_t, cs.B @ u, cs.Bt @ u
+        return solve
+    m = cs.num_multipliers
+    C = sp.vstack([cs.B, cs.Bt], format="csr")
+
+    def solve_distributed(state, sign, bound, beta, x0):
+        rows_n, rows_t, rhs = friction_rows(cs, g_n, g_t, s_old, state, sign, mu, bound, beta, c)
+        S = bordered_matrix(K, C, sp.bmat([rows_n, rows_t], format="csr"), symmetric=False)
+        u, lam = solve_bordered(S, f, rhs, residual_tol, WHAT)
+        Cu = owned_product(K, C, u)
+        return u, lam[:m], lam[m:], Cu[:m], Cu[m:]
+    return solve_distributed
 
 
 def classify(p: np.ndarray, tau: np.ndarray, gap: np.ndarray, dslip: np.ndarray, lumped: np.ndarray,
@@ -195,8 +244,8 @@ def classify(p: np.ndarray, tau: np.ndarray, gap: np.ndarray, dslip: np.ndarray,
 
 def solve_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.ndarray, g_t: np.ndarray,
                    s_old: np.ndarray, opts, c: float, state: np.ndarray | None = None,
-                   sign: np.ndarray | None = None, linear: "LinearSolver | None" = None
-                   ) -> tuple[np.ndarray, dict]:
+                   sign: np.ndarray | None = None, linear: "LinearSolver | None" = None,
+                   distributed: bool = False) -> tuple[np.ndarray, dict]:
     """Frictional contact for one load increment: stiffness K (constraints
     applied), load f, constraint right-hand sides g_n, g_t (prescribed
     values), s_old the weighted slip B_t u_old - g_t,old of the previous
@@ -212,7 +261,10 @@ def solve_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.n
     with that bound is solved by the same iteration (a convex problem: its
     states settle), and the bound is updated until it changes by less than
     1e-10 of its size. linear: the solver path of every linear solve
-    (cracklip.solvers; default MUMPS LU). Returns (u, info: lambda,
+    (cracklip.solvers; default MUMPS LU). distributed: K is the distributed
+    stiffness of an mpirun, f and the returned u this process's owned dofs
+    (friction_saddle; every decision is taken on numbers that are the same
+    on every process). Returns (u, info: lambda,
     lambda_t, state, sign, active, iterations, history, method)."""
     mu = float(opts.friction)
     m = cs.num_multipliers
@@ -223,8 +275,9 @@ def solve_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.n
         sign = None
     sign = np.zeros((m, k)) if sign is None else np.reshape(sign, (m, k))
     history: list[dict[str, int]] = []
+    saddle = friction_saddle(K, f, cs, g_n, g_t, s_old, mu, c, opts.residual_tol, linear, distributed)
     try:
-        u, info = _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, None, linear)
+        u, info = _iterate(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, None)
         info["method"] = "coulomb"
         return u, info
     except _Cycle as cycle:
@@ -234,7 +287,7 @@ def solve_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.n
     bound = mu * np.maximum(-lam_n, 0.0)
     for outer in range(1, opts.max_active_set_iterations + 1):
         try:
-            u, info = _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, linear)
+            u, info = _iterate(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound)
         except _Cycle as e:
             raise ContactError(f"{first_cycle}; the fixed point on the friction bound cycles too ({e}); split "
                                "the load into more increments (options.load_steps), or lower the friction "
@@ -291,9 +344,9 @@ def violation(p: np.ndarray, tau: np.ndarray, gap: np.ndarray, dslip: np.ndarray
     return float(v.max(initial=0.0) / max(float(np.abs(p).max(initial=0.0)), 1e-300))
 
 
-def _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, linear=None):
+def _iterate(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound):
     """The state iteration (Coulomb, or Tresca with a given bound) from the
-    given states. When a set of states comes back, the iterate of least
+    given states, each linear solve by saddle (friction_saddle). When a set of states comes back, the iterate of least
     violation in the cycle is taken if its violation is below
     CYCLE_TOLERANCE (info["note"] says so), else _Cycle is raised."""
     mu = float(opts.friction)
@@ -311,11 +364,10 @@ def _iterate(K, f, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, li
     x0 = None
     beta = None  # the slip rows' Newton terms across sigma (3D), from the last iterate
     for it in range(1, opts.max_active_set_iterations + 1):
-        u, lam_n, lam_t = solve_saddle_friction(K, f, cs, g_n, g_t, s_old, state, sign, mu, opts.residual_tol,
-                                                bound, linear, x0, beta, c)
+        u, lam_n, lam_t, Bu, Btu = saddle(state, sign, bound, beta, x0)
         x0 = np.concatenate([u, lam_n, lam_t])
-        gap = cs.B @ u - g_n
-        dslip = per_multiplier(cs.Bt @ u - g_t - s_old, k)
+        gap = Bu - g_n
+        dslip = per_multiplier(Btu - g_t - s_old, k)
         tau = per_multiplier(-lam_t, k)
         iterates[len(history)] = (u, lam_n, lam_t, state, sign,
                                   violation(-lam_n, tau, gap, dslip, lumped, c, mu, state, sign, bound))

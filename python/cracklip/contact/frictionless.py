@@ -298,7 +298,7 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
     (cracklip.solvers; default: solve_checked's MUMPS LU)."""
     physical = create_contact_system(model)
     if model.distributed:  # (direct path, no transform)
-        saddle = distributed_saddle(A, b, physical, model.scene.options.residual_tol)
+        saddle = distributed_saddle(A, b.array_r, physical, model.scene.options.residual_tol)
         u, info = solve_frictionless(A, b.array_r.copy(), physical, model.scene.options, contact_constant(model),
                                      saddle=saddle)
         info["system"] = physical
@@ -311,35 +311,56 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
     return u, info
 
 
-def distributed_saddle(A: PETSc.Mat, b: PETSc.Vec, cs: ContactSystem, residual_tol: float):
-    """The saddle solve of solve_frictionless on several processes: A, b the
-    distributed stiffness and load (constraints applied), cs whole on every
-    process (create_contact_system). Returns solve(active, x0) -> (u, lambda,
-    gap): u this process's owned dofs, lambda and the gap B u - g the same
-    on every process (the multipliers broadcast by the process owning them,
-    the gap summed over the processes' owned dofs and broadcast by rank 0),
-    so every process takes the same active set."""
-    comm = A.getComm().tompi4py()
-    lo, hi = A.getOwnershipRange()
-    B_own = cs.B[:, lo:hi]
-    holder = comm.size - 1  # (the multiplier rows follow the stiffness's last rows)
+def distributed_saddle(A: PETSc.Mat, f: np.ndarray, cs: ContactSystem, residual_tol: float):
+    """The saddle solve of solve_frictionless on several processes: A the
+    distributed stiffness (constraints applied), f this process's owned
+    entries of the load, cs whole on every process (create_contact_system).
+    Returns solve(active, x0) -> (u, lambda, gap): u this process's owned
+    dofs, lambda and the gap B u - g the same on every process (the
+    multipliers broadcast by the process holding them, the gap summed over
+    the processes' owned dofs and broadcast by rank 0: solve_bordered,
+    owned_product), so every process takes the same active set."""
 
     def solve(active: np.ndarray, x0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         if cs.space.kind == "naive":
             check_constraint_rank(cs.B[np.flatnonzero(active)])
         S = distributed_saddle_matrix(A, cs.B, active)
-        rhs = S.createVecLeft()
-        rhs.array[:hi - lo] = b.array_r
-        if comm.rank == holder:
-            rhs.array[hi - lo:] = np.where(active, cs.g, 0.0)
-        x = solve_checked(S, rhs, residual_tol, what="contact saddle-point system")
-        u = x.array_r[:hi - lo].copy()
-        lam = comm.bcast(x.array_r[hi - lo:].copy() if comm.rank == holder else None, root=holder)
-        gap = comm.bcast(reduced(B_own @ u, "SUM", comm) - cs.g, root=0)
-        for o in (S, rhs, x):
-            o.destroy()
-        return u, lam, gap
+        u, lam = solve_bordered(S, f, np.where(active, cs.g, 0.0), residual_tol, "contact saddle-point system")
+        return u, lam, owned_product(A, cs.B, u) - cs.g
     return solve
+
+
+def solve_bordered(S: PETSc.Mat, f: np.ndarray, rhs: np.ndarray, residual_tol: float, what: str,
+                   symmetric: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Collective: solve the distributed [K C^T; rows] (solvers/saddle.py
+    bordered_matrix) with the right-hand side [f; rhs] (f this process's
+    owned entries, rhs the multiplier rows', whole on every process) by
+    parallel MUMPS. Returns (u, lambda): u this process's owned dofs, the
+    multipliers on every process (broadcast by the last process, which
+    holds their rows)."""
+    comm = S.getComm().tompi4py()
+    holder = comm.size - 1
+    n = len(f)
+    b = S.createVecLeft()
+    b.array[:n] = f
+    if comm.rank == holder:
+        b.array[n:] = rhs
+    x = solve_checked(S, b, residual_tol, what=what, symmetric=symmetric)
+    u = x.array_r[:n].copy()
+    lam = comm.bcast(x.array_r[n:].copy() if comm.rank == holder else None, root=holder)
+    for o in (S, b, x):
+        o.destroy()
+    return u, lam
+
+
+def owned_product(A: PETSc.Mat, C: sp.csr_matrix, u: np.ndarray) -> np.ndarray:
+    """Collective: C u for C whole on every process (columns A's global
+    dofs) and u this process's owned dofs of A: each process's columns
+    times its u, summed, broadcast by rank 0 (the same bits on every
+    process, whatever order the sum took)."""
+    comm = A.getComm().tompi4py()
+    lo, hi = A.getOwnershipRange()
+    return comm.bcast(reduced(C[:, lo:hi] @ u, "SUM", comm), root=0)
 
 
 def solve_frictionless(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: ContactSystem, opts,

@@ -35,22 +35,23 @@ def refuse_unless_distributed(scene: Scene) -> None:
     """Collective: refuse, by scene key, what the model does not do on
     several processes yet. What it does (issue 40 steps 2 and 4): open
     cracks in 2D and 3D under lip pressures, boundary tractions, point
-    forces, a body force and an initial stress; frictionless crack-lip
-    contact (options.contact, by the direct solver); Dirichlet conditions
-    and symmetry planes; a load path without contact (each step on the one
-    matrix, by the direct solver); the direct solver, also with
-    options.rescale = "nodal", and the iterative one; K by the interaction
-    integral (2D tips, 3D front points)."""
+    forces, a body force and an initial stress; crack-lip contact
+    (options.contact), frictionless and with Coulomb friction
+    (options.friction, 2D and 3D), by the direct solver; Dirichlet
+    conditions and symmetry planes; a load path, with or without contact
+    and friction (each step on the one matrix, the active set, friction
+    states and slips carried from step to step, by the direct solver); the
+    direct solver, also with options.rescale = "nodal" (without contact),
+    and the iterative one (without contact or a load path); K by the
+    interaction integral (2D tips, 3D front points)."""
     comm = scene.mesh.mesh.comm
     o = scene.options
     contact = o.contact != "none"
     for what, used in [
-            ("options.friction", o.friction > 0.0),
             ("options.solver = 'iterative' with a load_path",
              o.solver == "iterative" and scene.load_path is not None),
             ("options.solver = 'iterative' with options.contact", o.solver == "iterative" and contact),
-            ("options.rescale = 'nodal' with options.contact", o.rescale == "nodal" and contact),
-            ("load_path with options.contact", scene.load_path is not None and contact)]:
+            ("options.rescale = 'nodal' with options.contact", o.rescale == "nodal" and contact)]:
         if used:
             not_parallel(what, comm)
 

@@ -1,5 +1,7 @@
-"""The frictionless contact saddle point [K B_a^T; B_a D]: assembled (direct path)
-or applied block by block around the stiffness (iterative path)."""
+"""The contact saddle points: the frictionless [K B_a^T; B_a D] assembled (direct path)
+or applied block by block around the stiffness (iterative path); under mpirun
+any multiplier border [K C^T; rows] around the distributed stiffness
+(frictionless and frictional)."""
 from __future__ import annotations
 
 import numpy as np
@@ -37,24 +39,35 @@ def saddle_matrix(K: sp.csr_matrix, B: sp.csr_matrix, active: np.ndarray) -> PET
 def distributed_saddle_matrix(K: PETSc.Mat, B: sp.csr_matrix, active: np.ndarray) -> PETSc.Mat:
     """[K B_a^T; B_a D] (saddle_matrix) on K's processes (mpirun): K
     distributed over its processes, B (m, N) whole on every process (columns
-    K's global dofs). Each process holds its rows of K with B_a^T's entries
-    at the columns N + k; the multiplier rows (few) go to the last process,
-    after K's last rows."""
+    K's global dofs); bordered_matrix with C = B_a and the rows [B_a D]."""
+    Ba = (sp.diags(np.asarray(active, dtype=float)) @ B).tocsr()
+    D = sp.diags((~np.asarray(active, dtype=bool)).astype(float))
+    return bordered_matrix(K, Ba, sp.hstack([Ba, D], format="csr"), symmetric=True)
+
+
+def bordered_matrix(K: PETSc.Mat, C: sp.csr_matrix, rows: sp.csr_matrix, symmetric: bool) -> PETSc.Mat:
+    """[K C^T; rows] on K's processes (mpirun): K (N, N) distributed over its
+    processes; C (m, N) and rows (m, N + m), the multipliers' columns and
+    rows, whole on every process (columns K's global dofs, then the m
+    multipliers). Each process holds its rows of K with C^T's entries at
+    the columns N + k; the multiplier rows (few) go to the last process,
+    after K's last rows. The frictionless saddle point (symmetric: rows =
+    [C D]) and the frictional one (unsymmetric: the normal and tangential
+    multipliers' rows, contact/friction.py)."""
     comm = K.getComm()
-    N, m = K.getSize()[0], B.shape[0]
+    N, m = K.getSize()[0], C.shape[0]
     lo, hi = K.getOwnershipRange()
     indptr, indices, data = K.getValuesCSR()
-    Ba = (sp.diags(np.asarray(active, dtype=float)) @ B).tocsr()
-    rows = sp.hstack([sp.csr_matrix((data, indices, indptr), shape=(hi - lo, N)), Ba[:, lo:hi].T], format="csr")
+    rows_own = sp.hstack([sp.csr_matrix((data, indices, indptr), shape=(hi - lo, N)), C[:, lo:hi].T], format="csr")
     if comm.getRank() == comm.getSize() - 1:
-        D = sp.diags((~np.asarray(active, dtype=bool)).astype(float))
-        rows = sp.vstack([rows, sp.hstack([Ba, D], format="csr")], format="csr")
-    rows.sort_indices()
+        rows_own = sp.vstack([rows_own, rows], format="csr")
+    rows_own.sort_indices()
     idx = PETSc.IntType
-    n = rows.shape[0]
-    A = PETSc.Mat().createAIJWithArrays(((n, N + m), (n, N + m)), (rows.indptr.astype(idx), rows.indices.astype(idx),
-                                                                  rows.data), comm=comm)
-    A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
+    n = rows_own.shape[0]
+    A = PETSc.Mat().createAIJWithArrays(((n, N + m), (n, N + m)), (rows_own.indptr.astype(idx),
+                                                                  rows_own.indices.astype(idx), rows_own.data),
+                                        comm=comm)
+    A.setOption(PETSc.Mat.Option.SYMMETRIC, symmetric)
     return A
 
 
