@@ -10,9 +10,12 @@ serial), also with symmetry planes, a body force, an initial stress, a load
 path without contact and the nodal rescaling, and on the iterative path
 (equal to the serial iterative K to the Krylov tolerance); `run` with
 frictionless crack-lip contact in 2D and 3D (bilateral and unilateral: the
-same multipliers, active sets, pressures and K as serial); `grow` of open
-2D and 3D cracks (fixed increments, fatigue cycles, spectrum lives: the
-path, K per step and the cycles equal to serial, the files written once);
+same multipliers, active sets, pressures and K as serial), also along a
+load path, and Coulomb friction in 2D and 3D (the four shipped friction
+scenes, `run` and `check`: the same states, slips and iterations); `grow`
+of open 2D and 3D cracks (fixed increments, fatigue cycles, spectrum lives:
+the path, K per step and the cycles equal to serial, the files written
+once) and of a fatigue crack closed by contact at the cycle's minimum;
 and the commands that need no mesh (`life`, `check` of a life scene,
 `reference`), run by rank 0 with their files written once. What the
 distributed model does not do yet (model.refuse_unless_distributed) is
@@ -87,32 +90,33 @@ def test_mpirun_is_installed():
     assert shutil.which("mpirun", path=ENV["PATH"]) is not None
 
 
-#: Coulomb friction on the lips, not distributed yet.
-FRICTION = ["--set", "options.contact=unilateral", "--set", "options.friction=0.3"]
-
-
-@pytest.mark.parametrize("command, missing", [("run", "options.friction"),
-                                              ("check", "options.friction"),
-                                              ("grow", "load_path with options.contact")])
-def test_2d_model_refused_not_crashed(command, missing, tmp_path):
-    """The issue's reproducer crashed both processes with SEGV (every process
-    passed the whole mesh to DOLFINx); now the mesh is made and what is not
-    distributed yet is refused collectively, by name (here friction on the
-    block's lips; the fatigue edge crack's cycle closed by contact)."""
-    scene = {"grow": "fatigue_edge_crack.toml"}.get(command, "block_uniform_pressure.toml")
-    extra = ["--out", str(tmp_path / "out")] if command != "check" else []
-    p = mpirun(command, str(SCENES / scene), *(FRICTION if command != "grow" else []), *extra)
-    assert_refused(p)
-    assert f"cracklip: error: {missing}" in p.stderr, p.stderr
+#: Contact with the nodal rescaling, not distributed yet.
+NODAL_CONTACT = ["--set", "options.contact=unilateral", "--set", 'options.rescale="nodal"']
+REFUSED_NODAL = "options.rescale = 'nodal' with options.contact"
 
 
 @pytest.mark.parametrize("command", ["run", "check"])
-def test_3d_friction_refused_not_crashed(command, tmp_path):
-    """What a 3D part does not do under mpirun yet (here friction) is refused collectively, by its key."""
-    extra = ["--out", str(tmp_path / "out")] if command == "run" else []
-    p = mpirun(command, str(SCENES / "penny_crack.toml"), *SMALL_3D, *FRICTION, *extra)
+def test_2d_model_refused_not_crashed(command, tmp_path):
+    """The issue's reproducer crashed both processes with SEGV (every process
+    passed the whole mesh to DOLFINx); now the mesh is made and what is not
+    distributed yet is refused collectively, by name (here the nodal
+    rescaling with contact on the block's lips)."""
+    extra = ["--out", str(tmp_path / "out")] if command != "check" else []
+    p = mpirun(command, str(SCENES / "block_uniform_pressure.toml"), *NODAL_CONTACT, *extra)
     assert_refused(p)
-    assert "cracklip: error: options.friction is not available under MPI yet" in p.stderr, p.stderr
+    assert f"cracklip: error: {REFUSED_NODAL}" in p.stderr, p.stderr
+
+
+@pytest.mark.parametrize("command", ["run", "check"])
+def test_3d_refused_not_crashed(command, tmp_path):
+    """What a 3D part does not do under mpirun yet (here the iterative
+    solver with contact) is refused collectively, by its key."""
+    extra = ["--out", str(tmp_path / "out")] if command == "run" else []
+    p = mpirun(command, str(SCENES / "penny_crack.toml"), *SMALL_3D, "--set", "options.contact=unilateral",
+               "--set", 'options.solver="iterative"', *extra)
+    assert_refused(p)
+    assert "cracklip: error: options.solver = 'iterative' with options.contact is not available under MPI yet" \
+        in p.stderr, p.stderr
 
 
 def test_grow_life_with_contact_refused(tmp_path):
@@ -302,11 +306,12 @@ def test_iterative_path_same_on_one_and_two_processes(scene, settings, exact):
 
 def test_open_crack_refusals_by_scene_key(tmp_path):
     """What the distributed model does not do yet stops with one message
-    naming the scene key (here friction), on every process, no hang."""
+    naming the scene key (here the nodal rescaling with contact), on every
+    process, no hang."""
     p = python_on(2, str(ROOT / "tests" / "mpi" / "open_crack.py"), str(SCENES / "pressurised_crack.toml"),
-                  "mesh.tip_h=0.1", "options.contact=unilateral", "options.friction=0.3")
+                  "mesh.tip_h=0.1", "options.contact=unilateral", 'options.rescale="nodal"')
     assert p.returncode != 0
-    assert "options.friction is not available under MPI yet (2 processes)" in p.stderr, p.stderr[-3000:]
+    assert f"{REFUSED_NODAL} is not available under MPI yet (2 processes)" in p.stderr, p.stderr[-3000:]
     assert "MPI_ABORT" not in p.stderr and "signal" not in p.stderr
 
 
@@ -673,34 +678,153 @@ def test_run_contact_same_on_one_and_two_processes(scene, settings, k_tol, tmp_p
         path.write_text(scene)
         scene = str(path)
     out, serial, a, b = _run_both(scene, [*settings, "--no-estimate"], tmp_path)
+    _assert_contact_as_serial(serial, out, a, b, k_tol, p_tol=1e-8)
+
+
+def _assert_contact_as_serial(serial, out, a: dict, b: dict, k_tol: float, p_tol: float) -> dict:
+    """A contact run on 2 processes (out, b its results.json) equals the
+    serial one (serial, a): the same multipliers, states, active sets and
+    iteration counts (the last state's and every load step's), the files;
+    the contact pressure (statistics, and at every lip sample: 2D crack.csv
+    with the gap, the shear and the slip of every step, 3D crack_surface.vtu)
+    to p_tol of the largest pressure, the gap and slip to p_tol of the
+    largest displacement; K of every state (the last, each step's) to k_tol
+    of the K scale (the larger of max |K| over the path and p_max sqrt(pi
+    a)); the energy to 1e-10. Returns the largest differences found
+    (relative to those scales)."""
     assert a["contact"] == b["contact"] and a["contact"]["multipliers"] > 0, (a["contact"], b["contact"])
     assert b["files"] == a["files"]
+    steps = list(zip(a["steps"] or [], b["steps"] or []))
+    assert len(a["steps"] or []) == len(b["steps"] or [])
+    for sa, sb in steps:  # states, active sets and iterations of every load step
+        assert sa["contact"] == sb["contact"], (sa["name"], sa["contact"], sb["contact"])
+    found = {}
     pa, pb = a["cracks"][0]["pressure"], b["cracks"][0]["pressure"]
-    p_max = pa["max"]
-    assert p_max > 0.0
-    for key in pa:
-        assert _relative(pa[key], pb[key], p_max) <= 1e-8, (key, pa, pb)
+    p_max = pa["max"]  # (the last state's; in 2D the largest of every step's samples)
+    u_scale = a["cracks"][0]["gap_tolerance"] / 1e-6   # (the largest displacement: io/outputs.py)
     three_d = a["dimension"] == 3
-    if three_d:  # the pressure at every lip facet vertex (crack_surface.vtu; facets in rank order: sorted)
+    if three_d:  # at every lip facet vertex (crack_surface.vtu; facets in rank order: sorted)
         import meshio
-        pa_v, pb_v = (np.sort(meshio.read(d / "crack_surface.vtu").point_data["pressure"]) for d in (serial, out))
-        assert pa_v.shape == pb_v.shape and np.abs(pa_v - pb_v).max() <= 1e-8 * p_max
-    else:  # every lip sample's pressure and gap (rows sorted by crack and s)
-        rows = [np.loadtxt(d / "crack.csv", delimiter=",", skiprows=1, usecols=(1, 2, 5, 7)) for d in (serial, out)]
-        rows = [r[np.lexsort((r[:, 1], r[:, 0]))] for r in rows]
-        assert rows[0].shape == rows[1].shape
-        assert np.abs(rows[0][:, 2] - rows[1][:, 2]).max() <= 1e-8 * p_max
-        u_scale = a["cracks"][0]["gap_tolerance"] / 1e-6   # (the largest displacement: io/outputs.py)
-        assert np.abs(rows[0][:, 3] - rows[1][:, 3]).max() <= 1e-8 * max(np.abs(rows[0][:, 3]).max(), u_scale)
+        va, vb = (meshio.read(d / "crack_surface.vtu").point_data for d in (serial, out))
+        for name, scale in (("pressure", p_max), ("shear", p_max), ("gap", u_scale), ("slip", u_scale)):
+            if name in va:
+                x, y = (np.sort(np.linalg.norm(v[name].reshape(len(v[name]), -1), axis=1)) for v in (va, vb))
+                assert x.shape == y.shape
+                found[name] = float(np.abs(x - y).max() / scale)
+        if "state" in va:
+            assert np.array_equal(np.sort(va["state"]), np.sort(vb["state"]))
+    else:  # every lip sample of every step (rows sorted by step, crack and s)
+        cols = {"pressure": 5, "shear": 6, "gap": 7, "slip": 8}
+        csv_files = [d / "crack.csv" for d in (serial, out)]
+        rows = [np.loadtxt(f, delimiter=",", skiprows=1, usecols=(0, 1, 2, 5, 6, 7, 8)) for f in csv_files]
+        states = [np.loadtxt(f, delimiter=",", skiprows=1, usecols=(9,), dtype=str) for f in csv_files]
+        order = [np.lexsort((r[:, 2], r[:, 1], r[:, 0])) for r in rows]
+        rows = [r[o] for r, o in zip(rows, order)]
+        assert rows[0].shape == rows[1].shape and np.array_equal(rows[0][:, :2], rows[1][:, :2])
+        assert np.array_equal(states[0][order[0]], states[1][order[1]])  # open / stick / slip at every sample
+        p_max = max(p_max, float(np.abs(rows[0][:, 3]).max()))
+        for name, col in cols.items():
+            j = col - 2
+            scale = p_max if name in ("pressure", "shear") else max(np.abs(rows[0][:, j]).max(), u_scale)
+            found[name] = float(np.abs(rows[0][:, j] - rows[1][:, j]).max() / scale)
+    assert p_max > 0.0
+    found["pressure_statistics"] = max(_relative(pa[key], pb[key], p_max) for key in pa)
+    for name, diff in found.items():
+        assert diff <= p_tol, (name, found)
     size = np.sqrt(a["cracks"][0]["area_in_part"]) if three_d else a["cracks"][0]["length_in_part"]
     comps = ("K_I", "K_II", "K_III") if three_d else ("K_I", "K_II")
-    scale = max(max(abs(r[k]) for r in a["sifs"] for k in comps), p_max * np.sqrt(np.pi * size))
-    assert len(a["sifs"]) == len(b["sifs"]) > 0
-    for ra, rb in zip(a["sifs"], b["sifs"]):
-        for k in comps:
-            assert _relative(ra[k], rb[k], scale) <= k_tol, (k, ra, rb)
+    sifs = [(a["sifs"], b["sifs"])] + [(sa["sifs"], sb["sifs"]) for sa, sb in steps]
+    scale = max(max(abs(r[k]) for sa, _ in sifs for r in sa for k in comps), p_max * np.sqrt(np.pi * size))
+    found["K"] = 0.0
+    for sa, sb in sifs:
+        assert len(sa) == len(sb) > 0
+        for ra, rb in zip(sa, sb):
+            for k in comps:
+                found["K"] = max(found["K"], _relative(ra[k], rb[k], scale))
+                assert _relative(ra[k], rb[k], scale) <= k_tol, (k, ra, rb)
     assert _relative(a["solution"]["strain_energy"], b["solution"]["strain_energy"],
                      a["solution"]["strain_energy"]) <= 1e-10
+    return found
+
+
+#: The four shipped friction scenes on small meshes (a few seconds per process).
+FRICTION_SCENES = {
+    "frictional_crack.toml": ["--set", "mesh.h=0.2", "--set", "mesh.tip_h=0.05"],
+    "brazilian_disc.toml": ["--set", "mesh.h=8", "--set", "mesh.tip_h=1.0"],
+    "wing_crack.toml": ["--set", "mesh.h=0.3", "--set", "mesh.refine[0].h=0.04", "--set", "mesh.refine[0].radius=0.6",
+                        "--set", "options.radius=0.15"],
+    "corner_crack_closure.toml": ["--set", "mesh.tip_h=0.5", "--set", "mesh.crack_h=0.5", "--set",
+                                  "mesh.refine[0].h=0.5", "--set", "options.radius=1.0"]}
+#: Two load steps of the same loads (half, then all of them), each in two increments.
+TWO_STEPS = ["--set", 'load_path=[{name="half",factors={default=0.5}},{name="full",factors={default=1.0}}]',
+             "--set", "options.load_steps=2"]
+
+
+def _states(open_: int, stick: int, slip: int) -> dict:
+    return {"open": open_, "stick": stick, "slip": slip}
+
+
+@pytest.mark.parametrize("scene, settings, states", [
+    *[(scene, settings, None) for scene, settings in FRICTION_SCENES.items()],
+    # 2D, unilateral: open, stick and slip at once (5 iterations)
+    (CANTILEVER_2D, ["--set", "options.friction=0.5"], [_states(8, 2, 2)]),
+    # the shipped clamp-shear-unload path with a larger coefficient: half the lips slip at "shear up"
+    ("frictional_crack.toml", [*FRICTION_SCENES["frictional_crack.toml"], "--set", "options.friction=0.7"],
+     [_states(0, 16, 0), _states(0, 8, 8), _states(0, 16, 0)]),
+    # 3D: the penny across the bent beam, one multiplier slipping (its direction by the Newton rows)
+    (PENNY_BENT_3D, ["--set", "options.friction=0.5"], [_states(4, 0, 1)]),
+    # frictionless contact along a load path: the active set carried from increment to increment
+    (CANTILEVER_2D, TWO_STEPS, None)],
+    ids=["frictional-crack", "brazilian-disc", "wing-crack", "corner-crack-3d", "cantilever-stick-slip",
+         "frictional-crack-mu-0.7", "penny-bent-3d", "cantilever-load-path"])
+def test_run_friction_and_contact_path_same_on_one_and_two_processes(scene, settings, states, tmp_path):
+    """Coulomb friction (2D and 3D) and frictionless contact along a load
+    path under mpirun -n 2 (analysis/load_path.py: the friction system's
+    normal, tangential and slip rows bordering the distributed stiffness,
+    solvers/saddle.py bordered_matrix, solved by parallel MUMPS; the
+    multipliers broadcast from the process holding them, B u and B_t u
+    summed over the processes' owned dofs, so every process takes the same
+    states, slip directions and active sets; the slips and states carried
+    from increment to increment) equal the serial run: states, active sets
+    and iteration counts of every step exactly, pressures, shears, gaps and
+    slips at every lip sample and K of every step to 1e-10 (the direct
+    path's target). Measured (the larger of two runs: the partition
+    varies), K / the lip samples' pressure, shear and slip: frictional crack
+    (its 3 steps) 2e-14 / 1e-11, Brazilian disc 9e-14 / 8e-12, wing crack
+    2e-14 / 2e-12, corner crack 5e-13 / 4e-13, cantilever with stick and
+    slip 2e-12 / 2e-12, the frictional crack at mu 0.7 4e-14 / 1e-12, bent
+    penny 2.4e-12 / 4e-12, the cantilever's load path 9e-13 / 3e-12."""
+    if scene.startswith("title"):
+        path = tmp_path / "scene.toml"
+        path.write_text(scene)
+        scene = str(path)
+    out, serial, a, b = _run_both(scene, [*settings, "--no-estimate"], tmp_path)
+    found = _assert_contact_as_serial(serial, out, a, b, k_tol=1e-10, p_tol=1e-10)
+    print(scene, found)
+    path_case = "load_path" in str(settings)
+    assert ("states" in a["contact"]) != path_case, a["contact"]
+    if states is not None:  # the states the case is chosen for (each step's)
+        assert [s["contact"]["states"] for s in a["steps"] or [a]] == states, a["contact"]
+    if path_case:  # the active set carried: the later increments start settled
+        incs = [s["contact"]["increment_iterations"] for s in a["steps"]]
+        assert len(incs) == 2 and incs[0][0] > 1 and incs[1] == [1, 1], incs
+
+
+@pytest.mark.parametrize("scene", list(FRICTION_SCENES))
+def test_check_friction_scene_same_on_one_and_two_processes(scene):
+    """`cracklip check --json` of each shipped friction scene under mpirun
+    -n 2: the model's and the contact summary equal to serial (the
+    friction coefficient, multipliers and groups from the gathered band)."""
+    args = ["check", str(SCENES / scene), *FRICTION_SCENES[scene], "--json"]
+    p = mpirun(*args)
+    assert_clean(p, 0)
+    s = _run_serial(*args)
+    assert s.returncode == 0, s.stderr
+    a, b = json.loads(s.stdout), json.loads(p.stdout)
+    for c in a["model"]["cracks"] + b["model"]["cracks"]:  # (a per-process count: null under mpirun)
+        c.pop("snapped_nodes")
+    assert a["model"]["contact"]["multipliers"] > 0
+    assert _same(a, b, 1e-12), (a, b)
 
 
 def test_3d_crack_in_one_corner_and_outside(tmp_path):
@@ -844,7 +968,11 @@ def _largest_difference(a: list[float], b: list[float]) -> float:
     # processes owning its points (Solution.gradient_anywhere)
     ("hole_crack_spectrum.toml", ["--set", "options.contact=none", "--set", "material.fatigue.closure=newman",
                                   "--set", "mesh.refine[0].h=1.0", "--set", "mesh.h=10", "--set", "growth.steps=2",
-                                  "--set", "outputs.vtu=false"])])
+                                  "--set", "outputs.vtu=false"]),
+    # fatigue at R = -0.5 with unilateral contact: the cycle [max, min] a load path with contact (the lips
+    # shut at the minimum load), the active set carried from the maximum to the minimum
+    ("fatigue_edge_crack.toml", ["--set", "mesh.h=0.15", "--set", "mesh.refine[0].h=0.03", "--set", "growth.steps=2",
+                                 "--set", "outputs.vtu=false"])])
 def test_grow_2d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_path):
     """`cracklip grow` of a shipped open 2D crack under mpirun -n 2: every
     decision (kink, increment, stops, warnings) taken alike on both
@@ -855,7 +983,9 @@ def test_grow_2d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_p
     hole_fatigue (K_I 652.8 -> 692.4 over 3 steps) positions equal to 7e-15
     of the part, K_I to 1e-13, K_II to 1e-11 of its largest, N to 2.4e-13;
     drilled plate K_I to 6e-14, K_II 7e-13; the spectrum life (K_I 308 ->
-    351, 2 steps) K_I to 4e-14, N to 9e-14, the residual strength to 4e-14. (The hole_fatigue path left the serial one by
+    351, 2 steps) K_I to 4e-14, N to 9e-14, the residual strength to 4e-14;
+    the fatigue edge crack with contact (K_I 1.074 -> 1.264, 2 steps) K_I
+    to 1e-15, K_II to 4e-11 of its largest (6e-4), N to 1e-15. (The hole_fatigue path left the serial one by
     2.3e-4 in K at step 1 in half of the runs until the SIF domain's
     admissible radius stopped short of its bounding node:
     tip_regions.RADIUS_MARGIN.)"""
