@@ -972,7 +972,9 @@ def _largest_difference(a: list[float], b: list[float]) -> float:
     # fatigue at R = -0.5 with unilateral contact: the cycle [max, min] a load path with contact (the lips
     # shut at the minimum load), the active set carried from the maximum to the minimum
     ("fatigue_edge_crack.toml", ["--set", "mesh.h=0.15", "--set", "mesh.refine[0].h=0.03", "--set", "growth.steps=2",
-                                 "--set", "outputs.vtu=false"])])
+                                 "--set", "outputs.vtu=false"]),
+    # fixed increments from a closed crack sliding with Coulomb friction (each step's friction solve)
+    ("wing_crack.toml", [*FRICTION_SCENES["wing_crack.toml"], "--set", "growth.steps=2", "--set", "outputs.vtu=false"])])
 def test_grow_2d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_path):
     """`cracklip grow` of a shipped open 2D crack under mpirun -n 2: every
     decision (kink, increment, stops, warnings) taken alike on both
@@ -985,7 +987,8 @@ def test_grow_2d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_p
     drilled plate K_I to 6e-14, K_II 7e-13; the spectrum life (K_I 308 ->
     351, 2 steps) K_I to 4e-14, N to 9e-14, the residual strength to 4e-14;
     the fatigue edge crack with contact (K_I 1.074 -> 1.264, 2 steps) K_I
-    to 1e-15, K_II to 4e-11 of its largest (6e-4), N to 1e-15. (The hole_fatigue path left the serial one by
+    to 1e-15, K_II to 4e-11 of its largest (6e-4), N to 1e-15; the wing
+    crack with friction (2 steps, 2 tips) K to 7e-14, the kink to 2e-13. (The hole_fatigue path left the serial one by
     2.3e-4 in K at step 1 in half of the runs until the SIF domain's
     admissible radius stopped short of its bounding node:
     tip_regions.RADIUS_MARGIN.)"""
