@@ -115,16 +115,6 @@ def test_3d_friction_refused_not_crashed(command, tmp_path):
     assert "cracklip: error: options.friction is not available under MPI yet" in p.stderr, p.stderr
 
 
-def test_grow_life_with_contact_refused(tmp_path):
-    """A fatigue life whose load levels close the lips by contact (a flight
-    spectrum at a hole) is not grown on several processes yet: one message
-    naming options.contact, exit 2 on every process."""
-    p = mpirun("grow", str(SCENES / "hole_crack_spectrum.toml"), "--set", "mesh.refine[0].h=1.0", "--set",
-               "mesh.h=10", "--out", str(tmp_path / "out"))
-    assert_refused(p)
-    assert "cracklip: error: options.contact in a fatigue life's load levels" in p.stderr, p.stderr
-
-
 def test_3d_grow_without_growth_table_printed_once(tmp_path):
     """No shipped 3D scene grows; `grow` on one stops before meshing with
     the scene's own error, once."""
@@ -703,6 +693,58 @@ def test_run_contact_same_on_one_and_two_processes(scene, settings, k_tol, tmp_p
                      a["solution"]["strain_energy"]) <= 1e-10
 
 
+def _two_groups(scene: str, tag: str, shear: str, axial: str) -> str:
+    """The scene with its one traction on `tag` as load group "shear" and an
+    axial traction on the same face as group "axial"."""
+    old = f'value = {shear}\n'
+    assert scene.count(old) == 1
+    return scene.replace(old, f'{old}group = "shear"\n[[loads.tractions]]\ntag = "{tag}"\nvalue = {axial}\n'
+                                   'group = "axial"\n')
+
+
+#: Load levels of the cantilever (end shear, axial pull) and their contact
+#: states measured serially: partly closed (4 of 12 active), open, closed
+#: (12), a linear level between, partly closed from the closed set, the
+#: other half closed (3 of 12), then the same from there (1 iteration).
+LEVELS_2D = [[True, {"shear": 1.0}], [True, {"axial": 1.0}], [True, {"axial": -1.0}],
+             [False, {"shear": 1.0, "axial": -0.5}], [True, {"shear": 1.0, "axial": -0.5}],
+             [True, {"shear": -1.0, "axial": 0.3}], [True, {"shear": -1.0}]]
+#: The penny across the beam: its lower half closed (1 of 5), closed (5),
+#: linear, open, the upper half closed (3).
+LEVELS_3D = [[True, {"shear": 1.0}], [True, {"axial": -1.0}], [False, {"shear": 1.0}], [True, {"axial": 1.0}],
+             [True, {"shear": -1.0, "axial": 0.1}]]
+
+
+@pytest.mark.parametrize("scene, levels", [
+    (_two_groups(CANTILEVER_2D, "right", "[0.0, -1.0e-5]", "[1.0e-5, 0.0]"), LEVELS_2D),
+    (_two_groups(PENNY_BENT_3D, "xmax", "[0.0, 0.0, -0.01]", "[0.01, 0.0, 0.0]"), LEVELS_3D)], ids=["2d", "3d"])
+def test_levels_with_contact_same_on_one_and_two_processes(scene, levels, tmp_path):
+    """A fatigue life's load levels with frictionless contact
+    (analysis.load_path.LevelSolver: one assembly, each level warm-started
+    from the last one's active set, parallel MUMPS on the distributed saddle
+    point) under mpirun -n 2 equal the serial ones: the same active sets
+    and active-set histories at every level (open, partly and wholly closed
+    ones, a linear level between), the multipliers to 1e-8 of their
+    largest, K to 1e-10 of the K scale. Measured: 2D K to 7e-12, the
+    multipliers to 1e-12; 3D K to 4e-11 (the closed penny; 4e-13
+    elsewhere), the multipliers to 8e-10 (closed) and 3e-13: the closed 3D
+    front's ill-conditioned multipliers (test_run_contact_same_on_one_and_two_processes)."""
+    path = tmp_path / "scene.toml"
+    path.write_text(scene)
+    one, two = script_on_one_and_two("levels.py", str(path), json.dumps(levels))
+    assert (one["processes"], two["processes"], one["solves"], two["solves"]) == (1, 2, len(levels), len(levels))
+    a, b = one["levels"], two["levels"]
+    assert [(x["contact"], x["active"], x["history"]) for x in a] == [(x["contact"], x["active"], x["history"])
+                                                                       for x in b]
+    counts = [sum(x["active"]) for x in a if x["contact"]]
+    m = len(a[0]["active"])
+    assert 0 in counts and m in counts and any(0 < c < m for c in counts), counts  # open, closed, partly
+    lam = max(max(np.abs(x["lambda"]), default=0.0) for x in a)
+    assert max(max(np.abs(np.subtract(x["lambda"], y["lambda"])), default=0.0) for x, y in zip(a, b)) <= 1e-8 * lam
+    scale = max(np.abs(x["sifs"]).max() for x in a)
+    assert max(np.abs(np.subtract(x["sifs"], y["sifs"])).max() for x, y in zip(a, b)) <= 1e-10 * scale
+
+
 def test_3d_crack_in_one_corner_and_outside(tmp_path):
     """A small penny near the top face (most likely on one process's cells
     only; the other's part holds none of it) gives the serial K; a penny
@@ -834,6 +876,24 @@ def _largest_difference(a: list[float], b: list[float]) -> float:
     return float(np.abs(x - y).max() / max(np.abs(x).max(), 1e-300))
 
 
+def _life_cycles_same(a: dict, b: dict) -> None:
+    """A fatigue life's cycles of a serial and a 2-process grow (results.json
+    life): the same load states closed by contact and solved with it at
+    every step, each step's largest cycle (K_max, K_min: with contact
+    closure the contact's K at the closed levels; Delta K_eff) to 1e-10 of
+    the largest K_max."""
+    la, lb = a["life"], b["life"]
+    assert (la["closure_per_step"], la["level_solves"], la["load_levels_per_step"]) == \
+        (lb["closure_per_step"], lb["level_solves"], lb["load_levels_per_step"])
+    rows = [[t for st in life["steps"] for t in st["tips"]] for life in (la, lb)]
+    assert len(rows[0]) == len(rows[1]) > 0
+    scale = max(abs(t["K_max"]) for t in rows[0] if t["K_max"] is not None)
+    for key in ("K_max", "K_min", "delta_K_eff"):
+        x, y = ([t[key] for t in r] for r in rows)
+        assert [v is None for v in x] == [v is None for v in y], key
+        assert max(abs(u - v) for u, v in zip(x, y) if u is not None) <= 1e-10 * scale, key
+
+
 @pytest.mark.parametrize("scene, settings", [
     # fatigue at R = -1: the cycle's two loads on one distributed assembly; the ParaView series and PNGs
     ("hole_fatigue.toml", ["--set", "mesh.refine[0].h=1.0", "--set", "mesh.h=40", "--set", "growth.steps=3"]),
@@ -844,6 +904,9 @@ def _largest_difference(a: list[float], b: list[float]) -> float:
     # processes owning its points (Solution.gradient_anywhere)
     ("hole_crack_spectrum.toml", ["--set", "options.contact=none", "--set", "material.fatigue.closure=newman",
                                   "--set", "mesh.refine[0].h=1.0", "--set", "mesh.h=10", "--set", "growth.steps=2",
+                                  "--set", "outputs.vtu=false"]),
+    # the same life closed by crack-lip contact: the closed load levels solved with contact (LevelSolver)
+    ("hole_crack_spectrum.toml", ["--set", "mesh.refine[0].h=1.0", "--set", "mesh.h=10", "--set", "growth.steps=2",
                                   "--set", "outputs.vtu=false"])])
 def test_grow_2d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_path):
     """`cracklip grow` of a shipped open 2D crack under mpirun -n 2: every
@@ -874,6 +937,7 @@ def test_grow_2d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_p
     if a["life"] is not None:  # the residual strength per step (from the ligament's net-section stress)
         rs = [[c["multiple"] for c in res["life"]["residual_strength"]] for res in (a, b)]
         assert len(rs[0]) > 0 and _largest_difference(*rs) <= 1e-8
+        _life_cycles_same(a, b)
     pa, pb = (np.asarray(res["final"]["cracks"][0]["points"]) for res in (a, b))
     assert pa.shape == pb.shape and np.abs(pa - pb).max() <= 1e-8 * size
     rows = [(d / "path.csv").read_text().splitlines() for d in (serial, out)]
@@ -887,7 +951,10 @@ def test_grow_2d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_p
     # a flight spectrum, Newman closure, a geometry file: a corner crack at a bore
     ("corner_crack_growth.toml", ["--set", "mesh.h=8", "--set", "mesh.refine[0].h=0.4",
                                   "--set", "mesh.refine[0].radius=10", "--set", "growth.steps=2",
-                                  "--set", "outputs.vtu=false"])])
+                                  "--set", "outputs.vtu=false"]),
+    # ground-air-ground flights, the lips closed on the ground: 3D contact at the closed level (LevelSolver)
+    ("corner_crack_gag.toml", ["--set", "mesh.refine[0].h=0.2", "--set", "options.radius=0.5",
+                               "--set", "growth.steps=2", "--set", "outputs.vtu=false"])])
 def test_grow_3d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_path):
     """`cracklip grow` of a shipped open 3D crack under mpirun -n 2: the
     crack surface grown alike on both processes (the inside-tests, the
@@ -921,3 +988,5 @@ def test_grow_3d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_p
         assert max(abs(float(ra[key]) - float(rb[key])) for ra, rb in zip(*rows)) <= 1e-8 * size, key
     for key in ("K_I", "K_II", "K_III", "da", "cycles"):
         assert _largest_difference([float(r[key]) for r in rows[0]], [float(r[key]) for r in rows[1]]) <= 1e-8, key
+    if a["life"] is not None:
+        _life_cycles_same(a, b)

@@ -18,7 +18,7 @@ import typing
 import numpy as np
 
 from ..contact.friction import STATE_NAMES, solve_friction
-from ..contact.frictionless import contact_constant, create_contact_system, solve_frictionless
+from ..contact.frictionless import contact_constant, create_contact_system, distributed_saddle, solve_frictionless
 from ..model.assembly import assemble_distributed_system_groups, assemble_system_groups
 from ..model.distributed import to_local
 from ..model.model import create_model
@@ -31,7 +31,6 @@ from ..solvers.checked import condition_number_1norm, record_solves, scipy_from_
 from ..solvers.choice import create_linear_solver, to_solver_basis
 from ..solvers.direct import DirectSolver
 from ..solvers.rescaling import from_basis, rescale_distributed
-from ..scene.processes import not_parallel
 
 
 logger = logging.getLogger(__name__)
@@ -212,16 +211,15 @@ class LevelSolver:
         # (under mpirun the distributed system, each group's owned entries, parallel MUMPS)
         self.A, self.rhs, self.T, self.T_mpi, self.linear, self.timings = _assembled_groups(model, self.unit)
         self.has_contact = self.scene.options.contact != "none" and bool(model.cracks)
-        if self.has_contact and model.distributed:  # (a fatigue life's or beta table's load levels with contact)
-            not_parallel("options.contact in a fatigue life's load levels", model.V.mesh.comm)
         self.K = self.physical = self.cs = None
         self.active = None
         self.solves = 0
 
     def _contact_system(self):
         if self.cs is None:
-            self.K = self.linear.stiffness(self.A)
-            self.physical = create_contact_system(self.unit)
+            # (under mpirun the distributed saddle takes A itself: no serial copy of the stiffness)
+            self.K = self.A if self.model.distributed else self.linear.stiffness(self.A)
+            self.physical = create_contact_system(self.unit)  # (collective; whole on every process)
             self.cs = self.physical
             if self.T is not None:
                 self.cs = dataclasses.replace(self.physical, B=(self.physical.B @ self.T).tocsr(),
@@ -247,8 +245,7 @@ class LevelSolver:
                 else:
                     cs = self._contact_system()
                     work = dataclasses.replace(cs, g=_combine(cs.g_groups, factors, cs.num_multipliers))
-                    y, info = solve_frictionless(self.K, f, work, opts, contact_constant(self.unit), self.active,
-                                                 self.linear)
+                    y, info = self._contact_level(f, work)
                     self.active = info["active"]
                     physical = self.physical
                 name = names[k] if names else f"level {k}"
@@ -258,6 +255,29 @@ class LevelSolver:
                 out.append(sol)
                 self.solves += 1
         return out
+
+    def _contact_level(self, f: np.ndarray, work) -> tuple[np.ndarray, dict]:
+        """One state with frictionless contact from the last state's active
+        set: (y, info) as solve_frictionless gives them. Under mpirun the
+        saddle point is distributed_saddle's (parallel MUMPS; the multipliers
+        and the gap alike on every process, so every process takes the same
+        active set) and y this process's local dofs."""
+        opts, c = self.scene.options, contact_constant(self.unit)
+        if not self.model.distributed:
+            return solve_frictionless(self.K, f, work, opts, c, self.active, self.linear)
+        b = self.A.createVecRight()
+        b.array[:] = f
+        try:
+            u, info = solve_frictionless(self.A, f, work, opts, c, self.active,
+                                         saddle=distributed_saddle(self.A, b, work, opts.residual_tol))
+        finally:
+            b.destroy()
+        x = self.A.createVecRight()
+        x.array[:] = u
+        x = from_basis(self.T_mpi, x)  # (None: options.rescale = 'nodal' with contact is refused under mpirun)
+        y = to_local(self.model.dofs, x)
+        x.destroy()
+        return y, info
 
     def close(self) -> None:
         self.linear.destroy()
