@@ -70,10 +70,17 @@ def _solved(model, linear, A, A_f, T_mpi, residual_tol: float) -> np.ndarray:
     x = linear.solve(A, A_f, residual_tol, what="X-FEM stiffness system")
     A_f.destroy()
     if model.distributed:
-        x = from_basis(T_mpi, x)
-        y = to_local(model.dofs, x)
-    else:
-        y = x.array.copy()
+        return _local(model, T_mpi, x)
+    y = x.array.copy()
+    x.destroy()
+    return y
+
+
+def _local(model, T_mpi, x) -> np.ndarray:
+    """This process's local dofs (owned and ghost, to_local) of a
+    distributed solution x in the solver's basis (x destroyed)."""
+    x = from_basis(T_mpi, x)
+    y = to_local(model.dofs, x)
     x.destroy()
     return y
 
@@ -193,7 +200,10 @@ class LevelSolver:
     set. The matrix and each group's load vector are assembled once, as in
     solve_path; every state costs one solve (linear) or its active-set
     iterations (contact). Friction is path-dependent and not taken here.
-    Call close() when done (the solver's PETSc objects)."""
+    Under mpirun the matrix is distributed (parallel MUMPS) and each contact
+    state is solved on the distributed saddle point (distributed_saddle):
+    every process takes the same active sets. Call close() when done (the
+    solver's PETSc objects)."""
 
     def __init__(self, scene: Scene):
         if scene.options.friction > 0.0:
@@ -265,19 +275,11 @@ class LevelSolver:
         opts, c = self.scene.options, contact_constant(self.unit)
         if not self.model.distributed:
             return solve_frictionless(self.K, f, work, opts, c, self.active, self.linear)
-        b = self.A.createVecRight()
-        b.array[:] = f
-        try:
-            u, info = solve_frictionless(self.A, f, work, opts, c, self.active,
-                                         saddle=distributed_saddle(self.A, b, work, opts.residual_tol))
-        finally:
-            b.destroy()
+        u, info = solve_frictionless(self.A, f, work, opts, c, self.active,
+                                     saddle=distributed_saddle(self.A, f, work, opts.residual_tol))
         x = self.A.createVecRight()
         x.array[:] = u
-        x = from_basis(self.T_mpi, x)  # (None: options.rescale = 'nodal' with contact is refused under mpirun)
-        y = to_local(self.model.dofs, x)
-        x.destroy()
-        return y, info
+        return _local(self.model, self.T_mpi, x), info
 
     def close(self) -> None:
         self.linear.destroy()

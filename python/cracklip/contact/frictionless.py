@@ -298,7 +298,7 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
     (cracklip.solvers; default: solve_checked's MUMPS LU)."""
     physical = create_contact_system(model)
     if model.distributed:  # (direct path, no transform)
-        saddle = distributed_saddle(A, b, physical, model.scene.options.residual_tol)
+        saddle = distributed_saddle(A, b.array_r, physical, model.scene.options.residual_tol)
         u, info = solve_frictionless(A, b.array_r.copy(), physical, model.scene.options, contact_constant(model),
                                      saddle=saddle)
         info["system"] = physical
@@ -311,14 +311,15 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
     return u, info
 
 
-def distributed_saddle(A: PETSc.Mat, b: PETSc.Vec, cs: ContactSystem, residual_tol: float):
-    """The saddle solve of solve_frictionless on several processes: A, b the
-    distributed stiffness and load (constraints applied), cs whole on every
-    process (create_contact_system). Returns solve(active, x0) -> (u, lambda,
-    gap): u this process's owned dofs, lambda and the gap B u - g the same
-    on every process (the multipliers broadcast by the process owning them,
-    the gap summed over the processes' owned dofs and broadcast by rank 0),
-    so every process takes the same active set."""
+def distributed_saddle(A: PETSc.Mat, f: np.ndarray, cs: ContactSystem, residual_tol: float):
+    """The saddle solve of solve_frictionless on several processes: A the
+    distributed stiffness (constraints applied), f this process's owned
+    entries of the load, cs whole on every process (create_contact_system).
+    Returns solve(active, x0) -> (u, lambda, gap): u this process's owned
+    dofs, lambda and the gap B u - g the same on every process (the
+    multipliers broadcast by the process owning them, the gap summed over
+    the processes' owned dofs and broadcast by rank 0), so every process
+    takes the same active set."""
     comm = A.getComm().tompi4py()
     lo, hi = A.getOwnershipRange()
     B_own = cs.B[:, lo:hi]
@@ -329,7 +330,7 @@ def distributed_saddle(A: PETSc.Mat, b: PETSc.Vec, cs: ContactSystem, residual_t
             check_constraint_rank(cs.B[np.flatnonzero(active)])
         S = distributed_saddle_matrix(A, cs.B, active)
         rhs = S.createVecLeft()
-        rhs.array[:hi - lo] = b.array_r
+        rhs.array[:hi - lo] = f
         if comm.rank == holder:
             rhs.array[hi - lo:] = np.where(active, cs.g, 0.0)
         x = solve_checked(S, rhs, residual_tol, what="contact saddle-point system")
