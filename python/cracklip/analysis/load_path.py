@@ -34,7 +34,6 @@ from ..solvers.checked import condition_number_1norm, record_solves, scipy_from_
 from ..solvers.choice import create_linear_solver, to_solver_basis
 from ..solvers.direct import DirectSolver
 from ..solvers.rescaling import from_basis, rescale_distributed
-from ..scene.processes import not_parallel
 
 
 logger = logging.getLogger(__name__)
@@ -212,7 +211,10 @@ class LevelSolver:
     set. The matrix and each group's load vector are assembled once, as in
     solve_path; every state costs one solve (linear) or its active-set
     iterations (contact). Friction is path-dependent and not taken here.
-    Call close() when done (the solver's PETSc objects)."""
+    Under mpirun the matrix is distributed (parallel MUMPS) and each contact
+    state is solved on the distributed saddle point (distributed_saddle):
+    every process takes the same active sets. Call close() when done (the
+    solver's PETSc objects)."""
 
     def __init__(self, scene: Scene):
         if scene.options.friction > 0.0:
@@ -230,16 +232,15 @@ class LevelSolver:
         # (under mpirun the distributed system, each group's owned entries, parallel MUMPS)
         self.A, self.rhs, self.T, self.T_mpi, self.linear, self.timings = _assembled_groups(model, self.unit)
         self.has_contact = self.scene.options.contact != "none" and bool(model.cracks)
-        if self.has_contact and model.distributed:  # (a fatigue life's or beta table's load levels with contact)
-            not_parallel("options.contact in a fatigue life's load levels", model.V.mesh.comm)
         self.K = self.physical = self.cs = None
         self.active = None
         self.solves = 0
 
     def _contact_system(self):
         if self.cs is None:
-            self.K = self.linear.stiffness(self.A)
-            self.physical = create_contact_system(self.unit)
+            # (under mpirun the distributed saddle takes A itself: no serial copy of the stiffness)
+            self.K = self.A if self.model.distributed else self.linear.stiffness(self.A)
+            self.physical = create_contact_system(self.unit)  # (collective; whole on every process)
             self.cs = self.physical
             if self.T is not None:
                 self.cs = dataclasses.replace(self.physical, B=(self.physical.B @ self.T).tocsr(),
@@ -265,8 +266,7 @@ class LevelSolver:
                 else:
                     cs = self._contact_system()
                     work = dataclasses.replace(cs, g=_combine(cs.g_groups, factors, cs.num_multipliers))
-                    y, info = solve_frictionless(self.K, f, work, opts, contact_constant(self.unit), self.active,
-                                                 self.linear)
+                    y, info = self._contact_level(f, work)
                     self.active = info["active"]
                     physical = self.physical
                 name = names[k] if names else f"level {k}"
@@ -276,6 +276,21 @@ class LevelSolver:
                 out.append(sol)
                 self.solves += 1
         return out
+
+    def _contact_level(self, f: np.ndarray, work) -> tuple[np.ndarray, dict]:
+        """One state with frictionless contact from the last state's active
+        set: (y, info) as solve_frictionless gives them. Under mpirun the
+        saddle point is distributed_saddle's (parallel MUMPS; the multipliers
+        and the gap alike on every process, so every process takes the same
+        active set) and y this process's local dofs."""
+        opts, c = self.scene.options, contact_constant(self.unit)
+        if not self.model.distributed:
+            return solve_frictionless(self.K, f, work, opts, c, self.active, self.linear)
+        u, info = solve_frictionless(self.A, f, work, opts, c, self.active,
+                                     saddle=distributed_saddle(self.A, f, work, opts.residual_tol))
+        x = self.A.createVecRight()
+        x.array[:] = u
+        return _local(self.model, self.T_mpi, x), info
 
     def close(self) -> None:
         self.linear.destroy()
