@@ -19,6 +19,12 @@ so the plain P1 solve itself bounds what X-FEM can gain.
 
     /usr/bin/python3 demos/bench_mpi.py --json docs/bench/bench_mpi.json              # ~5e5 dofs
     /usr/bin/python3 demos/bench_mpi.py --size 1e5 --repeats 1 --json /tmp/b.json
+    /usr/bin/python3 demos/bench_mpi.py --memory 2 --size 4e6 --json docs/bench/bench_mpi_memory.json
+
+--memory N: one run on N processes of the X-FEM solve alone (no plain P1,
+no 1-process run), for the memory it takes: each process's peak resident
+memory (ru_maxrss: meshing on rank 0, model, assembly, the solver's set-up
+and solve) and their sum, an upper bound on the run's total at any time.
 """
 from __future__ import annotations
 
@@ -47,8 +53,10 @@ def worker(spec: dict) -> dict:
     import bench_3d
     import penny_crack
     comm = MPI.COMM_WORLD
+    plain = spec.get("plain", True)
     small = penny_crack.penny_scene(6, solver=spec["solver"])  # warm-up: gmsh, forms, libraries
-    bench_3d._plain(small)
+    if plain:
+        bench_3d._plain(small)
     bench_3d._xfem(small)
     comm.Barrier()
     t0 = time.perf_counter()
@@ -56,7 +64,7 @@ def worker(spec: dict) -> dict:
     t_mesh = time.perf_counter() - t0
     comm.Barrier()
     c0 = time.process_time()
-    p = bench_3d._plain(scene)
+    p = bench_3d._plain(scene) if plain else {"ndofs": None, "iterations": None, "t_solve": 0.0, "t_total": 0.0}
     cpu_plain = time.process_time() - c0
     comm.Barrier()
     c0 = time.process_time()
@@ -82,6 +90,24 @@ def _launch(n: int, spec: dict) -> dict:
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
+def _memory(args, spec: dict) -> dict:
+    """--memory N: one run, its peak memory per process and their sum."""
+    run = _launch(args.memory, {**spec, "plain": False})
+    peaks = run["peak_rss_gb"]
+    row = {k: run[k] for k in ("processes", "ndofs", "enriched_dofs", "a_over_h", "band", "method", "iterations_xfem",
+                               "relative_residual", "t_mesh", "t_solve_xfem", "t_total_xfem")}
+    row.update(solver=args.solver, radius_in_h=args.radius_in_h, peak_rss_gb=peaks, peak_rss_sum_gb=sum(peaks))
+    print(f"{row['ndofs']} dofs on {args.memory} processes: peak memory {' + '.join(f'{g:.2f}' for g in peaks)} "
+          f"= {sum(peaks):.2f} GB; mesh {row['t_mesh']:.0f} s, X-FEM {row['t_total_xfem']:.0f} s "
+          f"({row['iterations_xfem']} iterations)", flush=True)
+    out = {"machine": platform.node(), "cpus": os.cpu_count(), "python": platform.python_version(),
+           "load_average_at_end": os.getloadavg(), "rows": [row]}
+    args.json.parent.mkdir(parents=True, exist_ok=True)
+    from cracklip.io.files import write_json
+    write_json(args.json, out)
+    return out
+
+
 def main(argv=None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--size", default="5e5", help="target X-FEM dofs (default 5e5)")
@@ -90,6 +116,8 @@ def main(argv=None) -> dict:
     ap.add_argument("--radius-in-h", type=float, default=2.0,
                     help="front enrichment radius in front element sizes (default 2, as bench_3d)")
     ap.add_argument("--json", type=pathlib.Path, default=pathlib.Path("results/bench_mpi.json"))
+    ap.add_argument("--memory", type=int, metavar="N",
+                    help="one X-FEM run on N processes for its peak memory (module doc)")
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.worker:
@@ -101,6 +129,8 @@ def main(argv=None) -> dict:
     import bench_3d
     spec = {"n": bench_3d.divisions_for(float(args.size), args.radius_in_h), "solver": args.solver,
             "radius_in_h": args.radius_in_h}
+    if args.memory:
+        return _memory(args, spec)
     pairs = []
     for rep in range(args.repeats):
         order = (1, 2) if rep % 2 == 0 else (2, 1)

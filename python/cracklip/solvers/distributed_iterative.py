@@ -34,7 +34,8 @@ import numpy as np
 import scipy.sparse as sp
 from petsc4py import PETSc
 
-from .iterative import IterativeSolver, crack_band, rigid_mode_nodes, rigid_motions, tip_dofs
+from .iterative import (IterativeSolver, crack_band, product_data_cleared, rigid_mode_nodes, rigid_motions,
+                        tip_dofs)
 if typing.TYPE_CHECKING:
     from ..model.model import XfemModel
 
@@ -135,7 +136,8 @@ class DistributedIterativeSolver(IterativeSolver):
 
     def transform(self, A: PETSc.Mat) -> tuple[PETSc.Mat, DistributedPhantomBasis]:
         """T^T A T (a new matrix; A is left as it is)."""
-        A_t = A.PtAP(self.basis.T)
+        with product_data_cleared():
+            A_t = A.PtAP(self.basis.T)
         A_t.setOption(PETSc.Mat.Option.SYMMETRIC, True)
         self._K = A_t
         return A_t, self.basis
