@@ -171,17 +171,25 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
     for (std::size_t j = 0; j < g.tips.size() / 2; ++j)
     {
       const std::array<double, 2> T = {g.tips[2 * j], g.tips[2 * j + 1]};
-      // The segment with the end point nearest T (equals: the cell's key).
-      std::size_t end = 0; // index into own / ends
-      double dmin = std::numeric_limits<double>::max();
+      // The segment with the end point nearest T; distances within 1e-9 of
+      // the longest segment count as equal (two segments ending at a tip on
+      // a mesh edge or node) and the cell's key decides.
+      double tol = 0.0;
+      for (std::size_t i = 0; i < own.size(); ++i)
+        tol = std::max(tol, 1e-9 * length(i));
+      std::vector<std::tuple<double, std::array<double, 12>, std::size_t>> nearest; // (distance, key, index)
       for (std::size_t i = 0; i < own.size(); ++i)
         for (const auto& P : ends[i])
-          if (const double dist = std::hypot(P[0] - T[0], P[1] - T[1]);
-              dist < dmin
-              or (dist == dmin
-                  and cell_key(x, cells, 2, space.segments[own[i]].cell)
-                          < cell_key(x, cells, 2, space.segments[own[end]].cell)))
-            dmin = dist, end = i;
+          nearest.emplace_back(std::hypot(P[0] - T[0], P[1] - T[1]), cell_key(x, cells, 2, space.segments[own[i]].cell),
+                               i);
+      double dmin = std::numeric_limits<double>::max();
+      for (const auto& n : nearest)
+        dmin = std::min(dmin, std::get<0>(n));
+      std::size_t end = 0; // index into own / ends
+      const std::array<double, 12>* end_key = nullptr;
+      for (const auto& [d, key, i] : nearest)
+        if (d <= dmin + tol and (end_key == nullptr or key < *end_key))
+          end = i, end_key = &key;
       const CrackSegment& end_seg = space.segments[own[end]];
       if (!end_seg.tip and with_tip_segments)
       {
