@@ -249,6 +249,7 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
       const std::int32_t r_end = uf.find(end_seg.mult.front());
       for (std::int32_t f : end_seg.mult)
         uf.unite(f, r_end);
+      std::vector<std::int32_t> picks;
       for (std::size_t i = 0; i < own.size(); ++i)
       {
         if (i == end)
@@ -278,8 +279,12 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
             candidates.emplace_back(value(nb, N, k), keys[f], f);
         }
         if (!candidates.empty())
-          uf.unite(r_end, std::get<2>(*pick_largest(candidates)));
+          picks.push_back(std::get<2>(*pick_largest(candidates)));
       }
+      // Every neighbour chose against the end group as it was (the order of
+      // the segments does not enter).
+      for (const std::int32_t pick : picks)
+        uf.unite(r_end, pick);
     }
   }
   uf.number(space);
