@@ -12,8 +12,8 @@
 //   1. tie_vital_edges: the vital edges of the cut-edge graph
 //      (vital_edges.h) join their end nodes' multipliers: stars;
 //   2. tie_groups_without_jump: a group none of whose members carries an
-//      enriched dof of its crack (the jump there fades to zero) joins a
-//      group it shares a crack piece with;
+//      enriched dof of its crack (the jump there fades to zero) joins the
+//      group with a jump it shares most crack pieces with;
 //   3. dimension-specific ties at crack ends (2D: tip segment; 3D: front cells);
 //   4. MultiplierGroups::number: the restriction's two maps.
 //
@@ -29,8 +29,8 @@
 // (multiplier_keys) is its crack, nodal before P0, and the coordinates of
 // its node, or of its cell's vertices in (x, y, z) order. Steps that let
 // several groups choose (groups without a jump, front cells without an
-// interior group) choose all at once per round, against the groups as they
-// were at the round's start. Only the numbering of the groups (step 4, by
+// interior group, a 2D tip cell's neighbouring segments) choose all at once
+// per round, against the groups as they were at the round's start. Only the numbering of the groups (step 4, by
 // first member) follows the input order; the groups as sets of members do
 // not (tests/test_contact_order.py, tests/cpp/test_vital_edges.cpp).
 #pragma once
