@@ -67,20 +67,17 @@ def _run(args, out):
 @pytest.mark.slow
 def test_bending_crack_closure_against_its_plane_strain_section(tmp_path):
     """Measured (tip_h = crack_h = 0.15 as shipped, 53 814 dofs): overlap
-    3.55e-6 mm = 0.38 % of the largest opening 9.44e-4 mm (at the edge of
+    4.29e-6 mm = 0.45 % of the largest opening 9.44e-4 mm (at the edge of
     the closed part, where a multiplier group is closed over part of its
-    support and open over the rest); pressure >= 0 (largest 55.9 MPa); K_I
-    98.94 .. 99.05 along the open front against 98.80 in 2D; -1.14 .. -0.26
-    along the closed front (1.16 % of the open K); closed length 1.87 mm
-    against 1.93 in 2D. The multiplier groups are built in the mesh's input
-    node order since issue 40 (contact/band.py: the same on any number of
-    processes); with DOLFINx's serial node order before: overlap 0.33 %
-    (tip_h 0.5: 2.7 %, 0.25: 0.95 %, 0.2: 1.17 %, 0.125: 0.41 %), largest
-    pressure 53.8 MPa, K_I -0.71 .. -0.11 on the closed front. The P1-
-    choices follow the node order (on the pressed penny of
-    test_contact_3d.py random orders give 2.3e-3 .. 5.9e-3 pressure
-    errors), so the closed front's K_I is bounded by 1.2 % of the open K
-    (was 1 %)."""
+    support and open over the rest); pressure >= 0 (largest 54.0 MPa); K_I
+    98.95 .. 99.05 along the open front against 98.80 in 2D; -0.75 .. -0.11
+    along the closed front (0.76 % of the open K); closed length 1.90 mm
+    against 1.93 in 2D. The multiplier groups no longer depend on the node
+    order (multiplier_groups.h); while they did (tip_h 0.5: overlap 2.7 %,
+    0.25: 0.95 %, 0.2: 1.17 %, 0.125: 0.41 %, measured in DOLFINx's serial
+    order), the shipped mesh gave 0.33 % and K_I -0.71 .. -0.11 in DOLFINx's
+    order, 0.38 % and -1.14 .. -0.26 (1.16 %) in input order, for which this
+    bound had been loosened to 1.2 %; it is back at 1 %."""
     res = _run([str(SCENE), "--set", "outputs.error_estimate=false", "--set", "outputs.png=false"], tmp_path / "3d")
     (tmp_path / "section.toml").write_text(SECTION_2D)
     ref = _run([str(tmp_path / "section.toml")], tmp_path / "2d")
@@ -111,7 +108,7 @@ def test_bending_crack_closure_against_its_plane_strain_section(tmp_path):
         assert abs(r["K_I"] - k_open) <= 0.01 * k_open, (r["K_I"], k_open)
         assert abs(abs(r["K_II"]) - abs(k2[8]["K_II"])) <= 0.02 * abs(k2[8]["K_II"])
     for r in lower:
-        assert abs(r["K_I"]) <= 0.012 * k_open, (r["K_I"], k_open)
+        assert abs(r["K_I"]) <= 0.01 * k_open, (r["K_I"], k_open)
         assert abs(abs(r["K_II"]) - abs(k2[2]["K_II"])) <= 0.02 * abs(k2[2]["K_II"])
     assert max(abs(r["K_III"]) for r in res["sifs"]) <= 1e-3 * k_open   # plane strain: no mode III
 

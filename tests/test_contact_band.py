@@ -27,9 +27,9 @@ def test_gathered_band_reproduces_the_local_space(dim, monkeypatch):
     model's own arrays): then every piece, level set, reference point and
     enriched-node flag the band carries is complete and right (the block of
     paper 5.1 with a tip cell in 2D; the pressed penny with front P0
-    multipliers in 3D: 9 groups of 111 full multipliers). In input order the
-    penny has 7 groups of the same 111: the P1- choices follow the node
-    order."""
+    multipliers in 3D: 9 groups of 111 full multipliers), and in input
+    order the same 9 (the groups do not depend on the order:
+    multiplier_groups.h; before, input order gave 7)."""
     from cracklip.contact import band
     if dim == 2:
         sf = cl.load_scene_file(str(ROOT / "demos" / "scenes" / "block_uniform_pressure.toml"), ["mesh.h=0.1"])
@@ -47,4 +47,4 @@ def test_gathered_band_reproduces_the_local_space(dim, monkeypatch):
     assert _same_groups(local_order.R.indices, np.asarray(space.full_to_reduced))
     assert np.array_equal(np.asarray(local_order.band.vital_edges).shape, np.asarray(space.vital_edges).shape)
     if dim == 3:
-        assert (space.num_full, space.num_reduced, canonical.num_multipliers) == (111, 9, 7)
+        assert (space.num_full, space.num_reduced, canonical.num_multipliers) == (111, 9, 9)

@@ -57,8 +57,7 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
             if (p > q)
               std::swap(p, q);
             cut_edges.push_back({ic, p, q});
-            const double t = g.phi[p] / (g.phi[p] - g.phi[q]);
-            cut_points.push_back({x[2 * p] + t * (x[2 * q] - x[2 * p]), x[2 * p + 1] + t * (x[2 * q + 1] - x[2 * p + 1])});
+            cut_points.push_back(cut_point<2>(&x[2 * p], &x[2 * q], g.phi[p], g.phi[q]));
           }
         }
     }
@@ -99,8 +98,9 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
   // Stable (P1-): drop cut edges by score until every score is <= 1, tie
   // the stars, then the stars without enriched nodes to a neighbouring star.
   MultiplierGroups uf(nfull);
+  const std::vector<MultiplierKey> keys = multiplier_keys(space, x, cells, 2);
   const auto heaviside = tie_stars<2>(space.segments, cut_edges, cut_points, nodal, layout,
-                                      static_cast<std::int8_t>(EnrichmentKind::heaviside), space, uf);
+                                      static_cast<std::int8_t>(EnrichmentKind::heaviside), space, keys, uf);
   // The multiplier at a crack end sees a jump that fades (like sqrt(r) in a
   // tip cell, linearly over the last cut cell of a Heaviside-only crack)
   // and is barely controlled: left alone it makes the inf-sup constant drop.
@@ -171,12 +171,25 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
     for (std::size_t j = 0; j < g.tips.size() / 2; ++j)
     {
       const std::array<double, 2> T = {g.tips[2 * j], g.tips[2 * j + 1]};
-      std::size_t end = 0; // index into own / ends
-      double dmin = std::numeric_limits<double>::max();
+      // The segment with the end point nearest T; distances within 1e-9 of
+      // the longest segment count as equal (two segments ending at a tip on
+      // a mesh edge or node) and the cell's key decides.
+      double tol = 0.0;
+      for (std::size_t i = 0; i < own.size(); ++i)
+        tol = std::max(tol, 1e-9 * length(i));
+      std::vector<std::tuple<double, std::array<double, 12>, std::size_t>> nearest; // (distance, key, index)
       for (std::size_t i = 0; i < own.size(); ++i)
         for (const auto& P : ends[i])
-          if (const double dist = std::hypot(P[0] - T[0], P[1] - T[1]); dist < dmin)
-            dmin = dist, end = i;
+          nearest.emplace_back(std::hypot(P[0] - T[0], P[1] - T[1]), cell_key(x, cells, 2, space.segments[own[i]].cell),
+                               i);
+      double dmin = std::numeric_limits<double>::max();
+      for (const auto& n : nearest)
+        dmin = std::min(dmin, std::get<0>(n));
+      std::size_t end = 0; // index into own / ends
+      const std::array<double, 12>* end_key = nullptr;
+      for (const auto& [d, key, i] : nearest)
+        if (d <= dmin + tol and (end_key == nullptr or key < *end_key))
+          end = i, end_key = &key;
       const CrackSegment& end_seg = space.segments[own[end]];
       if (!end_seg.tip and with_tip_segments)
       {
@@ -184,9 +197,11 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
         // cell): tip dofs, not Heaviside ones, open its last segments. Tie
         // that segment like a tip cell when it is shorter than the crack's
         // mean segment.
-        double mean_len = 0.0;
+        std::vector<double> lengths; // summed in ascending order: the same sum in any order
         for (std::size_t i = 0; i < own.size(); ++i)
-          mean_len += length(i) / static_cast<double>(own.size());
+          lengths.push_back(length(i) / static_cast<double>(own.size()));
+        std::sort(lengths.begin(), lengths.end());
+        const double mean_len = std::accumulate(lengths.begin(), lengths.end(), 0.0);
         if (length(end) >= mean_len)
           continue;
       }
@@ -212,13 +227,14 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
                     if (const std::int32_t r = uf.find(seg.mult[k]); !G.count(r))
                       overlap[r] += wq * m * value(seg, N, k);
               });
-          std::int32_t pick = -1;
-          double best = 0.0;
+          const auto gkey = group_keys(uf, keys);
+          std::vector<std::tuple<double, MultiplierKey, std::int32_t>> candidates;
           for (const auto& [r, o] : overlap)
-            if (o > best)
-              best = o, pick = r;
-          if (pick < 0)
+            if (o > 0.0)
+              candidates.emplace_back(o, gkey.at(r), r);
+          if (candidates.empty())
             break;
+          const std::int32_t pick = std::get<2>(*pick_largest(candidates));
           for (std::int32_t r : G)
             uf.unite(r, pick);
           G = {uf.find(pick)};
@@ -233,6 +249,7 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
       const std::int32_t r_end = uf.find(end_seg.mult.front());
       for (std::int32_t f : end_seg.mult)
         uf.unite(f, r_end);
+      std::vector<std::int32_t> picks;
       for (std::size_t i = 0; i < own.size(); ++i)
       {
         if (i == end)
@@ -247,26 +264,27 @@ MultiplierSpace create_multiplier_space(std::span<const double> x, std::span<con
           continue;
         // Tie the end multiplier to the neighbour's multiplier that is
         // largest at the shared point (the one continuous across it) among
-        // those not already on the end segment; if all of these vanish
-        // there, to the first of them.
+        // those not already on the end segment (equals: the smallest key;
+        // so also when all of these vanish there).
         const CrackSegment& nb = space.segments[own[i]];
         const auto N = P1Cell::shape({nb.ref[2 * shared], nb.ref[2 * shared + 1]});
-        std::int32_t pick = -1;
-        double best_w = -1.0;
+        std::vector<std::tuple<double, MultiplierKey, std::int32_t>> candidates;
         for (std::size_t k = 0; k < nb.mult.size(); ++k)
         {
           const std::int32_t f = nb.mult[k];
           bool on_end = false;
           for (std::int32_t fe : end_seg.mult)
             on_end = on_end or uf.find(fe) == uf.find(f);
-          if (on_end)
-            continue;
-          if (const double w = value(nb, N, k); w > best_w + 1e-12)
-            best_w = w, pick = f;
+          if (!on_end)
+            candidates.emplace_back(value(nb, N, k), keys[f], f);
         }
-        if (pick >= 0)
-          uf.unite(r_end, pick);
+        if (!candidates.empty())
+          picks.push_back(std::get<2>(*pick_largest(candidates)));
       }
+      // Every neighbour chose against the end group as it was (the order of
+      // the segments does not enter).
+      for (const std::int32_t pick : picks)
+        uf.unite(r_end, pick);
     }
   }
   uf.number(space);

@@ -16,7 +16,9 @@
 //           a Heaviside-only crack absorbs its most overlapping neighbour
 //           group until at least 2/3 of its weight sees the full jump; a
 //           tip-enriched crack whose tip sits on an edge or vertex ties its
-//           end segment when shorter than the crack's mean segment.
+//           end segment when shorter than the crack's mean segment. Equals
+//           are decided by geometry (multiplier_groups.h): the groups do
+//           not depend on the order of nodes, cells or edges.
 #pragma once
 
 #include "contact/multiplier_groups.h"

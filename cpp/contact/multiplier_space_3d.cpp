@@ -37,69 +37,82 @@ std::array<double, 4> shape_integrals(const CrackCell3D& cc)
 /// group (multiplier_space_3d.h).
 void tie_front_pieces(const MultiplierSpace3D& space, std::int32_t ic, std::span<const std::int32_t> cells,
                       const CrackGeometry3D& g, const NodalMultipliers& nodal,
-                      const std::vector<std::int8_t>& interior, MultiplierGroups& groups)
+                      const std::vector<std::int8_t>& interior, const std::vector<MultiplierKey>& keys,
+                      MultiplierGroups& groups)
 {
   std::vector<std::size_t> front;
   for (std::size_t p = 0; p < space.pieces.size(); ++p)
     if (space.pieces[p].crack == ic and space.pieces[p].front)
       front.push_back(p);
   std::vector<std::int8_t> tied(front.size(), 0);
+  // The interior groups are final here: their keys serve every piece.
+  const auto gkey = group_keys(groups, keys);
   for (std::size_t i = 0; i < front.size(); ++i)
   {
     const LipPiece3D& piece = space.pieces[front[i]];
     const CrackCell3D& cc = g.crack_cells[g.crack_cell_index[piece.cell]];
     const auto w = shape_integrals(cc);
-    // Weight of every interior group on the piece; the heaviest wins (ties:
-    // the first met in the cell's node order).
-    std::vector<std::pair<std::int32_t, double>> weight; // (root, weight), in order met
+    // Weight of every interior group on the piece; the heaviest wins
+    // (equals: by key, multiplier_groups.h).
+    std::map<std::int32_t, double> weight; // root -> weight
     for (int a = 0; a < 4; ++a)
     {
       const auto it = nodal.find({ic, cells[4 * piece.cell + a]});
-      if (it == nodal.end() or !interior[it->second])
-        continue;
-      const std::int32_t r = groups.find(it->second);
-      auto at = std::find_if(weight.begin(), weight.end(), [r](const auto& e) { return e.first == r; });
-      if (at == weight.end())
-        weight.emplace_back(r, w[a]);
-      else
-        at->second += w[a];
+      if (it != nodal.end() and interior[it->second])
+        weight[groups.find(it->second)] += w[a];
     }
     if (weight.empty())
       continue;
-    auto best = weight.begin();
-    for (auto it = weight.begin(); it != weight.end(); ++it)
-      if (it->second > best->second)
-        best = it;
-    groups.unite(piece.mult.front(), best->first);
+    std::vector<std::tuple<double, MultiplierKey, std::int32_t>> candidates;
+    for (const auto& [r, wr] : weight)
+      candidates.emplace_back(wr, gkey.at(r), r);
+    groups.unite(piece.mult.front(), std::get<2>(*pick_largest(candidates)));
     tied[i] = 1;
   }
   // Front cells without an interior group at their nodes: the group of the
-  // tied front cell sharing most nodes with them, repeated along the front.
+  // tied front cells sharing most nodes with them (equals: by key), all
+  // such cells next to a tied one at once, repeated along the front.
   std::map<std::int32_t, std::vector<std::size_t>> by_node; // mesh node -> front pieces (indices into front)
   for (std::size_t i = 0; i < front.size(); ++i)
     for (int a = 0; a < 4; ++a)
       by_node[cells[4 * space.pieces[front[i]].cell + a]].push_back(i);
-  for (bool changed = true; changed;)
+  for (;;)
   {
-    changed = false;
+    const auto fkey = group_keys(groups, keys);
+    std::vector<std::pair<std::size_t, std::int32_t>> joins; // (front piece, root)
     for (std::size_t i = 0; i < front.size(); ++i)
     {
       if (tied[i])
         continue;
-      std::map<std::size_t, int> shared;
+      const std::int32_t* vi = &cells[4 * space.pieces[front[i]].cell];
+      std::set<std::size_t> near; // tied front pieces sharing a node with piece i
       for (int a = 0; a < 4; ++a)
-        for (const std::size_t j : by_node[cells[4 * space.pieces[front[i]].cell + a]])
-          if (tied[j])
-            ++shared[j];
+        for (const std::size_t k : by_node[vi[a]])
+          if (tied[k])
+            near.insert(k);
+      std::map<std::int32_t, int> shared; // root -> most nodes shared with one of its tied front cells
+      for (const std::size_t j : near)
+      {
+        const std::int32_t* vj = &cells[4 * space.pieces[front[j]].cell];
+        int n = 0;
+        for (int a = 0; a < 4; ++a)
+          n += static_cast<int>(std::count(vj, vj + 4, vi[a]));
+        const std::int32_t r = groups.find(space.pieces[front[j]].mult.front());
+        shared[r] = std::max(shared[r], n);
+      }
       if (shared.empty())
         continue;
-      auto best = shared.begin();
-      for (auto it = shared.begin(); it != shared.end(); ++it)
-        if (it->second > best->second)
-          best = it;
-      groups.unite(space.pieces[front[i]].mult.front(), space.pieces[front[best->first]].mult.front());
+      std::vector<std::tuple<double, MultiplierKey, std::int32_t>> candidates;
+      for (const auto& [r, n] : shared)
+        candidates.emplace_back(n, fkey.at(r), r);
+      joins.emplace_back(i, std::get<2>(*pick_largest(candidates)));
+    }
+    if (joins.empty())
+      break;
+    for (const auto& [i, r] : joins)
+    {
+      groups.unite(space.pieces[front[i]].mult.front(), r);
       tied[i] = 1;
-      changed = true;
     }
   }
   // A crack with no interior group (all its pieces in front cells): one
@@ -122,7 +135,7 @@ void tie_front_pieces(const MultiplierSpace3D& space, std::int32_t ic, std::span
 constexpr double FRONT_SHARE = 1.0 / 3.0;
 
 void absorb_front_heavy_groups(const MultiplierSpace3D& space, std::int32_t ic, const CrackGeometry3D& g,
-                               MultiplierGroups& groups)
+                               const std::vector<MultiplierKey>& keys, MultiplierGroups& groups)
 {
   const std::int32_t nfull = space.num_full();
   std::vector<double> mass(nfull, 0.0), front_mass(nfull, 0.0);
@@ -169,26 +182,28 @@ void absorb_front_heavy_groups(const MultiplierSpace3D& space, std::int32_t ic, 
         auto& t = total[groups.find(f)];
         t[0] += front_mass[f], t[1] += mass[f];
       }
-    std::int32_t worst = -1;
-    double worst_share = FRONT_SHARE + 1e-12;
+    // The group of the largest front share above FRONT_SHARE (equals: by key).
+    const auto gkey = group_keys(groups, keys);
+    std::vector<std::tuple<double, MultiplierKey, std::int32_t>> heavy;
     for (const auto& [r, t] : total)
-      if (t[1] > 0.0 and t[0] / t[1] > worst_share and !given_up.count(r))
-        worst = r, worst_share = t[0] / t[1];
-    if (worst < 0)
+      if (t[1] > 0.0 and t[0] / t[1] > FRONT_SHARE + 1e-12 and !given_up.count(r))
+        heavy.emplace_back(t[0] / t[1], gkey.at(r), r);
+    if (heavy.empty())
       return;
+    const std::int32_t worst = std::get<2>(*pick_largest(heavy));
     std::map<std::int32_t, double> with; // other root -> overlap
     for (const auto& [fl, o] : overlap)
       if (groups.find(fl.first) == worst)
         if (const std::int32_t r = groups.find(fl.second); r != worst)
           with[r] += o;
-    auto best = with.end();
-    for (auto it = with.begin(); it != with.end(); ++it)
-      if (it->second > 0.0 and (best == with.end() or it->second > best->second))
-        best = it;
-    if (best == with.end())
+    std::vector<std::tuple<double, MultiplierKey, std::int32_t>> candidates;
+    for (const auto& [r, o] : with)
+      if (o > 0.0)
+        candidates.emplace_back(o, gkey.at(r), r);
+    if (candidates.empty())
       given_up.insert(worst);
     else
-      groups.unite(worst, best->first);
+      groups.unite(worst, std::get<2>(*pick_largest(candidates)));
   }
 }
 } // namespace
@@ -255,10 +270,8 @@ MultiplierSpace3D create_multiplier_space_3d(std::span<const double> x, std::spa
           continue;
         if (p > q)
           std::swap(p, q);
-        const double t = g.phi[p] / (g.phi[p] - g.phi[q]);
         cut_edges.push_back({ic, p, q});
-        cut_points.push_back({x[3 * p] + t * (x[3 * q] - x[3 * p]), x[3 * p + 1] + t * (x[3 * q + 1] - x[3 * p + 1]),
-                              x[3 * p + 2] + t * (x[3 * q + 2] - x[3 * p + 2])});
+        cut_points.push_back(cut_point<3>(&x[3 * p], &x[3 * q], g.phi[p], g.phi[q]));
       }
     }
   }
@@ -270,8 +283,9 @@ MultiplierSpace3D create_multiplier_space_3d(std::span<const double> x, std::spa
     return space;
   }
   MultiplierGroups groups(nfull);
+  const std::vector<MultiplierKey> keys = multiplier_keys(space, x, cells, 3);
   tie_stars<3>(space.pieces, cut_edges, cut_points, nodal, layout, static_cast<std::int8_t>(EnrichmentKind::heaviside),
-               space, groups);
+               space, keys, groups);
   // Nodal multipliers active on an interior (non-front) piece.
   std::vector<std::int8_t> interior(nfull, 0);
   for (const LipPiece3D& piece : space.pieces)
@@ -280,8 +294,8 @@ MultiplierSpace3D create_multiplier_space_3d(std::span<const double> x, std::spa
         interior[f] = 1;
   for (std::size_t icr = 0; icr < cracks.size(); ++icr)
   {
-    tie_front_pieces(space, static_cast<std::int32_t>(icr), cells, *cracks[icr], nodal, interior, groups);
-    absorb_front_heavy_groups(space, static_cast<std::int32_t>(icr), *cracks[icr], groups);
+    tie_front_pieces(space, static_cast<std::int32_t>(icr), cells, *cracks[icr], nodal, interior, keys, groups);
+    absorb_front_heavy_groups(space, static_cast<std::int32_t>(icr), *cracks[icr], keys, groups);
   }
   groups.number(space);
   return space;

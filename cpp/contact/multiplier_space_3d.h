@@ -18,9 +18,11 @@
 //           interior group that weighs most on that piece
 //           (int_piece sum of its members' N_a); a front cell none of whose
 //           nodes is in an interior group takes the group of the front cell
-//           sharing most nodes with it that has one (repeated along the
-//           front), and the front cells of a crack left without any join
-//           one group. This is the 2D tip cell's rule on a band of cells:
+//           sharing most nodes with it that has one (all such cells at
+//           once, repeated along the front), and the front cells of a crack
+//           left without any join one group. Equals are decided by
+//           geometry (multiplier_groups.h): the groups do not depend on the
+//           order of nodes, cells or edges. This is the 2D tip cell's rule on a band of cells:
 //           the jump fades like sqrt(r) across the front cells, and a
 //           multiplier of its own there is barely controlled (the inf-sup
 //           constant drops); tied, the pressure on a front cell is the

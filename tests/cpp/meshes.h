@@ -1,8 +1,11 @@
 // Small structured meshes for the C++ unit tests (no DOLFINx).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <numeric>
+#include <random>
 #include <vector>
 
 namespace cracklip::test
@@ -57,4 +60,30 @@ struct KuhnMesh
   explicit KuhnMesh(int n) { kuhn_cube(n, x, cells); }
   std::int32_t num_cells() const { return static_cast<std::int32_t>(cells.size() / 4); }
 };
+
+/// The same mesh in another order (seed): nodes renumbered, cells shuffled,
+/// every cell's vertices rotated by a random amount. x (nodes, dim), cells
+/// (cells, npc) are replaced.
+inline void shuffle_mesh(int dim, int npc, unsigned seed, std::vector<double>& x, std::vector<std::int32_t>& cells)
+{
+  std::mt19937 rng(seed);
+  const std::size_t nn = x.size() / dim, nc = cells.size() / npc;
+  std::vector<std::int32_t> label(nn), order(nc);
+  std::iota(label.begin(), label.end(), 0);
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(label.begin(), label.end(), rng);
+  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<double> y(x.size());
+  for (std::size_t i = 0; i < nn; ++i)
+    std::copy_n(&x[dim * i], dim, &y[dim * label[i]]);
+  std::vector<std::int32_t> c(cells.size());
+  for (std::size_t k = 0; k < nc; ++k)
+  {
+    const int shift = static_cast<int>(rng() % npc);
+    for (int a = 0; a < npc; ++a)
+      c[npc * k + a] = label[cells[npc * order[k] + (a + shift) % npc]];
+  }
+  x.swap(y);
+  cells.swap(c);
+}
 } // namespace cracklip::test

@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
+#include <type_traits>
 
 using namespace cracklip;
 
@@ -36,11 +38,7 @@ void cut_edges(const std::vector<double>& x, const std::vector<std::int32_t>& ce
           continue;
         if (p > q)
           std::swap(p, q);
-        const double t = phi[p] / (phi[p] - phi[q]);
-        std::array<double, Dim> pt;
-        for (int k = 0; k < Dim; ++k)
-          pt[k] = x[Dim * p + k] + t * (x[Dim * q + k] - x[Dim * p + k]);
-        found[{0, p, q}] = pt;
+        found[{0, p, q}] = cut_point<Dim>(&x[Dim * p], &x[Dim * q], phi[p], phi[q]);
       }
   for (const auto& [e, pt] : found)
     edges.push_back(e), points.push_back(pt);
@@ -134,6 +132,77 @@ TEST(VitalEdges, CutTetrahedraFormStars)
   EXPECT_LT(stars, edges.size() / 2);
   // Deterministic: the same input gives the same stars.
   EXPECT_EQ(select_vital_edges<3>(edges, pts), alive);
+}
+
+// The vital edges as pairs of end points (sorted): a name free of numbering.
+template <int Dim>
+std::set<std::array<std::array<double, Dim>, 2>> vital_by_position(const std::vector<double>& x,
+                                                                  const std::vector<CutEdge>& edges,
+                                                                  const std::vector<std::int8_t>& alive)
+{
+  std::set<std::array<std::array<double, Dim>, 2>> out;
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    if (alive[i])
+    {
+      std::array<std::array<double, Dim>, 2> e;
+      for (int s = 0; s < 2; ++s)
+        std::copy_n(&x[Dim * edges[i][1 + s]], Dim, e[s].begin());
+      std::sort(e.begin(), e.end());
+      out.insert(e);
+    }
+  return out;
+}
+
+// A cut point is the same bits whichever end comes first.
+TEST(VitalEdges, CutPointIsSymmetric)
+{
+  const double p[3] = {0.1, 0.7, 0.3}, q[3] = {0.4, 0.2, 0.9};
+  EXPECT_EQ((cut_point<3>(p, q, -0.37, 0.11)), (cut_point<3>(q, p, 0.11, -0.37)));
+  const auto c = cut_point<3>(p, q, -0.37, 0.11);
+  const double t = 0.37 / 0.48;
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(c[k], p[k] + t * (q[k] - p[k]), 1e-15);
+}
+
+// The structured grids tie everywhere (equal scores and, up to round-off,
+// equal spacings): the stars must still not depend on how the nodes, cells
+// and edges are numbered. Five random orders of each grid (and the edges
+// in reverse) give the same vital edges, named by their end points.
+TEST(VitalEdges, StarsDoNotDependOnTheOrder)
+{
+  auto check = [](auto dim_tag, auto make, int npc, auto normal, double c)
+  {
+    constexpr int Dim = decltype(dim_tag)::value;
+    std::vector<double> x;
+    std::vector<std::int32_t> cells;
+    make(x, cells);
+    std::vector<CutEdge> edges;
+    std::vector<std::array<double, Dim>> pts;
+    cut_edges<Dim>(x, cells, npc, normal, c, edges, pts);
+    const auto reference = vital_by_position<Dim>(x, edges, select_vital_edges<Dim>(edges, pts));
+    ASSERT_GT(reference.size(), 10u);
+    std::vector<CutEdge> rev(edges.rbegin(), edges.rend());
+    std::vector<std::array<double, Dim>> rpts(pts.rbegin(), pts.rend());
+    EXPECT_EQ(vital_by_position<Dim>(x, rev, select_vital_edges<Dim>(rev, rpts)), reference);
+    for (unsigned seed = 1; seed <= 5; ++seed)
+    {
+      std::vector<double> y = x;
+      std::vector<std::int32_t> k = cells;
+      test::shuffle_mesh(Dim, npc, seed, y, k);
+      std::vector<CutEdge> e;
+      std::vector<std::array<double, Dim>> p;
+      cut_edges<Dim>(y, k, npc, normal, c, e, p);
+      EXPECT_EQ(vital_by_position<Dim>(y, e, select_vital_edges<Dim>(e, p)), reference) << "order " << seed;
+    }
+  };
+  check(std::integral_constant<int, 2>(), [](auto& x, auto& c) { test::triangle_grid(12, x, c); }, 3,
+        std::array<double, 2>{0.0, 1.0}, 0.513);
+  check(std::integral_constant<int, 2>(), [](auto& x, auto& c) { test::triangle_grid(12, x, c); }, 3,
+        std::array<double, 2>{0.3, 1.0}, 0.47);
+  check(std::integral_constant<int, 3>(), [](auto& x, auto& c) { test::kuhn_cube(6, x, c); }, 4,
+        std::array<double, 3>{0.0, 0.0, 1.0}, 0.513);
+  check(std::integral_constant<int, 3>(), [](auto& x, auto& c) { test::kuhn_cube(6, x, c); }, 4,
+        std::array<double, 3>{0.2, -0.3, 1.0}, 0.41);
 }
 
 TEST(VitalEdges, RejectsBadInput)

@@ -2,13 +2,15 @@
 the crack band gathered, its space built in input order.
 
 The P1- reduction (cpp/contact/multiplier_groups.h) is a graph computation
-over a whole crack: vital edges are dropped greedily by degree with ties
-broken by node order, stars without a jump join their first neighbour, the
-groups at tips and fronts absorb neighbours. A process's part of the mesh
-(owned cells and a ghost layer) sees only part of the crack, and its local
-node and cell order is DOLFINx's, which depends on the partition. Building
-the space per process would give groups that differ at the partition and
-between process counts.
+over a whole crack: vital edges are dropped greedily by degree, stars
+without a jump join a neighbour, the groups at tips and fronts absorb
+neighbours. Its choices are geometric (ties broken by positions, not by
+numbers), so the groups do not depend on the order of nodes, cells or
+edges; but a process's part of the mesh (owned cells and a ghost layer)
+sees only part of the crack, and the numbering of the groups follows the
+order of their members, DOLFINx's local order, which depends on the
+partition. Building the space per process would give groups that differ
+at the partition, numbered differently on every process.
 
 So every process gathers every process's lip pieces of its owned cells (a
 piece is one cell of one crack: 2D the segment-owning crack cells and the tip
@@ -22,7 +24,8 @@ cell by their input indices, the reference coordinates permuted with them)
 and the unchanged C++ space (create_multiplier_space(_3d)) runs on it
 (python/wrappers/contact_band.cpp rebuilds the crack geometries from the
 arrays). Every process and a serial run (the same path on one process) get
-the same groups in the same order.
+the same groups (in any order of the band: tests/test_contact_order.py)
+numbered alike.
 
 The process's own multiplier space (on its local mesh, for the coupling B
 and the pressure at points) names its full multipliers by (crack, node) and
