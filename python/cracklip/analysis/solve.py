@@ -167,8 +167,9 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
             t0 = time.perf_counter()
             linear = DistributedIterativeSolver(unit, fallback=scene.options.solver == "auto")
             try:
-                A_t, _ = linear.transform(A)
-                A.destroy()  # (T^T A T is a new matrix: A is not needed again)
+                A_t, _ = linear.transform(A)  # (A itself, changed, when its pattern allows)
+                if A_t is not A:
+                    A.destroy()
                 b_t = linear.to_phantom(b)
                 timings["phantom_transform"] = time.perf_counter() - t0
                 t0 = time.perf_counter()

@@ -9,7 +9,11 @@ class supplies it in the global numbering, each process its owned rows:
 * the phantom-node transform T (per Heaviside pseudo-node: u = p,
   a = s (p - q) / 2) as a distributed matrix. A pseudo-node belongs to the
   owner of its base node, so every row of T couples dofs of one process
-  (no communication in T y, T^T r); T^T A T is PETSc's parallel PtAP;
+  (no communication in T y, T^T r). T^T A T is computed in A's storage on
+  the rows it changes, as the serial path does (transform_in_place): each
+  process its owned rows, the T rows of their columns gathered from the
+  owners; PETSc's parallel PtAP only if a coupling lies outside A's
+  pattern;
 * the rigid-body near-nullspace on the owned standard and Heaviside rows
   (about the mean of all processes' nodes), orthonormalised over the
   processes;
@@ -57,6 +61,7 @@ class DistributedPhantomBasis:
         sgn = np.repeat(side, d)
         mine = (e >= 0) & dm.owned(e)
         e, s, sgn = e[mine], s[mine], sgn[mine]
+        self.e, self.s, self.sgn = e, s, sgn
         self.comm = dm.comm
         self.lo = dm.start * d
         self.n_local, self.n_global, self.bs = dm.num_owned * d, dm.num_global * d, d
@@ -135,9 +140,14 @@ class DistributedIterativeSolver(IterativeSolver):
         return rigid_motions(xy[mine] - centre, block[mine] - dm.start, dm.num_owned * dm.d, comm)
 
     def transform(self, A: PETSc.Mat) -> tuple[PETSc.Mat, DistributedPhantomBasis]:
-        """T^T A T (a new matrix; A is left as it is)."""
-        with product_data_cleared():
-            A_t = A.PtAP(self.basis.T)
+        """T^T A T: A itself, changed in place where its pattern allows
+        (transform_in_place), else a new matrix by PETSc's PtAP (A left as
+        it is): use A only through the returned matrix."""
+        rows = self._owned_rows(crack_band(self.model, 1))
+        A_t = transform_in_place(self.basis, A, rows)
+        if A_t is None:
+            with product_data_cleared():
+                A_t = A.PtAP(self.basis.T)
         A_t.setOption(PETSc.Mat.Option.SYMMETRIC, True)
         self._K = A_t
         return A_t, self.basis
@@ -169,3 +179,95 @@ class DistributedIterativeSolver(IterativeSolver):
     def destroy(self) -> None:
         super().destroy()
         self.basis.destroy()
+
+
+def transform_in_place(basis: DistributedPhantomBasis, A: PETSc.Mat, band: np.ndarray) -> PETSc.Mat | None:
+    """T^T A T in A's storage (A returned, changed), or None (A untouched)
+    if a changed entry lies outside A's pattern on any process.
+
+    As the serial solvers.phantom.transform_matrix: T differs from the
+    identity only on the Heaviside nodes' dofs J, so T^T A T differs from A
+    only in the rows coupled to J: (A T)[r, :] off J, T_JJ^T (A T)[J, :] on
+    J. Each process takes its owned rows among `band` (every owned row
+    coupled to a Heaviside dof, its own or a ghost's: the enriched nodes
+    with one ring of neighbours, and every enriched dof), their columns'
+    rows of T from the columns' owners (one scatter of the base dof and
+    side of every Heaviside dof), and adds the change into its rows. The
+    rows of J it owns need only rows of T it owns (a pseudo-node belongs to
+    its base node's owner). Work and memory in proportion to the band;
+    no copy of A (PtAP: the matrix again and the product A T)."""
+    comm = basis.comm
+    lo, hi = A.getOwnershipRange()
+    J = np.union1d(basis.s, basis.e).astype(np.int64)  # the owned touched dofs
+    R = np.union1d(band, J)
+    isrow = PETSc.IS().createGeneral(R.astype(PETSc.IntType), comm=comm)
+    iscol = PETSc.IS().createStride(hi - lo, lo, 1, comm=comm)
+    sub = A.createSubMatrix(isrow, iscol)  # (its columns are A's: each process gave its own range)
+    indptr, indices, data = sub.getValuesCSR()
+    sub.destroy()
+    isrow.destroy()
+    iscol.destroy()
+    cols = np.unique(indices)
+    side, base = _heaviside_columns(basis, cols)
+    # Every column the rows reach, and the base dofs of the Heaviside ones.
+    heav = side != 0.0
+    U = np.union1d(cols, base[heav])
+    ci = np.searchsorted(U, cols)
+    S = sp.csr_matrix((data, np.searchsorted(U, indices), indptr), shape=(R.size, U.size))
+    # T's rows for the columns (in U): a = s/2 p - s/2 q on a Heaviside dof, else the identity.
+    hc = np.flatnonzero(heav)
+    tr = np.concatenate([np.flatnonzero(~heav), hc, hc])
+    tc = np.concatenate([ci[~heav], np.searchsorted(U, base[hc]), ci[hc]])
+    tv = np.concatenate([np.ones(int((~heav).sum())), 0.5 * side[hc], -0.5 * side[hc]])
+    T_cols = sp.csr_matrix((tv, (tr, tc)), shape=(cols.size, U.size))
+    on_cols = sp.csr_matrix((np.ones(cols.size), (ci, np.arange(cols.size))), shape=(U.size, cols.size))
+    ST = (S @ on_cols @ T_cols).tocsr()  # (A T) on the rows R, columns in U
+    posJ = np.searchsorted(R, J)
+    # T_JJ (owned J): rows s: the identity; rows e: s/2 at s, -s/2 at e.
+    pe, ps = np.searchsorted(J, basis.e), np.searchsorted(J, basis.s)
+    std = np.setdiff1d(np.arange(J.size), pe)
+    T_JJ = sp.csr_matrix((np.concatenate([np.ones(std.size), 0.5 * basis.sgn, -0.5 * basis.sgn]),
+                          (np.concatenate([std, pe, pe]), np.concatenate([std, ps, pe]))), shape=(J.size, J.size))
+    keep = np.ones(R.size, dtype=bool)
+    keep[posJ] = False
+    new = sp.vstack([ST[keep], (T_JJ.T.tocsr() @ ST[posJ]).tocsr()], format="csr")  # (all CSR: the fast stack)
+    old = sp.vstack([S[keep], S[posJ]], format="csr")
+    order = np.concatenate([R[keep], J])
+    delta = (new - old).tocsr()
+    delta.eliminate_zeros()
+    pattern = lambda M: sp.csr_matrix((np.ones(M.nnz), M.indices, M.indptr), shape=M.shape)  # noqa: E731
+    fits = pattern(delta).multiply(pattern(old)).nnz == delta.nnz
+    if not comm.allreduce(bool(fits), op=_land()):
+        return None
+    A.setValuesIJV(delta.indptr.astype(PETSc.IntType), U[delta.indices].astype(PETSc.IntType), delta.data,
+                   addv=PETSc.InsertMode.ADD_VALUES, rowmap=order.astype(PETSc.IntType))
+    A.assemble()
+    return A
+
+
+def _heaviside_columns(basis: DistributedPhantomBasis, cols: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For global dofs `cols` (sorted), the side s of each that is a
+    Heaviside dof (0 elsewhere) and its base dof, from their owners."""
+    comm = basis.comm
+    lo = basis.lo
+    side = PETSc.Vec().createMPI((basis.n_local, basis.n_global), comm=comm)
+    base = side.duplicate()
+    side.set(0.0)
+    base.set(-1.0)
+    side.array[basis.e - lo] = basis.sgn
+    base.array[basis.e - lo] = basis.s  # (exact in doubles below 2^53)
+    out = []
+    for v in (side, base):
+        w = PETSc.Vec().createSeq(cols.size, comm=PETSc.COMM_SELF)
+        src = PETSc.IS().createGeneral(cols.astype(PETSc.IntType), comm=PETSc.COMM_SELF)
+        sc = PETSc.Scatter().create(v, src, w, None)
+        sc.scatter(v, w, addv=PETSc.InsertMode.INSERT_VALUES, mode=PETSc.ScatterMode.FORWARD)
+        out.append(w.array.copy())
+        for o in (w, src, sc, v):
+            o.destroy()
+    return out[0], np.rint(out[1]).astype(np.int64)
+
+
+def _land():
+    from mpi4py import MPI
+    return MPI.LAND
