@@ -42,14 +42,13 @@ def refuse_unless_distributed(scene: Scene) -> None:
     and friction (each step on the one matrix, the active set, friction
     states and slips carried from step to step, by the direct solver); the
     direct solver, also with options.rescale = "nodal" (without contact),
-    and the iterative one (without contact or a load path); K by the
-    interaction integral (2D tips, 3D front points)."""
+    and the iterative one without contact (a single solve, a load path, a
+    life's load levels); K by the interaction integral (2D tips, 3D front
+    points)."""
     comm = scene.mesh.mesh.comm
     o = scene.options
     contact = o.contact != "none"
     for what, used in [
-            ("options.solver = 'iterative' with a load_path",
-             o.solver == "iterative" and scene.load_path is not None),
             ("options.solver = 'iterative' with options.contact", o.solver == "iterative" and contact),
             ("options.rescale = 'nodal' with options.contact", o.rescale == "nodal" and contact)]:
         if used:

@@ -12,6 +12,7 @@ only the rows of grouped dofs are extracted from the matrix.
 from __future__ import annotations
 
 import time
+import typing
 
 import numpy as np
 import scipy.sparse as sp
@@ -151,6 +152,12 @@ def rescale_distributed(model: XfemModel, A: PETSc.Mat, rhs: list[np.ndarray]
     T = nodal_transform_distributed(model, A)
     A_t = A.PtAP(T)
     A.destroy()
+    return A_t, transposed_products(T, rhs), T, {"rescale": time.perf_counter() - t0}
+
+
+def transposed_products(T: PETSc.Mat, rhs: typing.Sequence[np.ndarray]) -> list[np.ndarray]:
+    """Collective: T^T b for each b of rhs (this process's owned entries of
+    T's rows; the results its owned entries of T's columns)."""
     out = []
     b, bt = T.createVecLeft(), T.createVecRight()
     for v in rhs:
@@ -159,7 +166,7 @@ def rescale_distributed(model: XfemModel, A: PETSc.Mat, rhs: list[np.ndarray]
         out.append(bt.array.copy())
     for o in (b, bt):
         o.destroy()
-    return A_t, out, T, {"rescale": time.perf_counter() - t0}
+    return out
 
 
 def from_basis(T: PETSc.Mat | None, x: PETSc.Vec) -> PETSc.Vec:
