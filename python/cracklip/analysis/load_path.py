@@ -21,8 +21,8 @@ import typing
 import numpy as np
 
 from ..contact.friction import STATE_NAMES, solve_friction
-from ..contact.frictionless import (contact_constant, create_contact_system, distributed_saddle, owned_product,
-                                   solve_frictionless)
+from ..contact.frictionless import (contact_constant, create_contact_system, distributed_saddle, in_basis,
+                                   owned_product, solve_frictionless)
 from ..model.assembly import assemble_distributed_system_groups, assemble_system_groups
 from ..model.distributed import to_local
 from ..model.model import create_model
@@ -119,10 +119,7 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
     physical = cs = None
     if contact:
         physical = create_contact_system(unit)
-        cs = physical
-        if T is not None:
-            cs = dataclasses.replace(physical, B=(physical.B @ T).tocsr(),
-                                     Bt=None if physical.Bt is None else (physical.Bt @ T).tocsr())
+        cs = in_basis(physical, T if T is not None else T_mpi)  # (B T, B_t T in the solver's basis)
     c = contact_constant(unit)
     n = A.getLocalSize()[0]  # (the model's dofs in serial; this process's owned ones under mpirun)
     m = cs.num_multipliers if cs is not None else 0
@@ -249,10 +246,7 @@ class LevelSolver:
             # (under mpirun the distributed saddle takes A itself: no serial copy of the stiffness)
             self.K = self.A if self.model.distributed else self.linear.stiffness(self.A)
             self.physical = create_contact_system(self.unit)  # (collective; whole on every process)
-            self.cs = self.physical
-            if self.T is not None:
-                self.cs = dataclasses.replace(self.physical, B=(self.physical.B @ self.T).tocsr(),
-                                              Bt=None if self.physical.Bt is None else (self.physical.Bt @ self.T).tocsr())
+            self.cs = in_basis(self.physical, self.T if self.T is not None else self.T_mpi)
         return self.cs
 
     def solve(self, states: list[dict[str, float]], contact: bool, names: list[str] | None = None) -> list[Solution]:

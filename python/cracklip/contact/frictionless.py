@@ -26,6 +26,7 @@ from .. import _cracklip
 from ..errors import CracklipError, SolverError
 from ..model.model import XfemModel
 from ..solvers.checked import scipy_from_petsc, solve_checked
+from ..solvers.rescaling import times_basis
 if typing.TYPE_CHECKING:
     from ..solvers.direct import LinearSolver
 from ..scene.processes import gathered, reduced
@@ -169,6 +170,17 @@ def create_contact_system(model: XfemModel) -> ContactSystem:
     return ContactSystem(space, R, B.tocsr(), M, g, Bt, gt, g_groups, gt_groups, band.space)
 
 
+def in_basis(physical: ContactSystem, T: "sp.spmatrix | PETSc.Mat | None") -> ContactSystem:
+    """The contact system on u = T y (a solver path's basis: the nodal
+    rescaling, the phantom-node basis): B T and B_t T (solvers.rescaling.
+    times_basis; collective for a distributed T), the rest unchanged;
+    physical itself without T."""
+    if T is None:
+        return physical
+    return dataclasses.replace(physical, B=times_basis(physical.B, T),
+                               Bt=None if physical.Bt is None else times_basis(physical.Bt, T))
+
+
 def _columns(model: XfemModel) -> tuple[np.ndarray, int]:
     """The column of B of every local dof and the number of columns: the dof
     itself in serial, its global dof under MPI (model.dofs)."""
@@ -294,16 +306,18 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
 
     transform: if A and b are rescaled (T^T K T, T^T f), the T: the
     constraints act on u = T y, the returned u is y, info["system"] keeps
-    the unscaled B. linear: the solver path of every saddle-point solve
+    the unscaled B. Under mpirun (direct path) A is distributed, T too
+    (solvers.rescaling.rescale_distributed) and u this process's owned
+    entries of y. linear: the solver path of every saddle-point solve
     (cracklip.solvers; default: solve_checked's MUMPS LU)."""
     physical = create_contact_system(model)
-    if model.distributed:  # (direct path, no transform)
-        saddle = distributed_saddle(A, b.array_r, physical, model.scene.options.residual_tol)
-        u, info = solve_frictionless(A, b.array_r.copy(), physical, model.scene.options, contact_constant(model),
+    cs = in_basis(physical, transform)
+    if model.distributed:  # (direct path)
+        saddle = distributed_saddle(A, b.array_r, cs, model.scene.options.residual_tol)
+        u, info = solve_frictionless(A, b.array_r.copy(), cs, model.scene.options, contact_constant(model),
                                      saddle=saddle)
         info["system"] = physical
         return u, info
-    cs = physical if transform is None else dataclasses.replace(physical, B=(physical.B @ transform).tocsr())
     K = scipy_from_petsc(A) if linear is None else linear.stiffness(A)
     u, info = solve_frictionless(K, b.array.copy(), cs, model.scene.options,
                                  contact_constant(model), linear=linear)

@@ -41,16 +41,15 @@ def refuse_unless_distributed(scene: Scene) -> None:
     conditions and symmetry planes; a load path, with or without contact
     and friction (each step on the one matrix, the active set, friction
     states and slips carried from step to step, by the direct solver); the
-    direct solver, also with options.rescale = "nodal" (without contact),
-    and the iterative one without contact (a single solve, a load path, a
-    life's load levels); K by the interaction integral (2D tips, 3D front
-    points)."""
+    direct solver, also with options.rescale = "nodal" (with contact too:
+    B T and B_t T), and the iterative one without contact (a single solve,
+    a load path, a life's load levels); K by the interaction integral (2D
+    tips, 3D front points)."""
     comm = scene.mesh.mesh.comm
     o = scene.options
     contact = o.contact != "none"
     for what, used in [
-            ("options.solver = 'iterative' with options.contact", o.solver == "iterative" and contact),
-            ("options.rescale = 'nodal' with options.contact", o.rescale == "nodal" and contact)]:
+            ("options.solver = 'iterative' with options.contact", o.solver == "iterative" and contact)]:
         if used:
             not_parallel(what, comm)
 

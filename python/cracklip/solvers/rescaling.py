@@ -178,3 +178,22 @@ def from_basis(T: PETSc.Mat | None, x: PETSc.Vec) -> PETSc.Vec:
     T.mult(x, u)
     x.destroy()
     return u
+
+
+def times_basis(C: sp.csr_matrix, T: "PETSc.Mat | sp.spmatrix") -> sp.csr_matrix:
+    """C T: constraint rows C acting on u = T y (the contact couplings B,
+    B_t in a solver path's basis). Serial T (scipy): C @ T. A distributed T
+    (PETSc, this process's rows; C whole on every process, its columns T's
+    global rows; collective): each process's columns of C times its rows
+    of T, summed over the processes; whole on every process."""
+    if not isinstance(T, PETSc.Mat):
+        return (C @ T).tocsr()
+    from ..scene.processes import gathered
+    lo, hi = T.getOwnershipRange()
+    indptr, indices, data = T.getValuesCSR()
+    rows = sp.csr_matrix((data, indices, indptr), shape=(hi - lo, T.getSize()[1]))
+    part = (C[:, lo:hi] @ rows).tocoo()
+    r, c, v = gathered(T.getComm().tompi4py(), [part.row, part.col, part.data])
+    out = sp.csr_matrix((v, (r, c)), shape=(C.shape[0], T.getSize()[1]))
+    out.sort_indices()
+    return out
