@@ -61,7 +61,7 @@ def _assembled_groups(model, unit) -> tuple:
     if model.distributed:
         A, rhs, timings = assemble_distributed_system_groups(unit)
         model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
-        linear = create_distributed_linear_solver(unit, unit.scene.options.contact != "none" and bool(model.cracks))
+        linear = create_distributed_linear_solver(unit)
         A, values, T_mpi, t_basis = to_distributed_solver_basis(unit, linear, A, list(rhs.values()))
         T = None
     else:
@@ -150,7 +150,7 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
                         state, sign = info["state"], info["sign"]
                         s_old = (owned_product(A, cs.Bt, y) if distributed else cs.Bt @ y) - g_t
                     else:
-                        saddle = distributed_saddle(A, f, work, opts.residual_tol) if distributed else None
+                        saddle = distributed_saddle(A, f, work, opts.residual_tol, linear) if distributed else None
                         y, info = solve_frictionless(K, f, work, opts, c, active, linear, saddle)
                         active = info["active"]
                     iterations.append(int(info["iterations"]))
@@ -289,7 +289,7 @@ class LevelSolver:
         if not self.model.distributed:
             return solve_frictionless(self.K, f, work, opts, c, self.active, self.linear)
         u, info = solve_frictionless(self.A, f, work, opts, c, self.active,
-                                     saddle=distributed_saddle(self.A, f, work, opts.residual_tol))
+                                     saddle=distributed_saddle(self.A, f, work, opts.residual_tol, self.linear))
         x = self.A.createVecRight()
         x.array[:] = u
         return _local(self.model, self.T_mpi, x), info

@@ -16,7 +16,7 @@ from ..contact.frictionless import solve_contact
 from ..errors import InputError, SolverError
 from ..model.assembly import assemble_distributed_system, assemble_system, elasticity_form
 from ..model.distributed import to_local
-from ..model.model import create_model, refuse_unless_distributed
+from ..model.model import create_model
 from ..post.solution import Solution, create_solution
 from ..scene.mesh_estimate import release_memory
 from ..scene.processes import not_parallel
@@ -120,9 +120,9 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
 
 def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     """solve() on several processes (mpirun; issue 40 steps 2 and 4): open
-    cracks in 2D and 3D and frictionless contact (the saddle point by
-    parallel MUMPS, the active set the same on every process); the direct
-    solver (parallel MUMPS) or, without contact, the iterative one
+    cracks in 2D and 3D and frictionless contact (the saddle point
+    distributed, the active set the same on every process); the direct
+    solver (parallel MUMPS, also nodally rescaled) or the iterative one
     (Options.solver, choose_solver; solvers.distributed_iterative); a load
     path, with or without contact, and friction by load_path.solve_path on
     the same distributed matrix. The
@@ -130,7 +130,6 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     and ghost nodes); K (Solution.stress_intensity_factors) is summed over
     processes."""
     comm = scene.mesh.mesh.comm
-    refuse_unless_distributed(scene)
     if condition_number:
         not_parallel("the condition number", comm)
     if scene.load_path is not None or scene.options.friction > 0.0:
@@ -144,7 +143,7 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     A, b, timings = assemble_distributed_system(unit)
     model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
     contacting = scene.options.contact != "none" and bool(model.cracks)
-    linear = create_distributed_linear_solver(unit, contacting)  # Options.solver on the global sizes
+    linear = create_distributed_linear_solver(unit)  # Options.solver on the global sizes
     what = "X-FEM stiffness system"
     contact = {}
     try:
@@ -155,7 +154,7 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
         with record_solves() as solves:
             t0 = time.perf_counter()
             if contacting:  # the saddle point distributed, the active set alike on every process
-                u_owned, contact = solve_contact(unit, A, b, transform=T)
+                u_owned, contact = solve_contact(unit, A, b, transform=T, linear=linear)
                 contact["system"].g = contact["system"].g / E  # B u = g in the scene's units
                 x = A.createVecRight()
                 x.array[:] = u_owned

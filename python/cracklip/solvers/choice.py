@@ -2,7 +2,6 @@
 and the system in that path's basis."""
 from __future__ import annotations
 
-import logging
 import time
 import typing
 
@@ -18,9 +17,6 @@ from .direct import DirectSolver, LinearSolver
 from .distributed_iterative import DistributedIterativeSolver
 from .iterative import IterativeSolver
 from .rescaling import nodal_transform, rescale_distributed, rescale_matrix, transposed_products
-
-
-logger = logging.getLogger(__name__)
 
 
 #: Options.solver = "auto": measured on this kind of machine (2 cores,
@@ -122,20 +118,14 @@ def create_linear_solver(model: "XfemModel") -> LinearSolver:
     return IterativeSolver(model, fallback=model.scene.options.solver == "auto")
 
 
-def create_distributed_linear_solver(model: "XfemModel", contact: bool) -> LinearSolver:
+def create_distributed_linear_solver(model: "XfemModel") -> LinearSolver:
     """The solver path for one process's part of a distributed model
     (model.distributed): choose_solver on the global sizes (the same answer
-    on every process): DirectSolver (parallel MUMPS) or
-    DistributedIterativeSolver. With contact, "auto" takes the direct path
-    (an explicit "iterative" with contact is refused by
-    model.refuse_unless_distributed)."""
+    on every process and as serially): DirectSolver (parallel MUMPS) or
+    DistributedIterativeSolver."""
     dm = model.dofs
     n = dm.num_global * dm.d
     which = choose_solver(model.scene.options, n, n - model.gdim * model.V.dofmap.index_map.size_global, model.gdim)
-    if contact and which == "iterative":
-        logger.info("options.solver = 'auto' would take the iterative solver at %d dofs; under mpirun contact "
-                    "is solved by the direct one (parallel MUMPS)", n)
-        which = "direct"
     if which == "direct":
         return DirectSolver()
     return DistributedIterativeSolver(model, fallback=model.scene.options.solver == "auto")
