@@ -174,8 +174,9 @@ def friction_saddle(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: ContactSy
     distributed PETSc stiffness, f this process's owned entries, cs whole
     on every process): friction_rows border K as one distributed matrix
     (solvers/saddle.py bordered_matrix, the rows on the last process) solved
-    by parallel MUMPS or linear (frictionless.solve_bordered): u this process's owned
-    dofs, the multipliers broadcast by the process holding their rows, B u
+    by parallel MUMPS, or by linear if it is the iterative path
+    (frictionless.solve_bordered): u this process's owned dofs, the
+    multipliers broadcast by the process holding their rows, B u
     and B_t u summed over the processes' owned dofs and broadcast by rank 0
     (owned_product), so every process classifies the same numbers and takes
     the same states and slip directions."""

@@ -307,8 +307,10 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
     transform: if A and b are rescaled (T^T K T, T^T f), the T: the
     constraints act on u = T y, the returned u is y, info["system"] keeps
     the unscaled B. Under mpirun A is distributed, T too (solvers.choice.
-    to_distributed_solver_basis) and u this process's owned entries of y. linear: the solver path of every saddle-point solve
-    (cracklip.solvers; default: solve_checked's MUMPS LU)."""
+    to_distributed_solver_basis) and u this process's owned entries of y.
+    linear: the solver path of every saddle-point solve (cracklip.solvers;
+    default: solve_checked's MUMPS LU; under mpirun the distributed
+    iterative path if given, else parallel MUMPS)."""
     physical = create_contact_system(model)
     cs = in_basis(physical, transform)
     if model.distributed:

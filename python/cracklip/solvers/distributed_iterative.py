@@ -98,8 +98,9 @@ class DistributedPhantomBasis:
 class DistributedIterativeSolver(IterativeSolver):
     """IterativeSolver on one process's part of a distributed model: the
     global, owned counterparts of the serial solver's numbering (module
-    doc). transform(A) gives T^T A T; to_phantom / from_phantom carry the
-    loads and the solution between the bases."""
+    doc). transform(A) gives T^T A T and the basis, whose distributed T
+    carries the loads (T^T b) and the solution (u = T y) between the bases
+    (solvers.choice.to_distributed_solver_basis, rescaling.from_basis)."""
 
     constrained_coarse = False  # (a serial LU of GAMG's coarse operator: not distributed)
 
@@ -152,18 +153,6 @@ class DistributedIterativeSolver(IterativeSolver):
         A_t.setOption(PETSc.Mat.Option.SYMMETRIC, True)
         self._K = A_t
         return A_t, self.basis
-
-    def to_phantom(self, b: PETSc.Vec) -> PETSc.Vec:
-        """T^T b."""
-        out = self.basis.T.createVecRight()
-        self.basis.T.multTranspose(b, out)
-        return out
-
-    def from_phantom(self, y: PETSc.Vec) -> PETSc.Vec:
-        """u = T y."""
-        out = self.basis.T.createVecLeft()
-        self.basis.T.mult(y, out)
-        return out
 
     def _grow_band(self, K: PETSc.Mat, rings: int) -> np.ndarray:
         """The owned band rows grown by `rings` rings through K's graph
