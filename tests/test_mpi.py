@@ -1237,25 +1237,30 @@ def test_grow_2d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_p
     crack with friction (2 steps, 2 tips) K to 7e-14, the kink to 2e-13. (The hole_fatigue path left the serial one by
     2.3e-4 in K at step 1 in half of the runs until the SIF domain's
     admissible radius stopped short of its bounding node:
-    tip_regions.RADIUS_MARGIN.)"""
+    tip_regions.RADIUS_MARGIN.) On the iterative path (options.solver =
+    "iterative", run by test_grow_life_closed_by_contact_same_on_one_and_
+    two_processes) the bar is issue 40's 1e-6 for growth paths: the
+    fatigue edge crack's K_II (3.8e-4 against K_I 1.1) to 7.5e-8 of its
+    own largest (2.3e-11 of K_I), the rest to 1e-8."""
     out, serial, a, b = _grow_both(scene, settings, tmp_path)
+    tol = 1e-6 if 'options.solver="iterative"' in settings else 1e-8
     tips = [[r for step in res["per_step"] for r in step["tips"]] for res in (a, b)]
     assert [(r["crack"], r["end"], r["status"]) for r in tips[0]] == \
         [(r["crack"], r["end"], r["status"]) for r in tips[1]]
     assert len(tips[0]) >= 3
     size = max(abs(v) for r in tips[0] for v in (r["x"], r["y"]))
     for key in ("x", "y", "length"):
-        assert max(abs(ra[key] - rb[key]) for ra, rb in zip(*tips)) <= 1e-8 * size, key
+        assert max(abs(ra[key] - rb[key]) for ra, rb in zip(*tips)) <= tol * size, key
     for key in ("K_I", "K_II", "kink_deg", "N"):
-        assert _largest_difference([r[key] for r in tips[0]], [r[key] for r in tips[1]]) <= 1e-8, key
+        assert _largest_difference([r[key] for r in tips[0]], [r[key] for r in tips[1]]) <= tol, key
     if a["cycles"] is not None:
-        assert _relative(a["cycles"], b["cycles"], a["cycles"]) <= 1e-8
+        assert _relative(a["cycles"], b["cycles"], a["cycles"]) <= tol
     if a["life"] is not None:  # the residual strength per step (from the ligament's net-section stress)
         rs = [[c["multiple"] for c in res["life"]["residual_strength"]] for res in (a, b)]
-        assert len(rs[0]) > 0 and _largest_difference(*rs) <= 1e-8
+        assert len(rs[0]) > 0 and _largest_difference(*rs) <= tol
         _life_cycles_same(a, b)
     pa, pb = (np.asarray(res["final"]["cracks"][0]["points"]) for res in (a, b))
-    assert pa.shape == pb.shape and np.abs(pa - pb).max() <= 1e-8 * size
+    assert pa.shape == pb.shape and np.abs(pa - pb).max() <= tol * size
     rows = [(d / "path.csv").read_text().splitlines() for d in (serial, out)]
     assert rows[0][0] == rows[1][0] and len(rows[0]) == len(rows[1])
 
@@ -1312,7 +1317,16 @@ def test_grow_3d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_p
     # ground-air-ground flights: the ground level closes the corner crack (3D contact)
     (test_grow_3d_open_crack_same_on_one_and_two_processes, "corner_crack_gag.toml",
      ["--set", "mesh.refine[0].h=0.2", "--set", "options.radius=0.5", "--set", "growth.steps=2",
-      "--set", "outputs.vtu=false"])], ids=["hole-spectrum-2d", "corner-gag-3d"])
+      "--set", "outputs.vtu=false"]),
+    # the spectrum life at a hole on the iterative path (its levels' contact solves by CG on the saddle point)
+    (test_grow_2d_open_crack_same_on_one_and_two_processes, "hole_crack_spectrum.toml",
+     ["--set", "mesh.refine[0].h=1.0", "--set", "mesh.h=10", "--set", "growth.steps=2", "--set", "outputs.vtu=false",
+      *ITERATIVE]),
+    # the fatigue edge crack on the iterative path: its cycle a load path with contact
+    (test_grow_2d_open_crack_same_on_one_and_two_processes, "fatigue_edge_crack.toml",
+     ["--set", "mesh.h=0.15", "--set", "mesh.refine[0].h=0.03", "--set", "growth.steps=2", "--set", "outputs.vtu=false",
+      *ITERATIVE])],
+    ids=["hole-spectrum-2d", "corner-gag-3d", "hole-spectrum-2d-iterative", "fatigue-edge-2d-iterative"])
 def test_grow_life_closed_by_contact_same_on_one_and_two_processes(grown_same, scene, settings, tmp_path):
     """`cracklip grow` of a shipped fatigue life closed by crack-lip contact
     (material.fatigue.closure = "contact": the closed load levels solved
@@ -1329,5 +1343,11 @@ def test_grow_life_closed_by_contact_same_on_one_and_two_processes(grown_same, s
     its ends: results.json's deepest and surface_points, indices, may
     differ from serial; in 1 run of 3 the start's front element size came
     out 0.14 % apart, a tie of nearest nodes in
-    front_growth.front_element_size. Neither is checked here.)"""
+    front_growth.front_element_size. Neither is checked here.) On the
+    iterative path (CG on each level's and each cycle's saddle point; the
+    bar 1e-6): the spectrum life K_I to 2.5e-11, K_II to 7e-12 of K_I's
+    largest, the tip positions to 1.7e-12 of the part, the cycles to
+    5e-11; the fatigue edge crack (its cycle a load path with contact) K
+    to 8e-12 .. 2.3e-11 of K_I's largest, the positions to 2.2e-12, the
+    cycles to 5.5e-12."""
     grown_same(scene, settings, tmp_path)
