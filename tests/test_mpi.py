@@ -870,48 +870,11 @@ def test_check_friction_scene_same_on_one_and_two_processes(scene):
 
 #: options.rescale = "nodal" by --set.
 NODAL = ["--set", 'options.rescale="nodal"']
-
-
-@pytest.mark.parametrize("scene, settings", [
-    ("block_uniform_pressure.toml", ["--set", "mesh.h=0.1"]),          # bilateral
-    ("hole_crack.toml", ["--set", "mesh.h=0.15"]),                      # unilateral, closed
-    (CANTILEVER_2D, []),                                                 # unilateral, partly open
-    (PENNY_BENT_3D, []),                                                 # 3D, partly open
-    ("frictional_crack.toml", FRICTION_SCENES["frictional_crack.toml"]),  # friction along its 3-step load path
-    (PENNY_BENT_3D, ["--set", "options.friction=0.5"]),                 # 3D friction, one multiplier slipping
-    (CANTILEVER_2D, TWO_STEPS)],                                         # frictionless along a load path
-    ids=["block-bilateral", "hole-unilateral", "cantilever-partly-open", "penny-bent-3d", "frictional-crack",
-         "penny-bent-friction-3d", "cantilever-load-path"])
-def test_run_contact_nodal_rescaling_same_on_one_and_two_processes(scene, settings, tmp_path):
-    """Crack-lip contact with options.rescale = "nodal" under mpirun -n 2:
-    the constraints act on u = T y, so the contact system is taken in the
-    rescaled basis, B T and B_t T (solvers/rescaling.py times_basis: each
-    process's columns of B times its rows of the distributed T, summed;
-    whole on every process, as B is), the distributed saddle point bordering
-    T^T K T. Frictionless (single solve and along a load path) and with
-    Coulomb friction, 2D and 3D: the same multipliers, active sets, states
-    and iteration counts as serial (itself rescaled), the pressure at every
-    lip sample to 1e-10 of its largest, K of every step to 1e-10 of the K
-    scale (the direct path's target). Measured (K / the largest difference
-    at the lip samples and in the pressure statistics): block 2e-15 /
-    2e-14, hole 9e-16 / 4e-15, cantilever 5e-13 / 1e-12, bent penny 4e-14
-    / 5e-13, frictional crack (3 steps) 2e-14 / 1e-12, bent penny with
-    friction 3e-13 / 3e-12, the cantilever's load path 4e-13 / 1e-12."""
-    if scene.startswith("title"):
-        path = tmp_path / "scene.toml"
-        path.write_text(scene)
-        scene = str(path)
-    out, serial, a, b = _run_both(scene, [*settings, *NODAL, "--no-estimate"], tmp_path)
-    for r in (a, b):
-        assert "solve.rescale" in r["timings"] and {s["solver"] for s in r["solution"]["solves"]} == {"direct"}
-    found = _assert_contact_as_serial(serial, out, a, b, k_tol=1e-10, p_tol=1e-10)
-    print(scene[-30:], found)
-
-
 #: The iterative solver by --set.
 ITERATIVE = ["--set", 'options.solver="iterative"']
 
 
+@pytest.mark.parametrize("basis, k_tol", [(NODAL, 1e-10), (ITERATIVE, 1e-6)], ids=["nodal", "iterative"])
 @pytest.mark.parametrize("scene, settings", [
     ("block_uniform_pressure.toml", ["--set", "mesh.h=0.1"]),          # bilateral
     ("hole_crack.toml", ["--set", "mesh.h=0.15"]),                      # unilateral, closed
@@ -922,33 +885,45 @@ ITERATIVE = ["--set", 'options.solver="iterative"']
     (CANTILEVER_2D, TWO_STEPS)],                                         # frictionless along a load path
     ids=["block-bilateral", "hole-unilateral", "cantilever-partly-open", "penny-bent-3d", "frictional-crack",
          "penny-bent-friction-3d", "cantilever-load-path"])
-def test_run_contact_iterative_same_on_one_and_two_processes(scene, settings, tmp_path):
-    """Crack-lip contact on the iterative path (options.solver =
-    "iterative") under mpirun -n 2: the contact system in the phantom-node
-    basis (B T, B_t T by times_basis), the saddle point bordering T^T K T
-    (one distributed AIJ, the multiplier rows on the last process) solved
-    by the serial path's Krylov + Schwarz {MUMPS band | GAMG | band} with
-    every multiplier in the band (CG; GMRES(30) for friction's unsymmetric
-    rows), warm-started from the last active set's solution. Frictionless
-    (single solve, along a load path) and with Coulomb friction, 2D and
+def test_run_contact_in_a_solver_basis_same_on_one_and_two_processes(scene, settings, basis, k_tol, tmp_path):
+    """Crack-lip contact in a solver path's basis under mpirun -n 2: the
+    constraints act on u = T y, so the contact system is taken in that
+    basis, B T and B_t T (solvers/rescaling.py times_basis: each process's
+    columns of B times its rows of the distributed T, summed; whole on
+    every process, as B is), the distributed saddle point bordering T^T K T
+    (one AIJ, the multiplier rows on the last process). Nodal rescaling
+    (options.rescale = "nodal", parallel MUMPS) and the iterative path
+    (options.solver = "iterative", the phantom-node basis: the serial
+    path's Krylov + Schwarz {MUMPS band | GAMG | band} with every
+    multiplier in the band, CG, GMRES(30) for friction's unsymmetric rows,
+    warm-started from the last active set's solution). Frictionless
+    (single solve and along a load path) and with Coulomb friction, 2D and
     3D: the same multipliers, active sets, states and iteration counts as
-    the serial iterative run, the pressure at every lip sample to 1e-6 of
-    its largest and K of every step to 1e-6 of the K scale (the iterative
-    path's bar). Measured (K / the largest difference at the lip samples
-    and in the pressure statistics): block 2.4e-12 / 2.2e-12, hole 5e-13 /
-    3e-12, cantilever 2.5e-13 / 1e-12, bent penny 3.5e-13 / 3.2e-12,
-    frictional crack 1.1e-11 / 5.4e-11, bent penny with friction 1.3e-12
-    / 1.3e-11, the cantilever's load path 7.6e-13 / 2e-12; CG or GMRES
-    iterations per solve within 3 of serial."""
+    serial (in the same basis), the pressure at every lip sample and K of
+    every step to k_tol (1e-10, the direct path's target; 1e-6 the
+    iterative one's) of their largest / the K scale. Measured (K / the
+    largest difference at the lip samples and in the pressure
+    statistics), nodal: block 2e-15 / 2e-14, hole 9e-16 / 4e-15,
+    cantilever 5e-13 / 1e-12, bent penny 4e-14 / 5e-13, frictional crack
+    (3 steps) 2e-14 / 1e-12, bent penny with friction 3e-13 / 3e-12, the
+    cantilever's load path 4e-13 / 1e-12; iterative: block 2.4e-12 /
+    2.2e-12, hole 5e-13 / 3e-12, cantilever 2.5e-13 / 1e-12, bent penny
+    3.5e-13 / 3.2e-12, frictional crack 1.1e-11 / 5.4e-11, bent penny with
+    friction 1.3e-12 / 1.3e-11, the cantilever's load path 7.6e-13 /
+    2e-12, CG or GMRES iterations per solve within 3 of serial."""
     if scene.startswith("title"):
         path = tmp_path / "scene.toml"
         path.write_text(scene)
         scene = str(path)
-    out, serial, a, b = _run_both(scene, [*settings, *ITERATIVE, "--no-estimate"], tmp_path)
+    out, serial, a, b = _run_both(scene, [*settings, *basis, "--no-estimate"], tmp_path)
     for r in (a, b):
-        assert {s["solver"] for s in r["solution"]["solves"]} == {"iterative"}, r["solution"]["solves"]
-    found = _assert_contact_as_serial(serial, out, a, b, k_tol=1e-6, p_tol=1e-6)
-    its = [[s["iterations"] for s in r["solution"]["solves"]] for r in (a, b)]
+        solvers = {s["solver"] for s in r["solution"]["solves"]}
+        if basis is NODAL:
+            assert "solve.rescale" in r["timings"] and solvers == {"direct"}, r["solution"]["solves"]
+        else:
+            assert solvers == {"iterative"}, r["solution"]["solves"]
+    found = _assert_contact_as_serial(serial, out, a, b, k_tol=k_tol, p_tol=k_tol)
+    its = [[s.get("iterations") for s in r["solution"]["solves"]] for r in (a, b)]
     print(scene[-30:], found, "iterations serial / 2 processes", its)
 
 
