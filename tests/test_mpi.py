@@ -8,19 +8,21 @@ of open 2D and 3D cracks on the direct path (results.json, crack.csv,
 sif.csv, solution.vtu, crack_lips.vtu, the PNGs written once, equal to
 serial), also with symmetry planes, a body force, an initial stress, a load
 path without contact and the nodal rescaling, and on the iterative path
-(equal to the serial iterative K to the Krylov tolerance); `run` with
-frictionless crack-lip contact in 2D and 3D (bilateral and unilateral: the
-same multipliers, active sets, pressures and K as serial), also along a
-load path, and Coulomb friction in 2D and 3D (the four shipped friction
-scenes, `run` and `check`: the same states, slips and iterations); `grow`
-of open 2D and 3D cracks (fixed increments, fatigue cycles, spectrum lives:
-the path, K per step and the cycles equal to serial, the files written
-once) and of a fatigue crack closed by contact at the cycle's minimum;
-and the commands that need no mesh (`life`, `check` of a life scene,
-`reference`), run by rank 0 with their files written once. What the
-distributed model does not do yet (model.refuse_unless_distributed) is
-refused with one ``cracklip: error: ... is not available under MPI yet``
-naming its scene key (rank 0) and exit status 2 on every process. Each
+(equal to the serial iterative K to the Krylov tolerance; also along a
+load path and at a life's load levels); `run` with frictionless crack-lip
+contact in 2D and 3D (bilateral and unilateral: the same multipliers,
+active sets, pressures and K as serial), also along a load path, nodally
+rescaled and on the iterative path, and Coulomb friction in 2D and 3D
+(the four shipped friction scenes, `run` and `check`: the same states,
+slips and iterations); `grow` of open 2D and 3D cracks (fixed
+increments, fatigue cycles, spectrum lives: the path, K per step and the
+cycles equal to serial, the files written once) and of a fatigue crack
+closed by contact at the cycle's minimum; and the commands that need no
+mesh (`life`, `check` of a life scene, `reference`), run by rank 0 with
+their files written once. What the distributed model does not do yet (a
+crack without a tip inside the part, `check --nodes`, the condition
+number) is refused with one ``cracklip: error: ... is not available under
+MPI yet`` naming it (rank 0) and exit status 2 on every process. Each
 case runs `mpirun --allow-run-as-root
 --oversubscribe -n 2 /usr/bin/python3 -m cracklip ...` with a timeout: a
 hang fails the test instead of stalling the suite.
@@ -96,33 +98,33 @@ def test_mpirun_is_installed():
     assert shutil.which("mpirun", path=ENV["PATH"]) is not None
 
 
-#: Contact with the nodal rescaling, not distributed yet.
-NODAL_CONTACT = ["--set", "options.contact=unilateral", "--set", 'options.rescale="nodal"']
-REFUSED_NODAL = "options.rescale = 'nodal' with options.contact"
+#: A crack across the whole part (no tip inside it): the pieces it may cut
+#: off are checked on one process only, not distributed yet.
+REFUSED_THROUGH = "a crack without a tip inside the part"
 
 
 @pytest.mark.parametrize("command", ["run", "check"])
 def test_2d_model_refused_not_crashed(command, tmp_path):
     """The issue's reproducer crashed both processes with SEGV (every process
-    passed the whole mesh to DOLFINx); now the mesh is made and what is not
-    distributed yet is refused collectively, by name (here the nodal
-    rescaling with contact on the block's lips)."""
+    passed the whole mesh to DOLFINx); now it runs (test_run_contact_same_on_one_and_two_processes),
+    and what is not distributed yet is refused collectively, by name (here
+    the block's crack carried across the whole block)."""
     extra = ["--out", str(tmp_path / "out")] if command != "check" else []
-    p = mpirun(command, str(SCENES / "block_uniform_pressure.toml"), *NODAL_CONTACT, *extra)
+    p = mpirun(command, str(SCENES / "block_uniform_pressure.toml"),
+               "--set", "cracks[0].points=[[-1.5,0.0],[1.5,0.0]]", *extra)
     assert_refused(p)
-    assert f"cracklip: error: {REFUSED_NODAL}" in p.stderr, p.stderr
+    assert f"cracklip: error: {REFUSED_THROUGH}" in p.stderr, p.stderr
 
 
 @pytest.mark.parametrize("command", ["run", "check"])
 def test_3d_refused_not_crashed(command, tmp_path):
-    """What a 3D part does not do under mpirun yet (here the iterative
-    solver with contact) is refused collectively, by its key."""
+    """What a 3D part does not do under mpirun yet (here a penny larger
+    than the box: a crack surface without a front inside the part) is
+    refused collectively, by name."""
     extra = ["--out", str(tmp_path / "out")] if command == "run" else []
-    p = mpirun(command, str(SCENES / "penny_crack.toml"), *SMALL_3D, "--set", "options.contact=unilateral",
-               "--set", 'options.solver="iterative"', *extra)
+    p = mpirun(command, str(SCENES / "penny_crack.toml"), *SMALL_3D, "--set", "cracks[0].ellipse.a=20.0", *extra)
     assert_refused(p)
-    assert "cracklip: error: options.solver = 'iterative' with options.contact is not available under MPI yet" \
-        in p.stderr, p.stderr
+    assert f"cracklip: error: {REFUSED_THROUGH}" in p.stderr, p.stderr
 
 
 def test_3d_grow_without_growth_table_printed_once(tmp_path):
@@ -319,12 +321,13 @@ def test_iterative_path_same_on_one_and_two_processes(scene, settings, exact):
 
 def test_open_crack_refusals_by_scene_key(tmp_path):
     """What the distributed model does not do yet stops with one message
-    naming the scene key (here the nodal rescaling with contact), on every
-    process, no hang."""
+    naming it (here a crack across the whole plate), on every process
+    through the Python API, no hang."""
     p = python_on(2, str(ROOT / "tests" / "mpi" / "open_crack.py"), str(SCENES / "pressurised_crack.toml"),
-                  "mesh.tip_h=0.1", "options.contact=unilateral", 'options.rescale="nodal"')
+                  "mesh.tip_h=0.1", "cracks[0].points=[[-11.0,0.0],[11.0,0.0]]")
     assert p.returncode != 0
-    assert f"{REFUSED_NODAL} is not available under MPI yet (2 processes)" in p.stderr, p.stderr[-3000:]
+    assert f"{REFUSED_THROUGH} (the pieces it may cut off are checked on one process only) is not available " \
+        "under MPI yet (2 processes)" in p.stderr, p.stderr[-3000:]
     assert "MPI_ABORT" not in p.stderr and "signal" not in p.stderr
 
 
@@ -599,6 +602,48 @@ def test_run_inclined_penny_iterative_same_on_one_and_two_processes(tmp_path):
         for k in ("K_I", "K_II", "K_III"):
             assert _relative(ra[k], rb[k], scale) <= 1e-6, (k, ra, rb)
             assert _relative(ra[k + "_error"], rb[k + "_error"], scale) <= 1e-6, (k, ra, rb)
+#: Two load steps of the scene's loads (half, then all of them).
+HALF_FULL = ["--set", 'load_path=[{name="half",factors={default=0.5}},{name="full",factors={default=1.0}}]']
+
+
+@pytest.mark.parametrize("scene, settings", [
+    # 2D: the shipped clamp-shear-unload path without its contact (three steps of two load groups)
+    ("frictional_crack.toml", ["--set", "mesh.h=0.2", "--set", "mesh.tip_h=0.05", "--set", "options.contact=none",
+                               "--set", "options.friction=0"]),
+    # 3D: front enrichment, the tip dofs left out of GAMG
+    ("penny_crack.toml", ["--set", "mesh.h=2.0", "--set", "mesh.tip_h=0.3", "--set", "mesh.crack_h=0.3",
+                          *HALF_FULL])], ids=["frictional-crack-2d", "penny-3d"])
+def test_run_iterative_load_path_same_on_one_and_two_processes(scene, settings, tmp_path):
+    """`cracklip run` of a load path with options.solver = "iterative"
+    under mpirun -n 2 (analysis/load_path.py: the distributed matrix put in
+    the phantom-node basis once, the GAMG hierarchy set up on the first
+    increment's solve and reused by every later one, as serially): every
+    solve (one per increment) iterative, the later ones reusing the set-up,
+    K of every step equal to the serial iterative run's to 1e-6 of the K
+    scale (the iterative path's bar; the Krylov solves stop at 1e-10), the
+    energy to 1e-8. Measured: frictional crack (3 steps, 6 increments)
+    1.2e-11 .. 2.2e-11, penny (2 steps) 3.2e-11 .. 5.6e-11."""
+    out, serial, a, b = _run_both(scene, [*settings, "--set", 'options.solver="iterative"', "--no-estimate"],
+                                  tmp_path)
+    for r in (a, b):
+        solves = r["solution"]["solves"]
+        assert len(solves) >= len(r["steps"]) > 1 and {s["solver"] for s in solves} == {"iterative"}, solves
+        assert [s["setup_reused"] for s in solves] == [False] + [True] * (len(solves) - 1), solves
+        assert all(s["relative_residual"] <= 1e-10 and 0 < s["iterations"] < 60 for s in solves), solves
+    modes = [k for k in ("K_I", "K_II", "K_III") if a["sifs"][0].get(k) is not None]
+    states = [(sa["sifs"], sb["sifs"]) for sa, sb in zip(a["steps"], b["steps"])]
+    scale = max(abs(r[k]) for sa, _ in states for r in sa for k in modes)
+    worst = 0.0
+    for sa, sb in states:
+        assert len(sa) == len(sb) > 0
+        for ra, rb in zip(sa, sb):
+            worst = max([worst] + [_relative(ra[k], rb[k], scale) for k in modes])
+    assert worst <= 1e-6, worst
+    print(scene, "K", worst)
+    assert _relative(a["solution"]["strain_energy"], b["solution"]["strain_energy"],
+                     a["solution"]["strain_energy"]) <= 1e-8
+
+
 #: A 2D cantilever under an end shear, its vertical crack across the neutral
 #: axis partly closed: the active set changes (7, 6, 5, 4, 4 of 12).
 CANTILEVER_2D = """title = "cracked cantilever under an end shear"
@@ -840,6 +885,65 @@ def test_check_friction_scene_same_on_one_and_two_processes(scene):
     assert _same(a, b, 1e-12), (a, b)
 
 
+#: options.rescale = "nodal" by --set.
+NODAL = ["--set", 'options.rescale="nodal"']
+#: The iterative solver by --set.
+ITERATIVE = ["--set", 'options.solver="iterative"']
+
+
+@pytest.mark.parametrize("basis, k_tol", [(NODAL, 1e-10), (ITERATIVE, 1e-6)], ids=["nodal", "iterative"])
+@pytest.mark.parametrize("scene, settings", [
+    ("block_uniform_pressure.toml", ["--set", "mesh.h=0.1"]),          # bilateral
+    ("hole_crack.toml", ["--set", "mesh.h=0.15"]),                      # unilateral, closed
+    (CANTILEVER_2D, []),                                                 # unilateral, partly open
+    (PENNY_BENT_3D, []),                                                 # 3D, partly open
+    ("frictional_crack.toml", FRICTION_SCENES["frictional_crack.toml"]),  # friction along its 3-step load path
+    (PENNY_BENT_3D, ["--set", "options.friction=0.5"]),                 # 3D friction, one multiplier slipping
+    (CANTILEVER_2D, TWO_STEPS)],                                         # frictionless along a load path
+    ids=["block-bilateral", "hole-unilateral", "cantilever-partly-open", "penny-bent-3d", "frictional-crack",
+         "penny-bent-friction-3d", "cantilever-load-path"])
+def test_run_contact_in_a_solver_basis_same_on_one_and_two_processes(scene, settings, basis, k_tol, tmp_path):
+    """Crack-lip contact in a solver path's basis under mpirun -n 2: the
+    constraints act on u = T y, so the contact system is taken in that
+    basis, B T and B_t T (solvers/rescaling.py times_basis: each process's
+    columns of B times its rows of the distributed T, summed; whole on
+    every process, as B is), the distributed saddle point bordering T^T K T
+    (one AIJ, the multiplier rows on the last process). Nodal rescaling
+    (options.rescale = "nodal", parallel MUMPS) and the iterative path
+    (options.solver = "iterative", the phantom-node basis: the serial
+    path's Krylov + Schwarz {MUMPS band | GAMG | band} with every
+    multiplier in the band, CG, GMRES(30) for friction's unsymmetric rows,
+    warm-started from the last active set's solution). Frictionless
+    (single solve and along a load path) and with Coulomb friction, 2D and
+    3D: the same multipliers, active sets, states and iteration counts as
+    serial (in the same basis), the pressure at every lip sample and K of
+    every step to k_tol (1e-10, the direct path's target; 1e-6 the
+    iterative one's) of their largest / the K scale. Measured (K / the
+    largest difference at the lip samples and in the pressure
+    statistics), nodal: block 2e-15 / 2e-14, hole 9e-16 / 4e-15,
+    cantilever 5e-13 / 1e-12, bent penny 4e-14 / 5e-13, frictional crack
+    (3 steps) 2e-14 / 1e-12, bent penny with friction 3e-13 / 3e-12, the
+    cantilever's load path 4e-13 / 1e-12; iterative: block 2.4e-12 /
+    2.2e-12, hole 5e-13 / 3e-12, cantilever 2.5e-13 / 1e-12, bent penny
+    3.5e-13 / 3.2e-12, frictional crack 1.1e-11 / 5.4e-11, bent penny with
+    friction 1.3e-12 / 1.3e-11, the cantilever's load path 7.6e-13 /
+    2e-12, CG or GMRES iterations per solve within 3 of serial."""
+    if scene.startswith("title"):
+        path = tmp_path / "scene.toml"
+        path.write_text(scene)
+        scene = str(path)
+    out, serial, a, b = _run_both(scene, [*settings, *basis, "--no-estimate"], tmp_path)
+    for r in (a, b):
+        solvers = {s["solver"] for s in r["solution"]["solves"]}
+        if basis is NODAL:
+            assert "solve.rescale" in r["timings"] and solvers == {"direct"}, r["solution"]["solves"]
+        else:
+            assert solvers == {"iterative"}, r["solution"]["solves"]
+    found = _assert_contact_as_serial(serial, out, a, b, k_tol=k_tol, p_tol=k_tol)
+    its = [[s.get("iterations") for s in r["solution"]["solves"]] for r in (a, b)]
+    print(scene[-30:], found, "iterations serial / 2 processes", its)
+
+
 def _two_groups(scene: str, tag: str, shear: str, axial: str) -> str:
     """The scene with its one traction on `tag` as load group "shear" and an
     axial traction on the same face as group "axial"."""
@@ -862,10 +966,21 @@ LEVELS_3D = [[True, {"shear": 1.0}], [True, {"axial": -1.0}], [False, {"shear": 
              [True, {"shear": -1.0, "axial": 0.1}]]
 
 
-@pytest.mark.parametrize("scene, levels", [
-    (_two_groups(CANTILEVER_2D, "right", "[0.0, -1.0e-5]", "[1.0e-5, 0.0]"), LEVELS_2D),
-    (_two_groups(PENNY_BENT_3D, "xmax", "[0.0, 0.0, -0.01]", "[0.01, 0.0, 0.0]"), LEVELS_3D)], ids=["2d", "3d"])
-def test_levels_with_contact_same_on_one_and_two_processes(scene, levels, tmp_path):
+LEVEL_SCENES = [_two_groups(CANTILEVER_2D, "right", "[0.0, -1.0e-5]", "[1.0e-5, 0.0]"),
+                _two_groups(PENNY_BENT_3D, "xmax", "[0.0, 0.0, -0.01]", "[0.01, 0.0, 0.0]")]
+
+
+@pytest.mark.parametrize("scene, levels, settings, k_tol", [
+    (LEVEL_SCENES[0], LEVELS_2D, [], 1e-10),
+    (LEVEL_SCENES[1], LEVELS_3D, [], 1e-10),
+    # nodally rescaled: the levels' contact system B T (times_basis) on T^T K T
+    (LEVEL_SCENES[0], LEVELS_2D, ['options.rescale="nodal"'], 1e-10),
+    (LEVEL_SCENES[1], LEVELS_3D, ['options.rescale="nodal"'], 1e-10),
+    # the iterative path: B T in the phantom basis, GAMG set up once for every level and active set
+    (LEVEL_SCENES[0], LEVELS_2D, ['options.solver="iterative"'], 1e-6),
+    (LEVEL_SCENES[1], LEVELS_3D, ['options.solver="iterative"'], 1e-6)],
+    ids=["2d", "3d", "2d-nodal", "3d-nodal", "2d-iterative", "3d-iterative"])
+def test_levels_with_contact_same_on_one_and_two_processes(scene, levels, settings, k_tol, tmp_path):
     """A fatigue life's load levels with frictionless contact
     (analysis.load_path.LevelSolver: one assembly, each level warm-started
     from the last one's active set, parallel MUMPS on the distributed saddle
@@ -875,10 +990,16 @@ def test_levels_with_contact_same_on_one_and_two_processes(scene, levels, tmp_pa
     largest, K to 1e-10 of the K scale. Measured: 2D K to 7e-12, the
     multipliers to 1e-12; 3D K to 4e-11 (the closed penny; 4e-13
     elsewhere), the multipliers to 8e-10 (closed) and 3e-13: the closed 3D
-    front's ill-conditioned multipliers (test_run_contact_same_on_one_and_two_processes)."""
+    front's ill-conditioned multipliers (test_run_contact_same_on_one_and_two_processes).
+    Nodally rescaled (options.rescale = "nodal"): 2D K to 1.1e-12, the
+    multipliers to 1.4e-12; 3D K to 2.9e-11, the multipliers to 4.4e-11.
+    On the iterative path (its bar: K to 1e-6, the multipliers to 1e-6 of
+    their largest; every solve iterative, the levels after the first
+    reusing GAMG): 2D K to 2.9e-12, the multipliers to 2.9e-12; 3D K to
+    2.5e-11, the multipliers to 7.6e-11."""
     path = tmp_path / "scene.toml"
     path.write_text(scene)
-    one, two = script_on_one_and_two("levels.py", str(path), json.dumps(levels))
+    one, two = script_on_one_and_two("levels.py", str(path), json.dumps(levels), *settings)
     assert (one["processes"], two["processes"], one["solves"], two["solves"]) == (1, 2, len(levels), len(levels))
     a, b = one["levels"], two["levels"]
     assert [(x["contact"], x["active"], x["history"]) for x in a] == [(x["contact"], x["active"], x["history"])
@@ -887,9 +1008,43 @@ def test_levels_with_contact_same_on_one_and_two_processes(scene, levels, tmp_pa
     m = len(a[0]["active"])
     assert 0 in counts and m in counts and any(0 < c < m for c in counts), counts  # open, closed, partly
     lam = max(max(np.abs(x["lambda"]), default=0.0) for x in a)
-    assert max(max(np.abs(np.subtract(x["lambda"], y["lambda"])), default=0.0) for x, y in zip(a, b)) <= 1e-8 * lam
+    assert max(max(np.abs(np.subtract(x["lambda"], y["lambda"])), default=0.0) for x, y in zip(a, b)) <= \
+        max(1e-8, k_tol) * lam
+    solver = "iterative" if settings == ['options.solver="iterative"'] else "direct"
+    for run in (one, two):
+        assert [x["solver"] for x in run["levels"]] == [solver] * len(levels), run["levels"]
+        assert [x["reused"] for x in run["levels"]] == [solver == "iterative" and k > 0 for k in range(len(levels))]
     scale = max(np.abs(x["sifs"]).max() for x in a)
-    assert max(np.abs(np.subtract(x["sifs"], y["sifs"])).max() for x, y in zip(a, b)) <= 1e-10 * scale
+    print("levels lambda", max(max(np.abs(np.subtract(x["lambda"], y["lambda"])), default=0.0)
+                               for x, y in zip(a, b)) / lam,
+          "K", max(np.abs(np.subtract(x["sifs"], y["sifs"])).max() for x, y in zip(a, b)) / scale)
+    assert max(np.abs(np.subtract(x["sifs"], y["sifs"])).max() for x, y in zip(a, b)) <= k_tol * scale
+
+
+@pytest.mark.parametrize("scene", [_two_groups(CANTILEVER_2D, "right", "[0.0, -1.0e-5]", "[1.0e-5, 0.0]"),
+                                   _two_groups(PENNY_BENT_3D, "xmax", "[0.0, 0.0, -0.01]", "[0.01, 0.0, 0.0]")],
+                         ids=["2d", "3d"])
+def test_levels_iterative_same_on_one_and_two_processes(scene, tmp_path):
+    """A fatigue life's load levels without contact on the iterative path
+    (analysis.load_path.LevelSolver, options.solver = "iterative") under
+    mpirun -n 2: the distributed matrix put in the phantom-node basis once,
+    GAMG set up by the first level's solve and reused by the later ones, as
+    serially; K of every level equal to the serial iterative K to 1e-6 of
+    the K scale. Measured: 2D 2.1e-12, 3D 5e-12."""
+    path = tmp_path / "scene.toml"
+    path.write_text(scene)
+    levels = [[False, {"shear": 1.0}], [False, {"axial": 1.0}], [False, {"shear": -1.0, "axial": 0.3}]]
+    one, two = script_on_one_and_two("levels.py", str(path), json.dumps(levels), "options.contact=none",
+                                     'options.solver="iterative"')
+    assert (one["processes"], two["processes"], one["solves"], two["solves"]) == (1, 2, 3, 3)
+    for run in (one, two):
+        assert [(x["solver"], x["reused"], x["contact"]) for x in run["levels"]] == \
+            [("iterative", False, False)] + [("iterative", True, False)] * 2, run
+    a, b = one["levels"], two["levels"]
+    scale = max(np.abs(x["sifs"]).max() for x in a)
+    worst = max(np.abs(np.subtract(x["sifs"], y["sifs"])).max() for x, y in zip(a, b)) / scale
+    print("levels K", worst)
+    assert worst <= 1e-6
 
 
 def test_3d_crack_in_one_corner_and_outside(tmp_path):
@@ -1075,25 +1230,30 @@ def test_grow_2d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_p
     crack with friction (2 steps, 2 tips) K to 7e-14, the kink to 2e-13. (The hole_fatigue path left the serial one by
     2.3e-4 in K at step 1 in half of the runs until the SIF domain's
     admissible radius stopped short of its bounding node:
-    tip_regions.RADIUS_MARGIN.)"""
+    tip_regions.RADIUS_MARGIN.) On the iterative path (options.solver =
+    "iterative", run by test_grow_life_closed_by_contact_same_on_one_and_
+    two_processes) the bar is issue 40's 1e-6 for growth paths: the
+    fatigue edge crack's K_II (3.8e-4 against K_I 1.1) to 7.5e-8 of its
+    own largest (2.3e-11 of K_I), the rest to 1e-8."""
     out, serial, a, b = _grow_both(scene, settings, tmp_path)
+    tol = 1e-6 if 'options.solver="iterative"' in settings else 1e-8
     tips = [[r for step in res["per_step"] for r in step["tips"]] for res in (a, b)]
     assert [(r["crack"], r["end"], r["status"]) for r in tips[0]] == \
         [(r["crack"], r["end"], r["status"]) for r in tips[1]]
     assert len(tips[0]) >= 3
     size = max(abs(v) for r in tips[0] for v in (r["x"], r["y"]))
     for key in ("x", "y", "length"):
-        assert max(abs(ra[key] - rb[key]) for ra, rb in zip(*tips)) <= 1e-8 * size, key
+        assert max(abs(ra[key] - rb[key]) for ra, rb in zip(*tips)) <= tol * size, key
     for key in ("K_I", "K_II", "kink_deg", "N"):
-        assert _largest_difference([r[key] for r in tips[0]], [r[key] for r in tips[1]]) <= 1e-8, key
+        assert _largest_difference([r[key] for r in tips[0]], [r[key] for r in tips[1]]) <= tol, key
     if a["cycles"] is not None:
-        assert _relative(a["cycles"], b["cycles"], a["cycles"]) <= 1e-8
+        assert _relative(a["cycles"], b["cycles"], a["cycles"]) <= tol
     if a["life"] is not None:  # the residual strength per step (from the ligament's net-section stress)
         rs = [[c["multiple"] for c in res["life"]["residual_strength"]] for res in (a, b)]
-        assert len(rs[0]) > 0 and _largest_difference(*rs) <= 1e-8
+        assert len(rs[0]) > 0 and _largest_difference(*rs) <= tol
         _life_cycles_same(a, b)
     pa, pb = (np.asarray(res["final"]["cracks"][0]["points"]) for res in (a, b))
-    assert pa.shape == pb.shape and np.abs(pa - pb).max() <= 1e-8 * size
+    assert pa.shape == pb.shape and np.abs(pa - pb).max() <= tol * size
     rows = [(d / "path.csv").read_text().splitlines() for d in (serial, out)]
     assert rows[0][0] == rows[1][0] and len(rows[0]) == len(rows[1])
 
@@ -1150,7 +1310,16 @@ def test_grow_3d_open_crack_same_on_one_and_two_processes(scene, settings, tmp_p
     # ground-air-ground flights: the ground level closes the corner crack (3D contact)
     (test_grow_3d_open_crack_same_on_one_and_two_processes, "corner_crack_gag.toml",
      ["--set", "mesh.refine[0].h=0.2", "--set", "options.radius=0.5", "--set", "growth.steps=2",
-      "--set", "outputs.vtu=false"])], ids=["hole-spectrum-2d", "corner-gag-3d"])
+      "--set", "outputs.vtu=false"]),
+    # the spectrum life at a hole on the iterative path (its levels' contact solves by CG on the saddle point)
+    (test_grow_2d_open_crack_same_on_one_and_two_processes, "hole_crack_spectrum.toml",
+     ["--set", "mesh.refine[0].h=1.0", "--set", "mesh.h=10", "--set", "growth.steps=2", "--set", "outputs.vtu=false",
+      *ITERATIVE]),
+    # the fatigue edge crack on the iterative path: its cycle a load path with contact
+    (test_grow_2d_open_crack_same_on_one_and_two_processes, "fatigue_edge_crack.toml",
+     ["--set", "mesh.h=0.15", "--set", "mesh.refine[0].h=0.03", "--set", "growth.steps=2", "--set", "outputs.vtu=false",
+      *ITERATIVE])],
+    ids=["hole-spectrum-2d", "corner-gag-3d", "hole-spectrum-2d-iterative", "fatigue-edge-2d-iterative"])
 def test_grow_life_closed_by_contact_same_on_one_and_two_processes(grown_same, scene, settings, tmp_path):
     """`cracklip grow` of a shipped fatigue life closed by crack-lip contact
     (material.fatigue.closure = "contact": the closed load levels solved
@@ -1167,5 +1336,11 @@ def test_grow_life_closed_by_contact_same_on_one_and_two_processes(grown_same, s
     its ends: results.json's deepest and surface_points, indices, may
     differ from serial; in 1 run of 3 the start's front element size came
     out 0.14 % apart, a tie of nearest nodes in
-    front_growth.front_element_size. Neither is checked here.)"""
+    front_growth.front_element_size. Neither is checked here.) On the
+    iterative path (CG on each level's and each cycle's saddle point; the
+    bar 1e-6): the spectrum life K_I to 2.5e-11, K_II to 7e-12 of K_I's
+    largest, the tip positions to 1.7e-12 of the part, the cycles to
+    5e-11; the fatigue edge crack (its cycle a load path with contact) K
+    to 8e-12 .. 2.3e-11 of K_I's largest, the positions to 2.2e-12, the
+    cycles to 5.5e-12."""
     grown_same(scene, settings, tmp_path)

@@ -10,6 +10,9 @@ set, a linear (contact-free) level between them. Prints one JSON line
   active      the final active set (0/1 per reduced multiplier; [] linear)
   history     active counts per active-set iteration
   lambda      the reduced multipliers ([] linear)
+  solver      the solver path of its solves ("direct" or "iterative")
+  reused      whether its solves reused the preconditioner (the
+              iterative path's AMG hierarchy; false on the direct path)
 
     python3 tests/mpi/levels.py SCENE STATES_JSON [KEY=VALUE ...]
 
@@ -34,7 +37,9 @@ try:
                               "sifs": [[r[k] for k in comps] for r in sol.stress_intensity_factors(None)],
                               "active": [int(a) for a in c["active"]] if c else [],
                               "history": [int(h) for h in c["history"]] if c else [],
-                              "lambda": [float(v) for v in c["lambda"]] if c else []})
+                              "lambda": [float(v) for v in c["lambda"]] if c else [],
+                              "solver": sol.solver["solver"],
+                              "reused": all(s.get("setup_reused", False) for s in sol.solver["solves"])})
     out["solves"] = solver.solves
     out["processes"] = sol.model.V.mesh.comm.size
 finally:

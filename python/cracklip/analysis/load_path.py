@@ -8,7 +8,8 @@ increment from the last active set. Under mpirun the distributed matrix
 and each group's owned right-hand side are assembled once and every
 increment is solved by parallel MUMPS, with contact and friction on the
 distributed saddle point (the states, slips and active set carried from
-increment to increment are the same on every process).
+increment to increment are the same on every process), or without contact
+by the distributed iterative path (the phantom basis and GAMG set up once).
 """
 from __future__ import annotations
 
@@ -20,8 +21,8 @@ import typing
 import numpy as np
 
 from ..contact.friction import STATE_NAMES, solve_friction
-from ..contact.frictionless import (contact_constant, create_contact_system, distributed_saddle, owned_product,
-                                   solve_frictionless)
+from ..contact.frictionless import (contact_constant, create_contact_system, distributed_saddle, in_basis,
+                                   owned_product, solve_frictionless)
 from ..model.assembly import assemble_distributed_system_groups, assemble_system_groups
 from ..model.distributed import to_local
 from ..model.model import create_model
@@ -31,9 +32,9 @@ from ..scene.conditions import LoadStep
 from ..scene.load_path import Increment, increments, steps
 from ..scene.scene import Scene
 from ..solvers.checked import condition_number_1norm, record_solves, scipy_from_petsc
-from ..solvers.choice import create_linear_solver, to_solver_basis
-from ..solvers.direct import DirectSolver
-from ..solvers.rescaling import from_basis, rescale_distributed
+from ..solvers.choice import (create_distributed_linear_solver, create_linear_solver, to_distributed_solver_basis,
+                              to_solver_basis)
+from ..solvers.rescaling import from_basis
 
 
 logger = logging.getLogger(__name__)
@@ -50,13 +51,19 @@ def _assembled_groups(model, unit) -> tuple:
     """The matrix and each load group's right-hand side in the solver's
     basis, assembled once: (A, {group: b_g}, T, T_mpi, linear, timings).
     Serial: the scene's solver path (T its basis, or None). Under mpirun:
-    the distributed matrix and each group's owned entries, nodal rescaling
-    by T_mpi (options.rescale), the direct path (parallel MUMPS)."""
+    the distributed matrix and each group's owned entries in the basis of
+    the solver path the global sizes choose (create_distributed_linear_solver):
+    the direct path (parallel MUMPS), nodally rescaled by T_mpi
+    (options.rescale), or the iterative one in the phantom-node basis
+    (T_mpi its T, which goes with linear.destroy()); its matrix transformed
+    and, on the first solve, its preconditioner set up once for every
+    increment or level, as serially."""
     if model.distributed:
         A, rhs, timings = assemble_distributed_system_groups(unit)
         model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
-        A, values, T_mpi, t_basis = rescale_distributed(unit, A, list(rhs.values()))  # options.rescale
-        linear, T = DirectSolver(), None
+        linear = create_distributed_linear_solver(unit)
+        A, values, T_mpi, t_basis = to_distributed_solver_basis(unit, linear, A, list(rhs.values()))
+        T = None
     else:
         T_mpi = None
         A, rhs, timings = assemble_system_groups(unit)
@@ -112,10 +119,7 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
     physical = cs = None
     if contact:
         physical = create_contact_system(unit)
-        cs = physical
-        if T is not None:
-            cs = dataclasses.replace(physical, B=(physical.B @ T).tocsr(),
-                                     Bt=None if physical.Bt is None else (physical.Bt @ T).tocsr())
+        cs = in_basis(physical, T if T is not None else T_mpi)  # (B T, B_t T in the solver's basis)
     c = contact_constant(unit)
     n = A.getLocalSize()[0]  # (the model's dofs in serial; this process's owned ones under mpirun)
     m = cs.num_multipliers if cs is not None else 0
@@ -146,7 +150,7 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
                         state, sign = info["state"], info["sign"]
                         s_old = (owned_product(A, cs.Bt, y) if distributed else cs.Bt @ y) - g_t
                     else:
-                        saddle = distributed_saddle(A, f, work, opts.residual_tol) if distributed else None
+                        saddle = distributed_saddle(A, f, work, opts.residual_tol, linear) if distributed else None
                         y, info = solve_frictionless(K, f, work, opts, c, active, linear, saddle)
                         active = info["active"]
                     iterations.append(int(info["iterations"]))
@@ -211,10 +215,11 @@ class LevelSolver:
     set. The matrix and each group's load vector are assembled once, as in
     solve_path; every state costs one solve (linear) or its active-set
     iterations (contact). Friction is path-dependent and not taken here.
-    Under mpirun the matrix is distributed (parallel MUMPS) and each contact
-    state is solved on the distributed saddle point (distributed_saddle):
-    every process takes the same active sets. Call close() when done (the
-    solver's PETSc objects)."""
+    Under mpirun the matrix is distributed (parallel MUMPS, or without
+    contact the distributed iterative path, set up once for every level)
+    and each contact state is solved on the distributed saddle point
+    (distributed_saddle): every process takes the same active sets. Call
+    close() when done (the solver's PETSc objects)."""
 
     def __init__(self, scene: Scene):
         if scene.options.friction > 0.0:
@@ -229,7 +234,7 @@ class LevelSolver:
                                                                          material=self.scene.material.scaled(1.0)),
                                         bc_values=model.bc_values * E,
                                         bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
-        # (under mpirun the distributed system, each group's owned entries, parallel MUMPS)
+        # (under mpirun the distributed system, each group's owned entries, _assembled_groups' solver path)
         self.A, self.rhs, self.T, self.T_mpi, self.linear, self.timings = _assembled_groups(model, self.unit)
         self.has_contact = self.scene.options.contact != "none" and bool(model.cracks)
         self.K = self.physical = self.cs = None
@@ -241,10 +246,7 @@ class LevelSolver:
             # (under mpirun the distributed saddle takes A itself: no serial copy of the stiffness)
             self.K = self.A if self.model.distributed else self.linear.stiffness(self.A)
             self.physical = create_contact_system(self.unit)  # (collective; whole on every process)
-            self.cs = self.physical
-            if self.T is not None:
-                self.cs = dataclasses.replace(self.physical, B=(self.physical.B @ self.T).tocsr(),
-                                              Bt=None if self.physical.Bt is None else (self.physical.Bt @ self.T).tocsr())
+            self.cs = in_basis(self.physical, self.T if self.T is not None else self.T_mpi)
         return self.cs
 
     def solve(self, states: list[dict[str, float]], contact: bool, names: list[str] | None = None) -> list[Solution]:
@@ -287,7 +289,7 @@ class LevelSolver:
         if not self.model.distributed:
             return solve_frictionless(self.K, f, work, opts, c, self.active, self.linear)
         u, info = solve_frictionless(self.A, f, work, opts, c, self.active,
-                                     saddle=distributed_saddle(self.A, f, work, opts.residual_tol))
+                                     saddle=distributed_saddle(self.A, f, work, opts.residual_tol, self.linear))
         x = self.A.createVecRight()
         x.array[:] = u
         return _local(self.model, self.T_mpi, x), info

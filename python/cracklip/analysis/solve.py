@@ -16,15 +16,15 @@ from ..contact.frictionless import solve_contact
 from ..errors import InputError, SolverError
 from ..model.assembly import assemble_distributed_system, assemble_system, elasticity_form
 from ..model.distributed import to_local
-from ..model.model import create_model, refuse_unless_distributed
+from ..model.model import create_model
 from ..post.solution import Solution, create_solution
 from ..scene.mesh_estimate import release_memory
 from ..scene.processes import not_parallel
 from ..scene.scene import Scene
 from ..solvers.checked import condition_number_1norm, record_solves, solve_checked
-from ..solvers.choice import choose_solver, create_linear_solver, to_solver_basis
-from ..solvers.distributed_iterative import DistributedIterativeSolver
-from ..solvers.rescaling import from_basis, rescale_distributed
+from ..solvers.choice import (create_distributed_linear_solver, create_linear_solver, to_distributed_solver_basis,
+                              to_solver_basis)
+from ..solvers.rescaling import from_basis
 from .load_path import solve_path
 
 
@@ -120,9 +120,9 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
 
 def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     """solve() on several processes (mpirun; issue 40 steps 2 and 4): open
-    cracks in 2D and 3D and frictionless contact (the saddle point by
-    parallel MUMPS, the active set the same on every process); the direct
-    solver (parallel MUMPS) or, without contact, the iterative one
+    cracks in 2D and 3D and frictionless contact (the saddle point
+    distributed, the active set the same on every process); the direct
+    solver (parallel MUMPS, also nodally rescaled) or the iterative one
     (Options.solver, choose_solver; solvers.distributed_iterative); a load
     path, with or without contact, and friction by load_path.solve_path on
     the same distributed matrix. The
@@ -130,7 +130,6 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     and ghost nodes); K (Solution.stress_intensity_factors) is summed over
     processes."""
     comm = scene.mesh.mesh.comm
-    refuse_unless_distributed(scene)
     if condition_number:
         not_parallel("the condition number", comm)
     if scene.load_path is not None or scene.options.friction > 0.0:
@@ -143,56 +142,37 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
                                bc_group_values={g: v * E for g, v in model.bc_group_values.items()})
     A, b, timings = assemble_distributed_system(unit)
     model.num_enriched_cells_integrated = unit.num_enriched_cells_integrated
-    A, (b_t,), T, t_basis = rescale_distributed(unit, A, [b.array])  # options.rescale (direct path)
-    b.array[:] = b_t
-    timings.update(t_basis)
-    n = A.getSize()[0]
-    which = choose_solver(scene.options, n, n - model.gdim * model.V.dofmap.index_map.size_global, model.gdim)
     contacting = scene.options.contact != "none" and bool(model.cracks)
-    if contacting and which == "iterative":  # (an explicit 'iterative' with contact is refused)
-        logger.info("options.solver = 'auto' would take the iterative solver at %d dofs; under mpirun contact "
-                    "is solved by the direct one (parallel MUMPS)", n)
-        which = "direct"
+    linear = create_distributed_linear_solver(unit)  # Options.solver on the global sizes
     what = "X-FEM stiffness system"
     contact = {}
-    with record_solves() as solves:
-        if contacting:  # the saddle point distributed, the active set alike on every process
+    try:
+        # options.rescale (direct path) or the phantom-node basis (iterative path; T is linear's)
+        A, (b_t,), T, t_basis = to_distributed_solver_basis(unit, linear, A, [b.array])
+        b.array[:] = b_t
+        timings.update(t_basis)
+        with record_solves() as solves:
             t0 = time.perf_counter()
-            u_owned, contact = solve_contact(unit, A, b)
-            contact["system"].g = contact["system"].g / E  # B u = g in the scene's units
-            x = A.createVecRight()
-            x.array[:] = u_owned
-            timings["contact_solve"] = time.perf_counter() - t0
-        elif which == "iterative":  # the serial path's solver on the global numbering
-            t0 = time.perf_counter()
-            linear = DistributedIterativeSolver(unit, fallback=scene.options.solver == "auto")
-            try:
-                A_t, _ = linear.transform(A)  # (A itself, changed, when its pattern allows)
-                if A_t is not A:
-                    A.destroy()
-                b_t = linear.to_phantom(b)
-                timings["phantom_transform"] = time.perf_counter() - t0
-                t0 = time.perf_counter()
-                y = linear.solve(A_t, b_t, scene.options.residual_tol, what=what)
-                x = linear.from_phantom(y)
-                for o in (A_t, b_t, y):
-                    o.destroy()
-            finally:
-                linear.destroy()
-            timings["solve"] = time.perf_counter() - t0
-        else:
-            t0 = time.perf_counter()
-            x = solve_checked(A, b, scene.options.residual_tol, what=what, symmetric=True)
-            timings["solve"] = time.perf_counter() - t0
-    x = from_basis(T, x)
+            if contacting:  # the saddle point distributed, the active set alike on every process
+                u_owned, contact = solve_contact(unit, A, b, transform=T, linear=linear)
+                contact["system"].g = contact["system"].g / E  # B u = g in the scene's units
+                x = A.createVecRight()
+                x.array[:] = u_owned
+                timings["contact_solve"] = time.perf_counter() - t0
+            else:  # parallel MUMPS, or the serial iterative path's solver on the global numbering
+                x = linear.solve(A, b, scene.options.residual_tol, what=what)
+                timings["solve"] = time.perf_counter() - t0
+        x = from_basis(T, x)
+    finally:
+        linear.destroy()
     u = to_local(model.dofs, x) / E
     for o in (A, b, x) + ((T,) if T is not None else ()):
-        o.destroy()
+        o.destroy()  # (the phantom basis's T went with linear: destroying it again does nothing)
     release_memory()
     timings = {**model.timings, **timings}
     timings["total"] = time.perf_counter() - t_start
     solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None,
-              "solver": which, "solves": solves, "processes": comm.size}
+              "solver": linear.name, "solves": solves, "processes": comm.size}
     return create_solution(model, u, timings, {}, contact, solver)
 
 

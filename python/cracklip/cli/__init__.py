@@ -186,12 +186,6 @@ def _build(args, doc):
     logger.info("mesh: %d nodes, %d %s (%.2f s)", msh.topology.index_map(0).size_global,
                 msh.topology.index_map(msh.topology.dim).size_global,
                 "tetrahedra" if msh.topology.dim == 3 else "cells", sf.timings["mesh"])
-    # Under mpirun `run`, `grow` and `check` build what the distributed model
-    # does (open 2D and 3D cracks, the direct solver: cracklip.model.distributed)
-    # and refuse the rest by its scene key.
-    if msh.comm.size > 1:
-        from ..model.model import refuse_unless_distributed
-        refuse_unless_distributed(sf.scene)
     return sf
 
 

@@ -174,8 +174,9 @@ def friction_saddle(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: ContactSy
     distributed PETSc stiffness, f this process's owned entries, cs whole
     on every process): friction_rows border K as one distributed matrix
     (solvers/saddle.py bordered_matrix, the rows on the last process) solved
-    by parallel MUMPS (frictionless.solve_bordered): u this process's owned
-    dofs, the multipliers broadcast by the process holding their rows, B u
+    by parallel MUMPS, or by linear if it is the iterative path
+    (frictionless.solve_bordered): u this process's owned dofs, the
+    multipliers broadcast by the process holding their rows, B u
     and B_t u summed over the processes' owned dofs and broadcast by rank 0
     (owned_product), so every process classifies the same numbers and takes
     the same states and slip directions."""
@@ -187,11 +188,13 @@ def friction_saddle(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: ContactSy
         return solve
     m = cs.num_multipliers
     C = sp.vstack([cs.B, cs.Bt], format="csr")
+    iterative = linear is not None and linear.name == "iterative"  # (else parallel MUMPS LU)
 
     def solve_distributed(state, sign, bound, beta, x0):
         rows_n, rows_t, rhs = friction_rows(cs, g_n, g_t, s_old, state, sign, mu, bound, beta, c)
         S = bordered_matrix(K, C, sp.bmat([rows_n, rows_t], format="csr"), symmetric=False)
-        u, lam = solve_bordered(S, f, rhs, residual_tol, WHAT)
+        u, lam = solve_bordered(S, f, rhs, residual_tol, WHAT, linear=linear if iterative else None, x0=x0,
+                                contact_points=m)
         Cu = owned_product(K, C, u)
         return u, lam[:m], lam[m:], Cu[:m], Cu[m:]
     return solve_distributed

@@ -26,6 +26,7 @@ from .. import _cracklip
 from ..errors import CracklipError, SolverError
 from ..model.model import XfemModel
 from ..solvers.checked import scipy_from_petsc, solve_checked
+from ..solvers.rescaling import times_basis
 if typing.TYPE_CHECKING:
     from ..solvers.direct import LinearSolver
 from ..scene.processes import gathered, reduced
@@ -169,6 +170,17 @@ def create_contact_system(model: XfemModel) -> ContactSystem:
     return ContactSystem(space, R, B.tocsr(), M, g, Bt, gt, g_groups, gt_groups, band.space)
 
 
+def in_basis(physical: ContactSystem, T: "sp.spmatrix | PETSc.Mat | None") -> ContactSystem:
+    """The contact system on u = T y (a solver path's basis: the nodal
+    rescaling, the phantom-node basis): B T and B_t T (solvers.rescaling.
+    times_basis; collective for a distributed T), the rest unchanged;
+    physical itself without T."""
+    if T is None:
+        return physical
+    return dataclasses.replace(physical, B=times_basis(physical.B, T),
+                               Bt=None if physical.Bt is None else times_basis(physical.Bt, T))
+
+
 def _columns(model: XfemModel) -> tuple[np.ndarray, int]:
     """The column of B of every local dof and the number of columns: the dof
     itself in serial, its global dof under MPI (model.dofs)."""
@@ -294,16 +306,19 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
 
     transform: if A and b are rescaled (T^T K T, T^T f), the T: the
     constraints act on u = T y, the returned u is y, info["system"] keeps
-    the unscaled B. linear: the solver path of every saddle-point solve
-    (cracklip.solvers; default: solve_checked's MUMPS LU)."""
+    the unscaled B. Under mpirun A is distributed, T too (solvers.choice.
+    to_distributed_solver_basis) and u this process's owned entries of y.
+    linear: the solver path of every saddle-point solve (cracklip.solvers;
+    default: solve_checked's MUMPS LU; under mpirun the distributed
+    iterative path if given, else parallel MUMPS)."""
     physical = create_contact_system(model)
-    if model.distributed:  # (direct path, no transform)
-        saddle = distributed_saddle(A, b.array_r, physical, model.scene.options.residual_tol)
-        u, info = solve_frictionless(A, b.array_r.copy(), physical, model.scene.options, contact_constant(model),
+    cs = in_basis(physical, transform)
+    if model.distributed:
+        saddle = distributed_saddle(A, b.array_r, cs, model.scene.options.residual_tol, linear)
+        u, info = solve_frictionless(A, b.array_r.copy(), cs, model.scene.options, contact_constant(model),
                                      saddle=saddle)
         info["system"] = physical
         return u, info
-    cs = physical if transform is None else dataclasses.replace(physical, B=(physical.B @ transform).tocsr())
     K = scipy_from_petsc(A) if linear is None else linear.stiffness(A)
     u, info = solve_frictionless(K, b.array.copy(), cs, model.scene.options,
                                  contact_constant(model), linear=linear)
@@ -311,33 +326,44 @@ def solve_contact(model: XfemModel, A: PETSc.Mat, b: PETSc.Vec,
     return u, info
 
 
-def distributed_saddle(A: PETSc.Mat, f: np.ndarray, cs: ContactSystem, residual_tol: float):
+def distributed_saddle(A: PETSc.Mat, f: np.ndarray, cs: ContactSystem, residual_tol: float,
+                       linear: "LinearSolver | None" = None):
     """The saddle solve of solve_frictionless on several processes: A the
-    distributed stiffness (constraints applied), f this process's owned
-    entries of the load, cs whole on every process (create_contact_system).
-    Returns solve(active, x0) -> (u, lambda, gap): u this process's owned
-    dofs, lambda and the gap B u - g the same on every process (the
-    multipliers broadcast by the process holding them, the gap summed over
-    the processes' owned dofs and broadcast by rank 0: solve_bordered,
-    owned_product), so every process takes the same active set."""
+    distributed stiffness (constraints applied; in the basis of linear, the
+    solver path, if given: the iterative one's phantom-node basis), f this
+    process's owned entries of the load, cs whole on every process
+    (create_contact_system, in A's basis). Returns solve(active, x0) -> (u,
+    lambda, gap): u this process's owned dofs, lambda and the gap B u - g
+    the same on every process (the multipliers broadcast by the process
+    holding them, the gap summed over the processes' owned dofs and
+    broadcast by rank 0: solve_bordered, owned_product), so every process
+    takes the same active set."""
+
+    # The direct path factors it by MUMPS LU (solve_checked's default, as
+    # serially); the iterative one takes it as symmetric (CG).
+    iterative = linear is not None and linear.name == "iterative"
 
     def solve(active: np.ndarray, x0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         if cs.space.kind == "naive":
             check_constraint_rank(cs.B[np.flatnonzero(active)])
         S = distributed_saddle_matrix(A, cs.B, active)
-        u, lam = solve_bordered(S, f, np.where(active, cs.g, 0.0), residual_tol, "contact saddle-point system")
+        u, lam = solve_bordered(S, f, np.where(active, cs.g, 0.0), residual_tol, "contact saddle-point system",
+                                symmetric=iterative, linear=linear if iterative else None, x0=x0)
         return u, lam, owned_product(A, cs.B, u) - cs.g
     return solve
 
 
 def solve_bordered(S: PETSc.Mat, f: np.ndarray, rhs: np.ndarray, residual_tol: float, what: str,
-                   symmetric: bool = False) -> tuple[np.ndarray, np.ndarray]:
+                   symmetric: bool = False, linear: "LinearSolver | None" = None, x0: np.ndarray | None = None,
+                   contact_points: int | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Collective: solve the distributed [K C^T; rows] (solvers/saddle.py
     bordered_matrix) with the right-hand side [f; rhs] (f this process's
     owned entries, rhs the multiplier rows', whole on every process) by
-    parallel MUMPS. Returns (u, lambda): u this process's owned dofs, the
-    multipliers on every process (broadcast by the last process, which
-    holds their rows)."""
+    parallel MUMPS, or by linear (the solver path: the distributed
+    iterative one, from x0 = (this process's owned u, every multiplier)
+    if given; contact_points sizes its band, as LinearSolver.solve).
+    Returns (u, lambda): u this process's owned dofs, the multipliers on
+    every process (broadcast by the last process, which holds their rows)."""
     comm = S.getComm().tompi4py()
     holder = comm.size - 1
     n = len(f)
@@ -345,7 +371,12 @@ def solve_bordered(S: PETSc.Mat, f: np.ndarray, rhs: np.ndarray, residual_tol: f
     b.array[:n] = f
     if comm.rank == holder:
         b.array[n:] = rhs
-    x = solve_checked(S, b, residual_tol, what=what, symmetric=symmetric)
+    if linear is None:
+        x = solve_checked(S, b, residual_tol, what=what, symmetric=symmetric)
+    else:
+        start = None if x0 is None else x0[:n] if comm.rank != holder else x0
+        x = linear.solve(S, b, residual_tol, what=what, x0=start, symmetric=symmetric,
+                         contact_points=contact_points)
     u = x.array_r[:n].copy()
     lam = comm.bcast(x.array_r[n:].copy() if comm.rank == holder else None, root=holder)
     for o in (S, b, x):

@@ -18,7 +18,6 @@ import dolfinx.fem
 from .. import _cracklip
 from ..errors import CrackGeometryError
 from ..scene.mesh import check_mesh
-from ..scene.processes import not_parallel
 from ..scene.scene import Scene
 from .checks import check_units
 from .constraints import check_rigid_motion, compute_dirichlet
@@ -31,41 +30,25 @@ from .xfem_model import XfemModel
 logger = logging.getLogger(__name__)
 
 
-def refuse_unless_distributed(scene: Scene) -> None:
-    """Collective: refuse, by scene key, what the model does not do on
-    several processes yet. What it does (issue 40 steps 2 and 4): open
-    cracks in 2D and 3D under lip pressures, boundary tractions, point
-    forces, a body force and an initial stress; crack-lip contact
-    (options.contact), frictionless and with Coulomb friction
-    (options.friction, 2D and 3D), by the direct solver; Dirichlet
-    conditions and symmetry planes; a load path, with or without contact
-    and friction (each step on the one matrix, the active set, friction
-    states and slips carried from step to step, by the direct solver); the
-    direct solver, also with options.rescale = "nodal" (without contact),
-    and the iterative one (without contact or a load path); K by the
-    interaction integral (2D tips, 3D front points)."""
-    comm = scene.mesh.mesh.comm
-    o = scene.options
-    contact = o.contact != "none"
-    for what, used in [
-            ("options.solver = 'iterative' with a load_path",
-             o.solver == "iterative" and scene.load_path is not None),
-            ("options.solver = 'iterative' with options.contact", o.solver == "iterative" and contact),
-            ("options.rescale = 'nodal' with options.contact", o.rescale == "nodal" and contact)]:
-        if used:
-            not_parallel(what, comm)
-
-
 def create_model(scene: Scene) -> XfemModel:
     """Build the discrete model of a scene (a planar part of triangles or a
     solid of tetrahedra): P1 space, the cracks on the mesh, enrichment,
     constraints; then the model checks (errors raise, warnings go to
-    model.warnings)."""
+    model.warnings).
+
+    Under mpirun (issue 40) this builds one process's part of a
+    distributed model (model.distributed: the global numbering of its
+    dofs), and every scene option runs on it: open cracks in 2D and 3D
+    under any load, symmetry planes, crack-lip contact (frictionless and
+    with Coulomb friction), load paths and a life's load levels, by the
+    direct solver (also nodally rescaled) or the iterative one. What does
+    not run on several processes yet is refused, collectively and by
+    name, where it is checked: a crack without a tip inside the part
+    (checks.check_pieces), `cracklip check --nodes`, the condition
+    number."""
     timings: dict[str, float] = {}
     msh = scene.mesh.mesh
     check_mesh(msh)
-    if msh.comm.size > 1:
-        refuse_unless_distributed(scene)
     kind = crack_model_type(scene.mesh.gdim)
     kind.check_scene(scene)
     t0 = time.perf_counter()

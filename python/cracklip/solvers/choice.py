@@ -14,8 +14,9 @@ if typing.TYPE_CHECKING:
     from ..model.model import XfemModel
     from ..scene.options import Options
 from .direct import DirectSolver, LinearSolver
+from .distributed_iterative import DistributedIterativeSolver
 from .iterative import IterativeSolver
-from .rescaling import nodal_transform, rescale_matrix
+from .rescaling import nodal_transform, rescale_distributed, rescale_matrix, transposed_products
 
 
 #: Options.solver = "auto": measured on this kind of machine (2 cores,
@@ -115,3 +116,35 @@ def create_linear_solver(model: "XfemModel") -> LinearSolver:
     if which == "direct":
         return DirectSolver()
     return IterativeSolver(model, fallback=model.scene.options.solver == "auto")
+
+
+def create_distributed_linear_solver(model: "XfemModel") -> LinearSolver:
+    """The solver path for one process's part of a distributed model
+    (model.distributed): choose_solver on the global sizes (the same answer
+    on every process and as serially): DirectSolver (parallel MUMPS) or
+    DistributedIterativeSolver."""
+    dm = model.dofs
+    n = dm.num_global * dm.d
+    which = choose_solver(model.scene.options, n, n - model.gdim * model.V.dofmap.index_map.size_global, model.gdim)
+    if which == "direct":
+        return DirectSolver()
+    return DistributedIterativeSolver(model, fallback=model.scene.options.solver == "auto")
+
+
+def to_distributed_solver_basis(model: "XfemModel", linear: LinearSolver, A: PETSc.Mat,
+                                rhs: typing.Sequence[np.ndarray]
+                                ) -> tuple[PETSc.Mat, list[np.ndarray], PETSc.Mat | None, dict[str, float]]:
+    """to_solver_basis on a distributed model (collective): T^T A T y =
+    T^T b, u = T y, with T a distributed PETSc matrix laid out as A: the
+    phantom-node basis for the iterative path (T belongs to linear: it goes
+    with linear.destroy()), the nodal rescaling for Options.rescale =
+    "nodal" (the caller destroys T), else (A, rhs, None, {}). The
+    right-hand sides are this process's owned entries. A is consumed:
+    reused or destroyed."""
+    if linear.name != "iterative":
+        return rescale_distributed(model, A, list(rhs))
+    t0 = time.perf_counter()
+    A_t, basis = linear.transform(A)  # (A itself, changed, when its pattern allows)
+    if A_t is not A:
+        A.destroy()
+    return A_t, transposed_products(basis.T, rhs), basis.T, {"phantom_transform": time.perf_counter() - t0}

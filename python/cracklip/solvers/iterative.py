@@ -429,8 +429,17 @@ class IterativeSolver(LinearSolver):
             rings = min(MAX_BAND_RINGS, max(1, math.ceil(CONTACT_BAND_RINGS_PER_MULTIPLIER * m)))
         if rings not in self._bands:
             K = self._K
-            self._bands[rings] = self._band_k if rings == 1 or K is None else grow_band(K, self._band_k, rings - 1)
+            self._bands[rings] = self._band_k if rings == 1 or K is None else self._grow_band(K, rings - 1)
         return self._bands[rings]
+
+    def _grow_band(self, K: PETSc.Mat, rings: int) -> np.ndarray:
+        """The band dofs grown by `rings` rings through K's graph."""
+        return grow_band(K, self._band_k, rings)
+
+    def _multiplier_rows(self, A: PETSc.Mat) -> np.ndarray:
+        """The rows of A beyond the stiffness's (the multipliers') that
+        belong to the band: all of them (under MPI the owned ones)."""
+        return np.arange(self.n, A.getSize()[0])
 
     def _block0_pc(self, A: PETSc.Mat) -> tuple[PETSc.PC, bool]:
         """The GAMG PC of block 0, the stiffness given to transform() (built
@@ -507,7 +516,7 @@ class IterativeSolver(LinearSolver):
             # The band's width follows the contact points (friction has two
             # multipliers per point: normal, tangential).
             band_dofs = np.concatenate([self._contact_band(m if contact_points is None else contact_points),
-                                        np.arange(self.n, size)])
+                                        self._multiplier_rows(A)])
             shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric)
             if A.getType() == PETSc.Mat.Type.PYTHON and m > 0 and self._coarse is not None:
                 self._coarse.constrain(A.getPythonContext().Ba_petsc)
@@ -689,8 +698,8 @@ class _Schwarz:
         self.amg.apply(self.r0 if band_first else r0, z0)
         r.restoreSubVector(self.is0, r0)
         z.restoreSubVector(self.is0, z0)
-        if z.getSize() > n0:
-            z.array[n0:] = 0.0
+        if z.getSize() > n0:  # (the multipliers' entries: under MPI the owned ones, after block 0's)
+            z.array[max(n0 - z.getOwnershipRange()[0], 0):] = 0.0
         if band_first:
             self.s1.scatter(self.z1, z, add, rev)
         # Band again on r - A z.

@@ -12,6 +12,7 @@ only the rows of grouped dofs are extracted from the matrix.
 from __future__ import annotations
 
 import time
+import typing
 
 import numpy as np
 import scipy.sparse as sp
@@ -151,6 +152,12 @@ def rescale_distributed(model: XfemModel, A: PETSc.Mat, rhs: list[np.ndarray]
     T = nodal_transform_distributed(model, A)
     A_t = A.PtAP(T)
     A.destroy()
+    return A_t, transposed_products(T, rhs), T, {"rescale": time.perf_counter() - t0}
+
+
+def transposed_products(T: PETSc.Mat, rhs: typing.Sequence[np.ndarray]) -> list[np.ndarray]:
+    """Collective: T^T b for each b of rhs (this process's owned entries of
+    T's rows; the results its owned entries of T's columns)."""
     out = []
     b, bt = T.createVecLeft(), T.createVecRight()
     for v in rhs:
@@ -159,7 +166,7 @@ def rescale_distributed(model: XfemModel, A: PETSc.Mat, rhs: list[np.ndarray]
         out.append(bt.array.copy())
     for o in (b, bt):
         o.destroy()
-    return A_t, out, T, {"rescale": time.perf_counter() - t0}
+    return out
 
 
 def from_basis(T: PETSc.Mat | None, x: PETSc.Vec) -> PETSc.Vec:
@@ -171,3 +178,22 @@ def from_basis(T: PETSc.Mat | None, x: PETSc.Vec) -> PETSc.Vec:
     T.mult(x, u)
     x.destroy()
     return u
+
+
+def times_basis(C: sp.csr_matrix, T: "PETSc.Mat | sp.spmatrix") -> sp.csr_matrix:
+    """C T: constraint rows C acting on u = T y (the contact couplings B,
+    B_t in a solver path's basis). Serial T (scipy): C @ T. A distributed T
+    (PETSc, this process's rows; C whole on every process, its columns T's
+    global rows; collective): each process's columns of C times its rows
+    of T, summed over the processes; whole on every process."""
+    if not isinstance(T, PETSc.Mat):
+        return (C @ T).tocsr()
+    from ..scene.processes import gathered
+    lo, hi = T.getOwnershipRange()
+    indptr, indices, data = T.getValuesCSR()
+    rows = sp.csr_matrix((data, indices, indptr), shape=(hi - lo, T.getSize()[1]))
+    part = (C[:, lo:hi] @ rows).tocoo()
+    r, c, v = gathered(T.getComm().tompi4py(), [part.row, part.col, part.data])
+    out = sp.csr_matrix((v, (r, c)), shape=(C.shape[0], T.getSize()[1]))
+    out.sort_indices()
+    return out
