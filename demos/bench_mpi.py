@@ -90,6 +90,16 @@ def _launch(n: int, spec: dict) -> dict:
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
+def _write(path: pathlib.Path, row: dict) -> dict:
+    """The bench JSON: the machine and the row."""
+    out = {"machine": platform.node(), "cpus": os.cpu_count(), "python": platform.python_version(),
+           "load_average_at_end": os.getloadavg(), "rows": [row]}
+    path.parent.mkdir(parents=True, exist_ok=True)
+    from cracklip.io.files import write_json
+    write_json(path, out)
+    return out
+
+
 def _memory(args, spec: dict) -> dict:
     """--memory N: one run, its peak memory per process and their sum."""
     run = _launch(args.memory, {**spec, "plain": False})
@@ -100,12 +110,7 @@ def _memory(args, spec: dict) -> dict:
     print(f"{row['ndofs']} dofs on {args.memory} processes: peak memory {' + '.join(f'{g:.2f}' for g in peaks)} "
           f"= {sum(peaks):.2f} GB; mesh {row['t_mesh']:.0f} s, X-FEM {row['t_total_xfem']:.0f} s "
           f"({row['iterations_xfem']} iterations)", flush=True)
-    out = {"machine": platform.node(), "cpus": os.cpu_count(), "python": platform.python_version(),
-           "load_average_at_end": os.getloadavg(), "rows": [row]}
-    args.json.parent.mkdir(parents=True, exist_ok=True)
-    from cracklip.io.files import write_json
-    write_json(args.json, out)
-    return out
+    return _write(args.json, row)
 
 
 def main(argv=None) -> dict:
@@ -157,12 +162,7 @@ def main(argv=None) -> dict:
     print(f"{row['ndofs']} dofs: X-FEM solve speed-up {row['speedup_solve_xfem']:.2f} "
           f"(total {row['speedup_total_xfem']:.2f}), plain P1 {row['speedup_solve_plain']:.2f} "
           f"(total {row['speedup_total_plain']:.2f}); peak per process {row['peak_rss_gb']}", flush=True)
-    out = {"machine": platform.node(), "cpus": os.cpu_count(), "python": platform.python_version(),
-           "load_average_at_end": os.getloadavg(), "rows": [row]}
-    args.json.parent.mkdir(parents=True, exist_ok=True)
-    from cracklip.io.files import write_json
-    write_json(args.json, out)
-    return out
+    return _write(args.json, row)
 
 
 if __name__ == "__main__":
