@@ -51,6 +51,7 @@ import numpy as np
 import scipy.sparse as sp
 from petsc4py import PETSc
 
+from ..scene.processes import on_all
 from .iterative import (IterativeSolver, crack_band, product_data_cleared, rigid_mode_nodes, rigid_motions,
                         tip_dofs)
 if typing.TYPE_CHECKING:
@@ -274,7 +275,7 @@ def transform_in_place(basis: DistributedPhantomBasis, A: PETSc.Mat, band: np.nd
     delta.eliminate_zeros()
     pattern = lambda M: sp.csr_matrix((np.ones(M.nnz), M.indices, M.indptr), shape=M.shape)  # noqa: E731
     fits = pattern(delta).multiply(pattern(old)).nnz == delta.nnz
-    if not comm.allreduce(bool(fits), op=_land()):
+    if not on_all(fits, comm):
         return None
     A.setValuesIJV(delta.indptr.astype(PETSc.IntType), U[delta.indices].astype(PETSc.IntType), delta.data,
                    addv=PETSc.InsertMode.ADD_VALUES, rowmap=order.astype(PETSc.IntType))
@@ -303,8 +304,3 @@ def _heaviside_columns(basis: DistributedPhantomBasis, cols: np.ndarray) -> tupl
         for o in (w, src, sc, v):
             o.destroy()
     return out[0], np.rint(out[1]).astype(np.int64)
-
-
-def _land():
-    from mpi4py import MPI
-    return MPI.LAND
