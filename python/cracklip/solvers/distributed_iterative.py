@@ -52,6 +52,7 @@ import scipy.sparse as sp
 from petsc4py import PETSc
 
 from ..scene.processes import on_all
+from .phantom import add_change, phantom_change
 from .iterative import (IterativeSolver, crack_band, product_data_cleared, rigid_mode_nodes, rigid_motions,
                         tip_dofs)
 if typing.TYPE_CHECKING:
@@ -171,18 +172,24 @@ class DistributedIterativeSolver(IterativeSolver):
         """The owned band rows grown by `rings` rings through K's graph
         (symmetric): each ring marks the columns of the band's owned rows
         on their owners (summed marks, as _crack_band)."""
-        lo = K.getOwnershipRange()[0]
-        indptr, indices, _ = K.getValuesCSR()  # (the owned rows, global columns)
+        comm = K.getComm()
+        lo, hi = K.getOwnershipRange()
+        all_cols = PETSc.IS().createStride(hi - lo, lo, 1, comm=comm)  # (each process its own: every column)
         band = self._band_k
         mark = K.createVecRight()
         for _ in range(rings):
+            # The band's owned rows only (work in proportion to the band, not
+            # to the owned part of the mesh).
+            isrow = PETSc.IS().createGeneral(band.astype(PETSc.IntType), comm=comm)
+            sub = K.createSubMatrix(isrow, all_cols)
+            _, cols, _ = sub.getValuesCSR()  # (global columns)
+            sub.destroy()
+            isrow.destroy()
             mark.set(0.0)
-            rows = band - lo
-            start, count = indptr[rows], indptr[rows + 1] - indptr[rows]
-            cols = indices[np.repeat(start - np.cumsum(count) + count, count) + np.arange(count.sum())]
             mark.setValues(cols.astype(PETSc.IntType), np.ones(cols.size), addv=PETSc.InsertMode.ADD_VALUES)
             mark.assemble()
             band = np.union1d(band, np.flatnonzero(mark.array > 0) + lo).astype(np.int64)
+        all_cols.destroy()
         mark.destroy()
         return band
 
@@ -260,26 +267,15 @@ def transform_in_place(basis: DistributedPhantomBasis, A: PETSc.Mat, band: np.nd
     T_cols = sp.csr_matrix((tv, (tr, tc)), shape=(cols.size, U.size))
     on_cols = sp.csr_matrix((np.ones(cols.size), (ci, np.arange(cols.size))), shape=(U.size, cols.size))
     ST = (S @ on_cols @ T_cols).tocsr()  # (A T) on the rows R, columns in U
-    posJ = np.searchsorted(R, J)
     # T_JJ (owned J): rows s: the identity; rows e: s/2 at s, -s/2 at e.
     pe, ps = np.searchsorted(J, basis.e), np.searchsorted(J, basis.s)
     std = np.setdiff1d(np.arange(J.size), pe)
     T_JJ = sp.csr_matrix((np.concatenate([np.ones(std.size), 0.5 * basis.sgn, -0.5 * basis.sgn]),
                           (np.concatenate([std, pe, pe]), np.concatenate([std, ps, pe]))), shape=(J.size, J.size))
-    keep = np.ones(R.size, dtype=bool)
-    keep[posJ] = False
-    new = sp.vstack([ST[keep], (T_JJ.T.tocsr() @ ST[posJ]).tocsr()], format="csr")  # (all CSR: the fast stack)
-    old = sp.vstack([S[keep], S[posJ]], format="csr")
-    order = np.concatenate([R[keep], J])
-    delta = (new - old).tocsr()
-    delta.eliminate_zeros()
-    pattern = lambda M: sp.csr_matrix((np.ones(M.nnz), M.indices, M.indptr), shape=M.shape)  # noqa: E731
-    fits = pattern(delta).multiply(pattern(old)).nnz == delta.nnz
+    delta, order, fits = phantom_change(S, ST, R, J, T_JJ)
     if not on_all(fits, comm):
         return None
-    A.setValuesIJV(delta.indptr.astype(PETSc.IntType), U[delta.indices].astype(PETSc.IntType), delta.data,
-                   addv=PETSc.InsertMode.ADD_VALUES, rowmap=order.astype(PETSc.IntType))
-    A.assemble()
+    add_change(A, delta, order, U)
     return A
 
 

@@ -118,24 +118,48 @@ def transform_matrix(basis: PhantomBasis, A: PETSc.Mat) -> PETSc.Mat:
     S = rows(R)
     all_cols.destroy()
     ST = (S @ T).tocsr()
-    posJ = np.searchsorted(R, J)
-    keep = np.ones(R.size, dtype=bool)
-    keep[posJ] = False
-    new = sp.vstack([ST[keep], (T[J][:, J].T @ ST[posJ])], format="csr")
-    old = sp.vstack([S[keep], S[posJ]], format="csr")
-    order = np.concatenate([R[keep], J])
-    delta = (new - old).tocsr()
-    ones = sp.csr_matrix((np.ones(delta.nnz), delta.indices, delta.indptr), shape=delta.shape)
-    if ones.multiply(sp.csr_matrix((np.ones(old.nnz), old.indices, old.indptr), shape=old.shape)).nnz != delta.nnz:
+    delta, order, fits = phantom_change(S, ST, R, J, T[J][:, J])
+    del S, ST
+    if not fits:
         Tp = basis.petsc()  # a coupling outside A's pattern: the general way
         A_t = A.PtAP(Tp)
         Tp.destroy()
         return A_t
-    # One call with the CSR rows of delta, row k going to row order[k] (no
-    # padding to the longest row: in 3D that dense block took 0.15 GB at
-    # 8e4 dofs).
-    del S, ST, new, old, ones
-    A.setValuesIJV(delta.indptr.astype(PETSc.IntType), delta.indices.astype(PETSc.IntType), delta.data,
-                   addv=PETSc.InsertMode.ADD_VALUES, rowmap=order.astype(PETSc.IntType))
-    A.assemble()
+    add_change(A, delta, order)
     return A
+
+
+def phantom_change(S: sp.csr_matrix, ST: sp.csr_matrix, R: np.ndarray, J: np.ndarray,
+                   T_JJ: sp.csr_matrix) -> tuple[sp.csr_matrix, np.ndarray, bool]:
+    """The change T^T A T - A on the rows it touches, for the in-place
+    transforms (transform_matrix; distributed_iterative.transform_in_place).
+
+    S: A's rows R (sorted); ST: (A T) on the same rows, in the same columns;
+    J (sorted, within R): the rows where T is not the identity, T_JJ: T's
+    block on them. Off J a row of T^T A T is (A T)'s, on J it is
+    T_JJ^T (A T)[J, :]. Returns (delta, rows, fits): delta's row k goes to
+    A's row rows[k] (R off J first, then J), and fits says whether every
+    nonzero of delta lies in A's pattern (else the caller falls back to a
+    product)."""
+    posJ = np.searchsorted(R, J)
+    keep = np.ones(R.size, dtype=bool)
+    keep[posJ] = False
+    new = sp.vstack([ST[keep], (T_JJ.T.tocsr() @ ST[posJ]).tocsr()], format="csr")  # (all CSR: the fast stack)
+    old = sp.vstack([S[keep], S[posJ]], format="csr")
+    delta = (new - old).tocsr()
+    delta.eliminate_zeros()
+
+    def pattern(M: sp.csr_matrix) -> sp.csr_matrix:
+        return sp.csr_matrix((np.ones(M.nnz), M.indices, M.indptr), shape=M.shape)
+    fits = pattern(delta).multiply(pattern(old)).nnz == delta.nnz
+    return delta, np.concatenate([R[keep], J]), fits
+
+
+def add_change(A: PETSc.Mat, delta: sp.csr_matrix, rows: np.ndarray, columns: np.ndarray | None = None) -> None:
+    """A[rows[k], columns[j]] += delta[k, j] (columns: the identity if None)
+    in one call with the CSR rows of delta (no padding to the longest row:
+    in 3D that dense block took 0.15 GB at 8e4 dofs), then assembled."""
+    cols = delta.indices if columns is None else columns[delta.indices]
+    A.setValuesIJV(delta.indptr.astype(PETSc.IntType), cols.astype(PETSc.IntType), delta.data,
+                   addv=PETSc.InsertMode.ADD_VALUES, rowmap=rows.astype(PETSc.IntType))
+    A.assemble()
