@@ -206,7 +206,7 @@ def region_radius(model, point: np.ndarray, elements: float = REGION_ELEMENTS) -
     (from the point's own element, grown until it holds; the part's size at
     most). Collective under mpirun: over every process's owned cells."""
     x, cells = model.x, model.cells
-    distributed = getattr(model, "distributed", False)
+    distributed = model.distributed
     if distributed:
         cells = cells[:model.num_owned_cells]
     xc = x[cells]
@@ -299,7 +299,7 @@ def _front(solution) -> bool:
 
 def _num_dofs(model) -> int:
     """The model's dofs (over every process under mpirun)."""
-    if not getattr(model, "distributed", False):
+    if not model.distributed:
         return int(model.num_dofs)
     return int(model.dofs.num_global * model.gdim)
 

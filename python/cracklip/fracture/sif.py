@@ -122,7 +122,7 @@ def interaction_integrals(solution, domain: TipDomain, radius: float) -> np.ndar
     body = _body_force(solution)
     d = _cracklip.compute_domain_points(m.x, m.cells, m.layout, m.geometries, domain.position,
                                         domain.direction, radius, q_opts, body is not None, domain.inner_radius)
-    distributed = getattr(m, "distributed", False)
+    distributed = m.distributed
     if distributed:  # each process its owned cells; the integrals summed below
         keep = m.owned_cells_only(d["cell"])
         d = {k: v[keep] for k, v in d.items()}
@@ -173,7 +173,7 @@ def _body_force(solution) -> typing.Callable[[np.ndarray], np.ndarray] | None:
     if isinstance(s0, LinearStress) and s0.is_uniform and (f is None or not np.any(f)):
         return None
     lo, hi = model.x.min(axis=0), model.x.max(axis=0)
-    if getattr(model, "distributed", False):  # the part's size, alike on every process
+    if model.distributed:  # the part's size, alike on every process
         lo, hi = reduced(lo, "MIN", model.V.mesh.comm), reduced(hi, "MAX", model.V.mesh.comm)
     size = float((hi - lo).max())
 
@@ -198,7 +198,7 @@ def natural_k(solution) -> float:
         pts = lip_points(m, ci)
         for t in lip_traction_parts(solution, ci, pts) if len(pts["weight"]) else []:
             k = max(k, float(np.linalg.norm(t, axis=1).max()) * math.sqrt(math.pi * 0.5 * float(pts["weight"].sum())))
-    if getattr(m, "distributed", False):  # a scale, alike on every process (each saw its part)
+    if m.distributed:  # a scale, alike on every process (each saw its part)
         k = reduced(k, "MAX", m.V.mesh.comm)
     return k
 

@@ -313,7 +313,7 @@ def boundary_nodes(model) -> np.ndarray:
 
 def _comm(model):
     """The model's communicator under MPI, else None."""
-    return model.V.mesh.comm if getattr(model, "distributed", False) else None
+    return model.comm
 
 
 def _all_points(model, points: np.ndarray) -> np.ndarray:

@@ -176,7 +176,7 @@ def crack_window(solution: Solution, fields: dict | None = None) -> tuple[np.nda
 def part_points(solution: Solution, fields: dict | None) -> np.ndarray:
     """Points spanning the whole part: the mesh nodes, or under mpirun (each
     process holding its part of them) the gathered sub-cell fields' points."""
-    if getattr(solution.model, "distributed", False):
+    if solution.model.distributed:
         return fields["points"]
     return solution.model.x
 

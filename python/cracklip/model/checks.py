@@ -400,7 +400,7 @@ def front_element_sizes(model, crack: int) -> np.ndarray:
     front (empty without a front). Collective under MPI: every process's
     owned front cells, in rank order."""
     fc = front_cells(model.geometries[crack])
-    if not getattr(model, "distributed", False):
+    if not model.distributed:
         return cell_sizes(model.x, model.cells[fc])
     fc = fc[model.owned_cells_only(fc)]
     return np.concatenate(model.V.mesh.comm.allgather(cell_sizes(model.x, model.cells[fc])))

@@ -104,7 +104,7 @@ def assemble_point_forces(model, group: str | None = None) -> np.ndarray:
     if not model.scene.point_forces:
         return b
     d = model.gdim
-    comm = model.V.mesh.comm if model.distributed else None
+    comm = model.comm
     n_own = model.V.dofmap.index_map.size_local if comm is not None else len(model.x)
     x = model.x[:n_own]
     scale = float(np.ptp(x, axis=0).max()) if n_own else 0.0

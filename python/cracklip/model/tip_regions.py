@@ -169,7 +169,7 @@ def tip_element_size(model, p: np.ndarray, dist: np.ndarray | None = None) -> fl
     (collective on a distributed model: the nearest owned node of all
     processes, whose patch its owner holds whole)."""
     dist = node_distances(model, p) if dist is None else dist
-    if getattr(model, "distributed", False):
+    if model.distributed:
         dist = dist[:model.V.dofmap.index_map.size_local]
         if not dist.size:
             dist = np.array([np.inf])
@@ -177,7 +177,7 @@ def tip_element_size(model, p: np.ndarray, dist: np.ndarray | None = None) -> fl
     cells = model.cells[np.any(model.cells == node, axis=1)]
     e = model.x[cells[:, [1, 2, 0]]] - model.x[cells]
     size = float(np.linalg.norm(e, axis=2).mean()) if len(cells) else math.inf
-    if getattr(model, "distributed", False):
+    if model.distributed:
         return min(model.V.mesh.comm.allgather((float(dist[node]), size)))[1]
     return size
 
@@ -185,7 +185,7 @@ def tip_element_size(model, p: np.ndarray, dist: np.ndarray | None = None) -> fl
 def nearest_node_distance(model, dist: np.ndarray) -> float:
     """The smallest of the nodes' distances (over every process)."""
     d = float(dist.min()) if dist.size else math.inf
-    return reduced(d, "MIN", model.V.mesh.comm) if getattr(model, "distributed", False) else d
+    return reduced(d, "MIN", model.V.mesh.comm) if model.distributed else d
 
 
 def admissible_radius(model, dist: np.ndarray, clearance: float) -> float:
@@ -201,7 +201,7 @@ def _first_reaching(model, dist: np.ndarray, clearance: float) -> float:
     dmin, dmax = dc.min(axis=1), dc.max(axis=1)
     near = dmin < clearance
     dmin, dmax = dmin[near], dmax[near]
-    if getattr(model, "distributed", False):
+    if model.distributed:
         # = the smallest dmin of a near cell reaching the clearance: a minimum over processes
         reach = dmin[dmax >= clearance]
         local = float(reach.min()) if reach.size else math.inf
@@ -301,6 +301,6 @@ def length_in_part(model, crack: int) -> float:
     processes."""
     pts = lip_points(model, crack)
     w = np.asarray(pts["weight"], dtype=float)
-    if getattr(model, "distributed", False):
+    if model.distributed:
         w = np.concatenate(model.V.mesh.comm.allgather(w[model.owned_cells_only(pts["cell"])]))
     return math.fsum(w.tolist())

@@ -54,6 +54,13 @@ class XfemModel:
         """Whether the model is one process's part of a model on several."""
         return self.num_owned_cells is not None
 
+    @property
+    def comm(self):
+        """The communicator a collective step reduces over: the mesh's under
+        MPI (model.distributed), None in serial (scene.processes.reduced
+        and on_all take None as one process)."""
+        return self.V.mesh.comm if self.distributed else None
+
     def owned_cells_only(self, cells: np.ndarray) -> np.ndarray:
         """Which of these local cells this process integrates: all in serial,
         its owned ones under MPI (each cell is owned by one process)."""

@@ -112,7 +112,7 @@ def no_load(solution) -> list[tuple[str, str]]:
     """Every state's displacement exactly zero: no load at all."""
     moving = any(np.any(st.u) for st in _states(solution))
     m = solution.model
-    if getattr(m, "distributed", False):  # (each process its part of u)
+    if m.distributed:  # (each process its part of u)
         moving = bool(reduced(moving, "LOR", m.V.mesh.comm))
     if moving:
         return []

@@ -41,7 +41,7 @@ class _Parts:
 
     def __init__(self, model):
         self.model = model
-        self.on = bool(getattr(model, "distributed", False))
+        self.on = model.distributed
         self.owned = model.V.dofmap.index_map.size_local if self.on else model.x.shape[0]
 
     def sum(self, value):
