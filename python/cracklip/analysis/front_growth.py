@@ -53,6 +53,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..fracture.kink import equivalent_k_3d, front_kinks, kink_twist_3d
+from ..model.tip_regions import NEAREST_TIE
 from ..scene.growth import Growth
 from ..scene.processes import reduced
 from ..scene.scene import Scene
@@ -112,8 +113,8 @@ def front_element_size(mesh, cracks) -> float:
     """The mean edge of the cells at the cracks' fronts (before any model:
     the cells of the mesh nodes nearest to points sampled along the fronts).
     Collective under mpirun: each point's nearest node of every process's
-    owned nodes (found alike on all by its position), the edges of the owned
-    cells around them summed over the processes."""
+    owned nodes (nearest_nodes: found alike on all by its position), the
+    edges of the owned cells around them summed over the processes."""
     import scipy.spatial
     msh = mesh.mesh
     comm = msh.comm
@@ -124,25 +125,45 @@ def front_element_size(mesh, cracks) -> float:
         size = float(np.sqrt(max(c.area, 1e-300)))
         pts.append(c.front_points(0.05 * size))
     pts = np.concatenate(pts)
-    if comm.size == 1:
-        _, nodes = scipy.spatial.cKDTree(x).query(pts)
-    else:
-        owned = msh.geometry.index_map().size_local
-        d, i = scipy.spatial.cKDTree(x[:owned]).query(pts) if owned else (np.full(len(pts), np.inf), None)
-        best = np.array(comm.allgather(d))                       # (processes, points)
-        wins = np.argmin(best, axis=0) == comm.rank              # (the lowest rank on a tie)
-        near_x = np.zeros((len(pts), 3))
-        near_x[wins] = x[i[wins]]
-        near_x = reduced(near_x, "SUM", comm)                    # each point's nearest node, on every process
-        d_local, nodes = scipy.spatial.cKDTree(x).query(near_x)
-        nodes = nodes[d_local == 0.0]                            # those this process holds (owned or ghost)
-        cells = cells[:msh.topology.index_map(3).size_local]     # each cell counted by its owner
+    owned = msh.geometry.index_map().size_local
+    near_x = nearest_nodes(x[:owned], pts, comm)                # each point's nearest node, on every process
+    d_local, nodes = scipy.spatial.cKDTree(x).query(near_x)
+    nodes = nodes[d_local == 0.0]                                # those this process holds (owned or ghost)
+    cells = cells[:msh.topology.index_map(3).size_local]         # each cell counted by its owner
     near = np.isin(cells, np.unique(nodes)).any(axis=1)
     xv = x[cells[near]]
     e = np.array([np.linalg.norm(xv[:, j] - xv[:, i], axis=1)
                   for i, j in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))])
     total, count = reduced(np.array([e.sum(), float(e.size)]), "SUM", comm)
     return float(total / count)
+
+
+def nearest_nodes(x: np.ndarray, pts: np.ndarray, comm) -> np.ndarray:
+    """(m, 3): the coordinates of each point's nearest node among every
+    process's nodes x (each process its owned ones), on every process. Nodes
+    tied for the nearest (tip_regions.NEAREST_TIE) are decided by their
+    coordinates (the lowest x, then y, then z), not by their numbering or
+    process, so that one and several processes pick the same node."""
+    import scipy.spatial
+    m = len(pts)
+    near = np.full((m, 3), np.inf)
+    dist = np.full(m, np.inf)
+    if len(x):
+        k = min(8, len(x))
+        d, i = scipy.spatial.cKDTree(x).query(pts, k=k)
+        d, i = d.reshape(m, k), i.reshape(m, k)
+        for j in range(m):
+            tied = x[i[j][d[j] <= d[j, 0] * (1.0 + NEAREST_TIE)]]
+            near[j] = tied[np.lexsort(tied.T[::-1])[0]]
+            dist[j] = d[j, 0]
+    if comm.size == 1:
+        return near
+    every_d = np.array(comm.allgather(dist))                    # (processes, points)
+    every_x = np.array(comm.allgather(near))                    # (processes, points, 3)
+    for j in range(m):
+        tied = every_x[every_d[:, j] <= every_d[:, j].min() * (1.0 + NEAREST_TIE), j]
+        near[j] = tied[np.lexsort(tied.T[::-1])[0]]
+    return near
 
 
 class FrontPoints:
@@ -755,7 +776,10 @@ def crack_shape(origin: np.ndarray, X: np.ndarray, index: list[int], free: list[
         out["kind"] = "embedded" if len(free) < 2 else out["kind"]
         return out
     u = faces["u"]
-    deep = int(np.argmax((X - origin) @ u))
+    depth = (X - origin) @ u
+    # (the first of the points tied for the deepest: a round-off apart under
+    # mpirun must not change which point is reported)
+    deep = int(np.flatnonzero(depth >= depth.max() - NEAREST_TIE * np.abs(depth).max())[0])
     ends = [free[0], free[-1]]
     if out["kind"] == "surface":
         a = float(((front - origin) @ u).max())

@@ -164,22 +164,33 @@ def node_distances(model, p: np.ndarray) -> np.ndarray:
     return np.linalg.norm(model.x - p, axis=1)
 
 
+#: Nodes whose distances to a point agree to this relative tolerance are tied
+#: for the nearest (tip_element_size, analysis.front_growth.
+#: front_element_size): a tie is decided by the nodes themselves, not by their
+#: numbering, so that one and several processes pick alike.
+NEAREST_TIE = 1e-9
+
+
 def tip_element_size(model, p: np.ndarray, dist: np.ndarray | None = None) -> float:
-    """Mean edge length of the cells around the node nearest to point p
+    """Mean edge length of the cells around the node nearest to point p; of
+    nodes tied for the nearest (NEAREST_TIE), the smallest such mean
     (collective on a distributed model: the nearest owned node of all
     processes, whose patch its owner holds whole)."""
     dist = node_distances(model, p) if dist is None else dist
     if model.distributed:
         dist = dist[:model.V.dofmap.index_map.size_local]
-        if not dist.size:
-            dist = np.array([np.inf])
-    node = int(np.argmin(dist))
-    cells = model.cells[np.any(model.cells == node, axis=1)]
-    e = model.x[cells[:, [1, 2, 0]]] - model.x[cells]
-    size = float(np.linalg.norm(e, axis=2).mean()) if len(cells) else math.inf
-    if model.distributed:
-        return min(model.V.mesh.comm.allgather((float(dist[node]), size)))[1]
-    return size
+    best = (math.inf, math.inf)
+    if dist.size:
+        d0 = float(dist.min())
+        sizes = []
+        for node in np.flatnonzero(dist <= d0 * (1.0 + NEAREST_TIE)):
+            cells = model.cells[np.any(model.cells == node, axis=1)]
+            e = model.x[cells[:, [1, 2, 0]]] - model.x[cells]
+            sizes.append(float(np.linalg.norm(e, axis=2).mean()) if len(cells) else math.inf)
+        best = (d0, min(sizes))
+    found = model.V.mesh.comm.allgather(best) if model.distributed else [best]
+    d0 = min(d for d, _ in found)
+    return min(size for d, size in found if d <= d0 * (1.0 + NEAREST_TIE))
 
 
 def nearest_node_distance(model, dist: np.ndarray) -> float:
