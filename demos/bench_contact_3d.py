@@ -20,8 +20,9 @@ unsymmetric saddle point by GMRES(30), its early semi-smooth iterations
 inexact: krylov_rtols, contact/friction.py INEXACT_RTOL; the multiplier
 space, B and M built once, counted in t_contact_setup, not in t_solve;
 ratio_solve_with_setup counts them too). Per solve of the last pair:
-krylov_iterations, t_krylov_setup (band factorisation and blocks, GAMG on
-the first), t_solves. Plain: GAMG
+krylov_iterations, t_krylov_setup (the preconditioner's set-up: GAMG's
+on the first, t_amg_setup, and each solve's band blocks and
+factorisation, t_band_setup), t_solves. Plain: GAMG
 set-up and CG. t_total: X-FEM model, assembly, contact system and solve;
 plain: DOLFINx assembly and solve (the mesh is made once, outside both).
 
@@ -69,6 +70,8 @@ def _xfem(scene) -> dict:
             # load path's path_solve, which friction takes, does not)
             "setup_in_solve": key == "contact_solve", "krylov_rtols": [float(s.get("rtol", 0.0)) for s in solves],
             "t_krylov_setup": [float(s["t_setup"]) for s in solves], "t_solves": [float(s["t_total"]) for s in solves],
+            "t_band_setup": [float(s.get("t_band_setup") or 0.0) for s in solves],
+            "t_amg_setup": float(solves[0].get("t_amg_setup") or 0.0),
             "max_pressure": float(-c["lambda"].min())}
 
 
@@ -128,7 +131,7 @@ def worker(spec: dict) -> dict:
             "ratios_solve": [x["t_solve"] / p["t_solve"] for p, x in pairs],
             "contact_iterations": x_last["iterations_contact"], "krylov_iterations": x_last["krylov_iterations"],
             "krylov_rtols": x_last["krylov_rtols"], "t_krylov_setup": x_last["t_krylov_setup"],
-            "t_solves": x_last["t_solves"],
+            "t_solves": x_last["t_solves"], "t_band_setup": x_last["t_band_setup"], "t_amg_setup": x_last["t_amg_setup"],
             "iterations_plain": p_last["iterations"], "method": x_last["method"],
             "relative_residual": x_last["relative_residual"], "max_pressure": x_last["max_pressure"],
             "repeats": spec["repeats"], "load_average": [load0, os.getloadavg()[0]],

@@ -21,9 +21,9 @@ from cracklip.solvers.checked import petsc_from_scipy, scipy_from_petsc
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
 
 
-def _penny(solver: str) -> cl.Scene:
+def _penny(solver: str, n: int) -> cl.Scene:
     import contact_3d
-    return contact_3d.build("beta30_mu0.3", 4, solver=solver, radius=2.0 / 4)
+    return contact_3d.build("beta30_mu0.3", n, solver=solver, radius=2.0 / n)
 
 
 def _answers(sol: cl.Solution) -> dict:
@@ -31,39 +31,46 @@ def _answers(sol: cl.Solution) -> dict:
     c = sol.contact
     return {"K": np.array([[r["K_I"], r["K_II"], r["K_III"]] for r in rows]), "state": c["state"].copy(),
             "sign": np.asarray(c["sign"]).copy(), "lambda": np.concatenate([c["lambda"], c["lambda_t"]]),
-            "solves": sol.solver["solves"]}
+            "solves": sol.solver["solves"], "note": c.get("note")}
 
 
 @pytest.mark.slow
-def test_inexact_friction_iteration_keeps_the_answer(monkeypatch):
+@pytest.mark.parametrize("n, cycles", [(4, False), (7, True)])
+def test_inexact_friction_iteration_keeps_the_answer(monkeypatch, n, cycles):
     """K (every component at every front point) equal to 1e-8 of the
     largest |K|, multipliers to 1e-8 of the largest, the same states and
     slip directions to friction.DIRECTION_TOLERANCE: loose early solves
     (the default) against exact ones (INEXACT_RTOL = None) and the direct
     path. The loose run did solve loosely (a Krylov tolerance above
     KRYLOV_RTOL) and ended on a solve to KRYLOV_RTOL whose residual passed
-    the check."""
+    the check. a / h = 4 settles (every multiplier slips); at a / h = 7 one
+    multiplier at the Coulomb limit flips between stick and slip and the
+    iteration takes the cycle's iterate of least violation, which is not a
+    fixed point: the inexact iteration, meeting the cycle, starts again
+    with exact solves and takes the same iterate (before that it took
+    another, 2e-4 away in the multipliers)."""
     default = friction.INEXACT_RTOL
-    loose = _answers(cl.solve(_penny("iterative")))
+    loose = _answers(cl.solve(_penny("iterative", n)))
     monkeypatch.setattr(friction, "INEXACT_RTOL", None)
-    exact = _answers(cl.solve(_penny("iterative")))
-    direct = _answers(cl.solve(_penny("direct")))
+    exact = _answers(cl.solve(_penny("iterative", n)))
+    direct = _answers(cl.solve(_penny("direct", n)))
+    assert all((a["note"] is not None) == cycles for a in (loose, exact, direct)), loose["note"]
     rtols = [s["rtol"] for s in loose["solves"]]
     assert rtols[0] == default and rtols[0] > 1e3 * iterative.KRYLOV_RTOL, rtols
     assert rtols[-1] == iterative.KRYLOV_RTOL, rtols
     assert all(s["rtol"] == iterative.KRYLOV_RTOL for s in exact["solves"])
     assert loose["solves"][-1]["relative_residual"] <= cl.Options().residual_tol
-    # The penny slips everywhere (mu = 0.3 < tan 30 degrees).
-    assert np.all(direct["state"] == friction.SLIP)
+    # The penny slips (mu = 0.3 < tan 30 degrees).
+    assert np.count_nonzero(direct["state"] == friction.SLIP) >= direct["state"].size - 1
     for other in (exact, direct):
         assert np.array_equal(loose["state"], other["state"])
         assert np.abs(loose["sign"] - other["sign"]).max() <= 10 * friction.DIRECTION_TOLERANCE
         scale = np.abs(other["K"]).max()
         assert np.abs(loose["K"] - other["K"]).max() <= 1e-8 * scale
         assert np.abs(loose["lambda"] - other["lambda"]).max() <= 1e-8 * np.abs(other["lambda"]).max()
-    # Fewer Krylov iterations in all (the reason for the loose solves).
+    # Fewer Krylov iterations in all where it settles (the reason for the loose solves).
     its = lambda a: sum(s["iterations"] for s in a["solves"])  # noqa: E731
-    assert its(loose) < its(exact), (its(loose), its(exact))
+    assert cycles or its(loose) < its(exact), (its(loose), its(exact))
 
 
 def test_bordered_operator_equals_the_block_matrix():

@@ -390,8 +390,9 @@ def _iterate(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, 
     CYCLE_TOLERANCE (info["note"] says so), else _Cycle is raised.
     loose: the Krylov tolerance of the inexact inner solves (INEXACT_RTOL;
     None: every solve exact). An inexact iterate never ends the iteration
-    nor decides a cycle: where it would, the iteration goes on with exact
-    solves only."""
+    nor decides a cycle: where its states and directions repeat, they are
+    solved again exactly; where its states cycle, the iteration starts
+    again from the given states with exact solves only."""
     mu = float(opts.friction)
     bilateral = opts.contact == "bilateral"
     lumped = np.asarray(cs.M.sum(axis=1)).ravel()
@@ -403,6 +404,7 @@ def _iterate(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, 
            else (lambda st, sg: st.tobytes()))
     seen = {key(state, sign): len(history)}
     start = len(history)
+    first_state, first_sign = state, sign
     iterates: dict[int, tuple] = {}
     x0 = None
     beta = None  # the slip rows' Newton terms across sigma (3D), from the last iterate
@@ -443,12 +445,15 @@ def _iterate(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, 
             sign, beta = new_sign, new_beta
             continue
         this = key(new_state, new_sign)
-        if this in seen and not exact:  # an inexact cycle: exact solves from here decide
-            logger.info("friction iteration %d: the states came back on an inexact solve; exact solves from "
-                        "here", len(history))
+        if this in seen and not exact:
+            # A cycle met with inexact solves: the iteration starts again with
+            # exact ones from the first states (warm), so that the cycle and
+            # the iterate it settles on are the exact iteration's.
+            logger.info("friction iteration %d: the states came back on an inexact solve; the iteration starts "
+                        "again with exact solves", len(history))
             loose = rtol = None
-            seen, iterates, start = {this: len(history)}, {}, len(history)
-            state, sign, beta = new_state, new_sign, new_beta
+            state, sign, beta = first_state, first_sign, None
+            seen, iterates, start = {key(state, sign): len(history)}, {}, len(history)
             continue
         if this in seen:
             first = seen[this]
