@@ -533,7 +533,7 @@ class IterativeSolver(LinearSolver):
             y = self._started(A, b, x0, KRYLOV_RTOL if rtol is None else rtol, residual_tol)
             if y is not None:  # (the friction iteration's last check, most often)
                 record_solve({"what": what, "size": size, "relative_residual": self._original_residual(A, y, b),
-                              "solver": "iterative", "method": "the initial guess (Krylov tolerance met)",
+                              "solver": "iterative", "method": _method("cg" if symmetric else "gmres"),
                               "iterations": 0, "amg_dofs": self.n, "setup_reused": True,
                               "rtol": KRYLOV_RTOL if rtol is None else rtol, "t_setup": 0.0,
                               "t_total": time.perf_counter() - t0})
@@ -573,8 +573,7 @@ class IterativeSolver(LinearSolver):
                 shell.free()
             if self._coarse is not None:
                 self._coarse.clear()
-        method = (f"{'CG' if krylov == 'cg' else f'GMRES({GMRES_RESTART})'} + "
-                  "Schwarz {MUMPS crack band | GAMG | band} (phantom basis)")
+        method = _method(krylov)
         record_solve({"what": what, "size": size, "relative_residual": rel, "solver": "iterative",
                       "method": method, "iterations": int(its),
                       "band": int(A.getComm().tompi4py().allreduce(band_dofs.size)),  # (over the processes)
@@ -665,6 +664,12 @@ class IterativeSolver(LinearSolver):
         bn = float(np.linalg.norm(ba))
         rn = float(np.linalg.norm(ra))
         return rn / bn if bn > 0 else rn
+
+
+def _method(krylov: str) -> str:
+    """The iterative path's method as solve records name it."""
+    return (f"{'CG' if krylov == 'cg' else f'GMRES({GMRES_RESTART})'} + "
+            "Schwarz {MUMPS crack band | GAMG | band} (phantom basis)")
 
 
 class _Schwarz:
