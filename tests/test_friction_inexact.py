@@ -100,22 +100,3 @@ def test_bordered_operator_equals_the_block_matrix():
     assert abs(A1 - ref[band]).max() == 0.0 and A1.shape == (band.size, n + m)
     assert abs(A01 - ref[:n][:, band]).max() == 0.0
     assert abs(A11 - ref[band][:, band]).max() == 0.0
-
-
-def test_band_lu_taken_again_only_for_a_nearly_equal_block():
-    """The last unsymmetric solve's band LU serves the next one only where
-    the band block has its pattern and no row moved by more than
-    BAND_REUSE_CHANGE of its largest entry."""
-    A = sp.random(30, 30, 0.2, random_state=5, format="csr") + sp.eye(30)
-    A.sort_indices()
-    lu = iterative._BandLU(None, petsc_from_scipy(A))
-    near = A.copy()
-    near.data *= 1.0 + 0.5 * iterative.BAND_REUSE_CHANGE
-    assert lu.fits(petsc_from_scipy(near))
-    far = A.copy()
-    far.data[far.indptr[3]] *= 1.0 + 3.0 * iterative.BAND_REUSE_CHANGE  # (one entry of row 3)
-    far.data[far.indptr[3]] += 0.5
-    assert not lu.fits(petsc_from_scipy(far))
-    other = (A + sp.csr_matrix(([1.0], ([0], [29])), shape=A.shape)).tocsr()
-    if other.nnz != A.nnz:
-        assert not lu.fits(petsc_from_scipy(other))

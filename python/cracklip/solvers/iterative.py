@@ -29,13 +29,8 @@ iterative path needs:
   coarse space's main crack-opening modes closed (_ConstrainedCoarse). The GAMG hierarchy depends on the stiffness
   only, so it is built once and reused by every active-set iteration. The
   unsymmetric saddle point of friction goes to GMRES(30) with the band
-  factored by LU, applied block by block around the stiffness too
-  (bordered_matrix), its coarse space closed by the closed normal rows; a
-  solve whose band block barely changed from the last one's takes its LU
-  again (BAND_REUSE_CHANGE), and the friction iteration's early solves stop
-  at a loose Krylov tolerance (contact/friction.py INEXACT_RTOL). Every
-  solve path takes it: solve.solve, the load path and friction
-  (load_path.solve_path), hence growth.
+  factored by LU. Every solve path takes it: solve.solve, the load path
+  and friction (load_path.solve_path), hence growth.
 
 Every iterative solve is checked like the direct one (checked.
 solve_checked): the relative residual of the original (untransformed)
@@ -366,7 +361,6 @@ class IterativeSolver(LinearSolver):
         self._amg: PETSc.PC | None = None
         self._K_amg: PETSc.Mat | None = None
         self._coarse: _ConstrainedCoarse | None = None
-        self._band_lu: _BandLU | None = None  # (the last unsymmetric solve's band factorisation)
         # The hierarchy holds a Python PC (its coarse solve), which PETSc must
         # not destroy after the interpreter's shutdown (a segfault at exit):
         # destroy() frees it, and so does this finalizer, at the latest when
@@ -433,7 +427,7 @@ class IterativeSolver(LinearSolver):
 
     def destroy(self) -> None:
         self._release()
-        self._amg = self._coarse = self._band_lu = None
+        self._amg = self._coarse = None
 
     def _contact_band(self, m: int) -> np.ndarray:
         """The stiffness dofs of the band: one ring without contact; with m
@@ -552,14 +546,7 @@ class IterativeSolver(LinearSolver):
             # multipliers per point: normal, tangential).
             band_dofs = np.concatenate([self._contact_band(m if contact_points is None else contact_points),
                                         self._multiplier_rows(A)])
-            shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric, None if symmetric else self._band_lu)
-            band_reused = shell.lu is not None and shell.lu is self._band_lu
-            if shell.lu is not None and not band_reused:  # (the solver owns the last one: the next may take it)
-                if self._band_lu is not None:
-                    self._owned.remove(self._band_lu)
-                    self._band_lu.destroy()
-                self._band_lu = shell.lu
-                self._owned.append(shell.lu)
+            shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric)
             t_band = time.perf_counter() - t0 - t_amg
             if A.getType() == PETSc.Mat.Type.PYTHON and m > 0 and self._coarse is not None:
                 self._coarse.constrain(A.getPythonContext().Ba_petsc)
@@ -591,7 +578,7 @@ class IterativeSolver(LinearSolver):
                       "method": method, "iterations": int(its),
                       "band": int(A.getComm().tompi4py().allreduce(band_dofs.size)),  # (over the processes)
                       "amg_dofs": self.n, "setup_reused": reused, "rtol": KRYLOV_RTOL if rtol is None else rtol,
-                      "t_setup": t_setup, "t_amg_setup": t_amg, "t_band_setup": t_band, "band_reused": band_reused,
+                      "t_setup": t_setup, "t_amg_setup": t_amg, "t_band_setup": t_band,
                       "t_total": time.perf_counter() - t0})
         logger.info("%s: %d iterations (%s), relative residual %.3g", what, its, method, rel)
         if not ok:
@@ -700,11 +687,7 @@ class _Schwarz:
     When R1 r = 0 (CG started by start()) the first line gives z = 0 and
     is skipped: one band solve per iteration."""
 
-    def __init__(self, A: PETSc.Mat, amg: PETSc.PC, n0: int, band_dofs: np.ndarray, symmetric: bool = True,
-                 last: "_BandLU | None" = None):
-        # last: the previous unsymmetric solve's band factorisation, taken
-        # again if this band block is nearly the same (_BandLU.fits); self.lu
-        # the factorisation used (unsymmetric: owned by the IterativeSolver).
+    def __init__(self, A: PETSc.Mat, amg: PETSc.PC, n0: int, band_dofs: np.ndarray, symmetric: bool = True):
         # Under MPI (a distributed A) band_dofs are this process's owned band
         # rows (global numbers) and block 0 its owned rows below n0.
         comm = A.getComm()
@@ -724,16 +707,8 @@ class _Schwarz:
             # transpose of A1's (no copy: 0.06 GB at 8e4 dofs in 3D).
             self.A01 = None if symmetric else A.createSubMatrix(self.is0, self.is1)
             A11 = A.createSubMatrix(self.is1, self.is1)
-        self.lu = None
-        if last is not None and last.fits(A11):
-            self.lu, self.band = last, last.ksp
-            A11.destroy()
-        else:
-            self.band = _factor_band(A11, symmetric)
-            if symmetric:
-                A11.destroy()
-            else:
-                self.lu = _BandLU(self.band, A11)
+        self.band = _factor_band(A11, symmetric)
+        A11.destroy()
         self.r0 = PETSc.Vec().create(comm)
         self.r0.setSizes((self.is0.getLocalSize(), n0))
         self.r0.setUp()
@@ -805,45 +780,11 @@ class _Schwarz:
 
     def free(self) -> None:
         """Free the PETSc objects (idempotent)."""
-        for obj in (self.is0, self.is1, self.A1, self.A01, None if self.lu else self.band, self.r0, self.r1, self.z1,
-                    self.t1, self.s1, self.full):
+        for obj in (self.is0, self.is1, self.A1, self.A01, self.band, self.r0, self.r1, self.z1, self.t1,
+                    self.s1, self.full):
             if obj is not None:
                 obj.destroy()
         self.amg = self.cg = None
-
-
-#: An unsymmetric solve (friction) takes the last one's band factorisation
-#: as its band preconditioner when the band block has the same pattern (the
-#: same states) and no row changed by more than this fraction of its
-#: largest entry (the slip rows as their directions turn). The band solve
-#: is then inexact, which GMRES absorbs; the residual check is the same.
-BAND_REUSE_CHANGE = 0.05
-
-
-class _BandLU:
-    """A band factorisation (ksp) with the band block it factors (A11)."""
-
-    def __init__(self, ksp: PETSc.KSP, A11: PETSc.Mat):
-        self.ksp, self.A11 = ksp, A11
-
-    def fits(self, A11: PETSc.Mat) -> bool:
-        """Whether A11 has this block's pattern and is within
-        BAND_REUSE_CHANGE of it row by row (collective)."""
-        ok = A11.getSize() == self.A11.getSize() and A11.getLocalSize() == self.A11.getLocalSize()
-        if ok:
-            ip, ix, v = A11.getValuesCSR()
-            ip0, ix0, v0 = self.A11.getValuesCSR()
-            ok = np.array_equal(ip, ip0) and np.array_equal(ix, ix0)
-            if ok and v.size:
-                shape = (len(ip) - 1, int(ix.max(initial=0)) + 1)
-                big = abs(sp.csr_matrix((v, ix, ip), shape=shape)).max(axis=1).toarray().ravel()
-                moved = abs(sp.csr_matrix((v - v0, ix, ip), shape=shape)).max(axis=1).toarray().ravel()
-                ok = bool(np.all(moved <= BAND_REUSE_CHANGE * big))
-        return on_all(bool(ok), A11.getComm().tompi4py())
-
-    def destroy(self) -> None:
-        self.ksp.destroy()
-        self.A11.destroy()
 
 
 def _release(owned: list[typing.Any]) -> None:
