@@ -29,8 +29,12 @@ iterative path needs:
   coarse space's main crack-opening modes closed (_ConstrainedCoarse). The GAMG hierarchy depends on the stiffness
   only, so it is built once and reused by every active-set iteration. The
   unsymmetric saddle point of friction goes to GMRES(30) with the band
-  factored by LU. Every solve path takes it: solve.solve, the load path
-  and friction (load_path.solve_path), hence growth.
+  factored by LU, applied block by block around the stiffness too
+  (bordered_matrix), its coarse space closed by the closed normal rows; the
+  friction iteration's early solves stop at a loose Krylov tolerance
+  (contact/friction.py INEXACT_RTOL). Every solve path takes it:
+  solve.solve, the load path and friction (load_path.solve_path), hence
+  growth.
 
 Every iterative solve is checked like the direct one (checked.
 solve_checked): the relative residual of the original (untransformed)
