@@ -63,7 +63,8 @@ def _xfem(scene) -> dict:
             "multipliers": int(c["system"].num_multipliers), "iterations_contact": int(c["iterations"]),
             "t_solve": tm.get("phantom_transform", 0.0) + tm[key], "t_total": t_total,
             "t_assemble_enriched": tm["assemble_enriched"], "t_assemble_standard": tm["assemble_standard"],
-            "krylov_iterations": [int(s["iterations"]) for s in solves], "band": solves[-1].get("band"),
+            "krylov_iterations": [int(s["iterations"]) for s in solves],
+            "band": next((s["band"] for s in reversed(solves) if s.get("band")), None),
             "relative_residual": float(solves[-1]["relative_residual"]),
             "method": next(s["method"] for s in reversed(solves) if s["iterations"] > 0),
             # (solve.solve's contact_solve holds the contact system's set-up; the
