@@ -15,9 +15,14 @@ times and ratios, and the load average of the machine over the run.
 t_solve: the solver's own work. Contact: the phantom transform and the
 contact solve (the saddle point [K B^T; B 0] by the Schwarz sweep {MUMPS
 on the crack band and the multipliers | GAMG | band} inside CG, every
-active-set or friction iteration included; the multiplier space, B and M
-built once, counted in t_contact_setup, not in t_solve; ratio_solve_with_setup
-counts them too). Plain: GAMG
+active-set or friction iteration included; with friction the
+unsymmetric saddle point by GMRES(30), its early semi-smooth iterations
+inexact: krylov_rtols, contact/friction.py INEXACT_RTOL; the multiplier
+space, B and M built once, counted in t_contact_setup, not in t_solve;
+ratio_solve_with_setup counts them too). Per solve of the last pair:
+krylov_iterations, t_krylov_setup (the preconditioner's set-up: GAMG's
+on the first, t_amg_setup, and each solve's band blocks and
+factorisation, t_band_setup), t_solves. Plain: GAMG
 set-up and CG. t_total: X-FEM model, assembly, contact system and solve;
 plain: DOLFINx assembly and solve (the mesh is made once, outside both).
 
@@ -58,8 +63,16 @@ def _xfem(scene) -> dict:
             "multipliers": int(c["system"].num_multipliers), "iterations_contact": int(c["iterations"]),
             "t_solve": tm.get("phantom_transform", 0.0) + tm[key], "t_total": t_total,
             "t_assemble_enriched": tm["assemble_enriched"], "t_assemble_standard": tm["assemble_standard"],
-            "krylov_iterations": [int(s["iterations"]) for s in solves], "band": solves[-1].get("band"),
-            "relative_residual": float(solves[-1]["relative_residual"]), "method": solves[-1]["method"],
+            "krylov_iterations": [int(s["iterations"]) for s in solves],
+            "band": next((s["band"] for s in reversed(solves) if s.get("band")), None),
+            "relative_residual": float(solves[-1]["relative_residual"]),
+            "method": next(s["method"] for s in reversed(solves) if s["iterations"] > 0),
+            # (solve.solve's contact_solve holds the contact system's set-up; the
+            # load path's path_solve, which friction takes, does not)
+            "setup_in_solve": key == "contact_solve", "krylov_rtols": [float(s.get("rtol", 0.0)) for s in solves],
+            "t_krylov_setup": [float(s["t_setup"]) for s in solves], "t_solves": [float(s["t_total"]) for s in solves],
+            "t_band_setup": [float(s.get("t_band_setup") or 0.0) for s in solves],
+            "t_amg_setup": float(solves[0].get("t_amg_setup") or 0.0),
             "max_pressure": float(-c["lambda"].min())}
 
 
@@ -97,9 +110,12 @@ def worker(spec: dict) -> dict:
         p = bench_3d._plain(scene)
         x = _xfem(scene)
         x["t_contact_setup"] = sum(setup)
-        # The solve's clock holds the contact system's set-up (B, M): taken out.
-        x["t_solve_with_setup"] = x["t_solve"]
-        x["t_solve"] -= x["t_contact_setup"]
+        # The contact system's set-up (B, M) out of t_solve, in t_solve_with_setup.
+        if x["setup_in_solve"]:
+            x["t_solve_with_setup"] = x["t_solve"]
+            x["t_solve"] -= x["t_contact_setup"]
+        else:
+            x["t_solve_with_setup"] = x["t_solve"] + x["t_contact_setup"]
         pairs.append((p, x))
     med = lambda key, which: statistics.median(pr[which][key] for pr in pairs)  # noqa: E731
     p_last, x_last = pairs[-1]
@@ -115,6 +131,9 @@ def worker(spec: dict) -> dict:
             "ratio_total": statistics.median(x["t_total"] / p["t_total"] for p, x in pairs),
             "ratios_solve": [x["t_solve"] / p["t_solve"] for p, x in pairs],
             "contact_iterations": x_last["iterations_contact"], "krylov_iterations": x_last["krylov_iterations"],
+            "krylov_rtols": x_last["krylov_rtols"], "t_krylov_setup": x_last["t_krylov_setup"],
+            "t_solves": x_last["t_solves"], "t_band_setup": x_last["t_band_setup"],
+            "t_amg_setup": x_last["t_amg_setup"],
             "iterations_plain": p_last["iterations"], "method": x_last["method"],
             "relative_residual": x_last["relative_residual"], "max_pressure": x_last["max_pressure"],
             "repeats": spec["repeats"], "load_average": [load0, os.getloadavg()[0]],

@@ -208,7 +208,16 @@ def test_friction_load_path_iterative():
     assert direct.solver["solver"] == "direct" and iterative.solver["solver"] == "iterative"
     recs = iterative.solver["solves"]
     assert recs and all(r["solver"] == "iterative" and r["method"].startswith("GMRES") for r in recs)
-    assert all(r["relative_residual"] <= sf.scene.options.residual_tol for r in recs)
+    # The friction iteration's inexact inner solves (contact/friction.py
+    # INEXACT_RTOL) are checked at their own tolerance; every solve to
+    # KRYLOV_RTOL, each step's last among them, at residual_tol.
+    from cracklip.solvers.iterative import KRYLOV_RTOL
+    tol = sf.scene.options.residual_tol
+    assert all(r["relative_residual"] <= (tol if r["rtol"] == KRYLOV_RTOL else 10 * r["rtol"]) for r in recs)
+    assert all(r["relative_residual"] <= tol for r in recs if r["rtol"] == KRYLOV_RTOL)
+    assert recs[-1]["rtol"] == KRYLOV_RTOL
+    for step in iterative.steps:
+        assert step.solver["solves"][-1]["rtol"] == KRYLOV_RTOL
     assert len(direct.steps) == len(iterative.steps) == 3
     for d, it in zip(direct.steps, iterative.steps):
         a, b = answers(d, None), answers(it, None)

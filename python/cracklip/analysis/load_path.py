@@ -31,7 +31,7 @@ from ..errors import InputError
 from ..scene.conditions import LoadStep
 from ..scene.load_path import Increment, increments, steps
 from ..scene.scene import Scene
-from ..solvers.checked import condition_number_1norm, record_solves, scipy_from_petsc
+from ..solvers.checked import condition_number_1norm, record_solves
 from ..solvers.choice import (create_distributed_linear_solver, create_linear_solver, to_distributed_solver_basis,
                               to_solver_basis)
 from ..solvers.rescaling import from_basis
@@ -110,12 +110,12 @@ def solve_path(scene: Scene, condition_number: bool = False) -> list[Solution]:
     A, rhs, T, T_mpi, linear, timings = _assembled_groups(model, unit)
     contact = opts.contact != "none" and bool(model.cracks)
     friction = contact and opts.friction > 0.0
-    # The stiffness as the contact solves take it: friction assembles its
-    # own (unsymmetric) saddle point from a scipy copy; frictionless contact
-    # lets the solver path build it (the iterative path around A, no copy).
-    # Under mpirun both border the distributed A itself.
+    # The stiffness as the contact solves take it: the solver path builds
+    # the saddle point, frictionless or frictional (the direct path from a
+    # scipy copy, the iterative one around A, no copy). Under mpirun both
+    # border the distributed A itself.
     distributed = model.distributed
-    K = None if not contact else A if distributed else scipy_from_petsc(A) if friction else linear.stiffness(A)
+    K = None if not contact else A if distributed else linear.stiffness(A)
     physical = cs = None
     if contact:
         physical = create_contact_system(unit)

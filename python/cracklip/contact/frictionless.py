@@ -355,13 +355,14 @@ def distributed_saddle(A: PETSc.Mat, f: np.ndarray, cs: ContactSystem, residual_
 
 def solve_bordered(S: PETSc.Mat, f: np.ndarray, rhs: np.ndarray, residual_tol: float, what: str,
                    symmetric: bool = False, linear: "LinearSolver | None" = None, x0: np.ndarray | None = None,
-                   contact_points: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+                   contact_points: int | None = None, rtol: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Collective: solve the distributed [K C^T; rows] (solvers/saddle.py
     bordered_matrix) with the right-hand side [f; rhs] (f this process's
     owned entries, rhs the multiplier rows', whole on every process) by
     parallel MUMPS, or by linear (the solver path: the distributed
     iterative one, from x0 = (this process's owned u, every multiplier)
-    if given; contact_points sizes its band, as LinearSolver.solve).
+    if given; contact_points sizes its band and rtol loosens its Krylov
+    tolerance, as LinearSolver.solve).
     Returns (u, lambda): u this process's owned dofs, the multipliers on
     every process (broadcast by the last process, which holds their rows)."""
     comm = S.getComm().tompi4py()
@@ -376,7 +377,7 @@ def solve_bordered(S: PETSc.Mat, f: np.ndarray, rhs: np.ndarray, residual_tol: f
     else:
         start = None if x0 is None else x0[:n] if comm.rank != holder else x0
         x = linear.solve(S, b, residual_tol, what=what, x0=start, symmetric=symmetric,
-                         contact_points=contact_points)
+                         contact_points=contact_points, rtol=rtol)
     u = x.array_r[:n].copy()
     lam = comm.bcast(x.array_r[n:].copy() if comm.rank == holder else None, root=holder)
     for o in (S, b, x):

@@ -8,7 +8,7 @@ import scipy.sparse as sp
 from petsc4py import PETSc
 
 from .checked import scipy_from_petsc, solve_checked
-from .saddle import saddle_matrix
+from .saddle import assembled_bordered, saddle_matrix
 
 
 class LinearSolver:
@@ -25,12 +25,16 @@ class LinearSolver:
 
     def solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
               x0: np.ndarray | None = None, symmetric: bool = True,
-              contact_points: int | None = None) -> PETSc.Vec:
+              contact_points: int | None = None, rtol: float | None = None) -> PETSc.Vec:
         """symmetric = False for an unsymmetric system (frictional contact:
         the slip rows): LU instead of LDL^T, GMRES instead of CG.
         contact_points: the number of contact points the multipliers belong
         to (default: one multiplier per point, frictionless; friction has
-        two), which sizes the iterative path's crack band."""
+        two), which sizes the iterative path's crack band. rtol: an inexact
+        solve (an inner step of the friction iteration, never its answer):
+        the iterative path stops its Krylov iteration at this relative
+        residual instead of KRYLOV_RTOL and checks the residual against it;
+        a direct path solves exactly anyway."""
         raise NotImplementedError
 
     def stiffness(self, A: PETSc.Mat) -> typing.Any:
@@ -43,6 +47,13 @@ class LinearSolver:
         saddle_matrix) on K from stiffness()."""
         return saddle_matrix(K, B, active)
 
+    def bordered_matrix(self, K: typing.Any, C: sp.csr_matrix, rows: sp.csr_matrix,
+                        constraints: sp.csr_matrix) -> PETSc.Mat:
+        """Frictional contact's unsymmetric saddle point [K C^T; rows] on K
+        from stiffness() (assembled; constraints, the rows of C that hold
+        as constraints, serve the iterative path)."""
+        return assembled_bordered(K, C, rows)
+
     def destroy(self) -> None:
         pass
 
@@ -53,5 +64,5 @@ class DirectSolver(LinearSolver):
 
     def solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
               x0: np.ndarray | None = None, symmetric: bool = True,
-              contact_points: int | None = None) -> PETSc.Vec:
+              contact_points: int | None = None, rtol: float | None = None) -> PETSc.Vec:
         return solve_checked(A, b, residual_tol, what=what, symmetric=symmetric)

@@ -29,8 +29,12 @@ iterative path needs:
   coarse space's main crack-opening modes closed (_ConstrainedCoarse). The GAMG hierarchy depends on the stiffness
   only, so it is built once and reused by every active-set iteration. The
   unsymmetric saddle point of friction goes to GMRES(30) with the band
-  factored by LU. Every solve path takes it: solve.solve, the load path
-  and friction (load_path.solve_path), hence growth.
+  factored by LU, applied block by block around the stiffness too
+  (bordered_matrix), its coarse space closed by the closed normal rows; the
+  friction iteration's early solves stop at a loose Krylov tolerance
+  (contact/friction.py INEXACT_RTOL). Every solve path takes it:
+  solve.solve, the load path and friction (load_path.solve_path), hence
+  growth.
 
 Every iterative solve is checked like the direct one (checked.
 solve_checked): the relative residual of the original (untransformed)
@@ -41,6 +45,7 @@ SIFs, pressures and energies equal the direct path's.
 from __future__ import annotations
 
 import contextlib
+import hashlib
 import itertools
 import logging
 import math
@@ -59,7 +64,7 @@ if typing.TYPE_CHECKING:
     from ..model.model import XfemModel
 from .direct import LinearSolver
 from .phantom import phantom_basis, transform_matrix
-from .saddle import SaddleOperator
+from .saddle import BorderedOperator, SaddleOperator
 from .checked import scipy_from_petsc
 from .checked import factor_call, create_lu_solver, out_of_memory
 from ..scene.processes import on_all
@@ -412,6 +417,18 @@ class IterativeSolver(LinearSolver):
         A.setUp()
         return A
 
+    def bordered_matrix(self, K: PETSc.Mat, C: sp.csr_matrix, rows: sp.csr_matrix,
+                        constraints: sp.csr_matrix) -> PETSc.Mat:
+        """Friction's [K C^T; rows] as a Python PETSc matrix applied
+        blockwise around K (BorderedOperator: no copy of the stiffness);
+        constraints (rows of C) keep GAMG's coarse space closed as B_a does
+        for the frictionless saddle point."""
+        op = BorderedOperator(K, C, rows, constraints)
+        size = op.n + op.m
+        A = PETSc.Mat().createPython([size, size], context=op, comm=PETSc.COMM_SELF)
+        A.setUp()
+        return A
+
     def destroy(self) -> None:
         self._release()
         self._amg = self._coarse = None
@@ -484,15 +501,20 @@ class IterativeSolver(LinearSolver):
 
     def solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
               x0: np.ndarray | None = None, symmetric: bool = True,
-              contact_points: int | None = None) -> PETSc.Vec:
+              contact_points: int | None = None, rtol: float | None = None) -> PETSc.Vec:
         """Solve A y = b (A in the phantom basis: the stiffness given to
         transform(), or a saddle-point system extending it, unsymmetric
         with friction); check the residual of the original system. With
         fallback (solver = "auto") a failed iterative solve is repeated by
         MUMPS (LDL^T, or LU if not symmetric), which either solves the
-        system or names what is singular."""
+        system or names what is singular. rtol: an inexact solve
+        (LinearSolver.solve): the Krylov iteration stops at this relative
+        residual, and the check takes 10 rtol as residual_tol (the original
+        basis's residual is not the phantom basis's)."""
+        if rtol is not None:
+            residual_tol = max(residual_tol, 10.0 * rtol)
         try:
-            return self._solve(A, b, residual_tol, what, x0, symmetric, contact_points)
+            return self._solve(A, b, residual_tol, what, x0, symmetric, contact_points, rtol)
         except SolverError as e:
             if not self.fallback:
                 raise
@@ -506,18 +528,30 @@ class IterativeSolver(LinearSolver):
             return solve_checked(A, b, residual_tol, what=what, symmetric=symmetric)
 
     def _solve(self, A: PETSc.Mat, b: PETSc.Vec, residual_tol: float, what: str,
-               x0: np.ndarray | None, symmetric: bool = True, contact_points: int | None = None) -> PETSc.Vec:
+               x0: np.ndarray | None, symmetric: bool = True, contact_points: int | None = None,
+               rtol: float | None = None) -> PETSc.Vec:
         size = A.getSize()[0]
         m = size - self.n
         t0 = time.perf_counter()
+        if x0 is not None:
+            y = self._started(A, b, x0, KRYLOV_RTOL if rtol is None else rtol, residual_tol)
+            if y is not None:  # (the friction iteration's last check, most often)
+                record_solve({"what": what, "size": size, "relative_residual": self._original_residual(A, y, b),
+                              "solver": "iterative", "method": _method("cg" if symmetric else "gmres"),
+                              "iterations": 0, "amg_dofs": self.n, "setup_reused": True,
+                              "rtol": KRYLOV_RTOL if rtol is None else rtol, "t_setup": 0.0,
+                              "t_total": time.perf_counter() - t0})
+                return y
         shell = None
         try:
             pc0, reused = self._block0_pc(A)
+            t_amg = time.perf_counter() - t0
             # The band's width follows the contact points (friction has two
             # multipliers per point: normal, tangential).
             band_dofs = np.concatenate([self._contact_band(m if contact_points is None else contact_points),
                                         self._multiplier_rows(A)])
             shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric)
+            t_band = time.perf_counter() - t0 - t_amg
             if A.getType() == PETSc.Mat.Type.PYTHON and m > 0 and self._coarse is not None:
                 self._coarse.constrain(A.getPythonContext().Ba_petsc)
             t_setup = time.perf_counter() - t0
@@ -530,7 +564,7 @@ class IterativeSolver(LinearSolver):
             # An unsymmetric system (friction) goes to GMRES at once.
             attempts = ["gmres"] if not symmetric else ["cg"] if m == 0 else ["cg", "gmres"]
             for krylov in attempts:
-                y, its, reason = self._krylov(A, b, shell, krylov, x0, what)
+                y, its, reason = self._krylov(A, b, shell, krylov, x0, what, rtol)
                 rel = self._original_residual(A, y, b)
                 ok = on_all(bool(np.all(np.isfinite(y.array))), y.getComm().tompi4py()) and rel <= residual_tol
                 if ok or krylov == attempts[-1]:
@@ -543,13 +577,13 @@ class IterativeSolver(LinearSolver):
                 shell.free()
             if self._coarse is not None:
                 self._coarse.clear()
-        method = (f"{'CG' if krylov == 'cg' else f'GMRES({GMRES_RESTART})'} + "
-                  "Schwarz {MUMPS crack band | GAMG | band} (phantom basis)")
+        method = _method(krylov)
         record_solve({"what": what, "size": size, "relative_residual": rel, "solver": "iterative",
                       "method": method, "iterations": int(its),
                       "band": int(A.getComm().tompi4py().allreduce(band_dofs.size)),  # (over the processes)
-                      "amg_dofs": self.n, "setup_reused": reused,
-                      "t_setup": t_setup, "t_total": time.perf_counter() - t0})
+                      "amg_dofs": self.n, "setup_reused": reused, "rtol": KRYLOV_RTOL if rtol is None else rtol,
+                      "t_setup": t_setup, "t_amg_setup": t_amg, "t_band_setup": t_band,
+                      "t_total": time.perf_counter() - t0})
         logger.info("%s: %d iterations (%s), relative residual %.3g", what, its, method, rel)
         if not ok:
             cause = ("it stopped after the iteration limit" if reason == PETSc.KSP.ConvergedReason.DIVERGED_MAX_IT
@@ -563,8 +597,25 @@ class IterativeSolver(LinearSolver):
                 "solver = 'direct'")
         return y
 
+    def _started(self, A: PETSc.Mat, b: PETSc.Vec, x0: np.ndarray, rtol: float,
+                 residual_tol: float) -> PETSc.Vec | None:
+        """x0 as a vector if it already solves A y = b to the Krylov
+        tolerance and passes the check (no preconditioner set up: a band
+        factorisation saved), else None."""
+        y = A.createVecRight()
+        y.array[:] = x0
+        r = b.duplicate()
+        A.mult(y, r)
+        r.axpy(-1.0, b)
+        done = r.norm() <= rtol * b.norm()
+        r.destroy()
+        if done and self._original_residual(A, y, b) <= residual_tol:
+            return y
+        y.destroy()
+        return None
+
     def _krylov(self, A: PETSc.Mat, b: PETSc.Vec, shell: "_Schwarz", krylov: str, x0: np.ndarray | None,
-                what: str) -> tuple[PETSc.Vec, int, int]:
+                what: str, rtol: float | None = None) -> tuple[PETSc.Vec, int, int]:
         """One Krylov solve of A y = b preconditioned by the Schwarz sweep: (y, iterations, reason)."""
         ksp = PETSc.KSP().create(A.getComm())
         try:
@@ -572,7 +623,7 @@ class IterativeSolver(LinearSolver):
             ksp.setType(krylov)
             if krylov == "gmres":
                 ksp.setGMRESRestart(GMRES_RESTART)
-            ksp.setTolerances(rtol=KRYLOV_RTOL, atol=0.0, max_it=MAX_ITERATIONS)
+            ksp.setTolerances(rtol=KRYLOV_RTOL if rtol is None else rtol, atol=0.0, max_it=MAX_ITERATIONS)
             ksp.setNormType(PETSc.KSP.NormType.UNPRECONDITIONED)
             pc = ksp.getPC()
             pc.setType("python")
@@ -617,6 +668,12 @@ class IterativeSolver(LinearSolver):
         bn = float(np.linalg.norm(ba))
         rn = float(np.linalg.norm(ra))
         return rn / bn if bn > 0 else rn
+
+
+def _method(krylov: str) -> str:
+    """The iterative path's method as solve records name it."""
+    return (f"{'CG' if krylov == 'cg' else f'GMRES({GMRES_RESTART})'} + "
+            "Schwarz {MUMPS crack band | GAMG | band} (phantom basis)")
 
 
 class _Schwarz:
@@ -775,6 +832,10 @@ class _ConstrainedCoarse:
         self.interpolations = [amg.getMGInterpolation(level) for level in range(levels - 1, 0, -1)]  # finest first
         self.C: np.ndarray | None = None
         self.G: np.ndarray | None = None
+        # The last constraint's (key, (C, G)): the friction iteration's
+        # solves keep the same closed rows (bilateral: all of them), and the
+        # dense SVD on the coarse space is then done once.
+        self._last: tuple[bytes, tuple] | None = None
 
     @property
     def rank(self) -> int:
@@ -783,7 +844,17 @@ class _ConstrainedCoarse:
 
     def constrain(self, B: PETSc.Mat) -> None:
         """Constrain the coarse solve by the multipliers' rows B (m x n,
-        stiffness columns in the solver's basis)."""
+        stiffness columns in the solver's basis; the same B as the last
+        time: its C and G again)."""
+        indptr, indices, data = B.getValuesCSR()
+        key = hashlib.sha1(b"".join(np.ascontiguousarray(a).tobytes() for a in (indptr, indices, data))).digest()
+        if self._last is not None and self._last[0] == key:
+            self.C, self.G = self._last[1]
+            return
+        self._constrain(B)
+        self._last = (key, (self.C, self.G))
+
+    def _constrain(self, B: PETSc.Mat) -> None:
         Bc = B
         for P in self.interpolations:
             nxt = Bc.matMult(P)
@@ -831,6 +902,7 @@ class _ConstrainedCoarse:
         self.Ac = None
         self.interpolations = []
         self.clear()
+        self._last = None
 
 
 def _factor_band(A11: PETSc.Mat, symmetric: bool = True) -> PETSc.KSP:

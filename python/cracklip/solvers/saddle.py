@@ -132,3 +132,91 @@ class SaddleOperator:
     def destroy(self, mat: PETSc.Mat) -> None:
         for obj in (self.Ba_petsc, self._BaT, self._is_u, self._is_l):
             obj.destroy()
+
+
+def assembled_bordered(K: sp.csr_matrix, C: sp.csr_matrix, rows: sp.csr_matrix) -> PETSc.Mat:
+    """The PETSc AIJ matrix [K C^T; rows] (serial, unsymmetric in general):
+    K the scipy stiffness, C (m, n) the multipliers' columns, rows (m, n + m)
+    their rows (frictional contact's saddle point on the direct path)."""
+    return petsc_from_scipy(sp.vstack([sp.hstack([K, C.T]), rows], format="csr"))
+
+
+class BorderedOperator:
+    """Python-matrix context of IterativeSolver.bordered_matrix: [K C^T;
+    rows] (serial) applied block by block around the PETSc stiffness K,
+    with no copy of it: friction's unsymmetric saddle point (C = [B; B_t]
+    whole, rows the normal and tangential multipliers' rows of the current
+    states). Assembled, the 1e6-dof system cost a scipy copy of K and a
+    block merge of its ~4e7 entries per semi-smooth iteration.
+    Ba_petsc: the rows of C that hold as constraints in these states (the
+    closed normal rows, the sticking tangential ones), which keep
+    IterativeSolver's coarse space closed (_ConstrainedCoarse)."""
+
+    def __init__(self, K: PETSc.Mat, C: sp.csr_matrix, rows: sp.csr_matrix, constraints: sp.csr_matrix):
+        comm = PETSc.COMM_SELF
+        self.K = K
+        self.n, self.m = K.getSize()[0], C.shape[0]
+        n = self.n
+        self.C = C.tocsr()
+        self.C.sort_indices()
+        rows = rows.tocsr()
+        self.rows = rows
+        self.Ru = rows[:, :n].tocsr()
+        self.Rl = rows[:, n:].tocsr()
+        self._CT = petsc_from_scipy(self.C.T)
+        self._Ru = petsc_from_scipy(self.Ru)
+        self.Ba_petsc = petsc_from_scipy(constraints)
+        self._is_u = PETSc.IS().createStride(n, 0, 1, comm=comm)
+        self._is_l = PETSc.IS().createStride(self.m, n, 1, comm=comm)
+
+    def mult(self, mat: PETSc.Mat, x: PETSc.Vec, y: PETSc.Vec) -> None:
+        xu, yu = x.getSubVector(self._is_u), y.getSubVector(self._is_u)
+        self.K.mult(xu, yu)
+        if self.m:
+            xl, yl = x.getSubVector(self._is_l), y.getSubVector(self._is_l)
+            self._CT.multAdd(xl, yu, yu)
+            self._Ru.mult(xu, yl)
+            yl.array[:] += self.Rl @ xl.array_r
+            x.restoreSubVector(self._is_l, xl)
+            y.restoreSubVector(self._is_l, yl)
+        x.restoreSubVector(self._is_u, xu)
+        y.restoreSubVector(self._is_u, yu)
+
+    def multTranspose(self, mat: PETSc.Mat, x: PETSc.Vec, y: PETSc.Vec) -> None:
+        xu, yu = x.getSubVector(self._is_u), y.getSubVector(self._is_u)
+        self.K.mult(xu, yu)  # (K symmetric)
+        if self.m:
+            xl, yl = x.getSubVector(self._is_l), y.getSubVector(self._is_l)
+            self._Ru.multTransposeAdd(xl, yu, yu)
+            yl.array[:] = self.C @ xu.array_r + self.Rl.T @ xl.array_r
+            x.restoreSubVector(self._is_l, xl)
+            y.restoreSubVector(self._is_l, yl)
+        x.restoreSubVector(self._is_u, xu)
+        y.restoreSubVector(self._is_u, yu)
+
+    def assembled(self) -> PETSc.Mat:
+        """The same matrix assembled (PETSc AIJ, for MUMPS)."""
+        return assembled_bordered(scipy_from_petsc(self.K), self.C, self.rows)
+
+    def band_blocks(self, band: np.ndarray) -> tuple[PETSc.Mat, PETSc.Mat, PETSc.Mat]:
+        """(A1, A01, A11) of _Schwarz for the sorted band dofs (every
+        multiplier among them): A1 = the band's rows, A01 = the stiffness
+        rows at the band's columns ([K C^T]'s: K's band rows transposed, K
+        being symmetric, and C^T), A11 = the band's rows and columns."""
+        comm = PETSc.COMM_SELF
+        n = self.n
+        kb = band[band < n]
+        lb = band[band >= n] - n
+        idx = PETSc.IS().createGeneral(kb.astype(PETSc.IntType), comm=comm)
+        K1 = self.K.createSubMatrix(idx, self._is_u)
+        idx.destroy()
+        K1s = scipy_from_petsc(K1)
+        K1.destroy()
+        CT = self.C.T.tocsr()
+        A1 = sp.vstack([sp.hstack([K1s, CT[kb]], format="csr"), self.rows[lb]], format="csr")
+        A01 = sp.hstack([K1s.T, CT[:, lb]], format="csr")
+        return petsc_from_scipy(A1), petsc_from_scipy(A01), petsc_from_scipy(A1[:, band])
+
+    def destroy(self, mat: PETSc.Mat) -> None:
+        for obj in (self._CT, self._Ru, self.Ba_petsc, self._is_u, self._is_l):
+            obj.destroy()
