@@ -114,7 +114,7 @@ def _xfem(scene) -> dict:
             "t_solve": tm.get("phantom_transform", 0.0) + tm["solve"], "t_setup": s.get("t_setup"),
             "t_total": t_total, "t_assemble_enriched": tm["assemble_enriched"],
             "t_assemble_standard": tm["assemble_standard"], "iterations": int(s["iterations"]),
-            "band": s.get("band"), "relative_residual": float(s["relative_residual"]), "method": s["method"]}
+            "band": s.get("band"), "outer": s.get("outer"), "relative_residual": float(s["relative_residual"]), "method": s["method"]}
 
 
 def worker(spec: dict) -> dict:
@@ -137,7 +137,7 @@ def worker(spec: dict) -> dict:
     p_last, x_last = pairs[-1]
     return {"a_over_h": spec["n"], "radius": radius, "ndofs": x_last["ndofs"], "plain_ndofs": p_last["ndofs"],
             "cells": int(scene.mesh.mesh.topology.index_map(3).size_local), "t_mesh": t_mesh,
-            "enriched_dofs": x_last["enriched_dofs"], "band": x_last["band"],
+            "enriched_dofs": x_last["enriched_dofs"], "band": x_last["band"], "outer": x_last["outer"],
             "t_solve_xfem": med("t_solve", 1), "t_solve_plain": med("t_solve", 0),
             "t_setup_xfem": med("t_setup", 1), "t_setup_plain": med("t_setup", 0),
             "t_total_xfem": med("t_total", 1), "t_total_plain": med("t_total", 0),
