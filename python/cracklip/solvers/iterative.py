@@ -19,6 +19,12 @@ iterative path needs:
   neighbours (BAND_RINGS: in 3D the enriched nodes alone), every tip dof
   and every multiplier; with contact it is widened to ceil(0.07 m) rings
   for m multipliers;
+* the outer torus (3D, a front enrichment radius of several front
+  elements, no contact): the front-function dofs beyond INNER_BAND_RADIUS_H
+  front elements leave the exact band, whose LDL^T costs about its length
+  times the square of its cross-section, for a block of their own solved
+  by ICC(0) (OUTER_PC), from OUTER_FROM_H on so that it overlaps the band;
+  the sweep becomes {band | outer | GAMG | outer | band};
 * IterativeSolver: a symmetric overlapping Schwarz sweep {band by MUMPS
   LDL^T | one GAMG V-cycle on the whole transformed stiffness | band again}
   as the preconditioner of CG (also for the saddle point of contact, with
