@@ -218,8 +218,9 @@ def test_outer_torus_block_gives_the_direct_answers():
     INNER_BAND_RADIUS_H front elements from the front leave the exact band
     for the sweep's inexact block; energy and K_I, K_II, K_III along the
     front equal the direct path's to 1e-8, and CG needs no more than a few
-    iterations more than with the whole band exact (measured: 26 either
-    way; band 14 586 dofs instead of 19 764, outer block 7 905)."""
+    iterations more than with the whole band exact (measured: 27 against
+    26; band 9 882 dofs instead of 19 764, outer block 15 036 with its
+    nodes' standard dofs)."""
     direct = cl.solve(small_penny("direct"))
     split = cl.solve(small_penny("iterative"))
     rec = split.solver["solves"][-1]

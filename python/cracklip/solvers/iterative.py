@@ -23,8 +23,9 @@ iterative path needs:
   elements, no contact): the front-function dofs beyond INNER_BAND_RADIUS_H
   front elements leave the exact band, whose LDL^T costs about its length
   times the square of its cross-section, for a block of their own solved
-  by ICC(0) (OUTER_PC), from OUTER_FROM_H on so that it overlaps the band;
-  the sweep becomes {band | outer | GAMG | outer | band};
+  with their nodes' standard dofs by ICC(0) (OUTER_PC), from OUTER_FROM_H
+  on so that it overlaps the band; the sweep becomes {band | outer | GAMG |
+  outer | band};
 * IterativeSolver: a symmetric overlapping Schwarz sweep {band by MUMPS
   LDL^T | one GAMG V-cycle on the whole transformed stiffness | band again}
   as the preconditioner of CG (also for the saddle point of contact, with
@@ -154,7 +155,16 @@ BAND_RINGS = {2: 1, 3: 0}
 #: exact (MUMPS) band, whose cost grows with the square of its
 #: cross-section, for a block of their own solved inexactly (OUTER_PC);
 #: 0: never (the whole band exact). The block starts OUTER_FROM_H front
-#: elements from the front, so that it overlaps the exact band.
+#: elements from the front, so that it overlaps the exact band. Penny at
+#: 5.3e5 dofs, radius 0.25 a (6 front elements), CG iterations: whole band
+#: exact 24; split at 2 without overlap, outer block by ICC(0) 36, ICC(1)
+#: 33, by MUMPS (exact) 33, 31 with its standard dofs: the split itself
+#: costs iterations, not the incomplete factor; split at 3: 36. With the
+#: overlap (from 1): ICC(0) 34, with the standard dofs 29 (ICC(1) 29);
+#: split at 3 from 1: 31. Also measured and dropped: a coarse space of the
+#: outer block (an aggregate per front function and component per 4 front
+#: elements of front) 35 against 36; the outer tip dofs' couplings kept in
+#: GAMG's operator 31 against 26 (1.1e5 dofs).
 INNER_BAND_RADIUS_H = 2.0
 
 
@@ -163,17 +173,23 @@ INNER_BAND_RADIUS_H = 2.0
 OUTER_FROM_H = 1.0
 
 
-#: Whether the outer block also holds its nodes' standard dofs.
-OUTER_WITH_STANDARD = False
+#: Whether the outer block also holds its nodes' standard dofs (unless a
+#: Heaviside pseudo-node shares the node): block Gauss-Seidel between GAMG
+#: (standard dofs) and the outer block (front-function dofs) is slow where
+#: the two spans nearly coincide; holding both, the block overlaps GAMG's
+#: (5.3e5 dofs: 34 -> 29 iterations; band 58.5k -> 21.5k dofs).
+OUTER_WITH_STANDARD = True
 
 
-#: The band is split only when the dofs it leaves to the outer block are at
-#: least this share of it (radius 2 h_front: 12.5 % at 1e5 dofs, 10.6 % at
-#: 5e5, the nodes just beyond the mean front edge; radius 0.25 a: 29 % at 1e5).
+#: The band is split only when the front-function dofs beyond
+#: INNER_BAND_RADIUS_H are at least this share of it (radius 2 h_front:
+#: 12.5 % at 1e5 dofs, 10.6 % at 5e5, the nodes just beyond the mean front
+#: edge, whose path stays as it was; radius 0.25 a: 29 % at 1e5).
 OUTER_MIN_SHARE = 0.2
 
 
-#: The outer block's inexact solve: a fixed symmetric operator (CG).
+#: The outer block's inexact solve: a fixed symmetric operator (CG);
+#: ICC(1) took as many iterations (29 at 5.3e5 dofs) for a larger factor.
 OUTER_PC = {"pc_type": "icc", "pc_factor_levels": 0, "pc_factor_shift_type": "positive_definite"}
 
 
@@ -423,8 +439,6 @@ class IterativeSolver(LinearSolver):
         self.n = self._num_dofs()
         self._band_k = self._crack_band(BAND_RINGS[self.model.gdim])
         self._outer, beyond = self._outer_torus()
-        if beyond.size < OUTER_MIN_SHARE * self._band_k.size:  # (none, or a few nodes: the whole band exact)
-            self._outer = beyond = beyond[:0]
         # The exact band of a solve without contact when the outer torus
         # has its own block: without the outer torus beyond its overlap.
         self._band_inner = np.setdiff1d(self._band_k, beyond) if self._outer.size else self._band_k
@@ -461,7 +475,12 @@ class IterativeSolver(LinearSolver):
         return rigid_modes(self.model)
 
     def _outer_torus(self) -> tuple[np.ndarray, np.ndarray]:
-        """(the outer block's dofs, the dofs the exact band leaves to it)."""
+        """(the outer block's dofs, the dofs the exact band leaves to it);
+        both empty unless the front-function dofs beyond
+        INNER_BAND_RADIUS_H are at least OUTER_MIN_SHARE of the band."""
+        beyond = outer_torus(self.model, INNER_BAND_RADIUS_H)
+        if beyond.size < OUTER_MIN_SHARE * self._band_k.size:
+            return beyond[:0], beyond[:0]
         return (outer_torus(self.model, OUTER_FROM_H, OUTER_WITH_STANDARD),
                 outer_torus(self.model, INNER_BAND_RADIUS_H, OUTER_WITH_STANDARD))
 
