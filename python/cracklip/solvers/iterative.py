@@ -19,6 +19,13 @@ iterative path needs:
   neighbours (BAND_RINGS: in 3D the enriched nodes alone), every tip dof
   and every multiplier; with contact it is widened to ceil(0.07 m) rings
   for m multipliers;
+* the outer torus (3D, a front enrichment radius of several front
+  elements, no contact): the front-function dofs beyond INNER_BAND_RADIUS_H
+  front elements leave the exact band, whose LDL^T costs about its length
+  times the square of its cross-section, for a block of their own solved
+  with their nodes' standard dofs by ICC(0) (OUTER_PC), from OUTER_FROM_H
+  on so that it overlaps the band; the sweep becomes {band | outer | GAMG |
+  outer | band};
 * IterativeSolver: a symmetric overlapping Schwarz sweep {band by MUMPS
   LDL^T | one GAMG V-cycle on the whole transformed stiffness | band again}
   as the preconditioner of CG (also for the saddle point of contact, with
@@ -146,6 +153,49 @@ DECOUPLE_TIP_DOFS = {2: False, 3: True}
 #: iterations either way, solve 20.9 -> 14.3 s, peak memory 848 -> 679 MB
 #: (5.9e4 dofs: 22 -> 23 iterations, 589 -> 504 MB). 2D keeps its ring.
 BAND_RINGS = {2: 1, 3: 0}
+
+
+#: 3D: the front-enriched nodes farther than this many front element sizes
+#: from the front (the outer torus of a large enrichment radius) leave the
+#: exact (MUMPS) band, whose cost grows with the square of its
+#: cross-section, for a block of their own solved inexactly (OUTER_PC);
+#: 0: never (the whole band exact). The block starts OUTER_FROM_H front
+#: elements from the front, so that it overlaps the exact band. Penny at
+#: 5.3e5 dofs, radius 0.25 a (6 front elements), CG iterations: whole band
+#: exact 24; split at 2 without overlap, outer block by ICC(0) 36, ICC(1)
+#: 33, by MUMPS (exact) 33, 31 with its standard dofs: the split itself
+#: costs iterations, not the incomplete factor; split at 3: 36. With the
+#: overlap (from 1): ICC(0) 34, with the standard dofs 29 (ICC(1) 29);
+#: split at 3 from 1: 31. Also measured and dropped: a coarse space of the
+#: outer block (an aggregate per front function and component per 4 front
+#: elements of front) 35 against 36; the outer tip dofs' couplings kept in
+#: GAMG's operator 31 against 26 (1.1e5 dofs).
+INNER_BAND_RADIUS_H = 2.0
+
+
+#: Where the outer block starts (front element sizes from the front, at most
+#: INNER_BAND_RADIUS_H: between the two both blocks hold the dofs).
+OUTER_FROM_H = 1.0
+
+
+#: Whether the outer block also holds its nodes' standard dofs (unless a
+#: Heaviside pseudo-node shares the node): block Gauss-Seidel between GAMG
+#: (standard dofs) and the outer block (front-function dofs) is slow where
+#: the two spans nearly coincide; holding both, the block overlaps GAMG's
+#: (5.3e5 dofs: 34 -> 29 iterations; band 58.5k -> 21.5k dofs).
+OUTER_WITH_STANDARD = True
+
+
+#: The band is split only when the front-function dofs beyond
+#: INNER_BAND_RADIUS_H are at least this share of it (radius 2 h_front:
+#: 12.5 % at 1e5 dofs, 10.6 % at 5e5, the nodes just beyond the mean front
+#: edge, whose path stays as it was; radius 0.25 a: 29 % at 1e5).
+OUTER_MIN_SHARE = 0.2
+
+
+#: The outer block's inexact solve: a fixed symmetric operator (CG);
+#: ICC(1) took as many iterations (29 at 5.3e5 dofs) for a larger factor.
+OUTER_PC = {"pc_type": "icc", "pc_factor_levels": 0, "pc_factor_shift_type": "positive_definite"}
 
 
 #: Krylov iterations before the iterative path gives up.
@@ -277,6 +327,40 @@ def crack_band(model: "XfemModel", rings: int = 1) -> np.ndarray:
     return np.concatenate([std, np.arange(d * nstd, model.num_dofs)]).astype(np.int64)
 
 
+def outer_torus(model: "XfemModel", from_h: float, with_standard: bool = False) -> np.ndarray:
+    """Sorted dofs of the outer torus: the front-enrichment dofs of the
+    pseudo-nodes whose node lies farther than from_h front element sizes
+    (the mean edge of the cells the front crosses) from its crack's front
+    (|(phi, psi)|), and, with_standard, those nodes' standard dofs (unless a
+    Heaviside pseudo-node shares the node). 3D only; empty if there is none
+    or from_h is 0."""
+    lay = model.layout
+    kind = np.asarray(lay.kind)
+    tip = np.flatnonzero(kind != 0)
+    if model.gdim != 3 or tip.size == 0 or not from_h:
+        return np.zeros(0, dtype=np.int64)
+    node = np.asarray(lay.node)
+    crack = np.asarray(lay.crack)
+    far = np.zeros(tip.size, dtype=bool)
+    for c, cm in enumerate(model.cracks):
+        g = cm.geometry
+        front_cells = np.flatnonzero(np.asarray(g.cell_class) == cm.CELL_CLASSES["front"])
+        mine = crack[tip] == c
+        if front_cells.size == 0 or not mine.any():
+            continue
+        h = model.crack_type.mean_edge(model.x, model.cells[front_cells])
+        nd = node[tip[mine]]
+        far[mine] = np.hypot(np.asarray(g.phi)[nd], np.asarray(g.psi)[nd]) > from_h * h
+    d = model.gdim
+    pseudo = tip[far]
+    dofs = [(d * (lay.num_std_nodes + pseudo)[:, None] + np.arange(d)).ravel()]
+    if with_standard and pseudo.size:
+        nodes = np.unique(node[pseudo])
+        nodes = nodes[~np.isin(nodes, node[kind == 0])]
+        dofs.append((d * nodes[:, None] + np.arange(d)).ravel())
+    return np.sort(np.concatenate(dofs)).astype(np.int64)
+
+
 def grow_band(K: PETSc.Mat, dofs: np.ndarray, rings: int) -> np.ndarray:
     """Sorted dofs reached from `dofs` in `rings` steps through the graph of
     K (one step = one ring of cells for P1 dofs); work proportional to the
@@ -359,6 +443,10 @@ class IterativeSolver(LinearSolver):
         self.basis = self._phantom_basis()
         self.n = self._num_dofs()
         self._band_k = self._crack_band(BAND_RINGS[self.model.gdim])
+        self._outer, beyond = self._outer_torus()
+        # The exact band of a solve without contact when the outer torus
+        # has its own block: without the outer torus beyond its overlap.
+        self._band_inner = np.setdiff1d(self._band_k, beyond) if self._outer.size else self._band_k
         self._bands: dict[int, np.ndarray] = {}
         self._T_inv_t: sp.csr_matrix | None = None
         self._K: PETSc.Mat | None = None
@@ -390,6 +478,16 @@ class IterativeSolver(LinearSolver):
 
     def _rigid_modes(self) -> np.ndarray:
         return rigid_modes(self.model)
+
+    def _outer_torus(self) -> tuple[np.ndarray, np.ndarray]:
+        """(the outer block's dofs, the dofs the exact band leaves to it);
+        both empty unless the front-function dofs beyond
+        INNER_BAND_RADIUS_H are at least OUTER_MIN_SHARE of the band."""
+        beyond = outer_torus(self.model, INNER_BAND_RADIUS_H)
+        if beyond.size < OUTER_MIN_SHARE * self._band_k.size:
+            return beyond[:0], beyond[:0]
+        return (outer_torus(self.model, OUTER_FROM_H, OUTER_WITH_STANDARD),
+                outer_torus(self.model, INNER_BAND_RADIUS_H, OUTER_WITH_STANDARD))
 
     def _tip_dofs(self) -> np.ndarray:
         return tip_dofs(self.model)
@@ -548,9 +646,11 @@ class IterativeSolver(LinearSolver):
             t_amg = time.perf_counter() - t0
             # The band's width follows the contact points (friction has two
             # multipliers per point: normal, tangential).
-            band_dofs = np.concatenate([self._contact_band(m if contact_points is None else contact_points),
-                                        self._multiplier_rows(A)])
-            shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric)
+            # Without contact the outer torus (if any) is a block of its own.
+            split = m == 0 and symmetric and self._outer.size > 0
+            band_dofs = self._band_inner if split else np.concatenate([
+                self._contact_band(m if contact_points is None else contact_points), self._multiplier_rows(A)])
+            shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric, self._outer if split else None)
             t_band = time.perf_counter() - t0 - t_amg
             if A.getType() == PETSc.Mat.Type.PYTHON and m > 0 and self._coarse is not None:
                 self._coarse.constrain(A.getPythonContext().Ba_petsc)
@@ -581,6 +681,7 @@ class IterativeSolver(LinearSolver):
         record_solve({"what": what, "size": size, "relative_residual": rel, "solver": "iterative",
                       "method": method, "iterations": int(its),
                       "band": int(A.getComm().tompi4py().allreduce(band_dofs.size)),  # (over the processes)
+                      "outer": int(shell.outer.size if shell is not None and shell.outer is not None else 0),
                       "amg_dofs": self.n, "setup_reused": reused, "rtol": KRYLOV_RTOL if rtol is None else rtol,
                       "t_setup": t_setup, "t_amg_setup": t_amg, "t_band_setup": t_band,
                       "t_total": time.perf_counter() - t0})
@@ -691,7 +792,8 @@ class _Schwarz:
     When R1 r = 0 (CG started by start()) the first line gives z = 0 and
     is skipped: one band solve per iteration."""
 
-    def __init__(self, A: PETSc.Mat, amg: PETSc.PC, n0: int, band_dofs: np.ndarray, symmetric: bool = True):
+    def __init__(self, A: PETSc.Mat, amg: PETSc.PC, n0: int, band_dofs: np.ndarray, symmetric: bool = True,
+                 outer_dofs: np.ndarray | None = None):
         # Under MPI (a distributed A) band_dofs are this process's owned band
         # rows (global numbers) and block 0 its owned rows below n0.
         comm = A.getComm()
@@ -723,6 +825,8 @@ class _Schwarz:
         r.setUp()
         self.s1 = PETSc.Scatter().create(r, self.is1, self.r1, None)
         r.destroy()
+        #: The outer torus's inexact block (serial, symmetric A), or None.
+        self.outer = None if outer_dofs is None or outer_dofs.size == 0 else _InexactBlock(A, outer_dofs)
         #: The CG KSP this sweep preconditions (set by IterativeSolver._krylov
         #: for the solve), whose residual norm apply() reads.
         self.cg: PETSc.KSP | None = None
@@ -751,13 +855,28 @@ class _Schwarz:
             else:
                 self.A01.multAdd(self.z1, r0, self.r0)  # r0 - A01 z1
             self.z1.scale(-1.0)
+        if self.outer is not None:
+            # The outer torus on r - A z, and block 0's residual updated by its
+            # correction (z is the band's so far; serial and symmetric A).
+            z.set(0.0)
+            if band_first:
+                self.s1.scatter(self.z1, z, add, rev)
+            zo = self.outer.correct(r, z)
+            if not band_first:
+                self.r0.array[:] = r0.array
+            self.r0.array[:] -= zo[:n0]
+            band_first = True  # (block 0 now acts on self.r0)
+            z_pre = z.array.copy()
         z0 = z.getSubVector(self.is0)
         self.amg.apply(self.r0 if band_first else r0, z0)
         r.restoreSubVector(self.is0, r0)
         z.restoreSubVector(self.is0, z0)
         if z.getSize() > n0:  # (the multipliers' entries: under MPI the owned ones, after block 0's)
             z.array[max(n0 - z.getOwnershipRange()[0], 0):] = 0.0
-        if band_first:
+        if self.outer is not None:
+            z.array[:] += z_pre
+            self.outer.correct(r, z)
+        elif band_first:
             self.s1.scatter(self.z1, z, add, rev)
         # Band again on r - A z.
         self.A1.mult(z, self.t1)
@@ -788,7 +907,57 @@ class _Schwarz:
                     self.s1, self.full):
             if obj is not None:
                 obj.destroy()
+        if self.outer is not None:
+            self.outer.free()
         self.amg = self.cg = None
+
+
+class _InexactBlock:
+    """A block of the Schwarz sweep solved inexactly by a fixed symmetric
+    operator B, OUTER_PC's factor of its diagonal block (serial, symmetric
+    A): correct(r, z) does z += R^T B R (r - A z) and returns A R^T (that
+    correction) (the length of A), for the next block's residual."""
+
+    def __init__(self, A: PETSc.Mat, dofs: np.ndarray):
+        comm = A.getComm()
+        self.size = int(dofs.size)
+        self.idx = dofs
+        iset = PETSc.IS().createGeneral(dofs.astype(PETSc.IntType), comm=comm)
+        all_cols = PETSc.IS().createStride(A.getSize()[0], 0, 1, comm=comm)
+        self.A2 = A.createSubMatrix(iset, all_cols)  # its rows, all columns
+        all_cols.destroy()
+        A22 = A.createSubMatrix(iset, iset)
+        iset.destroy()
+        A22.setOption(PETSc.Mat.Option.SYMMETRIC, True)
+        prefix = f"cracklip_outer{next(_prefixes)}_"
+        pc = PETSc.PC().create(comm)
+        pc.setOptionsPrefix(prefix)
+        pc.setOperators(A22)
+        _set_options(prefix, OUTER_PC)
+        try:
+            pc.setFromOptions()
+            pc.setUp()
+        finally:
+            _clear_options(prefix, OUTER_PC)
+        # Only the factor is kept (what the PC applies), not A22 (0.2-0.3 GB
+        # at 1e6 dofs).
+        self.factor = pc.getFactorMatrix()
+        pc.destroy()
+        A22.destroy()
+        self.r2, self.z2 = self.A2.createVecLeft(), self.A2.createVecLeft()
+        self.full = self.A2.createVecRight()
+
+    def correct(self, r: PETSc.Vec, z: PETSc.Vec) -> np.ndarray:
+        self.A2.mult(z, self.r2)
+        self.r2.array[:] = r.array[self.idx] - self.r2.array
+        self.factor.solve(self.r2, self.z2)
+        z.array[self.idx] += self.z2.array
+        self.A2.multTranspose(self.z2, self.full)
+        return self.full.array
+
+    def free(self) -> None:
+        for obj in (self.A2, self.factor, self.r2, self.z2, self.full):
+            obj.destroy()
 
 
 def _release(owned: list[typing.Any]) -> None:
