@@ -16,7 +16,10 @@ several processes solvers/distributed_iterative.py). Prints one JSON line
 import json
 import sys
 
-import cracklip as cl
+from split import from_argv
+
+from_argv()  # (before cracklip meshes anything)
+import cracklip as cl  # noqa: E402
 
 sf = cl.load_scene_file(sys.argv[1], [*sys.argv[2:], 'options.solver="iterative"'])
 sol = cl.solve(sf.scene)

@@ -164,8 +164,7 @@ class DistributedIterativeSolver(IterativeSolver):
         """T^T A T: A itself, changed in place where its pattern allows
         (transform_in_place), else a new matrix by PETSc's PtAP (A left as
         it is): use A only through the returned matrix."""
-        rows = self._owned_rows(crack_band(self.model, 1))
-        A_t = transform_in_place(self.basis, A, rows)
+        A_t = transform_in_place(self.basis, A)
         if A_t is None:
             with product_data_cleared():
                 A_t = A.PtAP(self.basis.T)
@@ -177,25 +176,9 @@ class DistributedIterativeSolver(IterativeSolver):
         """The owned band rows grown by `rings` rings through K's graph
         (symmetric): each ring marks the columns of the band's owned rows
         on their owners (summed marks, as _crack_band)."""
-        comm = K.getComm()
-        lo, hi = K.getOwnershipRange()
-        all_cols = PETSc.IS().createStride(hi - lo, lo, 1, comm=comm)  # (each process its own: every column)
         band = self._band_k
-        mark = K.createVecRight()
         for _ in range(rings):
-            # The band's owned rows only (work in proportion to the band, not
-            # to the owned part of the mesh).
-            isrow = PETSc.IS().createGeneral(band.astype(PETSc.IntType), comm=comm)
-            sub = K.createSubMatrix(isrow, all_cols)
-            _, cols, _ = sub.getValuesCSR()  # (global columns)
-            sub.destroy()
-            isrow.destroy()
-            mark.set(0.0)
-            mark.setValues(cols.astype(PETSc.IntType), np.ones(cols.size), addv=PETSc.InsertMode.ADD_VALUES)
-            mark.assemble()
-            band = np.union1d(band, np.flatnonzero(mark.array > 0) + lo).astype(np.int64)
-        all_cols.destroy()
-        mark.destroy()
+            band = np.union1d(band, reached_rows(K, band)).astype(np.int64)
         return band
 
     def _multiplier_rows(self, A: PETSc.Mat) -> np.ndarray:
@@ -231,25 +214,52 @@ class DistributedIterativeSolver(IterativeSolver):
         self.basis.destroy()
 
 
-def transform_in_place(basis: DistributedPhantomBasis, A: PETSc.Mat, band: np.ndarray) -> PETSc.Mat | None:
+def reached_rows(A: PETSc.Mat, rows: np.ndarray) -> np.ndarray:
+    """Collective: the sorted owned rows of A (square, symmetric pattern)
+    that any process's `rows` (its owned rows, global numbers) reach: the
+    columns of those rows, marked on their owners and summed over the
+    processes. Work in proportion to the rows given."""
+    comm = A.getComm()
+    lo, hi = A.getOwnershipRange()
+    isrow = PETSc.IS().createGeneral(np.asarray(rows).astype(PETSc.IntType), comm=comm)
+    iscol = PETSc.IS().createStride(hi - lo, lo, 1, comm=comm)  # (each process its own: every column)
+    sub = A.createSubMatrix(isrow, iscol)
+    _, cols, _ = sub.getValuesCSR()  # (global columns)
+    for o in (sub, isrow, iscol):
+        o.destroy()
+    mark = A.createVecRight()
+    mark.set(0.0)
+    mark.setValues(cols.astype(PETSc.IntType), np.ones(cols.size), addv=PETSc.InsertMode.ADD_VALUES)
+    mark.assemble()
+    out = (np.flatnonzero(mark.array > 0) + lo).astype(np.int64)
+    mark.destroy()
+    return out
+
+
+def transform_in_place(basis: DistributedPhantomBasis, A: PETSc.Mat) -> PETSc.Mat | None:
     """T^T A T in A's storage (A returned, changed), or None (A untouched)
     if a changed entry lies outside A's pattern on any process.
 
     As the serial solvers.phantom.transform_matrix: T differs from the
     identity only on the Heaviside nodes' dofs J, so T^T A T differs from A
     only in the rows coupled to J: (A T)[r, :] off J, T_JJ^T (A T)[J, :] on
-    J. Each process takes its owned rows among `band` (every owned row
-    coupled to a Heaviside dof, its own or a ghost's: the enriched nodes
-    with one ring of neighbours, and every enriched dof), their columns'
-    rows of T from the columns' owners (one scatter of the base dof and
-    side of every Heaviside dof), and adds the change into its rows. The
+    J. Each process takes its owned rows coupled to any process's J, read
+    from A's pattern as the serial transform does (the columns of the J
+    rows, marked on their owners: reached_rows), their columns' rows of T
+    from the columns' owners (one scatter of the base dof and side of every
+    Heaviside dof), and adds the change into its rows. (Not from the
+    model's crack band: a process may hold an enriched node of another as
+    a ghost without the cut cells that enrich it, and then missed a row of
+    its own coupled to that node's Heaviside dofs through a cell of the
+    other process; T^T A T came out unsymmetric there and the contact
+    solve of the block under pressure wrong on some partitions.) The
     rows of J it owns need only rows of T it owns (a pseudo-node belongs to
     its base node's owner). Work and memory in proportion to the band;
     no copy of A (PtAP: the matrix again and the product A T)."""
     comm = basis.comm
     lo, hi = A.getOwnershipRange()
     J = np.union1d(basis.s, basis.e).astype(np.int64)  # the owned touched dofs
-    R = np.union1d(band, J)
+    R = np.union1d(reached_rows(A, J), J)
     isrow = PETSc.IS().createGeneral(R.astype(PETSc.IntType), comm=comm)
     iscol = PETSc.IS().createStride(hi - lo, lo, 1, comm=comm)
     sub = A.createSubMatrix(isrow, iscol)  # (its columns are A's: each process gave its own range)
