@@ -531,3 +531,39 @@ def test_openblas_runs_on_one_thread_after_import():
     env["PYTHONPATH"] = str(pathlib.Path(__file__).resolve().parents[1] / "python")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env).stdout
     assert out.strip() in ("1", "none")
+
+
+def test_phantom_transform_in_place_checked_for_symmetry(monkeypatch, caplog):
+    """The in-place phantom transform (solvers/phantom.py) is checked for
+    symmetry before it is used (changed_symmetric): right, it equals PtAP
+    to round-off and is kept in A's storage; with one changed row dropped
+    (the distributed transform's old mistake: a row coupled to a Heaviside
+    dof left as it was) the check sees it, takes the change back and the
+    result is PtAP's T^T A T all the same, with a warning."""
+    from cracklip.solvers import phantom
+    model = clamped_square_contact_model(12)
+    basis = phantom.phantom_basis(model)
+    A, _, _ = assemble_system(model)
+    Tp = basis.petsc()
+    ref = scipy_from_petsc(A.PtAP(Tp))
+    Tp.destroy()
+    scale = abs(ref).max()
+    A1 = A.duplicate(copy=True)
+    right = phantom.transform_matrix(basis, A1)
+    assert right is A1 and abs(scipy_from_petsc(right) - ref).max() <= 1e-13 * scale
+    change = phantom.phantom_change
+
+    def dropped(S, ST, R, J, T_JJ):  # the row off J with the largest change left as it was
+        delta, order, fits = change(S, ST, R, J, T_JJ)
+        off = ~np.isin(order, J)
+        k = int(np.flatnonzero(off)[np.argmax(abs(delta[np.flatnonzero(off)]).max(axis=1).toarray().ravel())])
+        delta = delta.tolil()
+        delta[k, :] = 0.0
+        return delta.tocsr(), order, fits
+    monkeypatch.setattr(phantom, "phantom_change", dropped)
+    A2 = A.duplicate(copy=True)
+    with caplog.at_level("WARNING", logger="cracklip.solvers.phantom"):
+        wrong = phantom.transform_matrix(basis, A2)
+    assert wrong is not A2 and "not symmetric" in caplog.text
+    assert abs(scipy_from_petsc(wrong) - ref).max() <= 1e-13 * scale
+    assert abs(scipy_from_petsc(A2) - scipy_from_petsc(A)).max() <= 1e-14 * scale  # (the change taken back)

@@ -52,7 +52,7 @@ import scipy.sparse as sp
 from petsc4py import PETSc
 
 from ..scene.processes import on_all
-from .phantom import add_change, phantom_change
+from .phantom import changed_symmetric, phantom_change
 from .iterative import (IterativeSolver, crack_band, product_data_cleared, rigid_mode_nodes, rigid_motions,
                         tip_dofs)
 if typing.TYPE_CHECKING:
@@ -238,7 +238,8 @@ def reached_rows(A: PETSc.Mat, rows: np.ndarray) -> np.ndarray:
 
 def transform_in_place(basis: DistributedPhantomBasis, A: PETSc.Mat) -> PETSc.Mat | None:
     """T^T A T in A's storage (A returned, changed), or None (A untouched)
-    if a changed entry lies outside A's pattern on any process.
+    if a changed entry lies outside A's pattern on any process or the
+    result fails the symmetry check (phantom.changed_symmetric).
 
     As the serial solvers.phantom.transform_matrix: T differs from the
     identity only on the Heaviside nodes' dofs J, so T^T A T differs from A
@@ -290,8 +291,7 @@ def transform_in_place(basis: DistributedPhantomBasis, A: PETSc.Mat) -> PETSc.Ma
     delta, order, fits = phantom_change(S, ST, R, J, T_JJ)
     if not on_all(fits, comm):
         return None
-    add_change(A, delta, order, U)
-    return A
+    return A if changed_symmetric(A, delta, order, U) else None
 
 
 def _heaviside_columns(basis: DistributedPhantomBasis, cols: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
