@@ -83,6 +83,10 @@ DA_FRACTION = 0.1
 #: per unit distance K was 0.9 % low at n = 14 (P1 tetrahedra are stiff where the crack's field decays,
 #: scene.mesh_3d.GROWTH), with 0.1 about 0.3 %.
 PENNY = {"full": (12, 6.0, 0.05, 8, 0.1), "small": (4, 4.0, 0.15, 2, 0.25)}
+#: The surface crack's mesh is graded along Newman and Raju's path to this a/t (the runs stop past 0.8).
+PATH_END = 0.85
+#: Consecutive fronts of that grading at most this many of their element sizes apart (path_refinements).
+PATH_SPACING = 2.0
 #: (n: elements per crack size, starts (a/c at a/t = 0.1), a/t to reach, steps at most); --small's.
 SURFACE = {"full": (8, (0.2, 0.5, 1.0), 0.8, 40), "small": (4, (0.5,), 0.8, 2)}
 
@@ -161,6 +165,29 @@ def newman_raju_path(a0: float, c0: float, t: float, b: float, a_end: float, m: 
     return lambda a: float(sol.sol(a)[0])
 
 
+def path_refinements(crack: EllipticalCrack, path, a0: float, a_end: float, n: int) -> list:
+    """The surface crack's mesh grading (module doc): the start's front
+    refinement (h0 = min(a0, c0) / n, its surface at 2 h0) and one along
+    each of a sequence of Newman-Raju fronts (a, c = path(a)) from a0 to
+    a_end, each at min(a, c) / n, the size growing by 1 / n per unit
+    distance from each; consecutive fronts at most PATH_SPACING of the
+    earlier one's size apart in a and in c (inside each other's plateau of
+    4 sizes, so the swept region keeps min(a, c) / n)."""
+    h_max = H_SURFACE
+    out = crack_refinements([crack], min(a0, path(a0)) / n, h_max, growth=1.0 / n)
+    a = a0
+    while a < a_end:
+        c = path(a)
+        h = min(a, c) / n
+        da = PATH_SPACING * h
+        while path(min(a + da, a_end)) - c > PATH_SPACING * h:
+            da *= 0.8
+        a = min(a + da, a_end)
+        front = EllipticalCrack(crack.center, crack.normal, path(a), b=a, axis=crack.axis)
+        out += crack_refinements([front], min(a, path(a)) / n, h_max, growth=1.0 / n, h_surface=h_max)
+    return out
+
+
 def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
     """One start's figures (module doc); save(case) after every step as
     run_penny's."""
@@ -171,12 +198,12 @@ def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
     lo, hi = (-b, 0.0, -L), (b, t, L)
     h0 = min(a0, c0) / n
     crack = EllipticalCrack((0.0, t, 0.0), (0.0, 0.0, 1.0), c0, b=a0, axis=(1.0, 0.0, 0.0), name=f"a/c {ac0:g}")
-    mesh = create_box(*lo, *hi, H_SURFACE, fronts=crack_refinements([crack], h0, H_SURFACE, growth=1.0 / n))
+    path = newman_raju_path(a0, c0, t, b, PATH_END * t)
+    mesh = create_box(*lo, *hi, H_SURFACE, fronts=path_refinements(crack, path, a0, PATH_END * t, n))
     scene = cl.Scene(mesh, cl.Material(E, NU), cracks=[crack], dirichlet=_supports(lo, hi), tractions=_tension(),
                      options=cl.Options(enrichment="vector", radius=2.5 * h0))
     growth = cl.Growth(steps=steps, da_fraction=DA_FRACTION, paris_C=C, paris_m=M, R=0.0, max_length=at_end * t)
     run = SurfaceGrowth(scene, growth, False, None)
-    path = newman_raju_path(a0, c0, t, b, 0.8 * t)
     t0 = time.perf_counter()
     rows: list[dict] = []
 

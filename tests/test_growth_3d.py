@@ -245,6 +245,44 @@ def test_demo_small_penny_and_surface_crack():
     assert out["surface_crack"]["a_over_c_max_dev"] < 0.02
 
 
+def test_surface_crack_mesh_keeps_its_elements_per_depth_along_the_path():
+    """The demo's surface-crack grading (growth_3d.path_refinements): fronts
+    along Newman and Raju's path from a0 to a_end, each at min(a, c) / n on
+    its ellipse, consecutive ones at most PATH_SPACING sizes apart; on a
+    small mesh (n = 4) the path's late fronts keep their size."""
+    import scipy.spatial
+    import growth_3d
+    from cracklip.scene.mesh_3d import create_box
+    t, b, n, a0, c0, a_end = 1.0, 5.0, 4, 0.1, 0.2, 0.85
+    crack = EllipticalCrack((0.0, t, 0.0), (0.0, 0.0, 1.0), c0, b=a0, axis=(1.0, 0.0, 0.0))
+    path = growth_3d.newman_raju_path(a0, c0, t, b, a_end)
+    refs = growth_3d.path_refinements(crack, path, a0, a_end, n)
+    fronts = [r for r in refs if r.kind == "curve"]
+    # (a, c) of each front from its points (h / 2 apart in equal parametric steps: a, c low by up to 0.2 %)
+    ac = np.array([[(t - r.points[:, 1]).max(), np.abs(r.points[:, 0]).max()] for r in fronts])
+    h = np.array([r.h_front for r in fronts])
+    assert ac[0] == pytest.approx([a0, c0], rel=3e-3) and ac[-1, 0] == pytest.approx(a_end, rel=3e-3)
+    assert len(fronts) >= 5
+    np.testing.assert_allclose(ac[:, 1], [path(a) for a in ac[:, 0]], rtol=5e-3)
+    np.testing.assert_allclose(h, ac.min(axis=1) / n, rtol=5e-3)
+    steps = np.diff(ac, axis=0)
+    assert np.all(steps > 0.0) and np.all(steps.max(axis=1) <= growth_3d.PATH_SPACING * h[:-1] * 1.01)
+    # Sizes grow by 1 / n per unit distance from every front up to the plate's size.
+    assert all(r.radius == pytest.approx((growth_3d.H_SURFACE - r.h_front) * n) for r in fronts)
+    # On the mesh: the mean edge of the cells at the deepest point and the surface end of the path's fronts at
+    # a = 0.6 and 0.8, in min(a, c) / n: 0.65-0.85 (the start's grading alone: 1.04-1.26).
+    md = create_box(-b, 0.0, -b, b, t, b, growth_3d.H_SURFACE, fronts=refs)
+    x = md.mesh.geometry.x
+    cells = md.mesh.geometry.dofmap.array.reshape(-1, 4)
+    tree = scipy.spatial.cKDTree(x)
+    for a in (0.6, 0.8):
+        c = path(a)
+        for p in ([0.0, t - a, 0.0], [c, t, 0.0]):
+            xv = x[cells[np.isin(cells, [tree.query(p)[1]]).any(axis=1)]]
+            edges = np.linalg.norm(xv[:, [0, 0, 0, 1, 1, 2]] - xv[:, [1, 2, 3, 2, 3, 3]], axis=2)
+            assert edges.mean() < 0.95 * min(a, c) / n
+
+
 # -- cracklip grow on 3D scene files ------------------------------------------------------------------------
 
 def _grow(scene: str, out: pathlib.Path, *extra: str) -> dict:
