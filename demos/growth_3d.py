@@ -66,7 +66,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 import cracklip as cl  # noqa: E402
 from cracklip.analysis.front_growth import SurfaceGrowth  # noqa: E402
 from cracklip.errors import CracklipError  # noqa: E402
-from cracklip.fracture.handbook import surface_crack_beta  # noqa: E402
+from cracklip.fracture.handbook import surface_crack_beta, surface_crack_k  # noqa: E402
 from cracklip.io.files import write_json  # noqa: E402
 from cracklip.scene.crack_surface import EllipticalCrack  # noqa: E402
 from cracklip.scene.mesh_3d import BoxRefinement, crack_refinements, create_box  # noqa: E402
@@ -188,10 +188,11 @@ def path_refinements(crack: EllipticalCrack, path, a0: float, a_end: float, n: i
     return out
 
 
-def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
+def run_surface(config: str, ac0: float, log, save=lambda case: None, elements: int | None = None) -> dict:
     """One start's figures (module doc); save(case) after every step as
     run_penny's."""
     n, _, at_end, steps = SURFACE[config]
+    n = elements or n
     t, b, L = 1.0, 5.0, 5.0
     a0 = 0.1 * t
     c0 = a0 / ac0
@@ -225,9 +226,18 @@ def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
         if sh.get("a") is None:
             return
         a, c = sh["a"], sh["c"]
+        # K_I at the deepest and surface points against Newman and Raju's for the ellipse of this a and c.
+        at = {r.end: r for r in records if r.crack == 0}
+        deep = at.get(sh.get("deepest"))
+        ends = [at[i] for i in sh.get("surface_points", ()) if i in at]
+        k_nr = (surface_crack_k(SIGMA, a, c, t, b, np.array([0.5 * math.pi, 0.0])) if a < 0.8 * t  # the fit's range
+                else [None, None])
         rows.append({"step": k, "N": records[0].N, "a": a, "c": c, "a_over_t": a / t, "a_over_c": a / c,
                      "a_over_c_newman_raju": a / path(a) if a <= 0.8 * t else None, "points": len(records),
-                     "seconds": time.perf_counter() - t0})
+                     "K_I_deepest": deep.K_I if deep else None, "K_I_surface": [r.K_I for r in ends],
+                     "K_I_deepest_newman_raju": k_nr[0] and float(k_nr[0]),
+                     "K_I_surface_newman_raju": k_nr[1] and float(k_nr[1]),
+                     "h_deepest": deep.element_size if deep else None, "seconds": time.perf_counter() - t0})
         save(figures(False))
     run.on_step = progress
     try:
@@ -246,6 +256,8 @@ def main(argv=None) -> dict:
     ap.add_argument("--cases", nargs="+", default=["penny", "surface_crack"], choices=["penny", "surface_crack"])
     ap.add_argument("--starts", type=float, nargs="+", help="the surface crack's starts a/c at a/t = 0.1 "
                     "(default 0.2 0.5 1, --small 0.5)")
+    ap.add_argument("--elements", type=int, help="the surface crack's elements per crack size n (h = min(a, c) / n "
+                    "along the path; default 8, --small 4)")
     args = ap.parse_args(argv)
     config = "small" if args.small else "full"
 
@@ -271,7 +283,8 @@ def main(argv=None) -> dict:
         starts = args.starts or SURFACE[config][1]
         for ac0 in starts:
             cases.append(run_surface(config, ac0, log,
-                                     lambda case: (out.__setitem__("surface_crack", summary(case)), save())))
+                                     lambda case: (out.__setitem__("surface_crack", summary(case)), save()),
+                                     elements=args.elements))
         out["surface_crack"] = summary()
     save()
     if args.json is not None and __name__ == "__main__" and not args.small:
