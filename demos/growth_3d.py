@@ -27,21 +27,23 @@ table of notes/contact_growth_mpi_3d.md §2.5 to the digit). Figure:
 a_over_c_max_dev = max |a/c - a/c_NR(a/t)| over the steps with a/t <= 0.8
 (a and c measured on the tracked front: a the largest depth below the face,
 c half the distance between the front's ends on the face). Bar 0.03 (Newman
-and Raju is a +-5 % fit of K). The mesh is graded from the start's front
-(scene.mesh_3d.crack_refinements, the regular 3D scenes' front grading):
-h0 = min(a0, c0) / n along the front, the size growing by 1/n per unit
-distance from it. Why: a front point that has advanced by d sits in elements
-of h0 + d / n; at the deepest point d = a - a0, so the size is a / n (n
-elements per depth all the way), and at the surface ends d = c - c0, the
-size (a0 + c - c0) / n: along Newman and Raju's paths 0.58-0.86 a / n
-(a/c0 = 0.2), 0.85-1.16 a / n (0.5), 1.11-1.28 a / n (1): the whole front
-keeps n / 1.3 to n elements per depth. A mesh graded from the crack's centre instead (h0 there, + 1/n per
-unit distance) put the ends of the a/c0 = 0.2 start (c0 = 5 a0) in
-elements of 0.8 a, and its surface K was 27 % above Newman and Raju's at
-the start (docs/growth.md).
+and Raju is a +-5 % fit of K). The mesh is graded along the path the crack
+is expected to take (path_refinements): the start's front refinement
+(scene.mesh_3d.crack_refinements: h0 = min(a0, c0) / n along the front, 2
+h0 over the crack) and one along each of a sequence of Newman-Raju fronts
+(a, c(a)) from a0 to a/t = PATH_END, at min(a, c) / n on its ellipse,
+consecutive fronts at most PATH_SPACING of their sizes apart in a and in c,
+the size growing by 1/n per unit distance from each. A front that follows
+the path keeps n elements per min(a, c); one that strays from it by d sits
+in elements of about min(a, c) / n + d / n. Why: graded from the start's
+front alone (h0 + d / n after an advance d), the ends of the a/c0 = 0.5 and
+1 starts reached elements of 0.08-0.24 from a/t 0.5 (under 5 per depth)
+(docs/growth.md). Cells: 88 thousand (a/c0 = 1), 98 thousand (0.5), 143
+thousand (0.2). Each row also has K_I at the deepest and surface points
+with Newman and Raju's for the ellipse of the row's a and c.
 
     /usr/bin/python3 demos/growth_3d.py --json out/growth_3d.json [--small] [--cases penny surface_crack]
-                                        [--starts 0.2 0.5 1]
+                                        [--starts 0.2 0.5 1] [--elements 8]
 
 --small is the test's configuration (coarse meshes, two steps each, one
 surface crack start): it checks the machinery, not the bars. Writes per case
@@ -328,12 +330,16 @@ def write_figures(out: dict, folder: pathlib.Path) -> None:
         t, b = 1.0, 5.0
         with (folder / "growth_3d_surface.csv").open("w", newline="") as f:
             w = csv.writer(f)
-            w.writerow(["a_over_c0", "step", "N", "a", "c", "a_over_t", "a_over_c", "a_over_c_newman_raju"])
+            w.writerow(["a_over_c0", "step", "N", "a", "c", "a_over_t", "a_over_c", "a_over_c_newman_raju",
+                        "K_I_deepest", "K_I_deepest_newman_raju", "K_I_surface_1", "K_I_surface_2",
+                        "K_I_surface_newman_raju"])
             for n, case in enumerate(out["surface_crack"]["cases"]):
                 rows = case["rows"]
                 for r in rows:
+                    ks = (list(r.get("K_I_surface") or []) + [None, None])[:2]
                     w.writerow([case["a_over_c0"], r["step"], r["N"], r["a"], r["c"], r["a_over_t"], r["a_over_c"],
-                                r["a_over_c_newman_raju"]])
+                                r["a_over_c_newman_raju"], r.get("K_I_deepest"), r.get("K_I_deepest_newman_raju"),
+                                *ks, r.get("K_I_surface_newman_raju")])
                 a0 = 0.1 * t
                 path = newman_raju_path(a0, a0 / case["a_over_c0"], t, b, 0.8 * t)
                 at = np.linspace(0.1, 0.8, 100)

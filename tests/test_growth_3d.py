@@ -466,6 +466,28 @@ def test_advance_takes_the_front_kinks(monkeypatch):
     assert all(r.kink_deg == pytest.approx(math.degrees(0.1)) and r.da == pytest.approx(0.1) for r in records)
 
 
+def test_margin_follows_the_element_size_at_the_free_surface_points():
+    """SurfaceGrowth._scale_margin: the surface runs MARGIN_ELEMENTS element
+    sizes beyond the part's boundary, sized each step by the largest element
+    at the front's free-surface points (interior points do not count), never
+    below the start's front size; per step in margins. (Kept at the start's
+    size it fell under an element on the graded surface-crack mesh, and the
+    points next to the ends lost their domain independence: docs/growth.md.)"""
+    import types
+
+    from cracklip.analysis import front_growth
+    run = types.SimpleNamespace(h_front=0.02, margin=0.04, margins=[])
+
+    def measured(*sizes):
+        return types.SimpleNamespace(records=[types.SimpleNamespace(free_surface=f, element_size=h) for f, h in sizes])
+    front_growth.SurfaceGrowth._scale_margin(run, measured((True, 0.015), (False, 0.09), (True, 0.012)))
+    assert run.margin == pytest.approx(front_growth.MARGIN_ELEMENTS * 0.02)
+    front_growth.SurfaceGrowth._scale_margin(run, measured((True, 0.05), (False, 0.09), (True, 0.07)))
+    assert run.margin == pytest.approx(front_growth.MARGIN_ELEMENTS * 0.07)
+    front_growth.SurfaceGrowth._scale_margin(run, measured((False, 0.3)))   # an embedded front: the start's
+    assert run.margins == pytest.approx([front_growth.MARGIN_ELEMENTS * h for h in (0.02, 0.07, 0.02)])
+
+
 def test_nearest_node_ties_decided_by_position_not_numbering():
     """front_element_size's nearest node of a front point: of nodes at the
     same distance (a structured mesh, a point midway), the one with the
