@@ -721,12 +721,13 @@ class SurfaceGrowth(GrowthRun):
         (the strip beyond the face, along the crack's mouth) came within an
         element of the mesh nodes on the face, and the front points next to
         the free surface lost their domain independence (surface crack a/c0
-        = 1 on a graded mesh: K_I's spread over the 3 domains of the point
-        next to an end 0.4-0.9 % of K at step 10, 2-7 % at steps 11-12 and 11-25 % from
-        step 14 as the ends' elements passed the margin (0.033 and 0.036
-        against 0.034); the ends' extrapolated K 16 % apart at step 12, and
-        the fastest point alternated between the ends and the deepest
-        point)."""
+        = 1 on a graded mesh, K_I's spread over the 3 domains of the points
+        next to the ends over the deepest point's K: 1.0-1.6 % at steps
+        7-10, 3.1 % at step 11, then 2.5-24 % as the ends' elements (0.033
+        at step 12) passed the margin (about 0.034); the two ends' K up to
+        16 % apart and the fastest point alternating between the ends and
+        the deepest point. Re-sized: 0.1-1.0 % at steps 8-20, the ends
+        within 2 %: docs/growth.md)."""
         sizes = [r.element_size for r in m.records if r.free_surface and r.element_size > 0.0]
         self.margin = MARGIN_ELEMENTS * max([self.h_front] + sizes)
         self.margins.append(self.margin)
