@@ -27,21 +27,23 @@ table of notes/contact_growth_mpi_3d.md §2.5 to the digit). Figure:
 a_over_c_max_dev = max |a/c - a/c_NR(a/t)| over the steps with a/t <= 0.8
 (a and c measured on the tracked front: a the largest depth below the face,
 c half the distance between the front's ends on the face). Bar 0.03 (Newman
-and Raju is a +-5 % fit of K). The mesh is graded from the start's front
-(scene.mesh_3d.crack_refinements, the regular 3D scenes' front grading):
-h0 = min(a0, c0) / n along the front, the size growing by 1/n per unit
-distance from it. Why: a front point that has advanced by d sits in elements
-of h0 + d / n; at the deepest point d = a - a0, so the size is a / n (n
-elements per depth all the way), and at the surface ends d = c - c0, the
-size (a0 + c - c0) / n: along Newman and Raju's paths 0.58-0.86 a / n
-(a/c0 = 0.2), 0.85-1.16 a / n (0.5), 1.11-1.28 a / n (1): the whole front
-keeps n / 1.3 to n elements per depth. A mesh graded from the crack's centre instead (h0 there, + 1/n per
-unit distance) put the ends of the a/c0 = 0.2 start (c0 = 5 a0) in
-elements of 0.8 a, and its surface K was 27 % above Newman and Raju's at
-the start (docs/growth.md).
+and Raju is a +-5 % fit of K). The mesh is graded along the path the crack
+is expected to take (path_refinements): the start's front refinement
+(scene.mesh_3d.crack_refinements: h0 = min(a0, c0) / n along the front, 2
+h0 over the crack) and one along each of a sequence of Newman-Raju fronts
+(a, c(a)) from a0 to a/t = PATH_END, at min(a, c) / n on its ellipse,
+consecutive fronts at most PATH_SPACING of their sizes apart in a and in c,
+the size growing by 1/n per unit distance from each. A front that follows
+the path keeps n elements per min(a, c); one that strays from it by d sits
+in elements of about min(a, c) / n + d / n. Why: graded from the start's
+front alone (h0 + d / n after an advance d), the ends of the a/c0 = 0.5 and
+1 starts reached elements of 0.08-0.24 from a/t 0.5 (under 5 per depth)
+(docs/growth.md). Cells: 88 thousand (a/c0 = 1), 98 thousand (0.5), 143
+thousand (0.2). Each row also has K_I at the deepest and surface points
+with Newman and Raju's for the ellipse of the row's a and c.
 
     /usr/bin/python3 demos/growth_3d.py --json out/growth_3d.json [--small] [--cases penny surface_crack]
-                                        [--starts 0.2 0.5 1]
+                                        [--starts 0.2 0.5 1] [--elements 8]
 
 --small is the test's configuration (coarse meshes, two steps each, one
 surface crack start): it checks the machinery, not the bars. Writes per case
@@ -66,7 +68,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 import cracklip as cl  # noqa: E402
 from cracklip.analysis.front_growth import SurfaceGrowth  # noqa: E402
 from cracklip.errors import CracklipError  # noqa: E402
-from cracklip.fracture.handbook import surface_crack_beta  # noqa: E402
+from cracklip.fracture.handbook import surface_crack_beta, surface_crack_k  # noqa: E402
 from cracklip.io.files import write_json  # noqa: E402
 from cracklip.scene.crack_surface import EllipticalCrack  # noqa: E402
 from cracklip.scene.mesh_3d import BoxRefinement, crack_refinements, create_box  # noqa: E402
@@ -83,6 +85,10 @@ DA_FRACTION = 0.1
 #: per unit distance K was 0.9 % low at n = 14 (P1 tetrahedra are stiff where the crack's field decays,
 #: scene.mesh_3d.GROWTH), with 0.1 about 0.3 %.
 PENNY = {"full": (12, 6.0, 0.05, 8, 0.1), "small": (4, 4.0, 0.15, 2, 0.25)}
+#: The surface crack's mesh is graded along Newman and Raju's path to this a/t (the runs stop past 0.8).
+PATH_END = 0.85
+#: Consecutive fronts of that grading at most this many of their element sizes apart (path_refinements).
+PATH_SPACING = 2.0
 #: (n: elements per crack size, starts (a/c at a/t = 0.1), a/t to reach, steps at most); --small's.
 SURFACE = {"full": (8, (0.2, 0.5, 1.0), 0.8, 40), "small": (4, (0.5,), 0.8, 2)}
 
@@ -161,22 +167,46 @@ def newman_raju_path(a0: float, c0: float, t: float, b: float, a_end: float, m: 
     return lambda a: float(sol.sol(a)[0])
 
 
-def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
+def path_refinements(crack: EllipticalCrack, path, a0: float, a_end: float, n: int) -> list:
+    """The surface crack's mesh grading (module doc): the start's front
+    refinement (h0 = min(a0, c0) / n, its surface at 2 h0) and one along
+    each of a sequence of Newman-Raju fronts (a, c = path(a)) from a0 to
+    a_end, each at min(a, c) / n, the size growing by 1 / n per unit
+    distance from each; consecutive fronts at most PATH_SPACING of the
+    earlier one's size apart in a and in c (inside each other's plateau of
+    4 sizes, so the swept region keeps min(a, c) / n)."""
+    h_max = H_SURFACE
+    out = crack_refinements([crack], min(a0, path(a0)) / n, h_max, growth=1.0 / n)
+    a = a0
+    while a < a_end:
+        c = path(a)
+        h = min(a, c) / n
+        da = PATH_SPACING * h
+        while path(min(a + da, a_end)) - c > PATH_SPACING * h:
+            da *= 0.8
+        a = min(a + da, a_end)
+        front = EllipticalCrack(crack.center, crack.normal, path(a), b=a, axis=crack.axis)
+        out += crack_refinements([front], min(a, path(a)) / n, h_max, growth=1.0 / n, h_surface=h_max)
+    return out
+
+
+def run_surface(config: str, ac0: float, log, save=lambda case: None, elements: int | None = None) -> dict:
     """One start's figures (module doc); save(case) after every step as
     run_penny's."""
     n, _, at_end, steps = SURFACE[config]
+    n = elements or n
     t, b, L = 1.0, 5.0, 5.0
     a0 = 0.1 * t
     c0 = a0 / ac0
     lo, hi = (-b, 0.0, -L), (b, t, L)
     h0 = min(a0, c0) / n
     crack = EllipticalCrack((0.0, t, 0.0), (0.0, 0.0, 1.0), c0, b=a0, axis=(1.0, 0.0, 0.0), name=f"a/c {ac0:g}")
-    mesh = create_box(*lo, *hi, H_SURFACE, fronts=crack_refinements([crack], h0, H_SURFACE, growth=1.0 / n))
+    path = newman_raju_path(a0, c0, t, b, PATH_END * t)
+    mesh = create_box(*lo, *hi, H_SURFACE, fronts=path_refinements(crack, path, a0, PATH_END * t, n))
     scene = cl.Scene(mesh, cl.Material(E, NU), cracks=[crack], dirichlet=_supports(lo, hi), tractions=_tension(),
                      options=cl.Options(enrichment="vector", radius=2.5 * h0))
     growth = cl.Growth(steps=steps, da_fraction=DA_FRACTION, paris_C=C, paris_m=M, R=0.0, max_length=at_end * t)
     run = SurfaceGrowth(scene, growth, False, None)
-    path = newman_raju_path(a0, c0, t, b, 0.8 * t)
     t0 = time.perf_counter()
     rows: list[dict] = []
 
@@ -198,9 +228,18 @@ def run_surface(config: str, ac0: float, log, save=lambda case: None) -> dict:
         if sh.get("a") is None:
             return
         a, c = sh["a"], sh["c"]
+        # K_I at the deepest and surface points against Newman and Raju's for the ellipse of this a and c.
+        at = {r.end: r for r in records if r.crack == 0}
+        deep = at.get(sh.get("deepest"))
+        ends = [at[i] for i in sh.get("surface_points", ()) if i in at]
+        k_nr = (surface_crack_k(SIGMA, a, c, t, b, np.array([0.5 * math.pi, 0.0])) if a < 0.8 * t  # the fit's range
+                else [None, None])
         rows.append({"step": k, "N": records[0].N, "a": a, "c": c, "a_over_t": a / t, "a_over_c": a / c,
                      "a_over_c_newman_raju": a / path(a) if a <= 0.8 * t else None, "points": len(records),
-                     "seconds": time.perf_counter() - t0})
+                     "K_I_deepest": deep.K_I if deep else None, "K_I_surface": [r.K_I for r in ends],
+                     "K_I_deepest_newman_raju": k_nr[0] and float(k_nr[0]),
+                     "K_I_surface_newman_raju": k_nr[1] and float(k_nr[1]),
+                     "h_deepest": deep.element_size if deep else None, "seconds": time.perf_counter() - t0})
         save(figures(False))
     run.on_step = progress
     try:
@@ -219,6 +258,8 @@ def main(argv=None) -> dict:
     ap.add_argument("--cases", nargs="+", default=["penny", "surface_crack"], choices=["penny", "surface_crack"])
     ap.add_argument("--starts", type=float, nargs="+", help="the surface crack's starts a/c at a/t = 0.1 "
                     "(default 0.2 0.5 1, --small 0.5)")
+    ap.add_argument("--elements", type=int, help="the surface crack's elements per crack size n (h = min(a, c) / n "
+                    "along the path; default 8, --small 4)")
     args = ap.parse_args(argv)
     config = "small" if args.small else "full"
 
@@ -244,7 +285,8 @@ def main(argv=None) -> dict:
         starts = args.starts or SURFACE[config][1]
         for ac0 in starts:
             cases.append(run_surface(config, ac0, log,
-                                     lambda case: (out.__setitem__("surface_crack", summary(case)), save())))
+                                     lambda case: (out.__setitem__("surface_crack", summary(case)), save()),
+                                     elements=args.elements))
         out["surface_crack"] = summary()
     save()
     if args.json is not None and __name__ == "__main__" and not args.small:
@@ -288,12 +330,16 @@ def write_figures(out: dict, folder: pathlib.Path) -> None:
         t, b = 1.0, 5.0
         with (folder / "growth_3d_surface.csv").open("w", newline="") as f:
             w = csv.writer(f)
-            w.writerow(["a_over_c0", "step", "N", "a", "c", "a_over_t", "a_over_c", "a_over_c_newman_raju"])
+            w.writerow(["a_over_c0", "step", "N", "a", "c", "a_over_t", "a_over_c", "a_over_c_newman_raju",
+                        "K_I_deepest", "K_I_deepest_newman_raju", "K_I_surface_1", "K_I_surface_2",
+                        "K_I_surface_newman_raju"])
             for n, case in enumerate(out["surface_crack"]["cases"]):
                 rows = case["rows"]
                 for r in rows:
+                    ks = (list(r.get("K_I_surface") or []) + [None, None])[:2]
                     w.writerow([case["a_over_c0"], r["step"], r["N"], r["a"], r["c"], r["a_over_t"], r["a_over_c"],
-                                r["a_over_c_newman_raju"]])
+                                r["a_over_c_newman_raju"], r.get("K_I_deepest"), r.get("K_I_deepest_newman_raju"),
+                                *ks, r.get("K_I_surface_newman_raju")])
                 a0 = 0.1 * t
                 path = newman_raju_path(a0, a0 / case["a_over_c0"], t, b, 0.8 * t)
                 at = np.linspace(0.1, 0.8, 100)

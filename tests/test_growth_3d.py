@@ -245,6 +245,44 @@ def test_demo_small_penny_and_surface_crack():
     assert out["surface_crack"]["a_over_c_max_dev"] < 0.02
 
 
+def test_surface_crack_mesh_keeps_its_elements_per_depth_along_the_path():
+    """The demo's surface-crack grading (growth_3d.path_refinements): fronts
+    along Newman and Raju's path from a0 to a_end, each at min(a, c) / n on
+    its ellipse, consecutive ones at most PATH_SPACING sizes apart; on a
+    small mesh (n = 4) the path's late fronts keep their size."""
+    import scipy.spatial
+    import growth_3d
+    from cracklip.scene.mesh_3d import create_box
+    t, b, n, a0, c0, a_end = 1.0, 5.0, 4, 0.1, 0.2, 0.85
+    crack = EllipticalCrack((0.0, t, 0.0), (0.0, 0.0, 1.0), c0, b=a0, axis=(1.0, 0.0, 0.0))
+    path = growth_3d.newman_raju_path(a0, c0, t, b, a_end)
+    refs = growth_3d.path_refinements(crack, path, a0, a_end, n)
+    fronts = [r for r in refs if r.kind == "curve"]
+    # (a, c) of each front from its points (h / 2 apart in equal parametric steps: a, c low by up to 0.2 %)
+    ac = np.array([[(t - r.points[:, 1]).max(), np.abs(r.points[:, 0]).max()] for r in fronts])
+    h = np.array([r.h_front for r in fronts])
+    assert ac[0] == pytest.approx([a0, c0], rel=3e-3) and ac[-1, 0] == pytest.approx(a_end, rel=3e-3)
+    assert len(fronts) >= 5
+    np.testing.assert_allclose(ac[:, 1], [path(a) for a in ac[:, 0]], rtol=5e-3)
+    np.testing.assert_allclose(h, ac.min(axis=1) / n, rtol=5e-3)
+    steps = np.diff(ac, axis=0)
+    assert np.all(steps > 0.0) and np.all(steps.max(axis=1) <= growth_3d.PATH_SPACING * h[:-1] * 1.01)
+    # Sizes grow by 1 / n per unit distance from every front up to the plate's size.
+    assert all(r.radius == pytest.approx((growth_3d.H_SURFACE - r.h_front) * n) for r in fronts)
+    # On the mesh: the mean edge of the cells at the deepest point and the surface end of the path's fronts at
+    # a = 0.6 and 0.8, in min(a, c) / n: 0.65-0.85 (the start's grading alone: 1.04-1.26).
+    md = create_box(-b, 0.0, -b, b, t, b, growth_3d.H_SURFACE, fronts=refs)
+    x = md.mesh.geometry.x
+    cells = md.mesh.geometry.dofmap.array.reshape(-1, 4)
+    tree = scipy.spatial.cKDTree(x)
+    for a in (0.6, 0.8):
+        c = path(a)
+        for p in ([0.0, t - a, 0.0], [c, t, 0.0]):
+            xv = x[cells[np.isin(cells, [tree.query(p)[1]]).any(axis=1)]]
+            edges = np.linalg.norm(xv[:, [0, 0, 0, 1, 1, 2]] - xv[:, [1, 2, 3, 2, 3, 3]], axis=2)
+            assert edges.mean() < 0.95 * min(a, c) / n
+
+
 # -- cracklip grow on 3D scene files ------------------------------------------------------------------------
 
 def _grow(scene: str, out: pathlib.Path, *extra: str) -> dict:
@@ -426,6 +464,28 @@ def test_advance_takes_the_front_kinks(monkeypatch):
     z = np.abs(run.surfaces[0].loop_points[:, 2])
     assert z == pytest.approx(0.1 * math.sin(0.1), rel=1e-6)
     assert all(r.kink_deg == pytest.approx(math.degrees(0.1)) and r.da == pytest.approx(0.1) for r in records)
+
+
+def test_margin_follows_the_element_size_at_the_free_surface_points():
+    """SurfaceGrowth._scale_margin: the surface runs MARGIN_ELEMENTS element
+    sizes beyond the part's boundary, sized each step by the largest element
+    at the front's free-surface points (interior points do not count), never
+    below the start's front size; per step in margins. (Kept at the start's
+    size it fell under an element on the graded surface-crack mesh, and the
+    points next to the ends lost their domain independence: docs/growth.md.)"""
+    import types
+
+    from cracklip.analysis import front_growth
+    run = types.SimpleNamespace(h_front=0.02, margin=0.04, margins=[])
+
+    def measured(*sizes):
+        return types.SimpleNamespace(records=[types.SimpleNamespace(free_surface=f, element_size=h) for f, h in sizes])
+    front_growth.SurfaceGrowth._scale_margin(run, measured((True, 0.015), (False, 0.09), (True, 0.012)))
+    assert run.margin == pytest.approx(front_growth.MARGIN_ELEMENTS * 0.02)
+    front_growth.SurfaceGrowth._scale_margin(run, measured((True, 0.05), (False, 0.09), (True, 0.07)))
+    assert run.margin == pytest.approx(front_growth.MARGIN_ELEMENTS * 0.07)
+    front_growth.SurfaceGrowth._scale_margin(run, measured((False, 0.3)))   # an embedded front: the start's
+    assert run.margins == pytest.approx([front_growth.MARGIN_ELEMENTS * h for h in (0.02, 0.07, 0.02)])
 
 
 def test_nearest_node_ties_decided_by_position_not_numbering():

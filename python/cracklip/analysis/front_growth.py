@@ -66,7 +66,10 @@ logger = logging.getLogger(__name__)
 #: The growth front's vertices are this fraction of the front's element size apart.
 SPACING_FRACTION = 0.5
 
-#: The surface runs this many front element sizes beyond the part's boundary.
+#: The surface runs this many front element sizes beyond the part's boundary:
+#: the largest size at the front's free-surface points at each step (at
+#: least the start's front size), so that the strip outside the part stays
+#: wider than the elements the front has grown into (SurfaceGrowth.margin).
 MARGIN_ELEMENTS = 2.0
 
 #: Default increment (growth.da = 0): this many front element sizes.
@@ -329,6 +332,7 @@ class SurfaceGrowth(GrowthRun):
         self.h_front = front_element_size(scene.mesh, scene.cracks)
         self.spacing = SPACING_FRACTION * self.h_front
         self.margin = MARGIN_ELEMENTS * self.h_front
+        self.margins: list[float] = []     # per step (_scale_margin)
         self.advanced_to: dict[tuple[int, int], np.ndarray] = {}
         self.closed_front: dict[int, bool] = {}
         self.exits: dict[int, list[np.ndarray]] = {}   # per crack: the outward normals where its front leaves the part
@@ -375,6 +379,7 @@ class SurfaceGrowth(GrowthRun):
         m = self.life.measure(self.cracks, self.k, self.N, self.stopped)
         self._free = {(r.crack, r.end): r.free_surface for r in m.records}
         self._check_resolution(m)
+        self._scale_margin(m)
         shape = self.measure_shape(m)
         self.shape.append(shape)
         # A crack's size (growth.max_length): a surface or corner crack's depth a, an embedded one's mean radius.
@@ -708,6 +713,25 @@ class SurfaceGrowth(GrowthRun):
         self.life.scene = dataclasses.replace(self.life.scene, options=dataclasses.replace(
             o, radius=o.radius * ratio, sif_radius=o.sif_radius * ratio))
 
+    def _scale_margin(self, m: Measured) -> None:
+        """The margin beyond the part's boundary (MARGIN_ELEMENTS) in the
+        element sizes at the front's free-surface points now. Kept at the
+        start's 2 front sizes, it fell under one element where the front had
+        grown into coarser ones: the surface's boundary loop outside the part
+        (the strip beyond the face, along the crack's mouth) came within an
+        element of the mesh nodes on the face, and the front points next to
+        the free surface lost their domain independence (surface crack a/c0
+        = 1 on a graded mesh, K_I's spread over the 3 domains of the points
+        next to the ends over the deepest point's K: 1.0-1.6 % at steps
+        7-10, 3.1 % at step 11, then 2.5-24 % as the ends' elements (0.033
+        at step 12) passed the margin (about 0.034); the two ends' K up to
+        16 % apart and the fastest point alternating between the ends and
+        the deepest point. Re-sized: 0.1-1.0 % at steps 8-20, the ends
+        within 2 %: docs/growth.md)."""
+        sizes = [r.element_size for r in m.records if r.free_surface and r.element_size > 0.0]
+        self.margin = MARGIN_ELEMENTS * max([self.h_front] + sizes)
+        self.margins.append(self.margin)
+
     # -- the mesh's resolution ------------------------------------------------------------------------------
     def _check_resolution(self, m: Measured) -> None:
         sizes = np.array([r.element_size for r in m.records if not r.free_surface] or [0.0])
@@ -740,7 +764,7 @@ class SurfaceGrowth(GrowthRun):
                     least[key] = dict(c, end=-1, point=c["end"])
             out.life["residual_strength"] = [least[k] for k in sorted(least)]
         out.fronts = {"shape": self.shape, "surfaces": self.surfaces_per_step, "spacing": self.spacing,
-                      "margin": self.margin, "h_front": self.h_front, "da": self.da,
+                      "margin": self.margin, "margins": self.margins, "h_front": self.h_front, "da": self.da,
                       "radius_scale": self.radius_scale, "faces": self.faces,
                       "origins": [s.origin.tolist() for s in self.surfaces], "breakthrough": self.breakthrough}
         return out
