@@ -23,7 +23,7 @@ ratio_solve_with_setup counts them too). Per solve of the last pair:
 krylov_iterations, t_krylov_setup (the preconditioner's set-up: GAMG's
 on the first, t_amg_setup, and each solve's band blocks and
 factorisation, t_band_setup), t_solves. Plain: GAMG
-set-up and CG. t_total: X-FEM model, assembly, contact system and solve;
+set-up (t_setup_plain) and CG. t_total: X-FEM model, assembly, contact system and solve;
 plain: DOLFINx assembly and solve (the mesh is made once, outside both).
 
 The front enrichment radius is 2 h_front (bench_3d.py's default: the crack
@@ -123,6 +123,7 @@ def worker(spec: dict) -> dict:
             "cells": int(scene.mesh.mesh.topology.index_map(3).size_local), "t_mesh": t_mesh,
             "enriched_dofs": x_last["enriched_dofs"], "multipliers": x_last["multipliers"], "band": x_last["band"],
             "t_solve_contact": med("t_solve", 1), "t_solve_plain": med("t_solve", 0),
+            "t_setup_plain": med("t_setup", 0),
             "t_contact_setup": med("t_contact_setup", 1),
             "t_total_contact": med("t_total", 1), "t_total_plain": med("t_total", 0),
             "t_assemble_enriched": med("t_assemble_enriched", 1),
@@ -130,6 +131,7 @@ def worker(spec: dict) -> dict:
             "ratio_solve_with_setup": statistics.median(x["t_solve_with_setup"] / p["t_solve"] for p, x in pairs),
             "ratio_total": statistics.median(x["t_total"] / p["t_total"] for p, x in pairs),
             "ratios_solve": [x["t_solve"] / p["t_solve"] for p, x in pairs],
+            "t_solve_pairs": [[p["t_solve"], x["t_solve"]] for p, x in pairs],
             "contact_iterations": x_last["iterations_contact"], "krylov_iterations": x_last["krylov_iterations"],
             "krylov_rtols": x_last["krylov_rtols"], "t_krylov_setup": x_last["t_krylov_setup"],
             "t_solves": x_last["t_solves"], "t_band_setup": x_last["t_band_setup"],

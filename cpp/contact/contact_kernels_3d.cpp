@@ -4,6 +4,7 @@
 #include "geometry/vec3.h"
 #include "quadrature/crack_points_3d.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -135,6 +136,26 @@ void assemble_coupling_3d(std::span<const double> x, std::span<const std::int32_
   std::vector<double> vp, vm, grad, bn, bt1, bt2, mass, psi;
   std::vector<std::int32_t> rows, cols;
   std::vector<int> side;
+  // The points of one cell and one set of multipliers (a lip piece's
+  // quadrature points come one after the other) are summed into one block
+  // before it goes to the sinks: a hundredth of the triplets (a / h = 8:
+  // B's 5.2e6 -> 5.3e4), which the caller's sparse matrices would otherwise
+  // sort and sum (2e5 dofs: 4.5e7 triplets for B, M, Bt1, Bt2, set-up 6-8 s
+  // -> 1.3 s).
+  std::int32_t block_cell = -1;
+  auto flush = [&]()
+  {
+    if (block_cell < 0)
+      return;
+    sinks.normal(rows, cols, bn);
+    if (tangential)
+    {
+      sinks.tangent1(rows, cols, bt1);
+      sinks.tangent2(rows, cols, bt2);
+    }
+    sinks.mass(rows, rows, mass);
+    block_cell = -1;
+  };
   std::size_t e = 0;
   for (std::size_t p = 0; p < cp.weight.size(); ++p)
   {
@@ -160,13 +181,19 @@ void assemble_coupling_3d(std::span<const double> x, std::span<const std::int32_
     const double* n = &cp.normal[3 * p];
     const double* t1 = &cp.t1[3 * p];
     const double* t2 = &cp.t2[3 * p];
-    rows.assign(cp.entry_mult.begin() + e0, cp.entry_mult.begin() + e);
     psi.assign(cp.entry_value.begin() + e0, cp.entry_value.begin() + e);
-    cols.assign(basis.dofs.begin() + 12, basis.dofs.end());
+    if (block_cell != c or !std::equal(rows.begin(), rows.end(), cp.entry_mult.begin() + e0, cp.entry_mult.begin() + e))
+    {
+      flush();
+      block_cell = c;
+      rows.assign(cp.entry_mult.begin() + e0, cp.entry_mult.begin() + e);
+      cols.assign(basis.dofs.begin() + 12, basis.dofs.end());
+      bn.assign(rows.size() * cols.size(), 0.0);
+      if (tangential)
+        bt1.assign(rows.size() * cols.size(), 0.0), bt2.assign(rows.size() * cols.size(), 0.0);
+      mass.assign(rows.size() * rows.size(), 0.0);
+    }
     const std::size_t nr = rows.size(), nc = cols.size();
-    bn.assign(nr * nc, 0.0);
-    if (tangential)
-      bt1.assign(nr * nc, 0.0), bt2.assign(nr * nc, 0.0);
     for (std::size_t j = 0; j < nc; ++j)
     {
       const std::size_t i = j + 12;
@@ -176,23 +203,16 @@ void assemble_coupling_3d(std::span<const double> x, std::span<const std::int32_
       const double j2 = jump[0] * t2[0] + jump[1] * t2[1] + jump[2] * t2[2];
       for (std::size_t k = 0; k < nr; ++k)
       {
-        bn[k * nc + j] = psi[k] * w * jn;
+        bn[k * nc + j] += psi[k] * w * jn;
         if (tangential)
-          bt1[k * nc + j] = psi[k] * w * j1, bt2[k * nc + j] = psi[k] * w * j2;
+          bt1[k * nc + j] += psi[k] * w * j1, bt2[k * nc + j] += psi[k] * w * j2;
       }
     }
-    sinks.normal(rows, cols, bn);
-    if (tangential)
-    {
-      sinks.tangent1(rows, cols, bt1);
-      sinks.tangent2(rows, cols, bt2);
-    }
-    mass.assign(nr * nr, 0.0);
     for (std::size_t k = 0; k < nr; ++k)
       for (std::size_t l = 0; l < nr; ++l)
-        mass[k * nr + l] = psi[k] * psi[l] * w;
-    sinks.mass(rows, rows, mass);
+        mass[k * nr + l] += psi[k] * psi[l] * w;
   }
+  flush();
 }
 
 std::vector<double> evaluate_multipliers_3d(const MultiplierSpace3D& space, std::int32_t crack,

@@ -92,8 +92,9 @@ struct ContactSinks3D
 };
 
 /// B, M and (with non-empty tangent sinks) Bt1, Bt2 of the space (file
-/// header), one block per quadrature point: the multipliers non-zero there
-/// times the enriched dofs of its cell (standard functions do not jump).
+/// header), one block per cell and set of multipliers (its consecutive
+/// quadrature points summed): the multipliers non-zero there times the
+/// enriched dofs of the cell (standard functions do not jump).
 void assemble_coupling_3d(std::span<const double> x, std::span<const std::int32_t> cells,
                           const EnrichmentLayout& layout, std::span<const CrackGeometry3D* const> cracks,
                           const MultiplierSpace3D& space, const LipRule3D& rule, const ContactSinks3D& sinks,
