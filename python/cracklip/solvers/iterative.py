@@ -329,7 +329,10 @@ def decoupled(K: PETSc.Mat, dofs: np.ndarray) -> PETSc.Mat:
     diag = K.getDiagonal()
     a[ip[mine]] = diag.array[mine]
     diag.destroy()
-    Kc = PETSc.Mat().createAIJ(size=((hi - lo, n), (hi - lo, n)), bsize=K.getBlockSize(), csr=(ip, ja, a), comm=comm)
+    # (serial: Kc holds these arrays, no copy)
+    Kc = PETSc.Mat().createAIJWithArrays(((hi - lo, n), (hi - lo, n)), (ip, ja, a), comm=comm)
+    bs = K.getBlockSize()
+    Kc.setBlockSizes(bs, bs)  # (GAMG aggregates nodes: the block size)
     Kc.assemble()
     return Kc
 
