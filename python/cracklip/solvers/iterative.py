@@ -142,7 +142,11 @@ COARSE_CONSTRAINT_SV = 0.05
 #: plain P1's 6.8 s and 23; without them 8.4 s and 25 (Heaviside-only:
 #: 8.0 s and 22): the tip rows, which have no rigid modes, made the
 #: aggregates and the coarse operators denser. 2D keeps them (Westergaard
-#: at 2e5 dofs: 23 iterations with, 62 without; IterativeSolver).
+#: at 2e5 dofs: 23 iterations with, 62 without; IterativeSolver). The cut
+#: couplings leave the operator's sparsity (decoupled): stored as zeros
+#: they were 26 % of its entries at radius 0.25 a, and GAMG's set-up and
+#: every V-cycle's fine-level products went through them (penny at 5.3e5
+#: dofs, one process: V-cycle 1.0 -> 0.66-0.93 s, plain's 0.68-0.87).
 DECOUPLE_TIP_DOFS = {2: False, 3: True}
 
 
