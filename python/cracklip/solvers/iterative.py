@@ -142,7 +142,11 @@ COARSE_CONSTRAINT_SV = 0.05
 #: plain P1's 6.8 s and 23; without them 8.4 s and 25 (Heaviside-only:
 #: 8.0 s and 22): the tip rows, which have no rigid modes, made the
 #: aggregates and the coarse operators denser. 2D keeps them (Westergaard
-#: at 2e5 dofs: 23 iterations with, 62 without; IterativeSolver).
+#: at 2e5 dofs: 23 iterations with, 62 without; IterativeSolver). The cut
+#: couplings leave the operator's sparsity (decoupled): stored as zeros
+#: they were 26 % of its entries at radius 0.25 a, and GAMG's set-up and
+#: every V-cycle's fine-level products went through them (penny at 5.3e5
+#: dofs, one process: V-cycle 1.0 -> 0.66-0.93 s, plain's 0.68-0.87).
 DECOUPLE_TIP_DOFS = {2: False, 3: True}
 
 
@@ -296,18 +300,44 @@ def tip_dofs(model: "XfemModel") -> np.ndarray:
 
 
 def decoupled(K: PETSc.Mat, dofs: np.ndarray) -> PETSc.Mat:
-    """A copy of K with the rows and columns of `dofs` cut off, their
-    diagonal kept (GAMG's operator without the tip dofs: DECOUPLE_TIP_DOFS)."""
-    Kc = K.duplicate(copy=True)
+    """A copy of K with the rows and columns of `dofs` (global numbers; under
+    MPI this process's owned rows among them, every process's columns) cut
+    off, their diagonal kept: GAMG's operator without the tip dofs
+    (DECOUPLE_TIP_DOFS). The cut entries leave the sparsity (zeroing them
+    in a copy kept them as stored zeros: 26 % of K's entries with the
+    penny's radius 0.25 a, which GAMG's set-up and every V-cycle's
+    fine-level products carried along)."""
+    lo, hi = K.getOwnershipRange()
+    n = K.getSize()[0]
+    comm = K.getComm()
+    cut = np.zeros(n, dtype=bool)  # (columns: every process's dofs)
+    cut[np.concatenate(comm.tompi4py().allgather(dofs)) if comm.getSize() > 1 else dofs] = True
+    indptr, indices, data = K.getValuesCSR()  # (this process's rows, global columns)
+    cut_rows = cut[lo:hi]
+    keep = ~cut[indices]
+    keep &= ~np.repeat(cut_rows, np.diff(indptr))
+    counts = np.add.reduceat(keep, indptr[:-1]) if keep.size else np.zeros(hi - lo, dtype=np.int64)
+    counts[indptr[:-1] == indptr[1:]] = 0  # (reduceat's value for an empty row)
+    counts += cut_rows  # (a cut row: its diagonal alone)
+    ip = np.zeros(hi - lo + 1, dtype=indptr.dtype)
+    np.cumsum(counts, out=ip[1:])
+    mine = np.flatnonzero(cut_rows)
+    at = np.ones(ip[-1], dtype=bool)
+    at[ip[mine]] = False
+    ja = np.empty(ip[-1], dtype=indices.dtype)
+    a = np.empty(ip[-1], dtype=data.dtype)
+    ja[at] = indices[keep]
+    a[at] = data[keep]
+    del indices, data, keep, at
+    ja[ip[mine]] = mine + lo
     diag = K.getDiagonal()
-    idx = dofs.astype(PETSc.IntType)
-    Kc.zeroRowsColumns(idx, diag=1.0)
-    d = Kc.getDiagonal()
-    lo = K.getOwnershipRange()[0]  # (dofs: owned rows of a distributed K)
-    d.array[idx - lo] = diag.array[idx - lo]
-    Kc.setDiagonal(d, addv=PETSc.InsertMode.INSERT_VALUES)
+    a[ip[mine]] = diag.array[mine]
     diag.destroy()
-    d.destroy()
+    # (serial: Kc holds these arrays, no copy)
+    Kc = PETSc.Mat().createAIJWithArrays(((hi - lo, n), (hi - lo, n)), (ip, ja, a), comm=comm)
+    bs = K.getBlockSize()
+    Kc.setBlockSizes(bs, bs)  # (GAMG aggregates nodes: the block size)
+    Kc.assemble()
     return Kc
 
 
@@ -327,30 +357,21 @@ def crack_band(model: "XfemModel", rings: int = 1) -> np.ndarray:
     return np.concatenate([std, np.arange(d * nstd, model.num_dofs)]).astype(np.int64)
 
 
-def outer_torus(model: "XfemModel", from_h: float, with_standard: bool = False) -> np.ndarray:
+def outer_torus(model: "XfemModel", from_h: float, with_standard: bool = False,
+                distance: np.ndarray | None = None) -> np.ndarray:
     """Sorted dofs of the outer torus: the front-enrichment dofs of the
     pseudo-nodes whose node lies farther than from_h front element sizes
     (the mean edge of the cells the front crosses) from its crack's front
     (|(phi, psi)|), and, with_standard, those nodes' standard dofs (unless a
     Heaviside pseudo-node shares the node). 3D only; empty if there is none
-    or from_h is 0."""
+    or from_h is 0. distance: front_distance(model), if the caller has it."""
     lay = model.layout
     kind = np.asarray(lay.kind)
     tip = np.flatnonzero(kind != 0)
     if model.gdim != 3 or tip.size == 0 or not from_h:
         return np.zeros(0, dtype=np.int64)
     node = np.asarray(lay.node)
-    crack = np.asarray(lay.crack)
-    far = np.zeros(tip.size, dtype=bool)
-    for c, cm in enumerate(model.cracks):
-        g = cm.geometry
-        front_cells = np.flatnonzero(np.asarray(g.cell_class) == cm.CELL_CLASSES["front"])
-        mine = crack[tip] == c
-        if front_cells.size == 0 or not mine.any():
-            continue
-        h = model.crack_type.mean_edge(model.x, model.cells[front_cells])
-        nd = node[tip[mine]]
-        far[mine] = np.hypot(np.asarray(g.phi)[nd], np.asarray(g.psi)[nd]) > from_h * h
+    far = (front_distance(model) if distance is None else distance) > from_h
     d = model.gdim
     pseudo = tip[far]
     dofs = [(d * (lay.num_std_nodes + pseudo)[:, None] + np.arange(d)).ravel()]
@@ -359,6 +380,28 @@ def outer_torus(model: "XfemModel", from_h: float, with_standard: bool = False) 
         nodes = nodes[~np.isin(nodes, node[kind == 0])]
         dofs.append((d * nodes[:, None] + np.arange(d)).ravel())
     return np.sort(np.concatenate(dofs)).astype(np.int64)
+
+
+def front_distance(model: "XfemModel") -> np.ndarray:
+    """Per tip (front) pseudo-node, in the layout's order: its node's
+    distance from its crack's front, |(phi, psi)|, in front element sizes
+    (the mean edge of the cells the front crosses; 0 for a crack without
+    front cells: never in the outer torus). 3D."""
+    lay = model.layout
+    tip = np.flatnonzero(np.asarray(lay.kind) != 0)
+    node = np.asarray(lay.node)
+    crack = np.asarray(lay.crack)
+    dist = np.zeros(tip.size)
+    for c, cm in enumerate(model.cracks):
+        g = cm.geometry
+        front_cells = np.flatnonzero(np.asarray(g.cell_class) == cm.CELL_CLASSES["front"])
+        mine = crack[tip] == c
+        if front_cells.size == 0 or not mine.any():
+            continue
+        h = model.crack_type.mean_edge(model.x, model.cells[front_cells])
+        nd = node[tip[mine]]
+        dist[mine] = np.hypot(np.asarray(g.phi)[nd], np.asarray(g.psi)[nd]) / h
+    return dist
 
 
 def grow_band(K: PETSc.Mat, dofs: np.ndarray, rings: int) -> np.ndarray:
@@ -483,11 +526,15 @@ class IterativeSolver(LinearSolver):
         """(the outer block's dofs, the dofs the exact band leaves to it);
         both empty unless the front-function dofs beyond
         INNER_BAND_RADIUS_H are at least OUTER_MIN_SHARE of the band."""
-        beyond = outer_torus(self.model, INNER_BAND_RADIUS_H)
+        none = np.zeros(0, dtype=np.int64)
+        if self.model.gdim != 3 or not INNER_BAND_RADIUS_H or not np.any(np.asarray(self.model.layout.kind) != 0):
+            return none, none
+        dist = front_distance(self.model)  # (once: the three selections below share it)
+        beyond = outer_torus(self.model, INNER_BAND_RADIUS_H, distance=dist)
         if beyond.size < OUTER_MIN_SHARE * self._band_k.size:
-            return beyond[:0], beyond[:0]
-        return (outer_torus(self.model, OUTER_FROM_H, OUTER_WITH_STANDARD),
-                outer_torus(self.model, INNER_BAND_RADIUS_H, OUTER_WITH_STANDARD))
+            return none, none
+        return (outer_torus(self.model, OUTER_FROM_H, OUTER_WITH_STANDARD, dist),
+                outer_torus(self.model, INNER_BAND_RADIUS_H, OUTER_WITH_STANDARD, dist))
 
     def _tip_dofs(self) -> np.ndarray:
         return tip_dofs(self.model)
@@ -861,7 +908,7 @@ class _Schwarz:
             z.set(0.0)
             if band_first:
                 self.s1.scatter(self.z1, z, add, rev)
-            zo = self.outer.correct(r, z)
+            zo = self.outer.correct(r, z, z_zero=not band_first)
             if not band_first:
                 self.r0.array[:] = r0.array
             self.r0.array[:] -= zo[:n0]
@@ -875,7 +922,7 @@ class _Schwarz:
             z.array[max(n0 - z.getOwnershipRange()[0], 0):] = 0.0
         if self.outer is not None:
             z.array[:] += z_pre
-            self.outer.correct(r, z)
+            self.outer.correct(r, z, product=False)  # (no product: the band's A1 z follows)
         elif band_first:
             self.s1.scatter(self.z1, z, add, rev)
         # Band again on r - A z.
@@ -947,11 +994,18 @@ class _InexactBlock:
         self.r2, self.z2 = self.A2.createVecLeft(), self.A2.createVecLeft()
         self.full = self.A2.createVecRight()
 
-    def correct(self, r: PETSc.Vec, z: PETSc.Vec) -> np.ndarray:
-        self.A2.mult(z, self.r2)
-        self.r2.array[:] = r.array[self.idx] - self.r2.array
+    def correct(self, r: PETSc.Vec, z: PETSc.Vec, z_zero: bool = False, product: bool = True) -> np.ndarray | None:
+        """z_zero: z is 0 (its product skipped); product: whether the
+        caller needs A R^T (the correction) (else None)."""
+        if z_zero:
+            self.r2.array[:] = r.array[self.idx]
+        else:
+            self.A2.mult(z, self.r2)
+            self.r2.array[:] = r.array[self.idx] - self.r2.array
         self.factor.solve(self.r2, self.z2)
         z.array[self.idx] += self.z2.array
+        if not product:
+            return None
         self.A2.multTranspose(self.z2, self.full)
         return self.full.array
 
