@@ -185,8 +185,9 @@ def path_refinements(crack: EllipticalCrack, path, a0: float, a_end: float, n: i
         while path(min(a + da, a_end)) - c > PATH_SPACING * h:
             da *= 0.8
         a = min(a + da, a_end)
-        front = EllipticalCrack(crack.center, crack.normal, path(a), b=a, axis=crack.axis)
-        out += crack_refinements([front], min(a, path(a)) / n, h_max, growth=1.0 / n, h_surface=h_max)
+        c = path(a)
+        front = EllipticalCrack(crack.center, crack.normal, c, b=a, axis=crack.axis)
+        out += crack_refinements([front], min(a, c) / n, h_max, growth=1.0 / n, h_surface=h_max)
     return out
 
 

@@ -286,6 +286,13 @@ def test_open_crack_same_on_one_and_two_processes(scene, settings, exact):
 BLOCK_SPLIT = "--cells-below=-0.12"
 
 
+def script_args(scene: str, settings: list[str]) -> list[str]:
+    """A tests/mpi script's arguments: its options (tests/mpi/split.py's
+    --cells-below) first, then the shipped scene and its KEY=VALUE settings."""
+    options = [a for a in settings if a.startswith("--")]
+    return [*options, str(SCENES / scene), *(a for a in settings if not a.startswith("--"))]
+
+
 @pytest.mark.parametrize("scene, settings, n", [
     ("westergaard.toml", [], 2), ("penny_crack.toml", ["mesh.h=2.0", "mesh.tip_h=0.3", "mesh.crack_h=0.3"], 2),
     ("penny_crack.toml", ["mesh.h=2.0", "mesh.tip_h=0.3", "mesh.crack_h=0.3"], 3),
@@ -298,9 +305,7 @@ def test_phantom_transform_in_place_equals_ptap(scene, settings, n):
     partition of the block under pressure (BLOCK_SPLIT). Measured (of
     ||A||): Westergaard 6.9e-18, penny 2.7e-18 on 2 processes and 2.8e-18
     on 3, block 5.2e-18; the change itself 0.16, 0.055 and 0.095."""
-    split = [a for a in settings if a.startswith("--")]
-    settings = [a for a in settings if not a.startswith("--")]
-    p = python_on(n, str(ROOT / "tests" / "mpi" / "phantom_transform.py"), *split, str(SCENES / scene), *settings)
+    p = python_on(n, str(ROOT / "tests" / "mpi" / "phantom_transform.py"), *script_args(scene, settings))
     assert_clean(p, 0)
     out = json.loads(p.stdout.strip().splitlines()[-1])
     assert out["processes"] == n and out["in_place"], out
@@ -328,9 +333,7 @@ def test_iterative_path_same_on_one_and_two_processes(scene, settings, exact):
     2e-14 of the K scale p sqrt(pi a) = 0.0112, 19 / 21 CG iterations
     (before the transform read its rows from A's pattern: K_II -1.6e-3,
     GMRES after CG broke down)."""
-    split = [a for a in settings if a.startswith("--")]
-    settings = [a for a in settings if not a.startswith("--")]
-    one, two = script_on_one_and_two("iterative.py", *split, str(SCENES / scene), *settings)
+    one, two = script_on_one_and_two("iterative.py", *script_args(scene, settings))
     assert two["processes"] == 2
     for run in (one, two):
         assert run["solver"] == "iterative" and "GAMG" in run["method"], run

@@ -135,17 +135,12 @@ def transform_matrix(basis: PhantomBasis, A: PETSc.Mat) -> PETSc.Mat:
     ST = (S @ T).tocsr()
     delta, order, fits = phantom_change(S, ST, R, J, T[J][:, J])
     del S, ST
-    if not fits:
-        Tp = basis.petsc()  # a coupling outside A's pattern: the general way
-        A_t = A.PtAP(Tp)
-        Tp.destroy()
-        return A_t
-    if not changed_symmetric(A, delta, order):
-        Tp = basis.petsc()
-        A_t = A.PtAP(Tp)
-        Tp.destroy()
-        return A_t
-    return A
+    if fits and changed_symmetric(A, delta, order):
+        return A
+    Tp = basis.petsc()  # a coupling outside A's pattern, or a wrong change (taken back): the general way
+    A_t = A.PtAP(Tp)
+    Tp.destroy()
+    return A_t
 
 
 def phantom_change(S: sp.csr_matrix, ST: sp.csr_matrix, R: np.ndarray, J: np.ndarray,
