@@ -1084,7 +1084,8 @@ def _hat_correction(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
 
 def _free_surface_ends(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
     """K at ends on a free surface: the end value of front_sampling.end_value
-    from the piece's other points (each domain on its own), the end's own
+    from the piece's other points (each domain on its own), weighted by the
+    front's curvature there (K kappa^(1/6) extrapolated), the end's own
     domain K kept in its K_domain."""
     out = K.copy()
     pieces = np.array([fp.piece for fp in fps])
@@ -1110,7 +1111,8 @@ def _free_surface_ends(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
             s = np.array([fps[j].s for j in inner])
             near = np.abs(s - fp.s) <= front_sampling.END_WINDOW * fp.length
             window = front_sampling.end_window(fp.length, [fp.curvature] + [fps[j].curvature for j in inner[near]])
-            out[i], _ = front_sampling.end_value(s, K[inner], fp.s, window)
+            out[i], _ = front_sampling.end_value(s, K[inner], fp.s, window, [fps[j].curvature for j in inner],
+                                                 fp.curvature, fp.length)
             fp.K_domain = K[i].copy()
             fp.source = "end_extrapolation"
     return out
