@@ -193,6 +193,22 @@ def test_irwin_shape_is_constant_with_the_curvature_weight():
     assert np.allclose(fs.shape_weights([-2.0, 0.0, 0.05, 1.0], 10.0), [0.1 ** fs.END_SHAPE] * 3 + [1.0], rtol=1e-14)
 
 
+def test_conic_curvature():
+    """The curvature from a conic fitted to front points: exact on an
+    ellipse (any plane, any 7 points of it, at the end of its major axis
+    where it is largest: c / a^2) and on a circle, about 0 on a straight
+    line."""
+    rng = np.random.default_rng(3)
+    R, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    for a, c in ((0.2, 1.0), (0.2148, 0.522), (1.0, 1.0)):
+        ph = np.concatenate([[0.0], np.sort(rng.uniform(0.1, 1.2, 6))])
+        P = np.column_stack([c * np.cos(ph), a * np.sin(ph), np.zeros(7)]) @ R.T + [1.0, -2.0, 0.5]
+        k = fs.conic_curvatures(P, P)
+        assert k == pytest.approx(a * c / (c ** 2 * np.sin(ph) ** 2 + a ** 2 * np.cos(ph) ** 2) ** 1.5, rel=1e-6)
+    line = np.outer(np.linspace(0.0, 1.0, 7), [1.0, 2.0, -0.5])
+    assert np.abs(fs.conic_curvatures(line, line)).max() < 1e-6
+
+
 def test_end_value_on_newman_raju_with_growth_spacing():
     """Newman and Raju's own K (a/t = 0.2, a/c = 0.41 and 0.2) at front
     points three elements of a/8 apart, as the surface-crack growth samples

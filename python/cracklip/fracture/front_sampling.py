@@ -310,6 +310,31 @@ def shape_weights(curvature, length: float) -> np.ndarray:
     return np.maximum(np.asarray(curvature, dtype=float), floor) ** END_SHAPE
 
 
+def conic_curvatures(points: np.ndarray, at: np.ndarray) -> np.ndarray:
+    """The curvature at `at` (m, 3) of the conic (a x^2 + b x y + c y^2 + d
+    x + e y + f = 0) least-squares fitted to `points` (n >= 5, 3) in their
+    best plane: the front's curvature near a free-surface end from the
+    front points' positions (exact on an ellipse or a circle, about 0 on a
+    straight front), smooth where the mesh front's own curvature at the end
+    is not (a grown front's end: the polyline's turn there jumped from 5 to
+    23 between steps of the surface-crack growth a/c0 = 1, the interior
+    7-9)."""
+    P = np.asarray(points, dtype=float)
+    Q = np.asarray(at, dtype=float)
+    o = P.mean(axis=0)
+    scale = max(float(np.abs(P - o).max()), 1e-300)
+    _, _, vt = np.linalg.svd((P - o) / scale, full_matrices=False)
+    uv = (P - o) / scale @ vt[:2].T
+    x, y = uv[:, 0], uv[:, 1]
+    _, _, ct = np.linalg.svd(np.column_stack([x * x, x * y, y * y, x, y, np.ones_like(x)]), full_matrices=False)
+    a, b, c, d, e, _ = ct[-1]
+    q = (Q - o) / scale @ vt[:2].T
+    fx = 2 * a * q[:, 0] + b * q[:, 1] + d
+    fy = b * q[:, 0] + 2 * c * q[:, 1] + e
+    num = np.abs(fy * fy * 2 * a - 2 * fx * fy * b + fx * fx * 2 * c)
+    return num / np.maximum(np.hypot(fx, fy) ** 3, 1e-300) / scale
+
+
 def end_value(s: np.ndarray, K: np.ndarray, end: float, window: float, curvature: np.ndarray | None = None,
               end_curvature: float | None = None, length: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """K (...) at a free-surface end at arc length `end` from the interior
@@ -361,4 +386,4 @@ def interpolate(s: np.ndarray, K: np.ndarray, at: np.ndarray, length: float, clo
 
 __all__ = ["MIN_POINTS", "MIRROR_SIGNS", "END_WINDOW", "END_CURVATURE", "END_POINTS", "END_DEGREE", "END_SHAPE", "SOURCES",
            "requested_positions",
-           "piece_stations", "mirrored_sequence", "end_window", "shape_weights", "end_value", "interpolate"]
+           "piece_stations", "mirrored_sequence", "end_window", "shape_weights", "conic_curvatures", "end_value", "interpolate"]

@@ -1085,8 +1085,9 @@ def _hat_correction(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
 def _free_surface_ends(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
     """K at ends on a free surface: the end value of front_sampling.end_value
     from the piece's other points (each domain on its own), weighted by the
-    front's curvature there (K kappa^(1/6) extrapolated), the end's own
-    domain K kept in its K_domain."""
+    front's curvature there (K kappa^(1/6) extrapolated, kappa of the conic
+    through the end and its nearest points), the end's own domain K kept in
+    its K_domain."""
     out = K.copy()
     pieces = np.array([fp.piece for fp in fps])
     for p in np.unique(pieces):
@@ -1111,8 +1112,16 @@ def _free_surface_ends(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
             s = np.array([fps[j].s for j in inner])
             near = np.abs(s - fp.s) <= front_sampling.END_WINDOW * fp.length
             window = front_sampling.end_window(fp.length, [fp.curvature] + [fps[j].curvature for j in inner[near]])
-            out[i], _ = front_sampling.end_value(s, K[inner], fp.s, window, [fps[j].curvature for j in inner],
-                                                 fp.curvature, fp.length)
+            # The weights' curvature (front_sampling.END_SHAPE): the conic through the end and its nearest interior
+            # points (at least END_POINTS + 2, all within the window), on a front curving outward there.
+            d = np.abs(s - fp.s)
+            fit = np.argsort(d)[:max(front_sampling.END_POINTS + 2, int(np.sum(d <= window)))]
+            kappa = kappa_end = None
+            if len(fit) >= 4 and np.median([fps[inner[j]].curvature for j in fit]) > 0.0:
+                X = np.array([fp.x] + [fps[inner[j]].x for j in fit])
+                k = front_sampling.conic_curvatures(X, np.array([fp.x] + [fps[j].x for j in inner]))
+                kappa_end, kappa = float(k[0]), k[1:]
+            out[i], _ = front_sampling.end_value(s, K[inner], fp.s, window, kappa, kappa_end, fp.length)
             fp.K_domain = K[i].copy()
             fp.source = "end_extrapolation"
     return out
