@@ -57,8 +57,12 @@ least the END_POINTS points nearest it; the end's own value left out),
 evaluated at the end and divided by the end's kappa^(1/6) (a piece with
 one interior point: that point's K kappa^(1/6) over the end's, with a
 warning); K_source "end_extrapolation", the end's own domain value kept
-as K_domain. kappa is the front's curvature (END_SHAPE: at least 1 / the
-piece's length). Why the weight: along an elliptical crack (semi-axes a
+as K_domain. kappa is the front's curvature at the end and at the
+points (END_SHAPE: at least 1 / the piece's length), of the conic
+least-squares fitted through the end and its nearest interior points
+(conic_curvatures: at least END_POINTS + 2 of them, all within the
+window), where the front curves outward there (else K itself, as on a
+straight front). Why the weight: along an elliptical crack (semi-axes a
 <= c) under uniform tension K = sigma sqrt(pi a) / E(k) (sin^2 phi +
 (a/c)^2 cos^2 phi)^(1/4) (Irwin 1962, exact); with p the distance from
 the ellipse's centre to the tangent at the point, (sin^2 phi + (a/c)^2
@@ -73,8 +77,10 @@ end value whatever the K (Newman and Raju's own values at the points of
 a surface crack a/c = 0.41, a/t = 0.21 on a mesh of a/8 (hats of 3
 elements): -7.5 %). K kappa^(1/6) varies only with what the ellipse
 alone does not give (the free face, finite width, bending; Newman and
-Raju's g, f_w, M), slowly: the same points give -3.3 %, -2.1 % at a/12,
--0.9 % at a/16 (docs/growth.md). On a penny-like end (kappa constant)
+Raju's g, f_w, M), slowly: Newman and Raju's own K at points 3 elements
+of a/8, a/12, a/16 apart gives -2.3, -0.9, -0.4 % at a/c = 0.41 (-2.4,
+-1.4, -0.8 % at 0.2) where the plain quadratic gives -8.0, -6.6, -4.9 %
+(+0.7, -5.2, -7.2 %) (docs/growth.md). On a penny-like end (kappa constant)
 and on a straight front (kappa under 1 / the length) it is the plain
 quadratic. On the surface crack a/c = 1, a/t = 0.2 at a/12 it gives
 1.3204 against Newman-Raju's 1.3198 at phi = 0 (the end's own domain
