@@ -59,10 +59,15 @@ one interior point: that point's K kappa^(1/6) over the end's, with a
 warning); K_source "end_extrapolation", the end's own domain value kept
 as K_domain. kappa is the front's curvature at the end and at the
 points (END_SHAPE: at least 1 / the piece's length), of the conic
-least-squares fitted through the end and its nearest interior points
-(conic_curvatures: at least END_POINTS + 2 of them, all within the
-window), where the front curves outward there (else K itself, as on a
-straight front). Why the weight: along an elliptical crack (semi-axes a
+least-squares fitted through all the piece's points (conic_curvatures),
+where the front curves outward (else K itself, as on a straight front).
+The whole piece, because Irwin's relation holds for the ellipse, not for
+a local bend: a conic through the end's nearest points followed the
+grown front's own lag at the ends (surface crack a/c0 = 0.2, steps 5-6:
+the ends' K 0.82-0.84 of Newman and Raju's against 0.84-0.89 with the
+whole piece's conic), and the polyline's own curvature at the end jumped
+from 5 to 23 between steps of the a/c0 = 1 growth (the interior 7-9).
+Why the weight: along an elliptical crack (semi-axes a
 <= c) under uniform tension K = sigma sqrt(pi a) / E(k) (sin^2 phi +
 (a/c)^2 cos^2 phi)^(1/4) (Irwin 1962, exact); with p the distance from
 the ellipse's centre to the tangent at the point, (sin^2 phi + (a/c)^2
@@ -319,12 +324,8 @@ def shape_weights(curvature, length: float) -> np.ndarray:
 def conic_curvatures(points: np.ndarray, at: np.ndarray) -> np.ndarray:
     """The curvature at `at` (m, 3) of the conic (a x^2 + b x y + c y^2 + d
     x + e y + f = 0) least-squares fitted to `points` (n >= 5, 3) in their
-    best plane: the front's curvature near a free-surface end from the
-    front points' positions (exact on an ellipse or a circle, about 0 on a
-    straight front), smooth where the mesh front's own curvature at the end
-    is not (a grown front's end: the polyline's turn there jumped from 5 to
-    23 between steps of the surface-crack growth a/c0 = 1, the interior
-    7-9)."""
+    best plane: the curvature of the ellipse (or circle, or line: about 0)
+    a front's points follow, for the end value's weights (module doc)."""
     P = np.asarray(points, dtype=float)
     Q = np.asarray(at, dtype=float)
     o = P.mean(axis=0)
