@@ -64,7 +64,7 @@ where the front curves outward (else K itself, as on a straight front).
 The whole piece, because Irwin's relation holds for the ellipse, not for
 a local bend: a conic through the end's nearest points followed the
 grown front's own lag at the ends (surface crack a/c0 = 0.2, steps 5-6:
-the ends' K 0.82-0.84 of Newman and Raju's against 0.84-0.89 with the
+the ends' K 0.82-0.84 of Newman and Raju's against 0.885-0.904 with the
 whole piece's conic), and the polyline's own curvature at the end jumped
 from 5 to 23 between steps of the a/c0 = 1 growth (the interior 7-9).
 Why the weight: along an elliptical crack (semi-axes a
