@@ -130,7 +130,8 @@ END_SHAPE = 1.0 / 6.0
 #: Where a row's K comes from (the rows' K_source).
 SOURCES = {"domain": "the point's domain integral (hat along the front)",
            "mirrored_domain": "an end on a symmetry plane: its domain and the domain's mirror image",
-           "end_extrapolation": "a free-surface end: the interior points' K extrapolated to the end",
+           "end_extrapolation": ("a free-surface end: the interior points' K kappa^(1/6) extrapolated to the end, "
+                                 "over the end's kappa^(1/6)"),
            "interpolation": "an asked position between front points: K interpolated between them"}
 
 
@@ -391,6 +392,6 @@ def interpolate(s: np.ndarray, K: np.ndarray, at: np.ndarray, length: float, clo
     return out.reshape((len(at),) + np.shape(K)[1:])
 
 
-__all__ = ["MIN_POINTS", "MIRROR_SIGNS", "END_WINDOW", "END_CURVATURE", "END_POINTS", "END_DEGREE", "END_SHAPE", "SOURCES",
-           "requested_positions",
-           "piece_stations", "mirrored_sequence", "end_window", "shape_weights", "conic_curvatures", "end_value", "interpolate"]
+__all__ = ["MIN_POINTS", "MIRROR_SIGNS", "END_WINDOW", "END_CURVATURE", "END_POINTS", "END_DEGREE", "END_SHAPE",
+           "SOURCES", "requested_positions", "piece_stations", "mirrored_sequence", "end_window", "shape_weights",
+           "conic_curvatures", "end_value", "interpolate"]
