@@ -29,14 +29,15 @@ The default (tip_h 0.15 and 0.1, n = 8) takes about two minutes on 2
 cores; coarser fronts (tip_h 0.3: 4 points along the front) are too few
 points for an end value (it moved 13 % between tip_h 0.3 and 0.2).
 
-Measured (--tip-h 0.15 0.1 0.07 --n 12; 12 360, 18 810, 27 504 dofs, 7,
-11, 16 front points): the hole's end values 462.5, 461.9, 462.3 MPa
-sqrt(mm) at the bore (90 degrees; the ends' own domains 370.5, 360.7,
-351.6) and 267.4, 269.4, 270.4 on the face (0 degrees; own domains 171.8,
-186.8, 188.0): the end values move 0.08 % and 1.08 % from the finest, the
-own domains 5.4 % and 8.6 %, the interior at most 0.88 %. Newman and
-Raju's corner crack at a/12 (25 344 dofs): end values 1.0170 (90 degrees)
-and 1.0142 (0) of their fit, the interior 1.0056 to 1.0155.
+Measured (--tip-h 0.15 0.1 0.07 --n 12, 2026-11-27, the end value through
+K kappa^(1/6); 26 352, 67 674, 164 586 dofs, 6, 8, 11 front points): the
+hole's end values 468.2, 473.4, 476.3 MPa sqrt(mm) at the bore (90
+degrees; the ends' own domains 384.4, 392.7, 393.4) and 286.3, 286.3,
+288.1 on the face (0 degrees; own domains 191.7, 208.3, 214.8): the end
+values move 1.69 % and 0.64 % from the finest (through K alone: 1.20 % and
+2.44 %), the own domains 2.30 % and 10.77 %, the interior at most 1.90 %.
+Newman and Raju's corner crack at a/12 (25 344 dofs): end values 1.0162
+(90 degrees) and 1.0116 (0) of their fit, the interior 1.0057 to 1.0143.
 """
 from __future__ import annotations
 

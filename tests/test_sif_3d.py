@@ -169,6 +169,24 @@ def test_surface_crack_front_outputs(tmp_path):
     assert deep["K_I"] == pytest.approx(float(surface_crack_k(100.0, 3.0, 5.0, 10.0, 20.0, phi)), rel=0.10)
     codes = [w for w in res["warnings"] if "SIF domain" in w["message"] or "K varies" in w["message"]]
     assert codes, res["warnings"]
+    # The ends' K: front_sampling's end value through K kappa^(1/6) of the
+    # interior points (kappa of the conic through all the front's points,
+    # from the reported positions), not the ends' own domains.
+    from cracklip.fracture import front_sampling
+    inner = [r for r in res["sifs"] if not r["free_surface"]]
+    s = np.array([r["s"] for r in inner])
+    X = np.array([r["position"] for r in inner])
+    every = np.array([r["position"] for r in sorted(res["sifs"], key=lambda r: r["s"])])
+    L = max(r["s"] for r in res["sifs"])
+    for end in (r for r in res["sifs"] if r["free_surface"]):
+        assert end["K_source"] == "end_extrapolation" and end["K_domain"] is not None
+        near = [r["curvature"] for r in inner if abs(r["s"] - end["s"]) <= front_sampling.END_WINDOW * L]
+        window = front_sampling.end_window(L, [end["curvature"]] + near)
+        k = front_sampling.conic_curvatures(every, np.vstack([end["position"], X]))
+        want, _ = front_sampling.end_value(s, np.array([r["K_I"] for r in inner]), end["s"], window, k[1:], k[0], L)
+        assert end["K_I"] == pytest.approx(float(want), rel=1e-9)
+        plain, _ = front_sampling.end_value(s, np.array([r["K_I"] for r in inner]), end["s"], window)
+        assert abs(float(plain) / end["K_I"] - 1.0) > 1e-6   # the weight does something on this ellipse
 
 
 def test_hat_follows_front_curvature():

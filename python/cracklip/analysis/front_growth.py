@@ -203,7 +203,8 @@ class FrontPoints:
         at a free-surface point (where the front meets the part's boundary)
         are sif_3d's end values (fracture.front_sampling, K_source
         "end_extrapolation": the interior distribution's least-squares
-        quadratic carried to the end), not the end's own domain integral,
+        quadratic carried to the end, through K kappa^(1/6) since the
+        seventh sitting), not the end's own domain integral,
         which belongs to the vertex singularity and a clipped domain. One
         rule for K and growth: the growth no longer re-extrapolates (it took
         the line through the two nearest interior points, which on the

@@ -51,12 +51,43 @@ Newman and Raju, NASA TM-85793]; NASGRO's corner and surface crack tables
 take it from them, FRANC3D users commonly drop or extrapolate the end
 points and code_aster reports the end nodes as they are [from memory, not
 checked]. The rule here (END_*): K at a free-surface end is the
-least-squares quadratic in the arc length through K at the interior
-points within END_WINDOW of the piece's length from the end (at least the
-END_POINTS points nearest it; the end's own value left out), evaluated at
-the end (a piece with one interior point: that point's K, with a warning);
-K_source "end_extrapolation", the end's own domain value kept as
-K_domain. On the surface crack a/c = 1, a/t = 0.2 at a/12 it gives
+least-squares quadratic in the arc length through K kappa^(1/6) at the
+interior points within END_WINDOW of the piece's length from the end (at
+least the END_POINTS points nearest it; the end's own value left out),
+evaluated at the end and divided by the end's kappa^(1/6) (a piece with
+one interior point: that point's K kappa^(1/6) over the end's, with a
+warning); K_source "end_extrapolation", the end's own domain value kept
+as K_domain. kappa is the front's curvature at the end and at the
+points (END_SHAPE: at least 1 / the piece's length), of the conic
+least-squares fitted through all the piece's points (conic_curvatures),
+where the front curves outward (else K itself, as on a straight front).
+The whole piece, because Irwin's relation holds for the ellipse, not for
+a local bend: a conic through the end's nearest points followed the
+grown front's own lag at the ends (surface crack a/c0 = 0.2, steps 5-6:
+the ends' K 0.82-0.84 of Newman and Raju's against 0.885-0.904 with the
+whole piece's conic), and the polyline's own curvature at the end jumped
+from 5 to 23 between steps of the a/c0 = 1 growth (the interior 7-9).
+Why the weight: along an elliptical crack (semi-axes a
+<= c) under uniform tension K = sigma sqrt(pi a) / E(k) (sin^2 phi +
+(a/c)^2 cos^2 phi)^(1/4) (Irwin 1962, exact); with p the distance from
+the ellipse's centre to the tangent at the point, (sin^2 phi + (a/c)^2
+cos^2 phi) = a^2 / p^2 and the curvature is kappa = p^3 / (a^2 c^2), so
+K is proportional to kappa^(-1/6): K kappa^(1/6) is constant along the
+front (a circle: kappa constant, the weight changes nothing). Near the end
+of a slender front's major axis K itself varies on the length of the
+front's radius of curvature there (a^2 / c: from phi = 0 to 20 degrees
+Newman and Raju's K rises by 7 % at a/c = 0.41), which front points a
+few elements apart cannot follow: a quadratic through them misses the
+end value whatever the K (Newman and Raju's own values at the points of
+a surface crack a/c = 0.41, a/t = 0.21 on a mesh of a/8 (hats of 3
+elements): -7.5 %). K kappa^(1/6) varies only with what the ellipse
+alone does not give (the free face, finite width, bending; Newman and
+Raju's g, f_w, M), slowly: Newman and Raju's own K at points 3 elements
+of a/8, a/12, a/16 apart gives -2.3, -0.9, -0.4 % at a/c = 0.41 (-2.4,
+-1.4, -0.8 % at 0.2) where the plain quadratic gives -8.0, -6.6, -4.9 %
+(+0.7, -5.2, -7.2 %) (docs/growth.md). On a penny-like end (kappa constant)
+and on a straight front (kappa under 1 / the length) it is the plain
+quadratic. On the surface crack a/c = 1, a/t = 0.2 at a/12 it gives
 1.3204 against Newman-Raju's 1.3198 at phi = 0 (the end's own domain
 value: 1.011).
 """
@@ -91,11 +122,16 @@ END_WINDOW = 0.5
 END_CURVATURE = 1.0
 END_POINTS = 4
 END_DEGREE = 2
+#: The end value extrapolates K kappa^END_SHAPE (module doc: constant
+#: along an elliptical crack under uniform tension), kappa the front's
+#: curvature, at least 1 / the piece's length.
+END_SHAPE = 1.0 / 6.0
 
 #: Where a row's K comes from (the rows' K_source).
 SOURCES = {"domain": "the point's domain integral (hat along the front)",
            "mirrored_domain": "an end on a symmetry plane: its domain and the domain's mirror image",
-           "end_extrapolation": "a free-surface end: the interior points' K extrapolated to the end",
+           "end_extrapolation": ("a free-surface end: the interior points' K kappa^(1/6) extrapolated to the end, "
+                                 "over the end's kappa^(1/6)"),
            "interpolation": "an asked position between front points: K interpolated between them"}
 
 
@@ -278,13 +314,46 @@ def end_window(length: float, curvature: np.ndarray) -> float:
     return min(END_WINDOW * length, END_CURVATURE / kappa if kappa > 0.0 else math.inf)
 
 
-def end_value(s: np.ndarray, K: np.ndarray, end: float, window: float) -> tuple[np.ndarray, np.ndarray]:
+def shape_weights(curvature, length: float) -> np.ndarray:
+    """kappa^END_SHAPE of the front's curvatures, kappa at least 1 / the
+    piece's length (a straight or inward-curving front: 1 / length, the
+    weights equal)."""
+    floor = 1.0 / max(float(length), 1e-300)
+    return np.maximum(np.asarray(curvature, dtype=float), floor) ** END_SHAPE
+
+
+def conic_curvatures(points: np.ndarray, at: np.ndarray) -> np.ndarray:
+    """The curvature at `at` (m, 3) of the conic (a x^2 + b x y + c y^2 + d
+    x + e y + f = 0) least-squares fitted to `points` (n >= 5, 3) in their
+    best plane: the curvature of the ellipse (or circle, or line: about 0)
+    a front's points follow, for the end value's weights (module doc)."""
+    P = np.asarray(points, dtype=float)
+    Q = np.asarray(at, dtype=float)
+    o = P.mean(axis=0)
+    scale = max(float(np.abs(P - o).max()), 1e-300)
+    _, _, vt = np.linalg.svd((P - o) / scale, full_matrices=False)
+    uv = (P - o) / scale @ vt[:2].T
+    x, y = uv[:, 0], uv[:, 1]
+    _, _, ct = np.linalg.svd(np.column_stack([x * x, x * y, y * y, x, y, np.ones_like(x)]), full_matrices=False)
+    a, b, c, d, e, _ = ct[-1]
+    q = (Q - o) / scale @ vt[:2].T
+    fx = 2 * a * q[:, 0] + b * q[:, 1] + d
+    fy = b * q[:, 0] + 2 * c * q[:, 1] + e
+    num = np.abs(fy * fy * 2 * a - 2 * fx * fy * b + fx * fx * 2 * c)
+    return num / np.maximum(np.hypot(fx, fy) ** 3, 1e-300) / scale
+
+
+def end_value(s: np.ndarray, K: np.ndarray, end: float, window: float, curvature: np.ndarray | None = None,
+              end_curvature: float | None = None, length: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """K (...) at a free-surface end at arc length `end` from the interior
     points' K (n, ...) at arc lengths s (the end itself left out by the
     caller): the END_DEGREE least-squares polynomial in the distance from
     the end through the points within `window` of it (end_window; at least
-    the END_POINTS nearest), evaluated at the end. Returns the value and
-    the indices of the points used."""
+    the END_POINTS nearest), evaluated at the end. With the front's
+    curvature at the points and at the end (and the piece's length) the
+    polynomial goes through K shape_weights and its end value is divided by
+    the end's weight (module doc); without them through K. Returns the
+    value and the indices of the points used."""
     d = np.abs(np.asarray(s, dtype=float) - end)
     order = np.argsort(d)
     use = order[d[order] <= window]
@@ -292,9 +361,13 @@ def end_value(s: np.ndarray, K: np.ndarray, end: float, window: float) -> tuple[
         use = order[:END_POINTS]
     deg = min(END_DEGREE, len(use) - 1)
     flat = np.asarray(K, dtype=float).reshape(len(d), -1)[use]
+    w_end = 1.0
+    if curvature is not None:
+        flat = flat * shape_weights(np.asarray(curvature, dtype=float)[use], length)[:, None]
+        w_end = float(shape_weights(end_curvature, length))
     V = np.vander(d[use], deg + 1)                     # columns d^deg .. d^0
     coef, *_ = np.linalg.lstsq(V, flat, rcond=None)
-    return coef[-1].reshape(np.shape(K)[1:]), use
+    return (coef[-1] / w_end).reshape(np.shape(K)[1:]), use
 
 
 def interpolate(s: np.ndarray, K: np.ndarray, at: np.ndarray, length: float, closed: bool) -> np.ndarray:
@@ -319,6 +392,6 @@ def interpolate(s: np.ndarray, K: np.ndarray, at: np.ndarray, length: float, clo
     return out.reshape((len(at),) + np.shape(K)[1:])
 
 
-__all__ = ["MIN_POINTS", "MIRROR_SIGNS", "END_WINDOW", "END_CURVATURE", "END_POINTS", "END_DEGREE", "SOURCES",
-           "requested_positions",
-           "piece_stations", "mirrored_sequence", "end_window", "end_value", "interpolate"]
+__all__ = ["MIN_POINTS", "MIRROR_SIGNS", "END_WINDOW", "END_CURVATURE", "END_POINTS", "END_DEGREE", "END_SHAPE",
+           "SOURCES", "requested_positions", "piece_stations", "mirrored_sequence", "end_window", "shape_weights",
+           "conic_curvatures", "end_value", "interpolate"]

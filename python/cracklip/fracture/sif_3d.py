@@ -1084,8 +1084,10 @@ def _hat_correction(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
 
 def _free_surface_ends(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
     """K at ends on a free surface: the end value of front_sampling.end_value
-    from the piece's other points (each domain on its own), the end's own
-    domain K kept in its K_domain."""
+    from the piece's other points (each domain on its own), weighted by the
+    front's curvature there (K kappa^(1/6) extrapolated, kappa of the conic
+    through all the piece's points), the end's own domain K kept in its
+    K_domain."""
     out = K.copy()
     pieces = np.array([fp.piece for fp in fps])
     for p in np.unique(pieces):
@@ -1110,7 +1112,14 @@ def _free_surface_ends(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
             s = np.array([fps[j].s for j in inner])
             near = np.abs(s - fp.s) <= front_sampling.END_WINDOW * fp.length
             window = front_sampling.end_window(fp.length, [fp.curvature] + [fps[j].curvature for j in inner[near]])
-            out[i], _ = front_sampling.end_value(s, K[inner], fp.s, window)
+            # The weights' curvature (front_sampling.END_SHAPE): the conic through the whole piece's points, on a
+            # front curving outward.
+            kappa = kappa_end = None
+            if len(idx) >= 5 and np.median([fps[j].curvature for j in inner]) > 0.0:
+                k = front_sampling.conic_curvatures(np.array([fps[j].x for j in idx]),
+                                                    np.array([fp.x] + [fps[j].x for j in inner]))
+                kappa_end, kappa = float(k[0]), k[1:]
+            out[i], _ = front_sampling.end_value(s, K[inner], fp.s, window, kappa, kappa_end, fp.length)
             fp.K_domain = K[i].copy()
             fp.source = "end_extrapolation"
     return out
