@@ -315,7 +315,7 @@ def test_phantom_transform_in_place_equals_ptap(scene, settings, n):
 
 @pytest.mark.parametrize("scene, settings, exact", [
     ("westergaard.toml", [], 1.0),  # 2D: the band with its ring of neighbours (BAND_RINGS)
-    # 3D: front enrichment, the tip dofs left out of GAMG (DECOUPLE_TIP_DOFS)
+    # 3D: front enrichment, the tip dofs left out of GAMG (TIP_DOFS_OUT_OF_GAMG)
     ("penny_crack.toml", ["mesh.h=2.0", "mesh.tip_h=0.3", "mesh.crack_h=0.3"], None),
     # bilateral contact on the pinned partition (BLOCK_SPLIT): K = 0 exactly
     ("block_uniform_pressure.toml", [BLOCK_SPLIT, "mesh.h=0.1"], 0.0)])

@@ -213,26 +213,29 @@ def small_penny(solver: str) -> cl.Scene:
                     options=cl.Options(enrichment="vector", radius=0.25, solver=solver, sif_points=8))
 
 
-def test_decoupled_cuts_the_tip_couplings_out_of_the_sparsity():
-    """GAMG's operator without the tip dofs: K with their rows and columns
-    cut, their diagonal kept, and the cut entries gone from the sparsity
-    (not stored as zeros, which GAMG's set-up and V-cycles would carry)."""
-    from petsc4py import PETSc
-    n = 60
-    M = sp.random(n, n, density=0.3, random_state=3)
-    M = (M + M.T + 10.0 * sp.eye(n)).tocsr()
-    K = PETSc.Mat().createAIJ(size=(n, n), csr=(M.indptr.astype(PETSc.IntType), M.indices.astype(PETSc.IntType),
-                                                M.data))
-    K.assemble()
-    cut = np.array([0, 7, 8, 30, 59])
-    Kc = scipy_from_petsc(iterative.decoupled(K, cut))
-    keep = np.ones(n, dtype=bool)
-    keep[cut] = False
-    D = sp.diags(keep.astype(float))
-    expected = D @ M @ D + sp.diags(np.where(keep, 0.0, M.diagonal()))
-    assert abs(Kc - expected).max() == 0.0
-    assert Kc.nnz == expected.nnz and np.all(Kc.data != 0.0)
-    assert Kc.nnz < M.nnz - 4 * len(cut)
+def test_gamg_leaves_the_tip_dofs_out_in_3d():
+    """3D (TIP_DOFS_OUT_OF_GAMG): GAMG's operator is the transformed
+    stiffness K' on the dofs that are not tip dofs, exactly its rows and
+    columns (no stored zeros, no isolated tip rows), in whole nodes (block
+    size 3, as GAMG aggregates them); every tip dof is held by the exact band
+    or the outer block, so the sweep stays a symmetric Schwarz method (the
+    answers: test_outer_torus_block_gives_the_direct_answers)."""
+    model = cl.create_model(small_penny("iterative"))
+    A, _, _ = assemble_system(model)
+    it = iterative.IterativeSolver(model)
+    K, _ = it.transform(A)
+    amg, _ = it._block0_pc(K)
+    tip = iterative.tip_dofs(model)
+    keep = np.setdiff1d(np.arange(it.n), tip)
+    assert tip.size > 1000 and np.array_equal(it._block0, keep)
+    Kg = amg.getOperators()[0]
+    assert Kg.getSize() == (keep.size, keep.size) and Kg.getBlockSize() == 3 and it._n_amg == keep.size
+    Ks = scipy_from_petsc(K).tocsr()
+    ref = Ks[keep][:, keep]
+    got = scipy_from_petsc(Kg)
+    assert abs(got - ref).max() == 0.0 and got.nnz == ref.nnz
+    assert np.isin(tip, np.union1d(it._band_inner, it._outer)).all()
+    it.destroy()
 
 
 def test_outer_torus_block_gives_the_direct_answers():
@@ -251,6 +254,7 @@ def test_outer_torus_block_gives_the_direct_answers():
     assert rec["band"] < whole.size < rec["band"] + rec["outer"]  # (they overlap)
     outer = iterative.outer_torus(split.model, iterative.OUTER_FROM_H, iterative.OUTER_WITH_STANDARD)
     assert rec["outer"] == outer.size
+    assert rec["amg_dofs"] == rec["size"] - iterative.tip_dofs(split.model).size  # (TIP_DOFS_OUT_OF_GAMG)
     assert rec["relative_residual"] <= split.model.scene.options.residual_tol
     assert rec["iterations"] <= 30
     assert abs(split.strain_energy() - direct.strain_energy()) <= MATCH * abs(direct.strain_energy())

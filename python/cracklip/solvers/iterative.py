@@ -135,19 +135,25 @@ BAND_RESIDUAL_SKIP = 1e-10
 COARSE_CONSTRAINT_SV = 0.05
 
 
-#: Whether GAMG's operator leaves out the couplings of the tip dofs (by
-#: space dimension; the crack band solves them exactly either way). 3D,
-#: penny crack at 3.1e5 dofs (radius 2 h_front, 3 % tip dofs): with the
-#: tip couplings GAMG's set-up takes 9.4 s and CG 31 iterations against
-#: plain P1's 6.8 s and 23; without them 8.4 s and 25 (Heaviside-only:
-#: 8.0 s and 22): the tip rows, which have no rigid modes, made the
-#: aggregates and the coarse operators denser. 2D keeps them (Westergaard
-#: at 2e5 dofs: 23 iterations with, 62 without; IterativeSolver). The cut
-#: couplings leave the operator's sparsity (decoupled): stored as zeros
-#: they were 26 % of its entries at radius 0.25 a, and GAMG's set-up and
-#: every V-cycle's fine-level products went through them (penny at 5.3e5
-#: dofs, one process: V-cycle 1.0 -> 0.66-0.93 s, plain's 0.68-0.87).
-DECOUPLE_TIP_DOFS = {2: False, 3: True}
+#: Whether GAMG's block (block 0 of the Schwarz sweep) leaves out the tip
+#: dofs (by space dimension); every tip dof is in the crack band or the
+#: outer block, which solve it. 3D, penny crack at 3.1e5 dofs (radius
+#: 2 h_front, 3 % tip dofs): with the tip couplings GAMG's set-up took
+#: 9.4 s and CG 31 iterations against plain P1's 6.8 s and 23; without them
+#: 8.4 s and 25 (Heaviside-only: 8.0 s and 22): the tip rows, which have no
+#: rigid modes, made the aggregates and the coarse operators denser. 2D
+#: keeps them (Westergaard at 2e5 dofs: 23 iterations with, 62 without;
+#: IterativeSolver). GAMG's operator is K' on the other dofs
+#: (createSubMatrix; block0_dofs). Before, it was K' with the tip rows and
+#: columns cut and their diagonal kept, a copy built in numpy over the
+#: whole CSR (1.6 s at 5.3e5 dofs, radius 0.25 a), whose isolated tip rows
+#: (9 % of them) every V-cycle's fine level carried; GAMG's coarse levels
+#: were the same within 1 % either way (the isolated rows are aggregated
+#: into nothing). Penny at 5.3e5 dofs, radius 0.25 a, one process each:
+#: GAMG's set-up 18.1 s against plain P1's 15.5 s before, 17.1 against
+#: 15.8 after; the solver's set-up 20.2 -> 17.9 s; CG 33 iterations either
+#: way.
+TIP_DOFS_OUT_OF_GAMG = {2: False, 3: True}
 
 
 #: Rings of neighbours around the enriched nodes in the crack band, by
@@ -299,46 +305,13 @@ def tip_dofs(model: "XfemModel") -> np.ndarray:
     return (d * (lay.num_std_nodes + k)[:, None] + np.arange(d)).ravel().astype(np.int64)
 
 
-def decoupled(K: PETSc.Mat, dofs: np.ndarray) -> PETSc.Mat:
-    """A copy of K with the rows and columns of `dofs` (global numbers; under
-    MPI this process's owned rows among them, every process's columns) cut
-    off, their diagonal kept: GAMG's operator without the tip dofs
-    (DECOUPLE_TIP_DOFS). The cut entries leave the sparsity (zeroing them
-    in a copy kept them as stored zeros: 26 % of K's entries with the
-    penny's radius 0.25 a, which GAMG's set-up and every V-cycle's
-    fine-level products carried along)."""
-    lo, hi = K.getOwnershipRange()
-    n = K.getSize()[0]
-    comm = K.getComm()
-    cut = np.zeros(n, dtype=bool)  # (columns: every process's dofs)
-    cut[np.concatenate(comm.tompi4py().allgather(dofs)) if comm.getSize() > 1 else dofs] = True
-    indptr, indices, data = K.getValuesCSR()  # (this process's rows, global columns)
-    cut_rows = cut[lo:hi]
-    keep = ~cut[indices]
-    keep &= ~np.repeat(cut_rows, np.diff(indptr))
-    counts = np.add.reduceat(keep, indptr[:-1]) if keep.size else np.zeros(hi - lo, dtype=np.int64)
-    counts[indptr[:-1] == indptr[1:]] = 0  # (reduceat's value for an empty row)
-    counts += cut_rows  # (a cut row: its diagonal alone)
-    ip = np.zeros(hi - lo + 1, dtype=indptr.dtype)
-    np.cumsum(counts, out=ip[1:])
-    mine = np.flatnonzero(cut_rows)
-    at = np.ones(ip[-1], dtype=bool)
-    at[ip[mine]] = False
-    ja = np.empty(ip[-1], dtype=indices.dtype)
-    a = np.empty(ip[-1], dtype=data.dtype)
-    ja[at] = indices[keep]
-    a[at] = data[keep]
-    del indices, data, keep, at
-    ja[ip[mine]] = mine + lo
-    diag = K.getDiagonal()
-    a[ip[mine]] = diag.array[mine]
-    diag.destroy()
-    # (serial: Kc holds these arrays, no copy)
-    Kc = PETSc.Mat().createAIJWithArrays(((hi - lo, n), (hi - lo, n)), (ip, ja, a), comm=comm)
-    bs = K.getBlockSize()
-    Kc.setBlockSizes(bs, bs)  # (GAMG aggregates nodes: the block size)
-    Kc.assemble()
-    return Kc
+def block0_dofs(n: int, lo: int, hi: int, tip: np.ndarray) -> np.ndarray:
+    """The owned rows lo..hi of the stiffness (n dofs) that are not tip
+    dofs (tip: the owned tip rows, global numbers): block 0 of the
+    Schwarz sweep when GAMG leaves the tip dofs out (TIP_DOFS_OUT_OF_GAMG)."""
+    keep = np.ones(max(0, min(hi, n) - lo), dtype=bool)
+    keep[tip - lo] = False
+    return (np.flatnonzero(keep) + lo).astype(np.int64)
 
 
 def crack_band(model: "XfemModel", rings: int = 1) -> np.ndarray:
@@ -478,11 +451,13 @@ class IterativeSolver(LinearSolver):
     so CG works on the constrained problem; GMRES(30) if CG breaks down),
     GMRES(30) for friction's unsymmetric saddle point.
 
-    Block 0 is the whole transformed stiffness K', tip dofs included (no
-    copy, no scatter: the stiffness's dofs come first in every system; the
-    tip dofs' rows have no rigid modes, and the band solves them exactly):
-    Westergaard at 2e5 dofs, radius 0.2, takes 23 iterations so and 62 with
-    K' without its tip dofs as block 0 (a hole in the AMG's operator). Its
+    Block 0 is in 2D the whole transformed stiffness K', tip dofs included
+    (no copy, no scatter: the stiffness's dofs come first in every system;
+    the tip dofs' rows have no rigid modes, and the band solves them
+    exactly): Westergaard at 2e5 dofs, radius 0.2, takes 23 iterations so
+    and 62 with K' without its tip dofs as block 0 (a hole in the AMG's
+    operator). In 3D it is K' without the tip dofs (TIP_DOFS_OUT_OF_GAMG),
+    which the band and the outer block hold. Its
     GAMG hierarchy is built on the first solve and reused by every later
     one (the active-set iterations of contact only change multiplier rows);
     with contact its coarsest solve is constrained by the active
@@ -505,6 +480,9 @@ class IterativeSolver(LinearSolver):
         self._K: PETSc.Mat | None = None
         self._amg: PETSc.PC | None = None
         self._K_amg: PETSc.Mat | None = None
+        #: Block 0's owned rows (GAMG's), or None: the whole stiffness.
+        self._block0: np.ndarray | None = None
+        self._n_amg = self.n  # (GAMG's operator's size, over the processes)
         self._coarse: _ConstrainedCoarse | None = None
         # The hierarchy holds a Python PC (its coarse solve), which PETSc must
         # not destroy after the interpreter's shutdown (a segfault at exit):
@@ -614,21 +592,30 @@ class IterativeSolver(LinearSolver):
         return np.arange(self.n, A.getSize()[0])
 
     def _block0_pc(self, A: PETSc.Mat) -> tuple[PETSc.PC, bool]:
-        """The GAMG PC of block 0, the stiffness given to transform() (built
-        once; (pc, reused))."""
+        """The GAMG PC of block 0, built once ((pc, reused)): on the
+        stiffness given to transform(), or on its rows and columns
+        self._block0 when GAMG leaves the tip dofs out (TIP_DOFS_OUT_OF_GAMG)."""
         if self._amg is not None:
             return self._amg, True
         if self._K is None:
             raise SolverError("IterativeSolver.solve needs the system from IterativeSolver.transform")
         K = self._K
+        modes = self._rigid_modes()
         tip = self._tip_dofs()
-        if DECOUPLE_TIP_DOFS[self.model.gdim] and K.getComm().tompi4py().allreduce(tip.size):
-            K = self._K_amg = decoupled(self._K, tip)
+        if TIP_DOFS_OUT_OF_GAMG[self.model.gdim] and K.getComm().tompi4py().allreduce(tip.size):
+            lo, hi = K.getOwnershipRange()
+            self._block0 = block0_dofs(self.n, lo, hi, tip)
+            iset = PETSc.IS().createGeneral(self._block0.astype(PETSc.IntType), comm=K.getComm())
+            iset.setBlockSize(K.getBlockSize())  # (whole nodes: GAMG aggregates nodes)
+            K = self._K_amg = self._K.createSubMatrix(iset, iset)
+            iset.destroy()
+            self._n_amg = K.getSize()[0]
             self._owned.append(K)
-        self._amg = self._gamg(K, self._rigid_modes())
+            modes = modes[self._block0 - lo]  # (0 on the tip rows: still orthonormal)
+        self._amg = self._gamg(K, modes)
         self._owned.append(self._amg)
         if self.constrained_coarse:
-            self._coarse = _ConstrainedCoarse(self._amg)
+            self._coarse = _ConstrainedCoarse(self._amg, self._block0)
             self._owned.append(self._coarse)
         return self._amg, False
 
@@ -682,7 +669,7 @@ class IterativeSolver(LinearSolver):
             if y is not None:  # (the friction iteration's last check, most often)
                 record_solve({"what": what, "size": size, "relative_residual": self._original_residual(A, y, b),
                               "solver": "iterative", "method": _method("cg" if symmetric else "gmres"),
-                              "iterations": 0, "amg_dofs": self.n, "setup_reused": True,
+                              "iterations": 0, "amg_dofs": self._n_amg, "setup_reused": True,
                               "rtol": KRYLOV_RTOL if rtol is None else rtol, "t_setup": 0.0,
                               "t_total": time.perf_counter() - t0})
                 return y
@@ -696,7 +683,7 @@ class IterativeSolver(LinearSolver):
             split = m == 0 and symmetric and self._outer.size > 0
             band_dofs = self._band_inner if split else np.concatenate([
                 self._contact_band(m if contact_points is None else contact_points), self._multiplier_rows(A)])
-            shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric, self._outer if split else None)
+            shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric, self._outer if split else None, self._block0)
             t_band = time.perf_counter() - t0 - t_amg
             if A.getType() == PETSc.Mat.Type.PYTHON and m > 0 and self._coarse is not None:
                 self._coarse.constrain(A.getPythonContext().Ba_petsc)
@@ -728,7 +715,7 @@ class IterativeSolver(LinearSolver):
                       "method": method, "iterations": int(its),
                       "band": int(A.getComm().tompi4py().allreduce(band_dofs.size)),  # (over the processes)
                       "outer": int(shell.outer.size if shell is not None and shell.outer is not None else 0),
-                      "amg_dofs": self.n, "setup_reused": reused, "rtol": KRYLOV_RTOL if rtol is None else rtol,
+                      "amg_dofs": self._n_amg, "setup_reused": reused, "rtol": KRYLOV_RTOL if rtol is None else rtol,
                       "t_setup": t_setup, "t_amg_setup": t_amg, "t_band_setup": t_band,
                       "t_total": time.perf_counter() - t0})
         logger.info("%s: %d iterations (%s), relative residual %.3g", what, its, method, rel)
@@ -826,7 +813,8 @@ def _method(krylov: str) -> str:
 class _Schwarz:
     """PCSHELL context: a symmetric multiplicative sweep over two
     overlapping blocks, the crack band (exact, MUMPS) before and after one
-    GAMG V-cycle on block 0 (the leading n0 dofs, the stiffness):
+    GAMG V-cycle on block 0 (the leading n0 dofs, the stiffness, or the
+    given part of them: IterativeSolver._block0):
 
         z  = R1^T A11^-1 R1 r
         z += R0^T GAMG(R0 (r - A z))
@@ -839,18 +827,29 @@ class _Schwarz:
     is skipped: one band solve per iteration."""
 
     def __init__(self, A: PETSc.Mat, amg: PETSc.PC, n0: int, band_dofs: np.ndarray, symmetric: bool = True,
-                 outer_dofs: np.ndarray | None = None):
+                 outer_dofs: np.ndarray | None = None, block0: np.ndarray | None = None):
         # Under MPI (a distributed A) band_dofs are this process's owned band
-        # rows (global numbers) and block 0 its owned rows below n0.
+        # rows (global numbers) and block 0 its owned rows below n0, or of
+        # block0 (sorted: a part of them, GAMG's operator's rows) if given.
         comm = A.getComm()
         size = A.getSize()[0]
         lo, hi = A.getOwnershipRange()
         self.amg = amg
         band = np.sort(band_dofs).astype(PETSc.IntType)
         self.is1 = PETSc.IS().createGeneral(band, comm=comm)
-        self.is0 = PETSc.IS().createStride(max(0, min(hi, n0) - lo), lo, 1, comm=comm)
-        if A.getType() == PETSc.Mat.Type.PYTHON:  # IterativeSolver.saddle_matrix's
+        if block0 is None:
+            self.is0 = PETSc.IS().createStride(max(0, min(hi, n0) - lo), lo, 1, comm=comm)
+        else:
+            self.is0 = PETSc.IS().createGeneral(block0.astype(PETSc.IntType), comm=comm)
+            n0 = comm.tompi4py().allreduce(block0.size)
+        if A.getType() == PETSc.Mat.Type.PYTHON:  # IterativeSolver.saddle_matrix's (serial)
             self.A1, self.A01, A11 = A.getPythonContext().band_blocks(band)
+            if block0 is not None:  # (A01: every stiffness row; block 0's)
+                cols = PETSc.IS().createStride(self.A01.getSize()[1], 0, 1, comm=comm)
+                A01 = self.A01.createSubMatrix(self.is0, cols)
+                cols.destroy()
+                self.A01.destroy()
+                self.A01 = A01
         else:
             all_cols = PETSc.IS().createStride(hi - lo, lo, 1, comm=comm)  # (the owned columns)
             self.A1 = A.createSubMatrix(self.is1, all_cols)  # band rows, all columns
@@ -864,11 +863,15 @@ class _Schwarz:
         self.r0 = PETSc.Vec().create(comm)
         self.r0.setSizes((self.is0.getLocalSize(), n0))
         self.r0.setUp()
+        self.z0, self.t0 = self.r0.duplicate(), self.r0.duplicate()
         self.r1, self.z1, self.t1 = (self.A1.createVecLeft() for _ in range(3))
         self.full = self.A1.createVecRight() if self.A01 is None else None  # A1^T z1
         r = PETSc.Vec().create(comm)
         r.setSizes((hi - lo, size))
         r.setUp()
+        # Block 0 by a scatter made once (VecGetSubVector of a general
+        # index set makes one per call: 10 ms a sweep at 1e5 dofs).
+        self.s0 = PETSc.Scatter().create(r, self.is0, self.r0, None)
         self.s1 = PETSc.Scatter().create(r, self.is1, self.r1, None)
         r.destroy()
         #: The outer torus's inexact block (serial, symmetric A), or None.
@@ -880,8 +883,6 @@ class _Schwarz:
     def apply(self, pc: PETSc.PC, r: PETSc.Vec, z: PETSc.Vec) -> None:
         fwd, rev = PETSc.ScatterMode.FORWARD, PETSc.ScatterMode.REVERSE
         ins, add = PETSc.InsertMode.INSERT_VALUES, PETSc.InsertMode.ADD_VALUES
-        n0 = self.r0.getSize()
-        n0_local = self.r0.getLocalSize()
         self.s1.scatter(r, self.r1, ins, fwd)
         # ||r||: CG has just computed it (unpreconditioned norm) before
         # calling the preconditioner.
@@ -889,38 +890,29 @@ class _Schwarz:
         # r vanishes on the band (CG started by start(): every residual does,
         # up to rounding): the first band solve would give 0, and the V-cycle
         # acts on r itself. Else band first, and the V-cycle on r - A z (z the
-        # band correction so far). Block 0 = the leading dofs: views, no copies.
+        # band correction so far).
         band_first = self.r1.norm() > BAND_RESIDUAL_SKIP * rnorm
-        r0 = r.getSubVector(self.is0)
+        self.s0.scatter(r, self.r0, ins, fwd)
         if band_first:
             self.band.solve(self.r1, self.z1)
             self.z1.scale(-1.0)
             if self.A01 is None:  # A01 = (A1's block-0 columns)^T
                 self.A1.multTranspose(self.z1, self.full)
-                self.r0.array[:] = r0.array + self.full.array[:n0_local]  # r0 - A01 z1
+                self.s0.scatter(self.full, self.r0, add, fwd)  # r0 - A01 z1
             else:
-                self.A01.multAdd(self.z1, r0, self.r0)  # r0 - A01 z1
+                self.A01.multAdd(self.z1, self.r0, self.r0)  # r0 - A01 z1
             self.z1.scale(-1.0)
+        z.set(0.0)
         if self.outer is not None:
             # The outer torus on r - A z, and block 0's residual updated by its
             # correction (z is the band's so far; serial and symmetric A).
-            z.set(0.0)
             if band_first:
                 self.s1.scatter(self.z1, z, add, rev)
-            zo = self.outer.correct(r, z, z_zero=not band_first)
-            if not band_first:
-                self.r0.array[:] = r0.array
-            self.r0.array[:] -= zo[:n0]
-            band_first = True  # (block 0 now acts on self.r0)
-            z_pre = z.array.copy()
-        z0 = z.getSubVector(self.is0)
-        self.amg.apply(self.r0 if band_first else r0, z0)
-        r.restoreSubVector(self.is0, r0)
-        z.restoreSubVector(self.is0, z0)
-        if z.getSize() > n0:  # (the multipliers' entries: under MPI the owned ones, after block 0's)
-            z.array[max(n0 - z.getOwnershipRange()[0], 0):] = 0.0
+            self.s0.scatter(self.outer.correct(r, z, z_zero=not band_first), self.t0, ins, fwd)
+            self.r0.axpy(-1.0, self.t0)
+        self.amg.apply(self.r0, self.z0)
+        self.s0.scatter(self.z0, z, add, rev)
         if self.outer is not None:
-            z.array[:] += z_pre
             self.outer.correct(r, z, product=False)  # (no product: the band's A1 z follows)
         elif band_first:
             self.s1.scatter(self.z1, z, add, rev)
@@ -949,8 +941,8 @@ class _Schwarz:
 
     def free(self) -> None:
         """Free the PETSc objects (idempotent)."""
-        for obj in (self.is0, self.is1, self.A1, self.A01, self.band, self.r0, self.r1, self.z1, self.t1,
-                    self.s1, self.full):
+        for obj in (self.is0, self.is1, self.A1, self.A01, self.band, self.r0, self.z0, self.t0, self.r1, self.z1,
+                    self.t1, self.s0, self.s1, self.full):
             if obj is not None:
                 obj.destroy()
         if self.outer is not None:
@@ -984,7 +976,7 @@ class _InexactBlock:
         self.r2, self.z2 = self.A2.createVecLeft(), self.A2.createVecLeft()
         self.full = self.A2.createVecRight()
 
-    def correct(self, r: PETSc.Vec, z: PETSc.Vec, z_zero: bool = False, product: bool = True) -> np.ndarray | None:
+    def correct(self, r: PETSc.Vec, z: PETSc.Vec, z_zero: bool = False, product: bool = True) -> PETSc.Vec | None:
         """z_zero: z is 0 (its product skipped); product: whether the
         caller needs A R^T (the correction) (else None)."""
         if z_zero:
@@ -997,7 +989,7 @@ class _InexactBlock:
         if not product:
             return None
         self.A2.multTranspose(self.z2, self.full)
-        return self.full.array
+        return self.full
 
     def free(self) -> None:
         for obj in (self.A2, self.factor, self.r2, self.z2, self.full):
@@ -1027,7 +1019,9 @@ class _ConstrainedCoarse:
     the band, a few cells wide, closes it again only locally. Symmetric
     positive semidefinite, so the V-cycle stays symmetric (CG)."""
 
-    def __init__(self, amg: PETSc.PC):
+    def __init__(self, amg: PETSc.PC, block0: np.ndarray | None = None):
+        """block0: the stiffness dofs GAMG's operator holds (None: all of
+        them, in order)."""
         ksp = amg.getMGCoarseSolve()
         self.Ac = ksp.getOperators()[0]
         self.lu = PETSc.PC().create(PETSc.COMM_SELF)
@@ -1043,6 +1037,7 @@ class _ConstrainedCoarse:
         pc.setPythonContext(self)
         levels = amg.getMGLevels()
         self.interpolations = [amg.getMGInterpolation(level) for level in range(levels - 1, 0, -1)]  # finest first
+        self.block0 = block0
         self.C: np.ndarray | None = None
         self.G: np.ndarray | None = None
         # The last constraint's (key, (C, G)): the friction iteration's
@@ -1069,6 +1064,12 @@ class _ConstrainedCoarse:
 
     def _constrain(self, B: PETSc.Mat) -> None:
         Bc = B
+        if self.block0 is not None:  # (B's columns of GAMG's rows; freed as the products are)
+            rows = PETSc.IS().createStride(B.getSize()[0], 0, 1, comm=B.getComm())
+            cols = PETSc.IS().createGeneral(self.block0.astype(PETSc.IntType), comm=B.getComm())
+            Bc = B.createSubMatrix(rows, cols)
+            rows.destroy()
+            cols.destroy()
         for P in self.interpolations:
             nxt = Bc.matMult(P)
             if Bc is not B:
