@@ -119,6 +119,15 @@ def test_contact_system_3d_groups_and_friction_blocks():
     assert cs.num_multipliers < 0.5 * naive.num_multipliers
     assert cs.M.sum() == pytest.approx(np.sqrt(1 + 0.1 ** 2 + 0.05 ** 2), rel=1e-13)
     assert naive.M.sum() == pytest.approx(np.sqrt(1 + 0.1 ** 2 + 0.05 ** 2), rel=1e-13)
+    # The groups' points (the stabilization's, contact/band.py group_points) lie on the crack
+    # z = 0.43 + 0.1 x - 0.05 y, inside the box, and the 3D default stabilization is on, S 1 = 0.
+    from cracklip.contact.band import create_band_space
+    gx = create_band_space(model).group_x
+    assert gx.shape == (cs.num_multipliers, 3)
+    assert np.abs(gx[:, 2] - (0.43 + 0.1 * gx[:, 0] - 0.05 * gx[:, 1])).max() <= 1e-12
+    assert gx[:, :2].min() >= 0.0 and gx[:, :2].max() <= 1.0
+    S = cs.S(np.ones(cs.num_multipliers, dtype=bool))
+    assert S is not None and np.abs(S @ np.ones(cs.num_multipliers)).max() <= 1e-12 * np.abs(S).max()
     flat = _pressed_scene(0.25, _plane_crack(0.41, 0.0, 0.0), np.diag([0.0, 0.0, -P]))
     flat.options.friction = 0.3
     fm = create_model(flat)
