@@ -419,7 +419,7 @@ def _iterate(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, 
         u, lam_n, lam_t, Bu, Btu = saddle(state, sign, bound, beta, x0, rtol)
         exact, rtol = rtol is None, loose  # (the next solve's: loose unless said otherwise below)
         x0 = np.concatenate([u, lam_n, lam_t])
-        gap = Bu - g_n
+        gap = cs.stabilized_gap(Bu - g_n, state != OPEN, lam_n)
         dslip = per_multiplier(Btu - g_t - s_old, k)
         tau = per_multiplier(-lam_t, k)
         iterates[len(history)] = (u, lam_n, lam_t, state, sign,

@@ -81,6 +81,14 @@ class ContactSystem:
         """The stabilization's S for the closed multipliers `active`, or None."""
         return None if self.stabilization is None else self.stabilization.matrix(active)
 
+    def stabilized_gap(self, gap: np.ndarray, active: np.ndarray, lam: np.ndarray) -> np.ndarray:
+        """The gap the active-set and friction tests compare, B u - g - S_a
+        lambda: with the stabilization a closed multiplier's row is B u - S
+        lambda = g (contact/stabilization.py), so this is 0 on the closed
+        ones, as B u - g is without it."""
+        S = self.S(active)
+        return gap if S is None else gap - S @ lam
+
     @property
     def num_multipliers(self) -> int:
         return self.R.shape[1]
@@ -436,6 +444,7 @@ def solve_frictionless(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: Contac
     x0 = None
     for it in range(1, opts.max_active_set_iterations + 1):
         u, lam, gap = saddle(active, x0)       # gap: weighted normal gap (>= 0 open)
+        gap = cs.stabilized_gap(gap, active, lam)
         x0 = np.concatenate([u, lam])
         pressure = -lam                        # >= 0 in compression
         new_active = pressure - c * gap / lumped > 0.0

@@ -62,6 +62,11 @@ def _fit_row(g: int, nb: np.ndarray, points: np.ndarray) -> np.ndarray:
         if k == 0 or np.linalg.matrix_rank(A) == k + 1:
             break
         k -= 1
+    if len(nb) <= k + 1:
+        # The fit interpolates: its value at x_g is lambda_g exactly (no
+        # residual; computed, it would leave round-off, and a diagonal of
+        # round-off in the saddle point wrecks its Jacobi scaling).
+        return (nb == g).astype(float)
     return np.linalg.pinv(A)[0]
 
 
