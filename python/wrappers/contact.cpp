@@ -279,16 +279,20 @@ void declare_contact(py::module& m)
       [](const carray<std::int32_t>& k_indptr, const carray<std::int32_t>& k_indices,
          const carray<double>& k_data, const carray<std::int32_t>& b_indptr,
          const carray<std::int32_t>& b_indices, const carray<double>& b_data,
-         const carray<std::int8_t>& active)
+         const carray<std::int8_t>& active, const carray<std::int32_t>& s_indptr,
+         const carray<std::int32_t>& s_indices, const carray<double>& s_data)
       {
         SaddleCsr s = saddle_csr(as_span(k_indptr), as_span(k_indices), as_span(k_data), as_span(b_indptr),
-                                 as_span(b_indices), as_span(b_data), as_span(active));
+                                 as_span(b_indices), as_span(b_data), as_span(active), as_span(s_indptr),
+                                 as_span(s_indices), as_span(s_data));
         return py::make_tuple(as_pyarray(std::move(s.indptr)), as_pyarray(std::move(s.indices)),
                               as_pyarray(std::move(s.data)));
       },
       py::arg("k_indptr"), py::arg("k_indices"), py::arg("k_data"), py::arg("b_indptr"),
-      py::arg("b_indices"), py::arg("b_data"), py::arg("active"),
-      "CSR (indptr, indices, data) of [K B_a^T; B_a D] (cpp/solvers/saddle_matrix.h).");
+      py::arg("b_indices"), py::arg("b_data"), py::arg("active"), py::arg("s_indptr"), py::arg("s_indices"),
+      py::arg("s_data"),
+      "CSR (indptr, indices, data) of [K B_a^T; B_a D], D = -S on the active multipliers (S: empty arrays for none; "
+      "cpp/solvers/saddle_matrix.h).");
 }
 
 } // namespace cracklip_wrappers

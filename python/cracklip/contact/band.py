@@ -61,10 +61,18 @@ class BandSpace:
     Attributes:
         space: the C++ space on the band mesh (its groups are the reduced multipliers).
         node_key, cell_key: input index of every band node and cell (ascending).
+        group_h: per group (reduced multiplier), the mean over its members
+            of their element size: a nodal multiplier's the largest mean
+            edge of the band cells at its node, a P0 one its cell's
+            (the multipliers' stabilization, contact/stabilization.py).
+        group_x: (num_reduced, gdim) a point of each group on its crack:
+            the mean of its vital edges' cut points (group_points).
     """
     space: object
     node_key: np.ndarray
     cell_key: np.ndarray
+    group_h: np.ndarray
+    group_x: np.ndarray
 
     @property
     def num_reduced(self) -> int:
@@ -205,7 +213,56 @@ def create_band_space(model) -> BandSpace:
         space = _cracklip.create_band_multiplier_space_3d(
             x, cells, phi, ncr, p["crack"].astype(np.int32), cell_at.astype(np.int32), p["cls"], offsets, facets,
             area, *layout, opts.multipliers, opts.enrichment != "none" or opts.multipliers == "stable")
-    return BandSpace(space, node_key, cell_key)
+    return BandSpace(space, node_key, cell_key, group_sizes(space, x, cells), group_points(space, x, phi))
+
+
+def group_sizes(space, x: np.ndarray, cells: np.ndarray) -> np.ndarray:
+    """BandSpace.group_h of a space on the band mesh (x, cells)."""
+    nv = cells.shape[1]
+    pairs = [(a, b) for a in range(nv) for b in range(a + 1, nv)]
+    h_cell = np.mean([np.linalg.norm(x[cells[:, a]] - x[cells[:, b]], axis=1) for a, b in pairs], axis=0)
+    h_node = np.zeros(len(x))
+    np.maximum.at(h_node, cells.ravel(), np.repeat(h_cell, nv))
+    node, cell = np.asarray(space.full_node), np.asarray(space.full_cell)
+    h_full = np.where(node >= 0, h_node[np.maximum(node, 0)], h_cell[np.maximum(cell, 0)])
+    group = np.asarray(space.full_to_reduced)
+    nr = int(space.num_reduced)
+    used = group >= 0
+    count = np.bincount(group[used], minlength=nr)
+    return np.bincount(group[used], weights=h_full[used], minlength=nr) / np.maximum(count, 1)
+
+
+def group_points(space, x: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    """BandSpace.group_x of a space on the band mesh (x, level sets phi
+    (cracks, nodes)): per group the mean of the points where its crack cuts
+    its vital edges (linear interpolation of phi along the edge: points on
+    the crack); a group without a vital edge (a crack all of whose pieces
+    are front cells) takes the mean of its member nodes. Measured against
+    the centroids of the group functions (int phi_g x / int phi_g) on the
+    bending closure: the same K within 0.04 % of the open front's."""
+    nr = int(space.num_reduced)
+    d = x.shape[1]
+    node, crack = np.asarray(space.full_node), np.asarray(space.full_crack)
+    group = np.asarray(space.full_to_reduced)
+    nodal = (node >= 0) & (group >= 0)
+    of = {(int(c), int(a)): int(g) for c, a, g in zip(crack[nodal], node[nodal], group[nodal])}
+    total = np.zeros((nr, d))
+    count = np.zeros(nr)
+    for a, b in np.asarray(space.vital_edges):
+        for c in range(phi.shape[0]):
+            fa, fb = phi[c, a], phi[c, b]
+            g = of.get((c, int(a)))
+            if g is None or not fa * fb < 0.0:
+                continue
+            total[g] += x[a] + fa / (fa - fb) * (x[b] - x[a])
+            count[g] += 1
+    lone = count == 0
+    if lone.any():
+        members = np.flatnonzero(nodal)
+        members = members[lone[group[members]]]
+        np.add.at(total, group[members], x[node[members]])
+        np.add.at(count, group[members], 1.0)
+    return total / np.maximum(count, 1.0)[:, None]
 
 
 def _facet_areas(x: np.ndarray, cell_nodes: np.ndarray, facets: np.ndarray, nfacets: np.ndarray) -> np.ndarray:

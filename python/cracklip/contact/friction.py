@@ -53,7 +53,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..solvers.checked import petsc_from_scipy, solve_checked
-from ..solvers.saddle import bordered_matrix
+from ..solvers.saddle import bordered_matrix, multiplier_block
 from .frictionless import ContactError, ContactSystem, owned_product, solve_bordered
 if typing.TYPE_CHECKING:
     from petsc4py import PETSc
@@ -199,7 +199,7 @@ def friction_rows(cs: ContactSystem, g_n: np.ndarray, g_t: np.ndarray, s_old: np
         rhs_t = rhs_t - np.tile(c / lumped, k) * (W @ (g_t + s_old))
     coulomb = -mu * sign if bound is None else np.zeros((m, k))
     blocks = [sp.diags(np.where(slip, coulomb[:, c_], 0.0)) for c_ in range(k)]
-    rows_n = [Bn, sp.diags((~closed).astype(float)), None]
+    rows_n = [Bn, multiplier_block(closed, cs.S(closed)), None]
     rows_t = [Bt, blocks[0] if k == 1 else sp.vstack(blocks), T]
     return rows_n, rows_t, np.concatenate([np.where(closed, g_n, 0.0), rhs_t])
 
@@ -419,7 +419,7 @@ def _iterate(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, 
         u, lam_n, lam_t, Bu, Btu = saddle(state, sign, bound, beta, x0, rtol)
         exact, rtol = rtol is None, loose  # (the next solve's: loose unless said otherwise below)
         x0 = np.concatenate([u, lam_n, lam_t])
-        gap = Bu - g_n
+        gap = cs.stabilized_gap(Bu - g_n, state != OPEN, lam_n)
         dslip = per_multiplier(Btu - g_t - s_old, k)
         tau = per_multiplier(-lam_t, k)
         iterates[len(history)] = (u, lam_n, lam_t, state, sign,

@@ -32,6 +32,7 @@ if typing.TYPE_CHECKING:
 from ..scene.processes import gathered, reduced
 from ..solvers.saddle import distributed_saddle_matrix, saddle_matrix
 from .band import create_band_space, prolongation
+from .stabilization import create_stabilization, stabilization_gamma
 
 
 logger = logging.getLogger(__name__)
@@ -61,6 +62,8 @@ class ContactSystem:
         band: the space of the gathered crack band (contact/band.py): the
             whole crack's pieces and groups, the same on every process
             (space is this process's, on its local mesh).
+        stabilization: the multipliers' stabilization
+            (contact/stabilization.py: D = -S on the closed ones), or None.
     """
     space: typing.Any
     R: sp.csr_matrix
@@ -72,6 +75,19 @@ class ContactSystem:
     g_groups: dict = dataclasses.field(default_factory=dict)
     gt_groups: dict = dataclasses.field(default_factory=dict)
     band: typing.Any = None
+    stabilization: typing.Any = None
+
+    def S(self, active: np.ndarray) -> sp.csr_matrix | None:
+        """The stabilization's S for the closed multipliers `active`, or None."""
+        return None if self.stabilization is None else self.stabilization.matrix(active)
+
+    def stabilized_gap(self, gap: np.ndarray, active: np.ndarray, lam: np.ndarray) -> np.ndarray:
+        """The gap the active-set and friction tests compare, B u - g - S_a
+        lambda: with the stabilization a closed multiplier's row is B u - S
+        lambda = g (contact/stabilization.py), so this is 0 on the closed
+        ones, as B u - g is without it."""
+        S = self.S(active)
+        return gap if S is None else gap - S @ lam
 
     @property
     def num_multipliers(self) -> int:
@@ -167,7 +183,9 @@ def create_contact_system(model: XfemModel) -> ContactSystem:
         raise SolverError(f"{dead.size} contact multiplier(s) see no jump of the displacement (e.g. "
                           f"reduced multiplier {int(dead[0])}): the crack there has no enriched dofs "
                           "(check the enrichment and the Dirichlet conditions near the crack)")
-    return ContactSystem(space, R, B.tocsr(), M, g, Bt, gt, g_groups, gt_groups, band.space)
+    S = create_stabilization(M, band.group_x, band.group_h, model.scene.material.E,
+                             stabilization_gamma(opts.multiplier_stabilization, model.gdim))
+    return ContactSystem(space, R, B.tocsr(), M, g, Bt, gt, g_groups, gt_groups, band.space, S)
 
 
 def in_basis(physical: ContactSystem, T: "sp.spmatrix | PETSc.Mat | None") -> ContactSystem:
@@ -228,7 +246,8 @@ def solve_saddle(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: ContactSyste
     m = cs.num_multipliers
     if cs.space.kind == "naive":
         check_constraint_rank(cs.B[np.flatnonzero(active)])
-    A = saddle_matrix(K, cs.B, active) if linear is None else linear.saddle_matrix(K, cs.B, active)
+    S = cs.S(active)
+    A = saddle_matrix(K, cs.B, active, S) if linear is None else linear.saddle_matrix(K, cs.B, active, S)
     b = PETSc.Vec().createWithArray(np.concatenate([f, np.where(active, cs.g, 0.0)]), comm=PETSc.COMM_SELF)
     what = "contact saddle-point system"
     if linear is None:
@@ -346,7 +365,7 @@ def distributed_saddle(A: PETSc.Mat, f: np.ndarray, cs: ContactSystem, residual_
     def solve(active: np.ndarray, x0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         if cs.space.kind == "naive":
             check_constraint_rank(cs.B[np.flatnonzero(active)])
-        S = distributed_saddle_matrix(A, cs.B, active)
+        S = distributed_saddle_matrix(A, cs.B, active, cs.S(active))
         u, lam = solve_bordered(S, f, np.where(active, cs.g, 0.0), residual_tol, "contact saddle-point system",
                                 symmetric=iterative, linear=linear if iterative else None, x0=x0)
         return u, lam, owned_product(A, cs.B, u) - cs.g
@@ -425,6 +444,7 @@ def solve_frictionless(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: Contac
     x0 = None
     for it in range(1, opts.max_active_set_iterations + 1):
         u, lam, gap = saddle(active, x0)       # gap: weighted normal gap (>= 0 open)
+        gap = cs.stabilized_gap(gap, active, lam)
         x0 = np.concatenate([u, lam])
         pressure = -lam                        # >= 0 in compression
         new_active = pressure - c * gap / lumped > 0.0

@@ -64,6 +64,9 @@ class Options:
             pressure >= 0, complementarity; primal-dual active set).
         multipliers: "stable" (P1-, Bechet-Moes-Wohlmuth, P0 in the tip
             cell) or "naive" (P1 on every node of the cut cells).
+        multiplier_stabilization: gamma of the penalty on neighbouring
+            multiplier groups' differences (contact/stabilization.py);
+            default (None) 0 in 2D, DEFAULT_GAMMA[3] in 3D; 0: none.
         contact_points: Gauss points per crack segment (tau^2 toward a tip).
         active_set_start: "closed" or "open" initial active set.
         max_active_set_iterations: active-set iterations before giving up (a set
@@ -138,6 +141,7 @@ class Options:
     degree: int = 1
     contact: str = "none"
     multipliers: str = "stable"
+    multiplier_stabilization: float | None = None
     contact_points: int = 6
     active_set_start: str = "closed"
     max_active_set_iterations: int = 20
@@ -173,6 +177,11 @@ class Options:
             raise InputError(f"solver must be one of {SOLVERS}, got {self.solver!r}")
         if self.multipliers not in ("stable", "naive"):
             raise InputError(f"multipliers must be 'stable' or 'naive', got {self.multipliers!r}")
+        if self.multiplier_stabilization is not None and not (
+                isinstance(self.multiplier_stabilization, numbers.Real)
+                and math.isfinite(self.multiplier_stabilization) and self.multiplier_stabilization >= 0.0):
+            raise InputError("multiplier_stabilization must be a number >= 0 (0: none), got "
+                             f"{self.multiplier_stabilization!r}")
         if self.active_set_start not in ("closed", "open"):
             raise InputError(f"active_set_start must be 'closed' or 'open', got {self.active_set_start!r}")
         if self.quadrature not in TIP_QUADRATURES:

@@ -42,10 +42,12 @@ class LinearSolver:
         scipy CSR copy, converted once per contact solve)."""
         return scipy_from_petsc(A)
 
-    def saddle_matrix(self, K: typing.Any, B: sp.csr_matrix, active: np.ndarray) -> PETSc.Mat:
-        """The frictionless saddle point [K B_a^T; B_a D] (contact.
-        saddle_matrix) on K from stiffness()."""
-        return saddle_matrix(K, B, active)
+    def saddle_matrix(self, K: typing.Any, B: sp.csr_matrix, active: np.ndarray,
+                      S: sp.csr_matrix | None = None) -> PETSc.Mat:
+        """The frictionless saddle point [K B_a^T; B_a D] (solvers.saddle.
+        saddle_matrix; S the multipliers' stabilization or None) on K from
+        stiffness()."""
+        return saddle_matrix(K, B, active, S)
 
     def bordered_matrix(self, K: typing.Any, C: sp.csr_matrix, rows: sp.csr_matrix,
                         constraints: sp.csr_matrix) -> PETSc.Mat:

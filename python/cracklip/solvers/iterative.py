@@ -538,12 +538,13 @@ class IterativeSolver(LinearSolver):
         """The stiffness itself: saddle_matrix() does not copy it."""
         return A
 
-    def saddle_matrix(self, K: PETSc.Mat, B: sp.csr_matrix, active: np.ndarray) -> PETSc.Mat:
+    def saddle_matrix(self, K: PETSc.Mat, B: sp.csr_matrix, active: np.ndarray,
+                      S: sp.csr_matrix | None = None) -> PETSc.Mat:
         """[K B_a^T; B_a D] as a Python PETSc matrix applied blockwise around
         K (SaddleOperator; no copy of the stiffness: at 1e6 dofs the
         assembled saddle point cost 0.1-0.25 s and the scipy copy of K it
         needs another 0.25-0.3 s)."""
-        op = SaddleOperator(K, B, active)
+        op = SaddleOperator(K, B, active, S)
         size = op.n + op.m
         A = PETSc.Mat().createPython([size, size], context=op, comm=PETSc.COMM_SELF)
         A.setOption(PETSc.Mat.Option.SYMMETRIC, True)

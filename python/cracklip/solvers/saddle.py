@@ -12,10 +12,24 @@ from .. import _cracklip
 from .checked import petsc_from_scipy, scipy_from_petsc
 
 
-def saddle_matrix(K: sp.csr_matrix, B: sp.csr_matrix, active: np.ndarray) -> PETSc.Mat:
+def multiplier_block(active: np.ndarray, S: sp.spmatrix | None = None) -> sp.csr_matrix:
+    """D of [K B_a^T; B_a D]: 1 on the diagonal of inactive multipliers (held
+    at 0), -S on the active rows and columns (the multipliers'
+    stabilization, contact/stabilization.py; 0 without S)."""
+    a = np.asarray(active, dtype=bool)
+    D = sp.diags((~a).astype(float), format="csr")
+    if S is not None:
+        Pa = sp.diags(a.astype(float))
+        D = (D - Pa @ S @ Pa).tocsr()
+        D.eliminate_zeros()
+    return D
+
+
+def saddle_matrix(K: sp.csr_matrix, B: sp.csr_matrix, active: np.ndarray,
+                  S: sp.csr_matrix | None = None) -> PETSc.Mat:
     """The PETSc AIJ matrix [K B_a^T; B_a D] (symmetric): B_a = B with the
-    rows of inactive multipliers emptied, D = 1 on inactive multipliers and
-    0 on active ones (an inactive multiplier is held at 0).
+    rows of inactive multipliers emptied, D = multiplier_block(active, S)
+    (1 on inactive multipliers, which are held at 0, -S on the active ones).
 
     The CSR arrays come from the C++ kernel (cpp/solvers/saddle_matrix.h: B_a^T's
     entries at the ends of K's rows, then B_a's rows and D) and go to PETSc
@@ -30,18 +44,21 @@ def saddle_matrix(K: sp.csr_matrix, B: sp.csr_matrix, active: np.ndarray) -> PET
     indptr, indices, data = _cracklip.saddle_csr(
         K.indptr.astype(idx, copy=False), K.indices.astype(idx, copy=False), K.data,
         B.indptr.astype(idx, copy=False), B.indices.astype(idx, copy=False), B.data,
-        np.asarray(active, dtype=np.int8))
+        np.asarray(active, dtype=np.int8),
+        *((S.indptr.astype(idx, copy=False), S.indices.astype(idx, copy=False), S.data) if S is not None
+          else (np.zeros(0, dtype=idx), np.zeros(0, dtype=idx), np.zeros(0))))
     A = PETSc.Mat().createAIJWithArrays((n + m, n + m), (indptr, indices, data), comm=PETSc.COMM_SELF)
     A.setOption(PETSc.Mat.Option.SYMMETRIC, True)
     return A
 
 
-def distributed_saddle_matrix(K: PETSc.Mat, B: sp.csr_matrix, active: np.ndarray) -> PETSc.Mat:
+def distributed_saddle_matrix(K: PETSc.Mat, B: sp.csr_matrix, active: np.ndarray,
+                              S: sp.csr_matrix | None = None) -> PETSc.Mat:
     """[K B_a^T; B_a D] (saddle_matrix) on K's processes (mpirun): K
     distributed over its processes, B (m, N) whole on every process (columns
     K's global dofs); bordered_matrix with C = B_a and the rows [B_a D]."""
     Ba = (sp.diags(np.asarray(active, dtype=float)) @ B).tocsr()
-    D = sp.diags((~np.asarray(active, dtype=bool)).astype(float))
+    D = multiplier_block(active, S)
     return bordered_matrix(K, Ba, sp.hstack([Ba, D], format="csr"), symmetric=True)
 
 
@@ -79,7 +96,7 @@ class SaddleOperator:
     (K.mult on a view: a MatNest zeroes y and calls multAdd, 1.5 ms more per
     product at 1e6 dofs)."""
 
-    def __init__(self, K: PETSc.Mat, B: sp.csr_matrix, active: np.ndarray):
+    def __init__(self, K: PETSc.Mat, B: sp.csr_matrix, active: np.ndarray, S: sp.csr_matrix | None = None):
         comm = PETSc.COMM_SELF
         self.K = K
         self.active = np.asarray(active, dtype=bool)
@@ -87,7 +104,9 @@ class SaddleOperator:
         self.Ba = (sp.diags(self.active.astype(float)) @ B).tocsr()
         self.Ba.sort_indices()
         self.n, self.m = K.getSize()[0], B.shape[0]
-        self.d = (~self.active).astype(float)
+        self.S = S
+        self.D = multiplier_block(self.active, S)
+        self._D = petsc_from_scipy(self.D)
         self.Ba_petsc = petsc_from_scipy(self.Ba)
         self._BaT = petsc_from_scipy(self.Ba.T)
         self._is_u = PETSc.IS().createStride(self.n, 0, 1, comm=comm)
@@ -100,7 +119,7 @@ class SaddleOperator:
             xl, yl = x.getSubVector(self._is_l), y.getSubVector(self._is_l)
             self._BaT.multAdd(xl, yu, yu)
             self.Ba_petsc.mult(xu, yl)
-            yl.array[:] += self.d * xl.array_r
+            self._D.multAdd(xl, yl, yl)
             x.restoreSubVector(self._is_l, xl)
             y.restoreSubVector(self._is_l, yl)
         x.restoreSubVector(self._is_u, xu)
@@ -111,7 +130,7 @@ class SaddleOperator:
 
     def assembled(self) -> PETSc.Mat:
         """The same matrix assembled (PETSc AIJ, for MUMPS)."""
-        return saddle_matrix(scipy_from_petsc(self.K), self.B, self.active)
+        return saddle_matrix(scipy_from_petsc(self.K), self.B, self.active, self.S)
 
     def band_blocks(self, band: np.ndarray) -> tuple[PETSc.Mat, PETSc.Mat, PETSc.Mat]:
         """(A1, A01, A11) of _Schwarz for the sorted band dofs, from K's band
@@ -126,11 +145,11 @@ class SaddleOperator:
         rows.destroy()
         top = sp.hstack([scipy_from_petsc(K1), self.Ba.T.tocsr()[kb]], format="csr")
         K1.destroy()
-        A1 = sp.vstack([top, sp.hstack([self.Ba, sp.diags(self.d)], format="csr")], format="csr")
+        A1 = sp.vstack([top, sp.hstack([self.Ba, self.D], format="csr")], format="csr")
         return petsc_from_scipy(A1), petsc_from_scipy(A1[:, :n].T), petsc_from_scipy(A1[:, band])
 
     def destroy(self, mat: PETSc.Mat) -> None:
-        for obj in (self.Ba_petsc, self._BaT, self._is_u, self._is_l):
+        for obj in (self.Ba_petsc, self._BaT, self._D, self._is_u, self._is_l):
             obj.destroy()
 
 

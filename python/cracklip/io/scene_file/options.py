@@ -34,6 +34,9 @@ _OPTION_MEANINGS = {
                    "node of the cut cells; violates inf-sup)",
     "contact_points": "Gauss points per crack segment (2D) or per lip facet direction (3D) for the contact terms",
     "active_set_start": "initial active set of unilateral contact: `closed` or `open`",
+    "multiplier_stabilization": "gamma of the contact multipliers' stabilization (a penalty on each multiplier "
+    "group's departure from the linear fit of its closed neighbours; it damps a checkerboard of the 3D pressure "
+    "and vanishes on linear pressures; docs/contact.md); default: 0 in 2D, 2 in 3D; 0: none",
     "max_active_set_iterations": "active-set iterations before giving up (a set that comes back stops at once as a cycle)",
     "snap_tol": "a node closer to a crack than snap_tol times its shortest edge is moved onto it",
     "facet_degree": "quadrature degree of boundary tractions",
@@ -97,6 +100,8 @@ def _option_keys() -> list[Key]:
         elif f.name == "sif_ring":
             keys.append(Key(f"options.{f.name}", "[r_in, r_out]", UNSET, meaning,
                             p_numbers(2, "two radii [r_in, r_out]")))
+        elif f.name == "multiplier_stabilization":
+            keys.append(Key(f"options.{f.name}", "float", UNSET, meaning, p_float(0.0)))
         elif f.name in ("sif_angles", "sif_arc_lengths"):
             keys.append(Key(f"options.{f.name}", "[number, ...]", UNSET, meaning, p_number_list))
         elif isinstance(default, bool):
