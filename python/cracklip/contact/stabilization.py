@@ -105,15 +105,10 @@ class Stabilization:
     def __init__(self, M: sp.spmatrix, points: np.ndarray, group_h: np.ndarray, E: float, gamma: float):
         self.M = sp.csr_matrix(M)
         self.points = np.asarray(points, dtype=float)
-        self.gamma = float(gamma)
         mass = np.asarray(self.M.sum(axis=1)).ravel()
         self.weight = gamma * np.asarray(group_h) * mass / E
         self._R_all = linear_fit_residual(self.M, self.points)
         self._cache: dict[bytes, sp.csr_matrix] = {}
-
-    @property
-    def num_multipliers(self) -> int:
-        return self.M.shape[0]
 
     def matrix(self, active: np.ndarray) -> sp.csr_matrix:
         """S (m, m) for the closed groups `active` (rows and columns of the
