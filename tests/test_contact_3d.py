@@ -222,11 +222,12 @@ def test_closed_penny_demo_slip_and_stick(tmp_path):
     K_III of tau - mu p, K_I = 0, pressure p; mu = 0.6 > tan 30 sticks (K_II =
     K_III = 0, no slip). Measured (errors over the frictionless K_II
     amplitude A0; 52 multiplier groups, order-free; the multipliers'
-    stabilization at its 3D default): slip K_I 0.26 %, K_II 1.13 %, K_III
-    0.67 %, pressure 0.83 % (largest; 6.8 % without the stabilization, a
-    checkerboard of the groups), rms 0.20 %; stick K_I 0.13 %, K_II 0.11 %,
-    K_III 0.07 %, pressure 0.49 %. Finer meshes (docs/bench/contact_3d.json):
-    every K error below 1 % from a/h = 10."""
+    stabilization at its 3D default gamma = 8): slip K_I 0.25 %, K_II
+    1.13 %, K_III 0.67 %, pressure 0.68 % (largest; 0.83 % at gamma 2, 6.8 %
+    without the stabilization, a checkerboard of the groups), rms 0.14 %;
+    stick K_I 0.11 %, K_II 0.11 %, K_III 0.07 %, pressure 0.34 %. Finer
+    meshes (docs/bench/contact_3d.json): every error below 1 % from a/h =
+    10, pressure included (0.25-0.73 % at a/h = 20)."""
     import json
     import subprocess
     import sys
@@ -241,8 +242,8 @@ def test_closed_penny_demo_slip_and_stick(tmp_path):
     slip, stick = rows["beta30_mu0.3"], rows["beta30_stick"]
     assert slip["states"]["slip"] == slip["multipliers"] and slip["states"]["open"] == 0
     assert slip["K_I_rel"] <= 0.008 and slip["K_II_err"] <= 0.014 and slip["K_III_err"] <= 0.011, slip
-    assert slip["pressure_rms"] <= 0.015 and slip["pressure_err"] <= 0.015, slip
+    assert slip["pressure_rms"] <= 0.005 and slip["pressure_err"] <= 0.01, slip
     assert stick["states"]["stick"] == stick["multipliers"], stick["states"]
     assert max(stick["K_I_rel"], stick["K_II_err"], stick["K_III_err"]) <= 0.005, stick
-    assert stick["pressure_err"] <= 0.012, stick
+    assert stick["pressure_err"] <= 0.006, stick
     assert (tmp_path / "c" / "beta30_mu0.3.png").stat().st_size > 10000

@@ -36,7 +36,7 @@ _OPTION_MEANINGS = {
     "active_set_start": "initial active set of unilateral contact: `closed` or `open`",
     "multiplier_stabilization": "gamma of the contact multipliers' stabilization (a penalty on each multiplier "
     "group's departure from the linear fit of its closed neighbours; it damps a checkerboard of the 3D pressure "
-    "and vanishes on linear pressures; docs/contact.md); default: 0 in 2D, 2 in 3D; 0: none",
+    "and vanishes on linear pressures; docs/contact.md); default: 0 in 2D, 8 in 3D; 0: none",
     "max_active_set_iterations": "active-set iterations before giving up (a set that comes back stops at once as a cycle)",
     "snap_tol": "a node closer to a crack than snap_tol times its shortest edge is moved onto it",
     "facet_degree": "quadrature degree of boundary tractions",
