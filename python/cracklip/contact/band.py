@@ -42,6 +42,7 @@ import scipy.sparse as sp
 
 from .. import _cracklip
 from ..errors import SolverError
+from ..scene.cell_size import cell_sizes
 from ..scene.partition import node_input_indices
 from ..scene.processes import agree, gathered
 
@@ -219,8 +220,7 @@ def create_band_space(model) -> BandSpace:
 def group_sizes(space, x: np.ndarray, cells: np.ndarray) -> np.ndarray:
     """BandSpace.group_h of a space on the band mesh (x, cells)."""
     nv = cells.shape[1]
-    pairs = [(a, b) for a in range(nv) for b in range(a + 1, nv)]
-    h_cell = np.mean([np.linalg.norm(x[cells[:, a]] - x[cells[:, b]], axis=1) for a, b in pairs], axis=0)
+    h_cell = cell_sizes(x, cells)
     h_node = np.zeros(len(x))
     np.maximum.at(h_node, cells.ravel(), np.repeat(h_cell, nv))
     node, cell = np.asarray(space.full_node), np.asarray(space.full_cell)

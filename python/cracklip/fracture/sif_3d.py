@@ -68,6 +68,7 @@ import scipy.spatial
 from .. import _cracklip
 from ..errors import InputError
 from ..model.cracks.surface import split_enriched
+from ..scene.cell_size import cell_sizes
 from ..scene.crack_surface import EllipticalCrack, SurfaceCrack
 from ..scene.processes import reduced
 from ..scene.symmetry import SymmetryCondition
@@ -334,13 +335,6 @@ def _owned_segments(model, segment_cell: np.ndarray) -> np.ndarray:
     return (cell >= 0) & model.owned_cells_only(cell)
 
 
-def cell_sizes(model, cells: np.ndarray) -> np.ndarray:
-    """Mean edge length of cells."""
-    xv = model.x[model.cells[cells]]
-    e = [xv[:, j] - xv[:, i] for i, j in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))]
-    return np.mean([np.linalg.norm(v, axis=1) for v in e], axis=0)
-
-
 def lip_points(model, crack: int) -> dict:
     """The crack's lip points of the lip terms (LIP_POINTS per facet direction), computed once."""
     return model.cracks[crack].lip_points(model, LIP_POINTS)
@@ -406,7 +400,7 @@ def crack_front(model, crack: int) -> Front:
     ssize = np.zeros(len(scell))
     if len(scell):  # (under MPI each segment's size from the process owning its cell)
         own = _owned_segments(model, scell)
-        ssize[own] = cell_sizes(model, scell[own])
+        ssize[own] = cell_sizes(model.x, model.cells[scell[own]])
         if _comm(model) is not None:
             ssize = reduced(ssize, "SUM", _comm(model))
     h = float(np.median(ssize)) if len(ssize) else 0.0
@@ -771,7 +765,7 @@ def _quadrature(solution, crack: int, cells: np.ndarray, node_r: np.ndarray) -> 
                       "plain": np.zeros(len(q["weight"]), dtype=bool)})
     if pc.size:
         xv = m.x[m.cells[pc]]
-        diam = cell_sizes(m, pc) * 1.5
+        diam = cell_sizes(m.x, m.cells[pc]) * 1.5
         rho = node_r[m.cells[pc]].min(axis=1) / diam
         level = np.where(rho < 1.0, 0, np.where(rho < 2.0, 1, 2))
         rules = _plain_rules()

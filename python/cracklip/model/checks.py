@@ -47,6 +47,7 @@ import scipy.sparse.csgraph
 
 from .. import _cracklip
 from ..errors import BoundaryConditionError, CrackGeometryError, InputError
+from ..scene.cell_size import cell_sizes
 from ..scene.size_field import PLATEAU
 from ..scene.units import STRESSES
 from ..scene.processes import not_parallel, reduced
@@ -179,8 +180,8 @@ def _cell_sizes(model) -> tuple[np.ndarray, np.ndarray]:
     owned cells), computed once per model."""
     cached = model.__dict__.get("_cell_sizes_cache")
     if cached is None:
-        xv = model.x[model.cells if not model.distributed else model.cells[:model.num_owned_cells]]
-        cached = (np.linalg.norm(xv[:, [1, 2, 0]] - xv, axis=2).mean(axis=1), xv.mean(axis=1))
+        cells = model.cells if not model.distributed else model.cells[:model.num_owned_cells]
+        cached = (cell_sizes(model.x, cells), model.x[cells].mean(axis=1))
         model._cell_sizes_cache = cached
     return cached
 
@@ -379,15 +380,6 @@ FRONT_CLASS = 3
 #: about (the penny crack at a / h = 8 opens 2.3 % off Sneddon's; at a / h =
 #: 4 the front cells span a quarter of the radius).
 FRONT_RESOLUTION = 0.2
-
-
-_EDGES = ([0, 0, 0, 1, 1, 2], [1, 2, 3, 2, 3, 3])
-
-
-def cell_sizes(x: np.ndarray, cells: np.ndarray) -> np.ndarray:
-    """Mean edge length of each tetrahedron (cells (m, 4))."""
-    a, b = _EDGES
-    return np.linalg.norm(x[cells[:, b]] - x[cells[:, a]], axis=2).mean(axis=1)
 
 
 def front_cells(geometry) -> np.ndarray:

@@ -16,6 +16,7 @@ import numpy as np
 
 from .. import _cracklip
 from ..errors import CrackGeometryError
+from ..scene.cell_size import mean_cell_size
 from ..scene.processes import agree, first_error, reduced
 from ..scene.symmetry import SymmetryCondition
 
@@ -154,9 +155,9 @@ def _front_cell_size(model, segment_cell: np.ndarray) -> float:
     each segment counted by the process owning its cell (-1: not on this
     process)."""
     if not model.distributed:
-        return model.crack_type.mean_edge(model.x, model.cells[segment_cell])
+        return mean_cell_size(model.x, model.cells[segment_cell])
     own = segment_cell[(segment_cell >= 0) & model.owned_cells_only(segment_cell)]
-    total, count = reduced(np.array([model.crack_type.mean_edge(model.x, model.cells[own]) * len(own), len(own)]),
+    total, count = reduced(np.array([mean_cell_size(model.x, model.cells[own]) * len(own), len(own)]),
                            "SUM", model.V.mesh.comm)
     return float(total / count) if count else 0.0
 

@@ -25,6 +25,7 @@ import math
 import numpy as np
 
 from ..errors import InputError
+from ..scene.cell_size import mean_cell_size
 from ..scene.options import check_ring
 from ..scene.processes import reduced
 from .boundary import boundary_segments
@@ -185,8 +186,7 @@ def tip_element_size(model, p: np.ndarray, dist: np.ndarray | None = None) -> fl
         sizes = []
         for node in np.flatnonzero(dist <= d0 * (1.0 + NEAREST_TIE)):
             cells = model.cells[np.any(model.cells == node, axis=1)]
-            e = model.x[cells[:, [1, 2, 0]]] - model.x[cells]
-            sizes.append(float(np.linalg.norm(e, axis=2).mean()) if len(cells) else math.inf)
+            sizes.append(mean_cell_size(model.x, cells) if len(cells) else math.inf)
         best = (d0, min(sizes))
     found = model.V.mesh.comm.allgather(best) if model.distributed else [best]
     d0 = min(d for d, _ in found)

@@ -11,6 +11,7 @@ import numpy as np
 
 import dolfinx.fem
 
+from ..scene.cell_size import mean_cell_size
 from ..scene.scene import Scene
 from .cracks import CrackModel, crack_model_type
 
@@ -92,8 +93,8 @@ class XfemModel:
         model: 0.05 s at 2e6 triangles). Under MPI collective: over every
         process's owned cells."""
         if not self.distributed:
-            return self.crack_type.mean_edge(self.x, self.cells)
+            return mean_cell_size(self.x, self.cells)
         own = self.cells[:self.num_owned_cells]
         comm = self.V.mesh.comm
-        total, count = comm.allreduce(np.array([self.crack_type.mean_edge(self.x, own) * len(own), len(own)]))
+        total, count = comm.allreduce(np.array([mean_cell_size(self.x, own) * len(own), len(own)]))
         return float(total / count) if count else 0.0

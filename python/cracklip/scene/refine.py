@@ -28,6 +28,7 @@ import typing
 import numpy as np
 
 from ..errors import MeshError
+from .cell_size import cell_sizes
 from .mesh import MeshData, check_mesh
 from .size_field import size_at
 
@@ -43,12 +44,6 @@ SIZE_TOLERANCE = 1.25
 #: At most this many refinement passes (each halves the marked cells: 2^-20
 #: of the file's element size is beyond any use).
 MAX_PASSES = 20
-
-
-def cell_sizes(x: np.ndarray, cells: np.ndarray) -> np.ndarray:
-    """Mean edge length of every cell (n,)."""
-    e = x[cells[:, [1, 2, 0]]] - x[cells]
-    return np.linalg.norm(e, axis=2).mean(axis=1)
 
 
 def _arrays(msh) -> tuple[np.ndarray, np.ndarray]:

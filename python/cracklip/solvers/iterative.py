@@ -74,6 +74,7 @@ from .phantom import phantom_basis, transform_matrix
 from .saddle import BorderedOperator, SaddleOperator
 from .checked import scipy_from_petsc
 from .checked import factor_call, create_lu_solver, out_of_memory
+from ..scene.cell_size import mean_cell_size
 from ..scene.processes import on_all
 
 
@@ -371,7 +372,7 @@ def front_distance(model: "XfemModel") -> np.ndarray:
         mine = crack[tip] == c
         if front_cells.size == 0 or not mine.any():
             continue
-        h = model.crack_type.mean_edge(model.x, model.cells[front_cells])
+        h = mean_cell_size(model.x, model.cells[front_cells])
         nd = node[tip[mine]]
         dist[mine] = np.hypot(np.asarray(g.phi)[nd], np.asarray(g.psi)[nd]) / h
     return dist

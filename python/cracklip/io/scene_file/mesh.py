@@ -10,6 +10,7 @@ import pathlib
 import numpy as np
 
 from ...errors import BoundaryConditionError, MeshError
+from ...scene.cell_size import mean_cell_size
 from ...scene.mesh import MeshData, create_half_annulus, create_plate_with_holes, create_rectangle, read_msh
 from ...scene.processes import total
 from .schema import (REQUIRED, UNSET, Key, p_box, p_choice, p_float, p_holes, p_point, p_point3, p_point_any,
@@ -192,17 +193,7 @@ def check_tag(mesh: MeshData, tag, where: str) -> None:
 
 def _mean_edge(mesh: MeshData) -> float:
     msh = mesh.mesh
-    if mesh.gdim == 3:  # the six edges of every tetrahedron, a chunk of cells at a time
-        x = msh.geometry.x
-        cells = msh.geometry.dofmap.array.reshape(-1, 4)
-        a, b = [0, 0, 0, 1, 1, 2], [1, 2, 3, 2, 3, 3]
-        total = sum(float(np.linalg.norm(x[c[:, b]] - x[c[:, a]], axis=2).sum())
-                    for c in np.array_split(cells, max(1, len(cells) // 200_000)))
-        return total / (6 * len(cells))
-    x = msh.geometry.x[:, :2]
-    cells = msh.geometry.dofmap.array.reshape(-1, 3)
-    e = x[cells[:, [1, 2, 0]]] - x[cells]
-    return float(np.linalg.norm(e, axis=2).mean())
+    return mean_cell_size(msh.geometry.x, msh.geometry.dofmap.array.reshape(-1, mesh.gdim + 1))
 
 
 def nearest_node(mesh: MeshData, point, where: str) -> tuple[float, ...]:

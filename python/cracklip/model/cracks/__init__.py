@@ -158,11 +158,6 @@ class CrackModel(abc.ABC):
     # -- the kernels of the cells (per dimension) -----------------------------
     @classmethod
     @abc.abstractmethod
-    def mean_edge(cls, x: np.ndarray, cells: np.ndarray) -> float:
-        """Mean length of the cells' edges."""
-
-    @classmethod
-    @abc.abstractmethod
     def cell_measures(cls, x: np.ndarray, cells: np.ndarray) -> np.ndarray:
         """Area (2D) or volume (3D) of each cell."""
 

@@ -106,15 +106,6 @@ class CurveCrackModel(CrackModel):
 
     # -- the kernels of triangles ---------------------------------------------
     @classmethod
-    def mean_edge(cls, x: np.ndarray, cells: np.ndarray) -> float:
-        xs, ys = np.ascontiguousarray(x[:, 0]), np.ascontiguousarray(x[:, 1])
-        total = 0.0
-        for a, b in cls.EDGES:
-            i, j = cells[:, a], cells[:, b]
-            total += float(np.hypot(xs[j] - xs[i], ys[j] - ys[i]).sum())
-        return total / (3 * len(cells)) if len(cells) else 0.0
-
-    @classmethod
     def cell_measures(cls, x: np.ndarray, cells: np.ndarray) -> np.ndarray:
         xv = x[cells]
         e1, e2 = xv[:, 1] - xv[:, 0], xv[:, 2] - xv[:, 0]

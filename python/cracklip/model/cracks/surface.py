@@ -132,11 +132,6 @@ class SurfaceCrackModel(CrackModel):
 
     # -- the kernels of tetrahedra ----------------------------------------------
     @classmethod
-    def mean_edge(cls, x: np.ndarray, cells: np.ndarray) -> float:
-        total = sum(float(np.linalg.norm(x[cells[:, b]] - x[cells[:, a]], axis=1).sum()) for a, b in cls.EDGES)
-        return total / (len(cls.EDGES) * len(cells)) if len(cells) else 0.0
-
-    @classmethod
     def cell_measures(cls, x: np.ndarray, cells: np.ndarray) -> np.ndarray:
         xv = x[cells]
         e1, e2, e3 = xv[:, 1] - xv[:, 0], xv[:, 2] - xv[:, 0], xv[:, 3] - xv[:, 0]
