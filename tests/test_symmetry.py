@@ -173,7 +173,9 @@ def test_quarter_ellipse_against_full():
     b/11 for issue 39's 0.5 %). Wrong ends fail it (measured on this mesh):
     without the neighbours' mirror images in the hat correction (the ends
     keeping their hat averages) phi = 0 is +2.05 % off; with the ends read
-    as free-surface ends (extrapolated) -12.1 % and -3.0 %."""
+    as free-surface ends (extrapolated, by the end rule before its
+    curvature weight K kappa^(1/6), fracture/front_sampling.py) -12.1 % and
+    -3.0 %."""
     full = cl.solve(box_scene("full", b=0.5)).stress_intensity_factors(0)
     quarter = cl.solve(box_scene("quarter", b=0.5)).stress_intensity_factors(0)
     for end, copies in ((0.0, (0.0, 180.0)), (90.0, (90.0, 270.0))):
