@@ -28,14 +28,12 @@ def cell_sizes(x: np.ndarray, cells: np.ndarray) -> np.ndarray:
     cells = np.asarray(cells)
     if len(cells) == 0:
         return np.zeros(0)
-    # An edge and a coordinate at a time, gathering from contiguous columns:
-    # 3x faster than the norm of one (c, edges, d) array (2e6 triangles).
-    cols = [np.ascontiguousarray(x[:, k]) for k in range(x.shape[1])]
+    xv = np.asarray(x)[cells]                      # (c, k, d): only the cells' own nodes
     total = np.zeros(len(cells))
     first, second = edge_pairs(cells.shape[1])
-    for a, b in zip(first, second):
-        i, j = cells[:, a], cells[:, b]
-        total += np.sqrt(sum((c[j] - c[i]) ** 2 for c in cols))
+    for a, b in zip(first, second):                # (an edge at a time: no (c, edges, d) array)
+        e = xv[:, b] - xv[:, a]
+        total += np.sqrt(np.einsum("ij,ij->i", e, e))
     return total / len(first)
 
 
