@@ -90,7 +90,7 @@ class XfemModel:
     @functools.cached_property
     def h(self) -> float:
         """Mean edge length of the mesh (every cell's edges; computed once per
-        model: 0.05 s at 2e6 triangles). Under MPI collective: over every
+        model: scene/cell_size.mean_cell_size). Under MPI collective: over every
         process's owned cells."""
         if not self.distributed:
             return mean_cell_size(self.x, self.cells)

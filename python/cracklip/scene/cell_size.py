@@ -9,8 +9,8 @@ import itertools
 
 import numpy as np
 
-#: Cells handled at a time by mean_cell_size (bounds the (c, e, d) edge
-#: array of a large 3D mesh: 2e5 tetrahedra, 29 MB).
+#: Cells handled at a time by mean_cell_size (bounds cell_sizes' (c, k, d)
+#: array of the cells' nodes on a large 3D mesh: 2e5 tetrahedra, 19 MB).
 CHUNK = 200_000
 
 
