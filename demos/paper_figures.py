@@ -17,6 +17,11 @@ paths and the SIF rings of their peers, the cost of a step; issue 17), the fatig
 tables; issue 29), the life without a mesh from beta and da/dN table files
 and its compiled speed (issue 38) and the hard-case suite (not with --quick).
 
+The 3D steps and the hard cases run in a second process beside the 2D steps
+(the machine's second core; --serial for one process), and the three steps
+that time X-FEM against plain DOLFINx run alone at the end. results.md ends
+with the wall time of each step.
+
     /usr/bin/python3 demos/paper_figures.py --out results
 """
 from __future__ import annotations
@@ -25,6 +30,7 @@ import argparse
 import json
 import logging
 import pathlib
+import subprocess
 import sys
 import time
 
@@ -62,26 +68,44 @@ def log(msg: str) -> None:
     print(msg, file=sys.stderr, flush=True)
 
 
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", type=pathlib.Path, default=pathlib.Path("results"))
-    ap.add_argument("--quick", action="store_true", help="small sizes only (smoke test)")
-    args = ap.parse_args(argv)
-    # The demos choose coarse meshes and odd geometries on purpose: the
-    # library's model warnings would drown the progress lines.
-    logging.getLogger("cracklip").setLevel(logging.ERROR)
-    out = args.out
-    out.mkdir(parents=True, exist_ok=True)
-    t0 = time.perf_counter()
-    summary: dict = {}
+class StepClock:
+    """The wall time of each numbered step ("[k/20] ..."), so the job's total can be traced to its steps."""
 
-    log("[1/20] through-crack patch test")
+    def __init__(self) -> None:
+        self.t0 = self.t_last = time.perf_counter()
+        self.label: str | None = None
+        self.times: dict[str, float] = {}
+
+    def start(self, msg: str) -> None:
+        step = msg.split("]")[0] + "]" if msg.startswith("[") else msg
+        if self._close(step):
+            log(f"    ({time.perf_counter() - self.t0:.0f} s so far)")
+        log(msg)
+
+    def _close(self, step: str | None) -> bool:
+        """Add the time since the last start to its step; whether a new step begins."""
+        now = time.perf_counter()
+        new = self.label is not None and step != self.label
+        if self.label is not None:
+            self.times[self.label] = self.times.get(self.label, 0.0) + now - self.t_last
+        self.label, self.t_last = step, now
+        return new
+
+    def stop(self) -> dict[str, float]:
+        self._close(None)
+        return {k: round(v, 1) for k, v in self.times.items()}
+
+
+def step_1(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[1/20] through-crack patch test")
     pt = patch_test.main(["--h", "0.2" if args.quick else "0.05", "--out", str(out / "patch_test")])
     summary["patch_test"] = {k: pt[k] for k in ("h", "ndofs", "enriched_dofs", "displacement_rel_error_top",
                                                  "displacement_rel_error_bottom", "opening_rel_error",
                                                  "strain_energy", "strain_energy_exact")}
 
-    log("[2/20] Westergaard mode I sweep (vector and scalar tip enrichment)")
+
+def step_2(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[2/20] Westergaard mode I sweep (vector and scalar tip enrichment)")
     if args.quick:
         wg = {"runs": [westergaard.run(10, e) for e in ("vector", "scalar")], "summary": {}}
     else:
@@ -91,7 +115,9 @@ def main(argv=None) -> int:
                                                           "K_II", "cond_1norm", "cond_1norm_jacobi")}
                                        for r in wg["runs"]]}
 
-    log("[3/20] condition number vs h, with and without the nodal rescaling")
+
+def step_3(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[3/20] condition number vs h, with and without the nodal rescaling")
     cond = conditioning.main(["--n", *(["10", "20", "40"] if args.quick else ["10", "20", "40", "80"]),
                               "--spectrum-n", *(["20", "40"] if args.quick else ["20", "40", "80"]),
                               "--out", str(out / "conditioning"), "--quiet"])
@@ -99,11 +125,15 @@ def main(argv=None) -> int:
                                                   "exponent_nodal")} for c in cond["configs"]]
     summary["conditioning_spectrum"] = cond["spectrum"]["rows"]
 
-    log("[4/20] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
+
+def step_4(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[4/20] tip-cell quadrature: collapsed rule vs the paper's plain Gauss rule")
     tq = tip_quadrature.main(["--json", str(out / "tip_quadrature.json")])
     summary["tip_quadrature"] = tq["rows"]
 
-    log("[5/20] paper section 5.1: block under uniform pressure (contact)")
+
+def step_5(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[5/20] paper section 5.1: block under uniform pressure (contact)")
     blk = {}
     for n in ((21,) if args.quick else (21, 42, 84)):
         for enr in ("none", "scalar", "vector"):
@@ -115,7 +145,9 @@ def main(argv=None) -> int:
         summary["inf_sup"] = fig["inf_sup"]
     summary["block"] = blk
 
-    log("[6/20] paper section 5.2: crack from a hole")
+
+def step_6(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[6/20] paper section 5.2: crack from a hole")
     if args.quick:
         hole = {"runs": [hole_crack.run(0.2, enrichment="vector")[0]], "summary": {}}
     else:
@@ -124,86 +156,185 @@ def main(argv=None) -> int:
                        "runs": [{k: r[k] for k in ("enrichment", "h", "ndofs", "energy_error", "pressure_l2_error",
                                                    "K_I_normalised", "cond_1norm")} for r in hole["runs"]]}
 
-    log("[7/20] closed inclined crack, frictionless sliding")
+
+def step_7(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[7/20] closed inclined crack, frictionless sliding")
     summary["sliding"] = sliding_crack.main(["--ns", *(["20"] if args.quick else ["20", "40", "80"]),
                                              "--json", str(out / "sliding_crack.json")])
 
-    log("[8/20] core benchmark (X-FEM vs plain DOLFINx P1, MUMPS)")
+
+def step_8(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[8/20] core benchmark (X-FEM vs plain DOLFINx P1, MUMPS)")
     sizes = ["2e3"] if args.quick else ["2e4", "2e5"]
     bench_core.main(["--sizes", *sizes, "--repeats", "1" if args.quick else "3",
                      "--json", str(out / "bench_core.json"), "--quiet"])
     bench = json.loads((out / "bench_core.json").read_text())
     summary["bench_core"] = [{k: s[k] for k in ("ndofs", "t_xfem", "t_plain", "ratio")} for s in bench["sizes"]]
 
-    log("[9/20] stress intensity factors against handbook and exact values")
+
+def step_9(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[9/20] stress intensity factors against handbook and exact values")
     hb = handbook.main(["--out", str(out / "handbook"), *(["--divisions", "20", "--cases",
                                                             "centre crack a/b = 0.5", "pressurised crack, plane stress"]
                                                            if args.quick else [])])
     if not args.quick:
         handbook.plot(hb["rows"], out / "handbook" / "handbook.png")
     summary["handbook"] = hb["rows"]
-    log("[9/20] the error estimate of K against its true error (issue 26)")
+    clock.start("[9/20] the error estimate of K against its true error (issue 26)")
     ee = error_estimate.main(["--out", str(out / "error_estimate"), *(["--quick"] if args.quick else [])])
     summary["error_estimate"] = ee["rows"]
 
-    log("[10/20] Coulomb friction: closed inclined crack, load-unload cycle, inf-sup")
+
+def step_10(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[10/20] Coulomb friction: closed inclined crack, load-unload cycle, inf-sup")
     fr = friction_crack.main(["--out", str(out / "friction"), "--inf-sup",
                               *(["--ns", "20", "--betas", "30", "--mus", "0", "0.5", "--no-hysteresis"]
                                 if args.quick else ["--ns", "40", "80"])])
     if not args.quick:
         friction_crack.plot(fr["rows"], out / "friction" / "friction.png")
     summary["friction"] = fr
+
+
+def step_11(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
     if not args.quick:
-        log("[11/20] cost of friction at 2e5 dofs")
+        clock.start("[11/20] cost of friction at 2e5 dofs")
         summary["bench_friction"] = bench_friction.main(["--ns", "300", "--json", str(out / "bench_friction.json")])["rows"]
 
-    log("[12/20] crack growth: first kinks, straight mode I growth, Paris law, closure")
+
+def step_12(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[12/20] crack growth: first kinks, straight mode I growth, Paris law, closure")
     summary["growth"] = growth_benchmarks.main(["--out", str(out / "growth"), *(["--quick"] if args.quick else [])])
 
-    log("[13/20] published crack paths")
+
+def step_13(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[13/20] published crack paths")
     summary["growth_paths"] = growth_paths.main(["--out", str(out / "growth"), *(["--quick"] if args.quick else [])])
-    log("[13/20] SIF rings at the drilled plate's final tip (the DCB's rings: demos/ring_study.py without --no-dcb)")
+    clock.start("[13/20] SIF rings at the drilled plate's final tip (the DCB's rings: demos/ring_study.py without --no-dcb)")
     summary["ring_study"] = ring_study.main(["--out", str(out / "growth"), "--no-dcb",
                                              *(["--quick"] if args.quick else [])])
 
-    log("[14/20] cost of a growth step against a single solve")
+
+def step_14(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[14/20] cost of a growth step against a single solve")
     summary["bench_growth"] = bench_growth.main(["--hs", *(["0.05"] if args.quick else ["0.025", "0.008"]),
                                                  "--repeats", "1" if args.quick else "3",
                                                  "--json", str(out / "bench_growth.json")])["rows"]
 
-    log("[15/20] fatigue life: rainflow, block life, NASGRO, Wheeler, a flight spectrum with contact, beta tables")
+
+def step_15(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[15/20] fatigue life: rainflow, block life, NASGRO, Wheeler, a flight spectrum with contact, beta tables")
     summary["fatigue"] = fatigue_checks.main(["--out", str(out / "fatigue"), *(["--quick"] if args.quick else [])])
-    log("[15/20] fatigue life without a mesh: beta and da/dN table files, turning-point files, compiled speed")
+    clock.start("[15/20] fatigue life without a mesh: beta and da/dN table files, turning-point files, compiled speed")
     summary["life_inputs"] = life_inputs.main(["--json", str(out / "life_inputs.json"),
                                                *(["--quick"] if args.quick else [])])
 
-    log("[16/20] 3D: penny crack opening against Sneddon (tetrahedra, a/h = 10, 14, 20 at the front)")
+
+def step_16(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[16/20] 3D: penny crack opening against Sneddon (tetrahedra, a/h = 10, 14, 20 at the front)")
     summary["penny_crack"] = penny_crack.main(["--json", str(out / "penny" / "penny_crack.json"), "--quiet",
                                                *(["--divisions", "6", "8"] if args.quick else [])])
 
-    log("[17/20] 3D: K_I, K_II, K_III along crack fronts (penny, inclined penny, Irwin ellipses, surface cracks; "
-        "coarse meshes: demos/front_sifs.py --full for three)")
+
+def step_17(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[17/20] 3D: K_I, K_II, K_III along crack fronts (penny, inclined penny, Irwin ellipses, surface cracks; "
+                "coarse meshes: demos/front_sifs.py --full for three)")
     summary["front_sifs"] = front_sifs.main(["--json", str(out / "front_sifs" / "front_sifs.json"), "--quiet",
                                              *(["--cases", "penny", "irwin_0.5"] if args.quick else [])])
 
-    log("[18/20] 3D: a closed penny under inclined compression with lip contact and Coulomb friction "
-        "(K along the front and the pressure against the exact solution, a/h = 6; demos/contact_3d.py --full)")
+
+def step_18(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[18/20] 3D: a closed penny under inclined compression with lip contact and Coulomb friction "
+                "(K along the front and the pressure against the exact solution, a/h = 6; demos/contact_3d.py --full)")
     summary["contact_3d"] = contact_3d.main(["--json", str(out / "contact_3d" / "contact_3d.json"), "--quiet",
                                              "--sizes", "6", "--cases", "beta30_mu0", "beta45_mu0.3",
                                              "beta30_stick"])
-    log("[19/20] 3D: a penny grown under Paris' law against the closed form (two steps, a/4; demos/growth_3d.py)")
+
+
+def step_19(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
+    clock.start("[19/20] 3D: a penny grown under Paris' law against the closed form (two steps, a/4; demos/growth_3d.py)")
     summary["growth_3d"] = growth_3d.main(["--small", "--cases", "penny", "--json", str(out / "growth_3d.json")])
 
+
+def step_20(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
     if not args.quick:
-        log("[20/20] hard cases (degenerate geometry, extreme parameters, contact sign changes)")
+        clock.start("[20/20] hard cases (degenerate geometry, extreme parameters, contact sign changes)")
         hc = hard_cases.main(["--json", str(out / "hard_cases.json")])
         summary["hard_cases"] = {k: hc[k] for k in ("all_finite", "max_relative_residual", "all_converge")}
-    summary["wall_time"] = time.perf_counter() - t0
 
+
+#: The steps that time X-FEM against plain solves: they run alone, after the
+#: others (a second process beside them would disturb their figures).
+TIMING_STEPS = (8, 11, 14)
+#: The steps run by a second process beside the first (the 3D ones and the
+#: hard cases: about half the untimed work), unless --serial.
+SECOND_LANE = (16, 17, 18, 20)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", type=pathlib.Path, default=pathlib.Path("results"))
+    ap.add_argument("--quick", action="store_true", help="small sizes only (smoke test)")
+    ap.add_argument("--serial", action="store_true",
+                    help="one process for every step (default: the 3D steps and the hard cases in a second "
+                         "process beside the 2D ones, the timing steps alone at the end)")
+    ap.add_argument("--steps", type=int, nargs="+", help=argparse.SUPPRESS)  # (the second lane's child)
+    ap.add_argument("--summary-part", type=pathlib.Path, help=argparse.SUPPRESS)
+    args = ap.parse_args(argv)
+    # The demos choose coarse meshes and odd geometries on purpose: the
+    # library's model warnings would drown the progress lines.
+    logging.getLogger("cracklip").setLevel(logging.ERROR)
+    out = args.out
+    out.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    clock = StepClock()
+    summary: dict = {}
+    steps = {k: f for k, f in globals().items() if k.startswith("step_")}
+    numbers = sorted(int(k[5:]) for k in steps)
+    if args.steps:  # a lane of the parent's job: its steps, its part of the summary
+        for k in args.steps:
+            steps[f"step_{k}"](args, out, summary, clock)
+        summary["step_times"] = clock.stop()
+        write_json(args.summary_part, summary)
+        return 0
+    child = None
+    if not args.serial:
+        second = [k for k in numbers if k in SECOND_LANE]
+        part = out / ".second_lane.json"
+        cmd = [sys.executable, __file__, "--out", str(out), "--summary-part", str(part), "--steps",
+               *map(str, second), *(["--quick"] if args.quick else [])]
+        log(f"steps {', '.join(map(str, second))} in a second process (--serial: one process)")
+        child = subprocess.Popen(cmd)
+    first = [k for k in numbers if k not in TIMING_STEPS and (args.serial or k not in SECOND_LANE)]
+    for k in first:
+        steps[f"step_{k}"](args, out, summary, clock)
+    if child is not None:
+        clock.start("(waiting for the second process)")
+        if child.wait() != 0:
+            raise SystemExit(f"the second process (steps {', '.join(map(str, second))}) failed: rc {child.returncode}")
+        lane = json.loads(part.read_text())
+        part.unlink()
+        summary["step_times_second_lane"] = lane.pop("step_times")
+        summary.update(lane)
+    for k in TIMING_STEPS:
+        steps[f"step_{k}"](args, out, summary, clock)
+    summary["step_times"] = clock.stop()
+    summary["wall_time"] = time.perf_counter() - t0
+    summary = {k: summary[k] for k in sorted(summary, key=_summary_order)}
     write_json(out / "results.json", summary)
     (out / "results.md").write_text(markdown(summary) + "\n")
     log(f"wrote {out / 'results.md'} and {out / 'results.json'} in {summary['wall_time']:.0f} s")
     return 0
+
+
+#: results.json's keys in the order of the steps (whichever process ran them).
+SUMMARY_ORDER = ("patch_test", "westergaard", "conditioning", "conditioning_spectrum", "tip_quadrature",
+                 "block_rules", "inf_sup", "block", "hole", "sliding", "bench_core", "handbook", "error_estimate",
+                 "friction", "bench_friction", "growth", "growth_paths", "ring_study", "bench_growth", "fatigue",
+                 "life_inputs", "penny_crack", "front_sifs", "contact_3d", "growth_3d", "hard_cases")
+
+
+def _summary_order(key: str) -> int:
+    return SUMMARY_ORDER.index(key) if key in SUMMARY_ORDER else len(SUMMARY_ORDER)
 
 
 def markdown(s: dict) -> str:
@@ -355,6 +486,14 @@ def markdown(s: dict) -> str:
                   f"{h['max_relative_residual']:.1e}; every case with a reference converges: {h['all_converge']}. "
                   "Table: `hard_cases.md`.", ""]
     lines += [f"Total wall time of this job: {s['wall_time']:.0f} s."]
+    if "step_times" in s:
+        lanes = [("", s["step_times"])]
+        if "step_times_second_lane" in s:
+            lanes = [(" (first process)", s["step_times"]), (" (second process, beside the first)",
+                                                              s["step_times_second_lane"])]
+        for name, times in lanes:
+            lines += ["", f"| step{name} | wall time (s) |", "|---|---|"]
+            lines += [f"| {k} | {v:.0f} |" for k, v in times.items()]
     return "\n".join(lines)
 
 
