@@ -8,7 +8,11 @@ One subprocess per size (peak_rss_gb is that whole run's ru_maxrss: mesh,
 model, assembly and solves). In it, --repeats pairs: the plain solve, then
 the X-FEM solve, one after the other (the VM's speed drifts 20-30 % between
 processes), after a warm-up on a small mesh. Rows: medians of the pairs'
-times and ratios.
+times and ratios. With --process-per-pair each pair runs in a process of
+its own (the mesh made in each; plain first and X-FEM first in turn): on
+this VM the memory-bound kernels of one solve slow down as the process ages
+(the same solve's products 46.6 s, then 85.0 s; docs/speed.md), so pairs
+late in a process measure its age as much as the solver.
 
 t_solve: the solver's own work (X-FEM: phantom transform, GAMG and crack
 band set-up, CG; plain: GAMG set-up and CG). t_total: X-FEM model,
@@ -20,6 +24,7 @@ the band is not split, solvers/iterative.py).
     /usr/bin/python3 demos/bench_3d.py --json results/bench_3d.json          # radius 2 h_front
     /usr/bin/python3 demos/bench_3d.py --geometric --json results/b.json    # radius 0.25 a
     /usr/bin/python3 demos/bench_3d.py --sizes 1e5 --repeats 1 --json /tmp/b.json
+    /usr/bin/python3 demos/bench_3d.py --geometric --sizes 1e6 --process-per-pair --json /tmp/b.json
 """
 from __future__ import annotations
 
@@ -132,8 +137,12 @@ def worker(spec: dict) -> dict:
     t_mesh = time.perf_counter() - t0
     pairs = []
     for _ in range(spec["repeats"]):
-        p = _plain(scene)
-        x = _xfem(scene)
+        if spec.get("xfem_first"):
+            x = _xfem(scene)
+            p = _plain(scene)
+        else:
+            p = _plain(scene)
+            x = _xfem(scene)
         pairs.append((p, x))
     med = lambda key, which: statistics.median(pr[which][key] for pr in pairs)  # noqa: E731
     p_last, x_last = pairs[-1]
@@ -148,8 +157,22 @@ def worker(spec: dict) -> dict:
             "ratio_total": statistics.median(x["t_total"] / p["t_total"] for p, x in pairs),
             "ratios_solve": [x["t_solve"] / p["t_solve"] for p, x in pairs],
             "iterations_xfem": x_last["iterations"], "iterations_plain": p_last["iterations"],
-            "repeats": spec["repeats"],
+            "repeats": spec["repeats"], "xfem_first": bool(spec.get("xfem_first")),
             "peak_rss_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6}
+
+
+def _merged(parts: list[dict]) -> dict:
+    """One row from one-pair rows of separate processes: medians of their
+    times and ratios, each pair's ratio, the largest peak."""
+    row = dict(parts[-1])
+    for key in [k for k in row if k.startswith(("t_solve_", "t_setup_", "t_total_", "t_assemble", "ratio_"))]:
+        row[key] = statistics.median(p[key] for p in parts)
+    row["ratios_solve"] = [p["ratios_solve"][0] for p in parts]
+    row["xfem_first"] = [p["xfem_first"] for p in parts]
+    row["repeats"] = len(parts)
+    row["processes"] = len(parts)
+    row["peak_rss_gb"] = max(p["peak_rss_gb"] for p in parts)
+    return row
 
 
 def main(argv=None) -> dict:
@@ -161,6 +184,9 @@ def main(argv=None) -> dict:
     ap.add_argument("--geometric", action="store_true",
                     help="penny_crack's fixed radius 0.25 a instead (7.5 front elements at 1e6 dofs: the tip "
                          "dofs' torus, split into the exact band and the inexact outer block, docs/speed.md)")
+    ap.add_argument("--process-per-pair", action="store_true",
+                    help="each pair in a fresh process (the mesh made in each), plain first and X-FEM first in "
+                         "turn: on a VM whose memory-bound kernels slow down as a process ages (docs/speed.md)")
     ap.add_argument("--json", type=pathlib.Path, default=pathlib.Path("results/bench_3d.json"))
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
@@ -172,18 +198,25 @@ def main(argv=None) -> dict:
     rows = []
     for size in args.sizes:
         spec = {"n": divisions_for(float(size), args.radius_in_h), "repeats": args.repeats, "radius_in_h": args.radius_in_h}
-        proc = subprocess.run([sys.executable, __file__, "--worker", json.dumps(spec)], capture_output=True,
-                              text=True)
-        if proc.returncode != 0:
-            rows.append({"target_dofs": float(size), "status": f"failed: {proc.stderr.strip()[-400:]}"})
-        else:
-            row = json.loads(proc.stdout.strip().splitlines()[-1])
-            row["target_dofs"] = float(size)
-            rows.append(row)
-            print(f"{row['ndofs']} dofs: X-FEM solve {row['t_solve_xfem']:.1f} s ({row['iterations_xfem']} its), "
-                  f"plain {row['t_solve_plain']:.1f} s ({row['iterations_plain']} its): ratio "
-                  f"{row['ratio_solve']:.2f}; totals {row['t_total_xfem']:.1f} / {row['t_total_plain']:.1f} s; "
-                  f"peak {row['peak_rss_gb']:.2f} GB", flush=True)
+        specs = ([dict(spec, repeats=1, xfem_first=bool(k % 2)) for k in range(args.repeats)]
+                 if args.process_per_pair else [spec])
+        parts = []
+        for sp in specs:
+            proc = subprocess.run([sys.executable, __file__, "--worker", json.dumps(sp)], capture_output=True,
+                                  text=True)
+            if proc.returncode != 0:
+                parts = [{"status": f"failed: {proc.stderr.strip()[-400:]}"}]
+                break
+            parts.append(json.loads(proc.stdout.strip().splitlines()[-1]))
+        row = parts[0] if len(parts) == 1 else _merged(parts)
+        row["target_dofs"] = float(size)
+        rows.append(row)
+        if "status" in row:
+            continue
+        print(f"{row['ndofs']} dofs: X-FEM solve {row['t_solve_xfem']:.1f} s ({row['iterations_xfem']} its), "
+              f"plain {row['t_solve_plain']:.1f} s ({row['iterations_plain']} its): ratio "
+              f"{row['ratio_solve']:.2f}; totals {row['t_total_xfem']:.1f} / {row['t_total_plain']:.1f} s; "
+              f"peak {row['peak_rss_gb']:.2f} GB", flush=True)
     out = {"machine": platform.node(), "python": platform.python_version(), "rows": rows}
     args.json.parent.mkdir(parents=True, exist_ok=True)
     from cracklip.io.files import write_json

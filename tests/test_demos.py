@@ -38,7 +38,13 @@ def test_main_job_quick(tmp_path):
     run_demo("paper_figures.py", "--quick", "--out", str(tmp_path))
     text = (tmp_path / "results.md").read_text()
     assert "patch test" in text and "Westergaard" in text and "quadrature" in text
-    assert json.loads((tmp_path / "results.json").read_text())["patch_test"]["opening_rel_error"] < 1e-10
+    res = json.loads((tmp_path / "results.json").read_text())
+    assert res["patch_test"]["opening_rel_error"] < 1e-10
+    # The 3D steps ran in the second process and their results joined the first's, in the steps' order.
+    assert set(res["step_times_second_lane"]) == {"[16/20]", "[17/20]", "[18/20]"}
+    keys = list(res)
+    assert keys.index("life_inputs") < keys.index("penny_crack") < keys.index("contact_3d") < keys.index("growth_3d")
+    assert "| [16/20] |" in text
 
 
 def test_hole_demo_cli(tmp_path):
@@ -109,3 +115,16 @@ def test_life_inputs_demo(tmp_path):
         assert abs(res[key]["N"] / res[key]["N_exact"] - 1) < 5e-3
     assert res["turning_points"]["ok"] is True
     assert res["speed"]["cycles_per_s"] > 0 and res["speed"]["rainflow_points_per_s"] > 0
+
+
+def test_bench_3d_process_per_pair(tmp_path):
+    """--process-per-pair: one pair per process, plain first then X-FEM first; the row's ratio is the median of
+    the pairs' and each pair's ratio is its own X-FEM time over its plain time."""
+    out = tmp_path / "b.json"
+    run_demo("bench_3d.py", "--sizes", "2e4", "--repeats", "2", "--process-per-pair", "--geometric",
+             "--json", str(out))
+    row = json.loads(out.read_text())["rows"][0]
+    assert row["processes"] == 2 and row["xfem_first"] == [False, True]
+    assert len(row["ratios_solve"]) == 2
+    assert abs(row["ratio_solve"] - sum(row["ratios_solve"]) / 2) < 1e-12  # (the median of two)
+    assert row["iterations_xfem"] > 0 and row["iterations_plain"] > 0 and row["ndofs"] > row["plain_ndofs"]
