@@ -9,10 +9,7 @@ model, assembly and solves). In it, --repeats pairs: the plain solve, then
 the X-FEM solve, one after the other (the VM's speed drifts 20-30 % between
 processes), after a warm-up on a small mesh. Rows: medians of the pairs'
 times and ratios. With --process-per-pair each pair runs in a process of
-its own (the mesh made in each; plain first and X-FEM first in turn): on
-this VM the memory-bound kernels of one solve slow down as the process ages
-(the same solve's products 46.6 s, then 85.0 s; docs/speed.md), so pairs
-late in a process measure its age as much as the solver.
+its own, plain first and X-FEM first in turn (demos/bench_pairs.py: why).
 
 t_solve: the solver's own work (X-FEM: phantom transform, GAMG and crack
 band set-up, CG; plain: GAMG set-up and CG). t_total: X-FEM model,
@@ -33,13 +30,14 @@ import json
 import pathlib
 import platform
 import statistics
-import subprocess
 import sys
 import time
 
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[0] / "python"))
 sys.path.insert(0, str(HERE))
+
+import bench_pairs  # noqa: E402
 
 #: dofs of the penny family at a/h = 20 (demos/penny_crack.py) with its
 #: enrichment radius 0.25 a, and with a radius of 2 h_front: the size grows
@@ -137,13 +135,7 @@ def worker(spec: dict) -> dict:
     t_mesh = time.perf_counter() - t0
     pairs = []
     for _ in range(spec["repeats"]):
-        if spec.get("xfem_first"):
-            x = _xfem(scene)
-            p = _plain(scene)
-        else:
-            p = _plain(scene)
-            x = _xfem(scene)
-        pairs.append((p, x))
+        pairs.append(bench_pairs.in_order(spec, lambda: _plain(scene), lambda: _xfem(scene)))
     med = lambda key, which: statistics.median(pr[which][key] for pr in pairs)  # noqa: E731
     p_last, x_last = pairs[-1]
     return {"a_over_h": spec["n"], "radius": radius, "ndofs": x_last["ndofs"], "plain_ndofs": p_last["ndofs"],
@@ -161,20 +153,6 @@ def worker(spec: dict) -> dict:
             "peak_rss_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6}
 
 
-def _merged(parts: list[dict]) -> dict:
-    """One row from one-pair rows of separate processes: medians of their
-    times and ratios, each pair's ratio, the largest peak."""
-    row = dict(parts[-1])
-    for key in [k for k in row if k.startswith(("t_solve_", "t_setup_", "t_total_", "t_assemble", "ratio_"))]:
-        row[key] = statistics.median(p[key] for p in parts)
-    row["ratios_solve"] = [p["ratios_solve"][0] for p in parts]
-    row["xfem_first"] = [p["xfem_first"] for p in parts]
-    row["repeats"] = len(parts)
-    row["processes"] = len(parts)
-    row["peak_rss_gb"] = max(p["peak_rss_gb"] for p in parts)
-    return row
-
-
 def main(argv=None) -> dict:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--sizes", nargs="+", default=["1e5", "5e5", "1e6"], help="target X-FEM dofs")
@@ -184,9 +162,7 @@ def main(argv=None) -> dict:
     ap.add_argument("--geometric", action="store_true",
                     help="penny_crack's fixed radius 0.25 a instead (7.5 front elements at 1e6 dofs: the tip "
                          "dofs' torus, split into the exact band and the inexact outer block, docs/speed.md)")
-    ap.add_argument("--process-per-pair", action="store_true",
-                    help="each pair in a fresh process (the mesh made in each), plain first and X-FEM first in "
-                         "turn: on a VM whose memory-bound kernels slow down as a process ages (docs/speed.md)")
+    bench_pairs.add_argument(ap)
     ap.add_argument("--json", type=pathlib.Path, default=pathlib.Path("results/bench_3d.json"))
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
@@ -198,17 +174,7 @@ def main(argv=None) -> dict:
     rows = []
     for size in args.sizes:
         spec = {"n": divisions_for(float(size), args.radius_in_h), "repeats": args.repeats, "radius_in_h": args.radius_in_h}
-        specs = ([dict(spec, repeats=1, xfem_first=bool(k % 2)) for k in range(args.repeats)]
-                 if args.process_per_pair else [spec])
-        parts = []
-        for sp in specs:
-            proc = subprocess.run([sys.executable, __file__, "--worker", json.dumps(sp)], capture_output=True,
-                                  text=True)
-            if proc.returncode != 0:
-                parts = [{"status": f"failed: {proc.stderr.strip()[-400:]}"}]
-                break
-            parts.append(json.loads(proc.stdout.strip().splitlines()[-1]))
-        row = parts[0] if len(parts) == 1 else _merged(parts)
+        row = bench_pairs.run(__file__, spec, args.process_per_pair)
         row["target_dofs"] = float(size)
         rows.append(row)
         if "status" in row:

@@ -10,7 +10,9 @@ One subprocess per size (peak_rss_gb is that whole run's ru_maxrss). In
 it, after a warm-up on a small mesh, --repeats pairs: the plain solve, then
 the contact solve, one after the other (the machine's speed drifts between
 processes and with the other jobs on it). Rows: medians of the pairs'
-times and ratios, and the load average of the machine over the run.
+times and ratios, and the load average of the machine over the run. With
+--process-per-pair each pair runs in a process of its own, plain first and
+the contact solve first in turn (demos/bench_pairs.py: why).
 
 t_solve: the solver's own work. Contact: the phantom transform and the
 contact solve (the saddle point [K B^T; B 0] by the Schwarz sweep {MUMPS
@@ -41,13 +43,14 @@ import os
 import pathlib
 import platform
 import statistics
-import subprocess
 import sys
 import time
 
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parents[0] / "python"))
 sys.path.insert(0, str(HERE))
+
+import bench_pairs  # noqa: E402
 
 
 def _xfem(scene) -> dict:
@@ -107,8 +110,7 @@ def worker(spec: dict) -> dict:
     pairs = []
     for _ in range(spec["repeats"]):
         setup.clear()
-        p = bench_3d._plain(scene)
-        x = _xfem(scene)
+        p, x = bench_pairs.in_order(spec, lambda: bench_3d._plain(scene), lambda: _xfem(scene))
         x["t_contact_setup"] = sum(setup)
         # The contact system's set-up (B, M) out of t_solve, in t_solve_with_setup.
         if x["setup_in_solve"]:
@@ -138,7 +140,7 @@ def worker(spec: dict) -> dict:
             "t_amg_setup": x_last["t_amg_setup"],
             "iterations_plain": p_last["iterations"], "method": x_last["method"],
             "relative_residual": x_last["relative_residual"], "max_pressure": x_last["max_pressure"],
-            "repeats": spec["repeats"], "load_average": [load0, os.getloadavg()[0]],
+            "repeats": spec["repeats"], "xfem_first": bool(spec.get("xfem_first")), "load_average": [load0, os.getloadavg()[0]],
             "peak_rss_gb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6}
 
 
@@ -147,6 +149,7 @@ def main(argv=None) -> dict:
     ap.add_argument("--sizes", nargs="+", default=["1e5", "5e5", "1e6"], help="target X-FEM dofs")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--friction", action="store_true", help="Coulomb friction mu = 0.3 (the crack slips)")
+    bench_pairs.add_argument(ap)
     ap.add_argument("--json", type=pathlib.Path, default=pathlib.Path("results/bench_contact_3d.json"))
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
@@ -157,14 +160,12 @@ def main(argv=None) -> dict:
     rows = []
     for size in args.sizes:
         spec = {"n": bench_3d.divisions_for(float(size), 2.0), "repeats": args.repeats, "friction": args.friction}
-        proc = subprocess.run([sys.executable, __file__, "--worker", json.dumps(spec)], capture_output=True, text=True)
-        if proc.returncode != 0:
-            rows.append({"target_dofs": float(size), "status": f"failed: {proc.stderr.strip()[-600:]}"})
-            print(rows[-1]["status"], flush=True)
-            continue
-        row = json.loads(proc.stdout.strip().splitlines()[-1])
+        row = bench_pairs.run(__file__, spec, args.process_per_pair)
         row["target_dofs"] = float(size)
         rows.append(row)
+        if "status" in row:
+            print(row["status"], flush=True)
+            continue
         print(f"{row['ndofs']} dofs, {row['multipliers']} multipliers: contact solve {row['t_solve_contact']:.1f} s "
               f"({row['contact_iterations']} contact it., Krylov {row['krylov_iterations']}), plain "
               f"{row['t_solve_plain']:.1f} s ({row['iterations_plain']} its): ratio {row['ratio_solve']:.2f}; totals "
