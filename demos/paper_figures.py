@@ -17,7 +17,7 @@ paths and the SIF rings of their peers, the cost of a step; issue 17), the fatig
 tables; issue 29), the life without a mesh from beta and da/dN table files
 and its compiled speed (issue 38) and the hard-case suite (not with --quick).
 
-The 3D steps and the hard cases run in a second process beside the 2D steps
+The 3D penny, front and contact steps and the hard cases run in a second process beside the 2D steps
 (the machine's second core; --serial for one process), and the three steps
 that time X-FEM against plain DOLFINx run alone at the end. results.md ends
 with the wall time of each step.
@@ -265,8 +265,9 @@ def step_20(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
 #: The steps that time X-FEM against plain solves: they run alone, after the
 #: others (a second process beside them would disturb their figures).
 TIMING_STEPS = (8, 11, 14)
-#: The steps run by a second process beside the first (the 3D ones and the
-#: hard cases: about half the untimed work), unless --serial.
+#: The steps run by a second process beside the first (the 3D penny, fronts
+#: and contact, and the hard cases: about half the untimed work; the short
+#: 3D growth step balances the first), unless --serial.
 SECOND_LANE = (16, 17, 18, 20)
 
 
