@@ -35,6 +35,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "python"))
 import cracklip as cl  # noqa: E402
 from cracklip.io.files import write_json  # noqa: E402
 from cracklip.exact.williams import WilliamsField, WilliamsField3D  # noqa: E402
+from cracklip.scene.cell_size import edge_pairs  # noqa: E402
 from cracklip.scene.crack_surface import PolygonCrack  # noqa: E402
 from cracklip.scene.material import strain, stress  # noqa: E402
 
@@ -574,7 +575,7 @@ def case_3d_edges(n):
         phi = np.asarray(sol.model.geometries[0].phi)
         cells = sol.model.cells
         on = phi[cells] == 0.0
-        edges = sum(int(np.count_nonzero(on[:, i] & on[:, j])) for i, j in sol.model.crack_type.EDGES)
+        edges = sum(int(np.count_nonzero(on[:, i] & on[:, j])) for i, j in zip(*edge_pairs(cells.shape[1])))
         return {"nodes_on_crack": _on_crack_nodes(sol), "cell_edges_on_crack": edges, **_classes(sol)}
     b.facts = facts
     return b

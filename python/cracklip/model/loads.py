@@ -30,6 +30,7 @@ import typing
 import numpy as np
 
 from ..errors import InputError
+from ..scene.cell_size import edge_pairs
 from ..scene.processes import agree, reduced, total
 from ..scene.stress_field import LinearStress, evaluate_stress, tensor_to_voigt
 
@@ -110,7 +111,7 @@ def assemble_point_forces(model, group: str | None = None) -> np.ndarray:
     scale = float(np.ptp(x, axis=0).max()) if n_own else 0.0
     if comm is not None:
         scale = float(reduced(scale, "MAX", comm))
-    ea, eb = (list(v) for v in zip(*model.crack_type.EDGES))
+    ea, eb = edge_pairs(model.cells.shape[1])
     for k, pf in enumerate(model.scene.point_forces):
         if group is not None and pf.group != group:
             continue

@@ -66,8 +66,6 @@ class CrackModel(abc.ABC):
     END: typing.ClassVar[str]
     #: The measure of the crack, as messages name it: "length" (a curve) or "area" (a surface).
     EXTENT: typing.ClassVar[str]
-    #: The vertex pairs of a cell's edges.
-    EDGES: typing.ClassVar[tuple[tuple[int, int], ...]]
     #: The stress components of the Voigt columns.
     VOIGT: typing.ClassVar[tuple[str, ...]]
     #: The scene Options method giving the C++ quadrature options of these

@@ -37,7 +37,6 @@ class CurveCrackModel(CrackModel):
     SPLIT = (1, 2)
     END = "tip"
     EXTENT = "length"
-    EDGES = ((0, 1), (1, 2), (2, 0))
     #: Triangles' quadrature options: the tip rules.
     QUADRATURE = Options.quadrature_options
     VOIGT = ("xx", "yy", "xy")

@@ -71,7 +71,6 @@ class SurfaceCrackModel(CrackModel):
     SPLIT = (1, 2)
     END = "front"
     EXTENT = "area"
-    EDGES = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
     #: Tetrahedra's quadrature options: the front rules.
     QUADRATURE = Options.quadrature_options_3d
     VOIGT = VOIGT
