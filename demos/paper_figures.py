@@ -304,10 +304,16 @@ def main(argv=None) -> int:
         cmd = [sys.executable, __file__, "--out", str(out), "--summary-part", str(part), "--steps",
                *map(str, second), *(["--quick"] if args.quick else [])]
         log(f"steps {', '.join(map(str, second))} in a second process (--serial: one process)")
-        child = subprocess.Popen(cmd)
+        child = subprocess.Popen(cmd, preexec_fn=_die_with_parent)
     first = [k for k in numbers if k not in TIMING_STEPS and (args.serial or k not in SECOND_LANE)]
-    for k in first:
-        steps[f"step_{k}"](args, out, summary, clock)
+    try:
+        for k in first:
+            steps[f"step_{k}"](args, out, summary, clock)
+    except BaseException:  # (a failed step: the second process is stopped too, not left running)
+        if child is not None and child.poll() is None:
+            child.terminate()
+            child.wait()
+        raise
     if child is not None:
         clock.start("(waiting for the second process)")
         if child.wait() != 0:
@@ -325,6 +331,15 @@ def main(argv=None) -> int:
     (out / "results.md").write_text(markdown(summary) + "\n")
     log(f"wrote {out / 'results.md'} and {out / 'results.json'} in {summary['wall_time']:.0f} s")
     return 0
+
+
+def _die_with_parent() -> None:
+    """In the second process before it starts (Linux): SIGTERM when the first
+    process dies, however it dies (a signal ends it without a Python
+    exception: Ctrl-C, kill)."""
+    import ctypes
+    import signal
+    ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
 
 
 #: results.json's keys in the order of the steps (whichever process ran them).
