@@ -5,11 +5,13 @@ the other in one process.
 With --process-per-pair each pair runs in a process of its own (the mesh
 made in each), plain first and X-FEM first in turn, and the rows of the
 processes are merged: medians of their times, every pair's ratio. Why: on
-this VM the memory-bound kernels of a solve slow down as the process ages
-(the same 1e6-dof solve's matrix products 46.6 s, then 85.0 s; CPU time =
-wall, no steal, no page faults; docs/speed.md), so pairs late in one
-process measure its age as much as the solver, and the later solve of a
-pair is the slower.
+this VM, with glibc's default 4 KB pages, the memory-bound kernels of a
+solve slow down as the process ages (the same 1e6-dof solve's matrix
+products 46.6 s, then 85.0 s; CPU time = wall, no steal, few page faults),
+so pairs late in one process measure its age as much as the solver, and
+the later solve of a pair is the slower. With huge pages
+(GLIBC_TUNABLES=glibc.malloc.hugetlb=1, docs/speed.md) that slowing was
+gone.
 """
 from __future__ import annotations
 
