@@ -3,7 +3,13 @@ import os
 import signal
 import sys
 
-from .cli import finish_processes, main
+from .solvers.huge_pages import reexec_with_huge_pages
+
+# First of all: malloc on huge pages where the kernel gives them on request
+# only (solvers/huge_pages.py; CRACKLIP_HUGE_PAGES=0 keeps this process).
+reexec_with_huge_pages()
+
+from .cli import finish_processes, main  # noqa: E402
 
 # Die quietly when the reader of stdout goes away (`... | head`), as Unix
 # tools do, instead of PETSc's signal handler aborting MPI with a report.

@@ -14,6 +14,7 @@ import numpy as np
 from .. import __version__
 from ..errors import CracklipError, SolverError
 from ..solvers.checked import blas_library
+from ..solvers.huge_pages import in_use as huge_pages_in_use
 from .files import atomic_path
 
 
@@ -27,7 +28,8 @@ def versions() -> dict[str, str]:
     import scipy
     return {"cracklip": __version__, "dolfinx": dolfinx.__version__, "petsc4py": petsc4py.__version__,
             "numpy": np.__version__, "scipy": scipy.__version__,
-            "python": platform.python_version(), "blas": blas_library()}
+            "python": platform.python_version(), "blas": blas_library(),
+            "malloc": "huge pages (GLIBC_TUNABLES)" if huge_pages_in_use() else "default pages"}
 
 
 def ensure_output_dir(path: str | pathlib.Path) -> pathlib.Path:
