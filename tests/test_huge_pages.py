@@ -10,8 +10,8 @@ import sys
 import pytest
 from conftest import ROOT
 
-from cracklip.solvers.huge_pages import (glibc_version, in_use, restart_wanted, started_as_module, thp_mode,
-                                         with_tunable)
+from cracklip.solvers.huge_pages import (glibc_version, in_use, pages, restart_wanted, started_as_module,
+                                         thp_mode, with_tunable)
 
 BLOCK = ROOT / "demos" / "scenes" / "block_uniform_pressure.toml"
 ENV = {"PYTHONPATH": str(ROOT / "python"), "PATH": "/usr/bin:/bin", "MPLBACKEND": "Agg"}
@@ -36,6 +36,14 @@ def test_tunable_added_to_the_others():
     env = with_tunable({"GLIBC_TUNABLES": "glibc.malloc.arena_max=2", "X": "1"})
     assert env == {"GLIBC_TUNABLES": "glibc.malloc.arena_max=2:glibc.malloc.hugetlb=1", "X": "1"}
     assert in_use(env) and not in_use({"GLIBC_TUNABLES": "glibc.malloc.hugetlb=0"})
+
+
+def test_pages_named_by_what_gives_them():
+    on = {"GLIBC_TUNABLES": "glibc.malloc.hugetlb=1"}
+    assert pages(on, "madvise") == "huge pages (GLIBC_TUNABLES)"
+    assert pages({}, "madvise") == "default pages"
+    assert pages(on, "never") == "default pages"  # (the tunable asks, the kernel gives none)
+    assert pages({}, "always") == "huge pages (kernel THP always)"
 
 
 def test_thp_mode_reads_the_bracketed_word(tmp_path):
@@ -64,7 +72,9 @@ def test_cli_run_records_its_pages(tmp_path, opt_out):
                        cwd=ROOT, env=env, capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stderr
     malloc = json.loads((tmp_path / "results.json").read_text())["versions"]["malloc"]
-    huge = restart_wanted(env, thp_mode(), glibc_version())
-    assert malloc == ("huge pages (GLIBC_TUNABLES)" if huge else "default pages")
+    mode = thp_mode()
+    huge = restart_wanted(env, mode, glibc_version())
+    assert malloc == ("huge pages (GLIBC_TUNABLES)" if huge else
+                      "huge pages (kernel THP always)" if mode == "always" else "default pages")
     if opt_out:
-        assert malloc == "default pages"
+        assert malloc != "huge pages (GLIBC_TUNABLES)"

@@ -14,7 +14,7 @@ import numpy as np
 from .. import __version__
 from ..errors import CracklipError, SolverError
 from ..solvers.checked import blas_library
-from ..solvers.huge_pages import in_use as huge_pages_in_use
+from ..solvers.huge_pages import pages
 from .files import atomic_path
 
 
@@ -29,7 +29,7 @@ def versions() -> dict[str, str]:
     return {"cracklip": __version__, "dolfinx": dolfinx.__version__, "petsc4py": petsc4py.__version__,
             "numpy": np.__version__, "scipy": scipy.__version__,
             "python": platform.python_version(), "blas": blas_library(),
-            "malloc": "huge pages (GLIBC_TUNABLES)" if huge_pages_in_use() else "default pages"}
+            "malloc": pages()}
 
 
 def ensure_output_dir(path: str | pathlib.Path) -> pathlib.Path:

@@ -13,7 +13,7 @@ The command line (``python3 -m cracklip``) starts itself again with the
 tunable when it would help and is not set (reexec_with_huge_pages, before
 anything heavy is loaded); ``CRACKLIP_HUGE_PAGES=0`` keeps the process as it
 is. A script that imports cracklip sets the tunable itself, before Python
-starts (docs/speed.md). results.json's ``versions`` says whether it was on.
+starts (docs/speed.md). results.json's ``versions.malloc`` says which pages a run had (pages()).
 """
 from __future__ import annotations
 
@@ -32,6 +32,16 @@ def in_use(environ: dict | None = None) -> bool:
     """Whether this process's malloc was told to use huge pages."""
     environ = os.environ if environ is None else environ
     return any(item.strip() == f"{TUNABLE}=1" for item in environ.get("GLIBC_TUNABLES", "").split(":"))
+
+
+def pages(environ: dict | None = None, mode: str | None = None) -> str:
+    """Which pages malloc's memory gets, as results.json's versions.malloc
+    says it: huge pages because the kernel gives them always, or because
+    it gives them on request and the tunable asks; else default pages."""
+    mode = thp_mode() if mode is None else mode
+    if mode == "always":
+        return "huge pages (kernel THP always)"
+    return "huge pages (GLIBC_TUNABLES)" if mode == "madvise" and in_use(environ) else "default pages"
 
 
 def thp_mode(path: str = THP_ENABLED) -> str:
