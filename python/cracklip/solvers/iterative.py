@@ -74,6 +74,7 @@ from .phantom import phantom_basis, transform_matrix
 from .saddle import BorderedOperator, SaddleOperator
 from .checked import scipy_from_petsc
 from .checked import factor_call, create_lu_solver, out_of_memory
+from .band_update import BandSolve, KeptBand
 from ..scene.cell_size import mean_cell_size
 from ..scene.processes import on_all
 
@@ -496,6 +497,10 @@ class IterativeSolver(LinearSolver):
         # the interpreter exits.
         self._owned: list[typing.Any] = []
         self._release = weakref.finalize(self, _release, self._owned)
+        #: The last crack band factored, updated where the next one changed
+        #: in few rows (a contact or friction state iteration's solves).
+        self._kept_band = KeptBand(_factor_band, self.n)
+        self._owned.append(self._kept_band)
 
     #: Whether GAMG's coarsest solve is replaced by _ConstrainedCoarse (the
     #: contact solves' constrained coarse space; a serial LU of the coarse
@@ -690,7 +695,8 @@ class IterativeSolver(LinearSolver):
             split = m == 0 and symmetric and self._outer.size > 0
             band_dofs = self._band_inner if split else np.concatenate([
                 self._contact_band(m if contact_points is None else contact_points), self._multiplier_rows(A)])
-            shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric, self._outer if split else None, self._block0)
+            shell = _Schwarz(A, pc0, self.n, band_dofs, symmetric, self._outer if split else None, self._block0,
+                             self._kept_band.factor)
             t_band = time.perf_counter() - t0 - t_amg
             if A.getType() == PETSc.Mat.Type.PYTHON and m > 0 and self._coarse is not None:
                 self._coarse.constrain(A.getPythonContext().Ba_petsc)
@@ -722,6 +728,9 @@ class IterativeSolver(LinearSolver):
                       "method": method, "iterations": int(its),
                       "band": int(A.getComm().tompi4py().allreduce(band_dofs.size)),  # (over the processes)
                       "outer": int(shell.outer.size if shell is not None and shell.outer is not None else 0),
+                      # (the band solved from the kept factorisation of an earlier one: band_update.py)
+                      "band_updated": bool(shell is not None and shell.band.updated),
+                      "band_update_rank": int(shell.band.rank if shell is not None else 0),
                       "amg_dofs": self._n_amg, "setup_reused": reused, "rtol": KRYLOV_RTOL if rtol is None else rtol,
                       "t_setup": t_setup, "t_amg_setup": t_amg, "t_band_setup": t_band,
                       "t_total": time.perf_counter() - t0})
@@ -841,7 +850,8 @@ class _Schwarz:
     started, 10.3 and 12.2 s not."""
 
     def __init__(self, A: PETSc.Mat, amg: PETSc.PC, n0: int, band_dofs: np.ndarray, symmetric: bool = True,
-                 outer_dofs: np.ndarray | None = None, block0: np.ndarray | None = None):
+                 outer_dofs: np.ndarray | None = None, block0: np.ndarray | None = None,
+                 band_factor: typing.Callable[[np.ndarray, PETSc.Mat, bool], BandSolve] | None = None):
         # Under MPI (a distributed A) band_dofs are this process's owned band
         # rows (global numbers) and block 0 its owned rows below n0, or of
         # block0 (sorted: a part of them, GAMG's operator's rows) if given.
@@ -872,7 +882,10 @@ class _Schwarz:
             # transpose of A1's (no copy: 0.06 GB at 8e4 dofs in 3D).
             self.A01 = None if symmetric else A.createSubMatrix(self.is0, self.is1)
             A11 = A.createSubMatrix(self.is1, self.is1)
-        self.band = _factor_band(A11, symmetric)
+        # The band's exact solve: factored, or a kept factorisation updated
+        # (band_factor: KeptBand.factor; solvers/band_update.py).
+        self.band = (BandSolve(_factor_band(A11, symmetric), owned=True) if band_factor is None
+                     else band_factor(band, A11, symmetric))
         A11.destroy()
         self.r0 = PETSc.Vec().create(comm)
         self.r0.setSizes((self.is0.getLocalSize(), n0))
