@@ -71,7 +71,7 @@ def test_few_changed_multiplier_rows_are_solved_exactly_from_the_kept_factorisat
 def test_symmetric_change_rows_and_columns():
     """A symmetric saddle point's multiplier changed in its row and column:
     the change is split into the rows and the remaining columns (rank 2 per
-    multiplier) and solved to 1e-12."""
+    multiplier) and solved to 1e-12 from the kept LDL^T factorisation."""
     dofs = np.arange(N + M)
     rng = np.random.default_rng(5)
     c = rng.standard_normal(N) * (rng.random(N) < 0.05)
@@ -85,8 +85,8 @@ def test_symmetric_change_rows_and_columns():
         (np.ones(len(C)), (np.arange(len(C)), C)), shape=(len(C), N + M))
     assert abs(recon - E).max() == 0.0
     kept = _kept()
-    kept.factor(dofs, petsc_from_scipy(A0), False).destroy()
-    bs = kept.factor(dofs, petsc_from_scipy(A1), False)
+    kept.factor(dofs, petsc_from_scipy(A0), True).destroy()  # (LDL^T, as a symmetric saddle point's band)
+    bs = kept.factor(dofs, petsc_from_scipy(A1), True)
     rhs = rng.standard_normal(N + M)
     exact = sp.linalg.spsolve(A1.tocsc(), rhs)
     assert np.abs(_solve(bs, rhs) - exact).max() <= 1e-12 * np.abs(exact).max()

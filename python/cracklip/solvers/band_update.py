@@ -29,6 +29,7 @@ half its element sizes (1.6e5 dofs, a 3.6e4-row band, 10 friction
 iterations): see docs/contact.md."""
 from __future__ import annotations
 
+import logging
 import typing
 
 import numpy as np
@@ -47,6 +48,8 @@ MIN_RANK = 16
 #: S's condition number above which the band is factored again (the
 #: update's rounding grows with it).
 MAX_CONDITION = 1e8
+
+logger = logging.getLogger(__name__)
 
 
 def _csr(A: PETSc.Mat) -> sp.csr_matrix:
@@ -136,11 +139,15 @@ class KeptBand:
     def _update(self, A: sp.csr_matrix, dofs: np.ndarray) -> BandSolve | None:
         limit = max(MIN_RANK, MAX_RANK_FRACTION * A.shape[0])
         multipliers = np.flatnonzero(np.sort(dofs) >= self.first_multiplier)
-        # The multiplier rows first (a few thousand rows: cheap), which alone
-        # rule out most large changes (a new state everywhere).
+        # The multiplier rows first (a few thousand rows: cheap), which rule
+        # out most large changes (a new state everywhere) before E is formed:
+        # k is their number, twice that for a symmetric saddle point (their
+        # columns changed too).
         Em = (A[multipliers] - self.A0[multipliers]).tocsr()
         Em.eliminate_zeros()
-        if np.count_nonzero(np.diff(Em.indptr)) > limit:
+        k_rows = np.count_nonzero(np.diff(Em.indptr))
+        if k_rows * (2 if self.symmetric else 1) > limit:
+            logger.debug("band: %d multiplier rows changed (limit %d): factored again", k_rows, limit)
             return None
         E = (A - self.A0).tocsr()
         E.eliminate_zeros()
@@ -151,6 +158,8 @@ class KeptBand:
         R, ER, C, EC = low_rank_change(E, multipliers)
         k = len(R) + len(C)
         if k > limit:
+            logger.debug("band: a change of rank %d (%d rows, %d columns; limit %d): factored again", k, len(R),
+                         len(C), limit)
             return None
         n = A.shape[0]
         U = np.zeros((n, k))
@@ -161,7 +170,9 @@ class KeptBand:
                       format="csr")
         G = self._solve_block(U)
         S = np.eye(k) + V @ G
-        if np.linalg.cond(S) > MAX_CONDITION:
+        cond = np.linalg.cond(S)
+        if cond > MAX_CONDITION:
+            logger.debug("band: the update's capacitance matrix has condition number %.2g: factored again", cond)
             return None
         self.updates += 1
         self.last_rank = k
