@@ -105,7 +105,9 @@ class KeptBand:
     """The last band factored (its dofs, its matrix, its factorisation),
     kept by an IterativeSolver across its solves; factor() gives the
     BandSolve of a new band: the kept factorisation updated (same dofs, a
-    change of small rank), or a new one that is kept instead.
+    change of small rank), or a new one that is kept instead. factor() takes
+    the band's matrix over (keeps or destroys it); a band solved only once,
+    as without contact, is read into scipy only if a next one comes.
     first_multiplier: the first multiplier's global dof (the stiffness's
     size); rows at or beyond it are multiplier rows."""
 
@@ -113,28 +115,39 @@ class KeptBand:
         self._factor = factor
         self.first_multiplier = first_multiplier
         self.dofs: np.ndarray | None = None
-        self.A0: sp.csr_matrix | None = None
+        # (the factorisation's own operator, so kept at no cost; scipy once an
+        # update has read it)
+        self._A0: PETSc.Mat | sp.csr_matrix | None = None
         self.ksp: PETSc.KSP | None = None
         self.symmetric: bool | None = None
-        #: (updates, factorisations) so far; the last update's rank.
-        self.updates = self.factorisations = self.last_rank = 0
+        #: Updates and factorisations so far.
+        self.updates = self.factorisations = 0
 
     def factor(self, dofs: np.ndarray, A11: PETSc.Mat, symmetric: bool) -> BandSolve:
         if A11.getComm().getSize() > 1:  # (distributed band: no update)
             self.factorisations += 1
-            return BandSolve(self._factor(A11, symmetric), owned=True)
-        A = _csr(A11)
-        if (self.ksp is not None and self.symmetric == symmetric and np.array_equal(self.dofs, dofs)
-                and A.shape == self.A0.shape):
+            try:
+                return BandSolve(self._factor(A11, symmetric), owned=True)
+            finally:
+                A11.destroy()
+        if self.ksp is not None and self.symmetric == symmetric and np.array_equal(self.dofs, dofs):
+            A = _csr(A11)
             update = self._update(A, dofs)
             if update is not None:
+                A11.destroy()
                 return update
         self.free()
         self.ksp = self._factor(A11, symmetric)
-        self.dofs, self.A0, self.symmetric = np.array(dofs, copy=True), A, symmetric
+        self.dofs, self._A0, self.symmetric = np.array(dofs, copy=True), A11, symmetric
         self.factorisations += 1
-        self.last_rank = 0
         return BandSolve(self.ksp, owned=False)
+
+    def _A0_csr(self) -> sp.csr_matrix:
+        if isinstance(self._A0, PETSc.Mat):
+            A0 = _csr(self._A0)
+            self._A0.destroy()
+            self._A0 = A0
+        return self._A0
 
     def _update(self, A: sp.csr_matrix, dofs: np.ndarray) -> BandSolve | None:
         limit = max(MIN_RANK, MAX_RANK_FRACTION * A.shape[0])
@@ -143,17 +156,17 @@ class KeptBand:
         # out most large changes (a new state everywhere) before E is formed:
         # k is their number, twice that for a symmetric saddle point (their
         # columns changed too).
-        Em = (A[multipliers] - self.A0[multipliers]).tocsr()
+        A0 = self._A0_csr()
+        Em = (A[multipliers] - A0[multipliers]).tocsr()
         Em.eliminate_zeros()
         k_rows = np.count_nonzero(np.diff(Em.indptr))
         if k_rows * (2 if self.symmetric else 1) > limit:
             logger.debug("band: %d multiplier rows changed (limit %d): factored again", k_rows, limit)
             return None
-        E = (A - self.A0).tocsr()
+        E = (A - A0).tocsr()
         E.eliminate_zeros()
         if E.nnz == 0:
             self.updates += 1
-            self.last_rank = 0
             return BandSolve(self.ksp, owned=False, updated=True)
         R, ER, C, EC = low_rank_change(E, multipliers)
         k = len(R) + len(C)
@@ -175,7 +188,6 @@ class KeptBand:
             logger.debug("band: the update's capacitance matrix has condition number %.2g: factored again", cond)
             return None
         self.updates += 1
-        self.last_rank = k
         return BandSolve(self.ksp, owned=False, G=G, S=scipy.linalg.lu_factor(S), V=V, updated=True)
 
     def _solve_block(self, U: np.ndarray) -> np.ndarray:
@@ -195,6 +207,8 @@ class KeptBand:
     def free(self) -> None:
         if self.ksp is not None:
             self.ksp.destroy()
-        self.ksp = self.A0 = self.dofs = None
+        if isinstance(self._A0, PETSc.Mat):
+            self._A0.destroy()
+        self.ksp = self._A0 = self.dofs = None
 
     destroy = free  # (IterativeSolver's release calls destroy)

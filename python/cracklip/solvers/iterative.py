@@ -883,10 +883,13 @@ class _Schwarz:
             self.A01 = None if symmetric else A.createSubMatrix(self.is0, self.is1)
             A11 = A.createSubMatrix(self.is1, self.is1)
         # The band's exact solve: factored, or a kept factorisation updated
-        # (band_factor: KeptBand.factor; solvers/band_update.py).
-        self.band = (BandSolve(_factor_band(A11, symmetric), owned=True) if band_factor is None
-                     else band_factor(band, A11, symmetric))
-        A11.destroy()
+        # (band_factor: KeptBand.factor, which takes A11 over;
+        # solvers/band_update.py).
+        if band_factor is None:
+            self.band = BandSolve(_factor_band(A11, symmetric), owned=True)
+            A11.destroy()
+        else:
+            self.band = band_factor(band, A11, symmetric)
         self.r0 = PETSc.Vec().create(comm)
         self.r0.setSizes((self.is0.getLocalSize(), n0))
         self.r0.setUp()
