@@ -16,7 +16,7 @@ band set-up, CG; plain: GAMG set-up and CG). t_total: X-FEM model,
 assembly (standard + enriched), loads and solve; plain: DOLFINx assembly
 and solve (the mesh is made once, outside both). band, outer: the dofs of
 the crack band (solved exactly, MUMPS) and of the outer block (ICC; 0 when
-the band is not split, solvers/iterative.py).
+the band is not split, solvers/sweep_blocks.py).
 
     /usr/bin/python3 demos/bench_3d.py --json results/bench_3d.json          # radius 2 h_front
     /usr/bin/python3 demos/bench_3d.py --geometric --json results/b.json    # radius 0.25 a

@@ -111,11 +111,11 @@ def plain_cg_gamg(A, b, x_nodes, prefix: str) -> tuple:
     bench_solvers and bench_3d."""
     import numpy as np
     from petsc4py import PETSc
-    from cracklip.solvers import iterative
+    from cracklip.solvers import iterative, near_nullspace
     comm = A.getComm().tompi4py()  # under mpirun: x_nodes are this process's owned nodes
     n = A.getLocalSize()[0]
     total = comm.allreduce(np.concatenate([x_nodes.sum(axis=0), [len(x_nodes)]]))
-    Q = iterative.rigid_motions(x_nodes - total[:-1] / total[-1], np.arange(len(x_nodes)), n, comm)
+    Q = near_nullspace.rigid_motions(x_nodes - total[:-1] / total[-1], np.arange(len(x_nodes)), n, comm)
     vecs = []
     for j in range(Q.shape[1]):
         w = A.createVecRight()

@@ -12,7 +12,7 @@ from petsc4py import PETSc
 from cracklip.solvers import band_update
 from cracklip.solvers.band_update import KeptBand, low_rank_change
 from cracklip.solvers.checked import petsc_from_scipy
-from cracklip.solvers.iterative import _factor_band
+from cracklip.solvers.schwarz import factor_band
 
 N, M = 400, 40  # stiffness dofs of the band, multipliers (rows N .. N + M - 1)
 
@@ -41,7 +41,7 @@ def _solve(bs, rhs: np.ndarray) -> np.ndarray:
 
 
 def _kept():
-    return KeptBand(_factor_band, first_multiplier=N)
+    return KeptBand(factor_band, first_multiplier=N)
 
 
 def test_few_changed_multiplier_rows_are_solved_exactly_from_the_kept_factorisation():

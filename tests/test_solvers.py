@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 from cracklip.model.assembly import assemble_system
-from cracklip.solvers import choice, iterative, phantom, saddle
+from cracklip.solvers import choice, iterative, near_nullspace, phantom, saddle, sweep_blocks
 from cracklip.solvers.checked import blas_library, scipy_from_petsc
 from scipy.sparse.csgraph import connected_components
 
@@ -114,7 +114,7 @@ def test_phantom_basis_splits_a_through_crack(square_h01):
     assert pieces((wrong.T @ K @ wrong).tocsr()) == 1
     # The near-nullspace (a rigid motion on both copies) has zero energy:
     # K' R = 0 on every row away from the pins (whose columns are eliminated).
-    R = iterative.rigid_modes(model)
+    R = near_nullspace.rigid_modes(model)
     assert np.allclose(R.T @ R, np.eye(3), atol=1e-12)
     lay = model.layout
     node = np.concatenate([np.arange(lay.num_std_nodes), np.asarray(lay.node)]).repeat(2)
@@ -128,10 +128,20 @@ def test_phantom_basis_splits_a_through_crack(square_h01):
         obj.destroy()
 
 
+def test_band_rings_follow_the_multipliers_in_2d_only():
+    """One ring without contact; in 2D ceil(0.07 m) rings for m multipliers
+    (at most MAX_BAND_RINGS), in 3D CONTACT_BAND_RINGS_3D whatever m."""
+    rings = sweep_blocks.band_rings
+    assert rings(2, 0) == rings(3, 0) == 1
+    assert rings(2, 1) == 1 and rings(2, 15) == 2 and rings(2, 212) == 15
+    assert rings(2, 10 ** 6) == sweep_blocks.MAX_BAND_RINGS
+    assert rings(3, 1) == rings(3, 10 ** 6) == sweep_blocks.CONTACT_BAND_RINGS_3D
+
+
 def test_crack_band_holds_every_enriched_dof_and_a_ring(square_h01):
     scene = block.scene_for(10)
     model = cl.create_model(scene)
-    band = iterative.crack_band(model)
+    band = sweep_blocks.crack_band(model)
     lay = model.layout
     nstd = lay.num_std_nodes
     assert np.array_equal(band[band >= 2 * nstd], np.arange(2 * nstd, model.num_dofs))
@@ -144,11 +154,11 @@ def test_crack_band_holds_every_enriched_dof_and_a_ring(square_h01):
     # Grown by rings through the stiffness's graph: the next ring of cells.
     from cracklip.model.assembly import assemble_system
     A, b, _ = assemble_system(model)
-    wider = iterative.grow_band(A, band, 1)
+    wider = sweep_blocks.grow_band(A, band, 1)
     nodes2 = np.unique(wider[wider < 2 * nstd] // 2)
     ring2 = np.unique(model.cells[np.isin(model.cells, std_nodes).any(axis=1)])
     assert np.array_equal(nodes2, ring2)
-    assert np.array_equal(wider, iterative.crack_band(model, rings=2))
+    assert np.array_equal(wider, sweep_blocks.crack_band(model, rings=2))
     A.destroy()
     b.destroy()
 
@@ -225,7 +235,7 @@ def test_gamg_leaves_the_tip_dofs_out_in_3d():
     it = iterative.IterativeSolver(model)
     K, _ = it.transform(A)
     amg, _ = it._block0_pc(K)
-    tip = iterative.tip_dofs(model)
+    tip = sweep_blocks.tip_dofs(model)
     keep = np.setdiff1d(np.arange(it.n), tip)
     assert tip.size > 1000 and np.array_equal(it._block0, keep)
     Kg = amg.getOperators()[0]
@@ -250,11 +260,11 @@ def test_outer_torus_block_gives_the_direct_answers():
     split = cl.solve(small_penny("iterative"))
     rec = split.solver["solves"][-1]
     assert rec["outer"] > 0 and rec["band"] > 0
-    whole = iterative.crack_band(split.model, iterative.BAND_RINGS[3])
+    whole = sweep_blocks.crack_band(split.model, sweep_blocks.BAND_RINGS[3])
     assert rec["band"] < whole.size < rec["band"] + rec["outer"]  # (they overlap)
-    outer = iterative.outer_torus(split.model, iterative.OUTER_FROM_H, iterative.OUTER_WITH_STANDARD)
+    outer = sweep_blocks.outer_torus(split.model, sweep_blocks.OUTER_FROM_H, sweep_blocks.OUTER_WITH_STANDARD)
     assert rec["outer"] == outer.size
-    assert rec["amg_dofs"] == rec["size"] - iterative.tip_dofs(split.model).size  # (TIP_DOFS_OUT_OF_GAMG)
+    assert rec["amg_dofs"] == rec["size"] - sweep_blocks.tip_dofs(split.model).size  # (TIP_DOFS_OUT_OF_GAMG)
     assert rec["relative_residual"] <= split.model.scene.options.residual_tol
     assert rec["iterations"] <= 30
     assert abs(split.strain_energy() - direct.strain_energy()) <= MATCH * abs(direct.strain_energy())

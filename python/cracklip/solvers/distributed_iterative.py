@@ -38,7 +38,7 @@ parallel MUMPS factorisation holds them all), the contact band grown
 through the distributed graph of T^T A T, CG (GMRES for friction's
 unsymmetric rows), the residual checked on the original system. GAMG's
 coarsest solve is left unconstrained (constrained_coarse: the serial
-path's _ConstrainedCoarse is a serial LU of the coarse operator): on the
+path's ConstrainedCoarse is a serial LU of the coarse operator): on the
 test scenes 2 processes took 0 to 3 CG iterations more than serial (the
 block under pressure 22 / 19, the crack at a hole 22 / 21, the cantilever
 26 / 25 at its first active set).
@@ -53,8 +53,10 @@ from petsc4py import PETSc
 
 from ..scene.processes import on_all
 from .phantom import changed_symmetric, phantom_change
-from .iterative import (IterativeSolver, crack_band, product_data_cleared, rigid_mode_nodes, rigid_motions,
-                        tip_dofs)
+from .iterative import IterativeSolver
+from .pc_setup import product_data_cleared
+from .near_nullspace import rigid_mode_nodes, rigid_motions
+from .sweep_blocks import crack_band, tip_dofs
 if typing.TYPE_CHECKING:
     from ..model.model import XfemModel
 

@@ -133,7 +133,7 @@ class SaddleOperator:
         return saddle_matrix(scipy_from_petsc(self.K), self.B, self.active, self.S)
 
     def band_blocks(self, band: np.ndarray) -> tuple[PETSc.Mat, PETSc.Mat, PETSc.Mat]:
-        """(A1, A01, A11) of _Schwarz for the sorted band dofs, from K's band
+        """(A1, A01, A11) of Schwarz for the sorted band dofs, from K's band
         rows and the small blocks: A1 = the band's rows, A01 = the
         stiffness rows at the band's columns (A1's transpose, the matrix
         being symmetric), A11 = the band's rows and columns."""
@@ -169,7 +169,7 @@ class BorderedOperator:
     block merge of its ~4e7 entries per semi-smooth iteration.
     Ba_petsc: the rows of C that hold as constraints in these states (the
     closed normal rows, the sticking tangential ones), which keep
-    IterativeSolver's coarse space closed (_ConstrainedCoarse)."""
+    IterativeSolver's coarse space closed (ConstrainedCoarse)."""
 
     def __init__(self, K: PETSc.Mat, C: sp.csr_matrix, rows: sp.csr_matrix, constraints: sp.csr_matrix):
         comm = PETSc.COMM_SELF
@@ -218,7 +218,7 @@ class BorderedOperator:
         return assembled_bordered(scipy_from_petsc(self.K), self.C, self.rows)
 
     def band_blocks(self, band: np.ndarray) -> tuple[PETSc.Mat, PETSc.Mat, PETSc.Mat]:
-        """(A1, A01, A11) of _Schwarz for the sorted band dofs (every
+        """(A1, A01, A11) of Schwarz for the sorted band dofs (every
         multiplier among them): A1 = the band's rows, A01 = the stiffness
         rows at the band's columns ([K C^T]'s: K's band rows transposed, K
         being symmetric, and C^T), A11 = the band's rows and columns."""
