@@ -391,69 +391,137 @@ def violation(p: np.ndarray, tau: np.ndarray, gap: np.ndarray, dslip: np.ndarray
 
 def _iterate(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, loose=None):
     """The state iteration (Coulomb, or Tresca with a given bound) from the
-    given states, each linear solve by saddle (friction_saddle). When a set of states comes back, the iterate of least
-    violation in the cycle is taken if its violation is below
-    CYCLE_TOLERANCE (info["note"] says so), else _Cycle is raised.
+    given states, each linear solve by saddle (friction_saddle): _StateIteration."""
+    return _StateIteration(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, loose).run()
+
+
+class _Iterate(typing.NamedTuple):
+    """One solve of the state iteration and what it classifies: the
+    solution (u, lam_n, lam_t), whether it was solved exactly, the next
+    states, directions and Newton terms, and whether they repeat."""
+    u: np.ndarray
+    lam_n: np.ndarray
+    lam_t: np.ndarray
+    exact: bool
+    state: np.ndarray
+    sign: np.ndarray
+    beta: np.ndarray
+    same_states: bool
+    settled: bool
+
+
+class _StateIteration:
+    """The state iteration from the given states, each linear solve by
+    saddle (friction_saddle): solve, classify (step), and either stop
+    (settled on an exact solve), go on with the new states, or deal with a
+    set of states met before (cycle). When a set of states comes back, the
+    iterate of least violation in the cycle is taken if its violation is
+    below CYCLE_TOLERANCE (info["note"] says so), else _Cycle is raised.
     loose: the Krylov tolerance of the inexact inner solves (INEXACT_RTOL;
     None: every solve exact). An inexact iterate never ends the iteration
     nor decides a cycle: where its states and directions repeat, they are
     solved again exactly; where its states cycle, the iteration goes on
     from there with exact solves only, and if these cycle too, it starts
     again from the given states with exact solves."""
-    mu = float(opts.friction)
-    bilateral = opts.contact == "bilateral"
-    lumped = np.asarray(cs.M.sum(axis=1)).ravel()
-    k = tangent_components(cs)
-    # States and (2D) slip signs identify an iterate; a 3D direction varies
-    # continuously (its fixed point settles within DIRECTION_TOLERANCE), so
-    # there the states alone do.
-    key = ((lambda st, sg: st.tobytes() + np.sign(sg).astype(np.int8).tobytes()) if k == 1  # noqa: E731
-           else (lambda st, sg: st.tobytes()))
-    seen = {key(state, sign): len(history)}
-    start = len(history)
-    first_state, first_sign = state, sign
-    went_on = False  # (exact solves from where an inexact cycle was met)
-    iterates: dict[int, tuple] = {}
-    x0 = None
-    beta = None  # the slip rows' Newton terms across sigma (3D), from the last iterate
-    rtol = loose  # this solve's Krylov tolerance (None: exact)
-    for it in range(1, opts.max_active_set_iterations + 1):
-        u, lam_n, lam_t, Bu, Btu = saddle(state, sign, bound, beta, x0, rtol)
-        exact, rtol = rtol is None, loose  # (the next solve's: loose unless said otherwise below)
-        x0 = np.concatenate([u, lam_n, lam_t])
-        gap = cs.stabilized_gap(Bu - g_n, state != OPEN, lam_n)
-        dslip = per_multiplier(Btu - g_t - s_old, k)
+
+    def __init__(self, saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, loose=None):
+        self.saddle, self.cs, self.g_n, self.g_t, self.s_old = saddle, cs, g_n, g_t, s_old
+        self.opts, self.c, self.bound, self.history = opts, c, bound, history
+        self.mu = float(opts.friction)
+        self.bilateral = opts.contact == "bilateral"
+        self.lumped = np.asarray(cs.M.sum(axis=1)).ravel()
+        self.k = tangent_components(cs)
+        self.first = (state, sign)
+        self.state, self.sign = state, sign
+        self.beta = None  # the slip rows' Newton terms across sigma (3D), from the last iterate
+        self.loose = self.rtol = loose  # the inner solves' and this solve's Krylov tolerance (None: exact)
+        self.x0 = None
+        self.went_on = False  # (exact solves from where an inexact cycle was met)
+        self._forget()
+
+    def key(self, state: np.ndarray, sign: np.ndarray) -> bytes:
+        """What identifies an iterate: the states and (2D) the slip signs; a
+        3D direction varies continuously (its fixed point settles within
+        DIRECTION_TOLERANCE), so there the states alone."""
+        if self.k == 1:
+            return state.tobytes() + np.sign(sign).astype(np.int8).tobytes()
+        return state.tobytes()
+
+    def _forget(self) -> None:
+        """Start the record of states met (and of the iterates a cycle
+        chooses from) at the current states."""
+        self.seen = {self.key(self.state, self.sign): len(self.history)}
+        self.iterates: dict[int, tuple] = {}
+        self.start = len(self.history)
+
+    def run(self) -> tuple[np.ndarray, dict]:
+        for _ in range(self.opts.max_active_set_iterations):
+            it = self.step()
+            if it.settled and not it.exact:  # checked by an exact solve from here
+                logger.info("friction iteration %d: settled on an inexact solve; solved again exactly",
+                            len(self.history))
+                self.state, self.sign, self.beta, self.rtol = it.state, it.sign, it.beta, None
+                continue
+            if it.settled:
+                return it.u, {"lambda": it.lam_n, "lambda_t": it.lam_t, "state": self.state, "sign": self.sign,
+                              "active": self.state != OPEN, "iterations": len(self.history),
+                              "history": self.history}
+            if it.same_states and self.k > 1:  # the same states, the directions still turning: not a cycle
+                self.sign, self.beta = it.sign, it.beta
+                continue
+            this = self.key(it.state, it.sign)
+            if this in self.seen:
+                done = self.cycle(it, this)
+                if done is not None:
+                    return done
+                continue
+            self.seen[this] = len(self.history)
+            self.state, self.sign, self.beta = it.state, it.sign, it.beta
+        raise ContactError(f"the friction states did not settle in {self.opts.max_active_set_iterations} "
+                           f"iterations (states per iteration: {self.history}); raise max_active_set_iterations or "
+                           "split the load into more increments (options.load_steps)")
+
+    def step(self) -> _Iterate:
+        """One linear solve with the current states, its iterate recorded
+        (with its violation) and classified; sets the next solve's Krylov
+        tolerance (loose, or the forcing term once the states repeat)."""
+        cs, k = self.cs, self.k
+        u, lam_n, lam_t, Bu, Btu = self.saddle(self.state, self.sign, self.bound, self.beta, self.x0, self.rtol)
+        exact, self.rtol = self.rtol is None, self.loose  # (the next solve's: loose unless said otherwise below)
+        self.x0 = np.concatenate([u, lam_n, lam_t])
+        gap = cs.stabilized_gap(Bu - self.g_n, self.state != OPEN, lam_n)
+        dslip = per_multiplier(Btu - self.g_t - self.s_old, k)
         tau = per_multiplier(-lam_t, k)
-        iterates[len(history)] = (u, lam_n, lam_t, state, sign,
-                                  violation(-lam_n, tau, gap, dslip, lumped, c, mu, state, sign, bound))
-        new_state, new_sign, new_beta = classify(-lam_n, tau, gap, dslip, lumped, c, mu, bilateral, state, sign,
-                                                 bound, newton=True)
+        self.iterates[len(self.history)] = (u, lam_n, lam_t, self.state, self.sign,
+                                            violation(-lam_n, tau, gap, dslip, self.lumped, self.c, self.mu,
+                                                      self.state, self.sign, self.bound))
+        new_state, new_sign, new_beta = classify(-lam_n, tau, gap, dslip, self.lumped, self.c, self.mu,
+                                                 self.bilateral, self.state, self.sign, self.bound, newton=True)
         counts = {name: int(np.count_nonzero(new_state == code)) for code, name in STATE_NAMES.items()}
-        history.append(counts)
-        logger.info("friction iteration %d: %d open, %d stick, %d slip", len(history), counts["open"],
+        self.history.append(counts)
+        logger.info("friction iteration %d: %d open, %d stick, %d slip", len(self.history), counts["open"],
                     counts["stick"], counts["slip"])
-        same_states = np.array_equal(new_state, state)
+        same_states = bool(np.array_equal(new_state, self.state))
         if k == 1:
-            settled = same_states and np.array_equal(np.sign(new_sign), np.sign(sign))
+            settled = same_states and np.array_equal(np.sign(new_sign), np.sign(self.sign))
         else:
-            turn = float(np.abs(new_sign - sign).max(initial=0.0))
+            turn = float(np.abs(new_sign - self.sign).max(initial=0.0))
             settled = same_states and turn <= DIRECTION_TOLERANCE
             if same_states and not settled:
-                logger.info("friction iteration %d: slip directions turned by up to %.2g", len(history), turn)
-                if rtol is not None:  # Newton on the directions: the forcing term
-                    rtol = None if FORCING * turn ** 2 <= EXACT_BELOW else min(rtol, FORCING * turn ** 2)
-        if settled and not exact:  # checked by an exact solve from here
-            logger.info("friction iteration %d: settled on an inexact solve; solved again exactly", len(history))
-            state, sign, beta, rtol = new_state, new_sign, new_beta, None
-            continue
-        if settled:
-            return u, {"lambda": lam_n, "lambda_t": lam_t, "state": state, "sign": sign,
-                       "active": state != OPEN, "iterations": len(history), "history": history}
-        if same_states and k > 1:  # the same states, the directions still turning: not a cycle
-            sign, beta = new_sign, new_beta
-            continue
-        this = key(new_state, new_sign)
-        if this in seen and not exact:
+                logger.info("friction iteration %d: slip directions turned by up to %.2g", len(self.history), turn)
+                if self.rtol is not None:  # Newton on the directions: the forcing term
+                    forcing = FORCING * turn ** 2
+                    self.rtol = None if forcing <= EXACT_BELOW else min(self.rtol, forcing)
+        return _Iterate(u, lam_n, lam_t, exact, new_state, new_sign, new_beta, same_states, bool(settled))
+
+    def cycle(self, it: _Iterate, this: bytes) -> tuple[np.ndarray, dict] | None:
+        """The states of `it` were met before: go on exactly (an inexact
+        cycle), start again from the first states exactly (the exact solves
+        went on from an inexact cycle and cycle too), or settle the cycle by
+        its iterate of least violation (returned) or raise _Cycle. None: the
+        iteration goes on."""
+        n = len(self.history)
+        if not it.exact:
             # A cycle met with inexact solves: the iteration goes on with exact
             # ones from the states it has reached (warm); where they settle,
             # that is a fixed point of the exact iteration. (Starting again
@@ -461,42 +529,36 @@ def _iterate(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, 
             # crack of demos/scenes/corner_crack_closure.toml at half its sizes
             # took 10 more solves, not 4.)
             logger.info("friction iteration %d: the states came back on an inexact solve; the iteration goes on "
-                        "with exact solves", len(history))
-            loose = rtol = None
-            state, sign, beta = new_state, new_sign, new_beta
-            seen, iterates, start = {key(state, sign): len(history)}, {}, len(history)
-            went_on = True
-            continue
-        if this in seen and went_on:
+                        "with exact solves", n)
+            self.loose = self.rtol = None
+            self.state, self.sign, self.beta = it.state, it.sign, it.beta
+            self._forget()
+            self.went_on = True
+            return None
+        if self.went_on:
             # They cycle too: which iterate of a cycle is taken depends on the
             # path, so the iteration starts again from the first states with
             # exact solves, and takes the exact iteration's.
             logger.info("friction iteration %d: the states cycle; the iteration starts again from the first "
-                        "states with exact solves", len(history))
-            state, sign, beta = first_state, first_sign, None
-            seen, iterates, start = {key(state, sign): len(history)}, {}, len(history)
-            went_on = False
-            continue
-        if this in seen:
-            first = seen[this]
-            flips = np.flatnonzero(state != new_state)
-            best = min((i for i in iterates if i >= first), key=lambda i: iterates[i][5])
-            bu, bn, bt, bs, bg, bv = iterates[best]
-            logger.debug("cycle violations: %s", {i: iterates[i][5] for i in iterates if i >= first})
-            if bv <= CYCLE_TOLERANCE:
-                note = (f"the friction states cycled (period {len(history) - first}, multipliers "
-                        f"{flips[:8].tolist()}); the iterate of least violation of the contact and friction laws "
-                        f"was taken: {bv:.1e} of the largest pressure")
-                logger.info("friction: %s", note)
-                return bu, {"lambda": bn, "lambda_t": bt, "state": bs, "sign": bg, "active": bs != OPEN,
-                            "iterations": len(history), "history": history, "note": note, "violation": bv}
-            raise _Cycle(f"the friction states cycle: iteration {len(history)} gives the states of "
-                         f"{'the start' if first == start else f'iteration {first}'} again (period "
-                         f"{len(history) - first}); multipliers {flips[:8].tolist()} flip between "
-                         + ", ".join(f"{STATE_NAMES[int(a)]}/{STATE_NAMES[int(b)]}" for a, b in
-                                     zip(state[flips[:8]], new_state[flips[:8]])), lam_n, new_state, new_sign)
-        seen[this] = len(history)
-        state, sign, beta = new_state, new_sign, new_beta
-    raise ContactError(f"the friction states did not settle in {opts.max_active_set_iterations} iterations "
-                       f"(states per iteration: {history}); raise max_active_set_iterations or split the "
-                       "load into more increments (options.load_steps)")
+                        "states with exact solves", n)
+            (self.state, self.sign), self.beta = self.first, None
+            self._forget()
+            self.went_on = False
+            return None
+        first = self.seen[this]
+        flips = np.flatnonzero(self.state != it.state)
+        best = min((i for i in self.iterates if i >= first), key=lambda i: self.iterates[i][5])
+        bu, bn, bt, bs, bg, bv = self.iterates[best]
+        logger.debug("cycle violations: %s", {i: self.iterates[i][5] for i in self.iterates if i >= first})
+        if bv <= CYCLE_TOLERANCE:
+            note = (f"the friction states cycled (period {n - first}, multipliers {flips[:8].tolist()}); the "
+                    "iterate of least violation of the contact and friction laws was taken: "
+                    f"{bv:.1e} of the largest pressure")
+            logger.info("friction: %s", note)
+            return bu, {"lambda": bn, "lambda_t": bt, "state": bs, "sign": bg, "active": bs != OPEN,
+                        "iterations": n, "history": self.history, "note": note, "violation": bv}
+        raise _Cycle(f"the friction states cycle: iteration {n} gives the states of "
+                     f"{'the start' if first == self.start else f'iteration {first}'} again (period "
+                     f"{n - first}); multipliers {flips[:8].tolist()} flip between "
+                     + ", ".join(f"{STATE_NAMES[int(a)]}/{STATE_NAMES[int(b)]}" for a, b in
+                                 zip(self.state[flips[:8]], it.state[flips[:8]])), it.lam_n, it.state, it.sign)
