@@ -23,7 +23,7 @@ import pytest
 
 import cracklip as cl
 from cracklip.exact import spherical_cap as sc
-from cracklip.fracture import sif_3d
+from cracklip.fracture import front_points, sif_3d
 from cracklip.scene.crack_surface import SurfaceCrack
 from cracklip.scene.mesh_3d import create_box, crack_refinements
 
@@ -103,7 +103,8 @@ def test_spherical_cap_k_needs_the_surface_curvature():
     sol._sif_cache.clear()
     sol._front_sifs.clear()  # (the raw front integrals are kept on the solution too)
     mp = pytest.MonkeyPatch()
-    mp.setattr(sif_3d, "project", planar_surface)
+    mp.setattr(sif_3d, "project", planar_surface)  # (the integral's)
+    mp.setattr(front_points, "project", planar_surface)  # (the domains' radii)
     try:
         err_flat = np.linalg.norm(_k(sol.stress_intensity_factors(0)) - REF, axis=1) / SCALE
     finally:

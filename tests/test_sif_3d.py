@@ -90,7 +90,8 @@ def test_minimum_points_on_a_coarse_penny(tension_solution):
     not shorten the hats below COUNT_HAT_ELEMENTS = 3 elements (9 points,
     as the spacing rule alone); two-element hats (13 points) had K_I up to
     1.20 % off here and 4.5 % low everywhere on a penny at a/4."""
-    from cracklip.fracture.sif_3d import COUNT_HAT_ELEMENTS, compute_front_sifs
+    from cracklip.fracture.front_points import COUNT_HAT_ELEMENTS
+    from cracklip.fracture.sif_3d import compute_front_sifs
     opts = tension_solution.model.scene.options
     old = opts.sif_points
     try:
@@ -196,7 +197,7 @@ def test_hat_follows_front_curvature():
     b/10: steps of HAT_ELEMENTS h = 0.075 where rho is larger, shortened to
     HAT_CURVATURE rho_min = 0.0625 within a hat of the ends; each step spans
     the same integral of ds / l; on a circle the steps stay equal."""
-    from cracklip.fracture import sif_3d
+    from cracklip.fracture import front_points
     a, b, h = 1.0, 0.25, 0.025
     phi = np.linspace(0.0, 2 * np.pi, 4001)[:-1]
     x = np.column_stack([a * np.cos(phi), b * np.sin(phi)])
@@ -204,12 +205,12 @@ def test_hat_follows_front_curvature():
     s = np.concatenate([[0.0], np.cumsum(seg)[:-1]])
     L = float(seg.sum())
     rho = (a * a * np.sin(phi) ** 2 + b * b * np.cos(phi) ** 2) ** 1.5 / (a * b)
-    l = sif_3d.wanted_hats(s, 1.0 / rho, h, L, True)
-    assert l.max() == pytest.approx(sif_3d.HAT_ELEMENTS * h)
-    end = sif_3d.HAT_CURVATURE * b * b / a
+    l = front_points.wanted_hats(s, 1.0 / rho, h, L, True)
+    assert l.max() == pytest.approx(front_points.HAT_ELEMENTS * h)
+    end = front_points.HAT_CURVATURE * b * b / a
     assert l.min() == pytest.approx(end, rel=1e-6)
-    assert np.all(l[np.minimum(s, L - s) <= sif_3d.HAT_ELEMENTS * h] == pytest.approx(end, rel=1e-6))
-    st = sif_3d.station_positions(s, l, L, True)
+    assert np.all(l[np.minimum(s, L - s) <= front_points.HAT_ELEMENTS * h] == pytest.approx(end, rel=1e-6))
+    st = front_points.station_positions(s, l, L, True)
     steps = np.diff(np.append(st, L))
     sl, ll = np.append(s, L), np.append(l, l[0])
     fine = np.linspace(0.0, L, 200001)
@@ -218,12 +219,12 @@ def test_hat_follows_front_curvature():
     assert np.ptp(per_step) < 1e-3 * per_step.mean() and abs(per_step.mean() - 1.0) < 0.05
     at_end = np.argmin(np.minimum(st, L - st))       # phi = 0, the end of the major axis
     assert steps[at_end] == pytest.approx(end, rel=0.05)
-    assert steps[np.argmin(np.abs(st - 0.25 * L))] == pytest.approx(sif_3d.HAT_ELEMENTS * h, rel=0.05)
+    assert steps[np.argmin(np.abs(st - 0.25 * L))] == pytest.approx(front_points.HAT_ELEMENTS * h, rel=0.05)
     # a circle of radius 1 at h = 0.05: equal steps of about 3 h
     c = np.linspace(0.0, 2 * np.pi, 1001)[:-1]
-    st = sif_3d.station_positions(c, sif_3d.wanted_hats(c, np.ones_like(c), 0.05, 2 * np.pi, True), 2 * np.pi,
+    st = front_points.station_positions(c, front_points.wanted_hats(c, np.ones_like(c), 0.05, 2 * np.pi, True), 2 * np.pi,
                                   True)
-    assert len(st) == round(2 * np.pi / (sif_3d.HAT_ELEMENTS * 0.05))
+    assert len(st) == round(2 * np.pi / (front_points.HAT_ELEMENTS * 0.05))
     assert np.ptp(np.diff(np.append(st, 2 * np.pi))) < 1e-9
 
 
@@ -234,7 +235,7 @@ def test_hat_deconvolution_unequal_steps():
     sin(s) + 0.1 cos(3 s) on a loop of length 2 pi: equal steps and steps
     shrinking to a third over part of the loop leave errors far below the
     averages' (measured ratio below 1/20)."""
-    from cracklip.fracture import sif_3d
+    from cracklip.fracture import front_points, sif_3d
 
     def f(s):
         return 1.0 + 0.3 * np.sin(s) + 0.1 * np.cos(3 * s)
@@ -248,7 +249,7 @@ def test_hat_deconvolution_unequal_steps():
 
     L = 2 * np.pi
     for st in (np.linspace(0.0, L, 41)[:-1],
-               sif_3d.station_positions(np.linspace(0, L, 2001)[:-1], np.where(
+               front_points.station_positions(np.linspace(0, L, 2001)[:-1], np.where(
                    np.abs(np.linspace(0, L, 2001)[:-1] - 2.0) < 0.6, 0.05, 0.15), L, True)):
         lm = (st - np.roll(st, 1)) % L
         lp = (np.roll(st, -1) - st) % L
@@ -289,7 +290,7 @@ def test_kinked_triangulated_surface_keeps_the_mesh_frame():
     and gave K_I from -623 to +46 (K0 1.128); the mesh's frame where the fit
     turns it by more than FIT_TURN gives K_I within 2 % of the flat penny's
     (1.135 .. 1.156 measured) with a warning naming the kink."""
-    from cracklip.fracture import sif_3d
+    from cracklip.fracture import front, front_points
     crack = _kinked_penny(1.0, 0.1, [0.0, 0.0, 0.65, 1.0])
     flat = EllipticalCrack((0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 1.0, axis=(0.0, 1.0, 0.0), name="penny")
     mesh = create_box(-L, -L, -L, L, L, L, H_FAR, fronts=crack_refinements([flat], 1.0 / N, H_FAR, growth=0.1))
@@ -299,12 +300,12 @@ def test_kinked_triangulated_surface_keeps_the_mesh_frame():
                      tractions=[cl.Traction("zmax", (0.0, 0.0, 1.0)), cl.Traction("zmin", (0.0, 0.0, -1.0))],
                      options=cl.Options(enrichment="vector", radius=0.25, solver="iterative", sif_points=8))
     sol = cl.solve(scene)
-    fr = sif_3d.crack_front(sol.model, 0)
-    assert fr.fit_turn.max() > 45.0 and np.all(fr.unfitted == (fr.fit_turn > sif_3d.FIT_TURN))
+    fr = front.crack_front(sol.model, 0)
+    assert fr.fit_turn.max() > 45.0 and np.all(fr.unfitted == (fr.fit_turn > front.FIT_TURN))
     geo = np.asarray(sol.model.geometries[0].front["frame"])
-    assert np.all(np.einsum("ni,ni->n", fr.frame[:, 0], geo[:, 0]) > math.cos(math.radians(sif_3d.FIT_TURN)))
+    assert np.all(np.einsum("ni,ni->n", fr.frame[:, 0], geo[:, 0]) > math.cos(math.radians(front.FIT_TURN)))
     _, K = sifs_of(sol)
     assert np.all(np.abs(K[:, 0] / K0 - 1.0) < 0.03), K[:, 0] / K0
-    notes = sif_3d.front_points(sol.model, 0)[0].warnings
+    notes = front_points.front_points(sol.model, 0)[0].warnings
     assert any("kinked near" in w and "keep the mesh's frame" in w for w in notes), notes
 

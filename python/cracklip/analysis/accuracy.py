@@ -308,7 +308,7 @@ def level_of(solution, size_factor: float, seconds: float) -> Level:
     """The Level of a solved mesh."""
     closed, lengths = {}, {}
     if _front(solution):
-        from ..fracture.sif_3d import crack_front
+        from ..fracture.front import crack_front
         for ci in range(len(solution.model.cracks)):
             fr = crack_front(solution.model, ci)
             closed.update({(ci, k): bool(c) for k, c in enumerate(fr.closed)})

@@ -1,16 +1,10 @@
-"""Stress intensity factors K_I, K_II, K_III along 3D crack fronts: front
-points, domains chosen per point, the domain interaction integral on three
-domains per point, and their spread (sif.py does the tips of 2D cracks: the
-geometry differs, hats along a curved front against a disc around one
-point; both give rows of one schema, sif.SIF_KEYS).
-
-Front points. Each piece of a crack's front (a closed loop, or an open
-polyline between two points of the part's boundary) carries front points at
-arc-length steps of about HAT_ELEMENTS element sizes, shortened to the
-front's radius of curvature where that is smaller (HAT_CURVATURE; a loop: n
-steps round it; an open piece: both ends included). The front is the P1 polyline of
-the crack's level sets (CrackGeometry3D.front); a point's frame (e1
-propagation, e2 normal, e3 tangent) is interpolated along it.
+"""Stress intensity factors K_I, K_II, K_III along 3D crack fronts: the
+domain interaction integral on three domains per front point, and their
+spread (sif.py does the tips of 2D cracks: the geometry differs, hats along
+a curved front against a disc around one point; both give rows of one
+schema, sif.SIF_KEYS). The front as a curve: fracture/front.py; the front
+points, their hats and domains: fracture/front_points.py; the positions
+asked for and the ends' values: fracture/front_sampling.py.
 
 The virtual crack extension of front point k is q_k(x) d_k, d_k = e1 of the
 point, with q_k = q_s(s) q_r(r) at the mesh nodes (s, r the arc length of
@@ -39,16 +33,10 @@ shear: fracture/lip_tractions.py), and K_I = E' I_I / 2, K_II = E' I_II / 2,
 K_III = mu I_III, E' = E / (1 - nu^2). The normalisation is the integral of
 the P1 q along the front polyline.
 
-Domains. The radius of the largest domain is sif_radius, else
-DEFAULT_ELEMENTS element sizes at the point (the mean edge of the front's
-cells within the hat), clipped so that the domain stays clear of the part's
-boundary (except, at a point where the front meets the boundary, the free
-surface it meets: K there is reported and flagged free_surface, since the
-singularity is no longer the square root of the Williams fields), of other
-cracks and of the front itself where it comes back (a thin crack), and
-within half the front's radius of curvature. K is computed on
-DOMAIN_FRACTIONS of that radius; the largest gives K, the three their
-spread, and a spread above SPREAD_WARNING of the K scale is warned about.
+Domains (front_points.py: their radii, clear of the boundary, other
+cracks and the front's own curvature): K is computed on DOMAIN_FRACTIONS of
+the largest radius; the largest gives K, the three their spread, and a
+spread above SPREAD_WARNING of the K scale is warned about.
 
 Conventions (cracklip.exact.embedded_cracks): K_I > 0 opens the crack,
 K_II > 0 when the + side moves along +e1 relative to the - side, K_III > 0
@@ -63,37 +51,28 @@ import math
 import typing
 
 import numpy as np
-import scipy.spatial
 
 from .. import _cracklip
 from ..errors import InputError
 from ..model.cracks.surface import split_enriched
 from ..scene.cell_size import cell_sizes
-from ..scene.crack_surface import EllipticalCrack, SurfaceCrack
+from ..scene.crack_surface import EllipticalCrack
 from ..scene.processes import reduced
-from ..scene.symmetry import SymmetryCondition
 from . import front_sampling
+from .front import (Front, cells_of_nodes, crack_front, lip_points, model_cache, model_comm, node_tree, owned_segments,
+                    project, wrap)
+from .front_points import DOMAIN_FRACTIONS, FrontPoint, front_points, point_at, stations
 from .lip_tractions import has_lip_traction, lip_traction
 from .sif import complete_rows
 
 logger = logging.getLogger(__name__)
 
-#: Default radius of the largest domain, in element sizes at the front point.
-DEFAULT_ELEMENTS = 4.0
-
-#: The domains' radii as fractions of the largest.
-DOMAIN_FRACTIONS = (0.5, 0.75, 1.0)
 
 #: q_r is 1 up to this fraction of the domain radius, then linear to 0
 #: (0: linear from the front; on a penny crack at a/h = 20 it halved the
 #: scatter of K_II against 0.5).
 R_IN_FRACTION = 0.0
 
-#: Distance between neighbouring front points (the hat's half-width), in
-#: element sizes at the front (mean edges of the front's cells). Penny crack
-#: at a/h = 20: scatter of K_I along the front +-0.6 % with 1, +-0.2 % with
-#: 2, +-0.08 % with 3; K_II, K_III 4.8e-3, 1.2e-3, 8.6e-4 of K.
-HAT_ELEMENTS = 3.0
 
 #: K on the hat is the hat's average of K along the front: with half-widths
 #: l- behind and l+ ahead, K + K' (l+ - l-) / 3 + K'' (l+^2 - l+ l- + l-^2)
@@ -103,63 +82,6 @@ HAT_ELEMENTS = 3.0
 #: free-surface points.
 HAT_CORRECTION = True
 
-#: Where the front curves strongly the hat's half-width also stays below
-#: HAT_CURVATURE radii of curvature rho of the front (rho from the largest
-#: |kappa| within the element-size hat of the point), but not below
-#: MIN_HAT_ELEMENTS element sizes: the front points are spaced by the local
-#: half-width l(s) = clip(HAT_CURVATURE rho, MIN_HAT_ELEMENTS h,
-#: HAT_ELEMENTS h) (equal steps of the integral of ds / l), so that K does
-#: not vary much more across a hat than the hat correction can remove.
-#: Irwin ellipse b/a = 0.25 (rho = b^2/a at the ends of the major axis: 1.75,
-#: 2.5, 3.5 elements at h = b/7, b/10, b/14; there the fixed hat spans 40
-#: degrees of parametric angle where K falls by a quarter), max error with
-#: fixed hats -> with these: 2.54 -> 2.99 % at b/7, 1.75 -> 1.27 % at b/10,
-#: 0.91 -> 0.76 % at b/14 (both with the hat correction below); a fraction
-#: 0.75 gave 1.20 % / 0.87 %. Fronts with rho >= HAT_ELEMENTS h everywhere
-#: (the penny at a/10 and finer) keep equal steps.
-HAT_CURVATURE = 1.0
-#: Hats narrower than 2 elements scatter (penny, HAT_ELEMENTS above: +-0.6 %
-#: at 1 element); Irwin b/a = 0.25 at b/7: max 3.36 % with a floor of 1, 2.99
-#: % with 2 (K_II, K_III noise 1.3 % -> 1.0 %).
-MIN_HAT_ELEMENTS = 2.0
-
-#: Options.sif_points shortens the hats to this many element sizes at most:
-#: on a coarse front 16 points would make two-element hats, whose K runs
-#: low (penny at a/4, 12 points of 2.1 elements: K_I 4.5 % low at every
-#: point; 8 points of 3.1 elements: -0.8 .. +0.4 %).
-COUNT_HAT_ELEMENTS = HAT_ELEMENTS
-
-#: A domain's radius stays below this fraction of the smallest radius of
-#: curvature of the front and of the crack's surface (1 / max(|kappa_f|,
-#: |kappa_11|, |kappa_33|): the curvature terms hold for h = 1 + kappa_f x1
-#: - kappa_33 x2 > 0, the surface-following coordinates while the quadric
-#: describes the surface; the change of the curvatures along the front is
-#: not kept).
-CURVATURE_FRACTION = 0.75
-
-#: A triangulated crack's surface and front are fitted (frames,
-#: curvatures) over this many front element sizes around each front vertex
-#: (and at least three facet edges: SurfaceCrack.front_geometry; five let a
-#: coarse triangulation's fit reach 0.6 of the front's radius and run 8 % low).
-FIT_ELEMENTS = 4.0
-
-#: ... and over at most this fraction of the front's smallest radius of
-#: curvature (from the mesh's front polyline).
-FIT_CURVATURE = 0.5
-
-#: The fit assumes a smooth surface. Where a grown surface is kinked within
-#: the fit's reach (a strip that kinked by 30 degrees next to a free-surface
-#: end, the next one back in plane) the quadric cannot follow it: on the
-#: surface crack a/c0 = 1 grown to a/t = 0.24 on a mesh of a/8 it turned the
-#: normal by 90-127 degrees from the mesh's (kappa_11 up to 9e3 against an
-#: element size of 0.035), e1 pointed into the crack, int q (e1 . d) ds came
-#: out negative and the run broke off. Where the fitted normal departs from
-#: the mesh's (the level sets' gradient in the front's cell) by more than
-#: FIT_TURN degrees, the vertex keeps the mesh's frame and the polyline's
-#: kappa_f (the surface's curvatures 0), as an elliptical crack's front does,
-#: with a warning. On that front the fit's turn was below 10 degrees at the
-#: 78 smooth vertices, 23-127 at the 24 in the kinked part.
-FIT_TURN = 15.0
 
 #: Spread above this fraction of the K scale is warned about.
 SPREAD_WARNING = 0.01
@@ -182,567 +104,9 @@ ENRICHED_DEGREE = 4
 #: scatter by 15 % (cones from cells' front lines that are not the front).
 FAR_DEGREE = 6
 
-#: Gauss points per lip facet direction for the lip terms.
-LIP_POINTS = 6
-
-#: Keep the terms of the front's curvature (module doc); False drops them
-#: (straight-front auxiliary fields in each point's frame), for measuring
-#: their effect.
-CURVATURE_TERMS = True
 
 #: Quadrature points per chunk of front points (bounds the memory).
 CHUNK_POINTS = 400_000
-
-
-@dataclasses.dataclass
-class FrontPoint:
-    """A point of a crack's front where K is computed, with its domains.
-
-    Attributes:
-        crack, index: crack index, index of the point along the crack's front
-            (piece after piece).
-        piece: the front piece (CrackGeometry3D.front piece_offsets).
-        closed: whether the piece is a loop.
-        s: arc length from the start of the piece; length: the piece's length.
-        x: (3,) the point, on the front polyline.
-        frame: (3, 3) rows e1 (propagation), e2 (normal), e3 (tangent).
-        hat: the larger distance to the neighbouring front points (the hat's
-            half-width); hat_before, hat_after: the distances to the previous
-            and the next one (the hat is 1 at the point, 0 at both).
-        curvature: the front's curvature there (1/a on a penny of radius a).
-        element_size: mean edge of the front's cells within the hat.
-        free_surface: the point is an end of an open piece on the part's
-            boundary (a surface crack meeting a free face), not on a
-            symmetry plane.
-        clearance, obstacle: distance to what the domain must avoid and what.
-        radius, radii: the largest domain's radius, all radii (increasing).
-        requested: the radius asked for (None: the default).
-        clear: False when no domain of one element fits.
-        warnings: messages about this point's domains.
-        symmetry: the label of the symmetry plane the point (an end) lies
-            on, else None (front_sampling: its domain is mirrored).
-        requested_position: the point is at a position asked for
-            (Options.sif_angles, sif_angle_step, sif_arc_lengths).
-        source: where its K comes from (front_sampling.SOURCES).
-        K_domain: a free-surface end's own domain K (domains, 3) when its K
-            is the end value (front_sampling), else None.
-    """
-    crack: int
-    index: int
-    piece: int
-    closed: bool
-    s: float
-    length: float
-    x: np.ndarray
-    frame: np.ndarray
-    hat: float
-    curvature: float
-    element_size: float
-    free_surface: bool
-    clearance: float
-    obstacle: str
-    radius: float
-    radii: tuple[float, ...]
-    requested: float | None
-    clear: bool
-    warnings: list[str] = dataclasses.field(default_factory=list)
-    hat_before: float = 0.0
-    hat_after: float = 0.0
-    symmetry: str | None = None
-    requested_position: bool = False
-    source: str = "domain"
-    K_domain: np.ndarray | None = None
-
-    def __post_init__(self):
-        self.hat_before = self.hat_before or self.hat
-        self.hat_after = self.hat_after or self.hat
-
-    @property
-    def limited(self) -> bool:
-        wanted = self.requested if self.requested else DEFAULT_ELEMENTS * self.element_size
-        return self.radius < wanted * (1.0 - 1e-12)
-
-
-# -- mesh helpers (cached on the model) -------------------------------------
-def _cache(model) -> dict:
-    return model.__dict__.setdefault("_sif3d_cache", {})
-
-
-def node_tree(model) -> scipy.spatial.cKDTree:
-    c = _cache(model)
-    if "tree" not in c:
-        c["tree"] = scipy.spatial.cKDTree(model.x)
-    return c["tree"]
-
-
-def node_cells(model) -> tuple[np.ndarray, np.ndarray]:
-    """(offsets, cells): the cells around each node, CSR."""
-    c = _cache(model)
-    if "node_cells" not in c:
-        flat = model.cells.ravel()
-        order = np.argsort(flat, kind="stable")
-        counts = np.bincount(flat, minlength=model.x.shape[0])
-        c["node_cells"] = (np.concatenate([[0], np.cumsum(counts)]), (order // 4).astype(np.int32))
-    return c["node_cells"]
-
-
-def cells_of_nodes(model, nodes: np.ndarray) -> np.ndarray:
-    off, cl = node_cells(model)
-    nodes = np.asarray(nodes, dtype=np.int64)
-    if nodes.size == 0:
-        return np.zeros(0, dtype=np.int32)
-    counts = off[nodes + 1] - off[nodes]
-    idx = np.repeat(off[nodes] - np.concatenate([[0], np.cumsum(counts)[:-1]]), counts) + np.arange(counts.sum())
-    return np.unique(cl[idx])
-
-
-def boundary_nodes(model) -> np.ndarray:
-    """Nodes on the part's boundary (faces held by one tetrahedron). Under
-    MPI this process's part of them: the faces of its owned cells (whose
-    neighbours it holds), not the faces where its ghost cells end."""
-    c = _cache(model)
-    if "boundary_nodes" not in c:
-        cells = model.cells
-        faces = np.sort(np.concatenate([cells[:, [1, 2, 3]], cells[:, [0, 2, 3]], cells[:, [0, 1, 3]],
-                                        cells[:, [0, 1, 2]]]), axis=1)
-        _, idx, counts = np.unique(faces, axis=0, return_index=True, return_counts=True)
-        one = idx[counts == 1]
-        one = one[model.owned_cells_only(one % len(cells))]  # (faces are stacked face-type by face-type)
-        c["boundary_nodes"] = np.unique(faces[one])
-    return c["boundary_nodes"]
-
-
-def _comm(model):
-    """The model's communicator under MPI, else None."""
-    return model.comm
-
-
-def _all_points(model, points: np.ndarray) -> np.ndarray:
-    """Every process's points (n, 3), without repeats, in one order (the
-    points themselves in serial)."""
-    comm = _comm(model)
-    if comm is None:
-        return points
-    allp = np.concatenate(comm.allgather(np.asarray(points, dtype=float).reshape(-1, 3)))
-    return np.unique(allp, axis=0) if len(allp) else allp
-
-
-def _owned_segments(model, segment_cell: np.ndarray) -> np.ndarray:
-    """Which front segments (by their cells, -1: none) this process
-    integrates: those of its owned cells (each segment's cell is owned by
-    one process; all in serial)."""
-    cell = np.asarray(segment_cell)
-    return (cell >= 0) & model.owned_cells_only(cell)
-
-
-def lip_points(model, crack: int) -> dict:
-    """The crack's lip points of the lip terms (LIP_POINTS per facet direction), computed once."""
-    return model.cracks[crack].lip_points(model, LIP_POINTS)
-
-
-def _owned_lip_points(model, crack: int) -> np.ndarray:
-    """The lip points (n, 3) in this process's owned cells (all in serial)."""
-    lp = lip_points(model, crack)
-    return lp["x"][model.owned_cells_only(lp["cell"])]
-
-
-# -- the front --------------------------------------------------------------
-@dataclasses.dataclass
-class Front:
-    """A crack's front polyline as arrays: vertices x (n, 3), s (n,), frame
-    (n, 3, 3), piece (n,), segments (m, 2), segment_cell (m,), per piece:
-    offsets, closed, length; curvature (n,) the front's (kappa_f) at the
-    vertices, curvatures (n, 4) kappa_f, kappa_11, kappa_33, tau (the
-    crack surface's too: interaction_integral_3d.h; 0 but kappa_f on a
-    planar crack), segment sizes (m,) (mean edge of the segment's cell);
-    fitted: the frames and curvatures come from the smooth fit of a
-    triangulated surface (SurfaceCrack.front_geometry), not from the
-    geometry's frames; unfitted, fit_turn: where the fit was not kept
-    (FIT_TURN)."""
-    x: np.ndarray
-    s: np.ndarray
-    frame: np.ndarray
-    piece: np.ndarray
-    offsets: np.ndarray
-    closed: np.ndarray
-    length: np.ndarray
-    segments: np.ndarray
-    segment_cell: np.ndarray
-    segment_size: np.ndarray
-    curvature: np.ndarray
-    on_boundary: np.ndarray
-    curvatures: np.ndarray | None = None
-    fitted: bool = False
-    #: (n,) bool: a fitted front's vertices where the fit was not kept (FIT_TURN), and (n,) the fit's turn
-    #: of the normal from the mesh's in degrees (None unfitted)
-    unfitted: np.ndarray | None = None
-    fit_turn: np.ndarray | None = None
-
-    def __post_init__(self):
-        if self.curvatures is None:
-            self.curvatures = np.zeros((len(self.s), 4))
-            self.curvatures[:, 0] = self.curvature
-
-
-def crack_front(model, crack: int) -> Front:
-    c = _cache(model).setdefault("fronts", {})
-    if crack in c:
-        return c[crack]
-    f = model.geometries[crack].front
-    x, s, frame = np.asarray(f["x"]), np.asarray(f["s"]), np.asarray(f["frame"])
-    off = np.asarray(f["piece_offsets"])
-    closed = np.asarray(f["closed"]).astype(bool)
-    piece = np.repeat(np.arange(len(closed)), np.diff(off))
-    length = np.array([s[off[k + 1] - 1] + (np.linalg.norm(x[off[k + 1] - 1] - x[off[k]]) if closed[k] else 0.0)
-                       for k in range(len(closed))])
-    segs = np.asarray(f["segments"]).reshape(-1, 2)
-    scell = np.asarray(f["segment_cell"])
-    ssize = np.zeros(len(scell))
-    if len(scell):  # (under MPI each segment's size from the process owning its cell)
-        own = _owned_segments(model, scell)
-        ssize[own] = cell_sizes(model.x, model.cells[scell[own]])
-        if _comm(model) is not None:
-            ssize = reduced(ssize, "SUM", _comm(model))
-    h = float(np.median(ssize)) if len(ssize) else 0.0
-    curv = np.zeros(len(s))
-    for k in range(len(closed)):
-        idx = np.arange(off[k], off[k + 1])
-        if len(idx) < 3:
-            continue
-        sp, e1, e3 = s[idx], frame[idx, 0], frame[idx, 2]
-        if closed[k]:  # unroll the loop once on each side
-            L = length[k]
-            sp = np.concatenate([sp - L, sp, sp + L])
-            e1, e3 = np.concatenate([e1] * 3), np.concatenate([e3] * 3)
-            mid = np.arange(len(idx), 2 * len(idx))
-        else:
-            mid = np.arange(len(idx))
-        w = max(h, 1e-12)
-        ahead = np.clip(np.searchsorted(sp, sp[mid] + w, side="right") - 1, mid + 1, len(sp) - 1)
-        behind = np.clip(np.searchsorted(sp, sp[mid] - w, side="left"), 0, np.maximum(mid - 1, 0))
-        ahead = np.where(ahead <= mid, np.minimum(mid + 1, len(sp) - 1), ahead)
-        behind = np.where(behind >= mid, np.maximum(mid - 1, 0), behind)
-        ds = sp[ahead] - sp[behind]
-        de3 = e3[ahead] - e3[behind]
-        curv[idx] = np.where(ds > 0, -np.einsum("ij,ij->i", de3, e1[mid]) / np.maximum(ds, 1e-300), 0.0)
-    on_boundary = np.asarray(f["on_boundary"]).astype(bool)
-    surface = model.cracks[crack].crack
-    if isinstance(surface, SurfaceCrack) and len(x):
-        # A triangulated surface: frames and curvatures of the smooth
-        # surface and front through its vertices, fitted over the domains'
-        # reach (the facets' normals jump from facet to facet).
-        # (over at most FIT_CURVATURE of the front's radius of curvature: a
-        # quartic in x3 cannot follow a front that turns through a right
-        # angle within the reach; a penny at a/3 fitted over 1.35 a took
-        # kappa_f = 0.61 / a and K 5.5 % low)
-        # Per vertex, by the front's curvature within its own reach: a global largest curvature (the
-        # ends of a shallow surface crack, radius a^2/c) shrank every point's reach to little more than
-        # one grown strip behind the front, where kappa_11 (across the front) is undetermined: on the
-        # surface crack a/c = 0.32 grown on a mesh of a/8 the fit turned the normal by 80 degrees at the
-        # deepest points (kappa_11 ~ 5e3) and K_I came out -0.44 there.
-        reach = np.full(len(x), FIT_ELEMENTS * h)
-        kabs = np.abs(curv)
-        for i, near in enumerate(scipy.spatial.cKDTree(x).query_ball_point(x, FIT_ELEMENTS * h)):
-            kmax = float(kabs[near].max()) if near else 0.0
-            if kmax > 0.0:
-                reach[i] = min(reach[i], FIT_CURVATURE / kmax)
-        fit = surface.front_geometry(x, frame, reach)
-        fframe, k = fit["frame"], fit["curvatures"]
-        turn = np.degrees(np.arccos(np.clip(np.einsum("ni,ni->n", fframe[:, 1], frame[:, 1]), -1.0, 1.0)))
-        kinked = turn > FIT_TURN
-        if np.any(kinked):
-            fframe, k = fframe.copy(), k.copy()
-            fframe[kinked] = frame[kinked]
-            k[kinked] = 0.0
-            k[kinked, 0] = curv[kinked]
-        out = Front(x, s, fframe, piece, off, closed, length, segs, scell, ssize, k[:, 0].copy(), on_boundary,
-                    k, True, kinked, turn)
-    else:
-        out = Front(x, s, frame, piece, off, closed, length, segs, scell, ssize, curv, on_boundary)
-    c[crack] = out
-    return out
-
-
-def _wrap(ds: np.ndarray, length: float, closed: bool) -> np.ndarray:
-    return (ds + 0.5 * length) % length - 0.5 * length if closed else ds
-
-
-def project(model, crack: int, points: np.ndarray) -> dict[str, np.ndarray]:
-    """Nearest front point of points (n, 3): s, piece, distance, x (n, 3),
-    frame (n, 3, 3), curvatures (n, 4) (kappa_f, kappa_11, kappa_33, tau
-    interpolated along the segment), curvature (n,) (kappa_f)."""
-    fr = crack_front(model, crack)
-    pts = np.ascontiguousarray(points, dtype=float)
-    # (a triangulated surface: its fitted frames, interpolated as the geometry's are)
-    p = _cracklip.compute_front_projection_3d(model.geometries[crack], pts,
-                                              np.ascontiguousarray(fr.frame) if fr.fitted else None)
-    seg = fr.segments[p["segment"]]
-    t = p["t"]
-    k = (1.0 - t)[:, None] * fr.curvatures[seg[:, 0]] + t[:, None] * fr.curvatures[seg[:, 1]]
-    if not CURVATURE_TERMS:
-        k[:] = 0.0
-    # A point beyond its front point's centre of curvature (a domain too large
-    # for the curvature; the domains are clipped to avoid it) gets the
-    # curvatures scaled so that it lies a tenth of the way: the kernel needs
-    # h = 1 + kappa_f x1 - kappa_33 x2 > 0.
-    d = pts - p["x"]
-    lin = k[:, 0] * np.einsum("ni,ni->n", d, p["frame"][:, 0])
-    if np.any(k[:, 2]):
-        lin -= k[:, 2] * np.einsum("ni,ni->n", d, p["frame"][:, 1])
-    bad = 1.0 + lin < 0.1
-    k[bad] *= (-0.9 / lin[bad])[:, None]
-    p["curvatures"] = k
-    p["curvature"] = k[:, 0].copy()
-    p["curvature_clamped"] = bad
-    return p
-
-
-def hat_lengths(curvature: np.ndarray, h: float) -> np.ndarray:
-    """The hat's half-width wanted where the front has these curvatures
-    (element size h): HAT_CURVATURE / |kappa| clipped to [MIN_HAT_ELEMENTS h,
-    HAT_ELEMENTS h]."""
-    kap = np.abs(np.asarray(curvature, dtype=float))
-    rho = np.where(kap > 0.0, HAT_CURVATURE / np.maximum(kap, 1e-300), np.inf)
-    return np.clip(rho, MIN_HAT_ELEMENTS * h, HAT_ELEMENTS * h)
-
-
-def wanted_hats(s: np.ndarray, curvature: np.ndarray, h: float, length: float, closed: bool) -> np.ndarray:
-    """hat_lengths at vertices s of a piece from the largest |curvature|
-    within HAT_ELEMENTS h of each (the hat a point there would span)."""
-    s, kv = np.asarray(s, dtype=float), np.abs(np.asarray(curvature, dtype=float))
-    ds = np.abs(s[:, None] - s[None, :])
-    if closed:
-        ds = np.minimum(ds, length - ds)
-    kmax = np.where(ds <= HAT_ELEMENTS * h, kv[None, :], 0.0).max(axis=1)
-    return hat_lengths(kmax, h)
-
-
-def station_positions(s: np.ndarray, l: np.ndarray, length: float, closed: bool, minimum: int = 1) -> np.ndarray:
-    """Arc lengths of front points along a piece whose vertices at s (from
-    0, increasing) want half-widths l: equal steps of int ds / l (a loop
-    from s = 0 round to length, an open piece with both ends)."""
-    s, l = np.asarray(s, dtype=float), np.asarray(l, dtype=float)
-    if closed:
-        s, l = np.append(s, length), np.append(l, l[0])
-    dens = 1.0 / l
-    cum = np.concatenate([[0.0], np.cumsum(0.5 * (dens[1:] + dens[:-1]) * np.diff(s))])
-    if not closed and s[-1] < length:  # the last vertex short of the end
-        cum = np.append(cum, cum[-1] + dens[-1] * (length - s[-1]))
-        s = np.append(s, length)
-    n = max(minimum, int(round(cum[-1])))
-    targets = np.arange(n) * (cum[-1] / n) if closed else np.linspace(0.0, cum[-1], n + 1)
-    out = np.interp(targets, cum, s)
-    if not closed:
-        out[0], out[-1] = 0.0, length
-    return out
-
-
-def symmetry_planes(model) -> list:
-    """The scene's symmetry planes (cracklip.scene.symmetry.SymmetryCondition)."""
-    return [bc for bc in model.scene.dirichlet if isinstance(bc, SymmetryCondition)]
-
-
-def _end_plane(model, x: np.ndarray, h: float):
-    """The symmetry plane a front end at x lies on (within half an element), or None."""
-    for bc in symmetry_planes(model):
-        if abs(float((x - np.asarray(bc.origin)) @ np.asarray(bc.normal))) <= 0.5 * h:
-            return bc
-    return None
-
-
-def _stations(model, crack: int, spacing: float | None) -> tuple[list[dict], list[dict], list[str]]:
-    """Front points along every piece (front_sampling.piece_stations): piece,
-    s, closed, length, hat, hat_before, hat_after, end, end_on_boundary,
-    symmetry (the label of the plane an end lies on, else None), requested;
-    the requested positions between front points (piece, s, closed,
-    length); notes on positions that could not be used."""
-    fr = crack_front(model, crack)
-    h = float(np.median(fr.segment_size)) if len(fr.segment_size) else 0.0
-    opts = model.scene.options
-    floor = MIN_HAT_ELEMENTS * h if not spacing else min(MIN_HAT_ELEMENTS * h, spacing)
-    crk = model.cracks[crack].crack
-    out, between_all, notes_all = [], [], []
-    for k in range(len(fr.closed)):
-        L = float(fr.length[k])
-        if L <= 0.0:
-            continue
-        closed = bool(fr.closed[k])
-        idx = np.arange(fr.offsets[k], fr.offsets[k + 1])
-        sv = fr.s[idx]
-        if spacing or HAT_CURVATURE <= 0.0 or len(idx) < 3:
-            wanted = np.full(len(idx), spacing if spacing else HAT_ELEMENTS * h)
-        else:
-            wanted = wanted_hats(sv, fr.curvature[idx], h, L, closed)
-        asked, notes = front_sampling.requested_positions(opts, crk, fr.x[idx], sv, L, closed, 0.5 * h)
-        notes_all += [n_ for n_ in notes if n_ not in notes_all]
-        svals, requested, between = front_sampling.piece_stations(sv, wanted, L, closed, floor, opts.sif_points,
-                                                                  asked, 0.0 if spacing else COUNT_HAT_ELEMENTS * h)
-        n = len(svals)
-        if closed:
-            before = (svals - np.roll(svals, 1)) % L
-            after = (np.roll(svals, -1) - svals) % L
-            if n == 1:
-                before = after = np.array([L])
-        else:
-            gaps = np.diff(svals)
-            before = np.concatenate([gaps[:1], gaps])
-            after = np.concatenate([gaps, gaps[-1:]])
-        planes = [None, None]
-        if not closed:
-            for e, v in enumerate((fr.offsets[k], fr.offsets[k + 1] - 1)):
-                if fr.on_boundary[v]:
-                    planes[e] = _end_plane(model, fr.x[v], h)
-        for j, sv_ in enumerate(svals):
-            end = (not closed) and (j == 0 or j == n - 1)
-            on_boundary = end and bool(fr.on_boundary[fr.offsets[k] if j == 0 else fr.offsets[k + 1] - 1])
-            plane = planes[0 if j == 0 else 1] if on_boundary else None
-            out.append({"piece": k, "s": float(sv_), "closed": closed, "length": L,
-                        "hat": float(max(before[j], after[j])), "hat_before": float(before[j]),
-                        "hat_after": float(after[j]), "end": end, "end_on_boundary": on_boundary,
-                        "symmetry": None if plane is None else plane.label, "requested": bool(requested[j])})
-        between_all += [{"piece": k, "s": float(b), "closed": closed, "length": L} for b in between]
-    return out, between_all, notes_all
-
-
-def _point_at(fr: Front, piece: int, s: float) -> np.ndarray:
-    idx = np.arange(fr.offsets[piece], fr.offsets[piece + 1])
-    xs, ss = fr.x[idx], fr.s[idx]
-    if fr.closed[piece]:
-        xs = np.vstack([xs, xs[:1]])
-        ss = np.concatenate([ss, [fr.length[piece]]])
-    return np.array([np.interp(s, ss, xs[:, i]) for i in range(3)])
-
-
-def front_points(model, crack: int, requested: float | None = None, spacing: float | None = None
-                 ) -> list[FrontPoint]:
-    """The front points of a crack and their SIF domains (module doc).
-    requested: the largest domain's radius (None or 0: Options.sif_radius,
-    else DEFAULT_ELEMENTS element sizes at each point); spacing: distance
-    between front points (default HAT_ELEMENTS element sizes)."""
-    if requested is not None and not (isinstance(requested, (int, float, np.floating))
-                                      and math.isfinite(requested) and requested > 0.0):
-        raise InputError(f"the SIF domain radius must be a finite number > 0, got {requested!r}")
-    if requested is None:
-        requested = model.scene.options.sif_radius or None
-    fr = crack_front(model, crack)
-    if fr.segments.size == 0:
-        return []
-    name = model.cracks[crack].crack.name
-    st, _, notes = _stations(model, crack, spacing)
-    if fr.unfitted is not None and np.any(fr.unfitted):
-        bad = np.flatnonzero(fr.unfitted)
-        notes = notes + [
-            f"crack {name!r}: the triangulated surface is kinked near {len(bad)} front vertices (arc lengths "
-            f"{fr.s[bad].min():.4g} .. {fr.s[bad].max():.4g}): a smooth fit through it turned the normal by up to "
-            f"{fr.fit_turn[bad].max():.0f} degrees from the mesh's there (more than {FIT_TURN:g}); those vertices "
-            "keep the mesh's frame and the front's own curvature, the surface's curvatures taken as 0"]
-    xs = np.array([_point_at(fr, d["piece"], d["s"]) for d in st])
-    pr = project(model, crack, xs)
-    # The front's own segments within each hat: element size and curvature.
-    seg_mid_s = 0.5 * (fr.s[fr.segments[:, 0]] + fr.s[fr.segments[:, 1]])
-    seg_len = np.linalg.norm(fr.x[fr.segments[:, 1]] - fr.x[fr.segments[:, 0]], axis=1)
-    # closing segment of a loop: its middle arc length
-    for k in np.flatnonzero(fr.closed):
-        last = fr.offsets[k + 1] - 1
-        closing = np.flatnonzero((fr.segments[:, 0] == last) & (fr.segments[:, 1] == fr.offsets[k]))
-        seg_mid_s[closing] = fr.s[last] + 0.5 * seg_len[closing]
-    seg_piece = fr.piece[fr.segments[:, 0]]
-    # Obstacles: boundary nodes near the front, other cracks' lip points.
-    wanted_max = max(requested or 0.0, DEFAULT_ELEMENTS * float(fr.segment_size.max()))
-    reach = wanted_max + 2.0 * max(d["hat"] for d in st) + float(fr.segment_size.max())
-    bnodes = boundary_nodes(model)
-    near_b = np.unique(np.concatenate([np.asarray(i, dtype=np.int64) for i in
-                                       scipy.spatial.cKDTree(model.x[bnodes]).query_ball_point(fr.x, reach)]
-                                      + [np.zeros(0, np.int64)])) if bnodes.size else np.zeros(0, np.int64)
-    bx = _all_points(model, model.x[bnodes[near_b]])  # (every process's under MPI)
-    bpr = project(model, crack, bx) if len(bx) else None
-    # A symmetry plane that a piece ends on is no obstacle of that piece's
-    # domains: they continue in the mirror image.
-    lo, hi = model.x.min(axis=0), model.x.max(axis=0)
-    if _comm(model) is not None:
-        lo, hi = reduced(lo, "MIN", _comm(model)), reduced(hi, "MAX", _comm(model))
-    size = float((hi - lo).max())
-    mirror_of = {}
-    for bc in symmetry_planes(model):
-        on = np.abs((bx - np.asarray(bc.origin)) @ np.asarray(bc.normal)) <= 1e-9 * size
-        pieces = {d["piece"] for d in st if d["symmetry"] == bc.label}
-        mirror_of[bc.label] = (on, pieces)
-    others = [ci for ci in range(len(model.cracks)) if ci != crack]
-    other_pts = [(ci, np.vstack([_all_points(model, _owned_lip_points(model, ci)),
-                                 np.asarray(model.geometries[ci].front["x"])])) for ci in others]
-    out = []
-    for k, d in enumerate(st):
-        piece, s0, hat, L = d["piece"], d["s"], d["hat"], d["length"]
-        xk = pr["x"][k]
-        where = f"front point {k} of crack {name!r} at ({xk[0]:.6g}, {xk[1]:.6g}, {xk[2]:.6g})"
-        in_hat = (seg_piece == piece) & (np.abs(_wrap(seg_mid_s - s0, L, d["closed"])) <= hat + 0.5 * seg_len)
-        if not np.any(in_hat):
-            in_hat = seg_piece == piece
-        h = float(np.mean(fr.segment_size[in_hat]))
-        wanted = float(requested) if requested else DEFAULT_ELEMENTS * h
-        # The curvature of the front wherever the domain's points may project:
-        # the front within its reach (the hat, the radius, an element).
-        near = fr.piece == piece
-        near &= np.linalg.norm(fr.x - xk, axis=1) <= hat + wanted + 2.0 * h
-        kap = float(np.abs(fr.curvatures[near, :3]).max()) if np.any(near) else 0.0
-        # (clearance: the largest radius clear of it, what, its distance)
-        obstacles = []
-        if kap > 0:
-            room = min(CURVATURE_FRACTION / kap, 0.95 / kap - h)
-            obstacles.append((room, f"{CURVATURE_FRACTION:g} of the smallest radius of curvature of the front and "
-                                    f"the crack's surface ({1 / kap:.3g})", room))
-        if bpr is not None:
-            same = bpr["piece"] == piece
-            ds = _wrap(bpr["s"] - s0, L, d["closed"])
-            weight = np.clip(1.0 - np.abs(ds) / hat, 0.0, 1.0)
-            hit = same & (weight >= 0.05)
-            if d["end_on_boundary"]:  # the free surface the front meets is not an obstacle
-                end_s = 0.0 if s0 == 0.0 else L
-                hit &= np.abs(bpr["s"] - end_s) > h
-            for on, pieces in mirror_of.values():
-                if piece in pieces:
-                    hit &= ~on
-            if np.any(hit):
-                dist = float(bpr["distance"][hit].min())
-                obstacles.append((dist - h, "the boundary of the part", dist))
-        for ci, pts in other_pts:
-            dist = float(np.linalg.norm(pts - xk, axis=1).min())
-            obstacles.append((dist - hat - h, f"crack {model.cracks[ci].crack.name!r}", dist))
-        # The own front where it comes back (a thin crack): front vertices
-        # off the hat whose distance is less than their arc-length distance.
-        own = fr.piece == piece
-        dso = np.abs(_wrap(fr.s[own] - s0, L, d["closed"]))
-        dxo = np.linalg.norm(fr.x[own] - xk, axis=1)
-        back = dso > hat + 2.0 * dxo
-        if np.any(back):
-            dist = float(dxo[back].min())
-            obstacles.append((0.5 * (dist - hat), f"the opposite part of the front of crack {name!r}", dist))
-        clearance, obstacle, distance = min(obstacles, key=lambda o: o[0]) if obstacles else (math.inf, "", math.inf)
-        least = 2.0 * h  # the smallest domain (half the largest) spans an element
-        warnings: list[str] = []
-        clear = clearance >= least
-        if not clear:
-            radius = least
-            warnings.append(f"{where}: no SIF domain of at least one element ({h:.3g}) fits between the front and "
-                            f"{obstacle} ({distance:.3g} away: room for a domain of radius {max(clearance, 0.0):.3g}, "
-                            f"{least:.3g} needed); K there is computed on a domain of radius {radius:.3g} that "
-                            "reaches it and is NOT reliable: refine the mesh at the front (mesh.tip_h)")
-        elif wanted < least:
-            radius = least
-            warnings.append(f"{where}: sif_radius {wanted:.3g} is below two elements ({h:.3g}) there; K uses "
-                            f"domains up to radius {radius:.3g}")
-        else:
-            radius = min(wanted, clearance)
-        radii = tuple(float(f * radius) for f in DOMAIN_FRACTIONS)
-        out.append(FrontPoint(crack, k, piece, d["closed"], s0, L, xk.copy(), pr["frame"][k].copy(), hat,
-                              float(pr["curvature"][k]), h, bool(d["end_on_boundary"]) and d["symmetry"] is None,
-                              float(clearance), obstacle, float(radius), radii,
-                              float(requested) if requested else None, clear, warnings, d["hat_before"],
-                              d["hat_after"], symmetry=d["symmetry"], requested_position=d["requested"],
-                              source="mirrored_domain" if d["symmetry"] else "domain"))
-    if out:
-        out[0].warnings[:0] = notes
-    return out
 
 
 # -- the integrals ----------------------------------------------------------
@@ -809,7 +173,7 @@ def _body_force(solution) -> np.ndarray | None:
 
 def _node_q(nd: dict, fp: FrontPoint, radius: float) -> np.ndarray:
     """q of a front point's domain of one radius at the tube's nodes."""
-    ds = _wrap(nd["s"] - fp.s, fp.length, fp.closed)
+    ds = wrap(nd["s"] - fp.s, fp.length, fp.closed)
     qs = np.clip(1.0 - np.abs(ds) / np.where(ds < 0.0, fp.hat_before, fp.hat_after), 0.0, 1.0) \
         * (nd["piece"] == fp.piece)
     r_in = R_IN_FRACTION * radius
@@ -821,11 +185,11 @@ def _front_rule(model, fr: Front, piece: int) -> dict[str, np.ndarray]:
     """Gauss points along a piece of the front polyline (3 per segment):
     nodes (n, 4) of their cells, shape values N (n, 4), weights (n,), e1 and
     e2 (n, 3) interpolated from the vertices' frames."""
-    c = _cache(model).setdefault("front_rules", {})
+    c = model_cache(model).setdefault("front_rules", {})
     key = (id(fr), piece)
     if key in c:
         return c[key]
-    mine = (fr.piece[fr.segments[:, 0]] == piece) & _owned_segments(model, fr.segment_cell)  # (summed over processes)
+    mine = (fr.piece[fr.segments[:, 0]] == piece) & owned_segments(model, fr.segment_cell)  # (summed over processes)
     seg = fr.segments[mine]
     a, b = fr.x[seg[:, 0]], fr.x[seg[:, 1]]
     g = np.array([0.5 - math.sqrt(15) / 10, 0.5, 0.5 + math.sqrt(15) / 10])
@@ -989,8 +353,8 @@ def _crack_front_sifs(solution, crack: int, radius: float | None = None) -> tupl
             table["point"], table["q"], directions, I)
     Q = np.array([_front_normalisation(m, fr, fp, lambda cn, i=i: np.where(
         (tube_index[cn] >= 0)[:, :, None], qn[i][np.maximum(tube_index[cn], 0)], 0.0)) for i, fp in enumerate(fps)])
-    if _comm(m) is not None:  # each process's owned cells and front segments
-        I, Q = reduced(I, "SUM", _comm(m)), reduced(Q, "SUM", _comm(m))
+    if model_comm(m) is not None:  # each process's owned cells and front segments
+        I, Q = reduced(I, "SUM", model_comm(m)), reduced(Q, "SUM", model_comm(m))
     K = np.zeros((len(fps), nd, 3))
     for i, fp in enumerate(fps):
         Q1, Q2 = Q[i]
@@ -1204,7 +568,7 @@ def _with_asked_positions(model, crack: int, fps: list[FrontPoint], K: np.ndarra
     source "interpolation"), in the order of pieces and arc lengths."""
     if not fps:
         return fps, K
-    _, between, _ = _stations(model, crack, None)
+    _, between, _ = stations(model, crack, None)
     if not between:
         return fps, K
     fr = crack_front(model, crack)
@@ -1213,9 +577,9 @@ def _with_asked_positions(model, crack: int, fps: list[FrontPoint], K: np.ndarra
     extra, K_extra = [], []
     for d in between:
         idx = np.flatnonzero(pieces == d["piece"])
-        x = _point_at(fr, d["piece"], d["s"])
+        x = point_at(fr, d["piece"], d["s"])
         frame = project(model, crack, x[None])["frame"][0]
-        near = fps[idx[np.argmin(np.abs(_wrap(s_all[idx] - d["s"], d["length"], d["closed"])))]]
+        near = fps[idx[np.argmin(np.abs(wrap(s_all[idx] - d["s"], d["length"], d["closed"])))]]
         extra.append(dataclasses.replace(near, index=-1, s=d["s"], x=x, frame=frame, free_surface=False,
                                          symmetry=None, requested_position=True, source="interpolation",
                                          K_domain=None, warnings=[]))
@@ -1302,5 +666,4 @@ def compute_front_sifs(solution, radius: float | None = None, cracks: typing.Seq
     return complete_rows(rows), warnings
 
 
-__all__ = ["FrontPoint", "front_points", "crack_front_sifs", "compute_front_sifs", "DEFAULT_ELEMENTS",
-           "DOMAIN_FRACTIONS", "SPREAD_WARNING"]
+__all__ = ["crack_front_sifs", "compute_front_sifs", "natural_k", "hat_deconvolve", "SPREAD_WARNING"]
