@@ -292,85 +292,128 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
         return []
     name = model.cracks[crack].crack.name
     st, _, notes = stations(model, crack, spacing)
-    if fr.unfitted is not None and np.any(fr.unfitted):
-        bad = np.flatnonzero(fr.unfitted)
-        notes = notes + [
-            f"crack {name!r}: the triangulated surface is kinked near {len(bad)} front vertices (arc lengths "
+    notes = notes + _kink_notes(fr, name)
+    pr = project(model, crack, np.array([point_at(fr, d["piece"], d["s"]) for d in st]))
+    sizes = _HatSizes(fr)
+    obstacles = _Obstacles(model, crack, fr, st, requested)
+    out = []
+    for k, d in enumerate(st):
+        xk = pr["x"][k]
+        where = f"front point {k} of crack {name!r} at ({xk[0]:.6g}, {xk[1]:.6g}, {xk[2]:.6g})"
+        h = sizes.at(d)
+        wanted = float(requested) if requested else DEFAULT_ELEMENTS * h
+        clearance, obstacle, distance = obstacles.nearest(d, xk, h, wanted)
+        radius, clear, warnings = _domain_radius(where, h, wanted, clearance, obstacle, distance)
+        out.append(FrontPoint(crack, k, d["piece"], d["closed"], d["s"], d["length"], xk.copy(), pr["frame"][k].copy(),
+                              d["hat"], float(pr["curvature"][k]), h,
+                              bool(d["end_on_boundary"]) and d["symmetry"] is None, float(clearance), obstacle,
+                              float(radius), tuple(float(f * radius) for f in DOMAIN_FRACTIONS),
+                              float(requested) if requested else None, clear, warnings, d["hat_before"],
+                              d["hat_after"], symmetry=d["symmetry"], requested_position=d["requested"],
+                              source="mirrored_domain" if d["symmetry"] else "domain"))
+    if out:
+        out[0].warnings[:0] = notes
+    return out
+
+
+def _kink_notes(fr: Front, name: str) -> list[str]:
+    """The warning about a triangulated surface's vertices where the fit was
+    not kept (FIT_TURN), if any."""
+    if fr.unfitted is None or not np.any(fr.unfitted):
+        return []
+    bad = np.flatnonzero(fr.unfitted)
+    return [f"crack {name!r}: the triangulated surface is kinked near {len(bad)} front vertices (arc lengths "
             f"{fr.s[bad].min():.4g} .. {fr.s[bad].max():.4g}): a smooth fit through it turned the normal by up to "
             f"{fr.fit_turn[bad].max():.0f} degrees from the mesh's there (more than {FIT_TURN:g}); those vertices "
             "keep the mesh's frame and the front's own curvature, the surface's curvatures taken as 0"]
-    xs = np.array([point_at(fr, d["piece"], d["s"]) for d in st])
-    pr = project(model, crack, xs)
-    # The front's own segments within each hat: element size and curvature.
-    seg_mid_s = 0.5 * (fr.s[fr.segments[:, 0]] + fr.s[fr.segments[:, 1]])
-    seg_len = np.linalg.norm(fr.x[fr.segments[:, 1]] - fr.x[fr.segments[:, 0]], axis=1)
-    # closing segment of a loop: its middle arc length
-    for k in np.flatnonzero(fr.closed):
-        last = fr.offsets[k + 1] - 1
-        closing = np.flatnonzero((fr.segments[:, 0] == last) & (fr.segments[:, 1] == fr.offsets[k]))
-        seg_mid_s[closing] = fr.s[last] + 0.5 * seg_len[closing]
-    seg_piece = fr.piece[fr.segments[:, 0]]
-    # Obstacles: boundary nodes near the front, other cracks' lip points.
-    wanted_max = max(requested or 0.0, DEFAULT_ELEMENTS * float(fr.segment_size.max()))
-    reach = wanted_max + 2.0 * max(d["hat"] for d in st) + float(fr.segment_size.max())
-    bnodes = boundary_nodes(model)
-    near_b = np.unique(np.concatenate([np.asarray(i, dtype=np.int64) for i in
-                                       scipy.spatial.cKDTree(model.x[bnodes]).query_ball_point(fr.x, reach)]
-                                      + [np.zeros(0, np.int64)])) if bnodes.size else np.zeros(0, np.int64)
-    bx = all_points(model, model.x[bnodes[near_b]])  # (every process's under MPI)
-    bpr = project(model, crack, bx) if len(bx) else None
-    # A symmetry plane that a piece ends on is no obstacle of that piece's
-    # domains: they continue in the mirror image.
-    lo, hi = model.x.min(axis=0), model.x.max(axis=0)
-    if model_comm(model) is not None:
-        lo, hi = reduced(lo, "MIN", model_comm(model)), reduced(hi, "MAX", model_comm(model))
-    size = float((hi - lo).max())
-    mirror_of = {}
-    for bc in symmetry_planes(model):
-        on = np.abs((bx - np.asarray(bc.origin)) @ np.asarray(bc.normal)) <= 1e-9 * size
-        pieces = {d["piece"] for d in st if d["symmetry"] == bc.label}
-        mirror_of[bc.label] = (on, pieces)
-    others = [ci for ci in range(len(model.cracks)) if ci != crack]
-    other_pts = [(ci, np.vstack([all_points(model, owned_lip_points(model, ci)),
-                                 np.asarray(model.geometries[ci].front["x"])])) for ci in others]
-    out = []
-    for k, d in enumerate(st):
-        piece, s0, hat, L = d["piece"], d["s"], d["hat"], d["length"]
-        xk = pr["x"][k]
-        where = f"front point {k} of crack {name!r} at ({xk[0]:.6g}, {xk[1]:.6g}, {xk[2]:.6g})"
-        in_hat = (seg_piece == piece) & (np.abs(wrap(seg_mid_s - s0, L, d["closed"])) <= hat + 0.5 * seg_len)
+
+
+class _HatSizes:
+    """The element size at a front point: the mean size of the front's own
+    segments within its hat (all of its piece's if none)."""
+
+    def __init__(self, fr: Front):
+        self.fr = fr
+        self.mid_s = 0.5 * (fr.s[fr.segments[:, 0]] + fr.s[fr.segments[:, 1]])
+        self.length = np.linalg.norm(fr.x[fr.segments[:, 1]] - fr.x[fr.segments[:, 0]], axis=1)
+        for k in np.flatnonzero(fr.closed):  # a loop's closing segment: its middle arc length
+            last = fr.offsets[k + 1] - 1
+            closing = np.flatnonzero((fr.segments[:, 0] == last) & (fr.segments[:, 1] == fr.offsets[k]))
+            self.mid_s[closing] = fr.s[last] + 0.5 * self.length[closing]
+        self.piece = fr.piece[fr.segments[:, 0]]
+
+    def at(self, d: dict) -> float:
+        """d: a station (stations())."""
+        in_hat = (self.piece == d["piece"]) & (np.abs(wrap(self.mid_s - d["s"], d["length"], d["closed"]))
+                                              <= d["hat"] + 0.5 * self.length)
         if not np.any(in_hat):
-            in_hat = seg_piece == piece
-        h = float(np.mean(fr.segment_size[in_hat]))
-        wanted = float(requested) if requested else DEFAULT_ELEMENTS * h
+            in_hat = self.piece == d["piece"]
+        return float(np.mean(self.fr.segment_size[in_hat]))
+
+
+class _Obstacles:
+    """What a front point's domains must stay clear of (module doc): the
+    front's and the crack surface's curvature, the part's boundary near the
+    front (but the free surface a piece ends on and the symmetry planes it
+    ends on), other cracks' lips and fronts, and the front itself where it
+    comes back. Gathered once per crack (every process's points under MPI)."""
+
+    def __init__(self, model, crack: int, fr: Front, st: list[dict], requested: float | None):
+        self.fr, self.name = fr, model.cracks[crack].crack.name
+        wanted_max = max(requested or 0.0, DEFAULT_ELEMENTS * float(fr.segment_size.max()))
+        reach = wanted_max + 2.0 * max(d["hat"] for d in st) + float(fr.segment_size.max())
+        bnodes = boundary_nodes(model)
+        near_b = np.unique(np.concatenate([np.asarray(i, dtype=np.int64) for i in
+                                           scipy.spatial.cKDTree(model.x[bnodes]).query_ball_point(fr.x, reach)]
+                                          + [np.zeros(0, np.int64)])) if bnodes.size else np.zeros(0, np.int64)
+        bx = all_points(model, model.x[bnodes[near_b]])  # (every process's under MPI)
+        self.boundary = project(model, crack, bx) if len(bx) else None
+        # A symmetry plane that a piece ends on is no obstacle of that piece's
+        # domains: they continue in the mirror image.
+        lo, hi = model.x.min(axis=0), model.x.max(axis=0)
+        if model_comm(model) is not None:
+            lo, hi = reduced(lo, "MIN", model_comm(model)), reduced(hi, "MAX", model_comm(model))
+        size = float((hi - lo).max())
+        self.mirror_of = {}
+        for bc in symmetry_planes(model):
+            on = np.abs((bx - np.asarray(bc.origin)) @ np.asarray(bc.normal)) <= 1e-9 * size
+            pieces = {d["piece"] for d in st if d["symmetry"] == bc.label}
+            self.mirror_of[bc.label] = (on, pieces)
+        self.others = [(model.cracks[ci].crack.name,
+                        np.vstack([all_points(model, owned_lip_points(model, ci)),
+                                   np.asarray(model.geometries[ci].front["x"])]))
+                       for ci in range(len(model.cracks)) if ci != crack]
+
+    def nearest(self, d: dict, xk: np.ndarray, h: float, wanted: float) -> tuple[float, str, float]:
+        """(clearance: the largest radius clear of the nearest obstacle, what
+        it is, its distance) for the station d at xk, element size h, the
+        radius wanted (inf, "", inf: none)."""
+        fr, piece, s0, hat, L = self.fr, d["piece"], d["s"], d["hat"], d["length"]
         # The curvature of the front wherever the domain's points may project:
         # the front within its reach (the hat, the radius, an element).
-        near = fr.piece == piece
-        near &= np.linalg.norm(fr.x - xk, axis=1) <= hat + wanted + 2.0 * h
+        near = (fr.piece == piece) & (np.linalg.norm(fr.x - xk, axis=1) <= hat + wanted + 2.0 * h)
         kap = float(np.abs(fr.curvatures[near, :3]).max()) if np.any(near) else 0.0
-        # (clearance: the largest radius clear of it, what, its distance)
         obstacles = []
         if kap > 0:
             room = min(CURVATURE_FRACTION / kap, 0.95 / kap - h)
             obstacles.append((room, f"{CURVATURE_FRACTION:g} of the smallest radius of curvature of the front and "
                                     f"the crack's surface ({1 / kap:.3g})", room))
-        if bpr is not None:
-            same = bpr["piece"] == piece
-            ds = wrap(bpr["s"] - s0, L, d["closed"])
-            weight = np.clip(1.0 - np.abs(ds) / hat, 0.0, 1.0)
-            hit = same & (weight >= 0.05)
+        b = self.boundary
+        if b is not None:
+            ds = wrap(b["s"] - s0, L, d["closed"])
+            hit = (b["piece"] == piece) & (np.clip(1.0 - np.abs(ds) / hat, 0.0, 1.0) >= 0.05)
             if d["end_on_boundary"]:  # the free surface the front meets is not an obstacle
                 end_s = 0.0 if s0 == 0.0 else L
-                hit &= np.abs(bpr["s"] - end_s) > h
-            for on, pieces in mirror_of.values():
+                hit &= np.abs(b["s"] - end_s) > h
+            for on, pieces in self.mirror_of.values():
                 if piece in pieces:
                     hit &= ~on
             if np.any(hit):
-                dist = float(bpr["distance"][hit].min())
+                dist = float(b["distance"][hit].min())
                 obstacles.append((dist - h, "the boundary of the part", dist))
-        for ci, pts in other_pts:
+        for other, pts in self.others:
             dist = float(np.linalg.norm(pts - xk, axis=1).min())
-            obstacles.append((dist - hat - h, f"crack {model.cracks[ci].crack.name!r}", dist))
+            obstacles.append((dist - hat - h, f"crack {other!r}", dist))
         # The own front where it comes back (a thin crack): front vertices
         # off the hat whose distance is less than their arc-length distance.
         own = fr.piece == piece
@@ -379,33 +422,26 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
         back = dso > hat + 2.0 * dxo
         if np.any(back):
             dist = float(dxo[back].min())
-            obstacles.append((0.5 * (dist - hat), f"the opposite part of the front of crack {name!r}", dist))
-        clearance, obstacle, distance = min(obstacles, key=lambda o: o[0]) if obstacles else (math.inf, "", math.inf)
-        least = 2.0 * h  # the smallest domain (half the largest) spans an element
-        warnings: list[str] = []
-        clear = clearance >= least
-        if not clear:
-            radius = least
-            warnings.append(f"{where}: no SIF domain of at least one element ({h:.3g}) fits between the front and "
-                            f"{obstacle} ({distance:.3g} away: room for a domain of radius {max(clearance, 0.0):.3g}, "
-                            f"{least:.3g} needed); K there is computed on a domain of radius {radius:.3g} that "
-                            "reaches it and is NOT reliable: refine the mesh at the front (mesh.tip_h)")
-        elif wanted < least:
-            radius = least
-            warnings.append(f"{where}: sif_radius {wanted:.3g} is below two elements ({h:.3g}) there; K uses "
-                            f"domains up to radius {radius:.3g}")
-        else:
-            radius = min(wanted, clearance)
-        radii = tuple(float(f * radius) for f in DOMAIN_FRACTIONS)
-        out.append(FrontPoint(crack, k, piece, d["closed"], s0, L, xk.copy(), pr["frame"][k].copy(), hat,
-                              float(pr["curvature"][k]), h, bool(d["end_on_boundary"]) and d["symmetry"] is None,
-                              float(clearance), obstacle, float(radius), radii,
-                              float(requested) if requested else None, clear, warnings, d["hat_before"],
-                              d["hat_after"], symmetry=d["symmetry"], requested_position=d["requested"],
-                              source="mirrored_domain" if d["symmetry"] else "domain"))
-    if out:
-        out[0].warnings[:0] = notes
-    return out
+            obstacles.append((0.5 * (dist - hat), f"the opposite part of the front of crack {self.name!r}", dist))
+        return min(obstacles, key=lambda o: o[0]) if obstacles else (math.inf, "", math.inf)
+
+
+def _domain_radius(where: str, h: float, wanted: float, clearance: float, obstacle: str, distance: float
+                   ) -> tuple[float, bool, list[str]]:
+    """(the largest domain's radius, whether a domain of one element fits,
+    warnings): the radius wanted within the clearance, at least two
+    elements (the smallest domain, half the largest, spans an element)."""
+    least = 2.0 * h
+    if clearance < least:
+        return least, False, [
+            f"{where}: no SIF domain of at least one element ({h:.3g}) fits between the front and {obstacle} "
+            f"({distance:.3g} away: room for a domain of radius {max(clearance, 0.0):.3g}, {least:.3g} needed); K "
+            f"there is computed on a domain of radius {least:.3g} that reaches it and is NOT reliable: refine the "
+            "mesh at the front (mesh.tip_h)"]
+    if wanted < least:
+        return least, True, [f"{where}: sif_radius {wanted:.3g} is below two elements ({h:.3g}) there; K uses "
+                             f"domains up to radius {least:.3g}"]
+    return min(wanted, clearance), True, []
 
 
 __all__ = ["FrontPoint", "front_points", "stations", "point_at", "hat_lengths", "wanted_hats", "station_positions",
