@@ -253,6 +253,32 @@ class TipPoints:
         return now
 
 
+@dataclasses.dataclass
+class _StateK:
+    """K of one growth step's geometry at the growth points, each a tuple
+    (K_I, K_II, K_III), K_III None in 2D: basis per load group (G, points),
+    lin per load state by superposition (states, points), use per load state
+    with the closed states' contact K filled in; spread_I, spread_II the
+    basis's domain spreads (G, points)."""
+    basis: tuple
+    lin: tuple
+    use: tuple
+    spread_I: np.ndarray
+    spread_II: np.ndarray
+
+
+@dataclasses.dataclass
+class _Closure:
+    """A growth step's closed load states (module doc, step 2): the smallest
+    linear lip opening per state over the largest (gap_min), the states
+    where it is negative (states), those solved with contact (solved) and
+    their solutions by state (solutions)."""
+    gap_min: np.ndarray
+    states: list[int] = dataclasses.field(default_factory=list)
+    solved: list[int] = dataclasses.field(default_factory=list)
+    solutions: dict[int, typing.Any] = dataclasses.field(default_factory=dict)
+
+
 class LifeRun:
     """The spectrum life of one growth run: set up once, then per step
     measure() (the load levels), count() (the cycles of the increment just
@@ -368,130 +394,154 @@ class LifeRun:
         """Solve the load levels of the current geometry (module doc) and
         record every tip (2D) or growth point of a front (3D, the points of
         self.locator); returns tips.Measured with .levels per point."""
-        from .tips import Measured, closed_fraction
+        from .tips import Measured
         from .load_path import LevelSolver
-        from ..post.solution import create_solution
         t0 = time.perf_counter()
         scene = dataclasses.replace(self.scene, cracks=[dataclasses.replace(c) for c in cracks])
         solver = LevelSolver(scene)
         try:
-            G = len(self.groups)
-            unit = [{g: (1.0 if i == j else 0.0) for j, g in enumerate(self.groups)} for i in range(G)]
-            bilateral = scene.options.contact == "bilateral"
-            basis = solver.solve(unit, contact=bilateral, names=[f"unit {g}" for g in self.groups])
-            model = basis[0].model
-            sifs = [b.stress_intensity_factors(None) for b in basis]
-            where = self.locator.locate(model, sifs[0], cracks)
-            KI, KII, KIII = where.values(sifs, "K_I"), where.values(sifs, "K_II"), where.values(sifs, "K_III")  # (G, pts)
-            spreadI, spreadII = where.values(sifs, "K_I_spread"), where.values(sifs, "K_II_spread")
-            nstate = len(self.states)
-            self._cur_basis = (KI, KII, KIII)
-            KI_lin, KII_lin = self.F @ KI, self.F @ KII                 # (states, pts)
-            KIII_lin = None if KIII is None else self.F @ KIII
-            KI_use, KII_use = KI_lin.copy(), KII_lin.copy()
-            KIII_use = None if KIII_lin is None else KIII_lin.copy()
-            closed_states: list[int] = []
-            solved: list[int] = []
-            sol_levels: dict[int, typing.Any] = {}
-            gap_min = np.zeros(nstate)
-            if model.cracks:
-                gaps = np.array([np.concatenate([b.lip_samples(ci, 2)["gap"] for ci in range(len(model.cracks))])
-                                 for b in basis])                     # (G, points)
-                gstate = self.F @ gaps
-                # (under mpirun each process samples the lips of its cells: the extremes over all of them)
-                comm = model.V.mesh.comm
-                scale = np.maximum(reduced(np.abs(gstate).max(axis=1, initial=0.0), "MAX", comm), 1e-300)
-                gap_min = reduced(gstate.min(axis=1, initial=np.inf), "MIN", comm) / scale
-                if self.contact_closure and not bilateral:
-                    closed_states = [int(s) for s in np.flatnonzero(gap_min < -1e-6)]
-            if closed_states:
-                solved, lam_cl = self._contact_levels(closed_states, gaps, gap_min)
-                sols = solver.solve([self.factors(self.F[s]) for s in solved], contact=True,
-                                    names=[f"closed state {s}" for s in solved])
-                for s, sol in zip(solved, sols):
-                    sol_levels[s] = sol
-                cs = [sol.stress_intensity_factors(None) for sol in sols]
-                KI_c, KII_c, KIII_c = where.values(cs, "K_I"), where.values(cs, "K_II"), where.values(cs, "K_III")
-                for c, (Kc, Ku) in enumerate(((KI_c, KI_use), (KII_c, KII_use), (KIII_c, KIII_use))):
-                    if Kc is not None:
-                        self._fill_closed(closed_states, solved, Kc, Ku, lam_cl, self._cur_basis[c])
+            basis, where, K = self._basis_solves(solver, scene, cracks)
+            closure = self._closure(solver, scene, basis, where, K)
             self.level_solves += solver.solves
             self.load_levels.append(solver.solves)
             n_solves = solver.solves
-            # The solution at the reference (largest) state, for the ParaView series and the warnings.
-            ref_state = int(np.argmax(KI_use.max(axis=1))) if KI_use.size else 0
-            if ref_state in sol_levels:
-                sol_ref = sol_levels[ref_state]
-            else:
-                u = sum(f * b.u for f, b in zip(self.F[ref_state], basis))
-                sol_ref = create_solution(model, u, dict(basis[0].timings), factors=self.factors(self.F[ref_state]),
-                                          combination=[(float(f), b) for f, b in zip(self.F[ref_state], basis)])
-            if scene.options.contact == "none" and gap_min.size and gap_min.min() < -1e-6:
-                # Without contact the lowest state's lips pass through each other: its solution joins
-                # the reference one's path, so the interpenetration check (post.checks) warns about it.
-                low_state = int(np.argmin(gap_min))
-                u = sum(f * b.u for f, b in zip(self.F[low_state], basis))
-                sol_low = create_solution(model, u, dict(basis[0].timings), factors=self.factors(self.F[low_state]))
-                sol_low.step = {"index": low_state, "name": "the spectrum's load state " + ", ".join(
-                    f"{g} x {f:.4g}" for g, f in self.factors(self.F[low_state]).items())}
-                sol_ref.path = [sol_ref, sol_low]
-            lengths = where.lengths
-            records, rates, levels = [], {}, {}
-            nets = where.net_stresses(basis, self.yield_stress is not None)
-            zero = np.zeros(nstate)
-            for j, key in enumerate(where.keys):
-                k3_lin = zero if KIII_lin is None else KIII_lin[:, j]      # K_III per state (0 in 2D)
-                k3_use = zero if KIII_use is None else KIII_use[:, j]
-                mag = where.magnitude(KI_use[:, j], KII_use[:, j], k3_use)
-                ref = int(np.argmax(mag))
-                theta, twist = where.kink(KI_use[ref, j], KII_use[ref, j], k3_use[ref], self.growth.criterion)
-                K_lin = where.k_eq(KI_lin[:, j], KII_lin[:, j], k3_lin, theta)
-                K_con = where.k_eq(KI_use[:, j], KII_use[:, j], k3_use, theta)
-                low = int(np.argmin(K_con if self.contact_closure else K_lin))
-                a_tip = where.size(j)
-                K_cyc = K_con if self.contact_closure else K_lin
-                cycles = self.cycles if self.single else self._count_tip(K_cyc)
-                sigma_net = s_basis = None
-                if nets is not None:
-                    s_basis = nets(j, theta)
-                    sigma_net = self.F @ s_basis
-                x, y, z = where.position(j)
-                lv = TipLevels(key, a_tip, K_lin, K_con, KI_use[:, j], KII_use[:, j], theta, ref, low,
-                               where.basis(j, self.groups, KI, KII, KIII),
-                               sigma_net, cycles, x, y, s_basis,
-                               np.isin(np.arange(nstate), closed_states),
-                               K_III=None if KIII_use is None else KIII_use[:, j], z=z, twist=twist)
-                levels[key] = lv
-                spread_I = float(np.abs(self.F[ref]) @ spreadI[:, j])
-                spread_II = float(np.abs(self.F[ref]) @ spreadII[:, j])
-                keq = where.k_eq_one(KI_use[ref, j], KII_use[ref, j], k3_use[ref], theta, clamp=True)
-                closed = closed_fraction(sol_levels[ref], key[0]) if ref in sol_levels else 0.0
-                rec = where.record(k, j, lv, spread_I, spread_II, keq, closed, N)
-                rec.K_I_min, rec.K_II_min = float(KI_use[low, j]), float(KII_use[low, j])
-                rec.a = a_tip
-                self._cycle_summary(rec, lv)
-                if key in stopped:
-                    rec.status = "stopped"
-                growth_per_pass = pass_growth(K_cyc, cycles.unique(), self.law, a_tip)
-                rec.da_per_pass = growth_per_pass
-                rec.residual_strength = self._residual_strength(lv)
-                if rec.status == "growing":
-                    if not growth_per_pass > 0.0:
-                        rec.status = "below threshold"
-                    else:
-                        rates[key] = growth_per_pass
-                records.append(rec)
-            self.closure_notes.append(f"step {k}: {len(closed_states)} of {nstate} load states close the lips"
-                                      + (f"; contact solved at {len(solved)}" if closed_states else ""))
+            sol_ref = self._reference_solution(scene, basis, K, closure)
+            records, rates, levels = self._tip_records(k, N, stopped, basis, where, K, closure)
+            self.closure_notes.append(f"step {k}: {len(closure.states)} of {len(self.states)} load states close the "
+                                      "lips" + (f"; contact solved at {len(closure.solved)}" if closure.states else ""))
         finally:
             solver.close()
         self._levels_now = levels
         self.step_seconds.append(time.perf_counter() - t0)
-        m = Measured(records, rates, lengths, sol_ref, model, solves=n_solves, levels=levels)
+        m = Measured(records, rates, where.lengths, sol_ref, basis[0].model, solves=n_solves, levels=levels)
         m.where = where
         if k == 0:
             self._check_initial_failure(levels)
         return m
+
+    def _basis_solves(self, solver, scene: Scene, cracks) -> tuple[list, "TipPoints", "_StateK"]:
+        """Step 1 (module doc): the linear solve of each load group at
+        factor 1, the growth points located on it, and K per load state by
+        superposition."""
+        unit = [{g: (1.0 if i == j else 0.0) for j, g in enumerate(self.groups)} for i in range(len(self.groups))]
+        basis = solver.solve(unit, contact=scene.options.contact == "bilateral",
+                             names=[f"unit {g}" for g in self.groups])
+        sifs = [b.stress_intensity_factors(None) for b in basis]
+        where = self.locator.locate(basis[0].model, sifs[0], cracks)
+        Kb = tuple(where.values(sifs, name) for name in ("K_I", "K_II", "K_III"))  # (G, pts) each (K_III: 3D)
+        self._cur_basis = Kb
+        lin = tuple(None if Kg is None else self.F @ Kg for Kg in Kb)  # (states, pts)
+        return basis, where, _StateK(Kb, lin, tuple(None if Kl is None else Kl.copy() for Kl in lin),
+                                     where.values(sifs, "K_I_spread"), where.values(sifs, "K_II_spread"))
+
+    def _closure(self, solver, scene: Scene, basis: list, where: "TipPoints", K: "_StateK") -> "_Closure":
+        """Step 2 (module doc): the load states whose linear lips would pass
+        through each other, the contact solves at some of them and K at
+        every closed state (K.use filled)."""
+        model = basis[0].model
+        closure = _Closure(gap_min=np.zeros(len(self.states)))
+        if not model.cracks:
+            return closure
+        gaps = np.array([np.concatenate([b.lip_samples(ci, 2)["gap"] for ci in range(len(model.cracks))])
+                         for b in basis])                     # (G, points)
+        gstate = self.F @ gaps
+        # (under mpirun each process samples the lips of its cells: the extremes over all of them)
+        comm = model.V.mesh.comm
+        scale = np.maximum(reduced(np.abs(gstate).max(axis=1, initial=0.0), "MAX", comm), 1e-300)
+        closure.gap_min = reduced(gstate.min(axis=1, initial=np.inf), "MIN", comm) / scale
+        if not self.contact_closure or scene.options.contact == "bilateral":
+            return closure
+        closure.states = [int(s) for s in np.flatnonzero(closure.gap_min < -1e-6)]
+        if not closure.states:
+            return closure
+        closure.solved, lam_cl = self._contact_levels(closure.states, gaps, closure.gap_min)
+        sols = solver.solve([self.factors(self.F[s]) for s in closure.solved], contact=True,
+                            names=[f"closed state {s}" for s in closure.solved])
+        closure.solutions = dict(zip(closure.solved, sols))
+        cs = [sol.stress_intensity_factors(None) for sol in sols]
+        for c, name in enumerate(("K_I", "K_II", "K_III")):
+            Kc = where.values(cs, name)
+            if Kc is not None:
+                self._fill_closed(closure.states, closure.solved, Kc, K.use[c], lam_cl, K.basis[c])
+        return closure
+
+    def _reference_solution(self, scene: Scene, basis: list, K: "_StateK", closure: "_Closure"):
+        """The solution at the reference (largest) state, for the ParaView
+        series and the warnings; without contact, the lowest state's joins
+        its path where its lips pass through each other (post.checks warns)."""
+        from ..post.solution import create_solution
+        model = basis[0].model
+        KI_use = K.use[0]
+        ref_state = int(np.argmax(KI_use.max(axis=1))) if KI_use.size else 0
+        if ref_state in closure.solutions:
+            sol_ref = closure.solutions[ref_state]
+        else:
+            u = sum(f * b.u for f, b in zip(self.F[ref_state], basis))
+            sol_ref = create_solution(model, u, dict(basis[0].timings), factors=self.factors(self.F[ref_state]),
+                                      combination=[(float(f), b) for f, b in zip(self.F[ref_state], basis)])
+        gap_min = closure.gap_min
+        if scene.options.contact == "none" and gap_min.size and gap_min.min() < -1e-6:
+            low_state = int(np.argmin(gap_min))
+            u = sum(f * b.u for f, b in zip(self.F[low_state], basis))
+            sol_low = create_solution(model, u, dict(basis[0].timings), factors=self.factors(self.F[low_state]))
+            sol_low.step = {"index": low_state, "name": "the spectrum's load state " + ", ".join(
+                f"{g} x {f:.4g}" for g, f in self.factors(self.F[low_state]).items())}
+            sol_ref.path = [sol_ref, sol_low]
+        return sol_ref
+
+    def _tip_records(self, k: int, N: float, stopped: set, basis: list, where: "TipPoints", K: "_StateK",
+                     closure: "_Closure") -> tuple[list, dict, dict]:
+        """Per growth point: its load levels (TipLevels: K per state, the
+        kink, the cycles), its record for the step and its growth per pass
+        (rates of the growing ones)."""
+        from .tips import closed_fraction
+        (KI_lin, KII_lin, KIII_lin), (KI_use, KII_use, KIII_use) = K.lin, K.use
+        nstate = len(self.states)
+        records, rates, levels = [], {}, {}
+        nets = where.net_stresses(basis, self.yield_stress is not None)
+        zero = np.zeros(nstate)
+        for j, key in enumerate(where.keys):
+            k3_lin = zero if KIII_lin is None else KIII_lin[:, j]      # K_III per state (0 in 2D)
+            k3_use = zero if KIII_use is None else KIII_use[:, j]
+            mag = where.magnitude(KI_use[:, j], KII_use[:, j], k3_use)
+            ref = int(np.argmax(mag))
+            theta, twist = where.kink(KI_use[ref, j], KII_use[ref, j], k3_use[ref], self.growth.criterion)
+            K_lin = where.k_eq(KI_lin[:, j], KII_lin[:, j], k3_lin, theta)
+            K_con = where.k_eq(KI_use[:, j], KII_use[:, j], k3_use, theta)
+            low = int(np.argmin(K_con if self.contact_closure else K_lin))
+            a_tip = where.size(j)
+            K_cyc = K_con if self.contact_closure else K_lin
+            cycles = self.cycles if self.single else self._count_tip(K_cyc)
+            sigma_net = s_basis = None
+            if nets is not None:
+                s_basis = nets(j, theta)
+                sigma_net = self.F @ s_basis
+            x, y, z = where.position(j)
+            lv = TipLevels(key, a_tip, K_lin, K_con, KI_use[:, j], KII_use[:, j], theta, ref, low,
+                           where.basis(j, self.groups, *K.basis), sigma_net, cycles, x, y, s_basis,
+                           np.isin(np.arange(nstate), closure.states),
+                           K_III=None if KIII_use is None else KIII_use[:, j], z=z, twist=twist)
+            levels[key] = lv
+            spread_I = float(np.abs(self.F[ref]) @ K.spread_I[:, j])
+            spread_II = float(np.abs(self.F[ref]) @ K.spread_II[:, j])
+            keq = where.k_eq_one(KI_use[ref, j], KII_use[ref, j], k3_use[ref], theta, clamp=True)
+            closed = closed_fraction(closure.solutions[ref], key[0]) if ref in closure.solutions else 0.0
+            rec = where.record(k, j, lv, spread_I, spread_II, keq, closed, N)
+            rec.K_I_min, rec.K_II_min = float(KI_use[low, j]), float(KII_use[low, j])
+            rec.a = a_tip
+            self._cycle_summary(rec, lv)
+            if key in stopped:
+                rec.status = "stopped"
+            growth_per_pass = pass_growth(K_cyc, cycles.unique(), self.law, a_tip)
+            rec.da_per_pass = growth_per_pass
+            rec.residual_strength = self._residual_strength(lv)
+            if rec.status == "growing":
+                if not growth_per_pass > 0.0:
+                    rec.status = "below threshold"
+                else:
+                    rates[key] = growth_per_pass
+            records.append(rec)
+        return records, rates, levels
 
     def _count_tip(self, K_states: np.ndarray) -> CycleTable:
         """Several load groups: count the pass on this tip's K."""

@@ -303,14 +303,35 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
     (Scene.units) when it has them. fields: solution.subcell_fields() if
     the caller has it already."""
     f = solution.subcell_fields() if fields is None else fields
-    units = solution.model.scene.units
-    tris = f["points"].reshape(-1, 3, 2)
+    frame = _Frame.of(solution, f)
+    return [_deformed_png(solution, f, frame, samples, out, scale, title),
+            _crack_pressure_png(solution, frame.units, samples, out, title),
+            _stress_png(f, frame, samples, out, component, title)]
+
+
+class _Frame(typing.NamedTuple):
+    """What the part's pictures share: the scene's units (or None), the
+    sub-cells (n, 3, 2), the part's extent, the figure's height, the zoom
+    window around the cracks (None: no zoom)."""
+    units: typing.Any
+    tris: np.ndarray
+    extent: np.ndarray
+    height: float
+    window: typing.Any
+
+    @classmethod
+    def of(cls, solution: Solution, f: dict) -> "_Frame":
+        extent = np.ptp(part_points(solution, f), axis=0)
+        return cls(solution.model.scene.units, f["points"].reshape(-1, 3, 2), extent,
+                   float(np.clip(8.0 * extent[1] / max(extent[0], 1e-300), 3.0, 8.0)), crack_window(solution, f))
+
+
+def _deformed_png(solution: Solution, f: dict, frame: _Frame, samples: list[dict], out: pathlib.Path, scale: float,
+                  title: str) -> str:
+    """deformed.png (write_pngs)."""
+    units, tris, extent, height, window = frame
     disp = f["displacement"].reshape(-1, 3, 2)
     mag = magnification(solution, f, scale)
-    names = []
-    extent = np.ptp(part_points(solution, f), axis=0)
-    height = float(np.clip(8.0 * extent[1] / max(extent[0], 1e-300), 3.0, 8.0))
-    window = crack_window(solution, f)
     umag = np.linalg.norm(disp, axis=2).mean(axis=1)
     moving = bool(np.any(umag > 0.0))
 
@@ -349,8 +370,11 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
     fig.suptitle(f"{title}\ndeformed mesh{head}", fontsize=10)
     save_png(fig, out / "deformed.png", {"part": panels[0], "colorbar": bar.ax,
                                          **({"zoom": panels[1]} if window is not None else {})})
-    names.append("deformed.png")
+    return "deformed.png"
 
+
+def _crack_pressure_png(solution: Solution, units, samples: list[dict], out: pathlib.Path, title: str) -> str:
+    """crack_pressure.png (write_pngs)."""
     contact = bool(solution.contact)
     mu = solution.model.scene.options.friction if contact and "lambda_t" in solution.contact else 0.0
     fig = new_figure((7, 6.5) if mu else (7, 4))
@@ -409,8 +433,12 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
                      fontsize=9)
         fig.tight_layout()
     save_png(fig, out / "crack_pressure.png", {"along": ax})
-    names.append("crack_pressure.png")
+    return "crack_pressure.png"
 
+
+def _stress_png(f: dict, frame: _Frame, samples: list[dict], out: pathlib.Path, component: str, title: str) -> str:
+    """stress.png (write_pngs)."""
+    units, tris, extent, height, window = frame
     fig, panels = _part_and_zoom(extent, window, height)
     s = f["stress"]
     values = {"xx": s[:, 0], "yy": s[:, 1], "xy": s[:, 2]}.get(component)
@@ -450,8 +478,7 @@ def write_pngs(solution: Solution, samples: list[dict], out: pathlib.Path, scale
         fig.suptitle(f"{title}\n{name}", fontsize=10)
     save_png(fig, out / "stress.png", {"part": panels[0], "colorbar": bar.ax,
                                        **({"zoom": panels[1]} if window is not None else {})})
-    names.append("stress.png")
-    return names
+    return "stress.png"
 
 
 def _rectangle(window):
