@@ -107,6 +107,37 @@ def factor_call(ksp: PETSc.KSP, method: str, *args):
         F.destroy()
 
 
+#: MUMPS' workspace relaxation ICNTL(14) (per cent) tried in turn while a
+#: factorisation runs out of workspace (INFOG(1) = -8, -9: delayed pivots
+#: of ill-conditioned enriched dofs).
+WORKSPACE_RELAXATIONS = (20, 100, 400)
+
+
+def factor_relaxed(M: PETSc.Mat, symmetric: bool) -> tuple[PETSc.KSP, "PETSc.Error | None", int]:
+    """The MUMPS factorisation of M (create_lu_solver), retried with a
+    larger workspace (WORKSPACE_RELAXATIONS) while it runs out of it:
+    (its KSP, the PETSc error of the last try or None, its INFOG(1)). The
+    caller checks the outcome (and destroys the KSP)."""
+    for relax in WORKSPACE_RELAXATIONS:
+        ksp = create_lu_solver(M, symmetric=symmetric)
+        try:
+            factor_call(ksp, "setMumpsIcntl", 14, relax)
+            error = None
+            try:
+                ksp.setUp()
+            except PETSc.Error as e:
+                error = e
+            info = factor_call(ksp, "getMumpsInfog", 1)
+        except BaseException:
+            ksp.destroy()
+            raise
+        if info in (-8, -9) and relax < WORKSPACE_RELAXATIONS[-1]:
+            ksp.destroy()  # workspace too small: retry with more
+            continue
+        return ksp, error, info
+    raise AssertionError("unreachable")  # pragma: no cover
+
+
 def solve_checked(A: PETSc.Mat, b: PETSc.Vec, residual_tol: float = 1e-8,
                   what: str = "system", scale: bool = True, symmetric: bool = False) -> PETSc.Vec:
     """Solve A x = b by MUMPS; raise SolverError on any sign of failure.
@@ -136,26 +167,14 @@ def solve_checked(A: PETSc.Mat, b: PETSc.Vec, residual_tol: float = 1e-8,
     x = b.duplicate()
     ksp = None
     try:
-        for relax in (20, 100, 400):
-            ksp = create_lu_solver(M, symmetric=symmetric)
-            factor_call(ksp, "setMumpsIcntl", 14, relax)
-            error = None
-            try:
-                ksp.setUp()
-            except PETSc.Error as e:
-                error = e
-            if factor_call(ksp, "getMumpsInfog", 1) in (-8, -9) and relax < 400:
-                ksp.destroy()  # workspace too small: retry with more
-                continue
-            oom = out_of_memory(ksp, error, what, M.getSize()[0])
-            if oom is not None:
-                raise oom
-            if error is not None:
-                raise SolverError(f"MUMPS factorisation of the {what} failed ({error}); the matrix is "
-                                  "probably singular: check that every piece of the domain (a crack may "
-                                  "cut it in two) has Dirichlet conditions fixing its rigid motion") from None
-            break
-        info = factor_call(ksp, "getMumpsInfog", 1)
+        ksp, error, info = factor_relaxed(M, symmetric)
+        oom = out_of_memory(ksp, error, what, M.getSize()[0])
+        if oom is not None:
+            raise oom
+        if error is not None:
+            raise SolverError(f"MUMPS factorisation of the {what} failed ({error}); the matrix is "
+                              "probably singular: check that every piece of the domain (a crack may "
+                              "cut it in two) has Dirichlet conditions fixing its rigid motion") from None
         if info < 0:
             raise SolverError(f"MUMPS failed on the {what}: INFOG(1) = {info}, INFOG(2) = "
                               f"{factor_call(ksp, 'getMumpsInfog', 2)}")

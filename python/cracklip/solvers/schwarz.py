@@ -14,7 +14,7 @@ from petsc4py import PETSc
 
 from ..errors import SolverError
 from .band_update import BandSolve
-from .checked import create_lu_solver, factor_call, out_of_memory
+from .checked import factor_call, factor_relaxed, out_of_memory
 from .pc_setup import set_up_pc
 
 
@@ -238,19 +238,7 @@ def factor_band(A11: PETSc.Mat, symmetric: bool = True) -> PETSc.KSP:
     with solve_checked's checks: a factorisation that runs out of workspace
     (INFOG(1) = -8, -9: delayed pivots of the ill-conditioned tip dofs) is
     retried with more (ICNTL(14)); an error or a null pivot raises."""
-    for relax in (20, 100, 400):
-        ksp = create_lu_solver(A11, symmetric=symmetric)
-        factor_call(ksp, "setMumpsIcntl", 14, relax)
-        error = None
-        try:
-            ksp.setUp()
-        except PETSc.Error as e:
-            error = e
-        info = factor_call(ksp, "getMumpsInfog", 1)
-        if info in (-8, -9) and relax < 400:
-            ksp.destroy()
-            continue
-        break
+    ksp, error, info = factor_relaxed(A11, symmetric)
     oom = out_of_memory(ksp, error, "crack band block of the iterative solver", A11.getSize()[0])
     if oom is not None and info not in (-8, -9):
         ksp.destroy()
