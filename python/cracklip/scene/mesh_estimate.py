@@ -64,7 +64,7 @@ ENRICHED_SHARE = 0.25
 #: many enriched dofs needs more: the penny at 7.6e4 dofs, 39 % enriched,
 #: by the direct path 1.4 GB; with the enrichment radius 0.25 a at 9.6e5
 #: dofs 5.97 GB with the front's torus in the exact band, 3.4 GB with its
-#: outer part solved inexactly (solvers.iterative; this formula 0.70, 3.6).
+#: outer part solved inexactly (solvers.schwarz; this formula 0.70, 3.6).
 BASE_MEMORY = 0.45e9
 BYTES_PER_DOF = 3.3e3
 

@@ -5,7 +5,7 @@ Between two solves of an active-set or friction iteration the stiffness
 is the same; what changes are the rows of the multipliers whose state
 (open, stick, slip) or slip direction changed, and, for a symmetric saddle
 point, their columns. The band block A (the Schwarz sweep's exact block,
-cracklip.solvers.iterative) then differs from a matrix A0 already factored
+cracklip.solvers.schwarz) then differs from a matrix A0 already factored
 by E = A - A0 = U V of small rank k, and Sherman-Morrison-Woodbury solves
 with A exactly from A0's factorisation F:
 
