@@ -13,8 +13,9 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 from cracklip.model.assembly import assemble_system
-from cracklip.solvers import choice, iterative, near_nullspace, phantom, saddle, sweep_blocks
-from cracklip.solvers.checked import blas_library, scipy_from_petsc
+from cracklip.solvers import checked, choice, iterative, near_nullspace, phantom, saddle, schwarz, sweep_blocks
+from cracklip.errors import SolverError
+from cracklip.solvers.checked import blas_library, petsc_from_scipy, scipy_from_petsc
 from scipy.sparse.csgraph import connected_components
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
@@ -136,6 +137,53 @@ def test_band_rings_follow_the_multipliers_in_2d_only():
     assert rings(2, 1) == 1 and rings(2, 15) == 2 and rings(2, 212) == 15
     assert rings(2, 10 ** 6) == sweep_blocks.MAX_BAND_RINGS
     assert rings(3, 1) == rings(3, 10 ** 6) == sweep_blocks.CONTACT_BAND_RINGS_3D
+
+
+def _out_of_workspace(monkeypatch, tries: int) -> list[int]:
+    """Make the first `tries` MUMPS factorisations report INFOG(1) = -9 (out
+    of workspace); returns the ICNTL(14) values set, in order."""
+    relaxations: list[int] = []
+    real = checked.factor_call
+
+    def fake(ksp, method, *args):
+        if method == "setMumpsIcntl" and args[0] == 14:
+            relaxations.append(args[1])
+        out = real(ksp, method, *args)
+        return -9 if method == "getMumpsInfog" and args == (1,) and len(relaxations) <= tries else out
+    monkeypatch.setattr(checked, "factor_call", fake)
+    return relaxations
+
+
+def _spd(n: int = 60) -> sp.csr_matrix:
+    return (sp.diags([-1.0, 2.5, -1.0], [-1, 0, 1], shape=(n, n)) + sp.eye(n)).tocsr()
+
+
+def test_factorisation_out_of_workspace_is_retried_with_more(monkeypatch):
+    """checked.factor_relaxed (solve_checked's and the crack band's
+    factorisation): a factorisation out of workspace (INFOG(1) = -9) is
+    factored again with ICNTL(14) 20 -> 100 -> 400, and the one that
+    succeeds solves; out of workspace at 400 the band's factor_band raises
+    naming it, and solve_checked names the memory it needed."""
+    A = _spd()
+    relaxations = _out_of_workspace(monkeypatch, 1)
+    M = petsc_from_scipy(A)
+    ksp, error, info = checked.factor_relaxed(M, symmetric=False)
+    assert relaxations == [20, 100] and error is None and info == 0
+    b, x = M.createVecs()
+    b.array[:] = np.arange(A.shape[0], dtype=float)
+    ksp.solve(b, x)
+    assert np.abs(A @ x.array - b.array).max() <= 1e-12 * np.abs(b.array).max()
+    ksp.destroy()
+    relaxations = _out_of_workspace(monkeypatch, 3)
+    with pytest.raises(SolverError, match=r"could not be factored.*ICNTL\(14\) = 400"):
+        schwarz.factor_band(M, symmetric=False)
+    assert relaxations == list(checked.WORKSPACE_RELAXATIONS) == [20, 100, 400]
+    relaxations = _out_of_workspace(monkeypatch, 3)
+    with pytest.raises(SolverError, match="ran out of memory"):
+        checked.solve_checked(M, b, what="test system")
+    assert relaxations == [20, 100, 400]
+    for obj in (M, b, x):
+        obj.destroy()
 
 
 def test_crack_band_holds_every_enriched_dof_and_a_ring(square_h01):
