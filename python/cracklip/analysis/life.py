@@ -411,7 +411,6 @@ class LifeRun:
                                       "lips" + (f"; contact solved at {len(closure.solved)}" if closure.states else ""))
         finally:
             solver.close()
-        self._levels_now = levels
         self.step_seconds.append(time.perf_counter() - t0)
         m = Measured(records, rates, where.lengths, sol_ref, basis[0].model, solves=n_solves, levels=levels)
         m.where = where
@@ -429,7 +428,6 @@ class LifeRun:
         sifs = [b.stress_intensity_factors(None) for b in basis]
         where = self.locator.locate(basis[0].model, sifs[0], cracks)
         Kb = tuple(where.values(sifs, name) for name in ("K_I", "K_II", "K_III"))  # (G, pts) each (K_III: 3D)
-        self._cur_basis = Kb
         lin = tuple(None if Kg is None else self.F @ Kg for Kg in Kb)  # (states, pts)
         return basis, where, _StateK(Kb, lin, tuple(None if Kl is None else Kl.copy() for Kl in lin),
                                      where.values(sifs, "K_I_spread"), where.values(sifs, "K_II_spread"))

@@ -322,7 +322,7 @@ def solve_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.n
     # Inexact inner solves (INEXACT_RTOL) where they save work: on the iterative path.
     loose = INEXACT_RTOL if linear is not None and linear.name == "iterative" else None
     try:
-        u, info = _iterate(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, None, loose)
+        u, info = _StateIteration(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, None, loose).run()
         info["method"] = "coulomb"
         return u, info
     except _Cycle as cycle:
@@ -332,7 +332,8 @@ def solve_friction(K: sp.csr_matrix, f: np.ndarray, cs: ContactSystem, g_n: np.n
     bound = mu * np.maximum(-lam_n, 0.0)
     for outer in range(1, opts.max_active_set_iterations + 1):
         try:
-            u, info = _iterate(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, loose)
+            u, info = _StateIteration(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound,
+                                          loose).run()
         except _Cycle as e:
             raise ContactError(f"{first_cycle}; the fixed point on the friction bound cycles too ({e}); split "
                                "the load into more increments (options.load_steps), or lower the friction "
@@ -389,12 +390,6 @@ def violation(p: np.ndarray, tau: np.ndarray, gap: np.ndarray, dslip: np.ndarray
     return float(v.max(initial=0.0) / max(float(np.abs(p).max(initial=0.0)), 1e-300))
 
 
-def _iterate(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, loose=None):
-    """The state iteration (Coulomb, or Tresca with a given bound) from the
-    given states, each linear solve by saddle (friction_saddle): _StateIteration."""
-    return _StateIteration(saddle, cs, g_n, g_t, s_old, opts, c, state, sign, history, bound, loose).run()
-
-
 class _Iterate(typing.NamedTuple):
     """One solve of the state iteration and what it classifies: the
     solution (u, lam_n, lam_t), whether it was solved exactly, the next
@@ -411,10 +406,10 @@ class _Iterate(typing.NamedTuple):
 
 
 class _StateIteration:
-    """The state iteration from the given states, each linear solve by
-    saddle (friction_saddle): solve, classify (step), and either stop
-    (settled on an exact solve), go on with the new states, or deal with a
-    set of states met before (cycle). When a set of states comes back, the
+    """The state iteration (Coulomb, or Tresca with a given bound) from the
+    given states, each linear solve by saddle (friction_saddle): solve,
+    classify (step), and either stop (settled on an exact solve), go on with
+    the new states, or deal with a set of states met before (cycle). When a set of states comes back, the
     iterate of least violation in the cycle is taken if its violation is
     below CYCLE_TOLERANCE (info["note"] says so), else _Cycle is raised.
     loose: the Krylov tolerance of the inexact inner solves (INEXACT_RTOL;
