@@ -209,6 +209,45 @@ def test_conic_curvature():
     assert np.abs(fs.conic_curvatures(line, line)).max() < 1e-6
 
 
+def test_end_weights_need_an_ellipse_that_flattens_k():
+    """The conic through exactly five points is the one through them (the
+    null vector of the 5 x 6 system; the economy SVD's last row was another
+    conic, a hyperbola through none of them): five points of a quarter
+    ellipse a/c = 0.5 give its exact curvatures, and the end value's
+    weights (end_curvatures) are kept there with Irwin's K. They are
+    dropped where the weights would roughen K (K constant along that
+    ellipse: Irwin's variation added) and where the conic is a hyperbola.
+    The five points of a corner crack grown on a coarse mesh
+    (demos/scenes/corner_crack_growth.toml, step 3; with the wrong conic
+    its end values were 815 and 1098 against 289-337 inside, and the part
+    failed by K_c two steps later): a conic of curvature 0.78-0.83 (the
+    front is about a quarter circle of radius 1.25), end values within 15 %
+    of their nearest interior K."""
+    a, c = 1.0, 2.0
+    phi = np.radians([0.0, 20.0, 45.0, 70.0, 90.0])
+    P = np.column_stack([c * np.cos(phi), a * np.sin(phi), np.zeros(5)])
+    exact = a * c / (c ** 2 * np.sin(phi) ** 2 + a ** 2 * np.cos(phi) ** 2) ** 1.5
+    assert fs.conic_curvatures(P, P) == pytest.approx(exact, rel=1e-9)
+    K_irwin = (np.sin(phi) ** 2 + (a / c) ** 2 * np.cos(phi) ** 2) ** 0.25
+    at = P[[0, 1, 2, 3]]
+    k = fs.end_curvatures(P, at, K_irwin[1:4, None])
+    assert k is not None and k == pytest.approx(exact[:4], rel=1e-9)
+    assert fs.end_curvatures(P, at, np.ones((3, 1))) is None
+    t = np.linspace(0.2, 1.4, 6)
+    hyperbola = np.column_stack([np.cosh(t), np.sinh(t), np.zeros(6)])
+    assert fs.end_curvatures(hyperbola, hyperbola[:5], np.ones((4, 1))) is None
+    grown = np.array([[3.99944, 7.4e-05, 3.67304], [4.36983, 6.1e-05, 3.76554], [4.74881, 5.6e-05, 4.00981],
+                      [5.05978, 4.2e-05, 4.46008], [5.14781, 3.9e-05, 5.0]])
+    K = np.array([[336.913, -1.083, -0.221], [303.020, -0.141, -0.210], [288.815, 0.042, -0.082]])
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(grown, axis=0), axis=1))])
+    for end in (0, 4):
+        k = fs.end_curvatures(grown, grown[[end, 1, 2, 3]], K)
+        assert k is not None and np.all((k > 0.7) & (k < 0.9)), k
+        K_end, _ = fs.end_value(s[1:4], K, s[end], fs.end_window(s[-1], [k[0]]), k[1:], k[0], s[-1])
+        nearest = K[0 if end == 0 else 2, 0]
+        assert abs(K_end[0] / nearest - 1.0) < 0.15, (end, K_end)
+
+
 def test_end_value_on_newman_raju_with_growth_spacing():
     """Newman and Raju's own K (a/t = 0.2, a/c = 0.41 and 0.2) at front
     points three elements of a/8 apart, as the surface-crack growth samples

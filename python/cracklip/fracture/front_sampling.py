@@ -60,7 +60,9 @@ warning); K_source "end_extrapolation", the end's own domain value kept
 as K_domain. kappa is the front's curvature at the end and at the
 points (END_SHAPE: at least 1 / the piece's length), of the conic
 least-squares fitted through all the piece's points (conic_curvatures),
-where the front curves outward (else K itself, as on a straight front).
+where the front curves outward, that conic is an ellipse and its weights
+flatten K along the interior points (end_curvatures; else K itself, as on
+a straight front).
 The whole piece, because Irwin's relation holds for the ellipse, not for
 a local bend: a conic through the end's nearest points followed the
 grown front's own lag at the ends (surface crack a/c0 = 0.2, steps 5-6:
@@ -126,6 +128,9 @@ END_DEGREE = 2
 #: along an elliptical crack under uniform tension), kappa the front's
 #: curvature, at least 1 / the piece's length.
 END_SHAPE = 1.0 / 6.0
+#: ... where the weighted K varies along the interior points no more than
+#: this (relative range) above K itself (end_curvatures).
+END_ROUGHER = 0.02
 
 #: Where a row's K comes from (the rows' K_source).
 SOURCES = {"domain": "the point's domain integral (hat along the front)",
@@ -322,25 +327,66 @@ def shape_weights(curvature, length: float) -> np.ndarray:
     return np.maximum(np.asarray(curvature, dtype=float), floor) ** END_SHAPE
 
 
-def conic_curvatures(points: np.ndarray, at: np.ndarray) -> np.ndarray:
-    """The curvature at `at` (m, 3) of the conic (a x^2 + b x y + c y^2 + d
-    x + e y + f = 0) least-squares fitted to `points` (n >= 5, 3) in their
-    best plane: the curvature of the ellipse (or circle, or line: about 0)
-    a front's points follow, for the end value's weights (module doc)."""
+def _conic(points: np.ndarray) -> tuple[np.ndarray, float, np.ndarray, np.ndarray]:
+    """The conic a x^2 + b x y + c y^2 + d x + e y + f = 0 least-squares
+    fitted to `points` (n >= 5, 3) in their best plane: (origin, scale, the
+    plane's axes (2, 3), (a, b, c, d, e, f)) in coordinates (x - origin) /
+    scale along those axes."""
     P = np.asarray(points, dtype=float)
-    Q = np.asarray(at, dtype=float)
     o = P.mean(axis=0)
     scale = max(float(np.abs(P - o).max()), 1e-300)
     _, _, vt = np.linalg.svd((P - o) / scale, full_matrices=False)
     uv = (P - o) / scale @ vt[:2].T
     x, y = uv[:, 0], uv[:, 1]
-    _, _, ct = np.linalg.svd(np.column_stack([x * x, x * y, y * y, x, y, np.ones_like(x)]), full_matrices=False)
-    a, b, c, d, e, _ = ct[-1]
-    q = (Q - o) / scale @ vt[:2].T
+    # full_matrices: with five points the conic is V's sixth row (the null vector), which the economy
+    # SVD of the 5 x 6 matrix leaves out (its last row, the fifth, is another conic)
+    _, _, ct = np.linalg.svd(np.column_stack([x * x, x * y, y * y, x, y, np.ones_like(x)]), full_matrices=True)
+    return o, scale, vt[:2], ct[-1]
+
+
+def conic_curvatures(points: np.ndarray, at: np.ndarray) -> np.ndarray:
+    """The curvature at `at` (m, 3) of the conic (a x^2 + b x y + c y^2 + d
+    x + e y + f = 0) least-squares fitted to `points` (n >= 5, 3) in their
+    best plane: the curvature of the ellipse (or circle, or line: about 0)
+    a front's points follow, for the end value's weights (module doc)."""
+    o, scale, axes, (a, b, c, d, e, _) = _conic(points)
+    q = (np.asarray(at, dtype=float) - o) / scale @ axes.T
     fx = 2 * a * q[:, 0] + b * q[:, 1] + d
     fy = b * q[:, 0] + 2 * c * q[:, 1] + e
     num = np.abs(fy * fy * 2 * a - 2 * fx * fy * b + fx * fx * 2 * c)
     return num / np.maximum(np.hypot(fx, fy) ** 3, 1e-300) / scale
+
+
+def end_curvatures(points: np.ndarray, at: np.ndarray, K: np.ndarray) -> np.ndarray | None:
+    """The front's curvatures at `at` (the end, then the interior points
+    whose K (n, ...) is given) for the end value's weights (module doc): of
+    the conic through the whole piece's `points` (conic_curvatures), where
+    that conic is an ellipse and the weights flatten K rather than roughen
+    it (the relative range of |K| kappa^END_SHAPE over the interior points at
+    most END_ROUGHER above that of |K|; Irwin's relation makes it constant).
+    None elsewhere: the end value is then the quadratic through K itself.
+    Why: the weights multiply the end's K by (kappa_i / kappa_end)^(1/6)
+    of the conic, so a conic that is not the front's ellipse (a hyperbola,
+    or a slender ellipse through the scatter of a grown front's few points)
+    moves the end value by as much: on the corner crack of
+    demos/scenes/corner_crack_growth.toml (5 front points, while the conic
+    through five points was computed wrong: the economy SVD's last row,
+    not its null vector) the conics were hyperbolas of curvature 0.02-0.05
+    at the ends and 0.5-21 inside, against about 0.8 for the front, and
+    the end values came out 3-5 times the interior K (1098-1707 against
+    289-379 MPa sqrt(mm)), enough to fail the part by K_c.
+    """
+    o, scale, axes, (a, b, c, *_) = _conic(points)
+    if b * b - 4.0 * a * c >= 0.0:  # a parabola or hyperbola: no ellipse through the points
+        return None
+    kappa = conic_curvatures(points, at)
+    mag = np.linalg.norm(np.asarray(K, dtype=float).reshape(len(kappa) - 1, -1), axis=1)
+    if len(mag) < 2 or not mag.mean() > 0.0:
+        return None
+    weighted = mag * np.maximum(kappa[1:], 1e-300) ** END_SHAPE
+    if np.ptp(weighted) / weighted.mean() > np.ptp(mag) / mag.mean() + END_ROUGHER:
+        return None
+    return kappa
 
 
 def end_value(s: np.ndarray, K: np.ndarray, end: float, window: float, curvature: np.ndarray | None = None,
@@ -394,4 +440,4 @@ def interpolate(s: np.ndarray, K: np.ndarray, at: np.ndarray, length: float, clo
 
 __all__ = ["MIN_POINTS", "MIRROR_SIGNS", "END_WINDOW", "END_CURVATURE", "END_POINTS", "END_DEGREE", "END_SHAPE",
            "SOURCES", "requested_positions", "piece_stations", "mirrored_sequence", "end_window", "shape_weights",
-           "conic_curvatures", "end_value", "interpolate"]
+           "conic_curvatures", "end_curvatures", "END_ROUGHER", "end_value", "interpolate"]
