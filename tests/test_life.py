@@ -389,13 +389,16 @@ def test_spectrum_life_at_a_hole_with_contact(tmp_path):
     assert r.records[-1][0].N == pytest.approx(lf["cycles"]) and lf["cycles"] == pytest.approx(lf["passes"] * 124000)
 
 
-def test_life_to_failure_by_toughness_on_a_prescribed_geometry():
+@pytest.mark.parametrize("law", ["paris", "forman"])
+def test_life_to_failure_by_toughness_on_a_prescribed_geometry(law):
     """A centre crack in a strip [-1, 1] x [-3, 3] under a constant-amplitude
-    cycle 0 -> 1 with Paris and K_c = 1.2: the run stops inside an increment
+    cycle 0 -> 1 with Paris and K_c = 1.2 (or Forman with K_f = 1.2, whose
+    rate is infinite at K_max = K_f): the run stops inside an increment
     where K_max reaches K_c (bisection on the interpolated K), reports the
     criterion, and the residual strength (K_c / K_max at the maximum) falls
     below 1 only there; the failure length is where Tada's K of the strip
-    equals 1.2 (within 2 %)."""
+    equals 1.2 (within 2 %). Past K_c no rate is reported (Forman's is
+    infinite there; results.json cannot hold inf)."""
     import handbook
     md = cl.create_rectangle(-1, -3, 1, 3, 0.1, refine=[(-0.8, 0.0, 0.02, 0.5, 0.8, 0.0)])
     scene = cl.Scene(md, cl.Material(1.0, 0.3), cracks=[cl.Crack([[-0.2, 0.0], [0.2, 0.0]])],
@@ -403,7 +406,8 @@ def test_life_to_failure_by_toughness_on_a_prescribed_geometry():
                                 cl.Dirichlet(md.nearest_node((1, -3)), 1, 0.0)],
                      tractions=[cl.Traction("top", (0.0, 1.0)), cl.Traction("bottom", (0.0, -1.0))],
                      options=cl.Options(radius=0.1))
-    fm = FatigueMaterial("paris", {"C": 1e-3, "m": 3.0}, K_Ic=1.2, closure="none")
+    fm = (FatigueMaterial("paris", {"C": 1e-3, "m": 3.0}, K_Ic=1.2, closure="none") if law == "paris" else
+          FatigueMaterial("forman", {"C": 1e-3, "n": 3.0, "K_f": 1.2}, closure="none"))
     res = grow(scene, Growth(da=0.05, steps=12, fatigue_material=fm, R=0.0))
     assert res.stop_criterion == "K_max >= K_c" and res.stop_reason.startswith("final failure: K_max reached K_c")
     a_f = res.life["failure"]["a"]
@@ -414,6 +418,9 @@ def test_life_to_failure_by_toughness_on_a_prescribed_geometry():
     rs = [min(c["multiple"] for c in res.life["residual_strength"] if c["step"] == k) for k in steps]
     assert all(x > 1 for x in rs[:-1]) and rs[-1] <= 1.0  # the last geometry is past failure
     assert np.all(np.diff(rs) < 0)
+    past = [r for r in res.records[-1] if r.K_max is not None and r.K_max >= 1.2]
+    assert past and all((r.da_per_pass is None) == (law == "forman") for r in past)
+    json.dumps(res.life, allow_nan=False)
 
 
 def test_beta_table_of_a_centre_crack_against_tada():

@@ -531,7 +531,9 @@ class LifeRun:
             if key in stopped:
                 rec.status = "stopped"
             growth_per_pass = pass_growth(K_cyc, cycles.unique(), self.law, a_tip)
-            rec.da_per_pass = growth_per_pass
+            # At K_max >= K_c the law's rate is infinite: no rate to report (the failure is found by
+            # the increment's integration, count); results.json holds no inf.
+            rec.da_per_pass = growth_per_pass if math.isfinite(growth_per_pass) else None
             rec.residual_strength = self._residual_strength(lv)
             if rec.status == "growing":
                 if not growth_per_pass > 0.0:

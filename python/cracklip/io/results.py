@@ -62,12 +62,13 @@ def json_default(value):
 
 def write_results_json(out: pathlib.Path, results: dict) -> None:
     """out/results.json of a command: strict JSON (no NaN or infinity: a
-    SolverError, nothing written), numpy values as numbers, complete or
+    SolverError, results.json not written), numpy values as numbers, complete or
     not at all."""
     try:
         text = json.dumps(results, indent=2, allow_nan=False, default=json_default)
     except ValueError as e:
-        raise SolverError(f"results.json would hold NaN or infinity ({e}); nothing written") from None
+        raise SolverError(f"results.json would hold NaN or infinity ({e}); results.json not written "
+                          "(the other outputs of the run are)") from None
     with atomic_path(pathlib.Path(out) / "results.json") as tmp:
         tmp.write_text(text + "\n")
 
