@@ -54,6 +54,15 @@ def _common_checks(results, rows, out):
     assert {p.name for p in out.iterdir() if not p.name.startswith(".")} == FILES_3D
     assert set(results["files"]) == FILES_3D
     assert results["dimension"] == 3 and results["sifs"]
+    # SIF warnings carry their code and where they are (docs/sifs.md's table)
+    for w in results["warnings"]:
+        if "NOT reliable" in w["message"]:
+            assert w["code"] == "sif_domain" and w["crack"] is not None and w["tip"] is not None, w
+        if "varies with the SIF domain" in w["message"]:
+            assert w["code"] == "sif_spread" and w["crack"] is not None, w
+    for r in results["sifs"]:
+        assert r["domain_clear"] or any((w["code"], w["crack"], w["tip"]) == ("sif_domain", r["crack"], r["point"])
+                                        for w in results["warnings"]), r
     assert all({"K_I", "K_II", "K_III", "K_I_spread", "free_surface"} <= set(r) for r in results["sifs"])
     model = results["model"]
     assert model["dofs"]["total"] == results["solution"]["dofs"] == model["dofs"]["standard"] + model["dofs"]["enriched"]

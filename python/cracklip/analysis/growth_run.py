@@ -11,6 +11,7 @@ import time
 import typing
 
 from ..errors import BoundaryConditionError, CracklipError, InputError
+from ..model.checks import CODE_MEANINGS
 from ..scene.growth import Growth
 from ..scene.processes import mark_collective
 from ..scene.scene import Scene
@@ -263,7 +264,8 @@ class GrowthRun:
 
     def result(self) -> GrowthResult:
         warnings = self.warnings + [
-            f"the model warning '{c}' came {n} times in all (at the steps listed in results.json per_step)"
+            f"the model warning '{c}'" + (f" ({CODE_MEANINGS[c]})" if c in CODE_MEANINGS else "")
+            + f" came {n} times in all (at the steps listed in results.json per_step)"
             for c, n in self.warning_counts.items() if n > 1]
         return GrowthResult(self.records, self.cracks, self.stop_reason, self.stops, list(dict.fromkeys(warnings)),
                             self.solutions, self.step_times, self.N, self.solves, self.step_warnings,

@@ -30,6 +30,7 @@ import numpy as np
 import scipy.spatial
 
 from ..errors import InputError
+from ..model.checks import CodedText
 from ..scene.processes import reduced
 from ..scene.symmetry import SymmetryCondition
 from . import front_sampling
@@ -39,6 +40,9 @@ from .front import (FIT_TURN, Front, all_points, boundary_nodes, crack_front, mo
 
 #: Default radius of the largest domain, in element sizes at the front point.
 DEFAULT_ELEMENTS = 4.0
+
+#: The scene keys that size the elements at a front, as the warnings name them.
+REFINE_AT_FRONT = "mesh.tip_h, or the h of a [[mesh.refine]] entry there"
 
 
 #: The domains' radii as fractions of the largest.
@@ -292,7 +296,8 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
         return []
     name = model.cracks[crack].crack.name
     st, _, notes = stations(model, crack, spacing)
-    notes = notes + _kink_notes(fr, name)
+    notes = [CodedText(n, "sif_points", crack) for n in notes] + [CodedText(n, "sif_domain", crack)
+                                                                  for n in _kink_notes(fr, name)]
     pr = project(model, crack, np.array([point_at(fr, d["piece"], d["s"]) for d in st]))
     sizes = _HatSizes(fr)
     obstacles = _Obstacles(model, crack, fr, st, requested)
@@ -304,6 +309,7 @@ def front_points(model, crack: int, requested: float | None = None, spacing: flo
         wanted = float(requested) if requested else DEFAULT_ELEMENTS * h
         clearance, obstacle, distance = obstacles.nearest(d, xk, h, wanted)
         radius, clear, warnings = _domain_radius(where, h, wanted, clearance, obstacle, distance)
+        warnings = [CodedText(w, "sif_domain", crack, k) for w in warnings]
         out.append(FrontPoint(crack, k, d["piece"], d["closed"], d["s"], d["length"], xk.copy(), pr["frame"][k].copy(),
                               d["hat"], float(pr["curvature"][k]), h,
                               bool(d["end_on_boundary"]) and d["symmetry"] is None, float(clearance), obstacle,
@@ -437,7 +443,7 @@ def _domain_radius(where: str, h: float, wanted: float, clearance: float, obstac
             f"{where}: no SIF domain of at least one element ({h:.3g}) fits between the front and {obstacle} "
             f"({distance:.3g} away: room for a domain of radius {max(clearance, 0.0):.3g}, {least:.3g} needed); K "
             f"there is computed on a domain of radius {least:.3g} that reaches it and is NOT reliable: refine the "
-            "mesh at the front (mesh.tip_h)"]
+            f"mesh at the front ({REFINE_AT_FRONT})"]
     if wanted < least:
         return least, True, [f"{where}: sif_radius {wanted:.3g} is below two elements ({h:.3g}) there; K uses "
                              f"domains up to radius {least:.3g}"]
@@ -445,5 +451,5 @@ def _domain_radius(where: str, h: float, wanted: float, clearance: float, obstac
 
 
 __all__ = ["FrontPoint", "front_points", "stations", "point_at", "hat_lengths", "wanted_hats", "station_positions",
-           "symmetry_planes", "DEFAULT_ELEMENTS", "DOMAIN_FRACTIONS", "HAT_ELEMENTS", "HAT_CURVATURE",
+           "symmetry_planes", "DEFAULT_ELEMENTS", "REFINE_AT_FRONT", "DOMAIN_FRACTIONS", "HAT_ELEMENTS", "HAT_CURVATURE",
            "MIN_HAT_ELEMENTS", "COUNT_HAT_ELEMENTS", "CURVATURE_FRACTION"]

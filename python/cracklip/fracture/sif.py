@@ -48,6 +48,7 @@ import numpy as np
 
 from .. import _cracklip
 from ..errors import InputError
+from ..model.checks import CodedText
 from ..model.tip_regions import TipDomain, lip_points, node_distances, tip_domains
 from ..scene.processes import reduced
 from ..scene.stress_field import LinearStress, divergence
@@ -247,13 +248,13 @@ def compute_sifs(solution, radius: float | None = None, cracks: typing.Sequence[
         name = m.cracks[dom.crack].crack.name
         warnings += dom.warnings
         if dom.clear and max(spread) > SPREAD_WARNING * scale:
-            warnings.append(
+            warnings.append(CodedText(
                 f"tip {dom.tip} of crack {name!r} at ({dom.position[0]:.6g}, {dom.position[1]:.6g}): K varies "
                 f"with the SIF domain by {max(spread) / scale * 100:.2g} % of the K scale {scale:.4g} (K_I "
                 f"{', '.join(f'{v:.5g}' for v in K[:, 0])}, K_II {', '.join(f'{v:.5g}' for v in K[:, 1])} on "
                 f"radii {', '.join(f'{r:.3g}' for r in dom.radii)}): the field near the tip is not resolved "
                 f"(element {dom.element_size:.3g}); refine the mesh at the tip (mesh.tip_h) or enlarge the "
-                "enrichment radius")
+                "enrichment radius (options.radius)", "sif_spread", dom.crack, dom.tip))
         mix = math.degrees(math.atan2(kII, kI)) if math.hypot(kI, kII) > negligible else None
         e1 = dom.direction.tolist()
         e2 = [-e1[1], e1[0]]

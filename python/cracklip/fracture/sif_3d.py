@@ -54,6 +54,7 @@ import numpy as np
 
 from .. import _cracklip
 from ..errors import InputError
+from ..model.checks import CodedText
 from ..model.cracks.surface import split_enriched
 from ..scene.cell_size import cell_sizes
 from ..scene.crack_surface import EllipticalCrack
@@ -61,7 +62,7 @@ from ..scene.processes import reduced
 from . import front_sampling
 from .front import (Front, cells_of_nodes, crack_front, lip_points, model_cache, model_comm, node_tree, owned_segments,
                     project, wrap)
-from .front_points import DOMAIN_FRACTIONS, FrontPoint, front_points, point_at, stations
+from .front_points import DOMAIN_FRACTIONS, REFINE_AT_FRONT, FrontPoint, front_points, point_at, stations
 from .lip_tractions import has_lip_traction, lip_traction
 from .sif import complete_rows
 
@@ -369,7 +370,7 @@ def _crack_front_sifs(solution, crack: int, radius: float | None = None) -> tupl
     K = _mirror_ends(fps, K)
     if HAT_CORRECTION:
         K = _hat_correction(fps, K)
-    K = _free_surface_ends(fps, K)
+    K = _free_surface_ends(fps, K, crk.name)
     return fps, K
 
 
@@ -440,7 +441,7 @@ def _hat_correction(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
     return out
 
 
-def _free_surface_ends(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
+def _free_surface_ends(fps: list[FrontPoint], K: np.ndarray, name: str) -> np.ndarray:
     """K at ends on a free surface: the end value of front_sampling.end_value
     from the piece's other points (each domain on its own), weighted by the
     front's curvature there (K kappa^(1/6) extrapolated, kappa of the conic
@@ -460,11 +461,11 @@ def _free_surface_ends(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
             if len(inner) < 2:
                 # One interior point: its K (end_value's polynomial of degree 0) rather than the end's own domain
                 # value, which belongs to the vertex singularity (on closed lips it is not even 0).
-                fp.warnings.append(f"front point {fp.index} of crack {fp.crack}: the front piece has too few other "
-                                   "points for an end value at the free surface (front_sampling); K there is "
-                                   + ("the one interior point's" if len(inner) else
-                                      "its own domain's, which depends on the mesh") + ": refine along the front "
-                                   "(mesh.tip_h)")
+                fp.warnings.append(CodedText(
+                    f"front point {fp.index} of crack {name!r}: the front piece has too few other points for an "
+                    "end value at the free surface; K there is "
+                    + ("the one interior point's" if len(inner) else "its own domain's, which depends on the mesh")
+                    + f": refine along the front ({REFINE_AT_FRONT})", "sif_points", fp.crack, fp.index))
                 if not len(inner):
                     continue
             s = np.array([fps[j].s for j in inner])
@@ -474,9 +475,10 @@ def _free_surface_ends(fps: list[FrontPoint], K: np.ndarray) -> np.ndarray:
             # front curving outward.
             kappa = kappa_end = None
             if len(idx) >= 5 and np.median([fps[j].curvature for j in inner]) > 0.0:
-                k = front_sampling.conic_curvatures(np.array([fps[j].x for j in idx]),
-                                                    np.array([fp.x] + [fps[j].x for j in inner]))
-                kappa_end, kappa = float(k[0]), k[1:]
+                k = front_sampling.end_curvatures(np.array([fps[j].x for j in idx]),
+                                                  np.array([fp.x] + [fps[j].x for j in inner]), K[inner])
+                if k is not None:
+                    kappa_end, kappa = float(k[0]), k[1:]
             out[i], _ = front_sampling.end_value(s, K[inner], fp.s, window, kappa, kappa_end, fp.length)
             fp.K_domain = K[i].copy()
             fp.source = "end_extrapolation"
@@ -633,14 +635,14 @@ def compute_front_sifs(solution, radius: float | None = None, cracks: typing.Seq
         if bad:
             worst = max(bad, key=lambda i: spreads[i].max())
             fp = fps[worst]
-            warnings.append(
+            warnings.append(CodedText(
                 f"crack {crk.name!r}: K varies with the SIF domain by more than {SPREAD_WARNING * 100:g} % of the K "
                 f"scale {scale:.4g} at {len(bad)} of {len(fps)} front points, up to {spreads[worst].max() / scale * 100:.2g} "
                 f"% at front point {worst} (s = {fp.s:.4g}, x = ({fp.x[0]:.4g}, {fp.x[1]:.4g}, {fp.x[2]:.4g}); K_I "
                 f"{', '.join(f'{v:.5g}' for v in K[worst, :, 0])} on radii "
                 f"{', '.join(f'{r:.3g}' for r in fp.radii)}): the field near the front is not resolved (element "
-                f"{fp.element_size:.3g}); refine the mesh at the front (mesh.tip_h) or enlarge the "
-                "enrichment radius")
+                f"{fp.element_size:.3g}); refine the mesh at the front ({REFINE_AT_FRONT}) or enlarge the "
+                "enrichment radius (options.radius)", "sif_spread", ci))
         for i, fp in enumerate(fps):
             kI, kII, kIII = (float(v) for v in K[i, -1])
             shear = math.hypot(kII, kIII)

@@ -56,6 +56,37 @@ from .constraints import ROTATIONS, rigid_motion_rank
 from .tip_regions import length_in_part, model_boundary, segment_distance, tip_domains, tip_element_size
 
 
+#: What the warning codes met along a growth run mean, in a few words (the
+#: summary that counts them; docs/sifs.md has the whole table).
+CODE_MEANINGS = {
+    "sif_domain": "a SIF domain reaches the boundary or another obstacle: K NOT reliable at that point",
+    "sif_spread": "K varies with the SIF domain by more than 1 % of the K scale",
+    "sif_points": "too few front points for a free-surface end value",
+    "front_resolution": "the elements along a front coarser than a fifth of the crack's size",
+    "enrichment_radius": "the enrichment radius below the elements at the front",
+    "tip_region": "the region around a tip coarse for the crack",
+    "interpenetration": "the lips pass through each other (no contact)",
+    "discretisation": "a K's estimated discretisation error above 1 % of the K scale",
+}
+
+
+class CodedText(str):
+    """A warning's text that carries its ModelWarning code and the crack and
+    tip (3D: front point) it concerns, for the messages the SIF computation
+    hands on as strings (logged, gathered, listed per growth step)."""
+    code: str
+    crack: int | None
+    tip: int | None
+
+    def __new__(cls, text: str, code: str, crack: int | None = None, tip: int | None = None):
+        out = super().__new__(cls, text)
+        out.code, out.crack, out.tip = code, crack, tip
+        return out
+
+    def __getnewargs__(self):  # (pickled between processes under mpirun)
+        return str(self), self.code, self.crack, self.tip
+
+
 #: A refinement whose achieved element size exceeds the asked one by this factor is warned about.
 REFINEMENT_TOLERANCE = 1.5
 
@@ -66,7 +97,8 @@ class ModelWarning:
 
     Attributes:
         code: refinement, tip_resolution, tip_region, tip_enrichment,
-            enrichment_radius, tip_near_boundary, sif_domain or sif_spread
+            enrichment_radius, tip_near_boundary, sif_domain, sif_points or
+            sif_spread
             (and, from a solved field, cracklip.post.checks' codes).
         message: what, where, why it matters and what to do.
         crack, tip: the crack and tip concerned (None if not one tip).

@@ -448,8 +448,9 @@ class Solution:
         from .checks import point_supports, solution_warnings
         self.stress_intensity_factors(None)
         model_messages = {w.message for w in self.model.warnings}
-        extra = [ModelWarning("sif_spread", m) for m in self._sif_cache[(None, None, None)][1]
-                 if m not in model_messages]
+        extra = [ModelWarning(getattr(m, "code", "sif_spread"), str(m), getattr(m, "crack", None),
+                              getattr(m, "tip", None))
+                 for m in self._sif_cache[(None, None, None)][1] if m not in model_messages]
         extra += [ModelWarning(code, m) for code, m in solution_warnings(self)]
         moving = np.any(self.u)
         if self.model.distributed:  # (each process its part of u)
