@@ -388,6 +388,21 @@ def test_front_summary_names_the_fitted_modes():
                                                                for r in rows], None, None))
 
 
+def test_front_summary_marks_flagged_extremes():
+    """The printed min and max say when they sit at a free-surface end (the
+    end value) or at a point whose K is NOT reliable, and name a position
+    between front points by its arc length, not 'point None'."""
+    from cracklip.cli import front_summary
+    rows = [{"crack": 0, "crack_name": "c", "point": i, "s": float(i), "position": [float(i), 0.0, 0.0],
+             "parametric_angle": None, "free_surface": i == 0, "domain_clear": i != 2, "K_I": K, "K_II": 0.0,
+             "K_III": 0.0} for i, K in enumerate([3.0, 2.0, 1.0, 2.0])]
+    rows.append(dict(rows[1], point=None, s=1.5, K_II=-1.0))
+    text = "\n".join(front_summary(rows, None, None))
+    assert "max 3 at point 0 (0, 0, 0, the end value at a free surface)" in text
+    assert "min 1 at point 2 (2, 0, 0, NOT reliable)" in text
+    assert "K_II: min -1 at s = 1.5 (between front points) (1, 0, 0)" in text and "point None" not in text
+
+
 def test_demo_cap_scene_loads(tmp_path):
     """demos/front_estimate.py's spherical cap: the STL next to the scene,
     nu = 0.22, hydrostatic tension on all six faces."""

@@ -453,7 +453,8 @@ def test_file_mesh(tmp_path):
     assert sol.crack_opening(0)["normal"].max() > 0.0
     with pytest.raises(cl.InputError, match=r"mesh\.h applies to mesh kind"):
         load_scene_file(scene, overrides=["mesh.h=0.1"])
-    with pytest.raises(cl.MeshError, match="does not exist"):
+    with pytest.raises(cl.MeshError, match=r"mesh\.path 'nowhere\.msh': no such file .*nowhere\.msh \(a relative "
+                                           r"path is read from the scene file's folder, "):
         load_scene_file(scene, overrides=["mesh.path=nowhere.msh"])
 
 

@@ -666,10 +666,14 @@ def estimate_error(scene: Scene, solution, solve_once: Solver) -> dict[str, typi
         return None
     if base.front:
         factor = RHO if fine_front(scene) else 1.0 / RHO
+        logger.info("estimating the discretisation error of K: one more solve, every element size times %.3g",
+                    factor)
         _, aux = _solve_timed(solve_once, similar_scene(scene, factor), factor)
         levels, of = ([aux, base], -1) if factor > 1.0 else ([base, aux], 0)
     else:
         regions = tip_regions(solution)
+        logger.info("estimating the discretisation error of K: one more solve, the element sizes halved within "
+                    "%g elements of each tip", REGION_ELEMENTS)
         _, aux = _solve_timed(solve_once, refined_scene(scene, regions, 1), 0.5)
         levels, of = [base, aux], 0
     smooth = _smooth(scene)

@@ -104,8 +104,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     grow = sub.add_parser("grow", help="grow a scene's cracks (its [growth] table) and write the path",
                           description="Grow the cracks of a scene with a [growth] table through the fixed mesh: "
-                                      "path.csv, results.json, path.png, sif_history.png, a_N.png (fatigue) and "
-                                      "the ParaView series growth.pvd into --out; a progress line per step.")
+                                      "results.json and the ParaView series growth.pvd into --out, with (2D) "
+                                      "path.csv, path.png, sif_history.png or (3D) front_path.csv, shape.csv, "
+                                      "shape.png; with fatigue a_N.png, dadN, life_K and residual strength; a "
+                                      "progress line per step.")
     common(grow)
     grow.add_argument("--out", type=pathlib.Path, required=True, metavar="DIR",
                       help="output folder (created if missing)")
@@ -211,8 +213,7 @@ def cmd_run(args) -> int:
     sol = solve(sf.scene, condition_number=cond)
     no_estimate = "outputs.error_estimate = false"  # why a K has no error estimate, as the summary says
     if sf.outputs["error_estimate"] and sf.scene.options.accuracy == 0.0:
-        from ..analysis.accuracy import RHO, EstimateUnavailable, estimate_error
-        logger.info("estimating the discretisation error of K (one more solve, every element size times %.3g)", RHO)
+        from ..analysis.accuracy import EstimateUnavailable, estimate_error
         try:
             estimate_error(sf.scene, sol, solve)
         except EstimateUnavailable as e:
@@ -238,21 +239,27 @@ def cmd_run(args) -> int:
     comm = _processes()
     if args.quiet or (comm is not None and comm.rank != 0):  # (under mpirun rank 0 prints the summary)
         return 0
+    units = sf.scene.units
+    solid = sol.model.crack_type.END == "front"
+    energy = ("" if units is None else f" {units.name('force')} {units.name('length')}"
+              + ("" if solid else f" per {units.name('length')} of thickness"))
     print(f"{sf.title}: {results['solution']['dofs']} dofs, strain energy "
-          f"{results['solution']['strain_energy']:.6g}")
-    if sol.model.crack_type.END == "front":
-        for line in front_summary(results["sifs"], results.get("error_estimate"), sf.scene.units):
+          f"{results['solution']['strain_energy']:.6g}{energy}")
+    if solid:
+        for line in front_summary(results["sifs"], results.get("error_estimate"), units):
             print(line)
-        unit = "" if sf.scene.units is None else f" {sf.scene.units.name('length')}"
+        unit = "" if units is None else f" {units.name('length')}"
+        area, volume = ("", "") if units is None else (f" {units.name('length')}^2", f" {units.name('length')}^3")
         for c in results["cracks"]:
             fr = c["front"]
             shape = ", ".join("a closed loop" if p["closed"] else
                               f"a line with {p['ends_on_boundary']} of 2 ends on the boundary" for p in fr["pieces"])
             overlap = (f", the lips overlapping by up to {c['interpenetration_max']:.4g}{unit} (see the warning)"
                        if any(w["code"] == "interpenetration" for w in results["warnings"]) else "")
-            print(f"  {c['name']}: area {c['area_in_part']:.4g} in the part, opening up to {c['gap_max']:.4g}{unit} "
-                  f"(mean {c['gap_mean']:.4g}){overlap}, opened volume {c['opening_volume']:.4g}; front "
-                  f"{fr['points']} points, length {fr['length']:.4g}: {shape}")
+            print(f"  {c['name']}: area {c['area_in_part']:.4g}{area} in the part, opening up to "
+                  f"{c['gap_max']:.4g}{unit} (mean {c['gap_mean']:.4g}{unit}){overlap}, opened volume "
+                  f"{c['opening_volume']:.4g}{volume}; front {fr['points']} points, length {fr['length']:.4g}{unit}: "
+                  f"{shape}")
     else:
         for line in sif_summary(results["sifs"], results.get("error_estimate"), sf.scene.units, no_estimate):
             print(line)
@@ -285,7 +292,11 @@ def front_summary(rows, estimate, units) -> list[str]:
         def where(r) -> str:
             angle = ("" if r["parametric_angle"] is None else
                      f", parametric angle {math.degrees(r['parametric_angle']):.1f} deg")
-            return f"point {r['point']} ({', '.join(f'{v:.4g}' for v in r['position'])}{angle})"
+            flags = "".join([", the end value at a free surface" if r["free_surface"] else "",
+                             "" if r["domain_clear"] else ", NOT reliable"])
+            name = (f"point {r['point']}" if r["point"] is not None else
+                    f"s = {r['s']:.4g} (between front points)")
+            return f"{name} ({', '.join(f'{v:.4g}' for v in r['position'])}{angle}{flags})"
         inner = [r for r in mine if not r["free_surface"]] or mine
         for mode in ("K_I", "K_II", "K_III"):
             lo = min(mine, key=lambda r: r[mode])
@@ -395,13 +406,17 @@ def cmd_grow(args) -> int:
                                         f"through the part (polyline length {c['polyline_length']:.6g})"))
         if sf.growth.fatigue:
             print(f"  cycles: {result.cycles:.6g}")
-        if result.life is not None:
-            lf = result.life
-            print(f"  life: {lf['cycles']:.6g} cycles = {lf['blocks']:.6g} {lf['block_name']}s = {lf['passes']:.6g} "
-                  f"passes; closure {lf['closure']}; {lf['level_solves']} level solves"
-                  + (f"; failure ({lf['failure']['criterion']}) at a = {lf['failure']['a']:.6g}" if lf["failure"] else ""))
-        print(f"results in {out}: {', '.join(results['files'][:6])}" + (" ..." if len(results["files"]) > 6 else ""))
+        _print_life_and_files(result.life, results, out)
     return 0
+
+
+def _print_life_and_files(lf: dict | None, results: dict, out) -> None:
+    """The last lines of grow's summary (2D and 3D): the life, where the files are."""
+    from .life import life_counts
+    if lf is not None:
+        print(f"  life: {life_counts(lf)}; closure {lf['closure']}; {lf['level_solves']} level solves"
+              + (f"; failure ({lf['failure']['criterion']}) at a = {lf['failure']['a']:.6g}" if lf["failure"] else ""))
+    print(f"results in {out}: {', '.join(results['files'][:6])}" + (" ..." if len(results["files"]) > 6 else ""))
 
 
 def _on_rank0(write: typing.Callable[[], typing.Any]) -> typing.Any:
@@ -454,12 +469,7 @@ def _grow_3d(args, sf, out, series, t_start: float, quiet: bool) -> int:
             print(f"  {c['name']}: {sh.get('kind', '')} crack"
                   + (f", a = {sh['a']:.6g}, c = {sh['c']:.6g}, a/c = {sh['a_over_c']:.4g}, a/t = {sh['a_over_t']:.4g}"
                      if sh.get("a") is not None else f", mean radius {sh.get('radius_mean', float('nan')):.6g}"))
-        lf = result.life
-        if lf is not None:
-            print(f"  life: {lf['cycles']:.6g} cycles = {lf['blocks']:.6g} {lf['block_name']}s = {lf['passes']:.6g} "
-                  f"passes; closure {lf['closure']}; {lf['level_solves']} level solves"
-                  + (f"; failure ({lf['failure']['criterion']}) at a = {lf['failure']['a']:.6g}" if lf["failure"] else ""))
-        print(f"results in {out}: {', '.join(results['files'][:6])}" + (" ..." if len(results["files"]) > 6 else ""))
+        _print_life_and_files(result.life, results, out)
     return 0
 
 

@@ -65,11 +65,24 @@ def cmd_life(args) -> int:
 cmd_life.rank0_only = True  # needs no mesh: under mpirun rank 0 runs it, its files written once (cli.main)
 
 
+def life_counts(life: dict) -> str:
+    """A life as printed: "N cycles = B <block>s", and "= P passes" where a
+    pass of the spectrum is not one block."""
+    text = f"{life['cycles']:.6g} cycles = {life['blocks']:.6g} {life['block_name']}s"
+    if abs(life["passes"] - life["blocks"]) > 1e-9 * max(1.0, abs(life["blocks"])):
+        text += f" = {life['passes']:.6g} passes"
+    return text
+
+
+#: How the life was integrated (life results' "integration"), as printed.
+INTEGRATION = {"cycles": "integrated cycle by cycle", "blocks": "integrated block by block"}
+
+
 def life_summary(title: str, s: dict) -> list[str]:
     """The printed summary of a life (cmd_life)."""
     block = s["block_name"]
-    lines = [f"{title}: life {s['cycles']:.6g} cycles = {s['blocks']:.6g} {block}s = {s['passes']:.6g} passes "
-             f"({s['integration']}); {s['stop_reason']}"]
+    lines = [f"{title}: life {life_counts(s)} ({INTEGRATION.get(s['integration'], s['integration'])}); "
+             f"{s['stop_reason']}"]
     crit = s["critical"]
     if crit is not None:
         lines.append(f"  critical crack size: a = {crit['a']:.6g}" + (f", c = {crit['c']:.6g}" if "c" in crit else "")

@@ -43,7 +43,8 @@ import numpy as np
 from ..analysis.growth import GrowthResult
 from ..scene.units import label
 from .files import atomic_path
-from .growth_outputs import SeriesWriter, growth_settings, write_life_pngs  # noqa: F401 (SeriesWriter re-exported)
+from .growth_outputs import (SeriesWriter, growth_settings, one_cycle_per_block,  # noqa: F401 (SeriesWriter re-exported)
+                             write_life_pngs)
 from .outputs import ensure_output_dir, versions, write_csv
 from .results import write_results_json
 from .paraview import write_mesh
@@ -214,9 +215,12 @@ def write_shape_pngs(scene_file, result: GrowthResult, out: pathlib.Path) -> lis
     ax.set_title(f"{scene_file.title}\nshape of the front", fontsize=10)
     ax.legend(fontsize=7)
     save_png(fig, out / "shape.png")
-    fig = new_figure((10, 4.5))
-    axes = [fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)]
     life = result.life
+    block = f"{life['block_name']}s" if life else "blocks"
+    # One cycle per block (a constant-amplitude "flight"): one panel, both names on its axis.
+    one = one_cycle_per_block([(r[1], r[2]) for r in rows])
+    fig = new_figure((6, 4.5) if one else (10, 4.5))
+    axes = [fig.add_subplot()] if one else [fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)]
     for n, ci in enumerate(cracks):
         rs = [r for r in rows if r[3] == ci]
         for ax, col in zip(axes, (1, 2)):
@@ -226,8 +230,9 @@ def write_shape_pngs(scene_file, result: GrowthResult, out: pathlib.Path) -> lis
                 ax.plot(x, [r[6] for r in rs], "s--", ms=3, color=f"C{n}", label=f"{names[ci]}: surface length c")
             else:
                 ax.plot(x, [r[10] for r in rs], "o-", ms=3, color=f"C{n}", label=f"{names[ci]}: mean radius")
-    axes[0].set_xlabel("cycles N")
-    axes[1].set_xlabel(f"{life['block_name']}s" if life else "blocks")
+    axes[0].set_xlabel(f"cycles N = {block} (one cycle each)" if one else "cycles N")
+    if not one:
+        axes[1].set_xlabel(block)
     for ax in axes:
         ax.set_ylabel(label(units, "length", "crack size"))
         ax.legend(fontsize=7)

@@ -167,6 +167,12 @@ def _tips(result: GrowthResult) -> dict[tuple[int, int], list[TipRecord]]:
     return out
 
 
+def one_cycle_per_block(pairs) -> bool:
+    """Whether every (cycles, blocks) pair is equal: a block of one cycle
+    (a constant-amplitude flight), so a life needs one axis, not two."""
+    return all(abs(n - b) <= 1e-9 * max(1.0, abs(n)) for n, b in pairs)
+
+
 def write_growth_pngs(scene_file, result: GrowthResult, out: pathlib.Path, fatigue: bool) -> list[str]:
     """path.png (the part, the initial cracks, the paths), sif_history.png (K
     against crack length per tip), a_N.png (crack length against cycles)."""
@@ -238,21 +244,24 @@ def write_growth_pngs(scene_file, result: GrowthResult, out: pathlib.Path, fatig
 
     if fatigue:
         life = result.life
-        fig = new_figure((10, 4.5) if life else (7, 4.5))
-        axes = [fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)] if life else [fig.add_subplot()]
+        # with a life, a panel against blocks too, unless a block is one cycle (one panel, both names)
+        one = not life or one_cycle_per_block([(r.N, r.blocks) for recs in tips.values() for r in recs])
+        fig = new_figure((7, 4.5) if one else (10, 4.5))
+        axes = [fig.add_subplot()] if one else [fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)]
         rows = []
         for n, ((ci, end), recs) in enumerate(tips.items()):
             lab = f"{result.cracks[ci].name} end {end}"
             axes[0].plot([r.N for r in recs], [r.length for r in recs], "o-", ms=3, color=f"C{n}", label=lab)
-            if life:
+            if not one:
                 axes[1].plot([r.blocks for r in recs], [r.length for r in recs], "o-", ms=3, color=f"C{n}", label=lab)
             rows += [[r.step, ci, end, r.length, r.a, r.N, r.passes, r.blocks] for r in recs]
-        axes[0].set_xlabel("cycles N")
+        axes[0].set_xlabel(f"cycles N = {life['block_name']}s (one cycle each)" if life and one else "cycles N")
         for ax in axes:
             ax.set_ylabel(label(units, "length", "crack length a"))
             ax.legend(fontsize=7)
         if life:
-            axes[1].set_xlabel(f"{life['block_name']}s")
+            if not one:
+                axes[1].set_xlabel(f"{life['block_name']}s")
             fail = life.get("failure")
             if fail:
                 for ax, x in zip(axes, (fail["cycles"], fail["blocks"])):

@@ -443,7 +443,7 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
             files.append("crack_contact.png")
         if sifs:
             write_front_png(sifs, out / "front_sifs.png", scene_file.title,
-                            None if m.scene.units is None else m.scene.units.name("K"))
+                            None if m.scene.units is None else m.scene.units.name("K"), m.scene.units)
             files.append("front_sifs.png")
         timings["write_png"] = time.perf_counter() - t0
         logger.info("wrote crack_opening.png" + (", crack_contact.png" if solution.contact else "")

@@ -515,6 +515,7 @@ def write_crack_opening_png(cracks: typing.Sequence, facets: typing.Sequence[dic
     # Panel height from the widest crack's aspect ratio (a colour bar as tall as each picture).
     aspect = max([float(np.ptp(uv[:, 1]) / max(np.ptp(uv[:, 0]), 1e-300)) for uv in uvs if len(uv)] or [1.0])
     fig = new_figure((6.0 * n, 1.6 + 4.2 * min(max(aspect, 0.35), 1.4)))
+    fig.subplots_adjust(right=0.84)  # room for the colour bar's label beside a wide panel
     axes = {}
     for k, (crack, f, fr, uv) in enumerate(zip(cracks, facets, fronts, uvs)):
         ax = fig.add_subplot(1, n, k + 1)
@@ -620,9 +621,12 @@ def write_crack_contact_png(cracks: typing.Sequence, facets: typing.Sequence[dic
     return path
 
 
-def write_front_png(rows: typing.Sequence[dict], path: pathlib.Path, title: str = "", k_unit: str | None = None
-                    ) -> None:
-    """front_sifs.png: K_I, K_II, K_III along each crack's front (module doc)."""
+def write_front_png(rows: typing.Sequence[dict], path: pathlib.Path, title: str = "", k_unit: str | None = None,
+                    units=None) -> None:
+    """front_sifs.png: K_I, K_II, K_III along each crack's front (module doc);
+    each front piece a line of its own (a crack with two fronts: solid,
+    dashed, ...), the free-surface end values, flagged free-surface points,
+    interpolated positions and points whose K is NOT reliable marked."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -632,31 +636,41 @@ def write_front_png(rows: typing.Sequence[dict], path: pathlib.Path, title: str 
         mine = [r for r in rows if int(r["crack"]) == c]
         angle = all(r["parametric_angle"] is not None for r in mine)
         t = np.array([math.degrees(r["parametric_angle"]) if angle else r["s"] for r in mine])
-        o = np.argsort(t)
         source = np.array([r.get("K_source") or "domain" for r in mine])
         ends = source == "end_extrapolation"
         between = source == "interpolation"
         free = np.array([bool(r["free_surface"]) for r in mine]) & ~ends
+        unclear = ~np.array([bool(r.get("domain_clear", True)) for r in mine])
+        piece = np.array([int(r.get("piece") or 0) for r in mine])
+        pieces = sorted(set(piece.tolist()))
+        marks = ((free, dict(marker="x", ms=8, color="k"), "free surface (flagged)"),
+                 (ends, dict(marker="D", ms=6, mfc="none", color="k"), "free-surface end value (extrapolated)"),
+                 (between, dict(marker="o", ms=6, mfc="none", color="k"), "asked position (interpolated)"),
+                 (unclear, dict(marker="s", ms=9, mfc="none", color="r"), "NOT reliable (domain reaches an obstacle)"))
         for name, col in (("K_I", "C0"), ("K_II", "C1"), ("K_III", "C2")):
             k = np.array([r[name] for r in mine])
             err = [r.get(f"{name}_error") for r in mine]
-            if all(e is not None for e in err):
-                ax.errorbar(t[o], k[o], yerr=np.array(err, dtype=float)[o], fmt="o-", color=col, ms=3, lw=1,
-                            capsize=2, label=f"{name} +- estimated error")
-            else:
-                sp = np.array([r[f"{name}_spread"] for r in mine])
-                ax.errorbar(t[o], k[o], yerr=0.5 * sp[o], fmt="o-", color=col, ms=3, lw=1, capsize=2, label=name)
-            for mask, style in ((free, dict(marker="x", ms=8)), (ends, dict(marker="D", ms=6, mfc="none")),
-                                (between, dict(marker="o", ms=6, mfc="none"))):
+            estimated = all(e is not None for e in err)
+            bar = (np.array(err, dtype=float) if estimated else
+                   0.5 * np.array([r[f"{name}_spread"] for r in mine]))
+            for j, p in enumerate(pieces):
+                on = np.flatnonzero(piece == p)
+                o = on[np.argsort(t[on])]
+                label = ((f"{name} +- estimated error" if estimated else name) if j == 0 else None)
+                ax.errorbar(t[o], k[o], yerr=bar[o], fmt="o", ls=("-", "--", ":", "-.")[j % 4], color=col, ms=3,
+                            lw=1, capsize=2, label=label)
+            for mask, style, _ in marks:
                 if mask.any():
-                    ax.plot(t[mask], k[mask], ls="none", color="k", **style)
-        for mask, style, label in ((free, dict(marker="x", ms=8), "free surface (flagged)"),
-                                   (ends, dict(marker="D", ms=6, mfc="none"), "free-surface end value (extrapolated)"),
-                                   (between, dict(marker="o", ms=6, mfc="none"), "asked position (interpolated)")):
+                    ax.plot(t[mask], k[mask], ls="none", **style)
+        for mask, style, label in marks:
             if mask.any():
-                ax.plot([], [], ls="none", color="k", label=label, **style)
+                ax.plot([], [], ls="none", label=label, **style)
+        for j, p in enumerate(pieces if len(pieces) > 1 else []):
+            ax.plot([], [], color="0.4", lw=1, ls=("-", "--", ":", "-.")[j % 4], label=f"front piece {p}")
         ax.axhline(0.0, color="0.7", lw=0.5)
-        ax.set_xlabel("parametric angle [deg]" if angle else "arc length along the front")
+        ax.set_xlabel("parametric angle [deg]" if angle else
+                      unit_label(units, "length", "arc length along the front"
+                                 + (" (each piece from its start)" if len(pieces) > 1 else "")))
         ax.set_ylabel(f"K [{k_unit}]" if k_unit else "K")
         ax.set_title(f"{title}{': ' if title else ''}crack {mine[0]['crack_name'] or c}", fontsize=9)
         ax.legend(fontsize=7)

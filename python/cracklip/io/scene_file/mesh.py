@@ -135,8 +135,7 @@ def build_mesh(m: dict, cracks: list, base_dir: pathlib.Path, points=(), dim: in
     refused before meshing (ModelSizeError; None: no limit)."""
     kind = m["kind"]
     if dim is None and kind == "file":
-        f = pathlib.Path(m["path"])
-        dim = mesh_file_dimension(f if f.is_absolute() else base_dir / f)
+        dim = mesh_file_dimension(scene_path(m, base_dir))
     if dim == 3:
         return mesh_3d(m, cracks, base_dir, memory_limit)
     refine = [(r["point"][0], r["point"][1], r["h"], r["radius"]) if "point" in r else
@@ -144,8 +143,7 @@ def build_mesh(m: dict, cracks: list, base_dir: pathlib.Path, points=(), dim: in
               for r in m["refine"]]
     ends = [tuple(float(v) for v in p) for c in cracks for p in c.points[[0, -1]]]
     if kind in ("file", "geometry"):
-        f = pathlib.Path(m["path"])
-        f = f if f.is_absolute() else base_dir / f
+        f = scene_path(m, base_dir)
         if kind == "geometry":
             from ...scene.geometry_file import create_from_geometry
             return create_from_geometry(f, m["h"], refine=refine, embed_points=points,
@@ -245,8 +243,7 @@ def mesh_3d(m: dict, cracks: list, base_dir: pathlib.Path, memory_limit: float |
     from ...scene import mesh_3d as m3
     kind = m["kind"]
     if kind == "file":
-        f = pathlib.Path(m["path"])
-        return m3.read_msh_3d(f if f.is_absolute() else base_dir / f)
+        return m3.read_msh_3d(scene_path(m, base_dir))
     h = m["h"]
     fronts = []
     if m["tip_h"] > 0.0 and cracks:
@@ -267,8 +264,20 @@ def mesh_3d(m: dict, cracks: list, base_dir: pathlib.Path, memory_limit: float |
         return m3.create_cylinder(m["center"], m["axis"], m["radius"], m["length"], h, fronts=fronts,
                                   memory_limit=memory_limit)
     from ...scene.geometry_file import create_from_geometry
+    return create_from_geometry(scene_path(m, base_dir), h, fronts=fronts, memory_limit=memory_limit)
+
+
+def scene_path(m: dict, base_dir: pathlib.Path) -> pathlib.Path:
+    """The file mesh.path names (relative: to the scene file's folder);
+    MeshError naming the key and where it was looked for if it is not a
+    file."""
     f = pathlib.Path(m["path"])
-    return create_from_geometry(f if f.is_absolute() else base_dir / f, h, fronts=fronts, memory_limit=memory_limit)
+    f = f if f.is_absolute() else pathlib.Path(base_dir) / f
+    if not f.is_file():
+        raise MeshError(f"mesh.path {m['path']!r}: no such file {f.resolve()}"
+                        + ("" if pathlib.Path(m["path"]).is_absolute() else
+                           f" (a relative path is read from the scene file's folder, {pathlib.Path(base_dir).resolve()})"))
+    return f
 
 
 def mesh_file_dimension(path: pathlib.Path) -> int:
