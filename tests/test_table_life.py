@@ -316,7 +316,7 @@ def test_life_command_on_the_example_scenes(tmp_path, capsys):
     layout, a block-load table, Wheeler cycle by cycle): the summary, the
     files with a CSV beside each PNG, inspection numbers; `check` prints
     the life without meshing."""
-    for name, stop in (("life_hole_crack", "a_final"), ("life_surface_crack", "handbook range")):
+    for name, stop in (("life_hole_crack", "a_final"), ("life_surface_crack", "K_max >= K_c")):
         out = tmp_path / name
         assert cli.main(["life", str(SCENES / f"{name}.toml"), "--out", str(out)]) == 0
         cap = capsys.readouterr()
@@ -326,12 +326,27 @@ def test_life_command_on_the_example_scenes(tmp_path, capsys):
         assert {"a_N.csv", "a_N.png", "beta.csv", "beta.png", "results.json"} <= set(res["files"])
         assert res["life"]["inspection"]["interval_cycles"] > 0
     assert res["life"]["integration"] == "cycles" and res["life"]["retardation"] == "wheeler"
+    # The surface crack fails where K_max of the spectrum's largest load reaches K_c at its surface point
+    # (a = 4.36), although cycle by cycle that load has not come again before the crack would leave
+    # Newman-Raju's range (a = 4.80): the critical size, as a one-size life finds it
+    rows = res["a_N"]
+    assert max(rows[-1]["K_max"], rows[-1]["K_max_c"]) == pytest.approx(res["life"]["K_crit"], rel=2e-3)
+    assert all(max(r["K_max"], r["K_max_c"]) < res["life"]["K_crit"] for r in rows[:-1])
+    assert res["life"]["critical"] == {"a": pytest.approx(4.360, abs=0.01), "c": pytest.approx(5.443, abs=0.01),
+                                       "criterion": "K_max >= K_c"}
     assert cli.main(["check", str(SCENES / "life_surface_crack.toml")]) == 0
     text = capsys.readouterr().out
     assert "valid (a life without a mesh" in text and "integration cycles" in text
     assert cli.main(["check", str(SCENES / "life_hole_crack.toml"), "--json"]) == 0
     plan = json.loads(capsys.readouterr().out)["life"]
-    assert plan["critical"]["criterion"] == "net-section yield" and plan["cycles_per_pass"] == 124000
+    # one crack at the central hole of the 100 mm plate reaches its edge at (W - 2R) / 2 = 45 mm, before the
+    # whole net section W - 2R - a yields (that was a = 76.7: beyond the plate)
+    assert plan["critical"] is None and plan["cycles_per_pass"] == 124000
+    assert cli.main(["life", str(SCENES / "life_hole_crack.toml"), "--out", str(tmp_path / "edge"), "--set",
+                     "life.a_final=80"]) == 0
+    res = json.loads((tmp_path / "edge" / "results.json").read_text())
+    assert res["life"]["stop"] == "end of the table" and "plate's edge" in res["life"]["stop_reason"]
+    assert res["a_N"][-1]["a"] == pytest.approx(45.0, rel=1e-6)
 
 
 # -- bad inputs: typed errors before any mesh work -------------------------------------------------------------

@@ -25,9 +25,12 @@ grow`, integrated by the compiled kernels (cracklip.fracture.life_kernels).
    yield stress: the gross stress at the largest state over the net section
    W / (W - 2a) of a centre crack, W / (W - a) of an edge crack, W / (W - 2R
    - n a) of n cracks at a hole, W t / (W t - area) of a surface or corner
-   crack), life.a_final, the end of the table or of the handbook's range
-   (Newman-Raju: a/t < 0.8, c/b < 0.5, a/c <= 2, corner <= 1), arrest (a
-   pass without growth), spectrum.max_passes.
+   crack; two sizes: checked along the path, where the spectrum's largest
+   load may not have come yet when the crack leaves the handbook's range),
+   life.a_final, the end of the table or of the handbook's range
+   (Newman-Raju: a/t < 0.8, c/b < 0.5, a/c <= 2, corner <= 1; a crack at a
+   central hole: the plate's edge, (W - 2R) / 2, for one crack or two),
+   arrest (a pass without growth), spectrum.max_passes.
 5. Integration: cycle by cycle in the order the cycles close, pass after
    pass (retardation needs it: each point keeps its overload), or in
    blocks (no sequence effects): one size by Gauss-Legendre quadrature of
@@ -146,7 +149,9 @@ def handbook_end(life: LifeSettings) -> tuple[float, str]:
         return life.width * (1 - 1e-9), "the ligament (a = W)"
     if g == "hole_crack":
         if life.width is not None:
-            return (life.width - 2 * life.hole_radius) / life.cracks * (1 - 1e-9), "the ligament (W - 2R)"
+            # The hole central: each crack (one or two) reaches its own edge of the plate at (W - 2R) / 2.
+            return ((life.width - 2 * life.hole_radius) / 2 * (1 - 1e-9),
+                    "the crack reaches the plate's edge: the ligament (W - 2R) / 2 beside the central hole")
         return max(100.0 * (life.a0 + life.hole_radius), life.a_final or 0.0), "100 (a0 + R): the table's end"
     return 0.8 * life.thickness * (1 - 1e-12), "Newman-Raju's range a/t < 0.8"
 
@@ -562,11 +567,20 @@ def _run_two(tl: TableLife, progress) -> LifeResult:
         stop = {"reached": "reached", "paused": "reached"}.get(run["stop"], run["stop"])
         P, A, C, cycles = np.asarray(P), np.asarray(A), np.asarray(C), np.asarray(cyc)
         speed = cycles[-1] / max(time.perf_counter() - t_start, 1e-9)
-    # Along the path: the handbook's range and net-section yield.
+    # Along the path: the handbook's range, K_c under the spectrum's largest load, net-section yield.
     k_cut, why, crit = len(A), None, None
+    P, A, C, cycles = (np.array(v, dtype=float) for v in (P, A, C, cycles))
     for i in range(1, len(A)):
         if life.geometry != "beta_table" and _outside(life, A[i], C[i], corner):
             k_cut, why = i, "the handbook's range"
+            break
+        t = _critical_between(tl, (A[i - 1], C[i - 1]), (A[i], C[i]))
+        if t is not None:
+            # The largest load of the spectrum would fail the part here (as a one-size life's critical_size);
+            # cycle by cycle that load may not have come yet when the crack leaves the handbook's range.
+            for v in (P, A, C, cycles):
+                v[i] = v[i - 1] + t * (v[i] - v[i - 1])
+            k_cut, why, crit = i, "K_max >= K_c", "K_max >= K_c"
             break
         f = net_section_factor(life, A[i], C[i])
         if f is not None and tl.yield_stress is not None:
@@ -576,7 +590,12 @@ def _run_two(tl: TableLife, progress) -> LifeResult:
                 break
     rows = [_row(tl, float(A[i]), float(cycles[i]), float(P[i]), float(C[i])) for i in range(min(k_cut + 1, len(A)))]
     critical = None
-    if why == "net-section yield":
+    if why == "K_max >= K_c":
+        stop_name = "K_max >= K_c"
+        reason = (f"final failure: K_max under the spectrum's largest load reached K_c = {tl.K_crit:.6g} at a = "
+                  f"{A[k_cut]:.6g}, c = {C[k_cut]:.6g}")
+        critical = {"a": float(A[k_cut]), "c": float(C[k_cut]), "criterion": crit}
+    elif why == "net-section yield":
         stop_name, reason = "net-section yield", (f"final failure: the net section reached the yield stress "
                                                   f"{tl.yield_stress:.6g} at a = {A[k_cut]:.6g}, c = {C[k_cut]:.6g}")
         critical = {"a": float(A[k_cut]), "c": float(C[k_cut]), "criterion": crit}
@@ -598,6 +617,20 @@ def _run_two(tl: TableLife, progress) -> LifeResult:
     else:
         stop_name, reason = "max_passes", f"spectrum.max_passes = {tl.spectrum.max_passes:g} reached"
     return LifeResult(rows, stop_name, reason, critical, None, tl.method, 0.0, speed)
+
+
+def _critical_between(tl: TableLife, s0: tuple[float, float], s1: tuple[float, float]) -> float | None:
+    """Where between two sizes (a, c) of a path K_max of the spectrum's
+    largest load state first reaches K_crit at either point, as the fraction
+    t of the step (linear in the larger ratio K / K_crit; 0 if already at
+    s0); None if it does not by s1."""
+    if tl.K_crit is None or not math.isfinite(tl.K_crit):
+        return None
+    r1 = float(np.max(state_k_max(tl.table, tl.load.F, list(s1)))) / tl.K_crit - 1.0
+    if r1 < 0.0:
+        return None
+    r0 = float(np.max(state_k_max(tl.table, tl.load.F, list(s0)))) / tl.K_crit - 1.0
+    return 0.0 if r0 >= 0.0 else r0 / (r0 - r1)
 
 
 def _outside(life: LifeSettings, a: float, c: float, corner: bool) -> bool:

@@ -17,7 +17,8 @@ cracklip.fracture.handbook):
                    width W (life.width)
     hole_crack     one or two (life.cracks) through cracks of length a from
                    a hole of radius R (life.hole_radius), infinite plate
-                   (life.width only for net-section yield)
+                   (life.width, the hole central: net-section yield, and
+                   the plate's edge at a = (W - 2R) / 2 ends the table)
     surface_crack  a semi-elliptical crack of depth a, half length c
                    (life.c0) in a plate of thickness t (life.thickness) and
                    width 2b (life.width)
