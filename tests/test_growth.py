@@ -291,6 +291,19 @@ def test_grow_fatigue_edge_crack_scene(tmp_path, capsys):
     assert N[0] == 0.0 and np.all(np.diff(N) > 0) and N[-1] == pytest.approx(results["cycles"])
 
 
+def test_wing_crack_first_kink_is_no_reference(tmp_path):
+    """The shipped wing crack at its own sizes: the first kink (70.5 degrees
+    off the closed crack, 72.5 after the corrector's turn) is not the
+    reference of growth.max_kink_change (60): the wings' later kinks (under
+    1 degree) follow. The corrector used to record the first kink when it
+    turned it, and the run stopped after one step as 'unstable growth'."""
+    out = tmp_path / "wing"
+    assert cli.main(["grow", str(SCENES / "wing_crack.toml"), "--out", str(out), "--quiet", "--set", "growth.steps=3",
+                     "--set", "outputs.vtu=false", "--set", "outputs.png=false"]) == 0
+    results = json.loads((out / "results.json").read_text())
+    assert results["stop_criterion"] == "growth.steps" and results["steps"] == 3
+
+
 def test_grow_wing_crack_scene(tmp_path, capsys):
     """The closed sliding crack grows (K_I = 0, K_II != 0: not skipped): both
     tips kink by about 70.5 degrees into open wings; the corrector keeps

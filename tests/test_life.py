@@ -420,6 +420,11 @@ def test_life_to_failure_by_toughness_on_a_prescribed_geometry(law):
     assert np.all(np.diff(rs) < 0)
     past = [r for r in res.records[-1] if r.K_max is not None and r.K_max >= 1.2]
     assert past and all((r.da_per_pass is None) == (law == "forman") for r in past)
+    # that geometry is reached only after the failure inside the increment: its records say so (their N is the
+    # failure's, so a-N curves leave them out)
+    assert all(r.status == "past failure" and r.N == pytest.approx(res.life["failure"]["cycles"])
+               for r in res.records[-1])
+    assert all(r.status != "past failure" for step in res.records[:-1] for r in step)
     json.dumps(res.life, allow_nan=False)
 
 

@@ -212,7 +212,8 @@ class CurveGrowth(GrowthRun):
         for r in self.records[-1]:  # the kink the last increment actually took
             if (r.crack, r.end) in turns:
                 r.kink_deg += math.degrees(turns[r.crack, r.end])
-                self.last_kink[r.crack, r.end] = r.kink_deg
+                if self.k > 1:  # (the first kink leaves the initial crack: no reference, as in advance)
+                    self.last_kink[r.crack, r.end] = r.kink_deg
         return m, extra
 
     def record_beta(self, m: Measured) -> int:

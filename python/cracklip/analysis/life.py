@@ -279,6 +279,11 @@ class _Closure:
     solutions: dict[int, typing.Any] = dataclasses.field(default_factory=dict)
 
 
+#: The status of the records of a geometry the crack reaches only after the
+#: failure found inside the increment to it (their N is the failure's).
+PAST_FAILURE = "past failure"
+
+
 class LifeRun:
     """The spectrum life of one growth run: set up once, then per step
     measure() (the load levels), count() (the cycles of the increment just
@@ -688,13 +693,17 @@ class LifeRun:
         """Integrate the increment from the last geometry to this one (module
         doc); set the records' N, passes, blocks; return the cycles so far."""
         now = m.levels
+        failed_inside = False
         if k > 0 and self.prev is not None and self.increments and self.failure is None:
             self._integrate(self.prev, self.locator.carry(self.prev, now))
+            failed_inside = self.failure is not None
         dN = self.N - (self.steps[-1]["cycles"] if self.steps else 0.0)
         for rec in m.records:
             rec.N, rec.dN = self.N, dN
             rec.passes = self.passes
             rec.blocks = self.passes * self.blocks_per_pass
+            if failed_inside:  # this geometry lies beyond the failure found inside the increment: no (a, N) point
+                rec.status = PAST_FAILURE
         self.steps.append({"step": k, "cycles": self.N, "passes": self.passes,
                            "blocks": self.passes * self.blocks_per_pass,
                            "tips": [{"crack": r.crack, "end": r.end, "a": now[(r.crack, r.end)].a if (r.crack, r.end)
@@ -960,4 +969,4 @@ def _ligament_stress(sol, tip: np.ndarray, r0: dict, theta: float, bnd) -> float
     return float(np.sum(w * snn * 2.0 * u))
 
 
-__all__ = ["RESIDUAL_GROUP", "create_law", "constant_amplitude_spectrum", "TipLevels", "LifeRun"]
+__all__ = ["RESIDUAL_GROUP", "PAST_FAILURE", "create_law", "constant_amplitude_spectrum", "TipLevels", "LifeRun"]

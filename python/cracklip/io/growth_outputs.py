@@ -14,6 +14,7 @@ import typing
 import numpy as np
 
 from ..analysis.growth import GrowthResult, TipRecord
+from ..analysis.life import PAST_FAILURE
 from .files import atomic_path
 from .outputs import ensure_output_dir, gathered_subcell_fields, versions, write_csv, writes_files
 from .results import write_results_json
@@ -189,10 +190,10 @@ def write_growth_pngs(scene_file, result: GrowthResult, out: pathlib.Path, fatig
     for k, ax in enumerate(panels):
         for p, q in zip(a, b):
             ax.plot([p[0], q[0]], [p[1], q[1]], "k-", lw=0.8)
-        for c in scene.cracks:
-            ax.plot(c.points[:, 0], c.points[:, 1], "-", color="0.5", lw=2.0)
         for i, c in enumerate(result.cracks):
             ax.plot(c.points[:, 0], c.points[:, 1], ".-", ms=2, lw=1.0, color=f"C{i % 10}", label=c.name)
+        for c in scene.cracks:  # (over the paths, which start on them)
+            ax.plot(c.points[:, 0], c.points[:, 1], "-", color="0.5", lw=3.0, alpha=0.7, zorder=3)
         ax.set_aspect("equal")
         ax.set_xlabel(label(scene.units, "length", "x"))
         ax.set_ylabel(label(scene.units, "length", "y"))
@@ -250,6 +251,7 @@ def write_growth_pngs(scene_file, result: GrowthResult, out: pathlib.Path, fatig
         axes = [fig.add_subplot()] if one else [fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)]
         rows = []
         for n, ((ci, end), recs) in enumerate(tips.items()):
+            recs = [r for r in recs if r.status != PAST_FAILURE]  # (its N is the failure's: not an (a, N) point)
             lab = f"{result.cracks[ci].name} end {end}"
             axes[0].plot([r.N for r in recs], [r.length for r in recs], "o-", ms=3, color=f"C{n}", label=lab)
             if not one:
