@@ -16,6 +16,7 @@ from ..contact.frictionless import solve_contact
 from ..errors import InputError, SolverError
 from ..model.assembly import assemble_distributed_system, assemble_system, elasticity_form
 from ..model.distributed import to_local
+from ..model.checks import in_accuracy_run
 from ..model.model import create_model
 from ..post.solution import Solution, create_solution
 from ..scene.mesh_estimate import release_memory
@@ -54,6 +55,7 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
 
         def solve_level(sc: Scene) -> Solution:
             sol = solve(dataclasses.replace(sc, options=once.options), condition_number)
+            sol.model.warnings = in_accuracy_run(sol.model.warnings)
             return sol
         return solve_to_accuracy(once, scene.options.accuracy, scene.options.accuracy_levels, solve_level)
     if scene.mesh.mesh.comm.size > 1:

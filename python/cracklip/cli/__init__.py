@@ -399,11 +399,14 @@ def cmd_grow(args) -> int:
                                                      {"total": time.perf_counter() - t_start}, series))
     print_warnings(result.warnings)
     if not quiet:
-        print(f"{sf.title}: {results['steps']} growth steps; {result.stop_reason}")
+        print(f"{sf.title}: {results['steps']} growth step{'' if results['steps'] == 1 else 's'}; "
+              f"{result.stop_reason}")
+        past = any(t["status"] == "past failure" for t in results["final"]["tips"])
         for c in results["final"]["cracks"]:
             a = c["length_in_part"]
             print(f"  {c['name']}: " + (f"length {a:.6g} in the part" if a is not None else
-                                        f"through the part (polyline length {c['polyline_length']:.6g})"))
+                                        f"through the part (polyline length {c['polyline_length']:.6g})")
+                  + (" (the last geometry, past the failure inside its increment)" if past else ""))
         if sf.growth.fatigue:
             print(f"  cycles: {result.cycles:.6g}")
         _print_life_and_files(result.life, results, out)
@@ -463,7 +466,8 @@ def _grow_3d(args, sf, out, series, t_start: float, quiet: bool) -> int:
                                                            {"total": time.perf_counter() - t_start}, series))
     print_warnings(result.warnings)
     if not quiet:
-        print(f"{sf.title}: {results['steps']} growth steps; {result.stop_reason}")
+        print(f"{sf.title}: {results['steps']} growth step{'' if results['steps'] == 1 else 's'}; "
+              f"{result.stop_reason}")
         for c in results["final"]["cracks"]:
             sh = c["shape"] or {}
             print(f"  {c['name']}: {sh.get('kind', '')} crack"

@@ -20,8 +20,8 @@ beyond the law's critical K (final failure: the caller stops there).
 Sources (docs/life.md has the full list): the NASGRO equation, Newman's f
 and the threshold as written in the NASGRO/AFGROW manuals and implemented by
 easigrow (`src/dadn.rs`, which cites Harter's AFGROW manual
-AFRL-VA-WP-TR-1999-3016), the same form as the notes'
-(`notes/damage_tolerance.md`, gap 2); K_c(t) = K_Ic [1 + B_k exp(-(A_k t /
+AFRL-VA-WP-TR-1999-3016), the same form as the project's research notes
+(shared/notes/damage_tolerance.md, gap 2); K_c(t) = K_Ic [1 + B_k exp(-(A_k t /
 t0)^2)], t0 = 2.5 (K_Ic / sigma_ys)^2 (NASGRO's fit). Closure: NASGRO's f
 is its own; the other laws take Delta K as given (contact closure gives an
 effective Delta K already), and with closure "newman" a Paris or

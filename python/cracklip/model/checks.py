@@ -59,7 +59,7 @@ from .tip_regions import length_in_part, model_boundary, segment_distance, tip_d
 #: What the warning codes met along a growth run mean, in a few words (the
 #: summary that counts them; docs/sifs.md has the whole table).
 CODE_MEANINGS = {
-    "sif_domain": "a SIF domain reaches the boundary or another obstacle: K NOT reliable at that point",
+    "sif_domain": "a SIF domain clipped by the boundary or another obstacle, or none fits: K NOT reliable",
     "sif_spread": "K varies with the SIF domain by more than 1 % of the K scale",
     "sif_points": "too few front points for a free-surface end value",
     "front_resolution": "the elements along a front coarser than a fifth of the crack's size",
@@ -237,17 +237,29 @@ def _tip_region(model, ci: int, dom, length: float, radius: float) -> ModelWarni
             f"{where}: the tip element ({dom.element_size:.3g}) is coarse for a tip enriched on its own cell only "
             f"(options.radius = {radius:g}); {what}: K converges only like h there and is likely more than 1 % low "
             f"(4.6 % for a C(T) with 9 elements per crack scale). Set options.radius to a few tip elements (e.g. "
-            f"{5 * dom.element_size:.3g}) and refine the tip (mesh.tip_h <= {scale / TIP_ELEMENTS:.3g}), or let cracklip "
-            "refine: options.accuracy = 0.01"), ci, dom.tip)
+            f"{5 * dom.element_size:.3g}) and refine the tip (mesh.tip_h <= {scale / TIP_ELEMENTS:.3g})"
+            + LET_CRACKLIP_REFINE), ci, dom.tip)
     if coarse > scale / REGION_ELEMENTS:
         return ModelWarning("tip_region", (
             f"{where}: the mesh around the tip is coarse for the crack: elements up to {coarse:.3g} within "
             f"{REGION_EXTENT * scale:.3g} of it while {what}, fewer than {REGION_ELEMENTS:g} elements across it; K "
             "converges from below and is likely 0.5-2 % low (a refined tip alone does not help: the field around "
             f"the crack sets K). Refine the region (mesh.h, or mesh.refine around the crack with h <= "
-            f"{scale / REGION_ELEMENTS / 1.5:.3g}), or let cracklip refine: options.accuracy = 0.01 (--accuracy 0.01)"),
-            ci, dom.tip)
+            f"{scale / REGION_ELEMENTS / 1.5:.3g})" + LET_CRACKLIP_REFINE), ci, dom.tip)
     return None
+
+
+#: The tip warnings' last fix, and what it becomes on the meshes of a run
+#: with an accuracy target (in_accuracy_run).
+LET_CRACKLIP_REFINE = ", or let cracklip refine: options.accuracy = 0.01 (--accuracy 0.01)"
+ACCURACY_RUN_NOTE = " (this run's accuracy target refined the mesh: its estimate of K's error says how far)"
+
+
+def in_accuracy_run(warnings: list) -> list:
+    """The model warnings of a level of an accuracy target's refinement: no
+    advice to set the target the run already has."""
+    return [dataclasses.replace(w, message=w.message[:-len(LET_CRACKLIP_REFINE)] + ACCURACY_RUN_NOTE)
+            if w.message.endswith(LET_CRACKLIP_REFINE) else w for w in warnings]
 
 
 def _pieces(model) -> tuple[np.ndarray, np.ndarray]:

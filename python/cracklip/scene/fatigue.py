@@ -61,7 +61,7 @@ EXAMPLES: dict[str, dict[str, typing.Any]] = {
                       "K_Ic": 25.0, "A_k": 1.0, "B_k": 1.5, "yield_stress": 75.0},
         "source": "7075-T6 plate and sheet, L-T, lab air: NASGRO constants as listed in an anonymous "
                   "materials.js ('30 aluminium + steel + titanium alloys from NASGRO database'; provenance "
-                  "unknown, unaudited), read for notes/damage_tolerance.md (gap 2)"},
+                  "unknown, unaudited)"},
     "nasgro_2024_T3_LT": {
         "law": "nasgro", "units": ("in", "ksi"),
         "constants": {"C": 8.0e-9, "n": 3.20, "p": 0.25, "q": 1.0, "dK1": 1.22, "C_th_plus": 1.21,

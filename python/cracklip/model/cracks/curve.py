@@ -93,7 +93,7 @@ class CurveCrackModel(CrackModel):
         owned = scene.mesh.mesh.topology.index_map(scene.mesh.mesh.topology.dim).size_local
         agree(first_error([lambda: _check_off_boundary(crack, geometry, x, cells, owned)]))
         if geometry.num_snapped:
-            logger.info("%s: %d nodes snapped onto the crack (snap_tol=%g)", crack.name,
+            logger.info("%s: %d nodes snapped onto the crack (options.snap_tol = %g)", crack.name,
                         geometry.num_snapped, scene.options.snap_tol)
         return cls(crack, tips, geometry)
 

@@ -119,7 +119,7 @@ class SurfaceCrackModel(CrackModel):
                 "the part; move the crack into the part or check its units"), comm)
         join_front(geometry, surface, scene.mesh.mesh, x, cells, node_input)
         if geometry.num_snapped:
-            logger.info("%s: %d nodes snapped onto the crack (snap_tol=%g)", crack.name, geometry.num_snapped,
+            logger.info("%s: %d nodes snapped onto the crack (options.snap_tol = %g)", crack.name, geometry.num_snapped,
                         scene.options.snap_tol)
         return cls(crack, (), geometry)
 
