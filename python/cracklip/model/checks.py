@@ -65,7 +65,7 @@ CODE_MEANINGS = {
     "front_resolution": "the elements along a front coarser than a fifth of the crack's size",
     "enrichment_radius": "the enrichment radius below the elements at the front",
     "tip_region": "the region around a tip coarse for the crack",
-    "interpenetration": "the lips pass through each other (no contact)",
+    "interpenetration": "the lips overlap where contact is off",
     "discretisation": "a K's estimated discretisation error above 1 % of the K scale",
 }
 
