@@ -415,8 +415,14 @@ class _Obstacles:
                 if piece in pieces:
                     hit &= ~on
             if np.any(hit):
-                dist = float(b["distance"][hit].min())
-                obstacles.append((dist - h, "the boundary of the part", dist))
+                k = int(np.argmin(np.where(hit, b["distance"], np.inf)))
+                dist = float(b["distance"][k])
+                # the boundary toward an end of the front within this point's hat: the surface the front ends on
+                ends = [] if d["closed"] else [e for e in (0.0, L) if 0.0 < abs(e - s0) <= hat]
+                toward_end = any((float(b["s"][k]) - s0) * (e - s0) > 0.0 for e in ends)
+                obstacles.append((dist - h, "the surface the front ends on (its end is within this point's hat: "
+                                            "more points along the front, finer there)" if toward_end else
+                                  "the boundary of the part", dist))
         for other, pts in self.others:
             dist = float(np.linalg.norm(pts - xk, axis=1).min())
             obstacles.append((dist - hat - h, f"crack {other!r}", dist))
