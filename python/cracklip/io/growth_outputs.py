@@ -190,10 +190,10 @@ def write_growth_pngs(scene_file, result: GrowthResult, out: pathlib.Path, fatig
     for k, ax in enumerate(panels):
         for p, q in zip(a, b):
             ax.plot([p[0], q[0]], [p[1], q[1]], "k-", lw=0.8)
+        for c in scene.cracks:  # (wider than the paths drawn over them, which start on them: a grey rim)
+            ax.plot(c.points[:, 0], c.points[:, 1], "-", color="0.5", lw=4.5, solid_capstyle="butt")
         for i, c in enumerate(result.cracks):
             ax.plot(c.points[:, 0], c.points[:, 1], ".-", ms=2, lw=1.0, color=f"C{i % 10}", label=c.name)
-        for c in scene.cracks:  # (over the paths, which start on them)
-            ax.plot(c.points[:, 0], c.points[:, 1], "-", color="0.5", lw=3.0, alpha=0.7, zorder=3)
         ax.set_aspect("equal")
         ax.set_xlabel(label(scene.units, "length", "x"))
         ax.set_ylabel(label(scene.units, "length", "y"))
