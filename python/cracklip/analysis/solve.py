@@ -16,7 +16,6 @@ from ..contact.frictionless import solve_contact
 from ..errors import InputError, SolverError
 from ..model.assembly import assemble_distributed_system, assemble_system, elasticity_form
 from ..model.distributed import to_local
-from ..model.checks import in_accuracy_run
 from ..model.model import create_model
 from ..post.solution import Solution, create_solution
 from ..scene.mesh_estimate import release_memory
@@ -49,15 +48,16 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     """
     if scene.options.accuracy > 0.0:
         # Refinement levels around the tips until K's estimated error is below
-        # the target (cracklip.analysis.accuracy); each level solved as usual.
+        # the target (cracklip.analysis.accuracy); each level solved as usual,
+        # its scene keeping the target (its model's checks know the run has one).
         from .accuracy import solve_to_accuracy
-        once = dataclasses.replace(scene, options=dataclasses.replace(scene.options, accuracy=0.0))
+        return solve_to_accuracy(scene, scene.options.accuracy, scene.options.accuracy_levels,
+                                 lambda sc: _solve_mesh(sc, condition_number))
+    return _solve_mesh(scene, condition_number)
 
-        def solve_level(sc: Scene) -> Solution:
-            sol = solve(dataclasses.replace(sc, options=once.options), condition_number)
-            sol.model.warnings = in_accuracy_run(sol.model.warnings)
-            return sol
-        return solve_to_accuracy(once, scene.options.accuracy, scene.options.accuracy_levels, solve_level)
+
+def _solve_mesh(scene: Scene, condition_number: bool) -> Solution:
+    """solve() on the scene's mesh as it is (one level of an accuracy target)."""
     if scene.mesh.mesh.comm.size > 1:
         return _solve_distributed(scene, condition_number)
     if scene.load_path is not None or scene.options.friction > 0.0:

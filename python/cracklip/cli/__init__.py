@@ -399,8 +399,7 @@ def cmd_grow(args) -> int:
                                                      {"total": time.perf_counter() - t_start}, series))
     print_warnings(result.warnings)
     if not quiet:
-        print(f"{sf.title}: {results['steps']} growth step{'' if results['steps'] == 1 else 's'}; "
-              f"{result.stop_reason}")
+        print(_growth_headline(sf.title, results["steps"], result.stop_reason))
         past = any(t["status"] == "past failure" for t in results["final"]["tips"])
         for c in results["final"]["cracks"]:
             a = c["length_in_part"]
@@ -411,6 +410,11 @@ def cmd_grow(args) -> int:
             print(f"  cycles: {result.cycles:.6g}")
         _print_life_and_files(result.life, results, out)
     return 0
+
+
+def _growth_headline(title: str, steps: int, reason: str) -> str:
+    """The first line of grow's summary (2D and 3D)."""
+    return f"{title}: {steps} growth step{'' if steps == 1 else 's'}; {reason}"
 
 
 def _print_life_and_files(lf: dict | None, results: dict, out) -> None:
@@ -466,8 +470,7 @@ def _grow_3d(args, sf, out, series, t_start: float, quiet: bool) -> int:
                                                            {"total": time.perf_counter() - t_start}, series))
     print_warnings(result.warnings)
     if not quiet:
-        print(f"{sf.title}: {results['steps']} growth step{'' if results['steps'] == 1 else 's'}; "
-              f"{result.stop_reason}")
+        print(_growth_headline(sf.title, results["steps"], result.stop_reason))
         for c in results["final"]["cracks"]:
             sh = c["shape"] or {}
             print(f"  {c['name']}: {sh.get('kind', '')} crack"

@@ -349,7 +349,12 @@ def conic_curvatures(points: np.ndarray, at: np.ndarray) -> np.ndarray:
     x + e y + f = 0) least-squares fitted to `points` (n >= 5, 3) in their
     best plane: the curvature of the ellipse (or circle, or line: about 0)
     a front's points follow, for the end value's weights (module doc)."""
-    o, scale, axes, (a, b, c, d, e, _) = _conic(points)
+    return _curvatures(_conic(points), at)
+
+
+def _curvatures(fit, at: np.ndarray) -> np.ndarray:
+    """The curvature at `at` (m, 3) of a conic fitted by _conic."""
+    o, scale, axes, (a, b, c, d, e, _) = fit
     q = (np.asarray(at, dtype=float) - o) / scale @ axes.T
     fx = 2 * a * q[:, 0] + b * q[:, 1] + d
     fy = b * q[:, 0] + 2 * c * q[:, 1] + e
@@ -376,10 +381,11 @@ def end_curvatures(points: np.ndarray, at: np.ndarray, K: np.ndarray) -> np.ndar
     the end values came out 3-5 times the interior K (1098-1707 against
     289-379 MPa sqrt(mm)), enough to fail the part by K_c.
     """
-    o, scale, axes, (a, b, c, *_) = _conic(points)
+    fit = _conic(points)
+    a, b, c = fit[3][:3]
     if b * b - 4.0 * a * c >= 0.0:  # a parabola or hyperbola: no ellipse through the points
         return None
-    kappa = conic_curvatures(points, at)
+    kappa = _curvatures(fit, at)
     mag = np.linalg.norm(np.asarray(K, dtype=float).reshape(len(kappa) - 1, -1), axis=1)
     if len(mag) < 2 or not mag.mean() > 0.0:
         return None

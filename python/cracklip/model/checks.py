@@ -238,28 +238,23 @@ def _tip_region(model, ci: int, dom, length: float, radius: float) -> ModelWarni
             f"(options.radius = {radius:g}); {what}: K converges only like h there and is likely more than 1 % low "
             f"(4.6 % for a C(T) with 9 elements per crack scale). Set options.radius to a few tip elements (e.g. "
             f"{5 * dom.element_size:.3g}) and refine the tip (mesh.tip_h <= {scale / TIP_ELEMENTS:.3g})"
-            + LET_CRACKLIP_REFINE), ci, dom.tip)
+            + _let_cracklip_refine(model)), ci, dom.tip)
     if coarse > scale / REGION_ELEMENTS:
         return ModelWarning("tip_region", (
             f"{where}: the mesh around the tip is coarse for the crack: elements up to {coarse:.3g} within "
             f"{REGION_EXTENT * scale:.3g} of it while {what}, fewer than {REGION_ELEMENTS:g} elements across it; K "
             "converges from below and is likely 0.5-2 % low (a refined tip alone does not help: the field around "
             f"the crack sets K). Refine the region (mesh.h, or mesh.refine around the crack with h <= "
-            f"{scale / REGION_ELEMENTS / 1.5:.3g})" + LET_CRACKLIP_REFINE), ci, dom.tip)
+            f"{scale / REGION_ELEMENTS / 1.5:.3g})" + _let_cracklip_refine(model)), ci, dom.tip)
     return None
 
 
-#: The tip warnings' last fix, and what it becomes on the meshes of a run
-#: with an accuracy target (in_accuracy_run).
-LET_CRACKLIP_REFINE = ", or let cracklip refine: options.accuracy = 0.01 (--accuracy 0.01)"
-ACCURACY_RUN_NOTE = " (this run's accuracy target refined the mesh: its estimate of K's error says how far)"
-
-
-def in_accuracy_run(warnings: list) -> list:
-    """The model warnings of a level of an accuracy target's refinement: no
-    advice to set the target the run already has."""
-    return [dataclasses.replace(w, message=w.message[:-len(LET_CRACKLIP_REFINE)] + ACCURACY_RUN_NOTE)
-            if w.message.endswith(LET_CRACKLIP_REFINE) else w for w in warnings]
+def _let_cracklip_refine(model) -> str:
+    """The tip warnings' last fix: the accuracy target, unless the run has
+    one (this mesh is then one of its levels, and its estimate says more)."""
+    if model.scene.options.accuracy > 0.0:
+        return " (this run's accuracy target refined the mesh: its estimate of K's error says how far)"
+    return ", or let cracklip refine: options.accuracy = 0.01 (--accuracy 0.01)"
 
 
 def _pieces(model) -> tuple[np.ndarray, np.ndarray]:
