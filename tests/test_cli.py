@@ -401,3 +401,15 @@ def test_png_crop_matches_savefig_tight(tmp_path):
             assert list(lo_a) == [pad, pad] and list(np.array(a.shape[:2]) - 1 - hi_a) == [pad, pad]
             # savefig's box: the artists' (a few pixels of slack), rounded (+-2 px).
             assert -2 <= b.shape[0] - a.shape[0] <= 12 and -2 <= b.shape[1] - a.shape[1] <= 12, (a.shape, b.shape)
+
+
+def test_force_is_offered_where_a_part_is_meshed_only(capsys):
+    """--force (mesh beyond the memory estimate) is an option of the
+    commands that mesh a part; `life` meshes nothing and does not list it."""
+    parser = cli.build_parser()
+    sub = next(a for a in parser._actions if a.dest == "command").choices
+    for name in ("run", "grow", "check"):
+        assert "--force" in sub[name].format_help(), name
+    assert "--force" not in sub["life"].format_help()
+    with pytest.raises(SystemExit):
+        parser.parse_args(["life", str(BLOCK), "--out", "x", "--force"])

@@ -74,16 +74,19 @@ def build_parser() -> argparse.ArgumentParser:
                      epilog="Scene keys: `python3 -m cracklip reference` or docs/scene_reference.md.")
     sub = parser.add_subparsers(dest="command", metavar="{run,grow,life,check,reference}", parser_class=_Parser)
 
-    def common(p: argparse.ArgumentParser) -> None:
+    def common(p: argparse.ArgumentParser, meshes: bool = True) -> None:
+        """The arguments of every command; meshes: the command meshes a
+        part (--force; not `life`, which needs no mesh)."""
         p.add_argument("scene", type=pathlib.Path, help="scene file (TOML)")
         p.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
                        help="override a scene key, e.g. --set mesh.h=0.1 (repeatable; VALUE in TOML "
                             "syntax, a bare word is a string)")
         p.add_argument("--quiet", "-q", action="store_true",
                        help="no progress on stderr, no summary on stdout (warnings are still printed on stderr)")
-        p.add_argument("--force", action="store_true",
-                       help="mesh a solid even when its run is estimated to need more memory than the machine "
-                            "has available (refused otherwise, before meshing)")
+        if meshes:
+            p.add_argument("--force", action="store_true",
+                           help="mesh a solid even when its run is estimated to need more memory than the "
+                                "machine has available (refused otherwise, before meshing)")
 
     run = sub.add_parser("run", help="solve a scene and write its results into a folder",
                          description="Solve a scene and write results.json, the crack's tables (crack.csv and "

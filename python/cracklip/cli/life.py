@@ -24,7 +24,7 @@ def add_life_parser(sub, common) -> None:
                                       "table file or a handbook solution) under [spectrum] with "
                                       "[material.fatigue]'s law, closure and retardation: results.json, a_N.csv, "
                                       "a_N.png, beta.csv, beta.png into --out.")
-    common(life)
+    common(life, meshes=False)
     life.add_argument("--out", type=pathlib.Path, required=True, metavar="DIR",
                       help="output folder (created if missing)")
     life.add_argument("--no-png", action="store_true", help="write no pictures (the CSVs and results.json only)")
