@@ -289,6 +289,11 @@ def test_grow_fatigue_edge_crack_scene(tmp_path, capsys):
         assert abs(float(r["delta_K"]) / float(r["K_eq"]) - 1.0) < 2e-3
     N = [float(r["N"]) for r in rows]
     assert N[0] == 0.0 and np.all(np.diff(N) > 0) and N[-1] == pytest.approx(results["cycles"])
+    # a_N.csv: the crack length against cycles (constant amplitude: no spectrum life's a, passes, blocks).
+    with open(out / "a_N.csv") as fh:
+        an = list(csv.DictReader(fh))
+    assert list(an[0]) == ["step", "crack", "end", "length", "cycles"]
+    assert [float(r["length"]) for r in an] == pytest.approx(L) and [float(r["cycles"]) for r in an] == pytest.approx(N)
 
 
 def test_wing_crack_first_kink_is_no_reference(tmp_path):

@@ -374,9 +374,12 @@ def test_corner_crack_closed_on_the_ground_grows_only_when_open(tmp_path):
             assert tn["delta_K_eff"] == pytest.approx(1.3 * tn["K_max"], rel=1e-4)
             assert tn["da_per_pass"] == pytest.approx(1.3 ** 3 * tc["da_per_pass"], rel=1e-2)
     assert con["passes"] == pytest.approx(1.3 ** 3 * lin["passes"], rel=1e-2)
-    warned = [w for w in runs["none"]["warnings"] if "pass through each other" in w]
-    assert warned and "-0.3" in warned[0] and "options.contact" in warned[0]
-    assert not any("pass through each other" in w for w in runs["contact"]["warnings"])
+    # grow's results.json warnings are the run's objects, with the step each came first at and how often.
+    warned = [w for w in runs["none"]["warnings"] if "pass through each other" in w["message"]]
+    assert warned and "-0.3" in warned[0]["message"] and "options.contact" in warned[0]["message"]
+    assert warned[0]["code"] == "interpenetration" and warned[0]["step"] == 0
+    assert warned[0]["count"] >= sum("interpenetration" in s["warnings"] for s in runs["none"]["per_step"]) >= 1
+    assert not any("pass through each other" in w["message"] for w in runs["contact"]["warnings"])
 
 
 def test_combined_solution_takes_k_from_its_parts():
@@ -421,8 +424,10 @@ def test_turned_over_strip_retries_with_half_the_increment(monkeypatch):
         return original(self, chains, new)
     monkeypatch.setattr(surface_growth.GrowingSurface, "extend", extend)
     g = GrowingSurface.from_crack(EllipticalCrack((0, 0, 0), (0, 0, 1), 1.0, axis=(1, 0, 0)), 0.05)
-    run = types.SimpleNamespace(surfaces=[g], warnings=[], k=3, spacing=0.05, margin=0.2, inside=_everywhere)
+    run = types.SimpleNamespace(surfaces=[g], warnings=[], warning_steps=[], k=3, spacing=0.05, margin=0.2,
+                                inside=_everywhere)
     run._new_fronts = types.MethodType(front_growth.SurfaceGrowth._new_fronts, run)
+    run.warn = types.MethodType(front_growth.SurfaceGrowth.warn, run)
     chains = g.chains(_everywhere, 0.2)
     moves = [(g.loop_points[chains[0].positions], 0.1 * g.outward()[0][chains[0].positions])]
     plans = [(0, g, chains, moves)]
@@ -430,6 +435,7 @@ def test_turned_over_strip_retries_with_half_the_increment(monkeypatch):
     assert front_growth.SurfaceGrowth._extend(run, plans, news) == 0.5
     assert np.abs(np.linalg.norm(run.surfaces[0].loop_points, axis=1) - 1.05).max() < 1e-7
     assert len(run.warnings) == 1 and "step 3" in run.warnings[0] and "took 0.5 of it" in run.warnings[0]
+    assert run.warnings[0].code == "growth_strip" and run.warning_steps == [3]
     limit["da"] = 1e-3
     g2 = run.surfaces[0]
     chains = g2.chains(_everywhere, 0.2)

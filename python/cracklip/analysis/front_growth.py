@@ -506,8 +506,8 @@ class SurfaceGrowth(GrowthRun):
             for trial, (ci, _, _, _) in zip(trials, plans):
                 self.surfaces[ci] = trial
             if t < 1.0:
-                self.warnings.append(f"step {self.k}: the grown strip turned over at the full increment (too large "
-                                     f"for the front's curvature); the step took {t:g} of it")
+                self.warn("growth_strip", "the grown strip turned over at the full increment (too large for the "
+                          f"front's curvature); the step took {t:g} of it")
             return t
         raise AssertionError("unreachable")
 
@@ -743,11 +743,11 @@ class SurfaceGrowth(GrowthRun):
         if sizes[worst] > RESOLUTION_FACTOR * self.h_start and "resolution" not in self.warned:
             self.warned.add("resolution")
             r = [r for r in m.records if not r.free_surface][worst]
-            self.warnings.append(
-                f"step {self.k}: the front at ({r.x:.4g}, {r.y:.4g}, {r.z:.4g}) lies in elements of {sizes[worst]:.3g}, "
-                f"{sizes[worst] / self.h_start:.1f} times those at the start ({self.h_start:.3g}): the mesh no longer "
-                f"resolves the front there; refine the region the crack grows into to about {self.h_start:.3g} "
-                "([[mesh.refine]] box = [...], h = ...) (said once)")
+            self.warn(
+                "growth_resolution", f"the front at ({r.x:.4g}, {r.y:.4g}, {r.z:.4g}) lies in elements of "
+                f"{sizes[worst]:.3g}, {sizes[worst] / self.h_start:.1f} times those at the start ({self.h_start:.3g}): "
+                "the mesh no longer resolves the front there; refine the region the crack grows into to about "
+                f"{self.h_start:.3g} ([[mesh.refine]] box = [...], h = ...) (said once)", r.crack)
 
     # -- the result -----------------------------------------------------------------------------------------
     def measure_done(self) -> None:

@@ -253,15 +253,15 @@ class CurveGrowth(GrowthRun):
             h_tip = tip_element_size(model, np.array([r.x, r.y]))
             if inc < h_tip and "small" not in self.warned:
                 self.warned.add("small")
-                self.warnings.append(f"step {k}: the increment {inc:.3g} at ({r.x:.6g}, {r.y:.6g}) is below the "
-                                     f"element size there ({h_tip:.3g}): the path follows the mesh; use a larger da or "
-                                     "a finer mesh (said once)")
+                self.warn("growth_increment", f"the increment {inc:.3g} at ({r.x:.6g}, {r.y:.6g}) is below the "
+                          f"element size there ({h_tip:.3g}): the path follows the mesh; use a larger da or a finer "
+                          "mesh (said once)", r.crack, r.end)
             if inc > r.sif_radius and not self.growth.corrections and "large" not in self.warned:
                 self.warned.add("large")  # (the corrector checks the kink at the increment's end)
-                self.warnings.append(f"step {k}: the increment {inc:.3g} at ({r.x:.6g}, {r.y:.6g}) is larger than the "
-                                     f"SIF domain there (radius {r.sif_radius:.3g}): the kink comes from the field "
-                                     "within that radius and is extrapolated beyond it; use a smaller da or "
-                                     "growth.corrections (said once)")
+                self.warn("growth_increment", f"the increment {inc:.3g} at ({r.x:.6g}, {r.y:.6g}) is larger than "
+                          f"the SIF domain there (radius {r.sif_radius:.3g}): the kink comes from the field within "
+                          "that radius and is extrapolated beyond it; use a smaller da or growth.corrections (said "
+                          "once)", r.crack, r.end)
             note = _advance(self.cracks, r, inc, model, self.a_bnd, self.b_bnd, h_tip)
             if note:
                 self.stops.append(f"step {k}: {note}")

@@ -11,7 +11,7 @@ import time
 import typing
 
 from ..errors import BoundaryConditionError, CracklipError, InputError
-from ..model.checks import CODE_MEANINGS
+from ..model.checks import CODE_MEANINGS, CodedText
 from ..scene.growth import Growth
 from ..scene.processes import mark_collective
 from ..scene.scene import Scene
@@ -46,6 +46,10 @@ class GrowthResult:
     life: dict[str, typing.Any] | None = None
     beta: list[dict[str, typing.Any]] = dataclasses.field(default_factory=list)
     fronts: dict[str, typing.Any] | None = None
+    #: results.json's warnings: the first of each code as an object (the
+    #: run's keys code, message, crack, tip, with the step it came at and
+    #: its count over the run); `warnings` are the lines printed.
+    warning_rows: list[dict[str, typing.Any]] = dataclasses.field(default_factory=list)
 
     @property
     def rows(self) -> list[dict[str, typing.Any]]:
@@ -76,7 +80,8 @@ class GrowthRun:
             raise InputError("growth needs at least one crack")
         self.records: list[list[TipRecord]] = []
         self.stops: list[str] = []
-        self.warnings: list[str] = []
+        self.warnings: list[CodedText] = []
+        self.warning_steps: list[int] = []              # the step of each of self.warnings
         self.solutions: list = []
         self.step_times: list[float] = []
         self.solves: list[int] = []
@@ -133,8 +138,15 @@ class GrowthRun:
         self.step_warnings.append(sorted({w.code for w in m.sol.warnings}))
         for w in m.sol.warnings:
             if w.code not in self.warning_counts:
-                self.warnings.append(w.message if self.k == 0 else f"step {self.k}: {w.message}")
+                self.warn(w.code, w.message, w.crack, w.tip)
             self.warning_counts[w.code] = self.warning_counts.get(w.code, 0) + 1
+
+    def warn(self, code: str, message: str, crack: int | None = None, tip: int | None = None) -> None:
+        """A warning of this step: a model's (collect_warnings) or the
+        growth's own (growth_increment, growth_strip, growth_resolution;
+        docs/growth.md), prefixed with the step after the first."""
+        self.warnings.append(CodedText(message if self.k == 0 else f"step {self.k}: {message}", code, crack, tip))
+        self.warning_steps.append(self.k)
 
     def count_cycles(self, m: Measured) -> None:
         """The cycles of the increment just taken: constant amplitude by the
@@ -267,10 +279,13 @@ class GrowthRun:
             f"the model warning '{c}'" + (f" ({CODE_MEANINGS[c]})" if c in CODE_MEANINGS else "")
             + f" came {n} times in all (at the steps listed in results.json per_step)"
             for c, n in self.warning_counts.items() if n > 1]
+        rows = [{"code": w.code, "message": str(w), "crack": w.crack, "tip": w.tip, "step": k,
+                 "count": self.warning_counts.get(w.code, 1)} for w, k in zip(self.warnings, self.warning_steps)]
         return GrowthResult(self.records, self.cracks, self.stop_reason, self.stops, list(dict.fromkeys(warnings)),
                             self.solutions, self.step_times, self.N, self.solves, self.step_warnings,
                             stop_criterion=self.stop_criterion,
-                            life=self.life.summary(self.records) if self.life is not None else None, beta=self.beta)
+                            life=self.life.summary(self.records) if self.life is not None else None, beta=self.beta,
+                            warning_rows=rows)
 
 
 __all__ = ["GrowthResult", "GrowthRun"]

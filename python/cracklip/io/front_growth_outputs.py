@@ -111,7 +111,7 @@ def write_front_growth_outputs(scene_file, result: GrowthResult, out_dir, growth
         "stop_criterion": result.stop_criterion,
         "stop_reason": result.stop_reason,
         "stops": result.stops,
-        "warnings": result.warnings,
+        "warnings": result.warning_rows,
         "life": result.life,
         "boundary_conditions_and_loads": scene_file.notes,
         "steps": len(result.records) - 1,

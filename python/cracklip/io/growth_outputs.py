@@ -88,7 +88,7 @@ def write_growth_outputs(scene_file, result: GrowthResult, out_dir, growth, timi
         "boundary_conditions_and_loads": scene_file.notes,
         "stop_reason": result.stop_reason,
         "stops": result.stops,
-        "warnings": result.warnings,
+        "warnings": result.warning_rows,
         "steps": len(result.records) - 1,
         "cycles": result.cycles if growth.fatigue else None,
         "final": {"cracks": [{"name": c.name, "points": np.asarray(c.points).tolist(),
@@ -256,7 +256,8 @@ def write_growth_pngs(scene_file, result: GrowthResult, out: pathlib.Path, fatig
             axes[0].plot([r.N for r in recs], [r.length for r in recs], "o-", ms=3, color=f"C{n}", label=lab)
             if not one:
                 axes[1].plot([r.blocks for r in recs], [r.length for r in recs], "o-", ms=3, color=f"C{n}", label=lab)
-            rows += [[r.step, ci, end, r.length, r.a, r.N, r.passes, r.blocks] for r in recs]
+            rows += [[r.step, ci, end, r.length, r.a, r.N, r.passes, r.blocks] if life else
+                     [r.step, ci, end, r.length, r.N] for r in recs]
         axes[0].set_xlabel(f"cycles N = {life['block_name']}s (one cycle each)" if life and one else "cycles N")
         for ax in axes:
             ax.set_ylabel(label(units, "length", "crack length a"))
@@ -272,7 +273,9 @@ def write_growth_pngs(scene_file, result: GrowthResult, out: pathlib.Path, fatig
                              fontsize=7, rotation=90, va="bottom")
         axes[0].set_title(f"{scene_file.title}\nfatigue: crack length against cycles", fontsize=10)
         save_png(fig, out / "a_N.png")
-        write_csv(out / "a_N.csv", ["step", "crack", "end", "length", "a", "cycles", "passes", "blocks"], rows)
+        # (a, passes and blocks are a spectrum life's: constant amplitude has the length and the cycles)
+        write_csv(out / "a_N.csv", ["step", "crack", "end", "length", "a", "cycles", "passes", "blocks"] if life else
+                  ["step", "crack", "end", "length", "cycles"], rows)
         names += ["a_N.png", "a_N.csv"]
     if result.life:
         names += write_life_pngs(scene_file, result, out, tips)
