@@ -485,3 +485,47 @@ def test_run_and_grow_point_a_life_scene_to_the_life_command(command, capsys):
     assert cli.main([command, scene, "--out", "unused"]) == 2
     err = capsys.readouterr().err
     assert f"cracklip life {scene}" in err and "mesh.h" not in err
+
+
+def griffith_doc(**life):
+    """Paris C = 1e-10 mm/cycle (MPa sqrt(mm))^3, m = 3, 0 -> 100 MPa, a
+    Griffith crack (beta = 1 from a file), a0 = 1 mm: a(N)^(-1/2) = a0^(-1/2)
+    - N C (100 sqrt(pi))^3 / 2 in closed form."""
+    return {"units": {"length": "mm", "stress": "MPa"},
+            "material": {"fatigue": {"law": "paris", "C": 1e-10, "m": 3.0, "closure": "none"}},
+            "spectrum": {"blocks": [{"points": [0.0, 1.0]}]},
+            "life": {"geometry": "beta_table", "table": "griffith_beta.csv", "a0": 1.0, "a_final": 10.0,
+                     "reference_stress": {"default": 100.0}, **life}}
+
+
+@pytest.mark.parametrize("method", ["blocks", "cycles"])
+def test_a_life_stopped_by_max_passes_ends_at_max_passes(method):
+    """spectrum.max_passes = 1000 of a life of 2456 cycles: the life is 1000
+    passes and ends at the closed-form a(1000) = 1.9205547 (blocks: to 1e-10;
+    cycle by cycle, each cycle at its start size: 4e-4 measured, 1e-3
+    allowed). Blocks used to end at the last a-N row below the limit, 993.97
+    passes at a = 1.9116, reporting 'max_passes reached'."""
+    k = 1e-10 * (100.0 * math.sqrt(math.pi)) ** 3
+    a_exact = (1.0 - 0.5 * 1000 * k) ** -2
+    doc = griffith_doc(integration=method)
+    doc["spectrum"]["max_passes"] = 1000.0
+    tl, out = life_inputs.life_of(doc)
+    assert out.stop == "max_passes" and out.passes == 1000.0 and out.cycles == 1000.0
+    assert out.rows[-1]["a"] == pytest.approx(a_exact, rel=1e-10 if method == "blocks" else 1e-3)
+
+
+@pytest.mark.parametrize("stress,table,what", [
+    ({"defualt": 100.0}, "griffith_beta.csv", "did you mean 'default'"),
+    ({"default": 100.0, "tail": 3.0}, "griffith_beta.csv", r"\['tail'\]"),
+    ({"default": 100.0}, "k_table", "K per unit load factor"),
+])
+def test_reference_stress_of_no_load_group_is_an_error(tmp_path, stress, table, what):
+    """life.reference_stress naming a group the life has no load for (a typo,
+    a renamed spectrum group) used to be ignored: S = 1, a life 1e6 times
+    too long reported as a result; on a table of K per unit factor it
+    scales nothing. Both are InputErrors naming the key, also in `check`."""
+    if table == "k_table":
+        table = str(write(tmp_path, "k.csv", "a,K\n0.5,1.2533\n50,12.533\n"))
+    doc = griffith_doc(table=table, reference_stress=stress)
+    with pytest.raises(cl.InputError, match=r"life\.reference_stress.*" + what):
+        life_inputs.life_of(doc)

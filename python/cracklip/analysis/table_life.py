@@ -304,6 +304,7 @@ def create_table_life(life: LifeSettings, material: FatigueMaterial, spectrum: S
                                                              else life.width / 2, life.geometry == "corner_crack"):
             raise InputError(f"life.a0 = {life.a0:g}, life.c0 = {life.c0:g} is outside Newman-Raju's range "
                              "(0 < a/c <= 2, corner <= 1; a/t < 0.8; c/b < 0.5)")
+    _check_reference_stress(life, spectrum, table_data if life.geometry == "beta_table" else None)
     load = load_cases(spectrum, table.cases, steady)
     # Count one pass on K at the initial size (point 0).
     K0 = table.evaluate(life.a0) if table.sizes == 1 else table.evaluate(life.a0, life.c0)[:, 0]
@@ -325,6 +326,28 @@ def create_table_life(life: LifeSettings, material: FatigueMaterial, spectrum: S
         ret = Retardation(fm.retardation, fm.yield_stress, beta, fm.wheeler_exponent or 1.0, fm.shutoff_ratio or 3.0)
     return TableLife(life, fm, spectrum, law, table, load, cycles, ret, K_c, fm.yield_stress, info, source,
                      law.closure == "contact")
+
+
+def _check_reference_stress(life: LifeSettings, spectrum: Spectrum, data: KTableData | None) -> None:
+    """life.reference_stress must name load groups of the life (a group it
+    does not name has S = 1, so a misspelt or renamed group would silently
+    scale K by 1 / S) and must scale something (a table of K per unit
+    factor takes no S)."""
+    named = sorted(life.reference_stress or {})
+    if not named:
+        return
+    if data is not None and data.kind == "K":
+        raise InputError(f"life.reference_stress {life.reference_stress} scales beta columns and handbook "
+                         f"solutions, but life.table {data.source} gives K per unit load factor (K columns): "
+                         "remove life.reference_stress, or give the table as beta columns")
+    groups = list(spectrum.groups) + [g for g in spectrum.steady if g not in spectrum.groups]
+    unknown = [g for g in named if g not in groups]
+    if unknown:
+        import difflib
+        near = difflib.get_close_matches(unknown[0], groups, n=1, cutoff=0.0)
+        raise InputError(f"life.reference_stress names load group(s) {unknown} that the life has no load for (a "
+                         f"group left out has S = 1); its load groups (spectrum.groups, spectrum.steady): {groups}"
+                         + (f"; did you mean {near[0]!r}?" if near else ""))
 
 
 @dataclasses.dataclass
@@ -471,9 +494,13 @@ def _run_one(tl: TableLife, progress, a0: float) -> LifeResult:
                 rows = [_row(tl, float(x), float(p) * tl.cycles_per_pass, float(p)) for x, p in zip(grid[:k], P[:k])]
                 return LifeResult(rows, "arrest", f"growth arrested: the growth per pass falls to 0 at a = "
                                   f"{a_arr:.6g} (below the threshold)", critical, None, "blocks", 0.0)
+            # The crack size where the passes reach max_passes, inside (grid[k - 1], grid[k]): the life is
+            # max_passes there (the last grid size before it would understate both).
+            a_mp = _size_at_passes(tl, grid[k - 1], float(P[k - 1]), grid[k], max_passes)
             rows = [_row(tl, float(x), float(p) * tl.cycles_per_pass, float(p)) for x, p in zip(grid[:k], P[:k])]
-            return LifeResult(rows, "max_passes", f"spectrum.max_passes = {max_passes:g} reached before a = "
-                              f"{grid[k]:.6g}", critical, None, "blocks", 0.0)
+            rows.append(_row(tl, a_mp, max_passes * tl.cycles_per_pass, max_passes))
+            return LifeResult(rows, "max_passes", f"spectrum.max_passes = {max_passes:g} reached at a = "
+                              f"{a_mp:.6g}", critical, None, "blocks", 0.0)
         rows = [_row(tl, float(x), float(p) * tl.cycles_per_pass, float(p)) for x, p in zip(grid, P)]
         return LifeResult(rows, stop, reason, critical, None, "blocks", 0.0)
     run = new_run([a0])
@@ -514,6 +541,26 @@ def _run_one(tl: TableLife, progress, a0: float) -> LifeResult:
 
 def _passes(run: dict, n: int) -> float:
     return run["pass"] + run["entry"] / max(n, 1)
+
+
+def _size_at_passes(tl: TableLife, a_lo: float, P_lo: float, a_hi: float, target: float) -> float:
+    """The size between a_lo (P_lo passes from the start) and a_hi (more than
+    target passes) at which the blocks integration reaches target passes
+    (bisection in ln a)."""
+    cyc = tl.cycles.unique()
+    lo, hi = a_lo, a_hi
+    for _ in range(200):
+        mid = math.sqrt(lo * hi)
+        if not lo < mid < hi:
+            break
+        P = P_lo + float(passes_to(tl.table, tl.load.F, cyc, tl.law, np.array([a_lo, mid]), tl.clamp_min)[1])
+        if P <= target:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= 1e-14 * hi:
+            break
+    return lo
 
 
 def _arrest_size(tl: TableLife, lo: float, hi: float) -> float:
