@@ -529,3 +529,61 @@ def test_reference_stress_of_no_load_group_is_an_error(tmp_path, stress, table, 
     doc = griffith_doc(table=table, reference_stress=stress)
     with pytest.raises(cl.InputError, match=r"life\.reference_stress.*" + what):
         life_inputs.life_of(doc)
+
+
+def test_rate_table_reach_names_the_curve_a_cycle_is_read_from():
+    """rate_table_reach: a cycle between two curves is extrapolated once it
+    passes the smaller of their last Delta K, on a curve only past that
+    curve's; R outside the span is reported."""
+    from cracklip.fracture.laws import rate_table_reach
+    t = RateTable((0.0, 0.5), (1e-9, 1e-6), ((10.0, 5.0), (100.0, 40.0)))
+    r = rate_table_reach(t, [90.0, 50.0, 60.0], [0.0, 0.25, 0.5])
+    assert r["ratio"] == pytest.approx(1.5) and r["R"] == 0.5 and r["last"] == 40.0
+    assert rate_table_reach(t, [90.0], [0.0])["ratio"] == pytest.approx(0.9)
+    r = rate_table_reach(t, [20.0, 20.0], [-1.0, 0.3])
+    assert (r["R_min"], r["R_max"], r["R_lo"], r["R_hi"]) == (-1.0, 0.3, 0.0, 0.5)
+
+
+def test_a_tabular_law_read_outside_its_table_warns(tmp_path, capsys):
+    """A da/dN table of Paris (C = 1e-10 mm/cycle, MPa sqrt(mm)) written in
+    m/cycle and MPa sqrt(m) (Delta K up to 31.6): with material.fatigue.units
+    the life is the closed form (2455.9338 cycles, 1e-12); without, every
+    cycle (Delta K 177 .. 560 MPa sqrt(mm)) lies above the table, whose last
+    segment is extended: a life of 77.66 cycles that used to come without a
+    word now comes with a warning naming the table, the Delta K reached and
+    material.fatigue.units; a cycle at R = -1 on a table of R = 0 says it
+    takes the nearest curve."""
+    rates = np.geomspace(1e-9, 1e-1, 9)
+    dk_mm = (rates / 1e-10) ** (1.0 / 3.0)
+    f = write(tmp_path, "si.csv", "dadn,R=0\n" + "".join(f"{r * 1e-3!r},{k / math.sqrt(1000.0)!r}\n"
+                                                       for r, k in zip(rates, dk_mm)))
+    N = (1.0 - 10.0 ** -0.5) / 0.5 / (1e-10 * (100.0 * math.sqrt(math.pi)) ** 3)
+    doc = griffith_doc()
+    doc["material"]["fatigue"] = {"law": "tabular", "table_file": str(f), "closure": "none",
+                                  "units": {"length": "m", "stress": "MPa"}}
+    _, out = life_inputs.life_of(doc)
+    assert out.cycles == pytest.approx(N, rel=1e-12) and out.warnings == []
+    del doc["material"]["fatigue"]["units"]
+    _, out = life_inputs.life_of(doc)
+    assert out.cycles == pytest.approx(N / 1000.0 ** 0.5, rel=1e-12)  # the rates x 1e-3, Delta K x 1000^-1/2: m = 3
+    assert len(out.warnings) == 1
+    assert re.search(r"si\.csv.*Delta K = 560\.5 MPa sqrt\(mm\).*17\.7 times.*material\.fatigue\.units",
+                     out.warnings[0])
+    doc["spectrum"]["blocks"][0]["points"] = [-1.0, 1.0]  # closure none: Delta K 177 .. 560 in the table
+    doc["life"]["reference_stress"] = {"default": 50.0}
+    doc["material"]["fatigue"]["units"] = {"length": "m", "stress": "MPa"}
+    _, out = life_inputs.life_of(doc)
+    assert out.cycles == pytest.approx(N, rel=1e-12)  # the R = 0 curve at the full range 2 x 50 MPa
+    assert len(out.warnings) == 1 and "R from -1 to -1, outside the table's R from 0 to 0" in out.warnings[0]
+    path = write(tmp_path, "life.toml", f"[units]\nlength = \"mm\"\nstress = \"MPa\"\n[material.fatigue]\nlaw = "
+                 f"\"tabular\"\ntable_file = \"{f}\"\nclosure = \"none\"\n[[spectrum.blocks]]\npoints = [0.0, 1.0]\n"
+                 f"[life]\ngeometry = \"beta_table\"\ntable = \"{DATA / 'griffith_beta.csv'}\"\na0 = 1.0\n"
+                 "a_final = 10.0\nreference_stress = { default = 100.0 }\n")
+    assert cli.main(["life", str(path), "--out", str(tmp_path / "o"), "--quiet", "--no-png"]) == 0
+    err = capsys.readouterr().err
+    assert err.count("cracklip: warning: material.fatigue.table") == 1
+    assert json.loads((tmp_path / "o" / "results.json").read_text())["life"]["warnings"] == out_warn(err)
+
+
+def out_warn(err: str) -> list[str]:
+    return [line[len("cracklip: warning: "):] for line in err.splitlines() if line.startswith("cracklip: warning: ")]

@@ -54,6 +54,7 @@ import numpy as np
 from ..errors import InputError
 from ..fracture import handbook
 from ..fracture.life import CycleTable, LifeLaw
+from ..fracture.laws import rate_table_reach
 from ..fracture.life_kernels import (KTable, grow_blocks, growth_per_pass, integrate_cycles, new_run, passes_to,
                                      state_k_max)
 from ..fracture.rainflow import count_cycles
@@ -253,6 +254,7 @@ class TableLife:
     table_info: dict[str, typing.Any]
     source: str
     clamp_min: bool
+    units: Units | None = None
 
     @property
     def cycles_per_pass(self) -> float:
@@ -325,7 +327,7 @@ def create_table_life(life: LifeSettings, material: FatigueMaterial, spectrum: S
         beta = constraint_beta(fm.constraint, fm.thickness, fm.K_Ic, fm.yield_stress)
         ret = Retardation(fm.retardation, fm.yield_stress, beta, fm.wheeler_exponent or 1.0, fm.shutoff_ratio or 3.0)
     return TableLife(life, fm, spectrum, law, table, load, cycles, ret, K_c, fm.yield_stress, info, source,
-                     law.closure == "contact")
+                     law.closure == "contact", units)
 
 
 def _check_reference_stress(life: LifeSettings, spectrum: Spectrum, data: KTableData | None) -> None:
@@ -362,6 +364,8 @@ class LifeResult:
             reached before the end of the table or of the handbook's range).
         inspection: threshold and interval (module doc) or None.
         method: "cycles" or "blocks"; seconds; cycles_per_second (cycles).
+        warnings: what makes the life doubtful (a tabular da/dN read
+            outside its data), one sentence each.
     """
     rows: list[dict[str, typing.Any]]
     stop: str
@@ -371,6 +375,7 @@ class LifeResult:
     method: str
     seconds: float
     cycles_per_second: float | None = None
+    warnings: list[str] = dataclasses.field(default_factory=list)
 
     @property
     def cycles(self) -> float:
@@ -436,7 +441,48 @@ def run_life(tl: TableLife, progress: typing.Callable[[str], None] | None = None
     out.seconds = time.perf_counter() - t0
     if a0 is None:
         out.inspection = _inspection(tl, out, progress)
+        out.warnings = rate_table_warnings(tl, out)
     return out
+
+
+def rate_table_warnings(tl: TableLife, out: LifeResult) -> list[str]:
+    """A tabular da/dN read outside its data by the life's cycles (at the
+    sizes of the a-N table): Delta K above a curve's last row (its last
+    log-log segment extended: a table in other units than the scene's K
+    lands there) and R outside the table's span (the nearest curve)."""
+    law = tl.law.law
+    if law.name != "tabular":
+        return []
+    cyc = tl.cycles.unique()
+    dks, Rs = [], []
+    for row in out.rows:
+        if tl.table.sizes == 1:
+            K = tl.table.evaluate(row["a"])[0][None]
+        else:
+            K = tl.table.evaluate(row["a"], row["c"])[0]
+        for Kp in K:  # each point of the crack
+            Ks = tl.load.F @ Kp
+            km, kn = Ks[cyc.hi], Ks[cyc.lo]
+            if tl.clamp_min:
+                kn = np.maximum(kn, 0.0)
+            dk, R = tl.law.effective(km, kn)
+            grow = (km > 0.0) & (dk > tl.law.threshold)
+            dks.append(dk[grow])
+            Rs.append(R[grow])
+    reach = rate_table_reach(law.table, np.concatenate(dks), np.concatenate(Rs))
+    where = "material.fatigue.table" + (f" ({tl.material.source})" if tl.material.source else "")
+    K_unit = f" {tl.units.name('K')}" if tl.units is not None else ""
+    warnings = []
+    if reach["ratio"] > 1.0:
+        warnings.append(f"{where}: the life's cycles reach Delta K = {reach['delta_K']:.4g}{K_unit} at R = "
+                        f"{reach['R']:.3g}, {reach['ratio']:.3g} times the table's largest Delta K there "
+                        f"({reach['last']:.4g}): the rates above it extend the last log-log segment. Extend the "
+                        "table, or if it is in other units than the scene's K give material.fatigue.units")
+    if reach["R_min"] < reach["R_lo"] or reach["R_max"] > reach["R_hi"]:
+        warnings.append(f"{where}: the life's cycles have R from {reach['R_min']:.3g} to {reach['R_max']:.3g}, "
+                        f"outside the table's R from {reach['R_lo']:.3g} to {reach['R_hi']:.3g}: they take the "
+                        "rates of the nearest curve")
+    return warnings
 
 
 def _stop_of_end(tl: TableLife, a_crit, crit, end_table) -> tuple[float, str, str]:
@@ -739,9 +785,9 @@ def summary(tl: TableLife, out: LifeResult) -> dict[str, typing.Any]:
         "block_name": tl.spectrum.block_name, "integration": out.method,
         "cycles": out.cycles, "passes": out.passes, "blocks": out.blocks, "a_end": out.rows[-1]["a"],
         "stop": out.stop, "stop_reason": out.stop_reason, "critical": out.critical, "inspection": out.inspection,
-        "seconds": out.seconds, "cycles_per_second": out.cycles_per_second,
+        "seconds": out.seconds, "cycles_per_second": out.cycles_per_second, "warnings": list(out.warnings),
     }
 
 
 __all__ = ["LoadCases", "load_cases", "TableLife", "create_table_life", "LifeResult", "critical_size", "run_life",
-           "summary", "net_section_factor", "handbook_table", "tabulation_error"]
+           "rate_table_warnings", "summary", "net_section_factor", "handbook_table", "tabulation_error"]

@@ -55,6 +55,8 @@ def cmd_life(args) -> int:
     s = summary(setup, result)
     results = write_life_outputs(lf, setup, result, s, out, {"total": time.perf_counter() - t_start},
                                  png=not args.no_png)
+    from . import print_warnings
+    print_warnings(result.warnings)
     if not args.quiet:
         for line in life_summary(lf.title, s):
             print(line)

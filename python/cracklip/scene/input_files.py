@@ -303,6 +303,7 @@ def resolve_rate_table(fatigue: dict, base_dir: pathlib.Path) -> dict:
     path = pathlib.Path(name)
     f["table_R"], f["table"] = read_rate_table(path if path.is_absolute() else pathlib.Path(base_dir) / path,
                                                "material.fatigue.table_file", layout)
+    f.setdefault("source", f"da/dN table file {name}")
     return f
 
 
