@@ -587,3 +587,20 @@ def test_a_tabular_law_read_outside_its_table_warns(tmp_path, capsys):
 
 def out_warn(err: str) -> list[str]:
     return [line[len("cracklip: warning: "):] for line in err.splitlines() if line.startswith("cracklip: warning: ")]
+
+
+def test_an_initial_crack_already_critical_says_by_how_much():
+    """K_Ic = 30 (MPa sqrt(m), a units slip) in a scene in mm: K_max at a0 =
+    100 sqrt(pi) = 177.245 MPa sqrt(mm) is already above it. The life is 0
+    and says so with both K and their unit; the critical size is a0 or below,
+    not 'a = 1' (which read as a computed critical size)."""
+    doc = griffith_doc()
+    doc["material"]["fatigue"]["K_Ic"] = 30.0
+    del doc["life"]["a_final"]
+    _, out = life_inputs.life_of(doc)
+    assert out.cycles == 0.0 and out.stop == "K_max >= K_c" and out.critical["at_initial_size"]
+    assert re.search(r"already critical: K_max = 177\.245 MPa sqrt\(mm\).*K_c = 30 MPa sqrt\(mm\)", out.stop_reason)
+    from cracklip.cli.life import life_summary
+    from cracklip.analysis.table_life import summary
+    tl, out = life_inputs.life_of(doc)
+    assert "critical crack size: a0 = 1 or below (K_max >= K_c)" in "\n".join(life_summary("t", summary(tl, out)))

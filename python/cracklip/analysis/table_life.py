@@ -521,6 +521,22 @@ def _run_one(tl: TableLife, progress, a0: float) -> LifeResult:
         end_table = (table.a[-1], f"the table ends at a = {table.a[-1]:.6g}")
     a_end, stop, reason = _stop_of_end(tl, a_crit, crit, end_table)
     critical = {"a": a_crit, "criterion": crit} if a_crit is not None else None
+    if a_crit is not None and a_crit <= a0:
+        # Critical at the start: the first largest load breaks the part. Say by how much (a K_Ic in MPa sqrt(m)
+        # read by a scene in mm is 31.6 times too small), and that the critical size is a0 or below.
+        rows = [_row(tl, a0, 0.0, 0.0)]
+        critical["at_initial_size"] = True
+        unit = f" {tl.units.name('K')}" if tl.units is not None else ""
+        if crit == "K_max >= K_c":
+            what = (f"K_max = {rows[0]['K_max']:.6g}{unit} of the spectrum's largest load state reaches K_c = "
+                    f"{tl.K_crit:.6g}{unit} (material.fatigue.K_Ic, K_c(t) or the law's critical K: check its "
+                    "value and units)")
+        else:
+            S_max = float(np.max(tl.load.F @ np.array([life.stress(g) for g in tl.load.cases])))
+            what = (f"the net-section stress {S_max * float(net_section_factor(life, a0)):.6g} of the spectrum's "
+                    f"largest load state reaches the yield stress {tl.yield_stress:.6g}")
+        return LifeResult(rows, stop, f"no life: the initial crack a0 = {a0:g} is already critical: {what}",
+                          critical, None, tl.method, 0.0)
     if not a_end > a0:
         rows = [_row(tl, a0, 0.0, 0.0)]
         return LifeResult(rows, stop, reason + f" (at or below the initial size {a0:g}: no life)", critical, None,
