@@ -604,3 +604,37 @@ def test_an_initial_crack_already_critical_says_by_how_much():
     from cracklip.analysis.table_life import summary
     tl, out = life_inputs.life_of(doc)
     assert "critical crack size: a0 = 1 or below (K_max >= K_c)" in "\n".join(life_summary("t", summary(tl, out)))
+
+
+@pytest.mark.parametrize("lo,K_Ic", [(0.0, 2000.0), (-1.0, None)])
+@pytest.mark.parametrize("method", ["blocks", "cycles"])
+def test_forman_fails_at_K_f_for_any_R_and_below_a_larger_K_Ic(lo, K_Ic, method):
+    """Forman, C = 1e-7, n = 3, K_f = 1000 MPa sqrt(mm), a Griffith crack
+    under 100 x [lo, 1] MPa, closure none: da/dN = C dK^3 / ((1 - R) (K_f -
+    K_max)) diverges at K_max = K_f, a_c = (K_f / 100)^2 / pi = 31.83 mm;
+    the life is the quadrature of its inverse from 1 mm to a_c. With K_Ic =
+    2000 (above K_f) the life used to run past K_f's size to the table's
+    end in zero passes ('critical size: not reached'); at R = -1 the rate,
+    R clamped at 0 in the denominator, diverged at K_max = K_f / 2 (a = 7.96)
+    while the critical size said 31.83."""
+    from scipy.integrate import quad
+    a_c = (1000.0 / 100.0) ** 2 / math.pi
+    dS = 100.0 * (1.0 - lo)
+
+    def per(a):
+        K = 100.0 * math.sqrt(math.pi * a)
+        return (1.0 - lo) * (1000.0 - K) / (1e-7 * (dS * math.sqrt(math.pi * a)) ** 3)
+    N = quad(per, 1.0, a_c, epsrel=1e-12, limit=200)[0]
+    doc = griffith_doc(integration=method)
+    del doc["life"]["a_final"]
+    doc["spectrum"]["blocks"][0]["points"] = [lo, 1.0]
+    doc["material"]["fatigue"] = {"law": "forman", "C": 1e-7, "n": 3.0, "K_f": 1000.0, "closure": "none",
+                                  **({"K_Ic": K_Ic} if K_Ic else {})}
+    tl, out = life_inputs.life_of(doc)
+    assert tl.K_crit == 1000.0 and out.stop == "K_max >= K_c"
+    assert out.critical["a"] == pytest.approx(a_c, rel=1e-12)
+    # blocks: the quadrature (1e-9 measured); cycle by cycle each cycle grows at its start size (a few cycles
+    # of 125 .. 1853; the crack's last cycles near K_f grow it by mm).
+    assert out.cycles == pytest.approx(N, rel=1e-7 if method == "blocks" else 2e-2)
+    if method == "blocks":
+        assert out.rows[-1]["a"] == pytest.approx(a_c, rel=1e-12)

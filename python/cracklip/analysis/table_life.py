@@ -64,7 +64,7 @@ from ..scene.input_files import DEFAULT_CASE, KTableData
 from ..scene.life import LifeSettings
 from ..scene.spectrum import Spectrum
 from ..scene.units import Units
-from .life import create_law
+from .life import create_law, critical_k
 
 logger = logging.getLogger(__name__)
 
@@ -316,9 +316,7 @@ def create_table_life(life: LifeSettings, material: FatigueMaterial, spectrum: S
         raise InputError("the spectrum gives the same K at every turning point: no cycle to count")
     ct = count_cycles(values, spectrum.counting, repeated=spectrum.residue == "close")
     cycles = CycleTable(load.point_state[ct.lo], load.point_state[ct.hi], ct.count, load.block_of_point[ct.hi])
-    K_c = fm.toughness()
-    if K_c is None:
-        K_c = law.K_crit
+    K_c = critical_k(fm, law)
     if fm.retardation != "none" and life.integration == "blocks":
         raise InputError(f"life.integration = 'blocks' sums the growth of a pass without sequence effects, but "
                          f"material.fatigue.retardation = {fm.retardation!r} needs them: use 'cycles' or 'auto'")

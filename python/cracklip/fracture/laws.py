@@ -71,7 +71,8 @@ def walker_rate(delta_K: ArrayLike, R: ArrayLike, C: float, m: float, gamma: flo
 
 def forman_rate(delta_K: ArrayLike, R: ArrayLike, C: float, n: float, K_f: float) -> np.ndarray:
     """C Delta K^n / ((1 - R) K_f - Delta K): +inf once K_max = Delta K / (1 -
-    R) reaches K_f (the denominator vanishes), 0 for Delta K <= 0."""
+    R) reaches K_f (the denominator (1 - R) (K_f - K_max) vanishes, for any R,
+    negative ones too), 0 for Delta K <= 0."""
     dk, r = np.broadcast_arrays(_arr(delta_K), _arr(R))
     den = (1.0 - r) * K_f - dk
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -324,7 +325,7 @@ class Forman(GrowthLaw):
         return self.K_f
 
     def rate(self, delta_K, R, K_max, a):
-        return forman_rate(delta_K, np.maximum(_arr(R), 0.0), self.C, self.n, self.K_f)
+        return forman_rate(delta_K, R, self.C, self.n, self.K_f)
 
     def describe(self) -> str:
         return f"Forman: da/dN = {self.C:.4g} dK^{self.n:g} / ((1 - R) {self.K_f:g} - dK)"
