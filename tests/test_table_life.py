@@ -638,3 +638,14 @@ def test_forman_fails_at_K_f_for_any_R_and_below_a_larger_K_Ic(lo, K_Ic, method)
     assert out.cycles == pytest.approx(N, rel=1e-7 if method == "blocks" else 2e-2)
     if method == "blocks":
         assert out.rows[-1]["a"] == pytest.approx(a_c, rel=1e-12)
+
+
+def test_a_beta_table_ending_before_a_final_says_a_final_is_not_reached(tmp_path):
+    """A beta table to a = 5 with life.a_final = 10: the life is the closed
+    form from 3 to 5 mm (467.417 cycles, 1e-12) and its stop says a_final was
+    not reached (it said only 'the table ends at a = 5')."""
+    f = write(tmp_path, "beta.csv", "a,beta\n2.0,1.0\n5.0,1.0\n")
+    _, out = life_inputs.life_of(griffith_doc(table=str(f), a0=3.0))
+    k = 1e-10 * (100.0 * math.sqrt(math.pi)) ** 3
+    assert out.cycles == pytest.approx((3.0 ** -0.5 - 5.0 ** -0.5) / 0.5 / k, rel=1e-12)
+    assert out.stop == "end of the table" and "before life.a_final = 10 (not reached" in out.stop_reason

@@ -495,7 +495,10 @@ def _stop_of_end(tl: TableLife, a_crit, crit, end_table) -> tuple[float, str, st
     if life.a_final is not None:
         ends.append((life.a_final, "a_final", f"life.a_final = {life.a_final:g} reached"))
     ends.append((end_table[0], "end of the table", end_table[1]))
-    return min(ends, key=lambda e: e[0])
+    a_end, stop, reason = min(ends, key=lambda e: e[0])
+    if stop == "end of the table" and life.a_final is not None:
+        reason += f", before life.a_final = {life.a_final:g} (not reached: the life is to a = {a_end:.6g})"
+    return a_end, stop, reason
 
 
 def _row(tl: TableLife, a: float, cycles: float, passes: float, c: float | None = None) -> dict[str, typing.Any]:
