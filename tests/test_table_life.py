@@ -649,3 +649,26 @@ def test_a_beta_table_ending_before_a_final_says_a_final_is_not_reached(tmp_path
     k = 1e-10 * (100.0 * math.sqrt(math.pi)) ** 3
     assert out.cycles == pytest.approx((3.0 ** -0.5 - 5.0 ** -0.5) / 0.5 / k, rel=1e-12)
     assert out.stop == "end of the table" and "before life.a_final = 10 (not reached" in out.stop_reason
+
+
+@pytest.mark.parametrize("threshold", [150.0, 100.0])
+def test_a_threshold_crossed_inside_the_life_is_integrated_exactly(threshold):
+    """Turning points 0, 100, 20, 80, 0 MPa repeated (rainflow: 0-100 and
+    20-80 per pass), a Griffith crack, Paris C = 1e-10, m = 3, threshold 150
+    MPa sqrt(mm): the 60 MPa cycle grows only from a_t = (150 / 60)^2 / pi =
+    1.989 mm, so passes = integral of da / (C (pi a)^1.5 (100^3 + [a > a_t]
+    60^3)) in closed form on each side of a_t. The block quadrature across
+    the jump was 6.3e-5 off; cut at the jump it is 1e-12. Threshold 100: the
+    jump at 0.88 mm lies below a0, nothing to cut (same closed form)."""
+    C = 1e-10
+    a_t = (threshold / 60.0) ** 2 / math.pi
+
+    def part(a0, a1, s3):
+        return (a0 ** -0.5 - a1 ** -0.5) / 0.5 / (C * math.pi ** 1.5 * s3)
+    exact = (part(1.0, a_t, 100.0 ** 3) + part(a_t, 10.0, 100.0 ** 3 + 60.0 ** 3) if a_t > 1.0
+             else part(1.0, 10.0, 100.0 ** 3 + 60.0 ** 3))
+    doc = griffith_doc(integration="blocks")
+    doc["spectrum"]["blocks"][0]["points"] = [0.0, 1.0, 0.2, 0.8, 0.0]
+    doc["material"]["fatigue"]["threshold"] = threshold
+    _, out = life_inputs.life_of(doc)
+    assert out.passes == pytest.approx(exact, rel=1e-12) and out.cycles == 2 * out.passes
