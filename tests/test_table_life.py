@@ -672,3 +672,15 @@ def test_a_threshold_crossed_inside_the_life_is_integrated_exactly(threshold):
     doc["material"]["fatigue"]["threshold"] = threshold
     _, out = life_inputs.life_of(doc)
     assert out.passes == pytest.approx(exact, rel=1e-12) and out.cycles == 2 * out.passes
+
+
+def test_a_turning_point_file_without_reversal_names_the_file(tmp_path, capsys):
+    """A plain turning-point file holding 5, 5, 5: one error line naming the
+    block and its file (it said only 'the spectrum has no reversal')."""
+    f = write(tmp_path, "tp.txt", "5\n5\n5\n")
+    path = write(tmp_path, "life.toml", "[material.fatigue]\nlaw = \"paris\"\nC = 1e-10\nm = 3.0\nclosure = \"none\"\n"
+                 f"[[spectrum.blocks]]\nfile = \"{f}\"\n[life]\ngeometry = \"beta_table\"\ntable = "
+                 f"\"{DATA / 'griffith_beta.csv'}\"\na0 = 1.0\n")
+    assert cli.main(["life", str(path), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"no reversal" in err and f"spectrum.blocks[0] (file {f}): 3 point(s)" in err
