@@ -441,10 +441,12 @@ def test_non_ascending_delta_k_in_a_scene_table_is_a_typed_error(tmp_path, no_me
     ("a,beta\n1.0,1.1\n2.0,NaN\n", 3, 2, "not a finite number"),
     ("\n# nothing\n", None, None, "is empty"),
     ("a,c,beta_a,beta_c\n1,1,0.7,0.7\n2,1,0.8,0.7\n1,2,0.7,0.8\n", None, None, "grid"),
+    ("a,beta,beta\n1.0,1.1,1.2\n2.0,1.1,1.3\n", 1, None, "'beta' twice"),
 ])
 def test_bad_beta_tables_are_typed_errors(tmp_path, capsys, content, line, column, what):
     """life.table: crack sizes that do not rise, a NaN, an empty file, a
-    two-size table that is not a grid: InputFileError with the line and
+    two-size table that is not a grid, a column named twice (the last one
+    used to win silently): InputFileError with the line and
     column; `cracklip life` and `check` exit 2 with one line."""
     f = write(tmp_path, "beta.csv", content)
     doc = centre_doc()
