@@ -686,3 +686,29 @@ def test_a_turning_point_file_without_reversal_names_the_file(tmp_path, capsys):
     assert cli.main(["life", str(path), "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and f"no reversal" in err and f"spectrum.blocks[0] (file {f}): 3 point(s)" in err
+
+
+def test_a_life_arrested_by_the_threshold_ends_at_the_arrest_size(tmp_path):
+    """A beta table falling from 1.0 at 0.5 mm to 0.05 at 20 mm (K / sqrt(a)
+    linear between), 0 -> 100 MPa, Paris C = 1e-10, m = 3, threshold 100:
+    Delta K = 100 beta(a) sqrt(pi a) rises to 320 at 7 mm and falls to 100
+    at a_arr = 18.3 (brentq here);
+    the life is the quadrature of da / (C Delta K^3) from 1 mm to a_arr and
+    the a-N table ends there. Blocks used to end at the last a-N row below
+    a_arr (a few % fewer cycles); cycle by cycle it is the same life to a
+    cycle."""
+    from scipy.integrate import quad
+    from scipy.optimize import brentq
+    beta = lambda a: 1.0 + (0.05 - 1.0) * (a - 0.5) / 19.5  # noqa: E731
+    dK = lambda a: 100.0 * beta(a) * math.sqrt(math.pi * a)  # noqa: E731
+    a_arr = brentq(lambda a: dK(a) - 100.0, 10.0, 19.9, xtol=1e-15)
+    N = quad(lambda a: 1.0 / (1e-10 * dK(a) ** 3), 1.0, a_arr, epsrel=1e-13, limit=200)[0]
+    f = write(tmp_path, "beta_falling.csv", "a,beta\n0.5,1.0\n20,0.05\n")
+    for method in ("blocks", "cycles"):
+        doc = griffith_doc(integration=method, table=str(f))
+        doc["material"]["fatigue"]["threshold"] = 100.0
+        del doc["life"]["a_final"]
+        _, out = life_inputs.life_of(doc)
+        assert out.stop == "arrest"
+        assert out.rows[-1]["a"] == pytest.approx(a_arr, rel=1e-12 if method == "blocks" else 1e-4)
+        assert out.cycles == pytest.approx(N, rel=1e-10 if method == "blocks" else 2.0 / N)

@@ -553,10 +553,20 @@ def _run_one(tl: TableLife, progress, a0: float) -> LifeResult:
         if not ok.all():
             k = int(np.flatnonzero(~ok)[0])
             if not np.isfinite(P[k]):
-                a_arr = _arrest_size(tl, grid[k - 1], grid[k])
-                rows = [_row(tl, float(x), float(p) * tl.cycles_per_pass, float(p)) for x, p in zip(grid[:k], P[:k])]
-                return LifeResult(rows, "arrest", f"growth arrested: the growth per pass falls to 0 at a = "
-                                  f"{a_arr:.6g} (below the threshold)", critical, None, "blocks", 0.0)
+                # The a-N table ends where the crack stops: at the arrest size, after the passes to it (the last
+                # grid size before it understated them: 11510 of 11848 cycles in tests/test_table_life.py).
+                a_grow, a_arr = _arrest_size(tl, grid[k - 1], grid[k])
+                P_arr = float(P[k - 1]) + float(passes_to(table, tl.load.F, tl.cycles.unique(), tl.law,
+                                                          np.array([grid[k - 1], a_grow]), tl.clamp_min)[1])
+                if P_arr <= max_passes:
+                    rows = [_row(tl, float(x), float(p) * tl.cycles_per_pass, float(p))
+                            for x, p in zip(grid[:k], P[:k])]
+                    if a_grow > grid[k - 1]:
+                        rows.append(_row(tl, a_grow, P_arr * tl.cycles_per_pass, P_arr))
+                    return LifeResult(rows, "arrest", f"growth arrested: the growth per pass falls to 0 at a = "
+                                      f"{a_arr:.6g} (below the threshold)", critical, None, "blocks", 0.0)
+                P = np.r_[P[:k], P_arr]
+                grid = np.r_[grid[:k], a_grow]
             # The crack size where the passes reach max_passes, inside (grid[k - 1], grid[k]): the life is
             # max_passes there (the last grid size before it would understate both).
             a_mp = _size_at_passes(tl, grid[k - 1], float(P[k - 1]), grid[k], max_passes)
@@ -626,15 +636,19 @@ def _size_at_passes(tl: TableLife, a_lo: float, P_lo: float, a_hi: float, target
     return lo
 
 
-def _arrest_size(tl: TableLife, lo: float, hi: float) -> float:
+def _arrest_size(tl: TableLife, lo: float, hi: float) -> tuple[float, float]:
+    """(the last size that grows, the first that does not) between lo and hi
+    (bisection to the last bit)."""
     cyc = tl.cycles.unique()
-    for _ in range(100):
+    for _ in range(200):
         mid = 0.5 * (lo + hi)
+        if not lo < mid < hi:
+            break
         if growth_per_pass(tl.table, tl.load.F, cyc, tl.law, [mid], tl.clamp_min)[0] > 0.0:
             lo = mid
         else:
             hi = mid
-    return hi
+    return lo, hi
 
 
 def _run_two(tl: TableLife, progress) -> LifeResult:
