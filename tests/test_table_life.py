@@ -441,10 +441,12 @@ def test_non_ascending_delta_k_in_a_scene_table_is_a_typed_error(tmp_path, no_me
     ("a,beta\n1.0,1.1\n2.0,NaN\n", 3, 2, "not a finite number"),
     ("\n# nothing\n", None, None, "is empty"),
     ("a,c,beta_a,beta_c\n1,1,0.7,0.7\n2,1,0.8,0.7\n1,2,0.7,0.8\n", None, None, "grid"),
+    ("a,beta,beta\n1.0,1.1,1.2\n2.0,1.1,1.3\n", 1, None, "'beta' twice"),
 ])
 def test_bad_beta_tables_are_typed_errors(tmp_path, capsys, content, line, column, what):
     """life.table: crack sizes that do not rise, a NaN, an empty file, a
-    two-size table that is not a grid: InputFileError with the line and
+    two-size table that is not a grid, a column named twice (the last one
+    used to win silently): InputFileError with the line and
     column; `cracklip life` and `check` exit 2 with one line."""
     f = write(tmp_path, "beta.csv", content)
     doc = centre_doc()
@@ -485,3 +487,228 @@ def test_run_and_grow_point_a_life_scene_to_the_life_command(command, capsys):
     assert cli.main([command, scene, "--out", "unused"]) == 2
     err = capsys.readouterr().err
     assert f"cracklip life {scene}" in err and "mesh.h" not in err
+
+
+def griffith_doc(**life):
+    """Paris C = 1e-10 mm/cycle (MPa sqrt(mm))^3, m = 3, 0 -> 100 MPa, a
+    Griffith crack (beta = 1 from a file), a0 = 1 mm: a(N)^(-1/2) = a0^(-1/2)
+    - N C (100 sqrt(pi))^3 / 2 in closed form."""
+    return {"units": {"length": "mm", "stress": "MPa"},
+            "material": {"fatigue": {"law": "paris", "C": 1e-10, "m": 3.0, "closure": "none"}},
+            "spectrum": {"blocks": [{"points": [0.0, 1.0]}]},
+            "life": {"geometry": "beta_table", "table": "griffith_beta.csv", "a0": 1.0, "a_final": 10.0,
+                     "reference_stress": {"default": 100.0}, **life}}
+
+
+@pytest.mark.parametrize("method", ["blocks", "cycles"])
+def test_a_life_stopped_by_max_passes_ends_at_max_passes(method):
+    """spectrum.max_passes = 1000 of a life of 2456 cycles: the life is 1000
+    passes and ends at the closed-form a(1000) = 1.9205547 (blocks: to 1e-10;
+    cycle by cycle, each cycle at its start size: 4e-4 measured, 1e-3
+    allowed). Blocks used to end at the last a-N row below the limit, 993.97
+    passes at a = 1.9116, reporting 'max_passes reached'."""
+    k = 1e-10 * (100.0 * math.sqrt(math.pi)) ** 3
+    a_exact = (1.0 - 0.5 * 1000 * k) ** -2
+    doc = griffith_doc(integration=method)
+    doc["spectrum"]["max_passes"] = 1000.0
+    tl, out = life_inputs.life_of(doc)
+    assert out.stop == "max_passes" and out.passes == 1000.0 and out.cycles == 1000.0
+    assert out.rows[-1]["a"] == pytest.approx(a_exact, rel=1e-10 if method == "blocks" else 1e-3)
+
+
+@pytest.mark.parametrize("stress,table,what", [
+    ({"defualt": 100.0}, "griffith_beta.csv", "did you mean 'default'"),
+    ({"default": 100.0, "tail": 3.0}, "griffith_beta.csv", r"\['tail'\]"),
+    ({"default": 100.0}, "k_table", "K per unit load factor"),
+])
+def test_reference_stress_of_no_load_group_is_an_error(tmp_path, stress, table, what):
+    """life.reference_stress naming a group the life has no load for (a typo,
+    a renamed spectrum group) used to be ignored: S = 1, a life 1e6 times
+    too long reported as a result; on a table of K per unit factor it
+    scales nothing. Both are InputErrors naming the key, also in `check`."""
+    if table == "k_table":
+        table = str(write(tmp_path, "k.csv", "a,K\n0.5,1.2533\n50,12.533\n"))
+    doc = griffith_doc(table=table, reference_stress=stress)
+    with pytest.raises(cl.InputError, match=r"life\.reference_stress.*" + what):
+        life_inputs.life_of(doc)
+
+
+def test_rate_table_reach_names_the_curve_a_cycle_is_read_from():
+    """rate_table_reach: a cycle between two curves is extrapolated once it
+    passes the smaller of their last Delta K, on a curve only past that
+    curve's; R outside the span is reported."""
+    from cracklip.fracture.laws import rate_table_reach
+    t = RateTable((0.0, 0.5), (1e-9, 1e-6), ((10.0, 5.0), (100.0, 40.0)))
+    r = rate_table_reach(t, [90.0, 50.0, 60.0], [0.0, 0.25, 0.5])
+    assert r["ratio"] == pytest.approx(1.5) and r["R"] == 0.5 and r["last"] == 40.0
+    assert rate_table_reach(t, [90.0], [0.0])["ratio"] == pytest.approx(0.9)
+    r = rate_table_reach(t, [20.0, 20.0], [-1.0, 0.3])
+    assert (r["R_min"], r["R_max"], r["R_lo"], r["R_hi"]) == (-1.0, 0.3, 0.0, 0.5)
+
+
+def test_a_tabular_law_read_outside_its_table_warns(tmp_path, capsys):
+    """A da/dN table of Paris (C = 1e-10 mm/cycle, MPa sqrt(mm)) written in
+    m/cycle and MPa sqrt(m) (Delta K up to 31.6): with material.fatigue.units
+    the life is the closed form (2455.9338 cycles, 1e-12); without, every
+    cycle (Delta K 177 .. 560 MPa sqrt(mm)) lies above the table, whose last
+    segment is extended: a life of 77.66 cycles that used to come without a
+    word now comes with a warning naming the table, the Delta K reached and
+    material.fatigue.units; a cycle at R = -1 on a table of R = 0 says it
+    takes the nearest curve."""
+    rates = np.geomspace(1e-9, 1e-1, 9)
+    dk_mm = (rates / 1e-10) ** (1.0 / 3.0)
+    f = write(tmp_path, "si.csv", "dadn,R=0\n" + "".join(f"{r * 1e-3!r},{k / math.sqrt(1000.0)!r}\n"
+                                                       for r, k in zip(rates, dk_mm)))
+    N = (1.0 - 10.0 ** -0.5) / 0.5 / (1e-10 * (100.0 * math.sqrt(math.pi)) ** 3)
+    doc = griffith_doc()
+    doc["material"]["fatigue"] = {"law": "tabular", "table_file": str(f), "closure": "none",
+                                  "units": {"length": "m", "stress": "MPa"}}
+    _, out = life_inputs.life_of(doc)
+    assert out.cycles == pytest.approx(N, rel=1e-12) and out.warnings == []
+    del doc["material"]["fatigue"]["units"]
+    _, out = life_inputs.life_of(doc)
+    assert out.cycles == pytest.approx(N / 1000.0 ** 0.5, rel=1e-12)  # the rates x 1e-3, Delta K x 1000^-1/2: m = 3
+    assert len(out.warnings) == 1
+    assert re.search(r"si\.csv.*Delta K = 560\.5 MPa sqrt\(mm\).*17\.7 times.*material\.fatigue\.units",
+                     out.warnings[0])
+    doc["spectrum"]["blocks"][0]["points"] = [-1.0, 1.0]  # closure none: Delta K 177 .. 560 in the table
+    doc["life"]["reference_stress"] = {"default": 50.0}
+    doc["material"]["fatigue"]["units"] = {"length": "m", "stress": "MPa"}
+    _, out = life_inputs.life_of(doc)
+    assert out.cycles == pytest.approx(N, rel=1e-12)  # the R = 0 curve at the full range 2 x 50 MPa
+    assert len(out.warnings) == 1 and "R from -1 to -1, outside the table's R from 0 to 0" in out.warnings[0]
+    path = write(tmp_path, "life.toml", f"[units]\nlength = \"mm\"\nstress = \"MPa\"\n[material.fatigue]\nlaw = "
+                 f"\"tabular\"\ntable_file = \"{f}\"\nclosure = \"none\"\n[[spectrum.blocks]]\npoints = [0.0, 1.0]\n"
+                 f"[life]\ngeometry = \"beta_table\"\ntable = \"{DATA / 'griffith_beta.csv'}\"\na0 = 1.0\n"
+                 "a_final = 10.0\nreference_stress = { default = 100.0 }\n")
+    assert cli.main(["life", str(path), "--out", str(tmp_path / "o"), "--quiet", "--no-png"]) == 0
+    err = capsys.readouterr().err
+    assert err.count("cracklip: warning: material.fatigue.table") == 1
+    assert json.loads((tmp_path / "o" / "results.json").read_text())["life"]["warnings"] == out_warn(err)
+
+
+def out_warn(err: str) -> list[str]:
+    return [line[len("cracklip: warning: "):] for line in err.splitlines() if line.startswith("cracklip: warning: ")]
+
+
+def test_an_initial_crack_already_critical_says_by_how_much():
+    """K_Ic = 30 (MPa sqrt(m), a units slip) in a scene in mm: K_max at a0 =
+    100 sqrt(pi) = 177.245 MPa sqrt(mm) is already above it. The life is 0
+    and says so with both K and their unit; the critical size is a0 or below,
+    not 'a = 1' (which read as a computed critical size)."""
+    doc = griffith_doc()
+    doc["material"]["fatigue"]["K_Ic"] = 30.0
+    del doc["life"]["a_final"]
+    _, out = life_inputs.life_of(doc)
+    assert out.cycles == 0.0 and out.stop == "K_max >= K_c" and out.critical["at_initial_size"]
+    assert re.search(r"already critical: K_max = 177\.245 MPa sqrt\(mm\).*K_c = 30 MPa sqrt\(mm\)", out.stop_reason)
+    from cracklip.cli.life import life_summary
+    from cracklip.analysis.table_life import summary
+    tl, out = life_inputs.life_of(doc)
+    assert "critical crack size: a0 = 1 or below (K_max >= K_c)" in "\n".join(life_summary("t", summary(tl, out)))
+
+
+@pytest.mark.parametrize("lo,K_Ic", [(0.0, 2000.0), (-1.0, None)])
+@pytest.mark.parametrize("method", ["blocks", "cycles"])
+def test_forman_fails_at_K_f_for_any_R_and_below_a_larger_K_Ic(lo, K_Ic, method):
+    """Forman, C = 1e-7, n = 3, K_f = 1000 MPa sqrt(mm), a Griffith crack
+    under 100 x [lo, 1] MPa, closure none: da/dN = C dK^3 / ((1 - R) (K_f -
+    K_max)) diverges at K_max = K_f, a_c = (K_f / 100)^2 / pi = 31.83 mm;
+    the life is the quadrature of its inverse from 1 mm to a_c. With K_Ic =
+    2000 (above K_f) the life used to run past K_f's size to the table's
+    end in zero passes ('critical size: not reached'); at R = -1 the rate,
+    R clamped at 0 in the denominator, diverged at K_max = K_f / 2 (a = 7.96)
+    while the critical size said 31.83."""
+    from scipy.integrate import quad
+    a_c = (1000.0 / 100.0) ** 2 / math.pi
+    dS = 100.0 * (1.0 - lo)
+
+    def per(a):
+        K = 100.0 * math.sqrt(math.pi * a)
+        return (1.0 - lo) * (1000.0 - K) / (1e-7 * (dS * math.sqrt(math.pi * a)) ** 3)
+    N = quad(per, 1.0, a_c, epsrel=1e-12, limit=200)[0]
+    doc = griffith_doc(integration=method)
+    del doc["life"]["a_final"]
+    doc["spectrum"]["blocks"][0]["points"] = [lo, 1.0]
+    doc["material"]["fatigue"] = {"law": "forman", "C": 1e-7, "n": 3.0, "K_f": 1000.0, "closure": "none",
+                                  **({"K_Ic": K_Ic} if K_Ic else {})}
+    tl, out = life_inputs.life_of(doc)
+    assert tl.K_crit == 1000.0 and out.stop == "K_max >= K_c"
+    assert out.critical["a"] == pytest.approx(a_c, rel=1e-12)
+    # blocks: the quadrature (1e-9 measured); cycle by cycle each cycle grows at its start size (a few cycles
+    # of 125 .. 1853; the crack's last cycles near K_f grow it by mm).
+    assert out.cycles == pytest.approx(N, rel=1e-7 if method == "blocks" else 2e-2)
+    if method == "blocks":
+        assert out.rows[-1]["a"] == pytest.approx(a_c, rel=1e-12)
+
+
+def test_a_beta_table_ending_before_a_final_says_a_final_is_not_reached(tmp_path):
+    """A beta table to a = 5 with life.a_final = 10: the life is the closed
+    form from 3 to 5 mm (467.417 cycles, 1e-12) and its stop says a_final was
+    not reached (it said only 'the table ends at a = 5')."""
+    f = write(tmp_path, "beta.csv", "a,beta\n2.0,1.0\n5.0,1.0\n")
+    _, out = life_inputs.life_of(griffith_doc(table=str(f), a0=3.0))
+    k = 1e-10 * (100.0 * math.sqrt(math.pi)) ** 3
+    assert out.cycles == pytest.approx((3.0 ** -0.5 - 5.0 ** -0.5) / 0.5 / k, rel=1e-12)
+    assert out.stop == "end of the table" and "before life.a_final = 10 (not reached" in out.stop_reason
+
+
+@pytest.mark.parametrize("threshold", [150.0, 100.0])
+def test_a_threshold_crossed_inside_the_life_is_integrated_exactly(threshold):
+    """Turning points 0, 100, 20, 80, 0 MPa repeated (rainflow: 0-100 and
+    20-80 per pass), a Griffith crack, Paris C = 1e-10, m = 3, threshold 150
+    MPa sqrt(mm): the 60 MPa cycle grows only from a_t = (150 / 60)^2 / pi =
+    1.989 mm, so passes = integral of da / (C (pi a)^1.5 (100^3 + [a > a_t]
+    60^3)) in closed form on each side of a_t. The block quadrature across
+    the jump was 6.3e-5 off; cut at the jump it is 1e-12. Threshold 100: the
+    jump at 0.88 mm lies below a0, nothing to cut (same closed form)."""
+    C = 1e-10
+    a_t = (threshold / 60.0) ** 2 / math.pi
+
+    def part(a0, a1, s3):
+        return (a0 ** -0.5 - a1 ** -0.5) / 0.5 / (C * math.pi ** 1.5 * s3)
+    exact = (part(1.0, a_t, 100.0 ** 3) + part(a_t, 10.0, 100.0 ** 3 + 60.0 ** 3) if a_t > 1.0
+             else part(1.0, 10.0, 100.0 ** 3 + 60.0 ** 3))
+    doc = griffith_doc(integration="blocks")
+    doc["spectrum"]["blocks"][0]["points"] = [0.0, 1.0, 0.2, 0.8, 0.0]
+    doc["material"]["fatigue"]["threshold"] = threshold
+    _, out = life_inputs.life_of(doc)
+    assert out.passes == pytest.approx(exact, rel=1e-12) and out.cycles == 2 * out.passes
+
+
+def test_a_turning_point_file_without_reversal_names_the_file(tmp_path, capsys):
+    """A plain turning-point file holding 5, 5, 5: one error line naming the
+    block and its file (it said only 'the spectrum has no reversal')."""
+    f = write(tmp_path, "tp.txt", "5\n5\n5\n")
+    path = write(tmp_path, "life.toml", "[material.fatigue]\nlaw = \"paris\"\nC = 1e-10\nm = 3.0\nclosure = \"none\"\n"
+                 f"[[spectrum.blocks]]\nfile = \"{f}\"\n[life]\ngeometry = \"beta_table\"\ntable = "
+                 f"\"{DATA / 'griffith_beta.csv'}\"\na0 = 1.0\n")
+    assert cli.main(["life", str(path), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"no reversal" in err and f"spectrum.blocks[0] (file {f}): 3 point(s)" in err
+
+
+def test_a_life_arrested_by_the_threshold_ends_at_the_arrest_size(tmp_path):
+    """A beta table falling from 1.0 at 0.5 mm to 0.05 at 20 mm (K / sqrt(a)
+    linear between), 0 -> 100 MPa, Paris C = 1e-10, m = 3, threshold 100:
+    Delta K = 100 beta(a) sqrt(pi a) rises to 320 at 7 mm and falls to 100
+    at a_arr = 18.3 (brentq here);
+    the life is the quadrature of da / (C Delta K^3) from 1 mm to a_arr and
+    the a-N table ends there. Blocks used to end at the last a-N row below
+    a_arr (a few % fewer cycles); cycle by cycle it is the same life to a
+    cycle."""
+    from scipy.integrate import quad
+    from scipy.optimize import brentq
+    beta = lambda a: 1.0 + (0.05 - 1.0) * (a - 0.5) / 19.5  # noqa: E731
+    dK = lambda a: 100.0 * beta(a) * math.sqrt(math.pi * a)  # noqa: E731
+    a_arr = brentq(lambda a: dK(a) - 100.0, 10.0, 19.9, xtol=1e-15)
+    N = quad(lambda a: 1.0 / (1e-10 * dK(a) ** 3), 1.0, a_arr, epsrel=1e-13, limit=200)[0]
+    f = write(tmp_path, "beta_falling.csv", "a,beta\n0.5,1.0\n20,0.05\n")
+    for method in ("blocks", "cycles"):
+        doc = griffith_doc(integration=method, table=str(f))
+        doc["material"]["fatigue"]["threshold"] = 100.0
+        del doc["life"]["a_final"]
+        _, out = life_inputs.life_of(doc)
+        assert out.stop == "arrest"
+        assert out.rows[-1]["a"] == pytest.approx(a_arr, rel=1e-12 if method == "blocks" else 1e-4)
+        assert out.cycles == pytest.approx(N, rel=1e-10 if method == "blocks" else 2.0 / N)

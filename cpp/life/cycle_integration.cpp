@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace cracklip::life
 {
@@ -46,6 +47,26 @@ void check_cycles(const Cycles& cy)
     if (!(cy.count[k] > 0.0) or !std::isfinite(cy.count[k]))
       throw std::invalid_argument("life integration: cycle counts must be positive and finite");
   }
+}
+/// Which cycles grow (rate > 0) at size s of a one-size table, as (how many,
+/// sum of their indices + 1): where it changes, the growth per pass jumps (a
+/// cycle crossing a threshold or a tabular curve's first Delta K).
+std::pair<std::int64_t, std::int64_t> growing_cycles(const KTable1& table, const Cycles& cy, const GrowthLaw& law,
+                                                     double s, std::vector<double>& K)
+{
+  table.evaluate(&s, K.data());
+  std::int64_t n = 0, sum = 0;
+  for (std::size_t k = 0; k < cy.lo.size(); ++k)
+  {
+    double kmax, kmin;
+    cycle_k(cy, K.data(), 0, cy.lo[k], cy.hi[k], kmax, kmin);
+    if (law.rate(kmax, kmin, s) > 0.0)
+    {
+      ++n;
+      sum += static_cast<std::int64_t>(k) + 1;
+    }
+  }
+  return {n, sum};
 }
 } // namespace
 
@@ -222,6 +243,7 @@ std::vector<double> passes_to(const KTable1& table, const Cycles& cy, const Grow
   check_cycles(cy);
   const quadrature::Rule& rule = quadrature::gauss_legendre_cached(order);
   const std::vector<double>& nodes = table.sizes_of(0);
+  std::vector<double> K(static_cast<std::size_t>(cy.cases));
   std::vector<double> out(a.size(), 0.0);
   double total = 0.0;
   for (std::size_t k = 1; k < a.size(); ++k)
@@ -241,14 +263,38 @@ std::vector<double> passes_to(const KTable1& table, const Cycles& cy, const Grow
         continue;
       const int pieces = std::max(1, static_cast<int>(std::ceil((x1 - x0) / max_width)));
       const double h = (x1 - x0) / pieces;
+      // Each piece is cut where the set of growing cycles changes (the growth per pass jumps there; a rule
+      // across the jump converged slowly: 6e-5 of a Paris life with a threshold in tests/test_table_life.py).
+      auto which = [&](double x) { return growing_cycles(table, cy, law, std::exp(x), K); };
       for (int q = 0; q < pieces and std::isfinite(total); ++q)
-        for (int i = 0; i < rule.size() and std::isfinite(total); ++i)
+      {
+        const double p1 = q + 1 == pieces ? x1 : x0 + h * (q + 1);
+        double lo = x0 + h * q;
+        auto set_lo = which(lo);
+        for (int cut = 0; lo < p1 and std::isfinite(total); ++cut)
         {
-          const double s = std::exp(x0 + h * (q + rule.points[i]));
-          double g;
-          growth_per_pass(table, cy, law, &s, &g);
-          total = g > 0.0 ? total + rule.weights[i] * h * s / g : inf;
+          double hi = p1;
+          if (cut < 1000 and which(hi) != set_lo)
+          {
+            double l = lo;  // bisection for the first change: which(l) == set_lo != which(hi)
+            for (int it = 0; it < 200 and hi - l > 1e-15 * std::max(1.0, std::abs(hi)); ++it)
+            {
+              const double m = 0.5 * (l + hi);
+              (which(m) == set_lo ? l : hi) = m;
+            }
+          }
+          const double w = hi - lo;
+          for (int i = 0; i < rule.size() and std::isfinite(total); ++i)
+          {
+            const double s = std::exp(lo + w * rule.points[i]);
+            double g;
+            growth_per_pass(table, cy, law, &s, &g);
+            total = g > 0.0 ? total + rule.weights[i] * w * s / g : inf;
+          }
+          lo = hi;
+          set_lo = which(lo);
         }
+      }
     }
     out[k] = total;
   }

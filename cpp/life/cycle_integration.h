@@ -86,7 +86,8 @@ void growth_per_pass(const Table& table, const Cycles& cycles, const GrowthLaw& 
 
 /// Passes from a[0] to each a[k] (one size, a ascending): cumulative, +inf
 /// from where the growth per pass vanishes. `order` Gauss points per piece,
-/// pieces at most max_width wide in ln a and never across a table size.
+/// pieces at most max_width wide in ln a, never across a table size nor
+/// across a size where a cycle starts or stops growing (found by bisection).
 std::vector<double> passes_to(const KTable1& table, const Cycles& cycles, const GrowthLaw& law,
                               std::span<const double> a, int order = 10, double max_width = 0.05);
 

@@ -131,8 +131,9 @@ double GrowthLaw::other_rate(double dK, double R, double K_max, double a) const
   }
   case LawKind::forman:
   {
-    const double r = std::max(R, 0.0);
-    const double den = (1.0 - r) * c_.K_f - dK;
+    // (1 - R) K_f - dK = (1 - R) (K_f - K_max): the rate diverges at K_max = K_f for any R (clamping a
+    // negative R at 0 made it diverge at K_max = K_f / (1 - R), half K_f at R = -1).
+    const double den = (1.0 - R) * c_.K_f - dK;
     if (dK <= 0.0)
       return 0.0;
     if (den <= 0.0)

@@ -52,7 +52,7 @@ enum class LawKind
 {
   paris,           ///< C dK^m
   walker,          ///< C [dK / (1 - R)^(1 - gamma)]^m
-  forman,          ///< C dK^n / ((1 - R) K_f - dK), R clamped at 0
+  forman,          ///< C dK^n / ((1 - R) K_f - dK): +inf at K_max >= K_f, for any R
   nasgro,          ///< C [((1 - f)/(1 - R)) dK]^n (1 - dK_th/dK)^p / (1 - K_max/K_crit)^q
   hartman_schijve, ///< D [(dK - dK_thr) / sqrt(1 - K_max/A)]^alpha
   tabular          ///< log-log in dK along each R curve, linear in R between curves

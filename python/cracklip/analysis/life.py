@@ -40,8 +40,8 @@ at its own crack length) and keeps its own overload state. The increments
 themselves are as in constant amplitude: the fastest tip advances da, the
 others da times their growth per pass over the fastest one's.
 
-Failure: K_max of a counted cycle reaching K_c (K_c(t) of the material,
-else K_Ic, else the law's own K_crit), or the mean stress normal to the
+Failure: K_max of a counted cycle reaching K_c (the smaller of the
+material's K_c(t), else K_Ic, and the law's own K_crit), or the mean stress normal to the
 crack over the ligament ahead of a tip (tip to boundary) reaching the yield
 stress (net-section yield; for a centre crack in a plate of width W this
 mean is S W / (W - 2a) exactly), found inside the increment by bisection on
@@ -99,6 +99,17 @@ def create_law(fm: FatigueMaterial) -> LifeLaw:
     else:
         law = Tabular(RateTable(tuple(fm.table_R), tuple(r[0] for r in fm.table), tuple(tuple(r[1:]) for r in fm.table)))
     return LifeLaw(law, fm.closure, c.get("alpha", 2.0), c.get("smax_over_flow", 0.3), fm.threshold)
+
+
+def critical_k(fm: FatigueMaterial, law: LifeLaw) -> float | None:
+    """K_max at which the part fails: the smaller of the toughness (K_c(t),
+    else K_Ic) and the law's own critical K (Forman's K_f, Hartman-Schijve's
+    A), where its rate diverges; None if neither is given. (The toughness
+    alone, when given, let a life run past the law's divergence: with K_Ic
+    above Forman's K_f the crack grew from K_f's size to the table's end in
+    zero passes.)"""
+    ks = [k for k in (fm.toughness(), law.K_crit) if k is not None and math.isfinite(k)]
+    return min(ks) if ks else None
 
 
 def constant_amplitude_spectrum(scene: Scene, growth: Growth) -> Spectrum:
@@ -385,11 +396,7 @@ class LifeRun:
 
     # -- set-up ------------------------------------------------------------------------------------------
     def _critical_k(self) -> float | None:
-        fm = self.material
-        k = fm.toughness()
-        if k is None:
-            k = self.law.K_crit
-        return k
+        return critical_k(self.material, self.law)
 
     def factors(self, row: np.ndarray) -> dict[str, float]:
         return {g: float(f) for g, f in zip(self.groups, row)}
@@ -969,4 +976,4 @@ def _ligament_stress(sol, tip: np.ndarray, r0: dict, theta: float, bnd) -> float
     return float(np.sum(w * snn * 2.0 * u))
 
 
-__all__ = ["RESIDUAL_GROUP", "PAST_FAILURE", "create_law", "constant_amplitude_spectrum", "TipLevels", "LifeRun"]
+__all__ = ["RESIDUAL_GROUP", "PAST_FAILURE", "create_law", "critical_k", "constant_amplitude_spectrum", "TipLevels", "LifeRun"]

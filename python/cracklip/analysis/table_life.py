@@ -54,6 +54,7 @@ import numpy as np
 from ..errors import InputError
 from ..fracture import handbook
 from ..fracture.life import CycleTable, LifeLaw
+from ..fracture.laws import rate_table_reach
 from ..fracture.life_kernels import (KTable, grow_blocks, growth_per_pass, integrate_cycles, new_run, passes_to,
                                      state_k_max)
 from ..fracture.rainflow import count_cycles
@@ -63,7 +64,7 @@ from ..scene.input_files import DEFAULT_CASE, KTableData
 from ..scene.life import LifeSettings
 from ..scene.spectrum import Spectrum
 from ..scene.units import Units
-from .life import create_law
+from .life import create_law, critical_k
 
 logger = logging.getLogger(__name__)
 
@@ -253,6 +254,7 @@ class TableLife:
     table_info: dict[str, typing.Any]
     source: str
     clamp_min: bool
+    units: Units | None = None
 
     @property
     def cycles_per_pass(self) -> float:
@@ -304,6 +306,7 @@ def create_table_life(life: LifeSettings, material: FatigueMaterial, spectrum: S
                                                              else life.width / 2, life.geometry == "corner_crack"):
             raise InputError(f"life.a0 = {life.a0:g}, life.c0 = {life.c0:g} is outside Newman-Raju's range "
                              "(0 < a/c <= 2, corner <= 1; a/t < 0.8; c/b < 0.5)")
+    _check_reference_stress(life, spectrum, table_data if life.geometry == "beta_table" else None)
     load = load_cases(spectrum, table.cases, steady)
     # Count one pass on K at the initial size (point 0).
     K0 = table.evaluate(life.a0) if table.sizes == 1 else table.evaluate(life.a0, life.c0)[:, 0]
@@ -313,9 +316,7 @@ def create_table_life(life: LifeSettings, material: FatigueMaterial, spectrum: S
         raise InputError("the spectrum gives the same K at every turning point: no cycle to count")
     ct = count_cycles(values, spectrum.counting, repeated=spectrum.residue == "close")
     cycles = CycleTable(load.point_state[ct.lo], load.point_state[ct.hi], ct.count, load.block_of_point[ct.hi])
-    K_c = fm.toughness()
-    if K_c is None:
-        K_c = law.K_crit
+    K_c = critical_k(fm, law)
     if fm.retardation != "none" and life.integration == "blocks":
         raise InputError(f"life.integration = 'blocks' sums the growth of a pass without sequence effects, but "
                          f"material.fatigue.retardation = {fm.retardation!r} needs them: use 'cycles' or 'auto'")
@@ -324,7 +325,29 @@ def create_table_life(life: LifeSettings, material: FatigueMaterial, spectrum: S
         beta = constraint_beta(fm.constraint, fm.thickness, fm.K_Ic, fm.yield_stress)
         ret = Retardation(fm.retardation, fm.yield_stress, beta, fm.wheeler_exponent or 1.0, fm.shutoff_ratio or 3.0)
     return TableLife(life, fm, spectrum, law, table, load, cycles, ret, K_c, fm.yield_stress, info, source,
-                     law.closure == "contact")
+                     law.closure == "contact", units)
+
+
+def _check_reference_stress(life: LifeSettings, spectrum: Spectrum, data: KTableData | None) -> None:
+    """life.reference_stress must name load groups of the life (a group it
+    does not name has S = 1, so a misspelt or renamed group would silently
+    scale K by 1 / S) and must scale something (a table of K per unit
+    factor takes no S)."""
+    named = sorted(life.reference_stress or {})
+    if not named:
+        return
+    if data is not None and data.kind == "K":
+        raise InputError(f"life.reference_stress {life.reference_stress} scales beta columns and handbook "
+                         f"solutions, but life.table {data.source} gives K per unit load factor (K columns): "
+                         "remove life.reference_stress, or give the table as beta columns")
+    groups = list(spectrum.groups) + [g for g in spectrum.steady if g not in spectrum.groups]
+    unknown = [g for g in named if g not in groups]
+    if unknown:
+        import difflib
+        near = difflib.get_close_matches(unknown[0], groups, n=1, cutoff=0.0)
+        raise InputError(f"life.reference_stress names load group(s) {unknown} that the life has no load for (a "
+                         f"group left out has S = 1); its load groups (spectrum.groups, spectrum.steady): {groups}"
+                         + (f"; did you mean {near[0]!r}?" if near else ""))
 
 
 @dataclasses.dataclass
@@ -339,6 +362,8 @@ class LifeResult:
             reached before the end of the table or of the handbook's range).
         inspection: threshold and interval (module doc) or None.
         method: "cycles" or "blocks"; seconds; cycles_per_second (cycles).
+        warnings: what makes the life doubtful (a tabular da/dN read
+            outside its data), one sentence each.
     """
     rows: list[dict[str, typing.Any]]
     stop: str
@@ -348,6 +373,7 @@ class LifeResult:
     method: str
     seconds: float
     cycles_per_second: float | None = None
+    warnings: list[str] = dataclasses.field(default_factory=list)
 
     @property
     def cycles(self) -> float:
@@ -413,7 +439,48 @@ def run_life(tl: TableLife, progress: typing.Callable[[str], None] | None = None
     out.seconds = time.perf_counter() - t0
     if a0 is None:
         out.inspection = _inspection(tl, out, progress)
+        out.warnings = rate_table_warnings(tl, out)
     return out
+
+
+def rate_table_warnings(tl: TableLife, out: LifeResult) -> list[str]:
+    """A tabular da/dN read outside its data by the life's cycles (at the
+    sizes of the a-N table): Delta K above a curve's last row (its last
+    log-log segment extended: a table in other units than the scene's K
+    lands there) and R outside the table's span (the nearest curve)."""
+    law = tl.law.law
+    if law.name != "tabular":
+        return []
+    cyc = tl.cycles.unique()
+    dks, Rs = [], []
+    for row in out.rows:
+        if tl.table.sizes == 1:
+            K = tl.table.evaluate(row["a"])[0][None]
+        else:
+            K = tl.table.evaluate(row["a"], row["c"])[0]
+        for Kp in K:  # each point of the crack
+            Ks = tl.load.F @ Kp
+            km, kn = Ks[cyc.hi], Ks[cyc.lo]
+            if tl.clamp_min:
+                kn = np.maximum(kn, 0.0)
+            dk, R = tl.law.effective(km, kn)
+            grow = (km > 0.0) & (dk > tl.law.threshold)
+            dks.append(dk[grow])
+            Rs.append(R[grow])
+    reach = rate_table_reach(law.table, np.concatenate(dks), np.concatenate(Rs))
+    where = "material.fatigue.table" + (f" ({tl.material.source})" if tl.material.source else "")
+    K_unit = f" {tl.units.name('K')}" if tl.units is not None else ""
+    warnings = []
+    if reach["ratio"] > 1.0:
+        warnings.append(f"{where}: the life's cycles reach Delta K = {reach['delta_K']:.4g}{K_unit} at R = "
+                        f"{reach['R']:.3g}, {reach['ratio']:.3g} times the table's largest Delta K there "
+                        f"({reach['last']:.4g}): the rates above it extend the last log-log segment. Extend the "
+                        "table, or if it is in other units than the scene's K give material.fatigue.units")
+    if reach["R_min"] < reach["R_lo"] or reach["R_max"] > reach["R_hi"]:
+        warnings.append(f"{where}: the life's cycles have R from {reach['R_min']:.3g} to {reach['R_max']:.3g}, "
+                        f"outside the table's R from {reach['R_lo']:.3g} to {reach['R_hi']:.3g}: they take the "
+                        "rates of the nearest curve")
+    return warnings
 
 
 def _stop_of_end(tl: TableLife, a_crit, crit, end_table) -> tuple[float, str, str]:
@@ -428,7 +495,10 @@ def _stop_of_end(tl: TableLife, a_crit, crit, end_table) -> tuple[float, str, st
     if life.a_final is not None:
         ends.append((life.a_final, "a_final", f"life.a_final = {life.a_final:g} reached"))
     ends.append((end_table[0], "end of the table", end_table[1]))
-    return min(ends, key=lambda e: e[0])
+    a_end, stop, reason = min(ends, key=lambda e: e[0])
+    if stop == "end of the table" and life.a_final is not None:
+        reason += f", before life.a_final = {life.a_final:g} (not reached: the life is to a = {a_end:.6g})"
+    return a_end, stop, reason
 
 
 def _row(tl: TableLife, a: float, cycles: float, passes: float, c: float | None = None) -> dict[str, typing.Any]:
@@ -452,6 +522,22 @@ def _run_one(tl: TableLife, progress, a0: float) -> LifeResult:
         end_table = (table.a[-1], f"the table ends at a = {table.a[-1]:.6g}")
     a_end, stop, reason = _stop_of_end(tl, a_crit, crit, end_table)
     critical = {"a": a_crit, "criterion": crit} if a_crit is not None else None
+    if a_crit is not None and a_crit <= a0:
+        # Critical at the start: the first largest load breaks the part. Say by how much (a K_Ic in MPa sqrt(m)
+        # read by a scene in mm is 31.6 times too small), and that the critical size is a0 or below.
+        rows = [_row(tl, a0, 0.0, 0.0)]
+        critical["at_initial_size"] = True
+        unit = f" {tl.units.name('K')}" if tl.units is not None else ""
+        if crit == "K_max >= K_c":
+            what = (f"K_max = {rows[0]['K_max']:.6g}{unit} of the spectrum's largest load state reaches K_c = "
+                    f"{tl.K_crit:.6g}{unit} (material.fatigue.K_Ic, K_c(t) or the law's critical K: check its "
+                    "value and units)")
+        else:
+            S_max = float(np.max(tl.load.F @ np.array([life.stress(g) for g in tl.load.cases])))
+            what = (f"the net-section stress {S_max * float(net_section_factor(life, a0)):.6g} of the spectrum's "
+                    f"largest load state reaches the yield stress {tl.yield_stress:.6g}")
+        return LifeResult(rows, stop, f"no life: the initial crack a0 = {a0:g} is already critical: {what}",
+                          critical, None, tl.method, 0.0)
     if not a_end > a0:
         rows = [_row(tl, a0, 0.0, 0.0)]
         return LifeResult(rows, stop, reason + f" (at or below the initial size {a0:g}: no life)", critical, None,
@@ -467,13 +553,27 @@ def _run_one(tl: TableLife, progress, a0: float) -> LifeResult:
         if not ok.all():
             k = int(np.flatnonzero(~ok)[0])
             if not np.isfinite(P[k]):
-                a_arr = _arrest_size(tl, grid[k - 1], grid[k])
-                rows = [_row(tl, float(x), float(p) * tl.cycles_per_pass, float(p)) for x, p in zip(grid[:k], P[:k])]
-                return LifeResult(rows, "arrest", f"growth arrested: the growth per pass falls to 0 at a = "
-                                  f"{a_arr:.6g} (below the threshold)", critical, None, "blocks", 0.0)
+                # The a-N table ends where the crack stops: at the arrest size, after the passes to it (the last
+                # grid size before it understated them: 11510 of 11848 cycles in tests/test_table_life.py).
+                a_grow, a_arr = _arrest_size(tl, grid[k - 1], grid[k])
+                P_arr = float(P[k - 1]) + float(passes_to(table, tl.load.F, tl.cycles.unique(), tl.law,
+                                                          np.array([grid[k - 1], a_grow]), tl.clamp_min)[1])
+                if P_arr <= max_passes:
+                    rows = [_row(tl, float(x), float(p) * tl.cycles_per_pass, float(p))
+                            for x, p in zip(grid[:k], P[:k])]
+                    if a_grow > grid[k - 1]:
+                        rows.append(_row(tl, a_grow, P_arr * tl.cycles_per_pass, P_arr))
+                    return LifeResult(rows, "arrest", f"growth arrested: the growth per pass falls to 0 at a = "
+                                      f"{a_arr:.6g} (below the threshold)", critical, None, "blocks", 0.0)
+                P = np.r_[P[:k], P_arr]
+                grid = np.r_[grid[:k], a_grow]
+            # The crack size where the passes reach max_passes, inside (grid[k - 1], grid[k]): the life is
+            # max_passes there (the last grid size before it would understate both).
+            a_mp = _size_at_passes(tl, grid[k - 1], float(P[k - 1]), grid[k], max_passes)
             rows = [_row(tl, float(x), float(p) * tl.cycles_per_pass, float(p)) for x, p in zip(grid[:k], P[:k])]
-            return LifeResult(rows, "max_passes", f"spectrum.max_passes = {max_passes:g} reached before a = "
-                              f"{grid[k]:.6g}", critical, None, "blocks", 0.0)
+            rows.append(_row(tl, a_mp, max_passes * tl.cycles_per_pass, max_passes))
+            return LifeResult(rows, "max_passes", f"spectrum.max_passes = {max_passes:g} reached at a = "
+                              f"{a_mp:.6g}", critical, None, "blocks", 0.0)
         rows = [_row(tl, float(x), float(p) * tl.cycles_per_pass, float(p)) for x, p in zip(grid, P)]
         return LifeResult(rows, stop, reason, critical, None, "blocks", 0.0)
     run = new_run([a0])
@@ -516,15 +616,39 @@ def _passes(run: dict, n: int) -> float:
     return run["pass"] + run["entry"] / max(n, 1)
 
 
-def _arrest_size(tl: TableLife, lo: float, hi: float) -> float:
+def _size_at_passes(tl: TableLife, a_lo: float, P_lo: float, a_hi: float, target: float) -> float:
+    """The size between a_lo (P_lo passes from the start) and a_hi (more than
+    target passes) at which the blocks integration reaches target passes
+    (bisection in ln a)."""
     cyc = tl.cycles.unique()
-    for _ in range(100):
+    lo, hi = a_lo, a_hi
+    for _ in range(200):
+        mid = math.sqrt(lo * hi)
+        if not lo < mid < hi:
+            break
+        P = P_lo + float(passes_to(tl.table, tl.load.F, cyc, tl.law, np.array([a_lo, mid]), tl.clamp_min)[1])
+        if P <= target:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= 1e-14 * hi:
+            break
+    return lo
+
+
+def _arrest_size(tl: TableLife, lo: float, hi: float) -> tuple[float, float]:
+    """(the last size that grows, the first that does not) between lo and hi
+    (bisection to the last bit)."""
+    cyc = tl.cycles.unique()
+    for _ in range(200):
         mid = 0.5 * (lo + hi)
+        if not lo < mid < hi:
+            break
         if growth_per_pass(tl.table, tl.load.F, cyc, tl.law, [mid], tl.clamp_min)[0] > 0.0:
             lo = mid
         else:
             hi = mid
-    return hi
+    return lo, hi
 
 
 def _run_two(tl: TableLife, progress) -> LifeResult:
@@ -692,9 +816,9 @@ def summary(tl: TableLife, out: LifeResult) -> dict[str, typing.Any]:
         "block_name": tl.spectrum.block_name, "integration": out.method,
         "cycles": out.cycles, "passes": out.passes, "blocks": out.blocks, "a_end": out.rows[-1]["a"],
         "stop": out.stop, "stop_reason": out.stop_reason, "critical": out.critical, "inspection": out.inspection,
-        "seconds": out.seconds, "cycles_per_second": out.cycles_per_second,
+        "seconds": out.seconds, "cycles_per_second": out.cycles_per_second, "warnings": list(out.warnings),
     }
 
 
 __all__ = ["LoadCases", "load_cases", "TableLife", "create_table_life", "LifeResult", "critical_size", "run_life",
-           "summary", "net_section_factor", "handbook_table", "tabulation_error"]
+           "rate_table_warnings", "summary", "net_section_factor", "handbook_table", "tabulation_error"]

@@ -55,6 +55,8 @@ def cmd_life(args) -> int:
     s = summary(setup, result)
     results = write_life_outputs(lf, setup, result, s, out, {"total": time.perf_counter() - t_start},
                                  png=not args.no_png)
+    from . import print_warnings
+    print_warnings(result.warnings)
     if not args.quiet:
         for line in life_summary(lf.title, s):
             print(line)
@@ -84,7 +86,9 @@ def life_summary(title: str, s: dict) -> list[str]:
     lines = [f"{title}: life {life_counts(s)} ({INTEGRATION.get(s['integration'], s['integration'])}); "
              f"{s['stop_reason']}"]
     crit = s["critical"]
-    if crit is not None:
+    if crit is not None and crit.get("at_initial_size"):
+        lines.append(f"  critical crack size: a0 = {crit['a']:.6g} or below ({crit['criterion']})")
+    elif crit is not None:
         lines.append(f"  critical crack size: a = {crit['a']:.6g}" + (f", c = {crit['c']:.6g}" if "c" in crit else "")
                      + f" ({crit['criterion']})")
     else:

@@ -71,7 +71,8 @@ def walker_rate(delta_K: ArrayLike, R: ArrayLike, C: float, m: float, gamma: flo
 
 def forman_rate(delta_K: ArrayLike, R: ArrayLike, C: float, n: float, K_f: float) -> np.ndarray:
     """C Delta K^n / ((1 - R) K_f - Delta K): +inf once K_max = Delta K / (1 -
-    R) reaches K_f (the denominator vanishes), 0 for Delta K <= 0."""
+    R) reaches K_f (the denominator (1 - R) (K_f - K_max) vanishes, for any R,
+    negative ones too), 0 for Delta K <= 0."""
     dk, r = np.broadcast_arrays(_arr(delta_K), _arr(R))
     den = (1.0 - r) * K_f - dk
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -233,6 +234,39 @@ class RateTable:
         return out.reshape(dk0.shape)
 
 
+def rate_table_reach(table: RateTable, delta_K: ArrayLike, R: ArrayLike) -> dict[str, float]:
+    """Where cycles (Delta K, R) fall outside a tabular law's data (RateTable
+    extends a curve's last log-log segment above its last Delta K and reads
+    an R outside the table's span on the nearest curve).
+
+    Returns: ratio, the largest Delta K over the last tabulated Delta K of
+    the curve(s) it is read from (> 1: extrapolated), with that cycle's
+    delta_K, R and the curve's last Delta K (last); R_min and R_max of the
+    cycles and the table's span R_lo, R_hi. Cycles with Delta K <= 0 are left
+    out (ratio 0 when none is left)."""
+    dk, r = (a.ravel() for a in np.broadcast_arrays(_arr(delta_K), _arr(R)))
+    Rs = np.asarray(table.R, float)
+    last = np.asarray(table.delta_K, float)[-1]
+    out = {"ratio": 0.0, "delta_K": 0.0, "R": 0.0, "last": float(last[0]), "R_min": math.nan, "R_max": math.nan,
+           "R_lo": float(Rs[0]), "R_hi": float(Rs[-1])}
+    keep = dk > 0.0
+    if not np.any(keep):
+        return out
+    dk, r = dk[keep], r[keep]
+    if Rs.size == 1:
+        lim = np.full(dk.size, last[0])
+    else:
+        rc = np.clip(r, Rs[0], Rs[-1])
+        j = np.clip(np.searchsorted(Rs, rc, side="right") - 1, 0, Rs.size - 2)
+        w = (rc - Rs[j]) / (Rs[j + 1] - Rs[j])
+        lim = np.where(w <= 0.0, last[j], np.where(w >= 1.0, last[j + 1], np.minimum(last[j], last[j + 1])))
+    ratio = dk / lim
+    i = int(np.argmax(ratio))
+    out.update(ratio=float(ratio[i]), delta_K=float(dk[i]), R=float(r[i]), last=float(lim[i]), R_min=float(r.min()),
+               R_max=float(r.max()))
+    return out
+
+
 # -- the law objects the life integration uses ---------------------------------------------------------
 
 class GrowthLaw:
@@ -291,7 +325,7 @@ class Forman(GrowthLaw):
         return self.K_f
 
     def rate(self, delta_K, R, K_max, a):
-        return forman_rate(delta_K, np.maximum(_arr(R), 0.0), self.C, self.n, self.K_f)
+        return forman_rate(delta_K, R, self.C, self.n, self.K_f)
 
     def describe(self) -> str:
         return f"Forman: da/dN = {self.C:.4g} dK^{self.n:g} / ((1 - R) {self.K_f:g} - dK)"
@@ -354,5 +388,6 @@ class Tabular(GrowthLaw):
 
 
 __all__ = ["paris_rate", "walker_rate", "forman_rate", "hartman_schijve_rate", "newman_coefficients", "newman_f",
-           "NasgroConstants", "nasgro_threshold", "nasgro_rate", "thickness_toughness", "RateTable", "GrowthLaw",
+           "NasgroConstants", "nasgro_threshold", "nasgro_rate", "thickness_toughness", "RateTable",
+           "rate_table_reach", "GrowthLaw",
            "Paris", "Walker", "Forman", "Nasgro", "HartmanSchijve", "Tabular"]

@@ -303,6 +303,7 @@ def resolve_rate_table(fatigue: dict, base_dir: pathlib.Path) -> dict:
     path = pathlib.Path(name)
     f["table_R"], f["table"] = read_rate_table(path if path.is_absolute() else pathlib.Path(base_dir) / path,
                                                "material.fatigue.table_file", layout)
+    f.setdefault("source", f"da/dN table file {name}")
     return f
 
 
@@ -351,6 +352,10 @@ def read_k_table(path: str | pathlib.Path, where: str, tip: tuple[int, int] | No
         _sizes(path, rows, a, where, 1)
         return KTableData(1, a, {DEFAULT_CASE: beta}, "beta", f"{path} (two columns: a beta)")
     names = [f.strip() for f in head]
+    twice = sorted({n for n in names if names.count(n) > 1})
+    if twice or not all(names):
+        raise InputFileError(f"{where}: {path}, line {rows[0].line}: the header must name each column once, got "
+                             f"{names}" + (f" ({twice[0]!r} twice)" if twice else ""), path, rows[0].line)
     data = rows[1:]
     if len(data) < 2:
         raise InputFileError(f"{where}: {path}: a table of K against crack size needs at least two rows", path)

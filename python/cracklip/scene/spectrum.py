@@ -36,10 +36,12 @@ class SpectrumBlock:
             numbers for one group).
         repeat: times the block comes in a pass, one after the other.
         name: a label (e.g. the flight type).
+        source: where the points come from (e.g. "file flight_A.csv"), for messages.
     """
     points: np.ndarray
     repeat: int = 1
     name: str = ""
+    source: str = ""
 
 
 @dataclasses.dataclass
@@ -107,8 +109,11 @@ class Spectrum:
         pts, _ = self.pass_points()
         spread = np.ptp(pts, axis=0)
         if not np.any(spread > 0.0):
-            raise InputError("the spectrum has no reversal: every turning point has the same factors; a fatigue "
-                             "cycle needs at least two different load levels")
+            where = "; ".join(f"spectrum.blocks[{i}]" + (f" ({b.source})" if b.source else "")
+                              + f": {len(b.points)} point(s)" for i, b in enumerate(self.blocks))
+            raise InputError(f"the spectrum has no reversal: every turning point has the same factors "
+                             f"{[float(f) for f in pts[0]]} ({where}); a fatigue cycle needs at least two "
+                             "different load levels")
 
     @property
     def blocks_per_pass(self) -> int:

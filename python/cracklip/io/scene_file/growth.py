@@ -206,7 +206,7 @@ def _spectrum(sp: dict, base_dir: pathlib.Path):
             pts = pts[:, [cols.index(g) for g in groups]]
         else:
             pts = b["points"]
-        blocks.append(SpectrumBlock(pts, b["repeat"], b["name"]))
+        blocks.append(SpectrumBlock(pts, b["repeat"], b["name"], f"file {b['file']}" if "file" in b else ""))
     return Spectrum(blocks, tuple(groups), sp["counting"], sp["residue"], dict(sp.get("steady", {})),
                     sp["block_name"], sp["contact_levels"], sp["max_passes"])
 
