@@ -653,6 +653,21 @@ def test_a_beta_table_ending_before_a_final_says_a_final_is_not_reached(tmp_path
     assert out.stop == "end of the table" and "before life.a_final = 10 (not reached" in out.stop_reason
 
 
+def test_a_surface_crack_leaving_the_handbook_range_says_a_final_is_not_reached(tmp_path):
+    """The two-size path alike: life_surface_crack.toml without failure (K_Ic
+    and the yield stress far above its loads) and life.a_final = 5.5 in the
+    6 mm plate ends where Newman-Raju's range does (a/t = 0.8), saying that
+    a_final was not reached."""
+    assert cli.main(["life", str(SCENES / "life_surface_crack.toml"), "--out", str(tmp_path), "--no-png", "-q",
+                     "--set", "material.fatigue.K_Ic=1e4", "--set", "material.fatigue.yield_stress=1e6",
+                     "--set", "life.a_final=5.5"]) == 0
+    lf = json.loads((tmp_path / "results.json").read_text())["life"]
+    assert lf["stop"] == "handbook range" and lf["critical"] is None
+    assert lf["stop_reason"].endswith(f"before life.a_final = 5.5 (not reached: the life is to a = "
+                                      f"{lf['stop_reason'].split(' at a = ')[1].split(',')[0]})")
+    assert 0.8 * 6.0 <= float(lf["stop_reason"].split(" at a = ")[1].split(",")[0]) < 0.8 * 6.0 * 1.001
+
+
 @pytest.mark.parametrize("threshold", [150.0, 100.0])
 def test_a_threshold_crossed_inside_the_life_is_integrated_exactly(threshold):
     """Turning points 0, 100, 20, 80, 0 MPa repeated (rainflow: 0-100 and

@@ -496,9 +496,18 @@ def _stop_of_end(tl: TableLife, a_crit, crit, end_table) -> tuple[float, str, st
         ends.append((life.a_final, "a_final", f"life.a_final = {life.a_final:g} reached"))
     ends.append((end_table[0], "end of the table", end_table[1]))
     a_end, stop, reason = min(ends, key=lambda e: e[0])
-    if stop == "end of the table" and life.a_final is not None:
-        reason += f", before life.a_final = {life.a_final:g} (not reached: the life is to a = {a_end:.6g})"
+    if stop == "end of the table":
+        reason += short_of_a_final(life, a_end)
     return a_end, stop, reason
+
+
+def short_of_a_final(life: LifeSettings, a_end: float) -> str:
+    """What a life that ends at a_end (the end of its table or of the
+    handbook's range) adds to its stop when life.a_final was asked for
+    (else nothing): a_final not reached."""
+    if life.a_final is None:
+        return ""
+    return f", before life.a_final = {life.a_final:g} (not reached: the life is to a = {a_end:.6g})"
 
 
 def _row(tl: TableLife, a: float, cycles: float, passes: float, c: float | None = None) -> dict[str, typing.Any]:
@@ -725,7 +734,8 @@ def _run_two(tl: TableLife, progress) -> LifeResult:
         critical = {"a": float(A[k_cut]), "c": float(C[k_cut]), "criterion": crit}
     elif why is not None:
         stop_name, reason = "handbook range", (f"the crack left Newman-Raju's range (a/c <= {1 if corner else 2}, "
-                                               f"a/t < 0.8, c/b < 0.5) at a = {A[k_cut]:.6g}, c = {C[k_cut]:.6g}")
+                                               f"a/t < 0.8, c/b < 0.5) at a = {A[k_cut]:.6g}, c = {C[k_cut]:.6g}"
+                                               + short_of_a_final(life, float(A[k_cut])))
     elif stop == "failure":
         stop_name = "K_max >= K_c"
         reason = f"final failure: K_max reached K_c = {tl.K_crit:.6g} at a = {A[-1]:.6g}, c = {C[-1]:.6g}"
@@ -735,7 +745,7 @@ def _run_two(tl: TableLife, progress) -> LifeResult:
             stop_name, reason = "a_final", f"life.a_final = {life.a_final:g} reached"
         else:
             stop_name, reason = "end of the table", (f"the table ends at a = {table.a[-1]:.6g}, c = "
-                                                     f"{table.c[-1]:.6g}")
+                                                     f"{table.c[-1]:.6g}" + short_of_a_final(life, float(A[-1])))
     elif stop == "arrest":
         stop_name, reason = "arrest", f"growth arrested at a = {A[-1]:.6g}, c = {C[-1]:.6g}"
     else:
