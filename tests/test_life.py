@@ -466,6 +466,30 @@ def test_grow_spectrum_scene_writes_the_life_outputs(tmp_path, capsys):
     assert text.startswith("# cracklip beta table") and "# tip: crack 0 end 1; case: default" in text
 
 
+def test_grow_with_a_da_dn_table_read_outside_it_warns(tmp_path, capsys):
+    """grow with the NASGRO 7075-T6 da/dN table (in/cycle, ksi sqrt(in))
+    and no material.fatigue.units: the tips' cycles (Delta K 312 MPa
+    sqrt(mm)) read the table 9.5 times beyond its last Delta K (32.85), so
+    every rate is its last segment extended; a warning of the run says so
+    (results.json: code rate_table, no step), as `life` does. With the
+    table's units the cycles (8.97 ksi sqrt(in)) lie inside it: no warning
+    (R = -2e-4 from closure by contact is the R = 0 curve, no news)."""
+    table = SCENES.parent / "data" / "life" / "nasgro_7075_T6.dadn"
+    fatigue = f'law="tabular", table_file="{table}", table_layout="easigrow", closure="contact"'
+    runs = {}
+    for name, extra in (("none", ""), ("units", ', units={length="in", stress="ksi"}')):
+        assert cli.main(["grow", str(SCENES / "hole_crack_spectrum.toml"), "--out", str(tmp_path / name), "-q",
+                         "--set", "growth.steps=1", "--set", "outputs.vtu=false",
+                         "--set", f"material.fatigue={{{fatigue}{extra}}}"]) == 0
+        runs[name] = json.loads((tmp_path / name / "results.json").read_text())
+    err = capsys.readouterr().err
+    (w,) = [w for w in runs["none"]["warnings"] if w["code"] == "rate_table"]
+    assert w["step"] is None and "nasgro_7075_T6.dadn" in w["message"] and "material.fatigue.units" in w["message"]
+    assert re.search(r"Delta K = 311\.\d MPa sqrt\(mm\).* 9\.\d+ times .*\(32\.85\)", w["message"]), w["message"]
+    assert err.count("the tips' largest cycles reach Delta K") == 1
+    assert not [w for w in runs["units"]["warnings"] if w["code"] == "rate_table"]
+
+
 def test_residual_stress_k_column(tmp_path):
     """The beta table's residual-stress K: the shipped residual_stress scene
     (sigma_0,yy = -0.6 + 1.2 x, a = 0.4) grown one step; K_residual is the

@@ -10,11 +10,15 @@ import logging
 import time
 import typing
 
+import numpy as np
+
 from ..errors import BoundaryConditionError, CracklipError, InputError
+from ..fracture.laws import rate_table_reach
 from ..model.checks import CODE_MEANINGS, CodedText
 from ..scene.growth import Growth
 from ..scene.processes import mark_collective
 from ..scene.scene import Scene
+from .life import rate_table_messages
 from .tips import Measured, TipRecord
 
 logger = logging.getLogger("cracklip.analysis.growth")
@@ -141,12 +145,30 @@ class GrowthRun:
                 self.warn(w.code, w.message, w.crack, w.tip)
             self.warning_counts[w.code] = self.warning_counts.get(w.code, 0) + 1
 
-    def warn(self, code: str, message: str, crack: int | None = None, tip: int | None = None) -> None:
+    def warn(self, code: str, message: str, crack: int | None = None, tip: int | None = None,
+             of_step: bool = True) -> None:
         """A warning of this step: a model's (collect_warnings) or the
-        growth's own (growth_increment, growth_strip, growth_resolution;
-        docs/growth.md), prefixed with the step after the first."""
-        self.warnings.append(CodedText(message if self.k == 0 else f"step {self.k}: {message}", code, crack, tip))
-        self.warning_steps.append(self.k)
+        growth's own (growth_increment, growth_strip, growth_resolution,
+        rate_table; docs/sifs.md), prefixed with the step after the first
+        (of_step False: of the whole run, no step)."""
+        prefix = f"step {self.k}: " if of_step and self.k else ""
+        self.warnings.append(CodedText(prefix + message, code, crack, tip))
+        self.warning_steps.append(self.k if of_step else None)
+
+    def check_rate_table(self) -> None:
+        """A tabular da/dN read outside its data by the largest counted
+        cycle of any tip at any step (a spectrum life; fracture.laws.
+        rate_table_reach): a warning of the run (rate_table)."""
+        if self.life is None or self.life.law.law.name != "tabular":
+            return
+        cycles = [(r.delta_K_eff, r.R) for step in self.records for r in step
+                  if r.delta_K_eff is not None and r.R is not None]
+        if not cycles:
+            return
+        dk, R = np.array(cycles).T
+        reach = rate_table_reach(self.life.law.law.table, dk, R)
+        for text in rate_table_messages(reach, self.life.material, self.scene.units, "the tips' largest cycles"):
+            self.warn("rate_table", text, of_step=False)
 
     def count_cycles(self, m: Measured) -> None:
         """The cycles of the increment just taken: constant amplitude by the
@@ -275,6 +297,7 @@ class GrowthRun:
         return self.result()
 
     def result(self) -> GrowthResult:
+        self.check_rate_table()
         warnings = self.warnings + [
             f"the model warning '{c}'" + (f" ({CODE_MEANINGS[c]})" if c in CODE_MEANINGS else "")
             + f" came {n} times in all (at the steps listed in results.json per_step)"

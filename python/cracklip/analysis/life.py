@@ -80,6 +80,33 @@ logger = logging.getLogger(__name__)
 RESIDUAL_GROUP = "initial stress (residual)"
 
 
+#: An R this far outside a da/dN table's span is said (closure by contact
+#: leaves K_min a rounding below 0: R = -2e-4 on the R = 0 curve is no news).
+R_OUTSIDE_TABLE = 0.01
+
+
+def rate_table_messages(reach: dict[str, float], fm: FatigueMaterial, units, whose: str) -> list[str]:
+    """The warnings of a tabular da/dN read outside its data
+    (fracture.laws.rate_table_reach's `reach` of the cycles `whose`, e.g.
+    "the life's cycles"): Delta K above a curve's last row (its last log-log
+    segment extended: a table in other units than the scene's K lands
+    there) and R outside the table's span (the nearest curve). units: the
+    scene's (cracklip.scene.units.Units) or None."""
+    where = "material.fatigue.table" + (f" ({fm.source})" if fm.source else "")
+    K_unit = f" {units.name('K')}" if units is not None else ""
+    out = []
+    if reach["ratio"] > 1.0:
+        out.append(f"{where}: {whose} reach Delta K = {reach['delta_K']:.4g}{K_unit} at R = {reach['R']:.3g}, "
+                   f"{reach['ratio']:.3g} times the table's largest Delta K there ({reach['last']:.4g}): the rates "
+                   "above it extend the last log-log segment. Extend the table, or if it is in other units than "
+                   "the scene's K give material.fatigue.units")
+    if reach["R_min"] < reach["R_lo"] - R_OUTSIDE_TABLE or reach["R_max"] > reach["R_hi"] + R_OUTSIDE_TABLE:
+        out.append(f"{where}: {whose} have R from {reach['R_min']:.3g} to {reach['R_max']:.3g}, outside the "
+                   f"table's R from {reach['R_lo']:.3g} to {reach['R_hi']:.3g}: they take the rates of the nearest "
+                   "curve")
+    return out
+
+
 def create_law(fm: FatigueMaterial) -> LifeLaw:
     """The LifeLaw of a fatigue material already in the scene's units."""
     c = fm.constants

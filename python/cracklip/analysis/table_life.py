@@ -64,7 +64,7 @@ from ..scene.input_files import DEFAULT_CASE, KTableData
 from ..scene.life import LifeSettings
 from ..scene.spectrum import Spectrum
 from ..scene.units import Units
-from .life import create_law, critical_k
+from .life import create_law, critical_k, rate_table_messages
 
 logger = logging.getLogger(__name__)
 
@@ -467,20 +467,8 @@ def rate_table_warnings(tl: TableLife, out: LifeResult) -> list[str]:
             grow = (km > 0.0) & (dk > tl.law.threshold)
             dks.append(dk[grow])
             Rs.append(R[grow])
-    reach = rate_table_reach(law.table, np.concatenate(dks), np.concatenate(Rs))
-    where = "material.fatigue.table" + (f" ({tl.material.source})" if tl.material.source else "")
-    K_unit = f" {tl.units.name('K')}" if tl.units is not None else ""
-    warnings = []
-    if reach["ratio"] > 1.0:
-        warnings.append(f"{where}: the life's cycles reach Delta K = {reach['delta_K']:.4g}{K_unit} at R = "
-                        f"{reach['R']:.3g}, {reach['ratio']:.3g} times the table's largest Delta K there "
-                        f"({reach['last']:.4g}): the rates above it extend the last log-log segment. Extend the "
-                        "table, or if it is in other units than the scene's K give material.fatigue.units")
-    if reach["R_min"] < reach["R_lo"] or reach["R_max"] > reach["R_hi"]:
-        warnings.append(f"{where}: the life's cycles have R from {reach['R_min']:.3g} to {reach['R_max']:.3g}, "
-                        f"outside the table's R from {reach['R_lo']:.3g} to {reach['R_hi']:.3g}: they take the "
-                        "rates of the nearest curve")
-    return warnings
+    return rate_table_messages(rate_table_reach(law.table, np.concatenate(dks), np.concatenate(Rs)), tl.material,
+                               tl.units, "the life's cycles")
 
 
 def _stop_of_end(tl: TableLife, a_crit, crit, end_table) -> tuple[float, str, str]:
