@@ -36,6 +36,14 @@ class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> typing.NoReturn:
         self.exit(2, f"cracklip: error: {message} (see {PROG} --help)\n")
 
+    def _print_message(self, message: str, file=None) -> None:
+        # Under mpirun every process parses the same command line (before
+        # MPI starts): its usage error or --help is printed by rank 0 only.
+        from ..scene.processes import launched_on_several, launcher_rank
+        if launched_on_several() and launcher_rank() != 0:
+            return
+        super()._print_message(message, file)
+
 
 class _Progress(logging.Handler):
     """Log records of the cracklip loggers as 'cracklip [  1.23 s] message' on stderr."""
@@ -143,18 +151,12 @@ def build_parser() -> argparse.ArgumentParser:
 def replicated(fn: typing.Callable[[], typing.Any]) -> typing.Any:
     """fn() (no collective call inside: e.g. reading the scene file, which
     every process does alike); under mpirun an error of any process is
-    raised on all (scene.processes.agree) instead of on one alone."""
+    raised on all (scene.processes.replicated) instead of on one alone."""
     comm = _processes()
     if comm is None:
         return fn()
-    from ..scene.processes import agree
-    value, error = None, None
-    try:
-        value = fn()
-    except (CracklipError, OSError) as e:
-        error = e
-    agree(error, comm)
-    return value
+    from ..scene.processes import replicated as on_every_process
+    return on_every_process(fn, comm)
 
 
 def _load(args):
@@ -601,12 +603,18 @@ def _report_error(e: BaseException) -> None:
 
 
 def finish_processes() -> None:
-    """Under mpirun: MPI_Finalize, so that a process leaving by os._exit is a
-    normal end for mpirun (no-op in serial)."""
+    """Under mpirun (also `mpirun -n 1`): MPI_Finalize, so that a process
+    leaving by os._exit is a normal end for mpirun (no-op in a serial run
+    without a launcher)."""
+    import os
+    from ..scene.processes import LAUNCHER_SIZE
     comm = _processes()
     if comm is not None:
         comm.Barrier()
-        sys.modules["mpi4py.MPI"].Finalize()
+    mpi = sys.modules.get("mpi4py.MPI")
+    if (mpi is not None and mpi.Is_initialized() and not mpi.Is_finalized()
+            and (comm is not None or any(name in os.environ for name in LAUNCHER_SIZE))):
+        mpi.Finalize()
 
 
 def main(argv: typing.Sequence[str] | None = None) -> int:
