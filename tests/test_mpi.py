@@ -181,6 +181,22 @@ def test_one_process_under_mpirun_ends_cleanly():
     assert_clean(p, 0)
 
 
+def test_progress_counts_are_the_whole_models(tmp_path):
+    """The progress lines of `run` count the whole model under mpirun, as
+    serial: they printed rank 0's part of it (ghosts included: 38 enriched
+    pseudo-nodes on 81 cells of the crack from a hole's 45 on 110), and the
+    'solved N dofs' line was missing."""
+    import re
+    lines = {}
+    for n in (1, 2):
+        p = python_on(n, "-m", "cracklip", "run", str(SCENES / "pressurised_crack.toml"), *SMALL_2D, "--no-estimate",
+                      "--out", str(tmp_path / f"n{n}"))
+        assert_clean(p, 0)
+        lines[n] = [re.sub(r"^cracklip \[ *[0-9.]+ s\] | in [0-9.]+ s$", "", line) for line in p.stderr.splitlines()
+                    if "enriched pseudo-nodes on" in line or " dofs (" in line]
+    assert len(lines[1]) == 2 and lines[2] == lines[1], lines
+
+
 def test_box_support_same_on_one_and_two_processes(tmp_path):
     """A Dirichlet box holds the nodes of every process inside it, the same
     list on each: under mpirun a process without a node in the box refused
