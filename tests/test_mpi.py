@@ -147,6 +147,8 @@ def test_input_error_printed_once(tmp_path):
 
 @pytest.mark.parametrize("args, message", [
     (["run", "pressurised_crack.toml", "--accuracy", "abc"], "argument --accuracy: invalid float value: 'abc'"),
+    (["run", "pressurised_crack.toml", "--out", "/dev/null/out"], "cannot write to the output folder /dev/null/out"),
+    (["grow", "fatigue_edge_crack.toml", "--out", "/dev/null/out"], "cannot write to the output folder /dev/null/out"),
     (["check", "pressurised_crack.toml", "--set", "material.nu=0.6"], "Poisson's ratio nu must lie in"),
     (["check", "ct_specimen.toml", "--set", "mesh.path=nofile.geo"], "mesh.path 'nofile.geo': no such file"),
     (["check", "hole_crack_spectrum.toml", "--set", "spectrum.blocks[0].file=nofile.csv"],
@@ -160,16 +162,19 @@ def test_input_error_printed_once(tmp_path):
 def test_user_mistake_printed_once(args, message, tmp_path):
     """A user's mistake that every process finds alike (an option argparse
     refuses, a material out of range, a missing mesh or spectrum file, an
-    unknown tag, a point support or a crack off the part) stops every
-    process with one message and exit 2. They were printed once per process
-    (argparse), or each process aborted the job alone (MPI_ABORT, one
-    message per process): the errors were not marked collective."""
+    unknown tag, a point support or a crack off the part, an output folder
+    that cannot be written, found before meshing) stops every process with
+    one message and exit 2. They were printed once per process (argparse),
+    or each process aborted the job alone (MPI_ABORT, one message per
+    process): the errors were not marked collective."""
     command, scene, *rest = args
-    extra = ["--out", str(tmp_path / "out")] if command == "run" else []
+    extra = ["--out", str(tmp_path / "out")] if command == "run" and "--out" not in rest else []
     p = mpirun(command, str(SCENES / scene), *rest, *extra)
     assert_clean(p, 2)
     errors = [line for line in p.stderr.splitlines() if line.startswith("cracklip: error:")]
     assert len(errors) == 1 and message in errors[0], p.stderr
+    if "--out" in rest:
+        assert "meshing" not in p.stderr, p.stderr  # (the folder is checked first)
 
 
 def test_one_process_under_mpirun_ends_cleanly():

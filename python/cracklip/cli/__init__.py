@@ -203,13 +203,13 @@ def cmd_run(args) -> int:
             loading.add("matplotlib.figure", "matplotlib.backends.backend_agg")  # (0.3 s)
     finally:
         loading.close()  # (also when the scene is rejected: no thread left waiting)
+    from ..io.outputs import ensure_output_dir, write_outputs
+    out = _on_rank0(lambda: ensure_output_dir(args.out))  # before meshing (under mpirun rank 0 writes)
     t0 = time.perf_counter()
     logger.info("scene %s: meshing", args.scene)
     sf = _build(args, doc)
     t_build = time.perf_counter() - t0
-    from ..io.outputs import ensure_output_dir, write_outputs
     from ..analysis.solve import solve
-    out = ensure_output_dir(args.out)
     cond = bool(args.condition_number or sf.outputs["condition_number"])
     logger.info("solving (%s enrichment, contact %s)", sf.scene.options.enrichment, sf.scene.options.contact)
     sol = solve(sf.scene, condition_number=cond)
@@ -370,7 +370,7 @@ def cmd_grow(args) -> int:
             raise InputError(f"{args.scene} has no [growth] table: give growth.da (fixed increments) or "
                              "growth.paris_C and growth.paris_m (fatigue) and growth.steps")
     replicated(has_growth)  # (every process finds it alike: one message under mpirun)
-    out = ensure_output_dir(args.out)
+    out = _on_rank0(lambda: ensure_output_dir(args.out))  # (under mpirun rank 0 writes)
     sf = _build(args, doc)
     series = SeriesWriter(out) if sf.outputs["vtu"] else None
     comm = _processes()
@@ -429,8 +429,9 @@ def _print_life_and_files(lf: dict | None, results: dict, out) -> None:
 
 
 def _on_rank0(write: typing.Callable[[], typing.Any]) -> typing.Any:
-    """write() (the files of a growth run, from the results every process
-    holds alike) by rank 0 under mpirun, its return value on all."""
+    """write() (the output folder's check, the files of a growth run, from
+    the results every process holds alike) by rank 0 under mpirun, its
+    return value on all, its error raised on all."""
     comm = _processes()
     if comm is None:
         return write()
