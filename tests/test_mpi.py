@@ -177,6 +177,16 @@ def test_user_mistake_printed_once(args, message, tmp_path):
         assert "meshing" not in p.stderr, p.stderr  # (the folder is checked first)
 
 
+@pytest.mark.parametrize("option", [["--condition-number"], ["--set", "outputs.condition_number=true"]])
+def test_condition_number_refused_before_meshing(option, tmp_path):
+    """The condition number (not distributed yet) is refused by name before
+    any meshing work, as docs/speed.md says of every refusal the scene
+    alone decides; it was refused after meshing and building the model."""
+    p = mpirun("run", str(SCENES / "pressurised_crack.toml"), *SMALL_2D, *option, "--out", str(tmp_path / "out"))
+    assert_refused(p)
+    assert "the condition number" in p.stderr and "meshing" not in p.stderr, p.stderr
+
+
 def test_one_process_under_mpirun_ends_cleanly():
     """`mpirun -n 1 python3 -m cracklip ...` (a one-task cluster job): the
     process finalises MPI before leaving by os._exit; it did not (only

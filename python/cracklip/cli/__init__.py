@@ -203,6 +203,10 @@ def cmd_run(args) -> int:
             loading.add("matplotlib.figure", "matplotlib.backends.backend_agg")  # (0.3 s)
     finally:
         loading.close()  # (also when the scene is rejected: no thread left waiting)
+    comm = _processes()
+    if comm is not None and (args.condition_number or doc.get("outputs", {}).get("condition_number", False)):
+        from ..scene.processes import not_parallel
+        not_parallel("the condition number", comm)  # (before meshing, as every refusal the scene alone decides)
     from ..io.outputs import ensure_output_dir, write_outputs
     out = _on_rank0(lambda: ensure_output_dir(args.out))  # before meshing (under mpirun rank 0 writes)
     t0 = time.perf_counter()
