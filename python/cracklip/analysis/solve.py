@@ -16,7 +16,7 @@ from ..contact.frictionless import solve_contact
 from ..errors import InputError, SolverError
 from ..model.assembly import assemble_distributed_system, assemble_system, elasticity_form
 from ..model.distributed import to_local
-from ..model.model import create_model
+from ..model.model import create_model, enriched_counts
 from ..post.solution import Solution, create_solution
 from ..scene.mesh_estimate import release_memory
 from ..scene.processes import not_parallel
@@ -173,6 +173,8 @@ def _solve_distributed(scene: Scene, condition_number: bool) -> Solution:
     release_memory()
     timings = {**model.timings, **timings}
     timings["total"] = time.perf_counter() - t_start
+    logger.info("solved %d dofs (%d enriched) in %.3f s", model.dofs.num_global * model.gdim,
+                model.gdim * enriched_counts(model)[0], timings["total"])
     solver = {"relative_residual": solves[-1]["relative_residual"] if solves else None,
               "solver": linear.name, "solves": solves, "processes": comm.size}
     return create_solution(model, u, timings, {}, contact, solver)

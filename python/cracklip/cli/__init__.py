@@ -36,6 +36,14 @@ class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> typing.NoReturn:
         self.exit(2, f"cracklip: error: {message} (see {PROG} --help)\n")
 
+    def _print_message(self, message: str, file=None) -> None:
+        # Under mpirun every process parses the same command line (before
+        # MPI starts): its usage error or --help is printed by rank 0 only.
+        from ..scene.processes import launched_on_several, launcher_rank
+        if launched_on_several() and launcher_rank() != 0:
+            return
+        super()._print_message(message, file)
+
 
 class _Progress(logging.Handler):
     """Log records of the cracklip loggers as 'cracklip [  1.23 s] message' on stderr."""
@@ -146,18 +154,12 @@ def build_parser() -> argparse.ArgumentParser:
 def replicated(fn: typing.Callable[[], typing.Any]) -> typing.Any:
     """fn() (no collective call inside: e.g. reading the scene file, which
     every process does alike); under mpirun an error of any process is
-    raised on all (scene.processes.agree) instead of on one alone."""
+    raised on all (scene.processes.replicated) instead of on one alone."""
     comm = _processes()
     if comm is None:
         return fn()
-    from ..scene.processes import agree
-    value, error = None, None
-    try:
-        value = fn()
-    except (CracklipError, OSError) as e:
-        error = e
-    agree(error, comm)
-    return value
+    from ..scene.processes import replicated as on_every_process
+    return on_every_process(fn, comm)
 
 
 def _load(args):
@@ -204,13 +206,17 @@ def cmd_run(args) -> int:
             loading.add("matplotlib.figure", "matplotlib.backends.backend_agg")  # (0.3 s)
     finally:
         loading.close()  # (also when the scene is rejected: no thread left waiting)
+    comm = _processes()
+    if comm is not None and (args.condition_number or doc.get("outputs", {}).get("condition_number", False)):
+        from ..scene.processes import not_parallel
+        not_parallel("the condition number", comm)  # (before meshing, as every refusal the scene alone decides)
+    from ..io.outputs import ensure_output_dir, write_outputs
+    out = _on_rank0(lambda: ensure_output_dir(args.out))  # before meshing (under mpirun rank 0 writes)
     t0 = time.perf_counter()
     logger.info("scene %s: meshing", args.scene)
     sf = _build(args, doc)
     t_build = time.perf_counter() - t0
-    from ..io.outputs import ensure_output_dir, write_outputs
     from ..analysis.solve import solve
-    out = ensure_output_dir(args.out)
     cond = bool(args.condition_number or sf.outputs["condition_number"])
     logger.info("solving (%s enrichment, contact %s)", sf.scene.options.enrichment, sf.scene.options.contact)
     sol = solve(sf.scene, condition_number=cond)
@@ -371,7 +377,7 @@ def cmd_grow(args) -> int:
             raise InputError(f"{args.scene} has no [growth] table: give growth.da (fixed increments) or "
                              "growth.paris_C and growth.paris_m (fatigue) and growth.steps")
     replicated(has_growth)  # (every process finds it alike: one message under mpirun)
-    out = ensure_output_dir(args.out)
+    out = _on_rank0(lambda: ensure_output_dir(args.out))  # (under mpirun rank 0 writes)
     sf = _build(args, doc)
     series = SeriesWriter(out) if sf.outputs["vtu"] else None
     comm = _processes()
@@ -430,8 +436,9 @@ def _print_life_and_files(lf: dict | None, results: dict, out) -> None:
 
 
 def _on_rank0(write: typing.Callable[[], typing.Any]) -> typing.Any:
-    """write() (the files of a growth run, from the results every process
-    holds alike) by rank 0 under mpirun, its return value on all."""
+    """write() (the output folder's check, the files of a growth run, from
+    the results every process holds alike) by rank 0 under mpirun, its
+    return value on all, its error raised on all."""
     comm = _processes()
     if comm is None:
         return write()
@@ -604,12 +611,18 @@ def _report_error(e: BaseException) -> None:
 
 
 def finish_processes() -> None:
-    """Under mpirun: MPI_Finalize, so that a process leaving by os._exit is a
-    normal end for mpirun (no-op in serial)."""
+    """Under mpirun (also `mpirun -n 1`): MPI_Finalize, so that a process
+    leaving by os._exit is a normal end for mpirun (no-op in a serial run
+    without a launcher)."""
+    import os
+    from ..scene.processes import LAUNCHER_SIZE
     comm = _processes()
     if comm is not None:
         comm.Barrier()
-        sys.modules["mpi4py.MPI"].Finalize()
+    mpi = sys.modules.get("mpi4py.MPI")
+    if (mpi is not None and mpi.Is_initialized() and not mpi.Is_finalized()
+            and (comm is not None or any(name in os.environ for name in LAUNCHER_SIZE))):
+        mpi.Finalize()
 
 
 def main(argv: typing.Sequence[str] | None = None) -> int:

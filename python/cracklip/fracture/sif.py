@@ -49,7 +49,7 @@ import numpy as np
 from .. import _cracklip
 from ..errors import InputError
 from ..model.checks import CodedText
-from ..model.tip_regions import TipDomain, lip_points, node_distances, tip_domains
+from ..model.tip_regions import TipDomain, length_in_part, lip_points, node_distances, part_size, tip_domains
 from ..scene.processes import reduced
 from ..scene.stress_field import LinearStress, divergence
 from .lip_tractions import lip_traction, lip_traction_parts
@@ -173,10 +173,7 @@ def _body_force(solution) -> typing.Callable[[np.ndarray], np.ndarray] | None:
         return None
     if isinstance(s0, LinearStress) and s0.is_uniform and (f is None or not np.any(f)):
         return None
-    lo, hi = model.x.min(axis=0), model.x.max(axis=0)
-    if model.distributed:  # the part's size, alike on every process
-        lo, hi = reduced(lo, "MIN", model.V.mesh.comm), reduced(hi, "MAX", model.V.mesh.comm)
-    size = float((hi - lo).max())
+    size = part_size(model)  # (alike on every process)
 
     def b(x):
         out = np.zeros((len(x), 2)) if f is None else np.broadcast_to(f, (len(x), 2)).copy()
@@ -193,12 +190,14 @@ def natural_k(solution) -> float:
     crack's length), the K of the crack were it open: the scale of a crack
     held closed."""
     m = solution.model
-    size = float(np.ptp(m.x, axis=0).max())
-    k = m.scene.material.E_star * float(np.abs(solution.standard_displacement).max()) / math.sqrt(size)
+    k = m.scene.material.E_star * float(np.abs(solution.standard_displacement).max()) / math.sqrt(part_size(m))
     for ci in range(len(m.cracks)):
         pts = lip_points(m, ci)
-        for t in lip_traction_parts(solution, ci, pts) if len(pts["weight"]) else []:
-            k = max(k, float(np.linalg.norm(t, axis=1).max()) * math.sqrt(math.pi * 0.5 * float(pts["weight"].sum())))
+        traction = max([float(np.linalg.norm(t, axis=1).max()) for t in lip_traction_parts(solution, ci, pts)]
+                       if len(pts["weight"]) else [], default=0.0)
+        if m.distributed:  # the largest over the crack, each process holding its part of it
+            traction = reduced(traction, "MAX", m.V.mesh.comm)
+        k = max(k, traction * math.sqrt(math.pi * 0.5 * length_in_part(m, ci)))  # (collective: the whole crack)
     if m.distributed:  # a scale, alike on every process (each saw its part)
         k = reduced(k, "MAX", m.V.mesh.comm)
     return k

@@ -56,6 +56,7 @@ from .. import _cracklip
 from ..errors import InputError
 from ..model.checks import CodedText
 from ..model.cracks.surface import split_enriched
+from ..model.tip_regions import part_size
 from ..scene.cell_size import cell_sizes
 from ..scene.crack_surface import EllipticalCrack
 from ..scene.processes import reduced
@@ -594,10 +595,14 @@ def _with_asked_positions(model, crack: int, fps: list[FrontPoint], K: np.ndarra
 
 
 def natural_k(solution) -> float:
-    """A K that the loads could make: E' max|u| / sqrt(L) (L the part's size)."""
+    """A K that the loads could make: E' max|u| / sqrt(L) (L the part's
+    size; collective under mpirun: the whole part's, alike on every
+    process)."""
     m = solution.model
-    size = float(np.ptp(m.x, axis=0).max())
-    return m.scene.material.E_star * float(np.abs(solution.standard_displacement).max()) / math.sqrt(size)
+    umax = float(np.abs(solution.standard_displacement).max())
+    if m.distributed:
+        umax = reduced(umax, "MAX", m.V.mesh.comm)
+    return m.scene.material.E_star * umax / math.sqrt(part_size(m))
 
 
 def compute_front_sifs(solution, radius: float | None = None, cracks: typing.Sequence[int] | None = None

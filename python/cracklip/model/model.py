@@ -14,10 +14,12 @@ import logging
 import time
 
 import dolfinx.fem
+import numpy as np
 
 from .. import _cracklip
 from ..errors import CrackGeometryError
 from ..scene.mesh import check_mesh
+from ..scene.processes import total
 from ..scene.scene import Scene
 from .checks import check_units
 from .constraints import check_rigid_motion, compute_dirichlet
@@ -63,8 +65,6 @@ def create_model(scene: Scene) -> XfemModel:
     except RuntimeError as e:
         raise CrackGeometryError(str(e)) from None
     timings["geometry"] = time.perf_counter() - t0
-    logger.info("%d cracks, %d enriched pseudo-nodes on %d enriched cells", len(cracks), layout.num_enriched,
-                layout.cells.size)
 
     t0 = time.perf_counter()
     bc_dofs, bc_values, bc_group_values = compute_dirichlet(scene, V, x, layout, [c.geometry for c in cracks])
@@ -75,6 +75,7 @@ def create_model(scene: Scene) -> XfemModel:
     if msh.comm.size > 1:  # one process's part: the global numbering of its dofs (model.distributed)
         model.num_owned_cells = msh.topology.index_map(msh.topology.dim).size_local
         model.dofs = create_dof_map(V, cells, layout, model.num_owned_cells)
+    logger.info("%d cracks, %d enriched pseudo-nodes on %d enriched cells", len(cracks), *enriched_counts(model))
     t0 = time.perf_counter()
     check_symmetry(model)
     model.warnings = kind.check_model(model) + check_units(model)  # raises on what makes the model unusable
@@ -82,6 +83,19 @@ def create_model(scene: Scene) -> XfemModel:
         logger.warning("%s", w.message)
     timings["checks"] = time.perf_counter() - t0
     return model
+
+
+def enriched_counts(model: XfemModel) -> tuple[int, int]:
+    """(enriched pseudo-nodes, enriched cells) of the whole model: under
+    mpirun every process's owned ones summed (collective; a process's layout
+    also holds its ghosts'), the layout's in serial."""
+    layout = model.layout
+    if not model.distributed:
+        return int(layout.num_enriched), int(layout.cells.size)
+    own_nodes = model.V.dofmap.index_map.size_local
+    comm = model.V.mesh.comm
+    return (total(np.count_nonzero(np.asarray(layout.node) < own_nodes), comm),
+            total(np.count_nonzero(np.asarray(layout.cells) < model.num_owned_cells), comm))
 
 
 __all__ = ["create_model", "XfemModel", "CrackModel"]

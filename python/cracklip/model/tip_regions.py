@@ -303,6 +303,15 @@ def lip_points(model, crack: int):
     return model.cracks[crack].lip_points(model, LIP_POINTS)
 
 
+def part_size(model) -> float:
+    """The part's size: the largest side of its bounding box (collective
+    under mpirun: every process's nodes, not its own part of the mesh)."""
+    lo, hi = model.x.min(axis=0), model.x.max(axis=0)
+    if model.distributed:
+        lo, hi = reduced(lo, "MIN", model.V.mesh.comm), reduced(hi, "MAX", model.V.mesh.comm)
+    return float((hi - lo).max())
+
+
 def length_in_part(model, crack: int) -> float:
     """The length (2D; area in 3D) of a crack inside the part: its lip
     points' weights summed exactly rounded (math.fsum: the same whatever

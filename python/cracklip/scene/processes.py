@@ -57,6 +57,24 @@ def agree(error: CracklipError | None, comm=None) -> None:
     raise mark_collective(_rebuilt(*first))
 
 
+def replicated(fn: typing.Callable[[], typing.Any], comm=None) -> typing.Any:
+    """Collective: fn() on every process (no collective call inside: work
+    every process does alike, e.g. reading the scene's files); a
+    CracklipError or OSError of any process is raised on all (agree)
+    instead of on one alone, which would leave the others waiting in their
+    next collective call. In serial: fn()."""
+    comm = world() if comm is None else comm
+    if comm.size == 1:
+        return fn()
+    value, error = None, None
+    try:
+        value = fn()
+    except (CracklipError, OSError) as e:
+        error = e
+    agree(error, comm)
+    return value
+
+
 def total(count: int, comm=None) -> int:
     """Collective: the sum of a count over the processes (count in serial)."""
     comm = world() if comm is None else comm
@@ -138,6 +156,23 @@ def launched_on_several() -> bool:
         except ValueError:
             pass
     return False
+
+
+#: Environment variables in which MPI launchers give this process's rank.
+LAUNCHER_RANK = ("OMPI_COMM_WORLD_RANK", "PMI_RANK", "SLURM_PROCID")
+
+
+def launcher_rank() -> int:
+    """This process's rank as the launcher's environment gives it (0 when
+    not launched by mpirun; nothing is imported: MPI may not be
+    initialised yet)."""
+    import os
+    for name in LAUNCHER_RANK:
+        try:
+            return int(os.environ[name])
+        except (KeyError, ValueError):
+            pass
+    return 0
 
 
 def on_rank0(fn: typing.Callable[[], int], comm=None) -> int:

@@ -11,13 +11,14 @@ import typing
 
 from ...errors import InputError, MeshError
 from ...scene.options import Options
+from ...scene.processes import replicated
 from ...scene.scene import Scene
 from .conditions import build_conditions, build_load_path, build_loads, build_symmetry
 from .cracks import build_crack, crack_surface, describe_crack
 from .dimension import check_dimension, scene_dimension
 from .growth import check_growth, read_growth
 from .material import build_material, build_units
-from .mesh import build_mesh
+from .mesh import build_mesh, scene_path
 from .reader import apply_override, parse_settings, read_document
 
 
@@ -54,22 +55,35 @@ def load_scene_file(path: str | pathlib.Path, overrides: typing.Sequence[str] = 
     return build_scene(doc, base_dir=path.parent, path=path)
 
 
+def _before_mesh(doc: dict, base_dir: pathlib.Path):
+    """The settings, units, material, dimension (and why), growth settings
+    (with the fatigue inputs' files) and cracks of a scene document, and
+    its mesh file checked to exist: what needs no mesh."""
+    s = parse_settings(doc)
+    units = build_units(s)
+    material = build_material(s)
+    dim, why = scene_dimension(s)
+    growth = read_growth(s, "life" in doc, units, base_dir)  # with the fatigue inputs' files: before meshing
+    if dim == 3:
+        cracks = [crack_surface(c, i, base_dir) for i, c in enumerate(s["cracks"])]
+    else:
+        cracks = [build_crack(c, i) for i, c in enumerate(s["cracks"])]
+    if s["mesh"]["kind"] in ("file", "geometry"):
+        scene_path(s["mesh"], base_dir)
+    return s, units, material, dim, why, growth, cracks
+
+
 def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Path | None = None,
                 memory_limit: float | None = None) -> SceneFile:
     """Validate a scene document and build its mesh and Scene. memory_limit:
     a solid whose run is estimated to need more bytes is refused before
     meshing (ModelSizeError; None: no limit; the command line gives the
     machine's available memory unless --force)."""
-    s = parse_settings(doc)
-    units = build_units(s)
-    material = build_material(s)
-    dim, why = scene_dimension(s)
     base_dir = pathlib.Path(base_dir)
-    growth = read_growth(s, "life" in doc, units, base_dir)  # with the fatigue inputs' files: before meshing
-    if dim == 3:
-        cracks = [crack_surface(c, i, base_dir) for i, c in enumerate(s["cracks"])]
-    else:
-        cracks = [build_crack(c, i) for i, c in enumerate(s["cracks"])]
+    # Everything before the mesh is read by every process alike (under
+    # mpirun): an error there (a material out of range, a missing spectrum,
+    # crack surface or mesh file) is raised on all, printed once.
+    s, units, material, dim, why, growth, cracks = replicated(lambda: _before_mesh(doc, base_dir))
     t0 = time.perf_counter()
     points = [bc["point"] for bc in s["dirichlet"] if "point" in bc] + \
         [pf["point"] for pf in s["loads"]["point_forces"]]

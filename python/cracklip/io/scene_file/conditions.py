@@ -17,6 +17,7 @@ from ...scene.crack import Crack
 from ...scene.material import Material
 from ...scene.mesh import MeshData
 from ...scene.stress_field import LinearStress, UniformStress3D
+from ...scene.processes import mark_collective, reduced
 from ...scene.symmetry import Symmetry
 from .mesh import check_tag, nearest_node
 from .schema import (REQUIRED, UNSET, Key, p_choice, p_factors, p_float, p_gradient, p_group, p_point, p_point_any,
@@ -161,12 +162,15 @@ def build_dirichlet(bc: dict, i: int, mesh: MeshData, material: Material, cracks
         notes.append(f"{where}: point {bc['point']} -> node ({', '.join(f'{v:.6g}' for v in node)}), {what}")
     else:
         lo, hi = np.asarray(bc["box"][:gdim]), np.asarray(bc["box"][gdim:])
-        tol = 1e-9 * float(np.ptp(x, axis=0).max())
-        inside = np.flatnonzero(np.all((x >= lo - tol) & (x <= hi + tol), axis=1))
-        if inside.size == 0:
-            raise BoundaryConditionError(f"{where}.box {bc['box']} holds no mesh node")
-        targets = [tuple(float(v) for v in x[n]) for n in inside]
-        notes.append(f"{where}: box {bc['box']} ({inside.size} nodes), {what}")
+        comm = mesh.mesh.comm
+        tol = 1e-9 * float((reduced(x.max(axis=0), "MAX", comm) - reduced(x.min(axis=0), "MIN", comm)).max())
+        inside = x[np.all((x >= lo - tol) & (x <= hi + tol), axis=1)]
+        if comm.size > 1:  # the box's nodes of every process (each holds its part of the mesh), alike on all
+            inside = np.unique(np.concatenate(comm.allgather(inside)), axis=0)
+        if len(inside) == 0:
+            raise mark_collective(BoundaryConditionError(f"{where}.box {bc['box']} holds no mesh node"))
+        targets = [tuple(float(v) for v in n) for n in inside]
+        notes.append(f"{where}: box {bc['box']} ({len(inside)} nodes), {what}")
     label = f"{where}: " + (f"tag {bc['tag']!r}" if "tag" in bc else f"point {bc['point']}" if "point" in bc
                             else f"box {bc['box']}")
     for target in targets:
@@ -176,7 +180,6 @@ def build_dirichlet(bc: dict, i: int, mesh: MeshData, material: Material, cracks
 
 def build_traction(tr: dict, i: int, mesh: MeshData, material: Material, cracks: list[Crack],
               notes: list[str]) -> Traction:
-    from ...model.boundary import boundary_normals
     where = f"loads.tractions[{i}]"
     check_tag(mesh, tr["tag"], where)
     tag = tr["tag"]
@@ -191,20 +194,23 @@ def build_traction(tr: dict, i: int, mesh: MeshData, material: Material, cracks:
                 f"linear sigma = {tr['stress']} at {tr['origin']}, gradient {tr['stress_gradient']}")
         notes.append(f"{where}: tag {tag!r} ({nf} facets), traction sigma n, {what}")
         return Traction(tag, stress=field, group=tr["group"])
-    normals = boundary_normals(mesh, tag)
+    # A field's traction sigma n is a stress traction: its normals are those
+    # of the mesh it is integrated on (the model's, each process's own
+    # facets), not this mesh's, which an error estimate's or an accuracy
+    # level's finer mesh replaces (and of which under mpirun a process holds
+    # only its part).
     if "williams" in tr:
         field = _williams(tr["williams"], material, cracks, f"{where}.williams")
         notes.append(f"{where}: tag {tag!r} ({nf} facets), traction of the Williams field "
                      f"K_I = {field.K_I:g}, K_II = {field.K_II:g}")
-        return Traction(tag, lambda p: np.einsum("nij,nj->ni", field.stress(p), normals(p)), group=tr["group"])
+        return Traction(tag, stress=field.stress, group=tr["group"])
     from ...exact.kirsch import kirsch_stress
     k = tr["kirsch"]
     center = np.asarray(k["center"], dtype=float)
     notes.append(f"{where}: tag {tag!r} ({nf} facets), traction of the Kirsch field, remote stress "
                  f"{k['remote_stress']:g}, hole radius {k['hole_radius']:g}")
-    def kirsch_traction(p):
-        return np.einsum("nij,nj->ni", kirsch_stress(p - center, k["remote_stress"], k["hole_radius"]), normals(p))
-    return Traction(tag, kirsch_traction, group=tr["group"])
+    return Traction(tag, stress=lambda p: kirsch_stress(p - center, k["remote_stress"], k["hole_radius"]),
+                    group=tr["group"])
 
 
 def build_point_force(pf: dict, i: int, mesh: MeshData, notes: list[str]) -> PointForce:
@@ -215,13 +221,13 @@ def build_point_force(pf: dict, i: int, mesh: MeshData, notes: list[str]) -> Poi
 
 
 def build_pressure(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
-    from ...model.boundary import boundary_normals
     where = f"loads.pressures[{i}]"
     check_tag(mesh, pr["tag"], where)
-    normals = boundary_normals(mesh, pr["tag"])
     p = pr["value"]
     notes.append(f"{where}: tag {pr['tag']!r} ({mesh.num_facets(pr['tag'])} facets), pressure {p:g}")
-    return Traction(pr["tag"], lambda x: -p * normals(x), group=pr["group"])
+    # -p n as the traction of the stress -p I: the normals of the mesh it is
+    # integrated on (as a field's traction, build_traction)
+    return Traction(pr["tag"], stress=LinearStress((-p, -p, 0.0)), group=pr["group"])
 
 
 

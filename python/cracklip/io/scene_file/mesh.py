@@ -12,7 +12,7 @@ import numpy as np
 from ...errors import BoundaryConditionError, MeshError
 from ...scene.cell_size import mean_cell_size
 from ...scene.mesh import MeshData, create_half_annulus, create_plate_with_holes, create_rectangle, read_msh
-from ...scene.processes import total
+from ...scene.processes import mark_collective, total
 from .schema import (REQUIRED, UNSET, Key, p_box, p_choice, p_float, p_holes, p_point, p_point3, p_point_any,
                      p_segment, p_solid_box, p_str, p_vector3)
 
@@ -181,12 +181,15 @@ def build_mesh(m: dict, cracks: list, base_dir: pathlib.Path, points=(), dim: in
 
 
 def check_tag(mesh: MeshData, tag, where: str) -> None:
+    """A boundary tag a scene key names: known and with facets. Collective
+    under mpirun (every process holds the tag names and sums the facets):
+    the error is raised alike on all, printed once."""
     try:
         facets = mesh.facets(tag)
     except MeshError as e:
-        raise MeshError(f"{where}: {e}") from None
+        raise mark_collective(MeshError(f"{where}: {e}")) from None
     if total(facets.size, mesh.mesh.comm) == 0:
-        raise MeshError(f"{where}: boundary tag {tag!r} has no facets")
+        raise mark_collective(MeshError(f"{where}: boundary tag {tag!r} has no facets"))
 
 
 def _mean_edge(mesh: MeshData) -> float:
@@ -208,10 +211,10 @@ def nearest_node(mesh: MeshData, point, where: str) -> tuple[float, ...]:
         dist, nearest = min(comm.allgather((dist, x[node].tolist())), key=lambda v: v[0])
         nearest = np.asarray(nearest)
         edge = comm.allreduce(edge) / comm.size
-    if dist > edge:
-        raise BoundaryConditionError(
+    if dist > edge:  # (decided on the same numbers on every process: raised alike, printed once)
+        raise mark_collective(BoundaryConditionError(
             f"{where} {p.tolist()}: the nearest mesh node {nearest.tolist()} is {dist:.3g} away, more than "
-            f"the mean edge length {edge:.3g}; put the point on the part")
+            f"the mean edge length {edge:.3g}; put the point on the part"))
     return tuple(float(v) for v in nearest)
 
 

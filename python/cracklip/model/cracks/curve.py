@@ -20,7 +20,7 @@ from ... import _cracklip
 from ...errors import CrackGeometryError
 from ...scene.options import Options
 from ...scene.stress_field import evaluate_stress, tensor_to_voigt
-from ...scene.processes import agree, first_error, reduced, total, world
+from ...scene.processes import agree, first_error, mark_collective, reduced, total, world
 from ..boundary import boundary_normals, boundary_segments
 from . import CrackModel
 
@@ -85,10 +85,10 @@ class CurveCrackModel(CrackModel):
             lo, hi = x.min(axis=0), x.max(axis=0)
             if world().size > 1:  # the part's box, not this process's
                 lo, hi = reduced(lo, "MIN"), reduced(hi, "MAX")
-            raise CrackGeometryError(
+            raise mark_collective(CrackGeometryError(  # (found alike on every process: printed once)
                 f"{crack.name} (points {crack.points.tolist()}) does not cross any cell of the mesh "
                 f"(mesh bounding box [{lo[0]:g}, {hi[0]:g}] x [{lo[1]:g}, {hi[1]:g}]); "
-                "check its coordinates")
+                "check its coordinates"))
         # On several processes each checks its owned cells (whose neighbours it holds).
         owned = scene.mesh.mesh.topology.index_map(scene.mesh.mesh.topology.dim).size_local
         agree(first_error([lambda: _check_off_boundary(crack, geometry, x, cells, owned)]))
