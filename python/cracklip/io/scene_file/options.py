@@ -73,8 +73,8 @@ _OPTION_MEANINGS = {
                      "(docs/guide.md)",
     "solver": "linear solver: `direct` (MUMPS LDL^T), `iterative` (AMG in a phantom-node basis with a "
               "direct solve of the crack band; same checked accuracy) or `auto` (iterative from 5e4 "
-              "dofs when 1-5 % of them are enriched and from 2e6 dofs always, else direct: the faster one as "
-              "measured)",
+              "dofs when 1-5 % of them (3D: 1-30 %) are enriched and from 2e6 dofs always, else direct, and "
+              "direct with rescale = nodal: the faster one as measured)",
 }
 
 
