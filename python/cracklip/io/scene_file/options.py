@@ -122,9 +122,9 @@ _OPTIONS_BY_PATH = {k.path: k for k in OPTION_KEYS}
 
 OUTPUT_KEYS: list[Key] = [
     Key("outputs.vtu", "boolean", True, "write ParaView files solution.vtu and crack_lips.vtu (3D: "
-        "solution.vtu, crack_surface.vtu and crack_front.vtu)", p_bool),
+        "solution.vtu, crack_surface.vtu, crack_front.vtu and front_sifs.vtu)", p_bool),
     Key("outputs.png", "boolean", True, "write deformed.png, crack_pressure.png and stress.png (3D: "
-        "crack_opening.png)", p_bool),
+        "crack_opening.png, front_sifs.png and with contact crack_contact.png)", p_bool),
     Key("outputs.magnification", "float", 0.0,
         "displacement scale of deformed.png; 0: largest displacement = 5 % of the part", p_float(0.0)),
     Key("outputs.stress_component", "string", "yy", "stress shown in stress.png: `xx`, `yy`, `xy` "
