@@ -48,8 +48,9 @@ _OPTION_MEANINGS = {
     "load_steps": "increments per step of the load path (friction is path-dependent: more increments "
                   "follow the slip history closely)",
     "sif_radius": "radius of the largest SIF domain at every tip (K also on 1/2 and 3/4 of it; their "
-                  "spread is reported); 0: 6 element sizes at that tip (3D: 4 front element sizes at each front point); clipped to stay inside the part "
-                  "and away from other tips, cracks, kinks and holes (with a warning)",
+                  "spread is reported); 0: 6 element sizes at that tip (3D: 4 front element sizes at each "
+                  "front point); clipped to stay inside the part and away from other tips, cracks, kinks and "
+                  "holes (with a warning)",
     "sif_ring": "K on one ring as another code defines it: q = 1 within r_in, 0 beyond r_out, linear between "
                 "(code_aster's R_INF / R_SUP, MOOSE's rings; r_in = r_out: the plateau of that radius); NOT clipped: "
                 "a ring reaching a hole, kink, tip or the boundary warns and its K is marked unreliable; no spread; "
