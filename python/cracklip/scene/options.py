@@ -83,7 +83,7 @@ class Options:
         sif_radius: radius of the largest SIF interaction-integral domain at
             every tip; K is also computed on domains of 1/2 and 3/4 of it,
             whose spread is reported. 0 chooses it per tip: 6 element sizes
-            at that tip. Either way it is clipped to stay inside the part and
+            at that tip (3D: 4 front element sizes at each front point). Either way it is clipped to stay inside the part and
             away from other tips, other cracks, kinks of the crack and holes
             (a warning says so).
         sif_ring: the SIF domain as another code defines it, (r_in, r_out):
