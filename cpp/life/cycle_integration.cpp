@@ -265,22 +265,31 @@ std::vector<double> passes_to(const KTable1& table, const Cycles& cy, const Grow
       const double h = (x1 - x0) / pieces;
       // Each piece is cut where the set of growing cycles changes (the growth per pass jumps there; a rule
       // across the jump converged slowly: 6e-5 of a Paris life with a threshold in tests/test_table_life.py).
+      // (The set at a sub-piece's end is the next one's start: one evaluation per sub-piece.)
       auto which = [&](double x) { return growing_cycles(table, cy, law, std::exp(x), K); };
+      auto set_lo = which(x0);
       for (int q = 0; q < pieces and std::isfinite(total); ++q)
       {
         const double p1 = q + 1 == pieces ? x1 : x0 + h * (q + 1);
         double lo = x0 + h * q;
-        auto set_lo = which(lo);
         for (int cut = 0; lo < p1 and std::isfinite(total); ++cut)
         {
           double hi = p1;
-          if (cut < 1000 and which(hi) != set_lo)
+          auto set_hi = which(hi);
+          if (cut < 1000 and set_hi != set_lo)
           {
-            double l = lo;  // bisection for the first change: which(l) == set_lo != which(hi)
+            double l = lo;  // bisection for the first change: which(l) == set_lo != which(hi) == set_hi
             for (int it = 0; it < 200 and hi - l > 1e-15 * std::max(1.0, std::abs(hi)); ++it)
             {
               const double m = 0.5 * (l + hi);
-              (which(m) == set_lo ? l : hi) = m;
+              const auto set_m = which(m);
+              if (set_m == set_lo)
+                l = m;
+              else
+              {
+                hi = m;
+                set_hi = set_m;
+              }
             }
           }
           const double w = hi - lo;
@@ -292,7 +301,7 @@ std::vector<double> passes_to(const KTable1& table, const Cycles& cy, const Grow
             total = g > 0.0 ? total + rule.weights[i] * w * s / g : inf;
           }
           lo = hi;
-          set_lo = which(lo);
+          set_lo = set_hi;
         }
       }
     }
