@@ -53,7 +53,7 @@ from ..scene.units import STRESSES
 from ..scene.processes import not_parallel, reduced
 from .boundary import nearest_boundary_point, where_outside
 from .constraints import ROTATIONS, rigid_motion_rank
-from .tip_regions import length_in_part, model_boundary, segment_distance, tip_domains, tip_element_size
+from .tip_regions import length_in_part, model_boundary, part_size, segment_distance, tip_domains, tip_element_size
 
 
 #: What the warning codes met along a growth run mean, in a few words (the
@@ -602,7 +602,7 @@ def check_units(model) -> list[ModelWarning]:
     scene = model.scene
     units = scene.units
     E = scene.material.E
-    size = float(np.ptp(model.x, axis=0).max())
+    size = part_size(model)  # (the whole part under mpirun, alike on every process)
     out = []
     if units is not None:
         E_pa = E * units.stress_si
