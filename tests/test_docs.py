@@ -1,6 +1,7 @@
 """The README is for users first: under 300 lines, every page of docs/
 reachable from it by a link, every relative link in the README and in
-docs/ pointing at a file that exists."""
+docs/ pointing at a file that exists, and every output file the writers name
+(cracklip/io) named in the docs, so a user finds what a file holds."""
 import re
 
 from conftest import ROOT
@@ -25,3 +26,15 @@ def test_every_relative_link_resolves():
     for path in [ROOT / "README.md", *(ROOT / "docs").rglob("*.md")]:
         for link in relative_links(path):
             assert (path.parent / link).exists(), f"{path.relative_to(ROOT)} links to {link}, which does not exist"
+
+
+OUTPUT_NAME = re.compile(r"[\"']([A-Za-z_]+\.(?:csv|png|txt|pvd|json|vtu))[\"']")
+
+
+def test_every_output_file_is_documented():
+    docs = " ".join(p.read_text() for p in [ROOT / "README.md", *(ROOT / "docs").rglob("*.md")])
+    written = {(m, f.name) for f in (ROOT / "python" / "cracklip" / "io").glob("*.py")
+               for m in OUTPUT_NAME.findall(f.read_text())}
+    assert len(written) > 30, "the writers' file names were not found"
+    missing = sorted(f"{name} ({writer})" for name, writer in written if name not in docs)
+    assert not missing, f"output files the docs do not name: {missing}"
