@@ -180,6 +180,8 @@ def _read_and_check(args):
         apply_override(doc, f"options.accuracy={args.accuracy!r}")
     if getattr(args, "no_estimate", False):
         apply_override(doc, "outputs.error_estimate=false")
+    if getattr(args, "condition_number", False):
+        apply_override(doc, "outputs.condition_number=true")
     parse_settings(doc)
     return doc
 
@@ -207,7 +209,7 @@ def cmd_run(args) -> int:
     finally:
         loading.close()  # (also when the scene is rejected: no thread left waiting)
     comm = _processes()
-    if comm is not None and (args.condition_number or doc.get("outputs", {}).get("condition_number", False)):
+    if comm is not None and doc.get("outputs", {}).get("condition_number", False):
         from ..scene.processes import not_parallel
         not_parallel("the condition number", comm)  # (before meshing, as every refusal the scene alone decides)
     from ..io.outputs import ensure_output_dir, write_outputs
@@ -217,7 +219,7 @@ def cmd_run(args) -> int:
     sf = _build(args, doc)
     t_build = time.perf_counter() - t0
     from ..analysis.solve import solve
-    cond = bool(args.condition_number or sf.outputs["condition_number"])
+    cond = bool(sf.outputs["condition_number"])  # (--condition-number is the scene key, set in _read_and_check)
     logger.info("solving (%s enrichment, contact %s)", sf.scene.options.enrichment, sf.scene.options.contact)
     sol = solve(sf.scene, condition_number=cond)
     no_estimate = "outputs.error_estimate = false"  # why a K has no error estimate, as the summary says
