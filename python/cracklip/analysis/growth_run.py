@@ -84,8 +84,7 @@ class GrowthRun:
             raise InputError("growth needs at least one crack")
         self.records: list[list[TipRecord]] = []
         self.stops: list[str] = []
-        self.warnings: list[CodedText] = []
-        self.warning_steps: list[int] = []              # the step of each of self.warnings
+        self.warnings: list[tuple[CodedText, int | None]] = []  # each with its step (None: of the whole run)
         self.solutions: list = []
         self.step_times: list[float] = []
         self.solves: list[int] = []
@@ -152,8 +151,7 @@ class GrowthRun:
         rate_table; docs/sifs.md), prefixed with the step after the first
         (of_step False: of the whole run, no step)."""
         prefix = f"step {self.k}: " if of_step and self.k else ""
-        self.warnings.append(CodedText(prefix + message, code, crack, tip))
-        self.warning_steps.append(self.k if of_step else None)
+        self.warnings.append((CodedText(prefix + message, code, crack, tip), self.k if of_step else None))
 
     def check_rate_table(self) -> None:
         """A tabular da/dN read outside its data by the largest counted
@@ -298,12 +296,12 @@ class GrowthRun:
 
     def result(self) -> GrowthResult:
         self.check_rate_table()
-        warnings = self.warnings + [
+        warnings = [w for w, _ in self.warnings] + [
             f"the model warning '{c}'" + (f" ({CODE_MEANINGS[c]})" if c in CODE_MEANINGS else "")
             + f" came {n} times in all (at the steps listed in results.json per_step)"
             for c, n in self.warning_counts.items() if n > 1]
         rows = [{"code": w.code, "message": str(w), "crack": w.crack, "tip": w.tip, "step": k,
-                 "count": self.warning_counts.get(w.code, 1)} for w, k in zip(self.warnings, self.warning_steps)]
+                 "count": self.warning_counts.get(w.code, 1)} for w, k in self.warnings]
         return GrowthResult(self.records, self.cracks, self.stop_reason, self.stops, list(dict.fromkeys(warnings)),
                             self.solutions, self.step_times, self.N, self.solves, self.step_warnings,
                             stop_criterion=self.stop_criterion,
