@@ -21,7 +21,7 @@ from ...errors import CrackGeometryError
 from ...scene.options import Options
 from ...scene.stress_field import evaluate_stress, tensor_to_voigt
 from ...scene.processes import agree, first_error, mark_collective, reduced, total, world
-from ..boundary import boundary_normals, boundary_segments
+from ..boundary import boundary_normals, boundary_segments, inside_segments, on_boundary
 from . import CrackModel
 
 logger = logging.getLogger(__name__)
@@ -209,22 +209,16 @@ def tip_flags(scene, crack) -> tuple[bool, bool]:
     """An end point is a tip when it lies inside the domain, off the boundary.
 
     Inside-ness is decided by ray casting against the boundary facets, so the
-    cost is proportional to the boundary, not to the mesh.
+    cost is proportional to the boundary, not to the mesh. "Off the
+    boundary" allows for a curved boundary's facets being chords
+    (boundary.boundary_tolerance): an end on a hole's circle lies up to
+    the sagitta inside the meshed part, and is the mouth of an edge crack
+    on every mesh, not a tip on some (a tip a sagitta from the hole).
     """
     a, b = boundary_segments(scene.mesh)
     scale = float(max(np.ptp(a, axis=0).max(), np.ptp(b, axis=0).max()))
-    d = b - a
-    flags = []
-    for p in crack.points[[0, -1]]:
-        t = np.clip(np.einsum("ij,ij->i", p - a, d) / np.einsum("ij,ij->i", d, d), 0.0, 1.0)
-        dist = np.linalg.norm(a + t[:, None] * d - p, axis=1).min()
-        # Horizontal ray to +x: count facets straddling y = p_y right of p.
-        straddle = (a[:, 1] > p[1]) != (b[:, 1] > p[1])
-        with np.errstate(divide="ignore", invalid="ignore"):
-            xc = a[:, 0] + (p[1] - a[:, 1]) * d[:, 0] / d[:, 1]
-        inside = np.count_nonzero(straddle & (xc > p[0])) % 2 == 1
-        flags.append(bool(inside and dist > 1e-9 * scale))
-    return flags[0], flags[1]
+    return tuple(bool(inside_segments(p, a, b) and not on_boundary(p, a, b, scale))
+                 for p in crack.points[[0, -1]])
 
 
 __all__ = ["CurveCrackModel", "arc_length", "tip_flags", "von_mises"]
