@@ -82,6 +82,19 @@ def test_two_cracks_in_one_cell(square_h01):
         cl.solve(_scene(square_h01, cracks))
 
 
+def test_crossing_cracks_name_the_keys_and_the_place(square_h01):
+    """Two cracks that cross (or one drawn twice) said 'cell 2818 is crossed by
+    cracks 0 and 1: cracks closer than the mesh size': neither the scene keys
+    nor where, and 'closer' for cracks that cross."""
+    cracks = [cl.Crack([[-0.5, 0.013], [0.5, 0.013]]), cl.Crack([[0.2, -0.5], [0.2, 0.5]])]
+    with pytest.raises(cl.CrackGeometryError,
+                       match=r"cracks\[0\] \(crack 0\) and cracks\[1\] \(crack 1\) cross at \(0.2, 0.013\)"):
+        cl.solve(_scene(square_h01, cracks))
+    twice = [cl.Crack([[-0.5, 0.013], [0.5, 0.013]]), cl.Crack([[0.0, 0.013], [0.7, 0.013]])]
+    with pytest.raises(cl.CrackGeometryError, match=r"cracks\[0\] .* and cracks\[1\] .* overlap at \(0.25, 0.013\)"):
+        cl.solve(_scene(square_h01, twice))
+
+
 # -- issue 6: the bad-input suite ------------------------------------------------
 # Every case asserts the exception type and the part of the message that names
 # the offending item and what is allowed.

@@ -286,6 +286,8 @@ def test_unknown_keys_name_the_nearest_valid_key(doc, match):
     (doc_with(material={"E": 1.0}), cl.InputError, r"material\.nu is required"),
     (doc_with(material={"E": 1.0, "nu": 0.5}), cl.MaterialError, r"Poisson"),
     (doc_with(options={"contact": "unilaterl"}), cl.InputError, r"did you mean 'unilateral'"),
+    # A capital letter: the same choice in lower case, not the nearest spelling ('z' before the fix).
+    (doc_with(dirichlet=[{"tag": "bottom", "component": "Y"}]), cl.InputError, r"got 'Y'; did you mean 'y'\?"),
     (doc_with(options={"quadrature_degree": 2.5}), cl.InputError, r"options\.quadrature_degree must be an integer"),
     (doc_with(cracks=[{"points": [[0, 0]]}]), cl.InputError,
      r"cracks\[0\]\.points must be a list of at least two points"),
