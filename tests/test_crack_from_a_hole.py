@@ -78,3 +78,23 @@ def test_estimate_and_accuracy_of_a_crack_from_the_hole_edge(tmp_path):
     # Tada / Bowie: one crack a = R at a hole, F about 1.34 (infinite plate): K_I about 2.37.
     assert np.all(np.abs(levels / levels[-1] - 1.0) < 0.05)
     assert sifs[0]["K_I_error"] < 0.01 * abs(sifs[0]["K_I"])
+
+
+def test_the_estimate_compares_the_same_tip_on_both_meshes():
+    """A tip's index counts the crack's ends that are tips: where a mesh makes
+    one more end a tip, index 0 is another point. The estimate took K of the
+    finer mesh's tip 0 (here the end at (1, 0), K 0.5) for the coarse mesh's
+    tip 0 at (2, 0): an error of 0.5 instead of 0.02."""
+    import pytest
+    from cracklip.analysis.accuracy import Level, carried
+    from cracklip.errors import MeshError
+
+    def row(tip, x, K):
+        return {"crack": 0, "tip": tip, "position": [x, 0.0], "K_I": K, "K_II": 0.0}
+
+    coarse = [row(0, 2.0, 1.0)]
+    fine = Level(0.5, 100, 0.1, [[row(0, 1.0, 0.5), row(1, 2.0, 1.02)]], False, {}, {})
+    assert carried(fine, 0, 0, coarse, ("K_I", "K_II"))[0, 0] == 1.02    # before: 0.5
+    other = Level(0.5, 100, 0.1, [[row(0, 1.0, 0.5)]], False, {}, {})
+    with pytest.raises(MeshError, match=r"its end \(2, 0\) is a tip on one of the error estimate's meshes"):
+        carried(other, 0, 0, coarse, ("K_I", "K_II"))
