@@ -24,7 +24,7 @@ KEYS: list[Key] = [
     Key("cracks[].name", "string", "", "label in messages and outputs (default: crack i)", p_str),
     Key("cracks[].points", "[[x, y], ...]", UNSET,
         "2D: polyline; an end inside the part is a tip, an end on or outside the boundary makes an "
-        "edge crack", p_polyline),
+        "edge crack (on a hole: on its circle, which the mesh's facets approximate by chords)", p_polyline),
     Key("cracks[].arc.center", "[x, y]", REQUIRED, "circular-arc crack: centre", p_point),
     Key("cracks[].arc.radius", "float", REQUIRED, "circular-arc crack: radius", p_float(positive=True)),
     Key("cracks[].arc.angles", "[start, end]", REQUIRED,
