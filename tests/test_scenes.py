@@ -357,7 +357,10 @@ def test_scene_building_blocks(tmp_path):
     scene = sf.scene
     assert set(scene.mesh.tags) == {"left", "right", "bottom", "top", "hole"}
     pts = scene.cracks[0].points
-    assert pts.shape == (9, 2) and np.allclose(np.linalg.norm(pts, axis=1), 0.6)
+    # 8 segments, ends on the circle, every segment along a tangent of it (scene.crack.arc_polyline).
+    assert pts.shape == (9, 2) and np.allclose(np.linalg.norm(pts[[0, -1]], axis=1), 0.6)
+    seg = np.diff(pts, axis=0)
+    assert np.allclose(np.abs(np.cross(seg, pts[:-1])) / np.linalg.norm(seg, axis=1), 0.6)
     assert scene.body_force == [0.0, -0.01]
     left_nodes = np.count_nonzero(np.isclose(scene.mesh.mesh.geometry.x[:, 0], -2.0))
     assert len(scene.dirichlet) == left_nodes + 1 and all(d.component == 0 for d in scene.dirichlet[:-1])

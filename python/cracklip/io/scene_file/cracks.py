@@ -9,7 +9,7 @@ import pathlib
 import numpy as np
 
 from ...errors import CrackGeometryError, InputError
-from ...scene.crack import Crack
+from ...scene.crack import Crack, arc_polyline
 from ...scene.crack_surface import EllipticalCrack, PolygonCrack, SurfaceCrack, read_crack_surface
 from .schema import (REQUIRED, UNSET, Key, p_angles, p_float, p_group, p_int, p_point, p_point3, p_polygon,
                      p_polyline, p_str, p_vector3)
@@ -59,8 +59,7 @@ def build_crack(c: dict, i: int) -> Crack:
         t0, t1 = np.radians(a["angles"])
         if abs(t1 - t0) < 1e-12:
             raise InputError(f"cracks[{i}].arc.angles: the start and end angles are equal")
-        t = np.linspace(t0, t1, a["segments"] + 1)
-        pts = np.asarray(a["center"]) + a["radius"] * np.stack([np.cos(t), np.sin(t)], axis=1)
+        pts = arc_polyline(a["center"], a["radius"], t0, t1, a["segments"])
         return Crack(pts, name=name, pressure=c["pressure"], pressure_group=c["pressure_group"])
     return Crack(np.asarray(c["points"], dtype=float), name=name, pressure=c["pressure"],
                  pressure_group=c["pressure_group"])
