@@ -30,7 +30,8 @@ KEYS: list[Key] = [
     Key("cracks[].arc.angles", "[start, end]", REQUIRED,
         "circular-arc crack: polar angles of its ends, degrees (counter-clockwise if end > start)",
         p_angles),
-    Key("cracks[].arc.segments", "integer", 24, "circular-arc crack: polyline segments", p_int(1)),
+    Key("cracks[].arc.segments", "integer", 24, "circular-arc crack: polyline segments, each along a tangent of the arc (the end ones along the tips' "
+        "tangents, so K sees the arc's direction there)", p_int(1)),
     Key("cracks[].ellipse.center", "[x, y, z]", REQUIRED, "3D elliptical (or circular) planar crack: centre; "
         "on a face of the part it is a surface crack, on an edge a corner crack (the part's boundary cuts it)",
         p_point3),
