@@ -82,6 +82,19 @@ def test_two_cracks_in_one_cell(square_h01):
         cl.solve(_scene(square_h01, cracks))
 
 
+def test_crossing_cracks_name_the_keys_and_the_place(square_h01):
+    """Two cracks that cross (or one drawn twice) said 'cell 2818 is crossed by
+    cracks 0 and 1: cracks closer than the mesh size': neither the scene keys
+    nor where, and 'closer' for cracks that cross."""
+    cracks = [cl.Crack([[-0.5, 0.013], [0.5, 0.013]]), cl.Crack([[0.2, -0.5], [0.2, 0.5]])]
+    with pytest.raises(cl.CrackGeometryError,
+                       match=r"cracks\[0\] \(crack 0\) and cracks\[1\] \(crack 1\) cross at \(0.2, 0.013\)"):
+        cl.solve(_scene(square_h01, cracks))
+    twice = [cl.Crack([[-0.5, 0.013], [0.5, 0.013]]), cl.Crack([[0.0, 0.013], [0.7, 0.013]])]
+    with pytest.raises(cl.CrackGeometryError, match=r"cracks\[0\] .* and cracks\[1\] .* overlap at \(0.25, 0.013\)"):
+        cl.solve(_scene(square_h01, twice))
+
+
 # -- issue 6: the bad-input suite ------------------------------------------------
 # Every case asserts the exception type and the part of the message that names
 # the offending item and what is allowed.
@@ -457,3 +470,47 @@ def test_traction_function_with_wrong_shape(square_h01):
 def test_contact_error_is_exported():
     from cracklip.contact.frictionless import ContactError
     assert cl.ContactError is ContactError and issubclass(cl.ContactError, cl.CracklipError)
+
+
+def test_point_force_on_a_crack_names_the_key(tmp_path, capsys):
+    """A point force at a point of a crack went to the standard dofs of the
+    node there, which is one lip or the other by the mesh: one force gave
+    K_I 0.752 and K_II -0.436 where a wedge force on one lip was meant, and
+    a pair of opposite forces (a wedge) cancelled: 'no_load', K = 0."""
+    import json
+    from cracklip import cli
+    text = """
+[mesh]
+domain = [0.0, -5.0, 10.0, 5.0]
+h = 0.5
+tip_h = 0.1
+[material]
+E = 1.0
+nu = 0.3
+[[cracks]]
+points = [[-1.0, 0.0], [3.0, 0.0]]
+[[dirichlet]]
+point = [10.0, -5.0]
+[[dirichlet]]
+point = [10.0, 5.0]
+component = "x"
+[[loads.point_forces]]
+point = [1.0, {y1}]
+value = [0.0, 1.0]
+[[loads.point_forces]]
+point = [1.0, {y2}]
+value = [0.0, -1.0]
+"""
+    (tmp_path / "on.toml").write_text(text.format(y1=0.0, y2=0.0))
+    assert cli.main(["run", str(tmp_path / "on.toml"), "--out", str(tmp_path / "on"), "--quiet",
+                     "--no-estimate"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("cracklip: error: point force 0 (loads.point_forces[0]) at [1.0, 0.0]")
+    assert "which lies on crack 'crack 0'" in err[0]
+    # Off the crack by a fraction of an element, on each lip's side: a wedge, pure mode I.
+    (tmp_path / "off.toml").write_text(text.format(y1=0.01, y2=-0.01))
+    assert cli.main(["run", str(tmp_path / "off.toml"), "--out", str(tmp_path / "off"), "--quiet",
+                     "--no-estimate"]) == 0
+    row = json.loads((tmp_path / "off" / "results.json").read_text())["sifs"][0]
+    assert row["K_I"] > 1.0 and abs(row["K_II"]) < 1e-3 * row["K_I"]
+

@@ -286,6 +286,8 @@ def test_unknown_keys_name_the_nearest_valid_key(doc, match):
     (doc_with(material={"E": 1.0}), cl.InputError, r"material\.nu is required"),
     (doc_with(material={"E": 1.0, "nu": 0.5}), cl.MaterialError, r"Poisson"),
     (doc_with(options={"contact": "unilaterl"}), cl.InputError, r"did you mean 'unilateral'"),
+    # A capital letter: the same choice in lower case, not the nearest spelling ('z' before the fix).
+    (doc_with(dirichlet=[{"tag": "bottom", "component": "Y"}]), cl.InputError, r"got 'Y'; did you mean 'y'\?"),
     (doc_with(options={"quadrature_degree": 2.5}), cl.InputError, r"options\.quadrature_degree must be an integer"),
     (doc_with(cracks=[{"points": [[0, 0]]}]), cl.InputError,
      r"cracks\[0\]\.points must be a list of at least two points"),
@@ -355,7 +357,10 @@ def test_scene_building_blocks(tmp_path):
     scene = sf.scene
     assert set(scene.mesh.tags) == {"left", "right", "bottom", "top", "hole"}
     pts = scene.cracks[0].points
-    assert pts.shape == (9, 2) and np.allclose(np.linalg.norm(pts, axis=1), 0.6)
+    # 8 segments, ends on the circle, every segment along a tangent of it (scene.crack.arc_polyline).
+    assert pts.shape == (9, 2) and np.allclose(np.linalg.norm(pts[[0, -1]], axis=1), 0.6)
+    seg = np.diff(pts, axis=0)
+    assert np.allclose(np.abs(np.cross(seg, pts[:-1])) / np.linalg.norm(seg, axis=1), 0.6)
     assert scene.body_force == [0.0, -0.01]
     left_nodes = np.count_nonzero(np.isclose(scene.mesh.mesh.geometry.x[:, 0], -2.0))
     assert len(scene.dirichlet) == left_nodes + 1 and all(d.component == 0 for d in scene.dirichlet[:-1])

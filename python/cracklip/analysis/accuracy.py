@@ -326,14 +326,32 @@ def _values(rows: list[dict], modes) -> np.ndarray:
     return np.array([[float(r[m]) for m in modes] for r in rows]).reshape(len(rows), len(modes))
 
 
+def _same_tip(mine: list[dict], row: dict, crack: int) -> dict:
+    """The row of `mine` at the tip of `row` (by position: a tip's index
+    counts the crack's ends that are tips, which another mesh may count
+    otherwise)."""
+    if row.get("position") is None:  # rows without positions (synthetic sequences): by index
+        return next(r for r in mine if r["tip"] == row["tip"])
+    p = np.asarray(row["position"], dtype=float)
+    scale = max(1.0, float(np.abs(p).max()))
+    for r in mine:
+        if np.linalg.norm(np.asarray(r["position"], dtype=float) - p) <= 1e-9 * scale:
+            return r
+    others = ", ".join(f"({r['position'][0]:g}, {r['position'][1]:g})" for r in mine) or "none"
+    raise MeshError(f"crack {crack}: its end ({p[0]:g}, {p[1]:g}) is a tip on one of the error estimate's meshes "
+                    f"and not on another (whose tips are: {others}): the end lies on the boundary within the "
+                    "meshes' resolution of it; put it on or beyond the boundary (an edge crack) or clearly inside "
+                    "the part")
+
+
 def carried(level: Level, state: int, crack: int, rows: list[dict], modes) -> np.ndarray:
     """K (n, modes) of `level` at the points of `rows` (another level's
     points of that crack and state): the same tip in 2D, carried along the
     front in 3D (front_match)."""
     mine = [r for r in level.rows[state] if r["crack"] == crack]
-    if not level.front:  # tips: one point each
-        by_tip = {r["tip"]: r for r in mine}
-        return np.array([[float(by_tip[r["tip"]][m]) for m in modes] for r in rows]).reshape(len(rows), len(modes))
+    if not level.front:  # tips: one point each, the same end point of the crack on every mesh
+        return np.array([[float(_same_tip(mine, r, crack)[m]) for m in modes] for r in rows]).reshape(
+            len(rows), len(modes))
     values = _values(mine, modes)
     pieces = []
     for p in sorted({r["piece"] for r in mine}):

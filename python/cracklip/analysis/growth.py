@@ -18,7 +18,8 @@ touch at the minimum, K_min is what contact gives, not the linear value),
 Delta K_eff = K_eq(max) - K_eq(min) along the kink direction, the Paris law
 da/dN = C (Delta K_eff)^m (Walker's R-ratio form with gamma != 1, none below
 the threshold), the fastest tip advancing da and the others da (rate_i /
-rate_max), the cycles integrated by the trapezoidal rule between steps.
+rate_max), the cycles of each step from the rates at its ends with Delta K
+linear along it (growth_run.increment_cycles).
 
 Conventions (docs/sifs.md, "Conventions"): angles in the tip frame (e1 out of the
 crack, e2 = e1 turned by +90 degrees), positive toward e2: K_II > 0 kinks

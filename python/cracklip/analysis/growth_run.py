@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import dataclasses
 import logging
+import math
 import time
 import typing
 
@@ -22,6 +23,28 @@ from .life import rate_table_messages
 from .tips import Measured, TipRecord
 
 logger = logging.getLogger("cracklip.analysis.growth")
+
+
+def increment_cycles(da: float, rate0: float, rate1: float, m: float) -> float:
+    """The cycles of an increment da between rates rate0 and rate1 of the law
+    da/dN = C D^m (D: Delta K, or Walker's Delta K / (1 - R)^(1 - gamma)),
+    with D linear along the increment: da / rate0 (1 - q^(1 - m)) / ((m - 1)
+    (q - 1)), q = (rate1 / rate0)^(1 / m) (m = 1: ln q / (q - 1)).
+
+    The trapezoidal rule of 1/rate it replaces is biased high, by about
+    m (m + 2) (da / a)^2 / 48 on a crack whose K grows as sqrt(a): a centre
+    crack grown by 0.3 a per step got a life 1.3-1.7 % too long against the
+    integral of its own K (non-conservative); K linear along the step leaves
+    only K's curvature (-0.4 .. -0.1 % there). A rate of 0 at an end (below a
+    threshold) keeps the trapezoid's infinite / finite reading."""
+    if not (rate0 > 0.0 and rate1 > 0.0 and m > 0.0) or not math.isfinite(rate0 + rate1):
+        return da * 0.5 * (1.0 / rate0 + 1.0 / rate1)
+    q = (rate1 / rate0) ** (1.0 / m)
+    if abs(q - 1.0) < 1e-9:
+        return da * 0.5 * (1.0 / rate0 + 1.0 / rate1)
+    if abs(m - 1.0) < 1e-12:
+        return da / rate0 * math.log(q) / (q - 1.0)
+    return da / rate0 * (1.0 - q ** (1.0 - m)) / ((m - 1.0) * (q - 1.0))
 
 
 @dataclasses.dataclass
@@ -177,7 +200,7 @@ class GrowthRun:
             return
         if self.fatigue and self.k > 0 and self.prev_rate is not None:
             rate_now = max(m.rates.values()) if m.rates else self.prev_rate
-            dN = self.prev_da * 0.5 * (1.0 / self.prev_rate + 1.0 / rate_now)
+            dN = increment_cycles(self.prev_da, self.prev_rate, rate_now, float(self.growth.paris_m))
             self.N += dN
             for rec in m.records:  # the cycles spent to reach this geometry
                 rec.dN, rec.N = dN, self.N

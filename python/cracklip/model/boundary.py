@@ -212,6 +212,45 @@ def nearest_boundary_point(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple
     return q[k], float(dist[k]), k
 
 
+#: A boundary vertex turning by less than this (radians) is a point of a
+#: discretised curve (a hole's circle at about 8 facets and more); a larger
+#: turn is a corner of the part, whose facets are the geometry itself.
+CURVE_TURN = 0.8
+
+
+def boundary_tolerance(p: np.ndarray, a: np.ndarray, b: np.ndarray, scale: float) -> float:
+    """How far from the boundary facets a point p (2,) may lie and still be
+    on the boundary: the facets of a curved boundary (a hole) are chords,
+    and a point of the true curve lies up to the sagitta beyond the nearest
+    chord, inside the part. For a chord of length L between vertices whose
+    facets turn by delta (a circle of radius L / (2 sin(delta / 2))) the
+    sagitta is about L delta / 8; the tolerance is twice that, at least
+    1e-9 of the part's size (straight boundaries, corners)."""
+    q, dist, k = nearest_boundary_point(p, a, b)
+    L = float(np.linalg.norm(b[k] - a[k]))
+    if L <= 0.0:
+        return 1e-9 * scale
+    d = (b[k] - a[k]) / L
+    turn = 0.0
+    for v in (a[k], b[k]):  # the facets sharing each end vertex of segment k
+        for other in np.flatnonzero((np.linalg.norm(a - v, axis=1) <= 1e-9 * scale)
+                                    | (np.linalg.norm(b - v, axis=1) <= 1e-9 * scale)):
+            if other == k:
+                continue
+            e = b[other] - a[other]
+            n = float(np.linalg.norm(e))
+            if n > 0.0:
+                t = float(np.arccos(np.clip(abs(float(np.dot(d, e))) / n, -1.0, 1.0)))
+                if t < CURVE_TURN:
+                    turn = max(turn, t)
+    return max(1e-9 * scale, 0.25 * L * turn)
+
+
+def on_boundary(p: np.ndarray, a: np.ndarray, b: np.ndarray, scale: float) -> bool:
+    """Whether p lies on the boundary: within boundary_tolerance of it."""
+    return nearest_boundary_point(p, a, b)[1] <= boundary_tolerance(p, a, b, scale)
+
+
 def where_outside(p, a: np.ndarray, b: np.ndarray) -> str | None:
     """None if the point lies in the part (or on its boundary), else "in a
     hole of the part" (inside the outer boundary, outside the part) or
@@ -254,5 +293,5 @@ def polyline_pieces(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> list[di
         else:
             pieces.append({"start": p, "end": q, "length": length})
         for key, x in (("start_on_boundary", pieces[-1]["start"]), ("end_on_boundary", pieces[-1]["end"])):
-            pieces[-1][key] = nearest_boundary_point(x, a, b)[1] <= 1e-9 * scale
+            pieces[-1][key] = on_boundary(x, a, b, scale)
     return pieces

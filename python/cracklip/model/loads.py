@@ -122,10 +122,19 @@ def assemble_point_forces(model, group: str | None = None) -> np.ndarray:
         if mine:
             cells = model.cells[np.any(model.cells == node, axis=1)]
             edge = float(np.linalg.norm(model.x[cells[:, eb]] - model.x[cells[:, ea]], axis=2).max())
+            lip = _on_a_crack(model, node, edge, scale)
             if dist[node] > max(edge, 1e-12 * scale):
-                error = InputError(f"point force {k} at {list(pf.point)}: the nearest mesh node "
-                                   f"{model.x[node].tolist()} is {dist[node]:.3g} away, more than an element "
-                                   f"({edge:.3g}); put the point on the part")
+                error = InputError(f"point force {k} (loads.point_forces[{k}]) at {list(pf.point)}: the nearest "
+                                   f"mesh node {model.x[node].tolist()} is {dist[node]:.3g} away, more than an "
+                                   f"element ({edge:.3g}); put the point on the part")
+            elif lip is not None:
+                error = InputError(
+                    f"point force {k} (loads.point_forces[{k}]) at {list(pf.point)} acts on the mesh node "
+                    f"{model.x[node].tolist()}, which lies on {lip}: a force there loads one lip or the other "
+                    "depending on the mesh, not the one meant (and two opposite forces there cancel); to load "
+                    "a lip, put the point off the crack on that lip's side by a fraction of an element "
+                    f"({edge:.3g}) and give that position a mesh node (a refinement point there, or "
+                    "mesh.kind = \"geometry\"), or use cracks[].pressure")
             else:
                 b[d * node:d * node + d] += pf.value
         if comm is not None:
@@ -133,6 +142,27 @@ def assemble_point_forces(model, group: str | None = None) -> np.ndarray:
         elif error is not None:
             raise error
     return b
+
+
+def _on_a_crack(model, node: int, edge: float, scale: float) -> str | None:
+    """The crack (as messages name it) whose lips meet at `node` (2D: a node
+    on the crack's polyline, snapped onto it or lying on it, other than at a
+    tip), else None."""
+    if model.gdim != 2:
+        return None
+    p = model.x[node, :2]
+    tol = max(2.0 * model.scene.options.snap_tol * edge, 1e-12 * scale)
+    for cm in model.cracks:
+        if not (node < len(cm.phi) and abs(cm.phi[node]) <= 1e-12 * scale):
+            continue
+        pts = np.asarray(cm.crack.points, dtype=float)
+        a, d = pts[:-1], np.diff(pts, axis=0)
+        t = np.clip(np.einsum("ij,ij->i", p - a, d) / np.einsum("ij,ij->i", d, d), 0.0, 1.0)
+        on = np.linalg.norm(a + t[:, None] * d - p, axis=1).min() <= tol
+        tips = pts[[0, -1]][np.asarray(cm.tips, dtype=bool)]
+        if on and not np.any(np.linalg.norm(tips - p, axis=1) <= tol):
+            return f"crack '{cm.crack.name}'"
+    return None
 
 
 def _cell_rule(degree: int) -> tuple[np.ndarray, np.ndarray]:

@@ -161,8 +161,9 @@ class Growth:
 
     @property
     def fatigue(self) -> bool:
-        """Cycles are counted: growth.paris_C (constant amplitude, the
-        trapezoidal rule) or a fatigue life (fatigue_material)."""
+        """Cycles are counted: growth.paris_C (constant amplitude, Delta K
+        linear along each step: analysis.growth_run.increment_cycles) or a
+        fatigue life (fatigue_material)."""
         return self.paris_C is not None or self.fatigue_material is not None
 
     @property

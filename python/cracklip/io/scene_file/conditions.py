@@ -89,7 +89,8 @@ LOAD_KEYS: list[Key] = [
         "pressure (> 0 pushes on the part): traction -p n", p_float()),
     Key("loads.point_forces[].point", "[x, y] or [x, y, z]", REQUIRED,
         "a concentrated force at the mesh node nearest to the point (within one element); a generated "
-        "rectangle or plate has a node there", p_point_any),
+        "rectangle or plate has a node there; 2D: not on a crack (to load a lip, a point just off it on "
+        "that side)", p_point_any),
     Key("loads.point_forces[].value", "[x, y] or [x, y, z]", REQUIRED, "the force (per unit thickness in 2D)",
         p_vector_any),
     Key("loads.point_forces[].group", "string", "default", "load group (see load_path)", p_group),

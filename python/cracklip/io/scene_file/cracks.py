@@ -9,7 +9,7 @@ import pathlib
 import numpy as np
 
 from ...errors import CrackGeometryError, InputError
-from ...scene.crack import Crack
+from ...scene.crack import Crack, arc_polyline
 from ...scene.crack_surface import EllipticalCrack, PolygonCrack, SurfaceCrack, read_crack_surface
 from .schema import (REQUIRED, UNSET, Key, p_angles, p_float, p_group, p_int, p_point, p_point3, p_polygon,
                      p_polyline, p_str, p_vector3)
@@ -24,13 +24,14 @@ KEYS: list[Key] = [
     Key("cracks[].name", "string", "", "label in messages and outputs (default: crack i)", p_str),
     Key("cracks[].points", "[[x, y], ...]", UNSET,
         "2D: polyline; an end inside the part is a tip, an end on or outside the boundary makes an "
-        "edge crack", p_polyline),
+        "edge crack (on a hole: on its circle, which the mesh's facets approximate by chords)", p_polyline),
     Key("cracks[].arc.center", "[x, y]", REQUIRED, "circular-arc crack: centre", p_point),
     Key("cracks[].arc.radius", "float", REQUIRED, "circular-arc crack: radius", p_float(positive=True)),
     Key("cracks[].arc.angles", "[start, end]", REQUIRED,
         "circular-arc crack: polar angles of its ends, degrees (counter-clockwise if end > start)",
         p_angles),
-    Key("cracks[].arc.segments", "integer", 24, "circular-arc crack: polyline segments", p_int(1)),
+    Key("cracks[].arc.segments", "integer", 24, "circular-arc crack: polyline segments, each along a tangent of the arc (the end ones along the tips' "
+        "tangents, so K sees the arc's direction there)", p_int(1)),
     Key("cracks[].ellipse.center", "[x, y, z]", REQUIRED, "3D elliptical (or circular) planar crack: centre; "
         "on a face of the part it is a surface crack, on an edge a corner crack (the part's boundary cuts it)",
         p_point3),
@@ -59,8 +60,7 @@ def build_crack(c: dict, i: int) -> Crack:
         t0, t1 = np.radians(a["angles"])
         if abs(t1 - t0) < 1e-12:
             raise InputError(f"cracks[{i}].arc.angles: the start and end angles are equal")
-        t = np.linspace(t0, t1, a["segments"] + 1)
-        pts = np.asarray(a["center"]) + a["radius"] * np.stack([np.cos(t), np.sin(t)], axis=1)
+        pts = arc_polyline(a["center"], a["radius"], t0, t1, a["segments"])
         return Crack(pts, name=name, pressure=c["pressure"], pressure_group=c["pressure_group"])
     return Crack(np.asarray(c["points"], dtype=float), name=name, pressure=c["pressure"],
                  pressure_group=c["pressure_group"])

@@ -84,7 +84,8 @@ def p_str(value, path):
 def p_choice(*choices: str):
     def parse(value, path):
         if value not in choices:
-            close = difflib.get_close_matches(str(value), choices, n=1, cutoff=0.0)
+            same = [c for c in choices if c.lower() == str(value).strip().lower()]   # 'Y' means 'y'
+            close = same or difflib.get_close_matches(str(value), choices, n=1, cutoff=0.0)
             hint = f"; did you mean {close[0]!r}?" if close else ""
             raise InputError(f"{path} must be one of {', '.join(repr(c) for c in choices)}, "
                              f"got {value!r}{hint}")

@@ -21,7 +21,7 @@ from ...errors import CrackGeometryError
 from ...scene.options import Options
 from ...scene.stress_field import evaluate_stress, tensor_to_voigt
 from ...scene.processes import agree, first_error, mark_collective, reduced, total, world
-from ..boundary import boundary_normals, boundary_segments
+from ..boundary import boundary_normals, boundary_segments, inside_segments, on_boundary
 from . import CrackModel
 
 logger = logging.getLogger(__name__)
@@ -69,7 +69,13 @@ class CurveCrackModel(CrackModel):
     # -- construction ---------------------------------------------------------
     @classmethod
     def check_scene(cls, scene) -> None:
-        return None
+        """Cracks that cross or overlap (a junction) stop with the scene keys
+        and the place, before the enrichment finds a cell cut twice."""
+        for i, j, where in crossings([c.points for c in scene.cracks]):
+            raise CrackGeometryError(
+                f"cracks[{i}] ({scene.cracks[i].name}) and cracks[{j}] ({scene.cracks[j].name}) "
+                f"{where}: crossing, branching or overlapping cracks (junctions) are not supported; "
+                "end one crack short of the other (by a few elements) or join them into one polyline")
 
     @classmethod
     def create(cls, scene, crack, x: np.ndarray, cells: np.ndarray) -> "CurveCrackModel":
@@ -205,26 +211,58 @@ def _check_off_boundary(crack, geometry, x: np.ndarray, cells: np.ndarray, num_o
                 "shorten it")
 
 
+def crossings(polylines: list[np.ndarray]):
+    """(i, j, 'cross at (x, y)' or 'overlap at (x, y)') for every pair of
+    polylines whose segments meet (2D)."""
+    for i in range(len(polylines)):
+        for j in range(i + 1, len(polylines)):
+            P, Q = np.asarray(polylines[i], dtype=float), np.asarray(polylines[j], dtype=float)
+            scale = float(np.ptp(np.concatenate([P, Q]), axis=0).max()) or 1.0
+            if np.any(P.min(axis=0) > Q.max(axis=0) + 1e-12 * scale) or \
+                    np.any(Q.min(axis=0) > P.max(axis=0) + 1e-12 * scale):
+                continue
+            hit = _meet(P, Q, 1e-12 * scale)
+            if hit is not None:
+                yield i, j, hit
+
+
+def _meet(P: np.ndarray, Q: np.ndarray, tol: float) -> str | None:
+    for p0, p1 in zip(P[:-1], P[1:]):
+        d = p1 - p0
+        for q0, q1 in zip(Q[:-1], Q[1:]):
+            e = q1 - q0
+            den = d[0] * e[1] - d[1] * e[0]
+            w = q0 - p0
+            if abs(den) > tol * (np.linalg.norm(d) + np.linalg.norm(e)):
+                t = (w[0] * e[1] - w[1] * e[0]) / den
+                u = (w[0] * d[1] - w[1] * d[0]) / den
+                if -1e-12 <= t <= 1 + 1e-12 and -1e-12 <= u <= 1 + 1e-12:
+                    x = p0 + t * d
+                    return f"cross at ({x[0]:.6g}, {x[1]:.6g})"
+            elif abs(w[0] * d[1] - w[1] * d[0]) <= tol * np.linalg.norm(d):  # collinear
+                L2 = float(np.dot(d, d))
+                lo, hi = sorted((float(np.dot(q0 - p0, d)) / L2, float(np.dot(q1 - p0, d)) / L2))
+                a, b = max(lo, 0.0), min(hi, 1.0)
+                if b >= a:
+                    x = p0 + 0.5 * (a + b) * d
+                    return f"overlap at ({x[0]:.6g}, {x[1]:.6g})"
+    return None
+
+
 def tip_flags(scene, crack) -> tuple[bool, bool]:
     """An end point is a tip when it lies inside the domain, off the boundary.
 
     Inside-ness is decided by ray casting against the boundary facets, so the
-    cost is proportional to the boundary, not to the mesh.
+    cost is proportional to the boundary, not to the mesh. "Off the
+    boundary" allows for a curved boundary's facets being chords
+    (boundary.boundary_tolerance): an end on a hole's circle lies up to
+    the sagitta inside the meshed part, and is the mouth of an edge crack
+    on every mesh, not a tip on some (a tip a sagitta from the hole).
     """
     a, b = boundary_segments(scene.mesh)
     scale = float(max(np.ptp(a, axis=0).max(), np.ptp(b, axis=0).max()))
-    d = b - a
-    flags = []
-    for p in crack.points[[0, -1]]:
-        t = np.clip(np.einsum("ij,ij->i", p - a, d) / np.einsum("ij,ij->i", d, d), 0.0, 1.0)
-        dist = np.linalg.norm(a + t[:, None] * d - p, axis=1).min()
-        # Horizontal ray to +x: count facets straddling y = p_y right of p.
-        straddle = (a[:, 1] > p[1]) != (b[:, 1] > p[1])
-        with np.errstate(divide="ignore", invalid="ignore"):
-            xc = a[:, 0] + (p[1] - a[:, 1]) * d[:, 0] / d[:, 1]
-        inside = np.count_nonzero(straddle & (xc > p[0])) % 2 == 1
-        flags.append(bool(inside and dist > 1e-9 * scale))
-    return flags[0], flags[1]
+    return tuple(bool(inside_segments(p, a, b) and not on_boundary(p, a, b, scale))
+                 for p in crack.points[[0, -1]])
 
 
-__all__ = ["CurveCrackModel", "arc_length", "tip_flags", "von_mises"]
+__all__ = ["CurveCrackModel", "arc_length", "crossings", "tip_flags", "von_mises"]
