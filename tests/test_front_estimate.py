@@ -403,6 +403,35 @@ def test_front_summary_marks_flagged_extremes():
     assert "K_II: min -1 at s = 1.5 (between front points) (1, 0, 0)" in text and "point None" not in text
 
 
+def test_worst_estimate_between_front_points_is_named_by_its_position():
+    """The largest estimated error of K sits at a position asked for between
+    front points (options.sif_angle_step: `point` None) on a corner crack's
+    coarse front: the summary line and the `discretisation` warning named
+    it 'point None' / 'front point None' and counted the interpolated rows as
+    front points; they now give its arc length and parametric angle."""
+    import math
+    from types import SimpleNamespace
+    from cracklip.cli import front_summary
+    from cracklip.post import checks
+    rows = [{"crack": 0, "crack_name": "c", "tip": None, "point": i, "s": float(i), "x": float(i), "y": 0.0,
+             "z": 0.0, "position": [float(i), 0.0, 0.0], "parametric_angle": 0.1 * i, "free_surface": False,
+             "domain_clear": True, "K_I": 1.0, "K_II": 0.0, "K_III": 0.0, "K_I_error": 0.001, "K_II_error": 0.0,
+             "K_III_error": 0.0, "K_I_levels": [1.0, 1.0]} for i in range(4)]
+    rows.append(dict(rows[1], point=None, s=1.5, x=1.5, position=[1.5, 0.0, 0.0], parametric_angle=0.15,
+                     K_I_error=0.05, K_I_levels=[1.0, 1.05]))
+    est = {"K_scale": 1.0, "target": None, "size_factors": [1.0, math.sqrt(2)], "of_size_factor": 1.0,
+           "meshes": "every element size times 1.41", "largest_relative_error": 0.05}
+    text = "\n".join(front_summary(rows, None, None))
+    assert "point None" not in text
+    assert "estimated error up to 0.05 at s = 1.5 (between front points) (1.5, 0, 0, parametric angle 8.6 deg)" in text
+    sol = SimpleNamespace(error_estimate=est, model=SimpleNamespace(cracks=[SimpleNamespace(crack=SimpleNamespace(
+        name="c"))]), stress_intensity_factors=lambda crack: rows)
+    (code, message), = checks.estimate(sol)
+    assert code == "discretisation" and "None" not in message
+    assert message.startswith("the front at s = 1.5 (between front points, parametric angle 8.594 deg) of crack 'c'")
+    assert "(1 of 5 positions along its front above 1 %)" in message
+
+
 def test_demo_cap_scene_loads(tmp_path):
     """demos/front_estimate.py's spherical cap: the STL next to the scene,
     nu = 0.22, hydrostatic tension on all six faces."""
