@@ -118,6 +118,9 @@ def test_unit_slips_are_warned(corner_model):
     assert "usual E in GPa" in w and "too large" in w
     (w,) = _units_warnings(corner_model, units=Units("m", stress="MPa"))
     assert "the part is 80 m across" in w and "units.length = 'm'" in w and "drawn in mm read in m" in w
+    # Too small: the example says so (it gave the too-large one, "drawn in mm read in m is 1000 times too large").
+    (w,) = _units_warnings(corner_model, units=Units("um", stress="MPa"))
+    assert "the part is 80 um across" in w and "1000 times too small" in w and "too large" not in w
     assert _units_warnings(corner_model, units=Units("mm", stress="MPa"), E=70000.0) == []
     # Without [units]: loads 1e-9 of E (E in Pa, 100 MPa) are warned about.
     (w,) = _units_warnings(corner_model, units=None, E=70e9)

@@ -681,12 +681,14 @@ def check_units(model) -> list[ModelWarning]:
         size_m = size * units.length_si
         lo, hi = SIZE_RANGE_M
         if not lo <= size_m <= hi:
+            slip = ("a part drawn in mm read in m is 1000 times too large" if size_m > hi else
+                    "a part drawn in m read in mm is 1000 times too small")
             out.append(ModelWarning("units", (
                 f"the part is {size:.4g} {units.length} across (the largest side of its bounding box)"
                 + ("" if units.length == "m" else f", i.e. {size_m:.3g} m") + ", "
                 f"{'more' if size_m > hi else 'less'} than the {lo * 1e3:g} mm .. {hi:g} m of the "
                 f"parts cracklip models: was the geometry drawn in another unit than units.length = "
-                f"{units.length!r} (a part drawn in mm read in m is 1000 times too large)? Every length of the "
+                f"{units.length!r} ({slip})? Every length of the "
                 "scene (mesh.h, tip_h, the cracks, the loads' positions) is in units.length; set it to the "
                 "geometry's unit")))
     else:
