@@ -3,12 +3,13 @@
 
 Front points. Along every front piece the points are spaced by the hat
 half-width l(s) each wants (sif_3d: HAT_ELEMENTS front elements, shorter
-where the front curves), capped so that the piece gets at least
-Options.sif_points points (MIN_POINTS = 16; a loop's length / n, an open
-piece's length / (n - 1)), but never closer than MIN_HAT_ELEMENTS element
-sizes (the floor: a hat narrower than two elements scatters, sif_3d). So a
-front shorter than (n - 1) x 2 element sizes gets fewer points: the mesh
-along the front limits them (refine with mesh.tip_h). An open piece keeps
+where the front curves, but never closer than MIN_HAT_ELEMENTS element
+sizes: a hat narrower than two elements scatters), capped so that the piece
+gets at least Options.sif_points points (MIN_POINTS = 16; a loop's length
+/ n, an open piece's length / (n - 1)) where that leaves hats of
+COUNT_HAT_ELEMENTS (3) element sizes (front_points: two-element hats run
+low). So a front shorter than (n - 1) x 3 element sizes gets fewer points:
+the mesh along the front limits them (refine with mesh.tip_h). An open piece keeps
 both ends.
 
 Positions asked for. Options.sif_angles / sif_angle_step (parametric
