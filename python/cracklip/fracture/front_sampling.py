@@ -175,6 +175,36 @@ def requested_positions(options, crack, x: np.ndarray, s: np.ndarray, length: fl
     return v, notes
 
 
+def unmatched_positions(options, crack, pieces: list[tuple[np.ndarray, np.ndarray, float, bool, float]]
+                        ) -> list[str]:
+    """Notes on the positions asked for by value that fall on no piece of a
+    crack's front (pieces: (x, s, length, closed, tol) as requested_positions
+    takes them): an explicit options.sif_angles angle the front does not
+    reach (sif_angle_step's sweep of the whole turn is not named), an
+    options.sif_arc_lengths value beyond every open piece's end. Such a
+    position gave no row and no word (a corner crack of radius 2, front
+    3.14 long, asked for s = 5: nothing)."""
+    notes = []
+    angles = [float(a) for a in (options.sif_angles or [])]
+    if angles and hasattr(crack, "parametric_angle"):
+        missed = [a for a in angles
+                  if not any(_angle_positions(crack, np.radians([a]), x, s_, L, closed, tol)
+                             for x, s_, L, closed, tol in pieces)]
+        if missed:
+            notes.append(f"crack {crack.name!r}: options.sif_angles {missed} (degrees) are on no piece of its front "
+                         "inside the part: no K there (front.csv's parametric_angle_deg has the angles the front "
+                         "covers)")
+    lengths = [float(v) for v in (options.sif_arc_lengths or [])]
+    if lengths and not any(closed for _, _, _, closed, _ in pieces):
+        longest = max((L + tol for _, _, L, _, tol in pieces), default=0.0)
+        missed = [v for v in lengths if v > longest]
+        if missed:
+            notes.append(f"crack {crack.name!r}: options.sif_arc_lengths {missed} are beyond the end of every piece "
+                         f"of its front (the longest is {max(L for _, _, L, _, _ in pieces):.4g} long; arc lengths "
+                         "run from 0 at each piece's start, front.csv's s): no K there")
+    return notes
+
+
 def _angle_positions(crack, theta: np.ndarray, x: np.ndarray, s: np.ndarray, length: float, closed: bool,
                      tol: float) -> list[float]:
     """Arc lengths where the piece's parametric angle (unwrapped along its
@@ -446,5 +476,6 @@ def interpolate(s: np.ndarray, K: np.ndarray, at: np.ndarray, length: float, clo
 
 
 __all__ = ["MIN_POINTS", "MIRROR_SIGNS", "END_WINDOW", "END_CURVATURE", "END_POINTS", "END_DEGREE", "END_SHAPE",
-           "SOURCES", "requested_positions", "piece_stations", "mirrored_sequence", "end_window", "shape_weights",
-           "conic_curvatures", "end_curvatures", "END_ROUGHER", "end_value", "interpolate"]
+           "SOURCES", "requested_positions", "unmatched_positions", "piece_stations", "mirrored_sequence",
+           "end_window", "shape_weights", "conic_curvatures", "end_curvatures", "END_ROUGHER", "end_value",
+           "interpolate"]
