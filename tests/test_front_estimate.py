@@ -475,6 +475,12 @@ def test_worst_estimate_between_front_points_is_named_by_its_position():
     assert code == "discretisation" and "None" not in message
     assert message.startswith("the front at s = 1.5 (between front points, parametric angle 8.594 deg) of crack 'c'")
     assert "(1 of 5 positions along its front above 1 %)" in message
+    # A tie (an asked row takes the larger estimate of its two neighbouring points): the point is named.
+    rows[2].update(K_I_error=0.05, K_I_levels=[1.0, 1.05])
+    (code, message), = checks.estimate(sol)
+    assert message.startswith("front point 2 of crack 'c'") and "(2 of 5 positions" in message
+    text = "\n".join(front_summary(rows, None, None))
+    assert "estimated error up to 0.05 at point 2 (2, 0, 0, parametric angle 11.5 deg)" in text
 
 
 def test_demo_cap_scene_loads(tmp_path):

@@ -649,8 +649,8 @@ def _attach(solution, levels: list[Level], est, target: float | None, method: st
     worst, where = 0.0, None
     for s, rows in enumerate(mine.rows):
         for r in rows:
-            if r.get("free_surface"):
-                continue
+            if r.get("free_surface") or (mine.front and interpolated(r)):
+                continue  # (an asked position's estimate is its neighbouring points')
             e = est[(s, r["crack"], point_label(r))]
             for mode in _modes(rows):
                 if e[f"{mode}_error"] > worst:

@@ -195,7 +195,10 @@ def estimate(solution) -> list[tuple[str, str]]:
             if not over:
                 continue
             front = mine[0]["tip"] is None
-            for r, mode in (over if not front else [max(over, key=lambda o: o[0][f"{o[1]}_error"])]):
+            # the worst (a front point where an asked position between points ties with it: their
+            # estimate is the larger of their neighbouring points')
+            for r, mode in (over if not front else [max(over, key=lambda o: (o[0][f"{o[1]}_error"],
+                                                                             o[0].get("point") is not None))]):
                 what = (f"{front_row_name(r)} of crack {names[crack]!r} at ({r['x']:.6g}, {r['y']:.6g}, "
                         f"{r['z']:.6g})" if front else f"tip {r['tip']} of crack {names[crack]!r} at ({r['x']:.6g}, "
                         f"{r['y']:.6g})")
