@@ -2,6 +2,7 @@
 (cracklip.scene.mesh_3d): frames, front sampling, areas, bad input, and a
 box meshed finer around a penny crack's front."""
 import math
+import pathlib
 
 import numpy as np
 import pytest
@@ -115,3 +116,54 @@ def test_cylinder_tags():
     assert set(md.tags) == {"bottom", "top", "side"} and all(md.facets(t).size > 0 for t in md.tags)
     with pytest.raises(cl.MeshError):
         create_cylinder((0, 0, 0), (0, 0, 0), 1.0, 2.0, 0.4)
+
+
+def _square_stl(path, hole: bool) -> None:
+    """A 0.6 x 0.6 square crack in z = 0 as 72 triangles (a 6 x 6 grid),
+    without its 8 central triangles if `hole`: a 0.2 x 0.2 gap."""
+    xs = np.linspace(-0.3, 0.3, 7)
+    lines = ["solid c"]
+    for i in range(6):
+        for j in range(6):
+            if hole and i in (2, 3) and j in (2, 3):
+                continue
+            p = [(xs[i], xs[j]), (xs[i + 1], xs[j]), (xs[i + 1], xs[j + 1]), (xs[i], xs[j + 1])]
+            for t in ((p[0], p[1], p[2]), (p[0], p[2], p[3])):
+                lines += ["facet normal 0 0 1", "outer loop", *[f"vertex {q[0]:.6f} {q[1]:.6f} 0" for q in t],
+                          "endloop", "endfacet"]
+    pathlib.Path(path).write_text("\n".join(lines + ["endsolid c", ""]))
+
+
+def test_a_hole_in_a_triangulated_crack_is_warned_about(tmp_path, capsys):
+    """A gap in an STL crack inside the part becomes a closed front piece
+    around an uncracked ligament: the model warns (crack_hole), naming the
+    loop, where it was silent; the same square without the gap does not."""
+    from cracklip import cli
+    from cracklip.model.checks import surface_holes
+    for hole in (True, False):
+        _square_stl(tmp_path / f"c{int(hole)}.stl", hole)
+        assert surface_holes(read_crack_surface(tmp_path / f"c{int(hole)}.stl")) == int(hole)
+        scene = tmp_path / f"s{int(hole)}.toml"
+        scene.write_text(f"""[mesh]
+kind = "box"
+box = [-1.0, -1.0, -1.0, 1.0, 1.0, 1.0]
+h = 0.5
+tip_h = 0.05
+[material]
+E = 1.0
+nu = 0.3
+[[cracks]]
+surface = "c{int(hole)}.stl"
+[[dirichlet]]
+tag = "zmin"
+[[loads.tractions]]
+tag = "zmax"
+value = [0.0, 0.0, 1.0]
+""")
+        assert cli.main(["check", str(scene)]) == 0
+        err = capsys.readouterr().err
+        if hole:
+            assert "its front has 2 pieces, 1 of them closed loops inside the surface (piece 1:" in err
+            assert "length 0.7" in err and "uncracked ligament" in err
+        else:
+            assert "uncracked ligament" not in err

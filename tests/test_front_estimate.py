@@ -91,6 +91,51 @@ def test_estimate_of_a_front_with_scatter():
     assert max(est[(0, 0, i)]["K_III_error"] for i in range(20)) == pytest.approx(2e-4, rel=1e-9)
 
 
+def _with_asked_positions(level: Level, per_gap: int) -> Level:
+    """The level with `per_gap` rows asked for between every two front points
+    of its loop (options.sif_angle_step: point None, K_source
+    "interpolation", K the spline through the points' K)."""
+    from cracklip.fracture.front_sampling import interpolate
+    rows = level.rows[0]
+    length = level.lengths[(0, 0)]
+    s = np.array([r["s"] for r in rows])
+    K = np.array([[r[m] for m in ("K_I", "K_II", "K_III")] for r in rows])
+    gaps = np.diff(np.append(s, length))
+    at = np.concatenate([s[i] + gaps[i] * np.arange(1, per_gap + 1) / (per_gap + 1) for i in range(len(s))])
+    Ka = interpolate(s, K, at, length, True)
+    extra = [{"crack": 0, "piece": 0, "point": None, "s": float(t), "position": [math.cos(t), math.sin(t), 0.0],
+              "K_I": float(k[0]), "K_II": float(k[1]), "K_III": float(k[2]), "free_surface": False,
+              "K_source": "interpolation"} for t, k in zip(at, Ka)]
+    both = sorted(rows + extra, key=lambda r: r["s"])
+    return Level(level.size_factor, level.dofs, 0.0, [both], front=True, closed=level.closed, lengths=level.lengths)
+
+
+def test_asked_positions_do_not_change_the_estimate():
+    """Rows asked for between front points (every 5 degrees of a corner
+    crack: K interpolated, no point index) are no independent values of K:
+    the estimate at the front points is the same with and without them, on
+    either mesh, with and without the fit along the front, and an asked
+    row's error is the larger of its two neighbouring points'. Counting
+    them as points changed a flange corner crack's estimates at its 3
+    interior points from 72.7, 25.0, 72.3 to 27.4, 15.6, 27.5 MPa sqrt(mm),
+    fitted K on 3 interior points, and put 3.5 between 27.4 and 15.6."""
+    coarse, fine = _scattered_level(RHO, 14, 0.05), _scattered_level(1.0, 20, 0.0)
+    for smooth in (False, True):
+        plain = estimate([coarse, fine], smooth=smooth)
+        asked = estimate([_with_asked_positions(coarse, 2), _with_asked_positions(fine, 3)], smooth=smooth)
+        for i in range(20):
+            for key in ("K_I_error", "K_III_error", "K_I_smoothed" if smooth else "K_I_levels"):
+                assert asked[(0, 0, i)][key] == pytest.approx(plain[(0, 0, i)][key], rel=1e-12, abs=1e-15)
+        labels = [k for k in asked if isinstance(k[2], str)]
+        assert len(labels) == 60
+        s_points = [2 * math.pi * i / 20 for i in range(20)]
+        for key in labels:
+            s = float(key[2][2:])
+            i = int(np.searchsorted(s_points, s)) - 1
+            near = [plain[(0, 0, i)]["K_I_error"], plain[(0, 0, (i + 1) % 20)]["K_I_error"]]
+            assert asked[key]["K_I_error"] == pytest.approx(max(near), rel=1e-12)
+
+
 def _ellipse_level(f: float, n: int, phase: float, a: float = 1.0, b: float = 0.5) -> tuple[Level, np.ndarray]:
     """A loop of n points equally spaced in arc length (from `phase` of the
     perimeter on) along the ellipse a x b, K_I = Irwin's exact K times (1 -
@@ -401,6 +446,41 @@ def test_front_summary_marks_flagged_extremes():
     assert "max 3 at point 0 (0, 0, 0, the end value at a free surface)" in text
     assert "min 1 at point 2 (2, 0, 0, NOT reliable)" in text
     assert "K_II: min -1 at s = 1.5 (between front points) (1, 0, 0)" in text and "point None" not in text
+
+
+def test_worst_estimate_between_front_points_is_named_by_its_position():
+    """The largest estimated error of K sits at a position asked for between
+    front points (options.sif_angle_step: `point` None) on a corner crack's
+    coarse front: the summary line and the `discretisation` warning named
+    it 'point None' / 'front point None' and counted the interpolated rows as
+    front points; they now give its arc length and parametric angle."""
+    import math
+    from types import SimpleNamespace
+    from cracklip.cli import front_summary
+    from cracklip.post import checks
+    rows = [{"crack": 0, "crack_name": "c", "tip": None, "point": i, "s": float(i), "x": float(i), "y": 0.0,
+             "z": 0.0, "position": [float(i), 0.0, 0.0], "parametric_angle": 0.1 * i, "free_surface": False,
+             "domain_clear": True, "K_I": 1.0, "K_II": 0.0, "K_III": 0.0, "K_I_error": 0.001, "K_II_error": 0.0,
+             "K_III_error": 0.0, "K_I_levels": [1.0, 1.0]} for i in range(4)]
+    rows.append(dict(rows[1], point=None, s=1.5, x=1.5, position=[1.5, 0.0, 0.0], parametric_angle=0.15,
+                     K_I_error=0.05, K_I_levels=[1.0, 1.05]))
+    est = {"K_scale": 1.0, "target": None, "size_factors": [1.0, math.sqrt(2)], "of_size_factor": 1.0,
+           "meshes": "every element size times 1.41", "largest_relative_error": 0.05}
+    text = "\n".join(front_summary(rows, None, None))
+    assert "point None" not in text
+    assert "estimated error up to 0.05 at s = 1.5 (between front points) (1.5, 0, 0, parametric angle 8.6 deg)" in text
+    sol = SimpleNamespace(error_estimate=est, model=SimpleNamespace(cracks=[SimpleNamespace(crack=SimpleNamespace(
+        name="c"))]), stress_intensity_factors=lambda crack: rows)
+    (code, message), = checks.estimate(sol)
+    assert code == "discretisation" and "None" not in message
+    assert message.startswith("the front at s = 1.5 (between front points, parametric angle 8.594 deg) of crack 'c'")
+    assert "(1 of 5 positions along its front above 1 %)" in message
+    # A tie (an asked row takes the larger estimate of its two neighbouring points): the point is named.
+    rows[2].update(K_I_error=0.05, K_I_levels=[1.0, 1.05])
+    (code, message), = checks.estimate(sol)
+    assert message.startswith("front point 2 of crack 'c'") and "(2 of 5 positions" in message
+    text = "\n".join(front_summary(rows, None, None))
+    assert "estimated error up to 0.05 at point 2 (2, 0, 0, parametric angle 11.5 deg)" in text
 
 
 def test_demo_cap_scene_loads(tmp_path):

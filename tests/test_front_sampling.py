@@ -280,3 +280,23 @@ def test_interpolation():
     s = np.linspace(0.0, 1.0, 6)
     out = fs.interpolate(s, s ** 3, np.array([0.05, 0.55]), 1.0, False)
     assert np.allclose(out, [0.05 ** 3, 0.55 ** 3], atol=2e-3)
+
+
+def test_positions_on_no_piece_are_named():
+    """A corner crack's quarter front (parametric angles 0..90 degrees,
+    length pi/2 for a = 1): an explicit angle of 180 degrees and an arc
+    length of 5 fall on no piece, which gave no row and no word; they are
+    now named (the sweep of sif_angle_step over the whole turn is not, nor
+    are positions that fall on the front)."""
+    from types import SimpleNamespace
+    crack = EllipticalCrack((0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 1.0, axis=(1.0, 0.0, 0.0), name="corner")
+    t = np.linspace(0.0, math.pi / 2, 40)
+    x = np.column_stack([np.cos(t), np.sin(t), np.zeros_like(t)])
+    pieces = [(x, t.copy(), math.pi / 2, False, 0.02)]
+    opts = SimpleNamespace(sif_angles=[0.0, 45.0, 180.0], sif_angle_step=5.0, sif_arc_lengths=[1.0, 5.0])
+    notes = fs.unmatched_positions(opts, crack, pieces)
+    assert len(notes) == 2
+    assert "options.sif_angles [180.0] (degrees) are on no piece" in notes[0]
+    assert "options.sif_arc_lengths [5.0] are beyond the end of every piece" in notes[1] and "1.571 long" in notes[1]
+    fine = SimpleNamespace(sif_angles=[0.0, 90.0], sif_angle_step=5.0, sif_arc_lengths=[1.5])
+    assert fs.unmatched_positions(fine, crack, pieces) == []

@@ -536,8 +536,10 @@ def _stl(path, triangles):
 def test_bad_triangulated_surface(tmp_path, capsys, triangles, match):
     _stl(tmp_path / "crack.stl", triangles)
     sf = build_scene(_penny_doc(cracks=[{"name": "fin", "surface": "crack.stl"}]), base_dir=tmp_path)
-    with pytest.raises(cl.CrackGeometryError, match="fin: triangulated crack: .*" + match):
+    with pytest.raises(cl.CrackGeometryError, match="fin: triangulated crack: .*" + match) as e:
         cl.create_model(sf.scene)
+    # the scene key and the file, where a scene has several cracks from files
+    assert "(cracks[0].surface = 'crack.stl': its triangles counted from 0 in the file's order)" in str(e.value)
 
 
 def test_radius_that_enriches_no_node():

@@ -159,6 +159,11 @@ def test_surface_crack_front_outputs(tmp_path):
         assert key in res["files"] and (tmp_path / key).exists()
     free = [int(r["free_surface"]) for r in rows]
     assert free[0] == 1 and free[-1] == 1 and sum(free) == 2
+    # The parametric angle also in degrees, the unit options.sif_angles asks in
+    # (parametric_angle is in radians: 1.5708 at the deepest point).
+    for r in rows:
+        assert float(r["parametric_angle_deg"]) == pytest.approx(math.degrees(float(r["parametric_angle"])),
+                                                                 rel=1e-9)
     for r in res["sifs"]:
         assert {"K_I_spread", "K_II_spread", "K_III_spread"} <= set(r)
         assert r["parametric_angle"] is not None

@@ -118,6 +118,9 @@ def test_unit_slips_are_warned(corner_model):
     assert "usual E in GPa" in w and "too large" in w
     (w,) = _units_warnings(corner_model, units=Units("m", stress="MPa"))
     assert "the part is 80 m across" in w and "units.length = 'm'" in w and "drawn in mm read in m" in w
+    # Too small: the example says so (it gave the too-large one, "drawn in mm read in m is 1000 times too large").
+    (w,) = _units_warnings(corner_model, units=Units("um", stress="MPa"))
+    assert "the part is 80 um across" in w and "1000 times too small" in w and "too large" not in w
     assert _units_warnings(corner_model, units=Units("mm", stress="MPa"), E=70000.0) == []
     # Without [units]: loads 1e-9 of E (E in Pa, 100 MPa) are warned about.
     (w,) = _units_warnings(corner_model, units=None, E=70e9)
@@ -206,3 +209,21 @@ def test_mumps_out_of_memory_is_named():
     assert "SolverError: MUMPS ran out of memory factoring the X-FEM stiffness system" in out, (out, run.stderr[-2000:])
     assert "unknowns; INFOG(1) = -13" in out and "options.solver = \"iterative\"" in out and "mesh.tip_h" in out
 
+
+
+def test_end_values_on_few_interior_points_are_warned(tmp_path):
+    """The corner crack at a hole at tip_h 0.2: 4 front points, 2 of them
+    interior, so each free-surface end value is the quadratic through the
+    two (no least squares: their scatter extrapolated; docs/sifs.md: the end
+    values moved 13 % on 4-6 front points). Both ends are now warned about
+    (sif_points), where nothing was said between 2 and 3 interior points;
+    the shipped sizes (tip_h 0.15: 6 points, 4 interior) are not."""
+    out = tmp_path / "o"
+    assert cli.main(["run"] + _args(SCENES / "corner_crack_hole.toml", "mesh.tip_h=0.2", "outputs.vtu=false",
+                                    "outputs.png=false") + ["--no-estimate", "--quiet", "--out", str(out)]) == 0
+    res = json.loads((out / "results.json").read_text())
+    points = [r for r in res["sifs"] if r["point"] is not None]
+    assert len(points) == 4 and sum(not r["free_surface"] for r in points) == 2
+    ends = [w for w in res["warnings"] if w["code"] == "sif_points" and "rests on 2 interior points" in w["message"]]
+    assert len(ends) == 2 and {w["tip"] for w in ends} == {0, 3}
+    assert all("refine along the front" in w["message"] for w in ends)

@@ -314,8 +314,8 @@ def front_summary(rows, estimate, units) -> list[str]:
             hi = max(mine, key=lambda r: r[mode])
             line = f"    {mode}: min {lo[mode]:.6g}{unit} at {where(lo)}, max {hi[mode]:.6g}{unit} at {where(hi)}"
             if inner[0].get(f"{mode}_error") is not None:
-                worst = max(inner, key=lambda r: r[f"{mode}_error"])
-                line += f"; estimated error up to {worst[f'{mode}_error']:.2g}{unit} (point {worst['point']})"
+                worst = max(inner, key=lambda r: (r[f"{mode}_error"], r["point"] is not None))
+                line += f"; estimated error up to {worst[f'{mode}_error']:.2g}{unit} at {where(worst)}"
             out.append(line)
         free = sum(1 for r in mine if r["free_surface"])
         unclear = sum(1 for r in mine if not r["domain_clear"])

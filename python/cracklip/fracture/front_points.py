@@ -228,7 +228,7 @@ def stations(model, crack: int, spacing: float | None) -> tuple[list[dict], list
     opts = model.scene.options
     floor = MIN_HAT_ELEMENTS * h if not spacing else min(MIN_HAT_ELEMENTS * h, spacing)
     crk = model.cracks[crack].crack
-    out, between_all, notes_all = [], [], []
+    out, between_all, notes_all, pieces = [], [], [], []
     for k in range(len(fr.closed)):
         L = float(fr.length[k])
         if L <= 0.0:
@@ -236,6 +236,7 @@ def stations(model, crack: int, spacing: float | None) -> tuple[list[dict], list
         closed = bool(fr.closed[k])
         idx = np.arange(fr.offsets[k], fr.offsets[k + 1])
         sv = fr.s[idx]
+        pieces.append((fr.x[idx], sv, L, closed, 0.5 * h))
         if spacing or HAT_CURVATURE <= 0.0 or len(idx) < 3:
             wanted = np.full(len(idx), spacing if spacing else HAT_ELEMENTS * h)
         else:
@@ -268,6 +269,7 @@ def stations(model, crack: int, spacing: float | None) -> tuple[list[dict], list
                         "hat_after": float(after[j]), "end": end, "end_on_boundary": on_boundary,
                         "symmetry": None if plane is None else plane.label, "requested": bool(requested[j])})
         between_all += [{"piece": k, "s": float(b), "closed": closed, "length": L} for b in between]
+    notes_all += [n_ for n_ in front_sampling.unmatched_positions(opts, crk, pieces) if n_ not in notes_all]
     return out, between_all, notes_all
 
 

@@ -3,12 +3,13 @@
 
 Front points. Along every front piece the points are spaced by the hat
 half-width l(s) each wants (sif_3d: HAT_ELEMENTS front elements, shorter
-where the front curves), capped so that the piece gets at least
-Options.sif_points points (MIN_POINTS = 16; a loop's length / n, an open
-piece's length / (n - 1)), but never closer than MIN_HAT_ELEMENTS element
-sizes (the floor: a hat narrower than two elements scatters, sif_3d). So a
-front shorter than (n - 1) x 2 element sizes gets fewer points: the mesh
-along the front limits them (refine with mesh.tip_h). An open piece keeps
+where the front curves, but never closer than MIN_HAT_ELEMENTS element
+sizes: a hat narrower than two elements scatters), capped so that the piece
+gets at least Options.sif_points points (MIN_POINTS = 16; a loop's length
+/ n, an open piece's length / (n - 1)) where that leaves hats of
+COUNT_HAT_ELEMENTS (3) element sizes (front_points: two-element hats run
+low). So a front shorter than (n - 1) x 3 element sizes gets fewer points:
+the mesh along the front limits them (refine with mesh.tip_h). An open piece keeps
 both ends.
 
 Positions asked for. Options.sif_angles / sif_angle_step (parametric
@@ -172,6 +173,36 @@ def requested_positions(options, crack, x: np.ndarray, s: np.ndarray, length: fl
     if closed and len(v) > 1 and length - v[-1] + v[0] <= 1e-9 * length:
         v = v[:-1]
     return v, notes
+
+
+def unmatched_positions(options, crack, pieces: list[tuple[np.ndarray, np.ndarray, float, bool, float]]
+                        ) -> list[str]:
+    """Notes on the positions asked for by value that fall on no piece of a
+    crack's front (pieces: (x, s, length, closed, tol) as requested_positions
+    takes them): an explicit options.sif_angles angle the front does not
+    reach (sif_angle_step's sweep of the whole turn is not named), an
+    options.sif_arc_lengths value beyond every open piece's end. Such a
+    position gave no row and no word (a corner crack of radius 2, front
+    3.14 long, asked for s = 5: nothing)."""
+    notes = []
+    angles = [float(a) for a in (options.sif_angles or [])]
+    if angles and hasattr(crack, "parametric_angle"):
+        missed = [a for a in angles
+                  if not any(_angle_positions(crack, np.radians([a]), x, s_, L, closed, tol)
+                             for x, s_, L, closed, tol in pieces)]
+        if missed:
+            notes.append(f"crack {crack.name!r}: options.sif_angles {missed} (degrees) are on no piece of its front "
+                         "inside the part: no K there (front.csv's parametric_angle_deg has the angles the front "
+                         "covers)")
+    lengths = [float(v) for v in (options.sif_arc_lengths or [])]
+    if lengths and not any(closed for _, _, _, closed, _ in pieces):
+        longest = max((L + tol for _, _, L, _, tol in pieces), default=0.0)
+        missed = [v for v in lengths if v > longest]
+        if missed:
+            notes.append(f"crack {crack.name!r}: options.sif_arc_lengths {missed} are beyond the end of every piece "
+                         f"of its front (the longest is {max(L for _, _, L, _, _ in pieces):.4g} long; arc lengths "
+                         "run from 0 at each piece's start, front.csv's s): no K there")
+    return notes
 
 
 def _angle_positions(crack, theta: np.ndarray, x: np.ndarray, s: np.ndarray, length: float, closed: bool,
@@ -445,5 +476,6 @@ def interpolate(s: np.ndarray, K: np.ndarray, at: np.ndarray, length: float, clo
 
 
 __all__ = ["MIN_POINTS", "MIRROR_SIGNS", "END_WINDOW", "END_CURVATURE", "END_POINTS", "END_DEGREE", "END_SHAPE",
-           "SOURCES", "requested_positions", "piece_stations", "mirrored_sequence", "end_window", "shape_weights",
-           "conic_curvatures", "end_curvatures", "END_ROUGHER", "end_value", "interpolate"]
+           "SOURCES", "requested_positions", "unmatched_positions", "piece_stations", "mirrored_sequence",
+           "end_window", "shape_weights", "conic_curvatures", "end_curvatures", "END_ROUGHER", "end_value",
+           "interpolate"]

@@ -469,6 +469,14 @@ def _free_surface_ends(fps: list[FrontPoint], K: np.ndarray, name: str) -> np.nd
                     + f": refine along the front ({REFINE_AT_FRONT})", "sif_points", fp.crack, fp.index))
                 if not len(inner):
                     continue
+            elif len(inner) < front_sampling.END_POINTS:
+                # The quadratic goes through every interior point: no least squares, their scatter extrapolated.
+                fp.warnings.append(CodedText(
+                    f"front point {fp.index} of crack {name!r}: the end value at the free surface rests on "
+                    f"{len(inner)} interior points (the quadratic through them; a least-squares fit wants at least "
+                    f"{front_sampling.END_POINTS}): it extrapolates their scatter (a corner crack at a hole's end "
+                    f"values moved 13 % on 4 to 6 front points, docs/sifs.md): refine along the front "
+                    f"({REFINE_AT_FRONT})", "sif_points", fp.crack, fp.index))
             s = np.array([fps[j].s for j in inner])
             near = np.abs(s - fp.s) <= front_sampling.END_WINDOW * fp.length
             window = front_sampling.end_window(fp.length, [fp.curvature] + [fps[j].curvature for j in inner[near]])

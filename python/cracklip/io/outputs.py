@@ -38,6 +38,7 @@ number of processes.
 from __future__ import annotations
 
 import logging
+import math
 import pathlib
 import time
 import typing
@@ -64,13 +65,16 @@ OPENING_SUBDIVISION = 2
 
 
 #: front.csv's columns (keys of the SIF rows): one line per front point and
-#: per position asked for (the parametric angle only for elliptical fronts,
+#: per position asked for (the parametric angle only for elliptical fronts:
+#: parametric_angle in radians as the rows hold it, parametric_angle_deg in
+#: degrees as options.sif_angles and sif_angle_step ask for it,
 #: the errors empty without an error estimate,
 #: limited_by empty when the domain was not clipped, free_surface 1 where
 #: the front meets the part's boundary off a symmetry plane: K there is the
 #: documented end value, K_source end_extrapolation; K_source and the
 #: other flags: cracklip.fracture.front_sampling, docs/sifs.md).
-FRONT_COLUMNS = ["crack", "crack_name", "point", "piece", "s", "x", "y", "z", "parametric_angle", "K_I", "K_II",
+FRONT_COLUMNS = ["crack", "crack_name", "point", "piece", "s", "x", "y", "z", "parametric_angle",
+                 "parametric_angle_deg", "K_I", "K_II",
                  "K_III", "K_I_error", "K_II_error", "K_III_error", "K_I_spread", "K_II_spread", "K_III_spread", "G", "mode_mix_deg", "radius", "radius_min",
                  "element_size", "hat", "curvature", "limited_by", "free_surface", "domain_clear", "K_source",
                  "requested", "symmetry"]
@@ -375,7 +379,11 @@ def opening_rows(cracks: typing.Sequence, facets: typing.Sequence[dict]) -> list
 
 def front_csv_rows(rows: typing.Sequence[dict]) -> list[list]:
     """front.csv's rows (FRONT_COLUMNS; flags as 0 / 1)."""
-    return [[int(v) if isinstance(v, bool) else v for v in (r.get(k) for k in FRONT_COLUMNS)] for r in rows]
+    def value(r: dict, k: str):
+        if k == "parametric_angle_deg":
+            return None if r.get("parametric_angle") is None else math.degrees(r["parametric_angle"])
+        return r.get(k)
+    return [[int(v) if isinstance(v, bool) else v for v in (value(r, k) for k in FRONT_COLUMNS)] for r in rows]
 
 
 def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: list[dict], summary: dict,

@@ -29,7 +29,9 @@ Solids (fronts), ``check_fronts(model)``:
   (enrichment_radius), front cells where the P1 front is not a line
   (degenerate_front), no front enrichment (front_enrichment), a crack
   along mesh faces whose nodes there got no Heaviside function
-  (crack_on_faces).
+  (crack_on_faces), a triangulated crack whose front has a closed piece
+  besides others: a hole in the surface, an uncracked ligament
+  (crack_hole).
   ``front_element_sizes`` is the element size reached along a front (what
   ``check`` reports): the mean edge length of each front cell.
 
@@ -535,6 +537,9 @@ def check_fronts(model) -> list[ModelWarning]:
                 "enrichment_radius", f"crack {name!r}: the enrichment radius {opts.radius:.3g} is smaller than the "
                 f"elements along the front ({hm:.3g}): few nodes beyond the front cells' get front functions; use a "
                 "radius of 2 to 3 elements", ci))
+        hole = _crack_hole(cm.crack, name, front, ci)
+        if hole is not None:
+            out.append(hole)
         if g.num_degenerate_front_cells:
             out.append(ModelWarning(
                 "degenerate_front", f"crack {name!r}: {g.num_degenerate_front_cells} front cell(s) where the P1 front "
@@ -542,6 +547,62 @@ def check_fronts(model) -> list[ModelWarning]:
                 "off the nodes by a fraction of the element size", ci))
     check_enrichment_radius(model)
     return out
+
+
+def _crack_hole(crack, name: str, front: dict, ci: int) -> ModelWarning | None:
+    """The 'crack_hole' warning: a triangulated crack (STL, .msh) whose front
+    has a closed piece besides other pieces. The closed piece is the edge
+    of a hole in the triangulation inside the part: cracklip models it as
+    an uncracked ligament whose edge is a front (K computed along it, the
+    lips joined across it), which a gap left in an exported STL makes
+    without a word (an ellipse's half-disc with a hole of radius 0.3
+    inside the part: a closed front piece of 13 points, 1.59 long, and no
+    warning)."""
+    if not hasattr(crack, "boundary_edges"):
+        return None
+    closed = np.asarray(front["closed"], dtype=bool)
+    if len(closed) < 2 or not closed.any() or surface_holes(crack) == 0:
+        return None
+    offsets = np.asarray(front["piece_offsets"])
+    x = np.asarray(front["x"]).reshape(-1, 3)
+    pieces = []
+    for k in np.flatnonzero(closed):
+        px = x[int(offsets[k]):int(offsets[k + 1])]
+        pieces.append((float(np.linalg.norm(np.diff(np.vstack([px, px[:1]]), axis=0), axis=1).sum()), int(k), px))
+    if closed.all():  # an embedded crack: its longest loop is its outer edge
+        pieces.remove(max(pieces, key=lambda p: p[0]))
+    if not pieces:
+        return None
+    where = [f"piece {k}: {len(px)} points, length {length:.4g}, around "
+             f"({', '.join(f'{v:.4g}' for v in px.mean(axis=0))})" for length, k, px in pieces]
+    return ModelWarning("crack_hole", (
+        f"crack {name!r}: its front has {len(closed)} pieces, {len(pieces)} of them closed loops inside the "
+        f"surface ({'; '.join(where)}): the triangulated surface has a hole there, modelled as an uncracked "
+        "ligament whose "
+        "edge is a front (K is computed along it and the lips stay joined inside it). If the file has a gap there "
+        "(a missing triangle, vertices not merged), close it; if the ligament is meant, ignore this"), ci)
+
+
+def surface_holes(crack) -> int:
+    """The holes of a triangulated crack: its boundary loops less its
+    connected pieces (each piece a disc with holes: a piece's outer edge is
+    one loop, every hole another)."""
+    t = np.asarray(crack.triangles)
+    e = np.sort(t[:, [[0, 1], [1, 2], [2, 0]]].reshape(-1, 2), axis=1)
+    uniq, inv, count = np.unique(e, axis=0, return_inverse=True, return_counts=True)
+    n = len(crack.vertices)
+    # triangles joined through their shared edges
+    tri = np.repeat(np.arange(len(t)), 3)
+    g = sp.coo_matrix((np.ones(len(tri)), (tri, inv.reshape(-1))), shape=(len(t), len(uniq))).tocsr()
+    pieces = scipy.sparse.csgraph.connected_components(g @ g.T, directed=False)[0]
+    b = uniq[count == 1]
+    if not len(b):
+        return 0
+    used = np.unique(b)
+    adj = sp.coo_matrix((np.ones(len(b)), (b[:, 0], b[:, 1])), shape=(n, n))
+    labels = scipy.sparse.csgraph.connected_components(adj, directed=False)[1]
+    loops = len(np.unique(labels[used]))
+    return max(0, loops - pieces)
 
 
 #: CellClass3D::face: a cell with a face on the crack, lying on one side.
@@ -620,12 +681,14 @@ def check_units(model) -> list[ModelWarning]:
         size_m = size * units.length_si
         lo, hi = SIZE_RANGE_M
         if not lo <= size_m <= hi:
+            slip = ("a part drawn in mm read in m is 1000 times too large" if size_m > hi else
+                    "a part drawn in m read in mm is 1000 times too small")
             out.append(ModelWarning("units", (
                 f"the part is {size:.4g} {units.length} across (the largest side of its bounding box)"
                 + ("" if units.length == "m" else f", i.e. {size_m:.3g} m") + ", "
                 f"{'more' if size_m > hi else 'less'} than the {lo * 1e3:g} mm .. {hi:g} m of the "
                 f"parts cracklip models: was the geometry drawn in another unit than units.length = "
-                f"{units.length!r} (a part drawn in mm read in m is 1000 times too large)? Every length of the "
+                f"{units.length!r} ({slip})? Every length of the "
                 "scene (mesh.h, tip_h, the cracks, the loads' positions) is in units.length; set it to the "
                 "geometry's unit")))
     else:

@@ -19,6 +19,8 @@ collects them with the model's and the SIFs' warnings.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ..scene.processes import reduced
@@ -159,6 +161,18 @@ def point_supports(solution, reactions: dict | None = None) -> list[tuple[str, s
     return []
 
 
+def front_row_name(r) -> str:
+    """A 3D front row as messages name it: "front point k" for a front
+    point, and for a row interpolated between front points (a position asked
+    for by options.sif_angles, sif_angle_step, sif_arc_lengths: its `point`
+    is None) its arc length s and parametric angle."""
+    if r.get("point") is not None:
+        return f"front point {r['point']}"
+    angle = r.get("parametric_angle")
+    angle = "" if angle is None else f", parametric angle {math.degrees(angle):.4g} deg"
+    return f"the front at s = {r['s']:.4g} (between front points{angle})"
+
+
 def estimate(solution) -> list[tuple[str, str]]:
     """Warnings of an error estimate (cracklip.analysis.accuracy): every 2D
     tip, and along each 3D front the worst point off the free surface
@@ -181,13 +195,16 @@ def estimate(solution) -> list[tuple[str, str]]:
             if not over:
                 continue
             front = mine[0]["tip"] is None
-            for r, mode in (over if not front else [max(over, key=lambda o: o[0][f"{o[1]}_error"])]):
-                what = (f"front point {r['point']} of crack {names[crack]!r} at ({r['x']:.6g}, {r['y']:.6g}, "
+            # the worst (a front point where an asked position between points ties with it: their
+            # estimate is the larger of their neighbouring points')
+            for r, mode in (over if not front else [max(over, key=lambda o: (o[0][f"{o[1]}_error"],
+                                                                             o[0].get("point") is not None))]):
+                what = (f"{front_row_name(r)} of crack {names[crack]!r} at ({r['x']:.6g}, {r['y']:.6g}, "
                         f"{r['z']:.6g})" if front else f"tip {r['tip']} of crack {names[crack]!r} at ({r['x']:.6g}, "
                         f"{r['y']:.6g})")
                 other = next(j for j, f in enumerate(est["size_factors"]) if f != est["of_size_factor"])
                 elsewhere = r[f"{mode}_levels"][other]
-                many = f" ({len(over)} of {len(mine)} points of its front above 1 %)" if front else ""
+                many = f" ({len(over)} of {len(mine)} positions along its front above 1 %)" if front else ""
                 out.append(("discretisation", (
                     f"{what}: {mode} = {r[mode]:.6g} has an estimated discretisation error of {r[f'{mode}_error']:.3g} "
                     f"({100 * r[f'{mode}_error'] / scale:.2g} % of the K scale {scale:.4g}; with {est['meshes']} it "

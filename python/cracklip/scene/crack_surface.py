@@ -248,6 +248,8 @@ class SurfaceCrack:
         triangles: (nt, 3) vertex indices, consistently oriented (the +
             side is that of their right-handed normals).
         name, pressure, pressure_group: as EllipticalCrack.
+        source: where it came from, for messages (a scene file's
+            "cracks[i].surface = 'file.stl'"; "" for none).
     The surface's boundary edges are its front where they lie inside the
     part. Checks here: shapes, finite values, indices in range, no
     degenerate triangle; manifoldness and orientation are checked with the
@@ -258,6 +260,7 @@ class SurfaceCrack:
     name: str = ""
     pressure: Value = 0.0
     pressure_group: str = "default"
+    source: str = ""
 
     def __post_init__(self):
         label = self.name or "crack"

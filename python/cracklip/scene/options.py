@@ -95,9 +95,10 @@ class Options:
             unreliable (domain_clear false); one domain, so no spread.
             Overrides sif_radius. None: cracklip's domains.
         sif_points: 3D: at least this many front points (where K is
-            computed) on every front piece, where hats of two front elements
-            fit (a shorter piece gets fewer: refine along the front,
-            mesh.tip_h); cracklip.fracture.front_sampling.
+            computed) on every front piece, where hats of three front
+            elements fit (front_points.COUNT_HAT_ELEMENTS; a shorter piece
+            gets fewer: refine along the front, mesh.tip_h);
+            cracklip.fracture.front_sampling.
         sif_angles: 3D: K also at these parametric angles (degrees) of
             elliptical cracks' fronts (e.g. [0, 90]: the two ends of a
             corner crack); None: none.

@@ -81,7 +81,7 @@ def crack_surface(c: dict, i: int, base_dir: pathlib.Path):
         f = pathlib.Path(c["surface"])
         f = f if f.is_absolute() else base_dir / f
         sc = read_crack_surface(f, name=name)
-        return SurfaceCrack(sc.vertices, sc.triangles, **kw)
+        return SurfaceCrack(sc.vertices, sc.triangles, source=f"{where}.surface = {c['surface']!r}", **kw)
     except CrackGeometryError as e:
         raise CrackGeometryError(f"{where}: {e}") from None
 

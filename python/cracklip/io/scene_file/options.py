@@ -55,8 +55,9 @@ _OPTION_MEANINGS = {
                 "(code_aster's R_INF / R_SUP, MOOSE's rings; r_in = r_out: the plateau of that radius); NOT clipped: "
                 "a ring reaching a hole, kink, tip or the boundary warns and its K is marked unreliable; no spread; "
                 "overrides sif_radius (a ring through a hole: docs/growth.md)",
-    "sif_points": "3D: at least this many front points (where K is computed) on every front piece, where hats of two "
-                  "front elements fit (a shorter piece gets fewer: refine along the front, mesh.tip_h); docs/sifs.md",
+    "sif_points": "3D: at least this many front points (where K is computed) on every front piece, where hats of three "
+                  "front elements fit (a shorter piece gets fewer: a penny at a/10, 6.28 a long, gets 15; refine along "
+                  "the front, mesh.tip_h); docs/sifs.md",
     "sif_angles": "3D: K also at these parametric angles (degrees) of elliptical cracks' fronts, e.g. [0, 90] for the "
                   "two ends of a corner crack (between front points: interpolated, flagged); docs/sifs.md",
     "sif_angle_step": "3D: K also every this many degrees of parametric angle along elliptical fronts (from 0); 0: off",

@@ -298,7 +298,10 @@ def crack_surface(crack) -> "_cracklip.CrackSurface3D":
         if isinstance(crack, SurfaceCrack):
             return _cracklip.create_triangulated_crack(crack.vertices, crack.triangles)
     except (ValueError, RuntimeError) as e:
-        raise CrackGeometryError(f"{label}: {e}") from None
+        source = getattr(crack, "source", "")
+        # the triangles are the file's facets in its order, counted from 0
+        where = f" ({source}: its triangles counted from 0 in the file's order)" if source else ""
+        raise CrackGeometryError(f"{label}: {e}{where}") from None
     raise CrackGeometryError(f"{label}: a 3D part takes crack surfaces (cracks[].ellipse, polygon or surface), "
                              f"got {type(crack).__name__}")
 
