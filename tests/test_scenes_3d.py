@@ -511,8 +511,8 @@ def test_3d_keys_in_a_2d_scene(doc, match):
 def test_crack_surface_outside_the_part():
     doc = _penny_doc(cracks=[{"name": "lost", "ellipse": {"center": [10.0, 0.0, 0.0], "normal": [0, 0, 1], "a": 1.0}}])
     sf = build_scene(doc)
-    with pytest.raises(cl.CrackGeometryError, match=r"lost: .*the crack surface lies outside the part.*move the crack "
-                                                      r"into the part or check its units"):
+    with pytest.raises(cl.CrackGeometryError, match=r"cracks\[0\] \(lost\): .*the crack surface lies outside the "
+                                                      r"part.*move the crack into the part or check its units"):
         cl.create_model(sf.scene)
 
 
@@ -536,7 +536,7 @@ def _stl(path, triangles):
 def test_bad_triangulated_surface(tmp_path, capsys, triangles, match):
     _stl(tmp_path / "crack.stl", triangles)
     sf = build_scene(_penny_doc(cracks=[{"name": "fin", "surface": "crack.stl"}]), base_dir=tmp_path)
-    with pytest.raises(cl.CrackGeometryError, match="fin: triangulated crack: .*" + match) as e:
+    with pytest.raises(cl.CrackGeometryError, match=r"cracks\[0\] \(fin\): triangulated crack: .*" + match) as e:
         cl.create_model(sf.scene)
     # the scene key and the file, where a scene has several cracks from files
     assert "(cracks[0].surface = 'crack.stl': its triangles counted from 0 in the file's order)" in str(e.value)

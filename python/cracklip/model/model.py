@@ -32,6 +32,19 @@ from .xfem_model import XfemModel
 logger = logging.getLogger(__name__)
 
 
+def _create_crack(kind, scene: Scene, i: int, x: np.ndarray, cells: np.ndarray) -> CrackModel:
+    """The model of scene.cracks[i]; a geometry error names the scene key
+    (cracks[i]) beside the crack's name, as the scene file's errors do."""
+    crack = scene.cracks[i]
+    try:
+        return kind.create(scene, crack, x, cells)
+    except CrackGeometryError as e:
+        msg = str(e)
+        if msg.startswith(f"{crack.name}: "):
+            msg = msg[len(crack.name) + 2:]
+        raise CrackGeometryError(f"cracks[{i}] ({crack.name}): {msg}") from None
+
+
 def create_model(scene: Scene) -> XfemModel:
     """Build the discrete model of a scene (a planar part of triangles or a
     solid of tetrahedra): P1 space, the cracks on the mesh, enrichment,
@@ -59,7 +72,7 @@ def create_model(scene: Scene) -> XfemModel:
     timings["space"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
-    cracks = [kind.create(scene, crack, x, cells) for crack in scene.cracks]
+    cracks = [_create_crack(kind, scene, i, x, cells) for i in range(len(scene.cracks))]
     try:
         layout = kind.enrichment_layout(scene, x, cells, cracks)
     except RuntimeError as e:
