@@ -510,3 +510,16 @@ def test_nearest_node_ties_decided_by_position_not_numbering():
         near = nearest_nodes(x[perm], pts, MPI.COMM_SELF)
         assert near[0].tolist() == [-1.0, 0.0, 0.0]  # three tied at distance 1 (one by 1e-13): the lowest x
         assert near[1].tolist() == [0.0, 2.0, 0.0]
+
+
+@pytest.mark.slow
+def test_front_of_free_surface_points_only_at_the_start(tmp_path):
+    """A corner crack on a coarse mesh has only its two free-surface points
+    at the start: the start's front size is then theirs. It was 0 (the
+    median over no interior point), so the resolution warning read "inf
+    times those at the start (0)" and the next step's radius scaling
+    divided by it (ZeroDivisionError at step 2)."""
+    res = _grow("corner_crack_gag", tmp_path, "mesh.refine[0].h=0.4", "options.radius=0.3",
+                "growth.da_fraction=0.4", "growth.steps=2", "growth.max_length=10")
+    assert res["steps"] == 2 and res["stop_criterion"] == "growth.steps"
+    assert not any("inf times" in w["message"] or "(0)" in w["message"] for w in res["warnings"])

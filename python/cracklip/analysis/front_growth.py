@@ -707,7 +707,7 @@ class SurfaceGrowth(GrowthRun):
         scene's own)."""
         if self.h_start is None or not self.records:
             return
-        sizes = [r.element_size for r in self.records[-1] if not r.free_surface]
+        sizes = [r.element_size for r in self.records[-1] if not r.free_surface and r.element_size > 0.0]
         ratio = max(1.0, float(np.median(sizes)) / self.h_start) if sizes else 1.0
         o = self.scene.options
         self.radius_scale.append(ratio)
@@ -735,14 +735,26 @@ class SurfaceGrowth(GrowthRun):
 
     # -- the mesh's resolution ------------------------------------------------------------------------------
     def _check_resolution(self, m: Measured) -> None:
-        sizes = np.array([r.element_size for r in m.records if not r.free_surface] or [0.0])
+        """The start's front element size (h_start: the median over the
+        interior points; a front whose points all lie on the free surface,
+        as a coarse corner crack's two, takes every point's, else the mean
+        size along the fronts before the model), then a warning once where
+        an interior point lies in elements RESOLUTION_FACTOR times coarser.
+        (With only free-surface points at the start h_start was 0: the
+        warning said "inf times those at the start (0)", and the next step's
+        radius scaling divided by it: ZeroDivisionError.)"""
+        interior = [r for r in m.records if not r.free_surface and r.element_size > 0.0]
         if self.h_start is None:
-            self.h_start = float(np.median(sizes))
+            every = [r.element_size for r in (interior or m.records) if r.element_size > 0.0]
+            self.h_start = float(np.median(every)) if every else self.h_front
             return
+        if not interior:
+            return
+        sizes = np.array([r.element_size for r in interior])
         worst = int(np.argmax(sizes))
         if sizes[worst] > RESOLUTION_FACTOR * self.h_start and "resolution" not in self.warned:
             self.warned.add("resolution")
-            r = [r for r in m.records if not r.free_surface][worst]
+            r = interior[worst]
             self.warn(
                 "growth_resolution", f"the front at ({r.x:.4g}, {r.y:.4g}, {r.z:.4g}) lies in elements of "
                 f"{sizes[worst]:.3g}, {sizes[worst] / self.h_start:.1f} times those at the start ({self.h_start:.3g}): "
