@@ -523,3 +523,34 @@ def test_front_of_free_surface_points_only_at_the_start(tmp_path):
                 "growth.da_fraction=0.4", "growth.steps=2", "growth.max_length=10")
     assert res["steps"] == 2 and res["stop_criterion"] == "growth.steps"
     assert not any("inf times" in w["message"] or "(0)" in w["message"] for w in res["warnings"])
+
+
+@pytest.mark.slow
+def test_max_length_reached_inside_a_step_stops_the_life_there(tmp_path):
+    """growth.max_length reached inside an increment: the life is the one to
+    that size, not to the step's geometry beyond it (the old code reported
+    the cycles to the overshot front: corner crack a = 1.5, a da of 5 to a
+    max_length of 4 gave the life to a = 6.46). The corner crack of
+    corner_crack_gag (small, no contact), two steps, then the same with
+    max_length half way through the second increment: the rate grows with
+    a, so the life to it lies between N1 + t (N2 - N1) and N1 + t (N2 - N1)
+    r2 / r1 (t = 0.5, r the fastest point's growth per cycle at steps 1 and
+    2); the last geometry is marked past the stop and left out of a(N)."""
+    import csv
+    opts = ('options.contact="none"', 'material.fatigue.closure="none"', "growth.max_length=10")
+    free = _grow("corner_crack_gag", tmp_path / "free", *opts, "growth.steps=2")
+    a = [s["shape"]["0"]["a"] for s in free["per_step"]]
+    N = [s["cycles"] for s in free["life"]["steps"]]
+    rate = [max(t["da_per_pass"] for t in s["tips"]) for s in free["life"]["steps"]]
+    assert len(a) == 3 and a[2] > a[1] > a[0] and N[2] > N[1] > 0
+    L = a[1] + 0.5 * (a[2] - a[1])
+    cut = _grow("corner_crack_gag", tmp_path / "cut", *opts[:2], "growth.steps=5", f"growth.max_length={L!r}")
+    assert cut["stop_criterion"] == "growth.max_length" and cut["steps"] == 2
+    life = cut["life"]["cycles"]
+    assert N[1] + 0.5 * (N[2] - N[1]) <= life <= N[1] + 0.5 * (N[2] - N[1]) * rate[2] / rate[1]
+    assert life < N[2] * (1 - 1e-3)      # (the old code: N[2])
+    assert f"the life to it {life:.6g} cycles" in cut["stop_reason"] and "inside the increment to step 2" in \
+        cut["stop_reason"]
+    rows = list(csv.DictReader((tmp_path / "cut" / "front_path.csv").open()))
+    assert {r["status"] for r in rows if r["step"] == "2"} == {"past max_length"}
+    assert {r["status"] for r in rows if r["step"] != "2"} == {"growing"}

@@ -19,7 +19,7 @@ from ..model.checks import CODE_MEANINGS, CodedText
 from ..scene.growth import Growth
 from ..scene.processes import mark_collective
 from ..scene.scene import Scene
-from .life import rate_table_messages
+from .life import PAST_MAX_LENGTH, rate_table_messages
 from .tips import Measured, TipRecord
 
 logger = logging.getLogger("cracklip.analysis.growth")
@@ -120,6 +120,8 @@ class GrowthRun:
         self.N = 0.0
         self.prev_rate: float | None = None             # constant amplitude: the trapezoid's last rate
         self.prev_da = 0.0
+        self.prev_lengths: list[float] | None = None    # the cracks' sizes at the last geometry (growth.max_length)
+        self.stop_fraction: float | None = None         # where growth.max_length was reached inside the increment
         self.da = growth.da
         self.fatigue = growth.fatigue
         self.stop_reason = f"{growth.steps} steps done"
@@ -192,18 +194,45 @@ class GrowthRun:
             self.warn("rate_table", text, of_step=False)
 
     def count_cycles(self, m: Measured) -> None:
-        """The cycles of the increment just taken: constant amplitude by the
-        trapezoidal rule between its two ends; a spectrum pass by pass with K
-        interpolated between them (cracklip.analysis.life)."""
+        """The cycles of the increment just taken: constant amplitude with
+        Delta K linear along it (increment_cycles); a spectrum pass by pass
+        with K interpolated between its ends (cracklip.analysis.life). Where
+        a crack passes growth.max_length inside the increment, only up to
+        there (the size taken linear over the increment): the life to that
+        size, not to the geometry beyond it (which check_stops then stops
+        at)."""
+        self.stop_fraction = t = self.max_length_fraction(m)
+        self.prev_lengths = list(m.lengths)
         if self.life is not None:
-            self.N = self.life.count(m, self.k)
+            self.N = self.life.count(m, self.k, t)
             return
         if self.fatigue and self.k > 0 and self.prev_rate is not None:
             rate_now = max(m.rates.values()) if m.rates else self.prev_rate
-            dN = increment_cycles(self.prev_da, self.prev_rate, rate_now, float(self.growth.paris_m))
+            m_ = float(self.growth.paris_m)
+            f = 1.0 if t is None else t
+            rate_f = rate_now
+            if f < 1.0:  # (Delta K linear along the increment, as increment_cycles: the rate at its fraction f)
+                if self.prev_rate > 0.0 and rate_now > 0.0:
+                    rate_f = self.prev_rate * (1.0 + ((rate_now / self.prev_rate) ** (1.0 / m_) - 1.0) * f) ** m_
+                else:
+                    rate_f = self.prev_rate + f * (rate_now - self.prev_rate)
+            dN = increment_cycles(f * self.prev_da, self.prev_rate, rate_f, m_)
             self.N += dN
             for rec in m.records:  # the cycles spent to reach this geometry
                 rec.dN, rec.N = dN, self.N
+                if t is not None and t < 1.0:
+                    rec.status = PAST_MAX_LENGTH
+
+    def max_length_fraction(self, m: Measured) -> float | None:
+        """The fraction of the increment just taken at which a crack's size
+        reached growth.max_length (linear between the two geometries' sizes),
+        or None (not reached in it, or the first geometry)."""
+        L = self.growth.max_length
+        if L is None or self.k == 0 or self.prev_lengths is None:
+            return None
+        lim = L * (1.0 - 1e-9)
+        fr = [(L - p) / (n - p) for p, n in zip(self.prev_lengths, m.lengths) if p < lim <= n]
+        return min(1.0, max(0.0, min(fr))) if fr else None
 
     def _stop(self, reason: str, criterion: str | None = None) -> bool:
         self.stop_reason = reason
@@ -225,7 +254,13 @@ class GrowthRun:
                                   f"{self.where(r)} of crack {self.cracks[r.crack].name!r} (step {k})",
                                   "K_eq >= growth.K_Ic")
         if growth.max_length is not None and any(v >= growth.max_length * (1.0 - 1e-9) for v in m.lengths):
-            return self._stop(f"a crack reached the {self.SIZE_NAME} {growth.max_length:g} (step {k})",
+            t = self.stop_fraction
+            blocks = (f" = {self.life.passes * self.life.blocks_per_pass:.6g} {self.life.spectrum.block_name}s"
+                      if self.life is not None else "")
+            inside = (f" inside the increment to step {k} ({t:.3g} of it, the size linear over it): the life to it "
+                      f"{self.N:.6g} cycles{blocks}; step {k}'s geometry lies beyond it (largest size "
+                      f"{max(m.lengths):.6g})" if t is not None and t < 1.0 else f" (step {k})")
+            return self._stop(f"a crack reached the {self.SIZE_NAME} {growth.max_length:g}" + inside,
                               "growth.max_length")
         if self.life is not None and self.life.passes_exceeded():
             return self._stop(f"the life passed spectrum.max_passes = {self.life.max_passes:g} passes (step {k})",

@@ -321,6 +321,13 @@ class _Closure:
 #: failure found inside the increment to it (their N is the failure's).
 PAST_FAILURE = "past failure"
 
+#: The status of the records of a geometry past growth.max_length, which the
+#: crack reached inside the increment to it (their N is the life to it).
+PAST_MAX_LENGTH = "past max_length"
+
+#: The statuses whose records are no (a, N) point of the life.
+PAST_STOP = (PAST_FAILURE, PAST_MAX_LENGTH)
+
 
 class LifeRun:
     """The spectrum life of one growth run: set up once, then per step
@@ -723,14 +730,18 @@ class LifeRun:
                               "end": key[1], "x": x, "y": y, **({"z": z[0]} if z else {})}
 
     # -- count -------------------------------------------------------------------------------------------
-    def count(self, m, k: int) -> float:
+    def count(self, m, k: int, t_stop: float | None = None) -> float:
         """Integrate the increment from the last geometry to this one (module
-        doc); set the records' N, passes, blocks; return the cycles so far."""
+        doc); set the records' N, passes, blocks; return the cycles so far.
+        t_stop: the fraction of the increment at which the run stops inside
+        it (growth.max_length reached there): the cycles up to it only, and
+        this geometry's records marked past it."""
         now = m.levels
-        failed_inside = False
+        failed_inside = past_stop = False
         if k > 0 and self.prev is not None and self.increments and self.failure is None:
-            self._integrate(self.prev, self.locator.carry(self.prev, now))
+            self._integrate(self.prev, self.locator.carry(self.prev, now), t_stop)
             failed_inside = self.failure is not None
+            past_stop = not failed_inside and t_stop is not None and t_stop < 1.0
         dN = self.N - (self.steps[-1]["cycles"] if self.steps else 0.0)
         for rec in m.records:
             rec.N, rec.dN = self.N, dN
@@ -738,6 +749,8 @@ class LifeRun:
             rec.blocks = self.passes * self.blocks_per_pass
             if failed_inside:  # this geometry lies beyond the failure found inside the increment: no (a, N) point
                 rec.status = PAST_FAILURE
+            elif past_stop:  # and beyond growth.max_length, reached inside the increment
+                rec.status = PAST_MAX_LENGTH
         self.steps.append({"step": k, "cycles": self.N, "passes": self.passes,
                            "blocks": self.passes * self.blocks_per_pass,
                            "tips": [{"crack": r.crack, "end": r.end, "a": now[(r.crack, r.end)].a if (r.crack, r.end)
@@ -756,7 +769,9 @@ class LifeRun:
         aa = a.a + t * (b.a - a.a)
         return math.sqrt(aa) * ((1.0 - t) * A / math.sqrt(a.a) + t * B / math.sqrt(b.a)), aa
 
-    def _integrate(self, prev: dict, now: dict) -> None:
+    def _integrate(self, prev: dict, now: dict, t_stop: float | None = None) -> None:
+        """The passes of the increment from prev to now (up to the fraction
+        t_stop of it if given, and up to a failure found inside it)."""
         which = "K_con" if self.contact_closure else "K_lin"
         keys = [key for key in self.increments if key in prev and key in now]
         if not keys:
@@ -784,10 +799,10 @@ class LifeRun:
                     if v > worst[1]:
                         worst = ("net-section yield", v, key)
             return worst
-        t_end = 1.0
-        crit, v1, fkey = excess(1.0)
+        t_end = 1.0 if t_stop is None else t_stop
+        crit, v1, fkey = excess(t_end)
         if crit is not None and v1 >= 0.0:
-            lo, hi = 0.0, 1.0
+            lo, hi = 0.0, t_end
             for _ in range(50):
                 mid = 0.5 * (lo + hi)
                 if excess(mid)[1] >= 0.0:
@@ -1003,4 +1018,5 @@ def _ligament_stress(sol, tip: np.ndarray, r0: dict, theta: float, bnd) -> float
     return float(np.sum(w * snn * 2.0 * u))
 
 
-__all__ = ["RESIDUAL_GROUP", "PAST_FAILURE", "create_law", "critical_k", "constant_amplitude_spectrum", "TipLevels", "LifeRun"]
+__all__ = ["RESIDUAL_GROUP", "PAST_FAILURE", "PAST_MAX_LENGTH", "PAST_STOP", "create_law", "critical_k",
+           "constant_amplitude_spectrum", "TipLevels", "LifeRun"]

@@ -411,12 +411,12 @@ def cmd_grow(args) -> int:
     print_warnings(result.warnings)
     if not quiet:
         print(_growth_headline(sf.title, results["steps"], result.stop_reason))
-        past = any(t["status"] == "past failure" for t in results["final"]["tips"])
+        past = any(t["status"] in ("past failure", "past max_length") for t in results["final"]["tips"])
         for c in results["final"]["cracks"]:
             a = c["length_in_part"]
             print(f"  {c['name']}: " + (f"length {a:.6g} in the part" if a is not None else
                                         f"through the part (polyline length {c['polyline_length']:.6g})")
-                  + (" (the last geometry, past the failure inside its increment)" if past else ""))
+                  + (" (the last geometry, past the stop inside its increment)" if past else ""))
         if sf.growth.fatigue:
             print(f"  cycles: {result.cycles:.6g}")
         _print_life_and_files(result.life, results, out)
@@ -483,11 +483,14 @@ def _grow_3d(args, sf, out, series, t_start: float, quiet: bool) -> int:
     print_warnings(result.warnings)
     if not quiet:
         print(_growth_headline(sf.title, results["steps"], result.stop_reason))
+        past = bool(result.records and result.records[-1]
+                    and result.records[-1][0].status in ("past failure", "past max_length"))
         for c in results["final"]["cracks"]:
             sh = c["shape"] or {}
             print(f"  {c['name']}: {sh.get('kind', '')} crack"
                   + (f", a = {sh['a']:.6g}, c = {sh['c']:.6g}, a/c = {sh['a_over_c']:.4g}, a/t = {sh['a_over_t']:.4g}"
-                     if sh.get("a") is not None else f", mean radius {sh.get('radius_mean', float('nan')):.6g}"))
+                     if sh.get("a") is not None else f", mean radius {sh.get('radius_mean', float('nan')):.6g}")
+                  + (" (the last geometry, past the stop inside its increment)" if past else ""))
         _print_life_and_files(result.life, results, out)
     return 0
 

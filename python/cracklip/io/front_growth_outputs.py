@@ -41,7 +41,7 @@ import typing
 import numpy as np
 
 from ..analysis.growth import GrowthResult
-from ..analysis.life import PAST_FAILURE
+from ..analysis.life import PAST_STOP
 from ..scene.units import label
 from .files import atomic_path
 from .growth_outputs import (SeriesWriter, growth_settings, one_cycle_per_block,  # noqa: F401 (SeriesWriter re-exported)
@@ -218,8 +218,8 @@ def write_shape_pngs(scene_file, result: GrowthResult, out: pathlib.Path) -> lis
     save_png(fig, out / "shape.png")
     life = result.life
     block = f"{life['block_name']}s" if life else "blocks"
-    # a geometry reached only past the failure found inside the increment to it: no (a, N) point
-    past = {k for k, recs in enumerate(result.records) if recs and recs[0].status == PAST_FAILURE}
+    # a geometry reached only past the failure (or growth.max_length) found inside the increment to it: no (a, N) point
+    past = {k for k, recs in enumerate(result.records) if recs and recs[0].status in PAST_STOP}
     rows = [r for r in rows if r[0] not in past]
     # One cycle per block (a constant-amplitude "flight"): one panel, both names on its axis.
     one = one_cycle_per_block([(r[1], r[2]) for r in rows])

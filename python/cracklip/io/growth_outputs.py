@@ -14,7 +14,7 @@ import typing
 import numpy as np
 
 from ..analysis.growth import GrowthResult, TipRecord
-from ..analysis.life import PAST_FAILURE
+from ..analysis.life import PAST_STOP
 from .files import atomic_path
 from .outputs import ensure_output_dir, gathered_subcell_fields, versions, write_csv, writes_files
 from .results import write_results_json
@@ -251,7 +251,7 @@ def write_growth_pngs(scene_file, result: GrowthResult, out: pathlib.Path, fatig
         axes = [fig.add_subplot()] if one else [fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)]
         rows = []
         for n, ((ci, end), recs) in enumerate(tips.items()):
-            recs = [r for r in recs if r.status != PAST_FAILURE]  # (its N is the failure's: not an (a, N) point)
+            recs = [r for r in recs if r.status not in PAST_STOP]  # (its N is the stop's: not an (a, N) point)
             lab = f"{result.cracks[ci].name} end {end}"
             axes[0].plot([r.N for r in recs], [r.length for r in recs], "o-", ms=3, color=f"C{n}", label=lab)
             if not one:

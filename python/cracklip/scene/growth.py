@@ -47,7 +47,8 @@ class Growth:
             unset).
         max_length: stop when a crack's length in the part reaches this
             (3D: a surface or corner crack's depth a, an embedded crack's
-            mean radius; unset: no limit).
+            mean radius; unset: no limit); in fatigue the life is the one to
+            it, found inside the step that passes it.
         max_kink_change: stop when a tip's kink turns by more than this
             (degrees) between steps (instability; the first kink, off the
             initial crack, is not compared).
