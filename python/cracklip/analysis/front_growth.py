@@ -248,12 +248,16 @@ class FrontPoints:
         from ..model.cracks.surface import crack_surface
         from ..post.section import net_section_stress
         per_crack: dict[int, np.ndarray] = {}
+        sc = self.model.scene
+        loaded_lips = sc.initial_stress is not None or any(
+            callable(c.crack.pressure) or c.crack.pressure != 0.0 for c in self.model.cracks)
         for ci in sorted({key[0] for key in self.keys}):
             idx = [k for k, key in enumerate(self.keys) if key[0] == ci]
             point = self.X[idx].mean(axis=0)
             normal = np.array([self.rows[k]["normal"] for k in idx]).mean(axis=0)
             surf = crack_surface(self.model.cracks[ci].crack)
-            per_crack[ci] = np.array([net_section_stress(b, surf, point, normal) for b in basis])
+            per_crack[ci] = np.array([net_section_stress(b, surf, point, normal,
+                                                         free_lips=not b.contact and not loaded_lips) for b in basis])
 
         def at(j: int, theta: float) -> np.ndarray:
             return per_crack[self.keys[j][0]]
