@@ -458,13 +458,14 @@ def test_advance_takes_the_front_kinks(monkeypatch):
     keys = [(0, j) for j in range(16)]
     levels = {key: types.SimpleNamespace(x=math.cos(p), y=math.sin(p), z=0.0, theta=0.2, a=1.0)
               for key, p in zip(keys, phi)}
-    records = [types.SimpleNamespace(crack=0, end=j, da=0.0, kink_deg=math.degrees(0.2)) for j in range(16)]
+    records = [types.SimpleNamespace(crack=0, end=j, da=0.0, kink_deg=math.degrees(0.2), sif_radius=0.3)
+               for j in range(16)]
     m = types.SimpleNamespace(rates={key: 1.0 for key in keys}, levels=levels, records=records)
     run = types.SimpleNamespace(surfaces=[g], warnings=[], k=1, spacing=0.05, margin=0.2, inside=_everywhere,
                                 growth=types.SimpleNamespace(da_fraction=None), da=0.1, _free={}, closed_front={},
                                 advanced_to={}, exits={}, pending=None, cracks=[g.crack],
                                 life=types.SimpleNamespace(advanced=lambda m, inc: None))
-    for name in ("_new_fronts", "_breakthrough", "_leaves", "_extend"):
+    for name in ("_new_fronts", "_breakthrough", "_leaves", "_extend", "_check_increment"):
         setattr(run, name, types.MethodType(getattr(front_growth.SurfaceGrowth, name), run))
     front_growth.SurfaceGrowth.advance(run, m)
     z = np.abs(run.surfaces[0].loop_points[:, 2])
@@ -576,3 +577,13 @@ def test_net_section_stress_of_a_corner_crack_is_the_load_over_the_ligament():
     exact = 100.0 * 64.0 / (64.0 - math.pi * 1.5 ** 2 / 4.0)
     for lv in levels.values():
         assert float(lv.sigma_net[lv.ref]) == pytest.approx(exact, rel=2e-3)
+
+
+@pytest.mark.slow
+def test_increment_beyond_the_sif_domain_is_warned(tmp_path):
+    """A 3D step whose largest advance (growth.da = 3 mm, the crack 1.5 mm)
+    is beyond the SIF domain at the fastest point: warned once, naming the
+    key (the old code said nothing and went to a = 4.3 in one step)."""
+    res = _grow("corner_crack_gag", tmp_path, "growth.da=3.0", "growth.da_fraction=0", "growth.max_length=10")
+    w = [w for w in res["warnings"] if w["code"] == "growth_increment"]
+    assert len(w) == 1 and "growth.da" in w[0]["message"] and "larger than the SIF domain" in w[0]["message"]
