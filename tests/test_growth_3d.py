@@ -587,3 +587,21 @@ def test_increment_beyond_the_sif_domain_is_warned(tmp_path):
     res = _grow("corner_crack_gag", tmp_path, "growth.da=3.0", "growth.da_fraction=0", "growth.max_length=10")
     w = [w for w in res["warnings"] if w["code"] == "growth_increment"]
     assert len(w) == 1 and "growth.da" in w[0]["message"] and "larger than the SIF domain" in w[0]["message"]
+
+
+@pytest.mark.slow
+def test_toughness_stop_of_a_3d_front_in_the_scene_units(tmp_path):
+    """K_Ic = 6 MPa sqrt(m) given in the constants' units (m, MPa) on a mm
+    scene is K_c = 6 sqrt(1000) = 189.737 MPa sqrt(mm); the corner crack of
+    corner_crack_gag (small, no contact) reaches it inside an increment:
+    the stop names K_c with its unit, the crack by name and the step (the
+    old message: "K_c = 189.737 ... of crack 0", no unit, no step), and the
+    life lies between the cycles of the steps around it."""
+    res = _grow("corner_crack_gag", tmp_path, 'options.contact="none"', 'material.fatigue.closure="none"',
+                "material.fatigue.K_Ic=6.0", "growth.steps=8", "growth.max_length=10")
+    k = res["steps"]
+    assert res["stop_criterion"] == "K_max >= K_c" and res["life"]["K_crit"] == pytest.approx(6 * 1000 ** 0.5)
+    assert "K_c = 189.737 MPa sqrt(mm)" in res["stop_reason"] and "of crack 'corner crack'" in res["stop_reason"]
+    assert f"(inside the increment to step {k})" in res["stop_reason"]
+    N = [s["cycles"] for s in res["life"]["steps"]]
+    assert N[k - 1] < res["life"]["failure"]["cycles"] == pytest.approx(N[k]) and N[k] < N[k - 1] + (N[k - 1] - N[k - 2])

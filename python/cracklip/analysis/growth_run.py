@@ -256,7 +256,7 @@ class GrowthRun:
         if growth.max_length is not None and any(v >= growth.max_length * (1.0 - 1e-9) for v in m.lengths):
             t = self.stop_fraction
             blocks = (f" = {self.life.passes * self.life.blocks_per_pass:.6g} {self.life.spectrum.block_name}s"
-                      if self.life is not None else "")
+                      if self.life is not None and self.life.spectrum.block_name != "cycle" else "")
             inside = (f" inside the increment to step {k} ({t:.3g} of it, the size linear over it): the life to it "
                       f"{self.N:.6g} cycles{blocks}; step {k}'s geometry lies beyond it (largest size "
                       f"{max(m.lengths):.6g})" if t is not None and t < 1.0 else f" (step {k})")

@@ -717,12 +717,17 @@ class LifeRun:
 
     def _fail(self, criterion: str, t: float, lv: TipLevels, key, a: float | None = None,
               at: tuple[float, ...] | None = None) -> None:
-        what = (f"K_max reached K_c = {self.K_crit:.6g}" if criterion == "K_max >= K_c" else
-                f"the mean stress on the ligament reached the yield stress {self.yield_stress:.6g}")
+        u = self.scene.units
+        unit = (lambda q: f" {u.name(q)}" if u is not None else "")  # noqa: E731 (the scene's units, as converted)
+        what = (f"K_max reached K_c = {self.K_crit:.6g}{unit('K')}" if criterion == "K_max >= K_c" else
+                f"the mean stress on the ligament reached the yield stress {self.yield_stress:.6g}{unit('stress')}")
         cyc = self.N
         self.failure_criterion = criterion
         x, y, *z = at if at is not None else (lv.x, lv.y) + (() if lv.z is None else (lv.z,))
-        self.failure = (f"final failure: {what} at {self.locator.near(x, y, *z)} of crack {key[0]}, a = "
+        cracks = self.scene0.cracks
+        name = repr(cracks[key[0]].name) if key[0] < len(cracks) and cracks[key[0]].name else str(key[0])
+        when = f"inside the increment to step {len(self.steps)}" if t > 0.0 else f"at step {len(self.steps)}"
+        self.failure = (f"final failure: {what} at {self.locator.near(x, y, *z)} of crack {name} ({when}), a = "
                         f"{a if a is not None else lv.a:.6g}, after {cyc:.6g} cycles = {self.passes:.6g} passes = "
                         f"{self.passes * self.blocks_per_pass:.6g} {self.spectrum.block_name}s (criterion: {criterion})")
         self.failure_point = {"criterion": criterion, "a": a if a is not None else lv.a, "cycles": cyc,
