@@ -479,6 +479,9 @@ def _penny_doc(**changes):
      r"growth\.corrections is a 2D growth setting but the part is 3D"),
     ({"growth": {"paris_C": 1.0, "paris_m": 3.0, "R": 0.0, "criterion": "max_energy_release"}},
      r"'max_energy_release' is a 2D criterion"),
+    # both step sizes: da_fraction won and growth.da was silently ignored
+    ({"growth": {"paris_C": 1.0, "paris_m": 3.0, "R": 0.0, "da": 0.2, "da_fraction": 0.1}},
+     r"growth\.da = 0\.2 and growth\.da_fraction = 0\.1 both size the step's largest advance .*give one"),
 ])
 def test_2d_keys_in_a_3d_scene(changes, match):
     with pytest.raises(cl.InputError, match=match):

@@ -166,6 +166,10 @@ def check_dimension(doc: dict, settings: dict, dim: int, why: str) -> None:
         if g.get("criterion") == "max_energy_release":
             raise InputError(f"growth.criterion = 'max_energy_release' is a 2D criterion but {part}: 3D fronts kink by "
                              "the maximum hoop stress generalised with K_III (`max_hoop`, the default)")
+        if g.get("da") and g.get("da_fraction"):
+            raise InputError(f"growth.da = {g['da']!r} and growth.da_fraction = {g['da_fraction']!r} both size the "
+                             "step's largest advance (da_fraction would win: the fastest point's crack size times it, "
+                             "growth.da ignored): give one")
         fatigue = isinstance(doc.get("material"), dict) and "fatigue" in doc["material"]
         if "paris_C" not in g and not fatigue:
             raise InputError(f"[growth] without a growth law but {part}: a 3D front advances each point by its own "
