@@ -555,6 +555,8 @@ def test_max_length_reached_inside_a_step_stops_the_life_there(tmp_path):
     rows = list(csv.DictReader((tmp_path / "cut" / "front_path.csv").open()))
     assert {r["status"] for r in rows if r["step"] == "2"} == {"past max_length"}
     assert {r["status"] for r in rows if r["step"] != "2"} == {"growing"}
+    shape = list(csv.DictReader((tmp_path / "cut" / "shape.csv").open()))
+    assert [r["status"] for r in shape] == ["", "", "past max_length"]
 
 
 @pytest.mark.slow

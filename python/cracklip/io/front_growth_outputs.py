@@ -7,7 +7,9 @@
   cycle's K_max, K_min, Delta K_eff, R, the growth per pass, the residual
   strength, free_surface, the element size there, status;
 - shape.csv (per step and crack: cycles, blocks, kind, a, c, a/c, t, a/t,
-  the mean radius and roundness of an embedded crack) with shape.png (a/c
+  the mean radius and roundness of an embedded crack, status: empty, or
+  `past failure` / `past max_length` for a front reached only after the
+  stop found inside the increment to it, whose cycles are the stop's) with shape.png (a/c
   against a/t for surface and corner cracks; the radius and roundness of an
   embedded one) and a_N.png (a and c against cycles and blocks);
 - crack_surface.pvd (crack_surface_<k>.vtu: the triangulated crack surface
@@ -57,7 +59,7 @@ FRONT_COLUMNS = ["step", "cycles", "blocks", "crack", "point", "x", "y", "z", "K
                  "residual_strength", "free_surface", "element_size", "status"]
 
 SHAPE_COLUMNS = ["step", "cycles", "blocks", "crack", "kind", "a", "c", "a_over_c", "thickness", "a_over_t",
-                 "radius_mean", "roundness", "points"]
+                 "radius_mean", "roundness", "points", "status"]
 
 
 def shape_rows(result: GrowthResult) -> list[list]:
@@ -67,8 +69,10 @@ def shape_rows(result: GrowthResult) -> list[list]:
         N = recs[0].N if recs else None
         blocks = recs[0].blocks if recs else None
         for ci, sh in sorted(shape.items()):
+            status = next((r.status for r in recs if r.crack == ci and r.status in PAST_STOP), "")
             rows.append([k, N, blocks, ci, sh["kind"], sh.get("a"), sh.get("c"), sh.get("a_over_c"),
-                         sh.get("thickness"), sh.get("a_over_t"), sh["radius_mean"], sh["roundness"], sh["points"]])
+                         sh.get("thickness"), sh.get("a_over_t"), sh["radius_mean"], sh["roundness"], sh["points"],
+                         status])
     return rows
 
 
