@@ -38,7 +38,8 @@ class Growth:
         walker_gamma: Walker's R-ratio form da/dN = C (Delta K / (1 -
             R)^(1 - gamma))^m with R = K_min / K_max; 1: plain Paris.
         K_Ic: fracture toughness: K_eq at or above it is final failure
-            (unset: no check).
+            (unset: no check; 3D: the fatigue life's K_c, found inside the
+            step that reaches it).
         cycle_max: factors per load group at the maximum of the load cycle
             (unset: every group at 1).
         cycle_min: factors per load group at the minimum of the load cycle
