@@ -604,6 +604,7 @@ def test_toughness_stop_of_a_3d_front_in_the_scene_units(tmp_path):
     k = res["steps"]
     assert res["stop_criterion"] == "K_max >= K_c" and res["life"]["K_crit"] == pytest.approx(6 * 1000 ** 0.5)
     assert "K_c = 189.737 MPa sqrt(mm)" in res["stop_reason"] and "of crack 'corner crack'" in res["stop_reason"]
+    assert res["units"]["K"] == "MPa sqrt(mm)" and res["units"]["length"] == "mm"  # (grow's results.json had none)
     assert f"(inside the increment to step {k})" in res["stop_reason"]
     N = [s["cycles"] for s in res["life"]["steps"]]
     assert N[k - 1] < res["life"]["failure"]["cycles"] == pytest.approx(N[k]) and N[k] < N[k - 1] + (N[k - 1] - N[k - 2])

@@ -31,7 +31,7 @@
   two-column layout of easigrow's beta files and of the tabular beta inputs
   of AFGROW and NASGRO; neither tool's own file layout is publicly
   documented in a source we could read, so none is claimed);
-- results.json: settings, stops, warnings, the life, per-step summaries,
+- results.json: settings, units, stops, warnings, the life, per-step summaries,
   the final surfaces' sizes, seconds and solves per step.
 """
 from __future__ import annotations
@@ -48,7 +48,7 @@ from ..scene.units import label
 from .files import atomic_path
 from .growth_outputs import (SeriesWriter, growth_settings, one_cycle_per_block,  # noqa: F401 (SeriesWriter re-exported)
                              write_life_pngs)
-from .outputs import ensure_output_dir, versions, write_csv
+from .outputs import ensure_output_dir, units_names, versions, write_csv
 from .results import write_results_json
 from .paraview import write_mesh
 from .pictures import new_figure, save_png
@@ -107,6 +107,7 @@ def write_front_growth_outputs(scene_file, result: GrowthResult, out_dir, growth
         "scene_file": str(scene_file.path) if scene_file.path is not None else None,
         "versions": versions(),
         "dimension": 3,
+        "units": units_names(getattr(scene_file.scene, "units", None)),
         "growth": growth_settings(growth),
         "front_growth": {"da": result.fronts["da"], "spacing": result.fronts["spacing"],
                          "margin": result.fronts["margin"], "front_element_size": result.fronts["h_front"],

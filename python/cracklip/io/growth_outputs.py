@@ -16,7 +16,7 @@ import numpy as np
 from ..analysis.growth import GrowthResult, TipRecord
 from ..analysis.life import PAST_STOP
 from .files import atomic_path
-from .outputs import ensure_output_dir, gathered_subcell_fields, versions, write_csv, writes_files
+from .outputs import ensure_output_dir, gathered_subcell_fields, units_names, versions, write_csv, writes_files
 from .results import write_results_json
 from .paraview import subcell_mesh, write_mesh
 from ..scene.units import label
@@ -83,6 +83,7 @@ def write_growth_outputs(scene_file, result: GrowthResult, out_dir, growth, timi
         "scene_file": str(scene_file.path) if scene_file.path is not None else None,
         "versions": versions(),
         "growth": growth_settings(growth),
+        "units": units_names(getattr(scene_file.scene, "units", None)),
         "stop_criterion": result.stop_criterion,
         "life": result.life,
         "boundary_conditions_and_loads": scene_file.notes,

@@ -86,6 +86,11 @@ SIF_COLUMNS = ["step", "crack", "tip", "x", "y", "direction_x", "direction_y", "
                "radius", "element_size", "limited_by", "domain_clear"]
 
 
+def units_names(units) -> dict[str, str] | None:
+    """results.json's units: the name of each quantity's unit (None without [units])."""
+    return None if units is None else {q: units.name(q) for q in ("length", "force", "stress", "K", "G")}
+
+
 def output_files(model, outputs: dict) -> list[str]:
     """The files a run of the model writes with the [outputs] settings
     (results.json first)."""
@@ -532,7 +537,7 @@ def write_outputs(scene_file, solution: Solution, out_dir: str | pathlib.Path,
         "solution": {"dofs": int(summary["dofs"]["total"]), "strain_energy": energy, "max_displacement": u_scale,
                      "relative_residual": solver.get("relative_residual"),
                      "solver": solver.get("solver"), "solves": solver.get("solves", [])},
-        "units": None if units is None else {q: units.name(q) for q in ("length", "force", "stress", "K", "G")},
+        "units": units_names(units),
         "warnings": warnings,
         "sifs": sifs,
         "error_estimate": estimate,
