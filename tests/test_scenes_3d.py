@@ -479,6 +479,8 @@ def _penny_doc(**changes):
      r"growth\.corrections is a 2D growth setting but the part is 3D"),
     ({"growth": {"paris_C": 1.0, "paris_m": 3.0, "R": 0.0, "criterion": "max_energy_release"}},
      r"'max_energy_release' is a 2D criterion"),
+    ({"growth": {"paris_C": 1.0, "paris_m": 3.0, "R": 0.0, "max_kink_change": 20.0}},
+     r"growth\.max_kink_change is a 2D growth setting but the part is 3D.*never applied"),
     # both step sizes: da_fraction won and growth.da was silently ignored
     ({"growth": {"paris_C": 1.0, "paris_m": 3.0, "R": 0.0, "da": 0.2, "da_fraction": 0.1}},
      r"growth\.da = 0\.2 and growth\.da_fraction = 0\.1 both size the step's largest advance .*give one"),

@@ -52,7 +52,7 @@ class Growth:
             it, found inside the step that passes it.
         max_kink_change: stop when a tip's kink turns by more than this
             (degrees) between steps (instability; the first kink, off the
-            initial crack, is not compared).
+            initial crack, is not compared; 2D only).
         corrections: corrector solves per step (0: the explicit scheme; 2D only):
             each increment is turned about its start until the kink wanted
             at its end is below corrector_tolerance (local symmetry at the

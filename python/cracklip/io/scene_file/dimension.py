@@ -35,6 +35,9 @@ GROWTH_2D_ONLY = {
     "growth.corrections": "the corrector turns a 2D tip's last increment; 3D fronts advance by the explicit kink "
                           "(leave it 0)",
     "growth.corrector_tolerance": "it belongs to growth.corrections, a 2D corrector",
+    "growth.max_kink_change": "it stops a 2D tip whose kink turns between steps; a 3D front's points are "
+                              "re-sampled every step (no point to follow from step to step) and take half their kink "
+                              "(fracture.kink.front_kinks), so it was never applied: remove it",
 }
 
 
