@@ -588,3 +588,13 @@ def test_contact_left_out_of_the_life_is_said(caplog, closure):
                       Growth(da=0.05, steps=1, fatigue_material=FatigueMaterial("paris", {"C": 1e-3, "m": 3.0}),
                              R=0.0))
     assert run.contact_closure and not [r for r in caplog.records if "material.fatigue.closure" in r.getMessage()]
+
+
+def test_growth_k_ic_with_a_fatigue_material_is_refused():
+    """growth.K_Ic beside [material.fatigue]: both were applied, the life's
+    K_c inside the step and growth.K_Ic at the steps' geometries only (the
+    life then ran on to the geometry past it); one toughness, the
+    material's, as growth.threshold and walker_gamma are."""
+    fm = FatigueMaterial("paris", {"C": 1e-3, "m": 3.0}, closure="none")
+    with pytest.raises(cl.InputError, match=r"growth\.K_Ic belongs to growth\.paris_C.*material\.fatigue\.K_Ic"):
+        Growth(da=0.05, steps=2, fatigue_material=fm, R=0.0, K_Ic=1.2)

@@ -155,6 +155,12 @@ class Growth:
             if self.walker_gamma != 1.0:
                 raise InputError("growth.walker_gamma belongs to growth.paris_C; with [material.fatigue] give "
                                  "law = 'walker' and its gamma there")
+            if self.K_Ic is not None:
+                # (both were applied: the life's K_c inside the step, growth.K_Ic at the steps' geometries only, so
+                # with growth.K_Ic the lower the life ran on to the geometry past it)
+                raise InputError("growth.K_Ic belongs to growth.paris_C; with [material.fatigue] give "
+                                 "material.fatigue.K_Ic (in the constants' units), which the life finds inside the "
+                                 "step that reaches it")
         if self.cycle_max is not None and self.cycle_min is not None:
             bad = [g for g in self.cycle_max if self.cycle_min.get(g, 0.0) > self.cycle_max[g]]
             if bad:
