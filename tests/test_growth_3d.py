@@ -632,3 +632,28 @@ def test_growth_k_ic_of_a_paris_front_is_found_inside_the_step():
     assert by_growth.stop_criterion == by_law.stop_criterion == "K_max >= K_c"
     assert by_growth.cycles == pytest.approx(by_law.cycles, rel=1e-9)
     assert by_growth.records[-1][0].status == "past failure"
+
+
+@pytest.mark.slow
+def test_max_passes_reached_inside_a_step_ends_the_life_there(tmp_path):
+    """spectrum.max_passes reached inside an increment: the life is exactly
+    that many passes (as `cracklip life`'s), not the step's past it (the old
+    code stopped at the step whose passes exceeded it: 23 719 for 18 022);
+    the fraction t of the increment where it is reached follows from the
+    rising rate: P(t) is concave in t, so t <= (P - P1) / (P2 - P1), and t
+    >= that times r1 / r2 (r the fastest point's growth per pass)."""
+    opts = ('options.contact="none"', 'material.fatigue.closure="none"', "growth.max_length=10",
+            "spectrum.blocks[0].points=[0.0, 1.0, 0.0]")
+    free = _grow("corner_crack_gag", tmp_path / "free", *opts, "growth.steps=2")
+    P = [s["passes"] for s in free["life"]["steps"]]
+    rate = [max(t["da_per_pass"] for t in s["tips"]) for s in free["life"]["steps"]]
+    target = 0.5 * (P[1] + P[2])
+    cut = _grow("corner_crack_gag", tmp_path / "cut", *opts, "growth.steps=5", f"spectrum.max_passes={target!r}")
+    assert cut["stop_criterion"] == "spectrum.max_passes" and cut["steps"] == 2
+    assert cut["life"]["passes"] == pytest.approx(target, rel=1e-9)
+    frac = float(cut["stop_reason"].split("inside the increment to step 2 (")[1].split(" of it")[0])
+    share = (target - P[1]) / (P[2] - P[1])
+    assert share * rate[1] / rate[2] * (1 - 1e-3) <= frac <= share * (1 + 1e-3)
+    import csv
+    rows = list(csv.DictReader((tmp_path / "cut" / "front_path.csv").open()))
+    assert {r["status"] for r in rows if r["step"] == "2"} == {"past max_passes"}

@@ -561,6 +561,7 @@ def test_arrest_inside_an_increment_stops_with_finite_numbers():
     run.K_crit, run.yield_stress = None, None
     run.law = LifeLaw(Paris(1e-3, 3.0), "none", threshold=0.9)
     run.passes, run.N, run.cycles_per_pass, run.blocks_per_pass = 0.0, 0.0, 1.0, 1
+    run.max_passes = math.inf  # (spectrum.max_passes, ended inside an increment since 2026-11-29)
     run.increments = {(0, 1): 0.1}
     ct = CycleTable([0], [1], [1.0])
     def table(a, k):

@@ -122,6 +122,7 @@ class GrowthRun:
         self.prev_da = 0.0
         self.prev_lengths: list[float] | None = None    # the cracks' sizes at the last geometry (growth.max_length)
         self.stop_fraction: float | None = None         # where growth.max_length was reached inside the increment
+        self.stop_sizes: list[float] | None = None      # the cracks' sizes where spectrum.max_passes was reached
         self.da = growth.da
         self.fatigue = growth.fatigue
         self.stop_reason = f"{growth.steps} steps done"
@@ -202,9 +203,11 @@ class GrowthRun:
         size, not to the geometry beyond it (which check_stops then stops
         at)."""
         self.stop_fraction = t = self.max_length_fraction(m)
-        self.prev_lengths = list(m.lengths)
+        prev, self.prev_lengths = self.prev_lengths, list(m.lengths)
         if self.life is not None:
             self.N = self.life.count(m, self.k, t)
+            f = self.life.passes_fraction  # spectrum.max_passes reached inside the increment: the sizes there
+            self.stop_sizes = None if f is None or prev is None else [p + f * (n - p) for p, n in zip(prev, m.lengths)]
             return
         if self.fatigue and self.k > 0 and self.prev_rate is not None:
             rate_now = max(m.rates.values()) if m.rates else self.prev_rate
@@ -246,6 +249,17 @@ class GrowthRun:
         growth, k, step = self.growth, self.k, m.records
         if self.life is not None and self.life.failure is not None:
             return self._stop(self.life.failure, self.life.failure_criterion)
+        if self.life is not None and self.life.passes_exceeded():
+            lf, t = self.life, self.life.passes_fraction
+            if t is None:
+                return self._stop(f"the life passed spectrum.max_passes = {lf.max_passes:g} passes (step {k})",
+                                  "spectrum.max_passes")
+            sizes = ", ".join(f"{v:.6g}" for v in self.stop_sizes or [])
+            return self._stop(f"the life reached spectrum.max_passes = {lf.max_passes:g} passes inside the increment "
+                              f"to step {k} ({t:.3g} of it): {self.N:.6g} cycles = "
+                              f"{lf.passes * lf.blocks_per_pass:.6g} {lf.spectrum.block_name}s; the {self.SIZE_NAME} "
+                              f"there {sizes} (linear over the increment); step {k}'s geometry lies beyond it",
+                              "spectrum.max_passes")
         if growth.K_Ic is not None:
             failing = [r for r in step if r.K_eq >= growth.K_Ic]
             if failing:
@@ -262,9 +276,6 @@ class GrowthRun:
                       f"{max(m.lengths):.6g})" if t is not None and t < 1.0 else f" (step {k})")
             return self._stop(f"a crack reached the {self.SIZE_NAME} {growth.max_length:g}" + inside,
                               "growth.max_length")
-        if self.life is not None and self.life.passes_exceeded():
-            return self._stop(f"the life passed spectrum.max_passes = {self.life.max_passes:g} passes (step {k})",
-                              "spectrum.max_passes")
         if k == growth.steps:
             self.step_times.append(time.perf_counter() - self.t0)
             self.stop_criterion = "growth.steps"

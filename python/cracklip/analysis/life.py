@@ -325,8 +325,12 @@ PAST_FAILURE = "past failure"
 #: crack reached inside the increment to it (their N is the life to it).
 PAST_MAX_LENGTH = "past max_length"
 
+#: The status of the records of a geometry past spectrum.max_passes, which
+#: the life reached inside the increment to it (their N is the life then).
+PAST_MAX_PASSES = "past max_passes"
+
 #: The statuses whose records are no (a, N) point of the life.
-PAST_STOP = (PAST_FAILURE, PAST_MAX_LENGTH)
+PAST_STOP = (PAST_FAILURE, PAST_MAX_LENGTH, PAST_MAX_PASSES)
 
 
 class LifeRun:
@@ -422,6 +426,7 @@ class LifeRun:
         self.failure: str | None = None
         self.failure_criterion: str | None = None
         self.failure_point: dict[str, typing.Any] | None = None
+        self.passes_fraction: float | None = None   # where spectrum.max_passes was reached inside the last increment
         self.steps: list[dict[str, typing.Any]] = []
         self.level_solves = 0
         self.load_levels: list[int] = []
@@ -743,6 +748,7 @@ class LifeRun:
         this geometry's records marked past it."""
         now = m.levels
         failed_inside = past_stop = False
+        self.passes_fraction = None
         if k > 0 and self.prev is not None and self.increments and self.failure is None:
             self._integrate(self.prev, self.locator.carry(self.prev, now), t_stop)
             failed_inside = self.failure is not None
@@ -754,6 +760,8 @@ class LifeRun:
             rec.blocks = self.passes * self.blocks_per_pass
             if failed_inside:  # this geometry lies beyond the failure found inside the increment: no (a, N) point
                 rec.status = PAST_FAILURE
+            elif self.passes_fraction is not None:  # beyond spectrum.max_passes, reached inside the increment
+                rec.status = PAST_MAX_PASSES
             elif past_stop:  # and beyond growth.max_length, reached inside the increment
                 rec.status = PAST_MAX_LENGTH
         self.steps.append({"step": k, "cycles": self.N, "passes": self.passes,
@@ -815,16 +823,31 @@ class LifeRun:
                 else:
                     lo = mid
             t_end = hi
-        if self.retardation is None:
+        def passes_to(t: float) -> float:
+            """The passes from the increment's start to its fraction t (Simpson, 16 intervals)."""
             n = 16
-            ts = np.linspace(0.0, t_end, n + 1)
-            g = np.array([growth_at(t) for t in ts])
+            ts = np.linspace(0.0, t, n + 1)
+            g = np.array([growth_at(x) for x in ts])
             if np.any(g <= 0.0):
-                passes = math.inf
-            else:
-                w = np.ones(n + 1)
-                w[1:-1:2], w[2:-1:2] = 4.0, 2.0
-                passes = float(ds * (ts[1] - ts[0]) / 3.0 * np.sum(w / g))
+                return math.inf
+            w = np.ones(n + 1)
+            w[1:-1:2], w[2:-1:2] = 4.0, 2.0
+            return float(ds * (ts[1] - ts[0]) / 3.0 * np.sum(w / g))
+        if self.retardation is None:
+            passes = passes_to(t_end)
+            want = self.max_passes - self.passes
+            if math.isfinite(passes) and passes > want:
+                # spectrum.max_passes inside the increment: the life ends where the passes reach it (as `cracklip
+                # life`'s does), before a failure found further on.
+                lo, hi = 0.0, t_end
+                for _ in range(50):
+                    mid = 0.5 * (lo + hi)
+                    if passes_to(mid) >= want:
+                        hi = mid
+                    else:
+                        lo = mid
+                t_end, passes, crit = hi, want, None
+                self.passes_fraction = hi
         else:
             passes = self._retarded_passes(prev, now, keys, fast, ds, t_end, which)
         if not math.isfinite(passes):
@@ -873,7 +896,9 @@ class LifeRun:
         return out if out is not None else 0.0
 
     def passes_exceeded(self) -> bool:
-        return self.passes > self.max_passes
+        """The life reached spectrum.max_passes (exactly, when found inside
+        an increment; a retarded life by the step past it)."""
+        return self.passes >= self.max_passes * (1.0 - 1e-12)
 
     # -- the summary -------------------------------------------------------------------------------------
     def summary(self, records) -> dict[str, typing.Any]:
@@ -1023,5 +1048,5 @@ def _ligament_stress(sol, tip: np.ndarray, r0: dict, theta: float, bnd) -> float
     return float(np.sum(w * snn * 2.0 * u))
 
 
-__all__ = ["RESIDUAL_GROUP", "PAST_FAILURE", "PAST_MAX_LENGTH", "PAST_STOP", "create_law", "critical_k",
+__all__ = ["RESIDUAL_GROUP", "PAST_FAILURE", "PAST_MAX_LENGTH", "PAST_MAX_PASSES", "PAST_STOP", "create_law", "critical_k",
            "constant_amplitude_spectrum", "TipLevels", "LifeRun"]

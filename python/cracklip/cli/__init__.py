@@ -411,7 +411,8 @@ def cmd_grow(args) -> int:
     print_warnings(result.warnings)
     if not quiet:
         print(_growth_headline(sf.title, results["steps"], result.stop_reason))
-        past = any(t["status"] in ("past failure", "past max_length") for t in results["final"]["tips"])
+        from ..analysis.life import PAST_STOP
+        past = any(t["status"] in PAST_STOP for t in results["final"]["tips"])
         for c in results["final"]["cracks"]:
             a = c["length_in_part"]
             print(f"  {c['name']}: " + (f"length {a:.6g} in the part" if a is not None else
@@ -453,6 +454,7 @@ def _grow_3d(args, sf, out, series, t_start: float, quiet: bool) -> int:
     (front points, K_I range, the largest advance, a and c of surface and
     corner cracks, flights done), then the 3D outputs."""
     from ..analysis.front_growth import SurfaceGrowth
+    from ..analysis.life import PAST_STOP
     from ..io.front_growth_outputs import write_front_growth_outputs
     run = SurfaceGrowth(sf.scene, sf.growth, False, None, args.beta_table)
     block = sf.growth.spectrum.block_name if sf.growth.spectrum is not None else "cycle"
@@ -484,7 +486,7 @@ def _grow_3d(args, sf, out, series, t_start: float, quiet: bool) -> int:
     if not quiet:
         print(_growth_headline(sf.title, results["steps"], result.stop_reason))
         past = bool(result.records and result.records[-1]
-                    and result.records[-1][0].status in ("past failure", "past max_length"))
+                    and result.records[-1][0].status in PAST_STOP)
         for c in results["final"]["cracks"]:
             sh = c["shape"] or {}
             print(f"  {c['name']}: {sh.get('kind', '')} crack"

@@ -139,7 +139,9 @@ def _spectrum_keys() -> list[Key]:
         Key("spectrum.block_name", "string", "flight", "what a block is called in outputs", p_str),
         Key("spectrum.contact_levels", "integer", 2, "contact solves per growth step at the load states "
             "where the lips touch (K interpolated between them and the closure level)", p_int(1)),
-        Key("spectrum.max_passes", "float", 1e9, "stop after this many passes", p_float(positive=True)),
+        Key("spectrum.max_passes", "float", 1e9, "stop after this many passes (the life ends where the passes "
+            "reach it; grow: inside the step that reaches it, the sizes there in the stop's message)",
+            p_float(positive=True)),
         Key("spectrum.blocks[].points", "[factor, ...] or [[factors], ...]", UNSET, "turning points of the "
             "block: one factor per point (one group) or one row per point (one factor per group); one of "
             "points, file", p_numbers_any),
