@@ -116,6 +116,20 @@ def test_paris_law_in_large_steps():
     assert p["N_error_max"] < 0.01
 
 
+def test_max_length_inside_a_step_gives_the_life_to_it():
+    """growth.max_length reached inside a constant-amplitude step (the centre
+    crack of test_paris_law_in_large_steps, steps of a / 4, its length 2a to
+    reach 1.125 half way through the first step): the cycles are those to
+    a = 0.5625 (closed form, within the 1 % of those steps), not to the
+    step's crack beyond it (the old code: 54.0 cycles, the life to a = 0.625,
+    against 29.05)."""
+    res = grow(gb.centre_crack_scene(), Growth(da=0.125, steps=4, paris_C=gb.PARIS_C, paris_m=gb.PARIS_M,
+                                               cycle_min={"default": 0.0}, max_length=1.125))
+    assert res.stop_criterion == "growth.max_length" and len(res.records) == 2
+    assert res.cycles == pytest.approx(float(gb.paris_closed_form(0.5625, 0.5)), rel=0.01)
+    assert all(r.status == "past max_length" for r in res.records[-1])
+
+
 def test_increment_cycles_is_exact_for_delta_k_linear_along_the_step():
     import scipy.integrate
     from cracklip.analysis.growth_run import increment_cycles
