@@ -18,9 +18,10 @@ Per step (the named steps of GrowthRun):
   point, K interpolated between the two geometries (LifeRun.count): each
   point of the last geometry is carried to where its increment took it and
   meets the new front's K there (FrontPoints.carry);
-- check stops: K_max at K_c at any point, net-section yield (both found
-  inside the increment), the step count, no growing point, and the
-  breakthrough found by the last advance;
+- check stops: K_max at K_c at any point, net-section yield,
+  growth.max_length and spectrum.max_passes (all found inside the
+  increment), the step count, no growing point, and the breakthrough found
+  by the last advance;
 - advance: every front point by da_i = growth.da x rate_i / max_j rate_j
   (the step's cycles from the fastest point), along its kink (front_kinks); the growth
   per front point interpolated along the crack's boundary loop
