@@ -130,6 +130,29 @@ def test_max_length_inside_a_step_gives_the_life_to_it():
     assert all(r.status == "past max_length" for r in res.records[-1])
 
 
+def test_toughness_inside_a_step_gives_the_life_to_it():
+    """growth.K_Ic reached inside a constant-amplitude step (the same centre
+    crack, K_Ic half way between the K_eq of its first two geometries): the
+    cycles are those to a = 0.5625, where K_eq linear over the step reaches
+    it (closed form, within the 1 % of these steps), not to the step's crack
+    beyond it (the old code: the life to a = 0.625, 54.0 cycles against
+    29.05), and the stop says so."""
+    law = dict(da=0.125, paris_C=gb.PARIS_C, paris_m=gb.PARIS_M, cycle_min={"default": 0.0})
+    first = grow(gb.centre_crack_scene(), Growth(steps=1, **law))
+    K0, K1 = (max(r.K_eq for r in recs) for recs in first.records)
+    res = grow(gb.centre_crack_scene(), Growth(steps=4, K_Ic=0.5 * (K0 + K1), **law))
+    assert res.stop_criterion == "K_eq >= growth.K_Ic" and len(res.records) == 2
+    assert res.cycles == pytest.approx(float(gb.paris_closed_form(0.5625, 0.5)), rel=0.01)
+    assert all(r.status == "past failure" for r in res.records[-1])
+    assert "inside the increment to step 1 (0.5 of it" in res.stop_reason
+
+
+def test_max_length_below_the_start_says_so():
+    res = grow(gb.centre_crack_scene(), Growth(da=0.125, steps=4, max_length=0.5))
+    assert res.stop_criterion == "growth.max_length" and len(res.records) == 1
+    assert "the length at the start, 1, is already at or beyond growth.max_length = 0.5" in res.stop_reason
+
+
 def test_increment_cycles_is_exact_for_delta_k_linear_along_the_step():
     import scipy.integrate
     from cracklip.analysis.growth_run import increment_cycles

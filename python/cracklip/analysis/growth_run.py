@@ -19,7 +19,7 @@ from ..model.checks import CODE_MEANINGS, CodedText
 from ..scene.growth import Growth
 from ..scene.processes import mark_collective
 from ..scene.scene import Scene
-from .life import PAST_MAX_LENGTH, rate_table_messages
+from .life import PAST_FAILURE, PAST_MAX_LENGTH, rate_table_messages
 from .tips import Measured, TipRecord
 
 logger = logging.getLogger("cracklip.analysis.growth")
@@ -121,7 +121,8 @@ class GrowthRun:
         self.prev_rate: float | None = None             # constant amplitude: the trapezoid's last rate
         self.prev_da = 0.0
         self.prev_lengths: list[float] | None = None    # the cracks' sizes at the last geometry (growth.max_length)
-        self.stop_fraction: float | None = None         # where growth.max_length was reached inside the increment
+        self.stop_fraction: float | None = None         # where growth.max_length (or 2D growth.K_Ic) was reached
+        self.stop_cause: str | None = None              # which of the two: "max_length" or "K_Ic"
         self.stop_sizes: list[float] | None = None      # the cracks' sizes where spectrum.max_passes was reached
         self.da = growth.da
         self.fatigue = growth.fatigue
@@ -201,8 +202,14 @@ class GrowthRun:
         a crack passes growth.max_length inside the increment, only up to
         there (the size taken linear over the increment): the life to that
         size, not to the geometry beyond it (which check_stops then stops
-        at)."""
-        self.stop_fraction = t = self.max_length_fraction(m)
+        at); likewise at constant amplitude where K_eq reaches growth.K_Ic
+        (K_eq linear over the increment)."""
+        t = self.max_length_fraction(m)
+        self.stop_cause = None if t is None else "max_length"
+        t_kc = self.toughness_fraction(m) if self.life is None and self.fatigue else None  # (a life to stop)
+        if t_kc is not None and (t is None or t_kc < t):
+            t, self.stop_cause = t_kc, "K_Ic"
+        self.stop_fraction = t
         prev, self.prev_lengths = self.prev_lengths, list(m.lengths)
         if self.life is not None:
             self.N = self.life.count(m, self.k, t)
@@ -224,7 +231,7 @@ class GrowthRun:
             for rec in m.records:  # the cycles spent to reach this geometry
                 rec.dN, rec.N = dN, self.N
                 if t is not None and t < 1.0:
-                    rec.status = PAST_MAX_LENGTH
+                    rec.status = PAST_FAILURE if self.stop_cause == "K_Ic" else PAST_MAX_LENGTH
 
     def max_length_fraction(self, m: Measured) -> float | None:
         """The fraction of the increment just taken at which a crack's size
@@ -235,6 +242,19 @@ class GrowthRun:
             return None
         lim = L * (1.0 - 1e-9)
         fr = [(L - p) / (n - p) for p, n in zip(self.prev_lengths, m.lengths) if p < lim <= n]
+        return min(1.0, max(0.0, min(fr))) if fr else None
+
+    def toughness_fraction(self, m: Measured) -> float | None:
+        """The fraction of the increment just taken at which a tip's K_eq
+        reached growth.K_Ic (K_eq linear between the two geometries, as
+        increment_cycles takes Delta K), or None (not reached in it, or the
+        first geometry)."""
+        K_c = self.growth.K_Ic
+        if K_c is None or self.k == 0 or not self.records:
+            return None
+        before = {(r.crack, r.end): r.K_eq for r in self.records[-1]}
+        fr = [(K_c - before[r.crack, r.end]) / (r.K_eq - before[r.crack, r.end]) for r in m.records
+              if (r.crack, r.end) in before and before[r.crack, r.end] < K_c <= r.K_eq]
         return min(1.0, max(0.0, min(fr))) if fr else None
 
     def _stop(self, reason: str, criterion: str | None = None) -> bool:
@@ -260,15 +280,25 @@ class GrowthRun:
                               f"{lf.passes * lf.blocks_per_pass:.6g} {lf.spectrum.block_name}s; the {self.SIZE_NAME} "
                               f"there {sizes} (linear over the increment); step {k}'s geometry lies beyond it",
                               "spectrum.max_passes")
-        if growth.K_Ic is not None:
+        t, cause = self.stop_fraction, self.stop_cause
+        if growth.K_Ic is not None and cause != "max_length":
             failing = [r for r in step if r.K_eq >= growth.K_Ic]
             if failing:
                 r = failing[0]
-                return self._stop(f"final failure: K_eq = {r.K_eq:.6g} >= K_Ic = {growth.K_Ic:g} at "
-                                  f"{self.where(r)} of crack {self.cracks[r.crack].name!r} (step {k})",
-                                  "K_eq >= growth.K_Ic")
+                where = f"{self.where(r)} of crack {self.cracks[r.crack].name!r}"
+                if cause == "K_Ic" and t < 1.0:
+                    return self._stop(f"final failure: K_eq reaches K_Ic = {growth.K_Ic:g} at {where} inside the "
+                                      f"increment to step {k} ({t:.3g} of it, K_eq linear over it): the life to it "
+                                      f"{self.N:.6g} cycles; step {k}'s geometry lies beyond it (K_eq = "
+                                      f"{r.K_eq:.6g} there)", "K_eq >= growth.K_Ic")
+                return self._stop(f"final failure: K_eq = {r.K_eq:.6g} >= K_Ic = {growth.K_Ic:g} at {where} "
+                                  f"(step {k})", "K_eq >= growth.K_Ic")
+        if growth.max_length is not None and k == 0 and any(v >= growth.max_length * (1.0 - 1e-9)
+                                                            for v in m.lengths):
+            return self._stop(f"the {self.SIZE_NAME} at the start, {max(m.lengths):.6g}, is already at or beyond "
+                              f"growth.max_length = {growth.max_length:g}: nothing to grow (step 0)",
+                              "growth.max_length")
         if growth.max_length is not None and any(v >= growth.max_length * (1.0 - 1e-9) for v in m.lengths):
-            t = self.stop_fraction
             blocks = (f" = {self.life.passes * self.life.blocks_per_pass:.6g} {self.life.spectrum.block_name}s"
                       if self.life is not None and self.life.spectrum.block_name != "cycle" else "")
             inside = (f" inside the increment to step {k} ({t:.3g} of it, the size linear over it): the life to it "
