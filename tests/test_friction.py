@@ -239,3 +239,52 @@ load_steps = 2
     status = cli.main(["run", str(bad), "--out", str(tmp_path / "b"), "--quiet"])
     assert status == 2
     assert "load step 'shear removed' names load group(s) ['sheer']" in capsys.readouterr().err
+
+
+def test_shear_at_the_friction_limit_sticks(tmp_path):
+    """A closed crack whose uniform shear is exactly at the friction bound
+    (biaxial p = 1, tau = 0.5, mu = 0.5; 20 x 20 plate, a = 1): the sticking
+    start is the exact (uniform) field, K = 0 at both tips. Its multipliers
+    carry round-off of 5e-11 above the bound: with a stick->slip test at
+    1e-12 of the shear, 14 of 48 multipliers slipped on it, the states
+    wandered 20 iterations and the run stopped with a ContactError (status
+    2); at LIMIT_TOLERANCE (1e-8) the start settles in one iteration."""
+    scene = tmp_path / "limit.toml"
+    text = """
+[mesh]
+domain = [-10.0, -10.0, 10.0, 10.0]
+h = 1.0
+tip_h = 0.01
+[[mesh.refine]]
+segment = [[-1.3, 0.0], [1.3, 0.0]]
+h = 0.05
+[material]
+E = 1.0
+nu = 0.3
+[[cracks]]
+points = [[-1.0, 0.0], [1.0, 0.0]]
+[[dirichlet]]
+point = [-10.0, -10.0]
+[[dirichlet]]
+point = [10.0, -10.0]
+component = "y"
+"""
+    for tag in ("top", "bottom", "left", "right"):
+        text += f'[[loads.tractions]]\ntag = "{tag}"\nstress = [-1.0, -1.0, 0.5]\n'
+    text += """[options]
+radius = 0.2
+contact = "bilateral"
+friction = 0.5
+[outputs]
+vtu = false
+png = false
+error_estimate = false
+"""
+    scene.write_text(text)
+    out = tmp_path / "o"
+    assert cli.main(["run", str(scene), "--out", str(out), "--quiet"]) == 0
+    import json
+    results = json.loads((out / "results.json").read_text())
+    for tip in results["sifs"]:
+        assert abs(tip["K_I"]) < 1e-8 and abs(tip["K_II"]) < 1e-8
+    assert results["contact"]["states"]["slip"] == 0 and results["contact"]["iterations"] == 1
