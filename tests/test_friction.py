@@ -288,3 +288,26 @@ error_estimate = false
     for tip in results["sifs"]:
         assert abs(tip["K_I"]) < 1e-8 and abs(tip["K_II"]) < 1e-8
     assert results["contact"]["states"]["slip"] == 0 and results["contact"]["iterations"] == 1
+
+
+def test_load_group_the_path_never_names_warns(tmp_path):
+    """demos/scenes/frictional_crack.toml with a load path of its clamp
+    alone: the four shear tractions (group "shear") get no factor in any
+    step, so they stay at 0 and are never applied (K_II = 0, the crack
+    only clamped). That ran silently (no warning, status 0); it now warns
+    (unused_load_group, naming the group). The shipped path names both
+    groups: no such warning."""
+    import json
+    scene = pathlib.Path(__file__).resolve().parents[1] / "demos" / "scenes" / "frictional_crack.toml"
+    small = ["--set", "mesh.h=0.2", "--set", "mesh.tip_h=0.05", "--set", "outputs.vtu=false", "--set",
+             "outputs.png=false", "--no-estimate", "--quiet"]
+    out = tmp_path / "clamp_only"
+    assert cli.main(["run", str(scene), "--out", str(out), *small,
+                     "--set", 'load_path=[{name="clamp",factors={clamp=1.0}}]']) == 0
+    warnings = json.loads((out / "results.json").read_text())["warnings"]
+    unused = [w for w in warnings if w["code"] == "unused_load_group"]
+    assert len(unused) == 1 and "['shear']" in unused[0]["message"], warnings
+    out = tmp_path / "shipped"
+    assert cli.main(["run", str(scene), "--out", str(out), *small]) == 0
+    warnings = json.loads((out / "results.json").read_text())["warnings"]
+    assert not [w for w in warnings if w["code"] == "unused_load_group"], warnings

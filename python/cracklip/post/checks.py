@@ -9,6 +9,10 @@ collects them with the model's and the SIFs' warnings.
   the warning reaches ``grow`` through the maximum load's solution.
 - ``no_load``: every load and prescribed displacement is zero (the solution
   and every K are 0).
+- ``unused_load_group``: a load path (load_path) that never names a load
+  group the scene's loads or Dirichlet values belong to: its factor stays
+  0 at every step (every factor starts at 0), so those loads are never
+  applied ("default" included: a load without a group).
 - ``point_supports``: two point forces or two tractions push against each
   other, as a self-equilibrated set does (the pins of a C(T), both ends of
   a pulled plate), yet point supports carry more than SUPPORT_FRACTION of
@@ -24,6 +28,7 @@ import math
 import numpy as np
 
 from ..scene.processes import reduced
+from ..scene.scene import load_groups
 
 
 #: Overlap of the lips (largest -gap) above this fraction of the largest
@@ -121,6 +126,24 @@ def no_load(solution) -> list[tuple[str, str]]:
     return [("no_load", "every load and prescribed displacement of the scene is zero (tractions, pressures, point "
                         "forces, body force, lip pressures, initial stress, Dirichlet values): the displacement and "
                         "every K are 0; give the part a load")]
+
+
+def unused_load_groups(solution) -> list[tuple[str, str]]:
+    """Load groups with loads that no step of the load path names (their
+    factor is 0 throughout: the loads are never applied)."""
+    scene = solution.model.scene
+    if not scene.load_path:
+        return []
+    named = set().union(*(st.factors for st in scene.load_path))
+    unused = sorted(load_groups(scene) - named)
+    if not unused:
+        return []
+    return [("unused_load_group", (
+        f"load group(s) {unused} of the scene's loads or Dirichlet values are named by no step of the load path "
+        f"([[load_path]], or a fatigue cycle's growth.cycle_max / cycle_min; it names {sorted(named)}): "
+        "every factor starts at 0, so these loads are never applied; give "
+        "them a factor in a load step (factors = { " + ", ".join(f"{g} = 1.0" for g in unused) + " }) or put the "
+        "loads in a group the path names (group = ...)"))]
 
 
 def point_supports(solution, reactions: dict | None = None) -> list[tuple[str, str]]:
@@ -223,4 +246,4 @@ def estimate(solution) -> list[tuple[str, str]]:
 
 def solution_warnings(solution) -> list[tuple[str, str]]:
     """Every check of this module that needs no reactions (those are in the outputs)."""
-    return interpenetration(solution) + no_load(solution) + estimate(solution)
+    return interpenetration(solution) + no_load(solution) + unused_load_groups(solution) + estimate(solution)
