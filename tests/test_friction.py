@@ -311,3 +311,28 @@ def test_load_group_the_path_never_names_warns(tmp_path):
     assert cli.main(["run", str(scene), "--out", str(out), *small]) == 0
     warnings = json.loads((out / "results.json").read_text())["warnings"]
     assert not [w for w in warnings if w["code"] == "unused_load_group"], warnings
+
+
+def test_bilateral_contact_in_tension_warns(tmp_path):
+    """demos/scenes/frictional_crack.toml with its clamp reversed (the
+    crack pulled open by sigma_yy = +1, then sheared): bilateral contact
+    holds the lips together, so K_I = 0 (measured 5e-5) where the open
+    crack's is sigma sqrt(pi a) = 1.25 (infinite plate; more in this one) and the contact
+    pressure is -1 (tension). That ran silently; it now warns
+    (bilateral_tension). The shipped scene (compression at every step)
+    does not."""
+    import json
+    scene = pathlib.Path(__file__).resolve().parents[1] / "demos" / "scenes" / "frictional_crack.toml"
+    small = ["--set", "mesh.h=0.2", "--set", "mesh.tip_h=0.05", "--set", "outputs.vtu=false", "--set",
+             "outputs.png=false", "--no-estimate", "--quiet"]
+    out = tmp_path / "pulled"
+    assert cli.main(["run", str(scene), "--out", str(out), *small, "--set", "loads.tractions[0].value=[0.0, 1.0]",
+                     "--set", "loads.tractions[1].value=[0.0, -1.0]"]) == 0
+    results = json.loads((out / "results.json").read_text())
+    assert abs(results["steps"][0]["sifs"][0]["K_I"]) < 1e-3  # held shut (5e-5): the reason for the warning
+    tension = [w for w in results["warnings"] if w["code"] == "bilateral_tension"]
+    assert len(tension) == 1 and "100 % of its length" in tension[0]["message"], results["warnings"]
+    out = tmp_path / "shipped"
+    assert cli.main(["run", str(scene), "--out", str(out), *small]) == 0
+    warnings = json.loads((out / "results.json").read_text())["warnings"]
+    assert not [w for w in warnings if w["code"] == "bilateral_tension"], warnings

@@ -7,6 +7,11 @@ collects them with the model's and the SIFs' warnings.
   a negative K_I, and in fatigue a K_min below zero that inflates Delta K.
   Checked at every state of a load path (a fatigue cycle's minimum too), so
   the warning reaches ``grow`` through the maximum load's solution.
+- ``bilateral_tension``: bilateral contact (options.contact = "bilateral")
+  holds the lips together in tension too: where the load pulls them apart
+  the contact "pressure" is negative and K_I is held at 0 where the open
+  crack's would be positive (not conservative). Checked at every state of
+  a load path.
 - ``no_load``: every load and prescribed displacement is zero (the solution
   and every K are 0).
 - ``unused_load_group``: a load path (load_path) that never names a load
@@ -35,6 +40,12 @@ from ..scene.scene import load_groups
 #: |jump| of a crack is interpenetration (below it: round-off of a crack
 #: loaded in shear).
 OVERLAP_FRACTION = 1e-3
+
+
+#: A bilateral contact pressure below -TENSION_FRACTION times the largest
+#: lip traction (pressure or shear) is tension the lips should not carry
+#: (above it: round-off of a crack in shear, ~1e-10).
+TENSION_FRACTION = 1e-3
 
 
 #: Point supports carrying more than this fraction of the applied load
@@ -87,6 +98,41 @@ def interpenetration(solution) -> list[tuple[str, str]]:
             f"{cm.EXTENT} (largest overlap {overlap:.3g}{unit}{_negative_k(rows, cm.END)}): contact is off "
             "(options.contact = \"none\"), so nothing stops them; the K_I < 0 of overlapping lips is not physical, "
             "and in fatigue it makes K_min negative and Delta K too large (life too short). " + CONTACT_FIX[cm.END])))
+    return out
+
+
+def bilateral_tension(solution) -> list[tuple[str, str]]:
+    """Bilateral contact carrying tension (module doc)."""
+    m = solution.model
+    if m.scene.options.contact != "bilateral" or not solution.contact or not m.cracks:
+        return []
+    out = []
+    states = _states(solution)
+    for ci, cm in enumerate(m.cracks):
+        worst = None
+        for st in states:
+            smp = st.lip_samples(ci, 2)
+            p = smp["pressure"]
+            if not len(p):
+                continue
+            shear = smp["shear"] if smp["shear"].ndim == 1 else np.linalg.norm(smp["shear"], axis=1)
+            scale = max(float(np.abs(p).max()), float(np.abs(shear).max()))
+            tensile = p < -TENSION_FRACTION * scale
+            if scale > 0.0 and np.any(tensile):
+                w = smp["weight"]
+                frac = float(w[tensile].sum() / w.sum())
+                if worst is None or p.min() < worst[1]:
+                    worst = (st, float(p.min()), frac)
+        if worst is None:
+            continue
+        st, lowest, frac = worst
+        at = f" at {st.step['name']!r}" if getattr(st, "step", None) and len(states) > 1 else ""
+        out.append(("bilateral_tension", (
+            f"crack {cm.crack.name!r}{at}: bilateral contact holds its lips together against tension over "
+            f"{100 * frac:.0f} % of its {cm.EXTENT} (contact pressure down to {lowest:.4g}): bilateral lips cannot "
+            "open, so where the load pulls them apart K_I is held at 0 while the open crack's is positive (not "
+            "conservative). Set options.contact = \"unilateral\" (the lips open where pulled, touch where pressed), "
+            "or check the sign of the load")))
     return out
 
 
@@ -246,4 +292,5 @@ def estimate(solution) -> list[tuple[str, str]]:
 
 def solution_warnings(solution) -> list[tuple[str, str]]:
     """Every check of this module that needs no reactions (those are in the outputs)."""
-    return interpenetration(solution) + no_load(solution) + unused_load_groups(solution) + estimate(solution)
+    return (interpenetration(solution) + bilateral_tension(solution) + no_load(solution)
+            + unused_load_groups(solution) + estimate(solution))
