@@ -247,3 +247,59 @@ def test_closed_penny_demo_slip_and_stick(tmp_path):
     assert max(stick["K_I_rel"], stick["K_II_err"], stick["K_III_err"]) <= 0.005, stick
     assert stick["pressure_err"] <= 0.006, stick
     assert (tmp_path / "c" / "beta30_mu0.3.png").stat().st_size > 10000
+
+
+def test_slipping_penny_lips_report_slip_everywhere(tmp_path):
+    """A closed penny (a = 1, box of half-width 10, h = 5, tip_h = 0.25,
+    1.3e4 dofs) under p = 1 and tau = 0.5 > mu p (mu = 0.3): every friction
+    multiplier slips (20 of 20), and so must the lips' states that
+    results.json's stick / slip areas, crack_contact.png and
+    crack_surface.vtu show. Their directions spread by 0.22 degrees, so the
+    interpolated shear between two multipliers is below mu p by up to 3e-6
+    of it: the old pointwise test |shear| < mu p (1 - 1e-6) called 0.632 of
+    the area 3.103 (20 %) "stick"; the states now follow the multipliers'
+    (stick_area 0)."""
+    import json
+    from cracklip import cli
+    text = """
+[mesh]
+kind = "box"
+box = [-10.0, -10.0, -10.0, 10.0, 10.0, 10.0]
+h = 5.0
+tip_h = 0.25
+[material]
+E = 1.0
+nu = 0.3
+[[cracks]]
+ellipse = { center = [0.0, 0.0, 0.0], normal = [0.0, 0.0, 1.0], a = 1.0, a_direction = [1.0, 0.0, 0.0] }
+[[dirichlet]]
+point = [-10.0, -10.0, -10.0]
+[[dirichlet]]
+point = [10.0, -10.0, -10.0]
+component = "y"
+[[dirichlet]]
+point = [10.0, -10.0, -10.0]
+component = "z"
+[[dirichlet]]
+point = [-10.0, 10.0, -10.0]
+component = "z"
+"""
+    for tag in FACES:
+        text += f'[[loads.tractions]]\ntag = "{tag}"\nstress = [0.0, 0.0, -1.0, 0.0, 0.5, 0.0]\n'
+    text += """[options]
+radius = 0.25
+contact = "bilateral"
+friction = 0.3
+[outputs]
+vtu = false
+png = false
+error_estimate = false
+"""
+    scene = tmp_path / "penny.toml"
+    scene.write_text(text)
+    assert cli.main(["run", str(scene), "--out", str(tmp_path / "o"), "--quiet"]) == 0
+    results = json.loads((tmp_path / "o" / "results.json").read_text())
+    states = results["contact"]["states"]
+    assert states["slip"] == results["contact"]["multipliers"] and states["stick"] == 0
+    crack = results["cracks"][0]
+    assert crack["stick_area"] == 0.0 and crack["slip_area"] == pytest.approx(crack["closed_area"], rel=1e-12)

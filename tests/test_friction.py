@@ -239,3 +239,100 @@ load_steps = 2
     status = cli.main(["run", str(bad), "--out", str(tmp_path / "b"), "--quiet"])
     assert status == 2
     assert "load step 'shear removed' names load group(s) ['sheer']" in capsys.readouterr().err
+
+
+def test_shear_at_the_friction_limit_sticks(tmp_path):
+    """A closed crack whose uniform shear is exactly at the friction bound
+    (biaxial p = 1, tau = 0.5, mu = 0.5; 20 x 20 plate, a = 1): the sticking
+    start is the exact (uniform) field, K = 0 at both tips. Its multipliers
+    carry round-off of 5e-11 above the bound: with a stick->slip test at
+    1e-12 of the shear, 14 of 48 multipliers slipped on it, the states
+    wandered 20 iterations and the run stopped with a ContactError (status
+    2); at LIMIT_TOLERANCE (1e-8) the start settles in one iteration."""
+    scene = tmp_path / "limit.toml"
+    text = """
+[mesh]
+domain = [-10.0, -10.0, 10.0, 10.0]
+h = 1.0
+tip_h = 0.01
+[[mesh.refine]]
+segment = [[-1.3, 0.0], [1.3, 0.0]]
+h = 0.05
+[material]
+E = 1.0
+nu = 0.3
+[[cracks]]
+points = [[-1.0, 0.0], [1.0, 0.0]]
+[[dirichlet]]
+point = [-10.0, -10.0]
+[[dirichlet]]
+point = [10.0, -10.0]
+component = "y"
+"""
+    for tag in ("top", "bottom", "left", "right"):
+        text += f'[[loads.tractions]]\ntag = "{tag}"\nstress = [-1.0, -1.0, 0.5]\n'
+    text += """[options]
+radius = 0.2
+contact = "bilateral"
+friction = 0.5
+[outputs]
+vtu = false
+png = false
+error_estimate = false
+"""
+    scene.write_text(text)
+    out = tmp_path / "o"
+    assert cli.main(["run", str(scene), "--out", str(out), "--quiet"]) == 0
+    import json
+    results = json.loads((out / "results.json").read_text())
+    for tip in results["sifs"]:
+        assert abs(tip["K_I"]) < 1e-8 and abs(tip["K_II"]) < 1e-8
+    assert results["contact"]["states"]["slip"] == 0 and results["contact"]["iterations"] == 1
+
+
+def test_load_group_the_path_never_names_warns(tmp_path):
+    """demos/scenes/frictional_crack.toml with a load path of its clamp
+    alone: the four shear tractions (group "shear") get no factor in any
+    step, so they stay at 0 and are never applied (K_II = 0, the crack
+    only clamped). That ran silently (no warning, status 0); it now warns
+    (unused_load_group, naming the group). The shipped path names both
+    groups: no such warning."""
+    import json
+    scene = pathlib.Path(__file__).resolve().parents[1] / "demos" / "scenes" / "frictional_crack.toml"
+    small = ["--set", "mesh.h=0.2", "--set", "mesh.tip_h=0.05", "--set", "outputs.vtu=false", "--set",
+             "outputs.png=false", "--no-estimate", "--quiet"]
+    out = tmp_path / "clamp_only"
+    assert cli.main(["run", str(scene), "--out", str(out), *small,
+                     "--set", 'load_path=[{name="clamp",factors={clamp=1.0}}]']) == 0
+    warnings = json.loads((out / "results.json").read_text())["warnings"]
+    unused = [w for w in warnings if w["code"] == "unused_load_group"]
+    assert len(unused) == 1 and "['shear']" in unused[0]["message"], warnings
+    out = tmp_path / "shipped"
+    assert cli.main(["run", str(scene), "--out", str(out), *small]) == 0
+    warnings = json.loads((out / "results.json").read_text())["warnings"]
+    assert not [w for w in warnings if w["code"] == "unused_load_group"], warnings
+
+
+def test_bilateral_contact_in_tension_warns(tmp_path):
+    """demos/scenes/frictional_crack.toml with its clamp reversed (the
+    crack pulled open by sigma_yy = +1, then sheared): bilateral contact
+    holds the lips together, so K_I = 0 (measured 5e-5) where the open
+    crack's is sigma sqrt(pi a) = 1.25 (infinite plate; more in this one) and the contact
+    pressure is -1 (tension). That ran silently; it now warns
+    (bilateral_tension). The shipped scene (compression at every step)
+    does not."""
+    import json
+    scene = pathlib.Path(__file__).resolve().parents[1] / "demos" / "scenes" / "frictional_crack.toml"
+    small = ["--set", "mesh.h=0.2", "--set", "mesh.tip_h=0.05", "--set", "outputs.vtu=false", "--set",
+             "outputs.png=false", "--no-estimate", "--quiet"]
+    out = tmp_path / "pulled"
+    assert cli.main(["run", str(scene), "--out", str(out), *small, "--set", "loads.tractions[0].value=[0.0, 1.0]",
+                     "--set", "loads.tractions[1].value=[0.0, -1.0]"]) == 0
+    results = json.loads((out / "results.json").read_text())
+    assert abs(results["steps"][0]["sifs"][0]["K_I"]) < 1e-3  # held shut (5e-5): the reason for the warning
+    tension = [w for w in results["warnings"] if w["code"] == "bilateral_tension"]
+    assert len(tension) == 1 and "100 % of its length" in tension[0]["message"], results["warnings"]
+    out = tmp_path / "shipped"
+    assert cli.main(["run", str(scene), "--out", str(out), *small]) == 0
+    warnings = json.loads((out / "results.json").read_text())["warnings"]
+    assert not [w for w in warnings if w["code"] == "bilateral_tension"], warnings

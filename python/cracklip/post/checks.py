@@ -7,8 +7,17 @@ collects them with the model's and the SIFs' warnings.
   a negative K_I, and in fatigue a K_min below zero that inflates Delta K.
   Checked at every state of a load path (a fatigue cycle's minimum too), so
   the warning reaches ``grow`` through the maximum load's solution.
+- ``bilateral_tension``: bilateral contact (options.contact = "bilateral")
+  holds the lips together in tension too: where the load pulls them apart
+  the contact "pressure" is negative and K_I is held at 0 where the open
+  crack's would be positive (not conservative). Checked at every state of
+  a load path.
 - ``no_load``: every load and prescribed displacement is zero (the solution
   and every K are 0).
+- ``unused_load_group``: a load path (load_path) that never names a load
+  group the scene's loads or Dirichlet values belong to: its factor stays
+  0 at every step (every factor starts at 0), so those loads are never
+  applied ("default" included: a load without a group).
 - ``point_supports``: two point forces or two tractions push against each
   other, as a self-equilibrated set does (the pins of a C(T), both ends of
   a pulled plate), yet point supports carry more than SUPPORT_FRACTION of
@@ -24,12 +33,19 @@ import math
 import numpy as np
 
 from ..scene.processes import reduced
+from ..scene.scene import load_groups
 
 
 #: Overlap of the lips (largest -gap) above this fraction of the largest
 #: |jump| of a crack is interpenetration (below it: round-off of a crack
 #: loaded in shear).
 OVERLAP_FRACTION = 1e-3
+
+
+#: A bilateral contact pressure below -TENSION_FRACTION times the largest
+#: lip traction (pressure or shear) is tension the lips should not carry
+#: (above it: round-off of a crack in shear, ~1e-10).
+TENSION_FRACTION = 1e-3
 
 
 #: Point supports carrying more than this fraction of the applied load
@@ -85,6 +101,41 @@ def interpenetration(solution) -> list[tuple[str, str]]:
     return out
 
 
+def bilateral_tension(solution) -> list[tuple[str, str]]:
+    """Bilateral contact carrying tension (module doc)."""
+    m = solution.model
+    if m.scene.options.contact != "bilateral" or not solution.contact or not m.cracks:
+        return []
+    out = []
+    states = _states(solution)
+    for ci, cm in enumerate(m.cracks):
+        worst = None
+        for st in states:
+            smp = st.lip_samples(ci, 2)
+            p = smp["pressure"]
+            if not len(p):
+                continue
+            shear = smp["shear"] if smp["shear"].ndim == 1 else np.linalg.norm(smp["shear"], axis=1)
+            scale = max(float(np.abs(p).max()), float(np.abs(shear).max()))
+            tensile = p < -TENSION_FRACTION * scale
+            if scale > 0.0 and np.any(tensile):
+                w = smp["weight"]
+                frac = float(w[tensile].sum() / w.sum())
+                if worst is None or p.min() < worst[1]:
+                    worst = (st, float(p.min()), frac)
+        if worst is None:
+            continue
+        st, lowest, frac = worst
+        at = f" at {st.step['name']!r}" if getattr(st, "step", None) and len(states) > 1 else ""
+        out.append(("bilateral_tension", (
+            f"crack {cm.crack.name!r}{at}: bilateral contact holds its lips together against tension over "
+            f"{100 * frac:.0f} % of its {cm.EXTENT} (contact pressure down to {lowest:.4g}): bilateral lips cannot "
+            "open, so where the load pulls them apart K_I is held at 0 while the open crack's is positive (not "
+            "conservative). Set options.contact = \"unilateral\" (the lips open where pulled, touch where pressed), "
+            "or check the sign of the load")))
+    return out
+
+
 #: The fix named by the interpenetration warning, per kind of crack end
 #: (CrackModel.END): contact on the lips, or the load's sign.
 CONTACT_FIX = {
@@ -121,6 +172,24 @@ def no_load(solution) -> list[tuple[str, str]]:
     return [("no_load", "every load and prescribed displacement of the scene is zero (tractions, pressures, point "
                         "forces, body force, lip pressures, initial stress, Dirichlet values): the displacement and "
                         "every K are 0; give the part a load")]
+
+
+def unused_load_groups(solution) -> list[tuple[str, str]]:
+    """Load groups with loads that no step of the load path names (their
+    factor is 0 throughout: the loads are never applied)."""
+    scene = solution.model.scene
+    if not scene.load_path:
+        return []
+    named = set().union(*(st.factors for st in scene.load_path))
+    unused = sorted(load_groups(scene) - named)
+    if not unused:
+        return []
+    return [("unused_load_group", (
+        f"load group(s) {unused} of the scene's loads or Dirichlet values are named by no step of the load path "
+        f"([[load_path]], or a fatigue cycle's growth.cycle_max / cycle_min; it names {sorted(named)}): "
+        "every factor starts at 0, so these loads are never applied; give "
+        "them a factor in a load step (factors = { " + ", ".join(f"{g} = 1.0" for g in unused) + " }) or put the "
+        "loads in a group the path names (group = ...)"))]
 
 
 def point_supports(solution, reactions: dict | None = None) -> list[tuple[str, str]]:
@@ -223,4 +292,5 @@ def estimate(solution) -> list[tuple[str, str]]:
 
 def solution_warnings(solution) -> list[tuple[str, str]]:
     """Every check of this module that needs no reactions (those are in the outputs)."""
-    return interpenetration(solution) + no_load(solution) + estimate(solution)
+    return (interpenetration(solution) + bilateral_tension(solution) + no_load(solution)
+            + unused_load_groups(solution) + estimate(solution))
