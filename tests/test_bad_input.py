@@ -384,7 +384,7 @@ def test_active_set_that_does_not_settle():
     scene.options.max_active_set_iterations = needed - 1
     counts = ", ".join([r"\d+"] * (needed - 1))
     with pytest.raises(ContactError, match=rf"did not settle in {needed - 1} iterations \(active counts per "
-                                           rf"iteration: \[{counts}\]\); raise max_active_set_iterations"):
+                                           rf"iteration: \[{counts}\]\); raise options\.max_active_set_iterations"):
         cl.solve(scene)
 
 

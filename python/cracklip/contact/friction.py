@@ -485,8 +485,9 @@ class _StateIteration:
             self.seen[this] = len(self.history)
             self.state, self.sign, self.beta = it.state, it.sign, it.beta
         raise ContactError(f"the friction states did not settle in {self.opts.max_active_set_iterations} "
-                           f"iterations (states per iteration: {self.history}); raise max_active_set_iterations or "
-                           "split the load into more increments (options.load_steps)")
+                           f"iterations (states per iteration: {self.history}); if the counts were still moving "
+                           "toward a settled set, raise options.max_active_set_iterations; if they wander, split "
+                           "the load into more increments (options.load_steps)")
 
     def step(self) -> _Iterate:
         """One linear solve with the current states, its iterate recorded

@@ -455,5 +455,5 @@ def solve_frictionless(K: "sp.csr_matrix | PETSc.Mat", f: np.ndarray, cs: Contac
         seen.visit(new_active, it, history)
         active = new_active
     raise ContactError(f"the active set did not settle in {opts.max_active_set_iterations} iterations "
-                       f"(active counts per iteration: {history}); raise max_active_set_iterations "
+                       f"(active counts per iteration: {history}); raise options.max_active_set_iterations "
                        "or check that the load keeps the crack partly closed")
