@@ -38,8 +38,9 @@ class Growth:
         walker_gamma: Walker's R-ratio form da/dN = C (Delta K / (1 -
             R)^(1 - gamma))^m with R = K_min / K_max; 1: plain Paris.
         K_Ic: fracture toughness: K_eq at or above it is final failure
-            (unset: no check; 3D: the fatigue life's K_c, found inside the
-            step that reaches it).
+            (unset: no check); found inside the step that reaches it (2D
+            constant amplitude: K_eq linear over the step; 3D: the fatigue
+            life's K_c).
         cycle_max: factors per load group at the maximum of the load cycle
             (unset: every group at 1).
         cycle_min: factors per load group at the minimum of the load cycle
@@ -49,7 +50,8 @@ class Growth:
         max_length: stop when a crack's length in the part reaches this
             (3D: a surface or corner crack's depth a, an embedded crack's
             mean radius; unset: no limit); in fatigue the life is the one to
-            it, found inside the step that passes it.
+            it, found inside the step that passes it; a crack already at it
+            at the start stops at step 0 saying so.
         max_kink_change: stop when a tip's kink turns by more than this
             (degrees) between steps (instability; the first kink, off the
             initial crack, is not compared; 2D only).
