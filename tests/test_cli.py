@@ -215,6 +215,24 @@ def test_reference_command(capsys):
     assert capsys.readouterr().out == reference_markdown()
 
 
+def test_help_texts_say_what_each_command_does():
+    """What a newcomer reads first: the error estimate `--no-estimate`
+    skips is, in 2D, a solve on a finer mesh (sizes halved near each tip;
+    its help said 'a coarser mesh'); `life`, which has no mesh, gives a
+    [life] key as its --set example (it gave mesh.h=0.1); `grow` names the
+    files it writes (it said 'dadN, life_K'), and `reference` says what it
+    prints."""
+    from cracklip.cli import build_parser
+    sub = next(a for a in build_parser()._actions if a.dest == "command").choices
+    run = " ".join(sub["run"].format_help().split())
+    assert "coarser mesh" not in run and "halved within 20 element sizes of each tip" in run
+    life = " ".join(sub["life"].format_help().split())
+    assert "mesh." not in life and "--set life.a_final=20" in life
+    grow = " ".join(sub["grow"].format_help().split())
+    assert "dadN.png" in grow and "life_K.png" in grow and "residual_strength.png" in grow
+    assert "scene_reference.md" in " ".join(sub["reference"].format_help().split())
+
+
 def test_entry_point_exit_status():
     status, out, err = run_cli("check", "nowhere.toml")
     assert status == 2 and err == "cracklip: error: nowhere.toml: No such file or directory\n"
@@ -226,7 +244,9 @@ def quick_start():
     section = text.split("## Quick start", 1)[1].split("\n## ", 1)[0]
     block = section.split("```sh\n", 1)[1].split("```", 1)[0]
     commands = [line for line in block.splitlines() if line.strip() and not line.startswith("#")]
-    quoted = re.findall(r"`((?:dofs|Heaviside|tip|contact): [^`]+)`", section.replace("\n", " "))
+    # `dofs: ...`, `tip: ...` and the per-tip line `tip (-0.6, 0): element size ...` (quoted whole: an
+    # elided or rounded quote, as `element size 0.048, ...` for the printed 0.04762 was, fails)
+    quoted = re.findall(r"`((?:dofs|Heaviside|tip|contact)(?: \([^)]*\))?: [^`]+)`", section.replace("\n", " "))
     return commands, quoted
 
 
@@ -306,7 +326,7 @@ def test_readme_quick_start_works_as_written(tmp_path):
     builds; everything else runs verbatim."""
     commands, quoted = quick_start()
     assert commands[0] == "bash scripts/setup.sh" and len(commands) == 3
-    assert len(quoted) == 4
+    assert len(quoted) == 5
     fresh_checkout(tmp_path)
     assert not (tmp_path / "out").exists()
     outputs = []

@@ -335,6 +335,19 @@ def test_overrides():
         apply_override(doc, "mesh.h")
     with pytest.raises(cl.InputError, match=r"cracks has 1 entries, no \[3\]"):
         apply_override(doc, "cracks[3].name=x")
+    # a dotted index, as a newcomer writes it first: the message gives the bracket form (it said
+    # 'cracks is not a table')
+    with pytest.raises(cl.InputError, match=r"cracks is an array of tables; index it with brackets: "
+                                            r"cracks\[0\]\.points"):
+        apply_override(doc, "cracks.0.points=[[0, 0], [1, 0]]")
+
+
+def test_option_errors_name_the_scene_key(capsys):
+    """An [options] value out of range names its scene key, options.KEY
+    (it said 'options: accuracy must be ...', the Python field)."""
+    scene = str(ROOT / "demos" / "scenes" / "block_uniform_pressure.toml")
+    assert cli.main(["check", scene, "-q", "--set", "options.accuracy=2"]) == 2
+    assert "cracklip: error: options.accuracy must be a number in [0, 1)" in capsys.readouterr().err
 
 
 # -- meshes, cracks, boundary conditions, loads ----------------------------------------------------

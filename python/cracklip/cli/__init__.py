@@ -84,11 +84,13 @@ def build_parser() -> argparse.ArgumentParser:
 
     def common(p: argparse.ArgumentParser, meshes: bool = True) -> None:
         """The arguments of every command; meshes: the command meshes a
-        part (--force; not `life`, which needs no mesh)."""
+        part (--force; not `life`, which needs no mesh, so its --set example
+        is a key of the [life] table)."""
         p.add_argument("scene", type=pathlib.Path, help="scene file (TOML)")
+        example = "mesh.h=0.1" if meshes else "life.a_final=20"
         p.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE",
-                       help="override a scene key, e.g. --set mesh.h=0.1 (repeatable; VALUE in TOML "
-                            "syntax, a bare word is a string)")
+                       help=f"override a scene key, e.g. --set {example} (repeatable; VALUE in TOML "
+                            "syntax, a bare word is a string; the keys: docs/scene_reference.md)")
         p.add_argument("--quiet", "-q", action="store_true",
                        help="no progress on stderr, no summary on stdout (warnings are still printed on stderr)")
         if meshes:
@@ -106,10 +108,12 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--condition-number", action="store_true",
                      help="also estimate the 1-norm condition number (as outputs.condition_number = true)")
     run.add_argument("--accuracy", type=float, metavar="TARGET",
-                     help="refine the mesh (every size, tips and fronts included) until the estimated error of "
-                          "every K is below TARGET times the K scale, e.g. 0.01 (as options.accuracy)")
+                     help="refine the mesh until the estimated error of every K is below TARGET times the K "
+                          "scale, e.g. 0.01 (as options.accuracy): 2D, every element size halved within 20 element "
+                          "sizes of each tip per level; 3D, every size divided by sqrt(2) per level")
     run.add_argument("--no-estimate", action="store_true",
-                     help="skip the error estimate of K, one solve fewer on a coarser mesh (as "
+                     help="skip the error estimate of K: one solve fewer (2D: the one with the element sizes "
+                          "halved within 20 element sizes of each tip; 3D: every size times sqrt(2)) (as "
                           "outputs.error_estimate = false)")
     run.set_defaults(func=cmd_run)
 
@@ -117,8 +121,9 @@ def build_parser() -> argparse.ArgumentParser:
                           description="Grow the cracks of a scene with a [growth] table through the fixed mesh: "
                                       "results.json and the ParaView series growth.pvd into --out, with (2D) "
                                       "path.csv, path.png, sif_history.png or (3D) front_path.csv, shape.csv, "
-                                      "shape.png; with fatigue a_N.png, dadN, life_K and residual strength; a "
-                                      "progress line per step.")
+                                      "shape.png; with fatigue a_N.png, dadN.png/.csv (da/dN against Delta K), "
+                                      "life_K.png/.csv (K of each step's largest cycle) and residual_strength.png; "
+                                      "a progress line per step.")
     common(grow)
     grow.add_argument("--out", type=pathlib.Path, required=True, metavar="DIR",
                       help="output folder (created if missing)")
@@ -143,7 +148,9 @@ def build_parser() -> argparse.ArgumentParser:
                        help="also list every enriched node with its enrichments")
     check.set_defaults(func=cmd_check)
 
-    ref = sub.add_parser("reference", help="print the scene-file reference (Markdown table)")
+    ref = sub.add_parser("reference", help="print the scene-file reference (Markdown table)",
+                         description="Print every scene-file key with its type, default and meaning as a "
+                                     "Markdown table (the page docs/scene_reference.md).")
     ref.add_argument("--update", metavar="PAGE", type=pathlib.Path,
                      help="replace the reference table in PAGE (a Markdown file, e.g. docs/scene_reference.md) "
                           "instead of printing it")

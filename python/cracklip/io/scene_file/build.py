@@ -105,8 +105,11 @@ def build_scene(doc: dict, base_dir: str | pathlib.Path = ".", path: pathlib.Pat
     loads = build_loads(s, mesh, material, cracks, notes)
     try:
         options = Options(**s["options"])
-    except InputError as e:
-        raise InputError(f"options: {e}") from None
+    except InputError as e:  # Options' messages begin with the field: name it as the scene key
+        text = str(e)
+        field = text.split(" ", 1)[0]
+        raise InputError(f"options.{text}" if field in {f.name for f in dataclasses.fields(Options)}
+                         else f"options: {text}") from None
     load_path = build_load_path(s, options, notes)
     scene = Scene(mesh, material, cracks=cracks, dirichlet=dirichlet, tractions=loads["tractions"],
                   options=options, body_force=loads["body_force"], point_forces=loads["point_forces"],

@@ -281,6 +281,10 @@ def apply_override(doc: dict, text: str) -> None:
             node[name] = value
         else:
             node = node.setdefault(name, {})
+            if isinstance(node, list) and parts[j + 1].isdigit():  # cracks.0.points for cracks[0].points
+                rest = ".".join(parts[j + 2:])
+                raise InputError(f"override key {key!r}: {name} is an array of tables; index it with "
+                                 f"brackets: {name}[{parts[j + 1]}]" + (f".{rest}" if rest else ""))
             if not isinstance(node, dict):
                 raise InputError(f"override key {key!r}: {name} is not a table")
 
