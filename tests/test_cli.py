@@ -90,6 +90,20 @@ def test_check_json(capsys):
     assert any("pressure 0.01" in n for n in out["notes"])
 
 
+def test_check_nodes_lists_every_enriched_node_also_when_quiet(capsys):
+    """`check --nodes` lists the enriched nodes as many as the counts say;
+    with --quiet the list alone (it printed nothing: the list asked for went
+    with the summary)."""
+    assert cli.main(["check", str(BLOCK), "--set", "mesh.h=0.2", "--nodes"]) == 0
+    out = capsys.readouterr().out
+    n = int(re.search(r"^enriched nodes \((\d+)\):", out, re.M).group(1))
+    listed = [line for line in out.splitlines() if line.startswith("  node ")]
+    assert n == len(listed) > 0 and "valid" in out
+    assert cli.main(["check", str(BLOCK), "--set", "mesh.h=0.2", "--nodes", "--quiet"]) == 0
+    quiet = capsys.readouterr().out.splitlines()
+    assert quiet[0] == f"enriched nodes ({n}):" and quiet[1:] == listed
+
+
 def one_error_line(capsys, argv):
     status = cli.main(argv)
     captured = capsys.readouterr()

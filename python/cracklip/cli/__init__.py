@@ -537,17 +537,20 @@ def cmd_check(args) -> int:
             doc["enriched_nodes"] = nodes
         print(json.dumps(doc, indent=2))
         return 0
-    if args.quiet:
+    if args.quiet and nodes is None:
         return 0
     mat = scene.material
     o = sf.outputs
     three_d = model.gdim == 3
-    lines = [f"scene {args.scene} ({sf.title!r}): valid" + (f", {len(model.warnings)} warning(s) on stderr"
-                                                            if model.warnings else ""),
-             f"material: E = {mat.E:g}, nu = {mat.nu:g} " + ("(3D elasticity)" if three_d else f"(plane {mat.plane})")]
-    lines += sf.notes
-    lines += format_model(summary)
-    lines.append(f"run writes: {', '.join(output_files(model, o))}")
+    lines = []
+    if not args.quiet:  # (--quiet with --nodes: the list asked for, without the summary)
+        lines += [f"scene {args.scene} ({sf.title!r}): valid" + (f", {len(model.warnings)} warning(s) on stderr"
+                                                                if model.warnings else ""),
+                  f"material: E = {mat.E:g}, nu = {mat.nu:g} " + ("(3D elasticity)" if three_d
+                                                                  else f"(plane {mat.plane})")]
+        lines += sf.notes
+        lines += format_model(summary)
+        lines.append(f"run writes: {', '.join(output_files(model, o))}")
     if nodes is not None:
         names = [c.crack.name for c in model.cracks]
         lines.append(f"enriched nodes ({len(nodes)}):")
