@@ -612,8 +612,9 @@ FACE_CLASS = 2
 def _unopened_faces(model, ci: int) -> ModelWarning | None:
     """The 'crack_on_faces' warning when a crack runs along mesh faces and
     the nodes on it there got no Heaviside function: nothing lets the lips
-    open across those faces (hard case 3D-3: a through crack on a node layer
-    gets no enriched dof at all, the energy error stays at 100 %)."""
+    open across those faces (hard case 3D-3, a through crack on a node
+    layer, got no enriched dof at all before face cells counted in the 3D
+    selection's ramp shares: the energy error stayed at 100 %)."""
     g = model.geometries[ci]
     face = np.asarray(g.cell_class) == FACE_CLASS
     if not face.any():
