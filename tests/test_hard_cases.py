@@ -3,6 +3,7 @@ relative residual <= 1e-10, the error against the exact answer (or the 4x
 finer mesh) falling by >= 2x from the base mesh to the 4x finer one, and what
 makes each case hard actually present in the discrete model. The full-size
 table is demos/hard_cases.py."""
+import dataclasses
 import math
 import pathlib
 import sys
@@ -238,6 +239,24 @@ def test_crack_on_faces_warns_of_nodes_left_without_a_heaviside_function():
     w = checks._unopened_faces(types.SimpleNamespace(geometries=model.geometries, cells=model.cells,
                                                      layout=stripped, cracks=model.cracks), 0)
     assert w is not None and w.code == "crack_on_faces" and "9 of the 25 nodes" in str(w)
+
+
+@pytest.mark.parametrize("option", [{"blending": "standard"}, {"enrichment": "none"}])
+def test_crack_on_faces_spares_the_front_nodes(option):
+    """A half-plane crack on the node layer y = 0 whose front runs along the
+    z-axis mesh edges (n = 6): with standard blending the core nodes carry
+    the jump in their front functions and take no Heaviside function, and
+    without front enrichment the front cells' nodes take none (the crack ends
+    at those cells, as through cut cells; front_enrichment warns of that).
+    Neither is a face the lips cannot open across: crack_on_faces named 7 of
+    the 21 nodes on the crack before."""
+    w = hc.WilliamsField3D(hc.MAT3, 1.0, -0.4, 0.6, (0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0))
+    b = hc.front_scene(hc.structured_cube(6), w, radius=0.3)
+    b.scene.options = dataclasses.replace(b.scene.options, **option)
+    b.facts = hc._front_facts
+    lv = hc.solve_level(b, condition=False)
+    assert lv["face"] > 0 and lv["finite"]
+    assert "crack_on_faces" not in lv["warnings"], lv["warnings"]
 
 
 def test_3d_front_on_mesh_edges_crack_along_faces():
