@@ -3,8 +3,11 @@ relative residual <= 1e-10, the error against the exact answer (or the 4x
 finer mesh) falling by >= 2x from the base mesh to the 4x finer one, and what
 makes each case hard actually present in the discrete model. The full-size
 table is demos/hard_cases.py."""
+import dataclasses
+import math
 import pathlib
 import sys
+import types
 
 import cracklip as cl
 import numpy as np
@@ -163,17 +166,16 @@ def test_3d_case_finite_accurate_and_converging_or_warned(rows_3d, key):
     """Every 3D case: finite outputs, every solve's relative residual <=
     1e-10, and the energy error against the exact field falls on the 2x
     finer mesh (rate >= 0.58; fronts at these sizes, radius 0.3 of about one
-    element, at least rate 1/2) -- or a warning names what stops it: the
-    crack along mesh faces (3D-3) gets no Heaviside function, and says so."""
+    element, at least rate 1/2), with no warning of what would stop it. The
+    crack along mesh faces (3D-3) converges as the same crack through
+    vertices (3D-1): 0.519 -> 0.260 against 0.575 -> 0.288 (it got no
+    Heaviside function before, 1.10 -> 1.02, warned crack_on_faces)."""
     r = rows_3d[key]
     assert r["finite"]
     assert r["relative_residual"] <= RESIDUAL, r["relative_residual"]
-    if key == "3D-3":
-        assert r["error_ratio"] < 1.2 and r["error_fine"] > 0.9, (r["error"], r["error_fine"])
-        assert all("crack_on_faces" in lv["warnings"] for lv in r["levels"])
-        assert _base(r)["face"] > 0 and _base(r)["cut"] == 0 and _base(r)["nodes_on_crack"] == 25
-        return
     assert r["error_ratio"] >= (1.45 if key == "3D-4" else 1.5), (r["error"], r["error_fine"])
+    if key == "3D-3":
+        assert r["error_fine"] <= rows_3d["3D-1"]["error_fine"], (r["error_fine"], rows_3d["3D-1"]["error_fine"])
     assert not any(w in hc.LIMITING_WARNINGS for lv in r["levels"] for w in lv["warnings"] if w != "enrichment_radius")
 
 
@@ -182,11 +184,97 @@ def test_3d_cases_have_what_makes_them_hard(rows_3d):
     b = {k: _base(r) for k, r in rows_3d.items()}
     assert b["3D-1"]["nodes_on_crack"] >= 3 and b["3D-1"]["face"] == 0          # vertices, no face
     assert b["3D-2"]["cell_edges_on_crack"] > 0 and b["3D-2"]["face"] == 0       # along edges
+    assert b["3D-3"]["face"] == 64 and b["3D-3"]["cut"] == 0 and b["3D-3"]["nodes_on_crack"] == 25  # along faces
     assert b["3D-6"]["bore_nodes_within_h_of_the_plane"] > 0                      # tangent to the bore
     assert b["3D-8"]["distance_over_h"] == 1.5 and min(b["3D-8"]["cut_cells"]) > 0
     assert b["3D-4"]["nodes_on_front"] >= 3 and b["3D-4"]["front"] > 0          # front through nodes
     # K along the front through nodes, interior points with a clear domain (finer mesh): within 2 %.
     assert rows_3d["3D-4"]["K_error_fine"] is not None and rows_3d["3D-4"]["K_error_fine"] < 0.02
+
+
+def test_3d_crack_along_faces_opens():
+    """Case 3D-3 (a through crack on the node layer z = 0, every cell beside
+    it a face cell): each of the 5 x 5 nodes on the crack carries a Heaviside
+    function (25 pseudo-nodes, 75 enriched dofs), and the lips open as the exact layers do: [[u]] = c_1 - c_0
+    + (a_0 - a_1) / E (x^2 - nu y^2) / 2 e_z on z = 0 (LayeredBending3D,
+    normal e_z, t = e_x). The P1 interpolation of the quadratic opening
+    converges at O(h^2): L2 relative error 0.093 (n = 4) and 0.023 (n = 8).
+    Before face cells counted in the 3D Heaviside selection the crack got no
+    enriched dof and the lips did not open (error 1.0)."""
+    errors = []
+    for n, pseudo in ((4, 25), (8, 81)):
+        b = hc.case_3d_faces(n)
+        lv = hc.solve_level(b, condition=False)
+        assert lv["enriched_dofs"] == 3 * pseudo and "crack_on_faces" not in lv["warnings"]
+        s = lv["_solution"].lip_samples(0)
+        x = s["x"]
+        assert np.allclose(x[:, 2], 0.0) and abs(s["weight"].sum() - 4.0) < 1e-12
+        ex = b.exact
+        nu = ex.material.nu
+        jump = np.tile(np.subtract(ex.c[1], ex.c[0]), (len(x), 1))
+        jump[:, 2] += (ex.a[0] - ex.a[1]) / ex.material.E * (x[:, 0] ** 2 - nu * x[:, 1] ** 2) / 2.0
+        assert np.allclose(jump, ex.displacement(x, 1) - ex.displacement(x, -1), atol=1e-15)
+        w = s["weight"][:, None]
+        errors.append(math.sqrt((w * (s["jump"] - jump) ** 2).sum() / (w * jump ** 2).sum()))
+    assert errors[0] < 0.1 and errors[1] < 0.025 and errors[0] / errors[1] > 3.5, errors
+
+
+def test_crack_on_faces_warns_of_nodes_left_without_a_heaviside_function():
+    """The crack_on_faces check (model.checks) on case 3D-3's model (n = 4):
+    silent with the layout it got (each of the 25 nodes on the crack has its
+    Heaviside function), and naming the nodes when some lack it (the same
+    layout without the pseudo-nodes of the 9 interior ones: what the
+    selection gave every one of the 25 before face cells counted)."""
+    from cracklip.model import checks
+
+    model = hc.solve_level(hc.case_3d_faces(4), condition=False)["_solution"].model
+    assert checks._unopened_faces(model, 0) is None
+    lay = model.layout
+    node = np.asarray(lay.node)
+    x = model.x[node]
+    keep = (np.abs(x[:, 0]) == 1.0) | (np.abs(x[:, 1]) == 1.0)  # the 16 on the cube's faces
+    assert np.count_nonzero(~keep) == 9
+    stripped = types.SimpleNamespace(node=node[keep], kind=np.asarray(lay.kind)[keep],
+                                     crack=np.asarray(lay.crack)[keep])
+    w = checks._unopened_faces(types.SimpleNamespace(geometries=model.geometries, cells=model.cells,
+                                                     layout=stripped, cracks=model.cracks), 0)
+    assert w is not None and w.code == "crack_on_faces" and "9 of the 25 nodes" in str(w)
+
+
+@pytest.mark.parametrize("option", [{"blending": "standard"}, {"enrichment": "none"}])
+def test_crack_on_faces_spares_the_front_nodes(option):
+    """A half-plane crack on the node layer y = 0 whose front runs along the
+    z-axis mesh edges (n = 6): with standard blending the core nodes carry
+    the jump in their front functions and take no Heaviside function, and
+    without front enrichment the front cells' nodes take none (the crack ends
+    at those cells, as through cut cells; front_enrichment warns of that).
+    Neither is a face the lips cannot open across: crack_on_faces named 7 of
+    the 21 nodes on the crack before."""
+    w = hc.WilliamsField3D(hc.MAT3, 1.0, -0.4, 0.6, (0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0))
+    b = hc.front_scene(hc.structured_cube(6), w, radius=0.3)
+    b.scene.options = dataclasses.replace(b.scene.options, **option)
+    b.facts = hc._front_facts
+    lv = hc.solve_level(b, condition=False)
+    assert lv["face"] > 0 and lv["finite"]
+    assert "crack_on_faces" not in lv["warnings"], lv["warnings"]
+
+
+def test_3d_front_on_mesh_edges_crack_along_faces():
+    """Case 3D-5's front on the mesh edges of the z axis with its crack
+    plane y = 0 on a node layer instead of at 20 degrees (n = 12, radius
+    0.3, mixed mode K = (1, -0.4, 0.6)): behind the front the cells beside
+    the crack are face cells (240), and the nodes on it beyond the front's
+    ramp carry Heaviside functions. K at the interior points within 2 % (1.2 %;
+    1.4 % at 20 degrees) and the energy error 0.118 (0.123 at 20 degrees);
+    before face cells counted in the 3D selection: K 12 % off, energy error
+    2.70, warned crack_on_faces."""
+    w = hc.WilliamsField3D(hc.MAT3, 1.0, -0.4, 0.6, (0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0))
+    b = hc.front_scene(hc.structured_cube(12), w, radius=0.3)
+    b.facts = hc._front_facts
+    lv = hc.solve_level(b, condition=False)
+    assert lv["face"] > 0 and lv["cut"] == 0 and "crack_on_faces" not in lv["warnings"]
+    assert lv["K_points"] >= 1 and lv["K_error"] < 0.02, lv["K_error"]
+    assert lv["energy_error"] < 0.15, lv["energy_error"]
 
 
 def test_3d_shallow_front_base_mesh():

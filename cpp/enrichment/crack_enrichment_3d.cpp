@@ -29,7 +29,7 @@ constexpr double OPENING_VOLUME = 1e-9;
 
 /// A node keeps its Heaviside function when the ramp leaves at least this
 /// share of it (int N_i^2 (1 - R)^2 on the other side against int N_i^2
-/// over its cut cells; keep_heaviside) ...
+/// over its crossed cells; keep_heaviside) ...
 constexpr double RAMPED_SHARE = 1e-8;
 
 /// ... or at least this share of the jump on its cells' lip facets
@@ -133,20 +133,25 @@ CrackEnrichment<3>::CrackEnrichment(std::span<const double> x, std::span<const s
     return vol > OPENING_VOLUME / 6.0;
   };
   // With corrected blending a node's Heaviside function N_i (H - H_i)
-  // (1 - R) opens where its cut cells lie on the other side of the crack
-  // and the ramp R is not 1. Where the core nodes around it make (1 - R)
+  // (1 - R) opens where its crossed cells (cut cells, and the face cells
+  // whose crack face holds the node: the cells the selection opens it on)
+  // lie on the other side of the crack and the ramp R is not 1. Where the core nodes around it make (1 - R)
   // vanish, the ramped front functions carry the jump and nothing is left
   // of it (kept, it made the system singular: pivots of 1e-16 on a penny
   // crack). It is dropped when both its share of the jump on the lips,
   // max N_i (1 - R) over its cells' lip facets, is below JUMP_SHARE and
   // int N_i^2 (1 - R)^2 over the other side (sub-tetrahedron midpoints)
-  // is below RAMPED_SHARE of int N_i^2 over its cut cells. The first
+  // is below RAMPED_SHARE of int N_i^2 over its crossed cells. The first
   // keeps the functions of nodes whose cells the crack only grazes (other
   // side 1e-6 of the cell; volume alone dropped them, and the jump lost
   // their N_i there: 1.4 % dips of a penny's opening in the middle of the
   // crack); the second those that still carry the field beside the lips.
   // Without front functions R = 0 and nothing is dropped: the Heaviside
-  // functions keep their partition of unity.
+  // functions keep their partition of unity. Face cells count as cut cells
+  // do (the node on the face: the cell beyond it is its other side, the
+  // face its lip facet): measured on cut cells only, a crack on a node
+  // layer kept no Heaviside function at all (hard case 3D-3: 0 enriched
+  // dofs, energy error 1.10 -> 1.02 from n = 4 to 8, not converging).
   input_.keep_heaviside = [this](std::int32_t node, std::span<const std::int8_t> is_core)
   {
     if (!options_.corrected or options_.tip == TipEnrichment::none)
@@ -163,7 +168,9 @@ void CrackEnrichment<3>::measure_shares(std::span<const std::int8_t> is_core)
   bare_.assign(num_nodes, 0.0), ramped_.assign(num_nodes, 0.0), jump_share_.assign(num_nodes, 0.0);
   for (const CrackCell3D& cc : g_.crack_cells)
   {
-    if (cc.cls != CellClass3D::cut)
+    // Cut and face cells: those a Heaviside function opens on (front cells'
+    // nodes are all core, extension cells forbid it).
+    if (cc.cls != CellClass3D::cut and cc.cls != CellClass3D::face)
       continue;
     const std::int32_t* v = &cells_[4 * cc.cell];
     auto ramp_at = [&](const std::array<double, 4>& N)

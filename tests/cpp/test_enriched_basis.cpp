@@ -179,10 +179,132 @@ void check_williams_field()
   }
   EXPECT_GT(umax, 0.5); // a field worth reproducing
 }
+
+/// A through crack on a node layer (the line y = 1/2 along the triangles'
+/// edges, the plane z = 1/2 along the tetrahedra's faces; n = 4), with the
+/// scene's default enrichment (vector tip / front functions, corrected
+/// blending; no tip / front here): no cell is cut, the cells beside it are
+/// edge / face cells (class 2). Closed form: exactly the (n + 1)^(dim - 1)
+/// nodes on the layer carry a Heaviside function, H_i = H(0) = +1 (phi >= 0
+/// is the + side), so N_i (H - H_i) is 0 on the + side, -2 N_i on the - side,
+/// and jumps by 2 N_i(x) across the edge / face; u = a on the + side and 0
+/// on the - side (standard dofs a on and above the layer, Heaviside dofs
+/// a / 2) is reproduced on both lips. In 3D the layout kept no Heaviside
+/// function at all before face cells counted in its ramp shares (hard case
+/// 3D-3).
+template <int dim>
+void check_crack_on_node_layer()
+{
+  constexpr int n = 4;
+  std::vector<double> x;
+  std::vector<std::int32_t> cells;
+  CrackGeometryOf<dim> g;
+  if constexpr (dim == 2)
+  {
+    test::triangle_grid(n, x, cells);
+    g = compute_crack_geometry(x, cells, CrackPath{{-1.0, 0.5, 2.0, 0.5}, {false, false}}, 1e-8);
+  }
+  else
+  {
+    test::kuhn_cube(n, x, cells);
+    const std::size_t nn = x.size() / 3;
+    std::vector<double> phi(nn), psi(nn, -1.0);
+    for (std::size_t i = 0; i < nn; ++i)
+      phi[i] = x[3 * i + 2] - 0.5;
+    g = compute_crack_geometry_3d(x, cells, phi, psi, 1e-8);
+  }
+  const auto num_cells = static_cast<std::int32_t>(cells.size() / (dim + 1));
+  int cut = 0, along = 0;
+  for (std::int32_t c = 0; c < num_cells; ++c)
+    cut += g.cell_class[c] == 1, along += g.cell_class[c] == 2;
+  ASSERT_EQ(cut, 0);
+  ASSERT_EQ(along, dim == 2 ? 2 * n : 4 * n * n); // one cell on each side of every edge / face
+  const CrackGeometryOf<dim>* gs[] = {&g};
+  EnrichmentOptions o;
+  o.tip = TipEnrichment::vector;
+  o.radius = 0.1;
+  const EnrichmentLayout layout = create_enrichment_layout(x, cells, gs, o);
+  ASSERT_EQ(layout.num_enriched(), dim == 2 ? n + 1 : (n + 1) * (n + 1));
+  for (std::int32_t k = 0; k < layout.num_enriched(); ++k)
+  {
+    EXPECT_EQ(layout.kind[k], static_cast<std::int8_t>(EnrichmentKind::heaviside));
+    EXPECT_EQ(x[dim * layout.node[k] + dim - 1], 0.5);
+    EXPECT_EQ(g.phi[layout.node[k]], 0.0);
+    EXPECT_EQ(layout.shift[dim * dim * k], 1.0); // H(0) = +1
+  }
+  // The field u = a above, 0 below.
+  const double a[3] = {0.7, -1.3, 0.4};
+  std::vector<double> u(dim * layout.num_nodes_total(), 0.0);
+  for (std::int32_t i = 0; i < layout.num_std_nodes; ++i)
+    for (int d = 0; d < dim; ++d)
+      u[dim * i + d] = g.phi[i] >= 0.0 ? a[d] : 0.0;
+  for (std::int32_t k = 0; k < layout.num_enriched(); ++k)
+    for (int d = 0; d < dim; ++d)
+      u[dim * (layout.num_std_nodes + k) + d] = 0.5 * a[d];
+  // On every edge / face cell, at points of its crack edge / face: each
+  // pseudo-node's function on either lip, and the displacement of both lips.
+  const double weights[3][3] = {{0.5, 0.5, 0.0}, {0.2, 0.3, 0.5}, {0.6, 0.1, 0.3}};
+  int checked = 0;
+  std::vector<double> val, grad;
+  std::vector<std::int32_t> pc;
+  std::vector<double> ref;
+  std::vector<std::int8_t> sides;
+  for (std::int32_t c = 0; c < num_cells; ++c)
+  {
+    if (g.cell_class[c] != 2)
+      continue;
+    const P1Simplex<dim> cell(x, cells, c);
+    const EnrichedCellBasis<dim> basis(cell, layout, c);
+    ASSERT_EQ(static_cast<int>(basis.enr.size()), dim); // the nodes of its crack edge / face
+    std::vector<int> on; // local vertices on the crack
+    for (int b = 0; b <= dim; ++b)
+      if (g.phi[cell.nodes[b]] == 0.0)
+        on.push_back(b);
+    ASSERT_EQ(static_cast<int>(on.size()), dim);
+    for (const auto& w : weights)
+    {
+      std::array<double, dim + 1> lam{};
+      for (int j = 0; j < dim; ++j)
+        lam[on[j]] = w[j] / (dim == 2 ? w[0] + w[1] : 1.0);
+      std::array<double, dim> r;
+      for (int i = 0; i < dim; ++i)
+        r[i] = lam[i + 1];
+      const auto N = P1Simplex<dim>::shape(r);
+      std::array<std::vector<double>, 2> v; // side +1, -1
+      for (int s = 0; s < 2; ++s)
+      {
+        const int side[1] = {s == 0 ? 1 : -1};
+        evaluate_basis<dim>(cell, basis, layout, gs, side, r, val, grad);
+        v[s] = val;
+      }
+      for (std::size_t j = 0; j < basis.enr.size(); ++j)
+        for (int d = 0; d < dim; ++d)
+        {
+          const int i = dim * (dim + 1 + static_cast<int>(j)) + d; // scalar dof
+          EXPECT_NEAR(v[0][dim * i + d], 0.0, 1e-15);
+          EXPECT_NEAR(v[1][dim * i + d], -2.0 * N[basis.enr_local[j]], 1e-15);
+          ++checked;
+        }
+      for (const int s : {1, -1})
+      {
+        pc.push_back(c);
+        ref.insert(ref.end(), r.begin(), r.end());
+        sides.push_back(static_cast<std::int8_t>(s));
+      }
+    }
+  }
+  EXPECT_EQ(checked, along * 3 * dim * dim);
+  const std::vector<double> lips = evaluate_displacement<dim>(x, cells, layout, gs, u, pc, ref, sides);
+  for (std::size_t p = 0; p < pc.size(); ++p)
+    for (int d = 0; d < dim; ++d)
+      EXPECT_NEAR(lips[dim * p + d], sides[p] > 0 ? a[d] : 0.0, 1e-14) << "dim " << dim << " point " << p;
+}
 } // namespace
 
 TEST(EnrichedBasis, HeavisideReproducesAJumpIn2D) { check_heaviside_jump<2>(); }
 TEST(EnrichedBasis, HeavisideReproducesAJumpIn3D) { check_heaviside_jump<3>(); }
+TEST(EnrichedBasis, CrackAlongMeshEdgesOpensIn2D) { check_crack_on_node_layer<2>(); }
+TEST(EnrichedBasis, CrackAlongMeshFacesOpensIn3D) { check_crack_on_node_layer<3>(); }
 TEST(EnrichedBasis, TipFunctionsReproduceWilliamsModeIIn2D) { check_williams_field<2>(); }
 TEST(EnrichedBasis, FrontFunctionsReproduceWilliamsModeIIn3D) { check_williams_field<3>(); }
 

@@ -28,8 +28,8 @@ Solids (fronts), ``check_fronts(model)``:
   (front_resolution), a radius below the element size at the front
   (enrichment_radius), front cells where the P1 front is not a line
   (degenerate_front), no front enrichment (front_enrichment), a crack
-  along mesh faces whose nodes there got no Heaviside function
-  (crack_on_faces), a triangulated crack whose front has a closed piece
+  along mesh faces whose nodes there got neither a Heaviside nor front
+  functions (crack_on_faces), a triangulated crack whose front has a closed piece
   besides others: a hole in the surface, an uncracked ligament
   (crack_hole).
   ``front_element_sizes`` is the element size reached along a front (what
@@ -605,25 +605,32 @@ def surface_holes(crack) -> int:
     return max(0, loops - pieces)
 
 
-#: CellClass3D::face: a cell with a face on the crack, lying on one side.
-FACE_CLASS = 2
+#: CellClass3D::face: a cell with a face on the crack, lying on one side;
+#: front: the front meets it; extension: phi = 0 crosses it beyond the front.
+FACE_CLASS, FRONT_CLASS, EXTENSION_CLASS = 2, 3, 4
 
 
 def _unopened_faces(model, ci: int) -> ModelWarning | None:
     """The 'crack_on_faces' warning when a crack runs along mesh faces and
     the nodes on it there got no Heaviside function: nothing lets the lips
-    open across those faces (hard case 3D-3: a through crack on a node layer
-    gets no enriched dof at all, the energy error stays at 100 %)."""
+    open across those faces (hard case 3D-3, a through crack on a node
+    layer, got no enriched dof at all before face cells counted in the 3D
+    selection's ramp shares: the energy error stayed at 100 %). Nodes with
+    front functions (they carry the jump there) and the nodes of front and
+    extension cells (where the crack ends as it does through cut cells; no
+    front enrichment is warned about as front_enrichment) are not counted."""
     g = model.geometries[ci]
-    face = np.asarray(g.cell_class) == FACE_CLASS
+    cls = np.asarray(g.cell_class)
+    face = cls == FACE_CLASS
     if not face.any():
         return None
     phi = np.asarray(g.phi)
     cells = model.cells[face]
     on = np.unique(cells[phi[cells] == 0.0])
     lay = model.layout
-    heaviside = np.asarray(lay.node)[(np.asarray(lay.kind) == 0) & (np.asarray(lay.crack) == ci)]
-    bare = np.setdiff1d(on, heaviside)
+    enriched = np.asarray(lay.node)[np.asarray(lay.crack) == ci]  # Heaviside or front functions
+    ends = np.unique(model.cells[(cls == FRONT_CLASS) | (cls == EXTENSION_CLASS)])
+    bare = np.setdiff1d(np.setdiff1d(on, enriched), ends)
     if not bare.size:
         return None
     name = model.cracks[ci].crack.name
