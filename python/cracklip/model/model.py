@@ -38,11 +38,12 @@ def _create_crack(kind, scene: Scene, i: int, x: np.ndarray, cells: np.ndarray) 
     crack = scene.cracks[i]
     try:
         return kind.create(scene, crack, x, cells)
-    except CrackGeometryError as e:
+    except CrackGeometryError as e:  # (the same error, its marks kept: under mpirun it may be collective)
         msg = str(e)
         if msg.startswith(f"{crack.name}: "):
             msg = msg[len(crack.name) + 2:]
-        raise CrackGeometryError(f"cracks[{i}] ({crack.name}): {msg}") from None
+        e.args = (f"cracks[{i}] ({crack.name}): {msg}",)
+        raise
 
 
 def create_model(scene: Scene) -> XfemModel:
