@@ -727,3 +727,42 @@ def test_a_life_arrested_by_the_threshold_ends_at_the_arrest_size(tmp_path):
         assert out.stop == "arrest"
         assert out.rows[-1]["a"] == pytest.approx(a_arr, rel=1e-12 if method == "blocks" else 1e-4)
         assert out.cycles == pytest.approx(N, rel=1e-10 if method == "blocks" else 2.0 / N)
+
+
+def test_grow_s_two_column_beta_file_of_several_tables_is_read(tmp_path):
+    """beta_afgrow.txt as `cracklip grow --beta-table` writes it holds one
+    two-column table per tip and load case (a centre crack: two tips; with
+    contact also beta at each closed level, case default_at_<factor>). life
+    read it as one table and stopped at the second one ('the crack sizes
+    must rise strictly ... but 1 follows 10'); the shipped hole-crack
+    spectrum scene's own file failed so. Now life.tip picks the tip and the
+    level cases are left out: through tip [0, 1] (beta 1.2, a Griffith crack
+    scaled) the life is the closed form / 1.2^3 to 1e-8 (the table's 8
+    digits), and a file of several tips without life.tip names them."""
+    from cracklip.errors import InputError
+    from cracklip.io.growth_outputs import write_beta_table
+    rows = []
+    for a in np.linspace(1.0, 10.0, 10):
+        for end, beta in ((0, 1.0), (1, 1.2)):
+            rows.append({"step": 0, "crack": 0, "end": end, "x": 0.0, "y": 0.0, "a": float(a),
+                         "beta_default": beta, "K_I_default": 100.0 * beta * math.sqrt(math.pi * a),
+                         "beta_default_at_-0.4": 0.5})
+    write_beta_table(rows, tmp_path, "two tips")
+    f = tmp_path / "beta_afgrow.txt"
+    _, out = life_inputs.life_of(griffith_doc(table=str(f), tip=[0, 1]))
+    k = 1e-10 * (100.0 * 1.2 * math.sqrt(math.pi)) ** 3
+    assert out.stop == "a_final"
+    assert out.cycles == pytest.approx((1.0 - 10.0 ** -0.5) / 0.5 / k, rel=1e-8)
+    with pytest.raises(InputError, match=r"holds the tips \[\[0, 0\], \[0, 1\]\].*life.tip"):
+        life_inputs.life_of(griffith_doc(table=str(f)))
+
+
+def test_grow_s_3d_beta_tables_file_is_refused_with_the_one_size_tables_named(tmp_path):
+    """beta_tables.txt (3D: the deepest point's a-beta and the surface
+    point's c-beta in one file) is not one table: the error names
+    beta_deepest.csv and beta_surface.csv (it said 'non-monotonic crack
+    sizes' at the surface table's first line)."""
+    f = write(tmp_path, "beta_tables.txt", "# cracklip beta tables: x\n# table: deepest point; case: default\n"
+              "1 0.7\n2 0.7\n# table: surface point; case: default\n2 0.6\n4 0.6\n")
+    with pytest.raises(InputFileError, match="beta_deepest.csv .*beta_surface.csv"):
+        life_inputs.life_of(griffith_doc(table=str(f)))

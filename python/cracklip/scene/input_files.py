@@ -45,8 +45,16 @@ Tables of K against crack size (`life.table`), one of:
     a, c, beta_a, beta_c    (or K_a, K_c) a surface or corner crack: K at its
                             deepest point and at the surface, on a grid of
                             (a, c) (every a with every c)
-    a beta (no header)      two columns, easigrow's beta file and cracklip's
-                            beta_afgrow.txt (one table per file)
+    a beta (no header)      two columns, easigrow's beta file (one table)
+    cracklip grow's beta_afgrow.txt  two columns per tip and load case, each
+                            table after its '# tip: crack C end E; case: G'
+                            line: the tables of one tip (life.tip), one beta
+                            column per load group (beta at a contact level,
+                            case G_at_<factor>, left out); its K_residual is
+                            not in it (beta.csv has it). 3D beta_tables.txt
+                            (deepest and surface point in one file) is refused:
+                            beta_deepest.csv and beta_surface.csv are the
+                            one-size tables
     cracklip grow's beta.csv  (columns step, crack, end, ..., a, K_I_<group>,
                             K_residual): the rows of one tip (life.tip), K_I of
                             each load group per unit factor, K_residual as a
@@ -343,6 +351,9 @@ def read_k_table(path: str | pathlib.Path, where: str, tip: tuple[int, int] | No
     multiplies the crack sizes (easigrow's a/d tables: d)."""
     path, rows, head, numeric = _head(path, where)
     if numeric:
+        sections = _cracklip_sections(path)
+        if len(sections) > 1:
+            return _sectioned_table(path, rows, sections, where, tip, scale)
         if len(head) != 2:
             raise InputFileError(f"{where}: {path}, line {rows[0].line}: a table without a header has two columns "
                                  f"(a beta), got {len(head)} values", path, rows[0].line)
@@ -385,6 +396,87 @@ def read_k_table(path: str | pathlib.Path, where: str, tip: tuple[int, int] | No
     _sizes(path, data, a, where, col["a"] + 1)
     values = {c: np.array([number(path, r, j, where, names[j]) for r in data]) for c, j in cases.items()}
     return KTableData(1, a, values, kinds.pop(), f"{path}")
+
+
+#: The comment line that starts each table of cracklip grow's beta_afgrow.txt (2D: per tip and load case) and
+#: beta_tables.txt (3D: per point and load case).
+_TIP_MARK = re.compile(r"#\s*tip:\s*crack\s+(\S+)\s+end\s+(\S+);\s*case:\s*(\S+)\s*$")
+_ROLE_MARK = re.compile(r"#\s*table:\s*(.+?);\s*case:\s*(\S+)\s*$")
+#: A case of beta at one load level solved with contact (beta_<group>_at_<factor>): not a load group.
+_LEVEL_CASE = re.compile(r".+_at_[-+0-9.eE]+$")
+
+
+def _cracklip_sections(path: pathlib.Path) -> list[tuple[int, tuple, str]]:
+    """The tables of a two-column file cracklip grow wrote with several of
+    them: (line of the marker, the table's key -- ("tip", crack, end) or
+    ("point", role) --, its load case), in file order; [] for other files."""
+    out = []
+    for k, line in enumerate(path.read_text(errors="replace").splitlines(), start=1):
+        m = _TIP_MARK.match(line.strip())
+        if m:
+            out.append((k, ("tip", m.group(1), m.group(2)), m.group(3)))
+            continue
+        m = _ROLE_MARK.match(line.strip())
+        if m:
+            out.append((k, ("point", m.group(1)), m.group(2)))
+    return out
+
+
+def _sectioned_table(path, rows: list[Row], sections, where: str, tip, scale: float) -> KTableData:
+    """cracklip grow's beta_afgrow.txt holding several tables (tips, load
+    cases, beta at contact levels): the tables of one tip (life.tip when it
+    has several), one beta column per load group; beta at a contact level
+    (case <group>_at_<factor>) is not a load group and is left out. A
+    beta_tables.txt (3D: the deepest and the surface point) is refused with
+    the one-size tables to use instead."""
+    tables: dict[tuple, dict[str, list[Row]]] = {}
+    for r in rows:
+        owner = [s for s in sections if s[0] < r.line]
+        if not owner:
+            raise InputFileError(f"{where}: {path}, line {r.line}: a data line before the first table's "
+                                 "'# tip: ...' line", path, r.line)
+        _, key, case = owner[-1]
+        tables.setdefault(key, {}).setdefault(case, []).append(r)
+    keys = list(tables)
+    if any(k[0] == "point" for k in keys):
+        if len(keys) > 1:
+            raise InputFileError(f"{where}: {path} holds the tables of several points ({', '.join(k[1] for k in keys)}"
+                                 "; cracklip grow's beta_tables.txt): a one-size life reads one of them -- give "
+                                 "beta_deepest.csv (a: the depth) or beta_surface.csv (a: the surface length c) of "
+                                 "the same run", path)
+        picked = keys[0]
+        what = f"{picked[1]}"
+    else:
+        tips = sorted((int(k[1]), int(k[2])) for k in keys)
+        if tip is None:
+            if len(tips) > 1:
+                raise InputError(f"{where}: {path} holds the tips {[list(t) for t in tips]} (crack, end): choose one "
+                                 "with life.tip = [crack, end]")
+            tip = tips[0]
+        tip = (int(tip[0]), int(tip[1]))
+        if tip not in tips:
+            raise InputError(f"{where}: life.tip = {list(tip)} is not in {path}; its tips: {[list(t) for t in tips]}")
+        picked = next(k for k in keys if (int(k[1]), int(k[2])) == tip)
+        what = f"crack {tip[0]} end {tip[1]}"
+    cases = {c: rs for c, rs in tables[picked].items() if not _LEVEL_CASE.fullmatch(c)}
+    if not cases:
+        raise InputFileError(f"{where}: {path}: the tables of {what} are all beta at contact levels "
+                             f"({sorted(tables[picked])}), no load group's", path)
+    a_ref = None
+    values = {}
+    for c, rs in cases.items():
+        _width(path, rs, 2, where)
+        a = np.array([number(path, r, 0, where, "crack size a") for r in rs]) * scale
+        _sizes(path, rs, a, where, 1)
+        if a_ref is not None and (a.shape != a_ref.shape or not np.array_equal(a, a_ref)):
+            raise InputFileError(f"{where}: {path}: the tables of {what} give beta at different crack sizes "
+                                 f"(cases {sorted(cases)})", path, rs[0].line)
+        a_ref = a
+        values[c] = np.array([number(path, r, 1, where, "beta") for r in rs])
+    if len(values) == 1:  # one table: the spectrum's one load group, whatever its name (as a plain 'a beta' file)
+        values = {DEFAULT_CASE: next(iter(values.values()))}
+    return KTableData(1, a_ref, values, "beta", f"{path} (cracklip grow's two-column tables, {what}: beta of "
+                      f"{', '.join(sorted(cases))})")
 
 
 def _sizes(path, rows: list[Row], a: np.ndarray, where: str, column: int) -> None:
