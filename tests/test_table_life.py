@@ -747,7 +747,7 @@ def test_grow_s_two_column_beta_file_of_several_tables_is_read(tmp_path):
             rows.append({"step": 0, "crack": 0, "end": end, "x": 0.0, "y": 0.0, "a": float(a),
                          "beta_default": beta, "K_I_default": 100.0 * beta * math.sqrt(math.pi * a),
                          "beta_default_at_-0.4": 0.5})
-    write_beta_table(rows, tmp_path, "two tips")
+    write_beta_table(rows, tmp_path, "two tips", reference_stress={"default": 100.0})
     f = tmp_path / "beta_afgrow.txt"
     _, out = life_inputs.life_of(griffith_doc(table=str(f), tip=[0, 1]))
     k = 1e-10 * (100.0 * 1.2 * math.sqrt(math.pi)) ** 3
@@ -766,3 +766,57 @@ def test_grow_s_3d_beta_tables_file_is_refused_with_the_one_size_tables_named(tm
               "1 0.7\n2 0.7\n# table: surface point; case: default\n2 0.6\n4 0.6\n")
     with pytest.raises(InputFileError, match="beta_deepest.csv .*beta_surface.csv"):
         life_inputs.life_of(griffith_doc(table=str(f)))
+
+
+def test_a_beta_table_says_its_reference_stress_and_life_holds_to_it(tmp_path):
+    """beta = K / (S sqrt(pi a)) is only K with its S. grow's tables did not
+    say S's value, and a life that left life.reference_stress unset read
+    them with S = 1: the 3D surface crack's beta_deepest.csv (S = 100 MPa)
+    gave 1e9 cycles (max_passes) instead of 551 889, the hole crack's
+    beta_afgrow.txt under the flight spectrum an arrest at a0 instead of
+    6.09 passes -- silently. The writers now add '# reference_stress:
+    default = S' and life refuses a different S, naming the value; the same
+    S gives the closed form (Griffith crack, beta 1, S = 100)."""
+    from cracklip.errors import InputError
+    from cracklip.io.front_growth_outputs import write_beta_tables_3d
+    from cracklip.io.growth_outputs import write_beta_table
+    rows = [{"step": 0, "crack": 0, "end": 1, "x": 0.0, "y": 0.0, "a": float(a), "beta_default": 1.0,
+             "K_I_default": 100.0 * math.sqrt(math.pi * a)} for a in np.linspace(1.0, 10.0, 10)]
+    write_beta_table(rows, tmp_path, "Griffith", reference_stress={"default": 100.0})
+    rows3 = []
+    for k, a in enumerate(np.linspace(1.0, 10.0, 10)):
+        for point, role, size in ((4, "deepest", a), (0, "surface", 2 * a)):
+            rows3.append({"step": k, "crack": 0, "point": point, "x": 0.0, "y": 0.0, "z": 0.0, "a": float(size),
+                          "K_I_default": 100.0 * math.sqrt(math.pi * size), "beta_default": 1.0,
+                          "depth_a": float(a), "surface_c": float(2 * a), "role": role})
+    write_beta_tables_3d(rows3, tmp_path, "Griffith 3D", reference_stress={"default": 100.0})
+    k = 1e-10 * (100.0 * math.sqrt(math.pi)) ** 3
+    for name in ("beta_afgrow.txt", "beta_deepest.csv"):
+        f = tmp_path / name
+        assert "# reference_stress: default = 100.0" in f.read_text()
+        _, out = life_inputs.life_of(griffith_doc(table=str(f)))       # life.reference_stress default = 100
+        assert out.cycles == pytest.approx((1.0 - 10.0 ** -0.5) / 0.5 / k, rel=1e-8)
+        for stress in (None, {"default": 60.0}):
+            doc = griffith_doc(table=str(f))
+            if stress is None:
+                del doc["life"]["reference_stress"]
+            else:
+                doc["life"]["reference_stress"] = stress
+            with pytest.raises(InputError, match=r"S = 100 .*life.reference_stress gives S = "
+                                                 + ("1 \\(unset" if stress is None else "60")):
+                life_inputs.life_of(doc)
+    assert "# reference_stress: default = 100.0" in (tmp_path / "beta_tables.txt").read_text()
+
+
+def test_a_beta_file_s_reference_stress_line_is_held_to(tmp_path):
+    """A beta table with '# reference_stress: default = 100' read by a life
+    without life.reference_stress (S = 1) is refused; it used to give a life
+    100^3 = 1e6 times too long without a word (the reader above, alone)."""
+    from cracklip.errors import InputError
+    f = write(tmp_path, "beta.csv", "# reference_stress: default = 100.0 (S of beta in MPa)\na,beta\n1.0,1.0\n"
+              "10.0,1.0\n")
+    doc = griffith_doc(table=str(f))
+    del doc["life"]["reference_stress"]
+    with pytest.raises(InputError, match=r"S = 100 .*S = 1 \(unset: 1\): set life.reference_stress = "
+                                         r"\{ default = 100 \}"):
+        life_inputs.life_of(doc)

@@ -129,6 +129,20 @@ def k_table_from_file(data: KTableData, life: LifeSettings, spectrum: Spectrum) 
                          f"its columns: {sorted(names.values())}")
     used = [c for c in data.values if names[c] in groups or names[c] in spectrum.steady or c in data.steady]
     cases = tuple(names[c] for c in used)
+    if data.kind == "beta" and data.reference_stress:
+        # A table cracklip grow wrote says over which S its beta is: life.reference_stress must give the same
+        # (left unset it was S = 1: K 100 times too small for S = 100, a life of 1e9 cycles or an arrest at a0).
+        for c in used:
+            S_file = data.reference_stress.get(c, next(iter(data.reference_stress.values()))
+                                               if c == DEFAULT_CASE and len(data.reference_stress) == 1 else None)
+            S = life.stress(names[c])
+            if S_file is not None and not math.isclose(S, S_file, rel_tol=1e-9):
+                raise InputError(f"life.table {data.source}: its beta of load group {names[c]!r} is K / (S sqrt(pi "
+                                 f"a)) with S = {S_file:g} (the file's '# reference_stress' line: growth."
+                                 f"reference_stress of the run that wrote it), but life.reference_stress gives S = "
+                                 f"{S:g}" + (" (unset: 1)" if names[c] not in (life.reference_stress or {}) else "")
+                                 + f": set life.reference_stress = {{ {names[c]} = {S_file:g} }} (the load factors "
+                                 "of the spectrum scale it)")
     if data.sizes == 1:
         K = np.stack([_as_k(data.values[c], data.a, data.kind, life.stress(names[c])) for c in used], axis=1)
         return KTable(1, data.a, K, cases), tuple(data.steady)

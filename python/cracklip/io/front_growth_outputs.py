@@ -47,7 +47,7 @@ from ..analysis.life import PAST_STOP
 from ..scene.units import label
 from .files import atomic_path
 from .growth_outputs import (SeriesWriter, growth_settings, one_cycle_per_block,  # noqa: F401 (SeriesWriter re-exported)
-                             write_life_pngs)
+                             reference_stress_line, write_life_pngs)
 from .outputs import ensure_output_dir, units_names, versions, write_csv
 from .results import write_results_json
 from .paraview import write_mesh
@@ -100,7 +100,8 @@ def write_front_growth_outputs(scene_file, result: GrowthResult, out_dir, growth
         if result.life:
             files += write_life_pngs(scene_file, result, out, _strongest(result), growth)
     if result.beta:
-        files += write_beta_tables_3d(result.beta, out, scene_file.title, getattr(scene_file.scene, "units", None))
+        files += write_beta_tables_3d(result.beta, out, scene_file.title, getattr(scene_file.scene, "units", None),
+                                      getattr(growth, "reference_stress", None))
     last = result.fronts["shape"][-1] if result.fronts["shape"] else {}
     results = {
         "title": scene_file.title,
@@ -253,7 +254,8 @@ def write_shape_pngs(scene_file, result: GrowthResult, out: pathlib.Path) -> lis
     return ["shape.png", "a_N.png"]
 
 
-def write_beta_tables_3d(rows: list[dict[str, typing.Any]], out: pathlib.Path, title: str, units=None) -> list[str]:
+def write_beta_tables_3d(rows: list[dict[str, typing.Any]], out: pathlib.Path, title: str, units=None,
+                         reference_stress: dict[str, float] | None = None) -> list[str]:
     """beta_front.csv, and for surface and corner cracks beta_deepest.csv,
     beta_surface.csv, beta_ac.csv, beta_tables.txt (module doc)."""
     cols: list[str] = []
@@ -277,6 +279,7 @@ def write_beta_tables_3d(rows: list[dict[str, typing.Any]], out: pathlib.Path, t
                  f"# a{unit}: {'the depth a of the crack' if size == 'depth_a' else 'the surface length c of the crack'}"
                  " (the column is named a for `cracklip life`'s table reader); beta = K_I / (S sqrt(pi a)) of the "
                  "load group at factor 1, S its reference stress (growth.reference_stress, default 1)",
+                 reference_stress_line(groups, reference_stress, units),
                  "a, " + ", ".join(f"beta_{g}" for g in groups)]
         last = -math.inf
         for step in sorted(by_step):
@@ -319,7 +322,8 @@ def write_beta_tables_3d(rows: list[dict[str, typing.Any]], out: pathlib.Path, t
              "# two columns 'a beta' per table (beta = K_I / (S sqrt(pi a)), S: growth.reference_stress); deepest: a = "
              "the depth, surface: a = the surface length c" + (f", in {units.length}" if units is not None else ""),
              "# AFGROW's and NASGRO's own table file layouts are not publicly documented: this is the two-column "
-             "layout of easigrow's beta files, to paste into their tabular beta inputs"]
+             "layout of easigrow's beta files, to paste into their tabular beta inputs",
+             reference_stress_line(groups, reference_stress, units)]
     for (role, g), pts in sorted(pairs.items()):
         lines.append(f"# table: {role} point; case: {g}")
         lines += [f"{a:.8g} {b:.8g}" for a, b in pts]

@@ -71,7 +71,8 @@ def write_growth_outputs(scene_file, result: GrowthResult, out_dir, growth, timi
                + ([r[c] for c in LIFE_COLUMNS] if life else []) for r in rows])
     files.append("path.csv")
     if result.beta:
-        files += write_beta_table(result.beta, out, scene_file.title, getattr(scene_file.scene, "units", None))
+        files += write_beta_table(result.beta, out, scene_file.title, getattr(scene_file.scene, "units", None),
+                                  getattr(growth, "reference_stress", None))
     cfg = scene_file.outputs
     if cfg["png"]:
         files += write_growth_pngs(scene_file, result, out, growth.fatigue)
@@ -132,7 +133,19 @@ def growth_settings(growth) -> dict[str, typing.Any]:
     return out
 
 
-def write_beta_table(rows: list[dict[str, typing.Any]], out: pathlib.Path, title: str, units=None) -> list[str]:
+def reference_stress_line(groups: typing.Iterable[str], reference_stress: dict[str, float] | None, units=None) -> str:
+    """The comment line of a beta table that gives S of each load group
+    (beta = K / (S sqrt(pi a))): `cracklip life` reads it and refuses a
+    life.reference_stress that differs (scene.input_files)."""
+    ref = dict(reference_stress or {})
+    pairs = ", ".join(f"{g} = {float(ref.get(g, 1.0))!r}" for g in groups)
+    unit = f" in {units.name('stress')}" if units is not None else ""
+    return (f"# reference_stress: {pairs} (S of beta{unit}, growth.reference_stress: give `cracklip life` the same "
+            "life.reference_stress)")
+
+
+def write_beta_table(rows: list[dict[str, typing.Any]], out: pathlib.Path, title: str, units=None,
+                     reference_stress: dict[str, float] | None = None) -> list[str]:
     """beta.csv (every column of the rows: step, crack, end, x, y, a, beta and
     K of each load group at factor 1, K_residual, beta at each contact level)
     and beta_afgrow.txt (per tip and load case, '#' comment lines then 'a
@@ -148,6 +161,7 @@ def write_beta_table(rows: list[dict[str, typing.Any]], out: pathlib.Path, title
              "# its number of tips)" + (f", in {units.length}" if units is not None else "") + "; one table per tip and "
              "load case, each: '# tip ...' then lines 'a beta'"]
     cases = [c for c in cols if c.startswith("beta_")]
+    lines.append(reference_stress_line([c[5:] for c in cases if "_at_" not in c], reference_stress, units))
     for key in sorted({(r["crack"], r["end"]) for r in rows}):
         tip_rows = [r for r in rows if (r["crack"], r["end"]) == key]
         for c in cases:

@@ -339,6 +339,7 @@ class KTableData:
     source: str
     c: np.ndarray | None = None
     steady: tuple[str, ...] = ()
+    reference_stress: dict[str, float] | None = None
 
 
 #: The case name of a column without one (`beta`, `K`): the spectrum's one load group.
@@ -348,7 +349,41 @@ DEFAULT_CASE = ""
 def read_k_table(path: str | pathlib.Path, where: str, tip: tuple[int, int] | None = None,
                  scale: float = 1.0) -> KTableData:
     """A table of K (or beta) against crack size (module doc); scale
-    multiplies the crack sizes (easigrow's a/d tables: d)."""
+    multiplies the crack sizes (easigrow's a/d tables: d). A beta table
+    cracklip grow wrote gives S of each group on its '# reference_stress:'
+    line (KTableData.reference_stress)."""
+    data = _read_k_table(path, where, tip, scale)
+    if data.kind == "beta":
+        data.reference_stress = _file_reference_stress(pathlib.Path(path), where)
+    return data
+
+
+_REFERENCE_LINE = re.compile(r"#\s*reference_stress:\s*([^(]*)")
+
+
+def _file_reference_stress(path: pathlib.Path, where: str) -> dict[str, float] | None:
+    """S per group from the '# reference_stress: g = S, ...' line of a beta
+    table cracklip grow wrote (None without one)."""
+    for k, line in enumerate(path.read_text(errors="replace").splitlines(), start=1):
+        m = _REFERENCE_LINE.match(line.strip())
+        if not m:
+            continue
+        out = {}
+        for pair in m.group(1).split(","):
+            name, eq, value = pair.partition("=")
+            try:
+                out[name.strip()] = float(value)
+            except ValueError:
+                raise InputFileError(f"{where}: {path}, line {k}: the reference stress line must read "
+                                     f"'# reference_stress: group = S, ...', got {line.strip()!r}", path, k) from None
+            if not eq or not name.strip() or not math.isfinite(out[name.strip()]):
+                raise InputFileError(f"{where}: {path}, line {k}: the reference stress line must read "
+                                     f"'# reference_stress: group = S, ...', got {line.strip()!r}", path, k)
+        return out
+    return None
+
+
+def _read_k_table(path: str | pathlib.Path, where: str, tip: tuple[int, int] | None, scale: float) -> KTableData:
     path, rows, head, numeric = _head(path, where)
     if numeric:
         sections = _cracklip_sections(path)
