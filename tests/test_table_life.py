@@ -820,3 +820,15 @@ def test_a_beta_file_s_reference_stress_line_is_held_to(tmp_path):
     with pytest.raises(InputError, match=r"S = 100 .*S = 1 \(unset: 1\): set life.reference_stress = "
                                          r"\{ default = 100 \}"):
         life_inputs.life_of(doc)
+
+
+def test_a_table_ending_a_round_off_short_of_a_final_says_by_how_much(tmp_path):
+    """grow's beta table of 16 steps of 1.5 mm from 1.5 mm ends at a =
+    25.4999997898 (the path's round-off); with life.a_final = 25.5 the stop
+    said 'before life.a_final = 25.5 (not reached: the life is to a =
+    25.5)', a contradiction on its face. It now shows the size to 10 digits
+    and the shortfall."""
+    f = write(tmp_path, "beta.csv", "a,beta\n1.0,1.0\n25.4999997898,1.0\n")
+    _, out = life_inputs.life_of(griffith_doc(table=str(f), a_final=25.5))
+    assert out.stop == "end of the table"
+    assert "(not reached: the life is to a = 25.49999979, 2.1e-07 short of it)" in out.stop_reason
