@@ -832,3 +832,33 @@ def test_a_table_ending_a_round_off_short_of_a_final_says_by_how_much(tmp_path):
     _, out = life_inputs.life_of(griffith_doc(table=str(f), a_final=25.5))
     assert out.stop == "end of the table"
     assert "(not reached: the life is to a = 25.49999979, 2.1e-07 short of it)" in out.stop_reason
+
+
+def test_a_beta_table_says_its_units_and_a_scene_in_others_is_refused(tmp_path):
+    """grow's beta_afgrow.txt and beta_deepest.csv are in the growth scene's
+    [units] (a in mm, S in MPa): a life scene in m read them as metres
+    without a word (a0 = 1 'm' inside the table's 1 .. 10, K in MPa
+    sqrt(m)). They now carry '# units: length = mm, stress = MPa' and a
+    scene in other units is refused; the same units read as before."""
+    from cracklip.errors import InputError
+    from cracklip.io.front_growth_outputs import write_beta_tables_3d
+    from cracklip.io.growth_outputs import write_beta_table
+    from cracklip.scene.units import Units
+    mm = Units(length="mm", stress="MPa")
+    rows = [{"step": 0, "crack": 0, "end": 1, "x": 0.0, "y": 0.0, "a": float(a), "beta_default": 1.0,
+             "K_I_default": 100.0 * math.sqrt(math.pi * a)} for a in np.linspace(1.0, 10.0, 10)]
+    write_beta_table(rows, tmp_path, "Griffith", mm, reference_stress={"default": 100.0})
+    rows3 = [{"step": k, "crack": 0, "point": 4, "x": 0.0, "y": 0.0, "z": 0.0, "a": float(a),
+              "K_I_default": 100.0 * math.sqrt(math.pi * a), "beta_default": 1.0, "depth_a": float(a),
+              "surface_c": float(2 * a), "role": "deepest"} for k, a in enumerate(np.linspace(1.0, 10.0, 10))]
+    write_beta_tables_3d(rows3, tmp_path, "Griffith 3D", mm, reference_stress={"default": 100.0})
+    k = 1e-10 * (100.0 * math.sqrt(math.pi)) ** 3
+    for name in ("beta_afgrow.txt", "beta_deepest.csv"):
+        f = tmp_path / name
+        assert "# units: length = mm, stress = MPa" in f.read_text()
+        _, out = life_inputs.life_of(griffith_doc(table=str(f)))
+        assert out.cycles == pytest.approx((1.0 - 10.0 ** -0.5) / 0.5 / k, rel=1e-8)
+        doc = griffith_doc(table=str(f))
+        doc["units"] = {"length": "m", "stress": "MPa"}
+        with pytest.raises(InputError, match=r"is in mm and MPa .*this scene's \[units\] are m and MPa"):
+            life_inputs.life_of(doc)

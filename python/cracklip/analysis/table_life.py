@@ -297,6 +297,14 @@ def create_table_life(life: LifeSettings, material: FatigueMaterial, spectrum: S
             raise InputError(f"life.table {table_data.source} is a table of two sizes (a, c): give life.c0")
         if table_data.sizes == 1 and life.c0 is not None:
             raise InputError(f"life.c0 is given but life.table {table_data.source} has one crack size")
+        if table_data.units is not None and units is not None:
+            mine = {"length": units.length, "stress": units.name("stress")}
+            if mine != table_data.units:
+                raise InputError(f"life.table {table_data.source} is in {table_data.units['length']} and "
+                                 f"{table_data.units['stress']} (its '# units' line: the [units] of the run that wrote "
+                                 f"it), but this scene's [units] are {mine['length']} and {mine['stress']}: its crack "
+                                 "sizes and K would be read in the wrong units; give the scene the table's [units] "
+                                 "(material.fatigue.units converts the law's constants)")
         table, steady = k_table_from_file(table_data, life, spectrum)
         info: dict[str, typing.Any] = {"points": int(table.a.size) if table.sizes == 1 else [int(table.a.size),
                                                                                              int(table.c.size)]}

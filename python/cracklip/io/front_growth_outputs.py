@@ -47,7 +47,7 @@ from ..analysis.life import PAST_STOP
 from ..scene.units import label
 from .files import atomic_path
 from .growth_outputs import (SeriesWriter, growth_settings, one_cycle_per_block,  # noqa: F401 (SeriesWriter re-exported)
-                             reference_stress_line, write_life_pngs)
+                             reference_stress_line, units_line, write_life_pngs)
 from .outputs import ensure_output_dir, units_names, versions, write_csv
 from .results import write_results_json
 from .paraview import write_mesh
@@ -279,7 +279,7 @@ def write_beta_tables_3d(rows: list[dict[str, typing.Any]], out: pathlib.Path, t
                  f"# a{unit}: {'the depth a of the crack' if size == 'depth_a' else 'the surface length c of the crack'}"
                  " (the column is named a for `cracklip life`'s table reader); beta = K_I / (S sqrt(pi a)) of the "
                  "load group at factor 1, S its reference stress (growth.reference_stress, default 1)",
-                 reference_stress_line(groups, reference_stress, units),
+                 reference_stress_line(groups, reference_stress, units), *units_line(units),
                  "a, " + ", ".join(f"beta_{g}" for g in groups)]
         last = -math.inf
         for step in sorted(by_step):
@@ -323,7 +323,7 @@ def write_beta_tables_3d(rows: list[dict[str, typing.Any]], out: pathlib.Path, t
              "the depth, surface: a = the surface length c" + (f", in {units.length}" if units is not None else ""),
              "# AFGROW's and NASGRO's own table file layouts are not publicly documented: this is the two-column "
              "layout of easigrow's beta files, to paste into their tabular beta inputs",
-             reference_stress_line(groups, reference_stress, units)]
+             reference_stress_line(groups, reference_stress, units), *units_line(units)]
     for (role, g), pts in sorted(pairs.items()):
         lines.append(f"# table: {role} point; case: {g}")
         lines += [f"{a:.8g} {b:.8g}" for a, b in pts]

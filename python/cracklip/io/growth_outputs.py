@@ -144,6 +144,15 @@ def reference_stress_line(groups: typing.Iterable[str], reference_stress: dict[s
             "life.reference_stress)")
 
 
+def units_line(units) -> list[str]:
+    """The comment line of a beta table that gives its units (a and S; K
+    in stress sqrt(length)): `cracklip life` refuses a scene in other units."""
+    if units is None:
+        return []
+    return [f"# units: length = {units.length}, stress = {units.name('stress')} (a, and S of beta; `cracklip life` "
+            "reads the table in its scene's [units], which must be these)"]
+
+
 def write_beta_table(rows: list[dict[str, typing.Any]], out: pathlib.Path, title: str, units=None,
                      reference_stress: dict[str, float] | None = None) -> list[str]:
     """beta.csv (every column of the rows: step, crack, end, x, y, a, beta and
@@ -162,6 +171,7 @@ def write_beta_table(rows: list[dict[str, typing.Any]], out: pathlib.Path, title
              "load case, each: '# tip ...' then lines 'a beta'"]
     cases = [c for c in cols if c.startswith("beta_")]
     lines.append(reference_stress_line([c[5:] for c in cases if "_at_" not in c], reference_stress, units))
+    lines += units_line(units)
     for key in sorted({(r["crack"], r["end"]) for r in rows}):
         tip_rows = [r for r in rows if (r["crack"], r["end"]) == key]
         for c in cases:

@@ -340,6 +340,7 @@ class KTableData:
     c: np.ndarray | None = None
     steady: tuple[str, ...] = ()
     reference_stress: dict[str, float] | None = None
+    units: dict[str, str] | None = None
 
 
 #: The case name of a column without one (`beta`, `K`): the spectrum's one load group.
@@ -355,7 +356,21 @@ def read_k_table(path: str | pathlib.Path, where: str, tip: tuple[int, int] | No
     data = _read_k_table(path, where, tip, scale)
     if data.kind == "beta":
         data.reference_stress = _file_reference_stress(pathlib.Path(path), where)
+    data.units = _file_units(pathlib.Path(path))
     return data
+
+
+_UNITS_LINE = re.compile(r"#\s*units:\s*length\s*=\s*([^,\s]+)\s*,\s*stress\s*=\s*([^(]*?)\s*(?:\(|$)")
+
+
+def _file_units(path: pathlib.Path) -> dict[str, str] | None:
+    """{length, stress} from the '# units: length = mm, stress = MPa' line of
+    a table cracklip grow wrote (None without one)."""
+    for line in path.read_text(errors="replace").splitlines():
+        m = _UNITS_LINE.match(line.strip())
+        if m:
+            return {"length": m.group(1), "stress": m.group(2)}
+    return None
 
 
 _REFERENCE_LINE = re.compile(r"#\s*reference_stress:\s*([^(]*)")
