@@ -61,6 +61,10 @@ Tables of K against crack size (`life.table`), one of:
                             steady case
 
 The crack sizes must rise strictly; every value must be a finite number.
+A beta table cracklip grow wrote has a `# reference_stress: <group> = S,
+...` line (KTableData.reference_stress: life.reference_stress must give
+the same S) and a `# units: length = mm, stress = MPa` line
+(KTableData.units: the life scene's [units] must be these).
 """
 from __future__ import annotations
 

@@ -34,11 +34,13 @@ def _life_keys() -> list[Key]:
             "to the scene file", p_str),
         Key(f"{t}.table_scale", "float", 1.0, "factor on the table's crack sizes (an a/d table: d)",
             p_float(positive=True)),
-        Key(f"{t}.tip", "[crack, end]", UNSET, "the tip of a beta.csv `cracklip grow` wrote for several tips",
+        Key(f"{t}.tip", "[crack, end]", UNSET, "the tip of a beta.csv or beta_afgrow.txt `cracklip grow` wrote for "
+            "several tips",
             p_numbers(2, "a tip [crack, end]")),
         Key(f"{t}.reference_stress", "table of group = stress", UNSET, "remote stress S of factor 1 of each load "
             "group: K = factor x S x beta x sqrt(pi a) (handbook solutions and beta columns; default 1; a group the "
-            "life has no load for, or a table of K columns, is an error)", p_factors),
+            "life has no load for, or a table of K columns, is an error; a beta table `cracklip grow` wrote says "
+            "its S on a '# reference_stress' line: the same S is required)", p_factors),
         Key(f"{t}.integration", "string", "auto", "`cycles` (cycle by cycle, sequence effects), `blocks` (growth "
             "per pass summed) or `auto` (cycles with retardation, else blocks)", p_choice(*INTEGRATIONS)),
         Key(f"{t}.points", "integer", 200, "rows of the a-N table", p_int(2)),
