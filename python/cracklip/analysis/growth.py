@@ -47,7 +47,7 @@ from ..fracture.laws import walker_rate
 from ..scene.conditions import LoadStep
 from ..scene.crack import Crack
 from ..scene.growth import Growth
-from ..scene.scene import Scene
+from ..scene.scene import Scene, require_scene
 from .growth_run import GrowthResult, GrowthRun  # noqa: F401 (GrowthResult: the result of grow)
 from .tips import (Measured, TipRecord, closed_fraction, crack_length, distance_to_segments,  # noqa: F401
                    part_length, segment_hit)  # noqa: F401
@@ -284,6 +284,11 @@ def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
     fatigue the solution at the maximum load); keep_solutions keeps each
     step's Solution in the result; beta_table records K / (S sqrt(pi a)) of
     every load group at every step (GrowthResult.beta)."""
+    require_scene(scene, "grow")
+    if not isinstance(growth, Growth):
+        raise InputError(f"grow() takes its settings as a cl.Growth(...) (keywords: help(cl.Growth)), got "
+                         f"{type(growth).__name__}" + (": write cl.Growth(**settings)" if isinstance(growth, dict)
+                                                        else ""))
     if scene.mesh.gdim == 3:
         from .front_growth import SurfaceGrowth
         return SurfaceGrowth(scene, growth, keep_solutions, on_step, beta_table).run()

@@ -20,7 +20,7 @@ from ..model.model import create_model, enriched_counts
 from ..post.solution import Solution, create_solution
 from ..scene.mesh_estimate import release_memory
 from ..scene.processes import not_parallel
-from ..scene.scene import Scene
+from ..scene.scene import Scene, require_scene
 from ..solvers.checked import condition_number_1norm, record_solves, solve_checked
 from ..solvers.choice import (create_distributed_linear_solver, create_linear_solver, to_distributed_solver_basis,
                               to_solver_basis)
@@ -46,6 +46,7 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     (cracklip.analysis.accuracy.solve_to_accuracy); the finest level's
     Solution is returned, its .error_estimate holds the levels.
     """
+    require_scene(scene, "solve")
     if scene.options.accuracy > 0.0:
         # Refinement levels around the tips until K's estimated error is below
         # the target (cracklip.analysis.accuracy); each level solved as usual,

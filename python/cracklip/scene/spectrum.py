@@ -83,7 +83,13 @@ class Spectrum:
         G = len(self.groups)
         for i, b in enumerate(self.blocks):
             where = f"spectrum.blocks[{i}]"
-            pts = np.asarray(b.points, dtype=float)
+            if not isinstance(b, SpectrumBlock):
+                raise InputError(f"{where} must be a cl.SpectrumBlock(points=[...], repeat=n), got "
+                                 f"{type(b).__name__}")
+            try:
+                pts = np.asarray(b.points, dtype=float)
+            except (TypeError, ValueError):
+                raise InputError(f"{where}.points must be load factors (numbers), got {b.points!r:.80}") from None
             if pts.ndim == 1 and G == 1:
                 pts = pts[:, None]
             if pts.ndim != 2 or pts.shape[1] != G or pts.shape[0] < 1:
