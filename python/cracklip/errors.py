@@ -11,7 +11,7 @@ class InputError(CracklipError, ValueError):
 
 
 class MaterialError(InputError):
-    """Material parameters out of range."""
+    """Material parameters out of range, or not numbers."""
 
 
 class MeshError(InputError):

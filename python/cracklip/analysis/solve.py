@@ -32,7 +32,10 @@ logger = logging.getLogger(__name__)
 
 
 def solve(scene: Scene, condition_number: bool = False) -> Solution:
-    """Build, assemble and solve the X-FEM model of a scene.
+    """Build, assemble and solve the X-FEM model of a scene (a cl.Scene; a scene file's is
+    cl.load_scene_file(path).scene) and return its Solution: K by
+    .stress_intensity_factors(crack), the lips by .crack_opening(crack) and
+    .contact_pressure(crack), fields by .displacement(points), doubts by .warnings.
 
     condition_number: also estimate the 1-norm condition number of the
     stiffness with constraints applied, raw and Jacobi-scaled (Solution.condition).

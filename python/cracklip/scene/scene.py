@@ -20,7 +20,32 @@ from .symmetry import Symmetry, SymmetryCondition, symmetry_conditions
 
 @dataclasses.dataclass
 class Scene:
-    """Everything a solve needs."""
+    """Everything a solve needs: cl.solve(scene) -> Solution, cl.grow(scene, cl.Growth(...)).
+
+    Numbers are in any consistent units (units only labels them): lengths as the mesh's, E and
+    stresses in force / length^2, K in stress * sqrt(length).
+
+    Attributes:
+        mesh: a MeshData (cl.create_square, create_rectangle, read_msh, create_from_geometry, ...):
+            the DOLFINx mesh with its named boundary tags.
+        material: a cl.Material(E, nu, plane).
+        cracks: a list of cl.Crack (2D polylines; 3D: crack surfaces); a bare (k, 2) point list
+            is taken as Crack(points). A crack's index here or its name selects it in a Solution.
+        dirichlet: a list of cl.Dirichlet (at least one: rigid motion must be fixed).
+        tractions: a list of cl.Traction (force per length in 2D, per area in 3D).
+        options: a cl.Options (enrichment, contact, SIF domains, solver, accuracy target).
+        body_force: constant (f_x, f_y) force per unit area (volume in 3D), or None.
+        point_forces: a list of cl.PointForce at mesh nodes.
+        initial_stress: residual stress sigma_0: (sxx, syy, sxy), a cl.LinearStress or a
+            callable sigma_0(x) (2D only); sigma = C eps(u) + sigma_0.
+        body_force_group, initial_stress_group: load groups of those loads.
+        load_path: a list of cl.LoadStep (or dicts of factors per load group) solved in order;
+            None: one step with every group at factor 1.
+        units: a cl.Units (labels of outputs and unit conversions), or None.
+        symmetry: a list of cl.Symmetry (or boundary tags): u . n = 0 on each plane.
+
+    A wrong type of any of these is an InputError at construction.
+    """
     mesh: MeshData
     material: Material
     cracks: list[Crack] = dataclasses.field(default_factory=list)
