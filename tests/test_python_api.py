@@ -114,3 +114,16 @@ def test_results_say_what_they_hold(scene, solution):
     text = repr(result)      # before: every tip record of every step
     assert len(text) < 400, text
     assert text.startswith("GrowthResult(1 steps; 1 cracks; stopped: ") and ".records" in text
+
+
+def test_one_override_is_one_key_and_a_scene_file_says_what_it_built():
+    path = "demos/scenes/westergaard.toml"
+    from conftest import ROOT
+    # before: InputError "override 'm' must look like KEY=VALUE" (the string iterated by character)
+    f = cl.load_scene_file(ROOT / path, overrides="mesh.h=0.2")
+    assert f.scene.mesh.h == 0.2
+    assert cl.load_scene_file(ROOT / path, overrides=["mesh.h=0.2"]).scene.mesh.h == 0.2
+    text = repr(f)           # before: every setting, 4363 characters
+    assert len(text) < 400, text
+    assert text.startswith("SceneFile('Westergaard mode I check'; ") and "cracks ['edge crack']" in text
+    assert ".scene for cl.solve" in text
