@@ -127,3 +127,30 @@ def test_one_override_is_one_key_and_a_scene_file_says_what_it_built():
     assert len(text) < 400, text
     assert text.startswith("SceneFile('Westergaard mode I check'; ") and "cracks ['edge crack']" in text
     assert ".scene for cl.solve" in text
+
+
+@pytest.mark.parametrize("call, says", [
+    # before: Python's bare "__init__() got an unexpected keyword argument 'contcat'"
+    (lambda: cl.Options(contcat="unilateral"), "Options() takes no keyword 'contcat'; did you mean 'contact'?"),
+    (lambda: cl.Growth(stesp=2), "Growth() takes no keyword 'stesp'; did you mean 'steps'?"),
+    (lambda: cl.Material(E=1.0, Nu=0.3), "Material() takes no keyword 'Nu'; it takes E, nu, plane"),
+    (lambda: cl.Crack([[0.0, 0.0], [1.0, 0.0]], nmae="a"), "Crack() takes no keyword 'nmae'; did you mean 'name'?"),
+])
+def test_a_misspelled_keyword_names_the_nearest(call, says):
+    with pytest.raises(cl.KeywordError) as err:
+        call()
+    assert says in str(err.value)
+    assert isinstance(err.value, TypeError) and isinstance(err.value, cl.CracklipError)
+
+
+def test_a_misspelled_keyword_of_solve_and_of_a_solution(scene, solution):
+    with pytest.raises(cl.KeywordError, match="did you mean 'condition_number'"):
+        cl.solve(scene, conditon_number=True)
+    with pytest.raises(cl.KeywordError, match=r"Solution.stress_intensity_factors\(\) takes no keyword 'radus'; "
+                                              "did you mean 'radius'"):
+        solution.stress_intensity_factors(0, radus=0.1)
+    with pytest.raises(cl.KeywordError, match=r"Scene\(\) takes no keyword 'crack'; did you mean 'cracks'"):
+        cl.Scene(scene.mesh, scene.material, crack=[])
+    import inspect   # the signatures help() shows are the functions' own
+    assert list(inspect.signature(cl.solve).parameters) == ["scene", "condition_number"]
+    assert list(inspect.signature(cl.Material).parameters) == ["E", "nu", "plane"]

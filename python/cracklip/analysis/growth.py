@@ -41,7 +41,7 @@ import typing
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, checked_keywords
 from ..fracture.kink import equivalent_k, kink_angle
 from ..fracture.laws import walker_rate
 from ..scene.conditions import LoadStep
@@ -276,6 +276,7 @@ class CurveGrowth(GrowthRun):
             self.life.advanced(m, {(r.crack, r.end): r.da for r in growing if (r.crack, r.end) in self.grown})
 
 
+@checked_keywords
 def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
          on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None = None,
          beta_table: bool = False) -> GrowthResult:

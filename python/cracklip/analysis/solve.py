@@ -13,7 +13,7 @@ import dolfinx.fem.petsc
 import ufl
 
 from ..contact.frictionless import solve_contact
-from ..errors import InputError, SolverError
+from ..errors import InputError, SolverError, checked_keywords
 from ..model.assembly import assemble_distributed_system, assemble_system, elasticity_form
 from ..model.distributed import to_local
 from ..model.model import create_model, enriched_counts
@@ -31,6 +31,7 @@ from .load_path import solve_path
 logger = logging.getLogger(__name__)
 
 
+@checked_keywords
 def solve(scene: Scene, condition_number: bool = False) -> Solution:
     """Build, assemble and solve the X-FEM model of a scene (a cl.Scene; a scene file's is
     cl.load_scene_file(path).scene) and return its Solution: K by

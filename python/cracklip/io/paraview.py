@@ -28,7 +28,7 @@ import typing
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, checked_keywords
 from ..post.solution import Solution
 from .files import atomic_path
 from .vtu import VtuMesh, write_vtu as _write_vtu_file
@@ -203,6 +203,7 @@ def write_mesh(mesh: VtuMesh, path: str | pathlib.Path) -> pathlib.Path:
     return path
 
 
+@checked_keywords
 def write_vtu(solution: Solution, path: str | pathlib.Path) -> pathlib.Path:
     """Write the sub-cell mesh with displacement and stress (see subcell_mesh) to path (a .vtu
     file, its folder made); returns the path. solution: what cl.solve returned."""

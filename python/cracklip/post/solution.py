@@ -20,7 +20,7 @@ import dolfinx.geometry
 
 from ..contact.friction import STICK
 from ..contact.tractions import contact_tractions, multiplier_values
-from ..errors import InputError
+from ..errors import InputError, checked_keywords
 from ..fracture.sif import compute_sifs, complete_rows
 from ..fracture.sif_3d import compute_front_sifs
 from ..model.checks import ModelWarning
@@ -169,6 +169,7 @@ class Solution:
                                        gradient=True)[1]
         return reduced(out, "SUM", comm)
 
+    @checked_keywords
     def displacement(self, points: np.ndarray, side: int = 0) -> np.ndarray:
         """Displacement (n, d) at points; side +1 / -1 picks a lip of a crack
         crossing the point's cell, 0 the side the point lies on."""
@@ -192,6 +193,7 @@ class Solution:
         return (u, grad) if gradient else u
 
     # -- on the crack -------------------------------------------------------
+    @checked_keywords
     def lip_samples(self, crack: int | str = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
         """Points on a crack's lips (points_per_segment Gauss points per crack
         segment, tau^2-graded toward a tip, in 2D; per direction of each lip
@@ -306,6 +308,7 @@ class Solution:
         return (f"Solution({'; '.join(parts)}; K: .stress_intensity_factors(crack), lips: .crack_opening(crack)"
                 f"{', .contact_pressure(crack)' if self.contact else ''}, .displacement(points), .warnings)")
 
+    @checked_keywords
     def crack_opening(self, crack: int | str = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
         """Jump [[u]] = u(+) - u(-) over a crack (see lip_samples): x (n, d),
         weight (n,), jump (n, d), normal (n,) = [[u]].n (n the + side
@@ -320,12 +323,14 @@ class Solution:
             out["s"] = smp["s"]
         return out
 
+    @checked_keywords
     def opening_volume(self, crack: int | str = 0) -> float:
         """int [[u]].n over a crack's lips: the area (2D, per unit thickness)
         or the volume (3D) the crack opens."""
         smp = self.lip_samples(crack)
         return float(np.sum(smp["weight"] * smp["gap"]))
 
+    @checked_keywords
     def contact_pressure(self, crack: int | str = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
         """Contact pressure p = -lambda (>= 0 in compression) and normal gap
         [[u]].n at points on the crack (see lip_samples): x (n, d),
@@ -419,6 +424,7 @@ class Solution:
             ref2 += float(np.sum(f["weight"] * np.einsum("nij,nij->n", stress(eex, mat), eex)))
         return float(np.sqrt(err2)), float(np.sqrt(err2 / ref2))
 
+    @checked_keywords
     def stress_intensity_factors(self, crack: int | str | None = 0, radius: float | None = None,
                                  ring: tuple[float, float] | None = None) -> list[dict[str, typing.Any]]:
         """K at every tip (2D) or front point (3D) of a crack (its index in

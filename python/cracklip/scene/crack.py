@@ -8,10 +8,11 @@ import typing
 
 import numpy as np
 
-from ..errors import CrackGeometryError
+from ..errors import CrackGeometryError, checked_keywords
 from .conditions import Value
 
 
+@checked_keywords
 @dataclasses.dataclass
 class Crack:
     """A crack as a polyline.

@@ -8,12 +8,13 @@ import numbers
 
 import numpy as np
 
-from ..errors import MaterialError
+from ..errors import MaterialError, checked_keywords
 
 
 PLANES = ("strain", "stress")
 
 
+@checked_keywords
 @dataclasses.dataclass(frozen=True)
 class Material:
     """Linear elastic, isotropic; a planar part in plane strain (default) or

@@ -6,7 +6,7 @@ import typing
 
 import numpy as np
 
-from ..errors import BoundaryConditionError, CrackGeometryError, InputError
+from ..errors import BoundaryConditionError, CrackGeometryError, InputError, checked_keywords
 from .conditions import Dirichlet, LoadStep, PointForce, Traction
 from .crack import Crack
 from .crack_surface import EllipticalCrack, PolygonCrack, SurfaceCrack
@@ -18,6 +18,7 @@ from .stress_field import as_stress_field
 from .symmetry import Symmetry, SymmetryCondition, symmetry_conditions
 
 
+@checked_keywords
 @dataclasses.dataclass
 class Scene:
     """Everything a solve needs: cl.solve(scene) -> Solution, cl.grow(scene, cl.Growth(...)).

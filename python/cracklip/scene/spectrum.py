@@ -20,13 +20,14 @@ import typing
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, checked_keywords
 
 
 COUNTING = ("rainflow", "range_pair", "valley_to_peak")
 RESIDUE = ("close", "half")
 
 
+@checked_keywords
 @dataclasses.dataclass
 class SpectrumBlock:
     """One block (flight) of turning points.
@@ -44,6 +45,7 @@ class SpectrumBlock:
     source: str = ""
 
 
+@checked_keywords
 @dataclasses.dataclass
 class Spectrum:
     """A load spectrum (module doc).

@@ -9,7 +9,7 @@ import pathlib
 import time
 import typing
 
-from ...errors import InputError, MeshError
+from ...errors import InputError, MeshError, checked_keywords
 from ...scene.options import Options
 from ...scene.processes import replicated
 from ...scene.scene import Scene
@@ -55,6 +55,7 @@ class SceneFile:
                 f".notes)")
 
 
+@checked_keywords
 def load_scene_file(path: str | pathlib.Path, overrides: typing.Sequence[str] = ()) -> SceneFile:
     """Read, validate and build a scene file (TOML, keys: docs/scene_reference.md, or
     ``python3 -m cracklip reference``); returns a SceneFile: .scene for cl.solve, .growth (the
