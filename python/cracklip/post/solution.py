@@ -291,7 +291,10 @@ class Solution:
         """What the solution holds, on one line (the dataclass's repr printed the whole model)."""
         m, sc = self.model, self.model.scene
         names = ", ".join(repr(getattr(c, "name", "")) for c in sc.cracks) or "none"
-        parts = [f"{sc.mesh.gdim}D", f"{len(self.u)} dofs", f"cracks [{names}]", f"contact {sc.options.contact!r}"]
+        dofs = f"{len(self.u)} dofs"
+        if m.distributed:  # u holds this process's part (owned and ghost dofs)
+            dofs += f" on process {m.comm.rank} of {m.comm.size}"
+        parts = [f"{sc.mesh.gdim}D", dofs, f"cracks [{names}]", f"contact {sc.options.contact!r}"]
         if sc.options.friction > 0.0:
             parts.append(f"friction {sc.options.friction:g}")
         if self.step is not None:
