@@ -154,3 +154,14 @@ def test_a_misspelled_keyword_of_solve_and_of_a_solution(scene, solution):
     import inspect   # the signatures help() shows are the functions' own
     assert list(inspect.signature(cl.solve).parameters) == ["scene", "condition_number"]
     assert list(inspect.signature(cl.Material).parameters) == ["E", "nu", "plane"]
+
+
+def test_cycle_counting_of_a_bad_history_and_its_indices():
+    with pytest.raises(cl.InputError, match="the load history must be numbers"):
+        cl.count_cycles("abc")                         # before: numpy's "could not convert string to float"
+    # ASTM E1049 by hand: reversals 0, 1, 0.5, 2, 0 -> the 1 -> 0.5 range closes one full cycle (0.5),
+    # the residue 0 -> 2 -> 0 two half cycles of 2
+    v = [0.0, 0.5, 1.0, 0.5, 0.7, 2.0, 0.0]
+    c = cl.count_cycles(v, repeated=False)
+    assert cl.rainflow(v) == [(0.5, 1.0), (2.0, 1.0)]
+    assert (c.lo.tolist(), c.hi.tolist()) == ([3, 0, 6], [2, 5, 5])   # indices into v, as Cycles says now

@@ -46,8 +46,9 @@ class Cycles:
     """Counted cycles of a reversal sequence.
 
     Attributes:
-        lo: index (into the reversals) of each cycle's minimum.
-        hi: index of each cycle's maximum.
+        lo: index into the counted history (the values given to
+            count_cycles, not its reversals) of each cycle's minimum.
+        hi: index of each cycle's maximum, likewise.
         count: 1.0 (full) or 0.5 (half) per cycle.
     The cycles are stored in the order they close (the residue's half
     cycles last).
@@ -75,7 +76,10 @@ class Cycles:
 def _history(values) -> np.ndarray:
     """The history as a flat float array; InputError for a non-finite value
     or a history with no reversal (fewer than two distinct values)."""
-    v = np.ascontiguousarray(values, dtype=float).ravel()
+    try:
+        v = np.ascontiguousarray(values, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise InputError(f"the load history must be numbers (a sequence of load values), got {values!r:.80}") from None
     if v.size and not np.all(np.isfinite(v)):
         bad = int(np.flatnonzero(~np.isfinite(v))[0])
         raise InputError(f"the load history has a non-finite value {v[bad]} at point {bad}")
