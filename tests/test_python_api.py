@@ -165,3 +165,8 @@ def test_cycle_counting_of_a_bad_history_and_its_indices():
     c = cl.count_cycles(v, repeated=False)
     assert cl.rainflow(v) == [(0.5, 1.0), (2.0, 1.0)]
     assert (c.lo.tolist(), c.hi.tolist()) == ([3, 0, 6], [2, 5, 5])   # indices into v, as Cycles says now
+
+
+def test_a_mesh_size_of_the_wrong_type_says_so():
+    with pytest.raises(cl.MeshError, match=r"the rectangle's h must be a number, got '0.1' \(str\)"):
+        cl.create_square(h="0.1")                      # before: "'<' not supported between 'float' and 'str'"

@@ -13,6 +13,7 @@ import dataclasses
 import functools
 import logging
 import math
+import numbers
 import pathlib
 import typing
 
@@ -324,6 +325,9 @@ def _check_cells(msh: dolfinx.mesh.Mesh, d: int, measure: str, fix: str) -> None
 
 
 def _check_box(x0: float, y0: float, x1: float, y1: float, h: float) -> None:
+    for name, value in (("x0", x0), ("y0", y0), ("x1", x1), ("y1", y1), ("h", h)):
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise MeshError(f"the rectangle's {name} must be a number, got {value!r} ({type(value).__name__})")
     if not (x1 > x0 and y1 > y0):
         raise MeshError(f"empty rectangle [{x0}, {x1}] x [{y0}, {y1}]")
     if not (0.0 < h <= max(x1 - x0, y1 - y0)):
