@@ -170,3 +170,13 @@ def test_cycle_counting_of_a_bad_history_and_its_indices():
 def test_a_mesh_size_of_the_wrong_type_says_so():
     with pytest.raises(cl.MeshError, match=r"the rectangle's h must be a number, got '0.1' \(str\)"):
         cl.create_square(h="0.1")                      # before: "'<' not supported between 'float' and 'str'"
+
+
+def test_create_square_says_what_it_takes():
+    import inspect
+    # before: create_square(h, half_width, **kwargs), a misspelling reported as create_rectangle()'s
+    assert list(inspect.signature(cl.create_square).parameters) == [
+        "h", "half_width", "refine", "embed_lines", "embed_points", "levels"]
+    with pytest.raises(cl.KeywordError, match=r"create_square\(\) takes no keyword 'embed_point'; did you mean "
+                                              "'embed_points'"):
+        cl.create_square(0.5, embed_point=[(0.0, 0.0)])
