@@ -97,8 +97,9 @@ def reversal_indices(values: np.ndarray) -> np.ndarray:
 
 
 def count_cycles(values, method: str = "rainflow", repeated: bool = True) -> Cycles:
-    """Count the cycles of a history (module doc). values: the history;
-    repeated: the history repeats (its residue is closed: full cycles only)
+    """Count the cycles of a history (module doc). values: the history (a
+    sequence of load values, any units); method: one of METHODS,
+    "rainflow" (ASTM E1049), "range_pair" or "valley_to_peak"; repeated: the history repeats (its residue is closed: full cycles only)
     or is counted once (ASTM: residue as half cycles; valley_to_peak has no
     residue). Indices in the result refer to the given values."""
     if method not in METHODS:
