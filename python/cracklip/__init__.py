@@ -55,7 +55,7 @@ _EXPORTS = {
     "BoundaryConditionError": "errors", "CrackGeometryError": "errors", "CracklipError": "errors",
     "InputError": "errors", "InputFileError": "errors", "MaterialError": "errors", "MeshError": "errors",
     "SolverError": "errors",
-    "ModelSizeError": "errors",
+    "ModelSizeError": "errors", "KeywordError": "errors",
     "MeshData": "scene.mesh", "create_half_annulus": "scene.mesh", "create_rectangle": "scene.mesh",
     "create_square": "scene.mesh", "read_msh": "scene.mesh", "create_plate_with_hole": "scene.mesh",
     "create_plate_with_holes": "scene.mesh", "create_from_geometry": "scene.geometry_file",

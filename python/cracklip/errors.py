@@ -11,7 +11,7 @@ class InputError(CracklipError, ValueError):
 
 
 class MaterialError(InputError):
-    """Material parameters out of range."""
+    """Material parameters out of range, or not numbers."""
 
 
 class MeshError(InputError):
@@ -43,3 +43,41 @@ class InputFileError(InputError):
 
 class ModelSizeError(MeshError):
     """The model asked for would not fit in the machine's memory (estimated before meshing)."""
+
+
+class KeywordError(InputError, TypeError):
+    """A keyword argument the function or class does not take (a misspelling, most often): the
+    message names the nearest keywords it does take. A TypeError too, as Python's own is."""
+
+
+def checked_keywords(obj):
+    """Decorator of a class (its __init__, e.g. a dataclass's) or a function: a keyword argument it
+    does not take is a KeywordError naming the nearest ones it does ("Options() takes no keyword
+    'contcat'; did you mean 'contact'?") instead of Python's bare TypeError. Positional arguments,
+    the signature (help, inspect) and the behaviour are unchanged."""
+    import difflib
+    import functools
+    import inspect
+
+    target = obj.__init__ if isinstance(obj, type) else obj
+    params = inspect.signature(target).parameters
+    if any(p.kind is inspect.Parameter.VAR_KEYWORD for p in params.values()):
+        return obj
+    known = {n for n, p in params.items() if n != "self" and p.kind is not inspect.Parameter.POSITIONAL_ONLY}
+    names = [n for n in params if n in known and not n.startswith("_")]  # the ones to suggest
+    label = obj.__qualname__ + "()"
+
+    @functools.wraps(target)
+    def wrapper(*args, **kwargs):
+        for key in kwargs:
+            if key not in known:
+                near = difflib.get_close_matches(key, names, n=3, cutoff=0.6)
+                hint = (f"did you mean {' or '.join(repr(n) for n in near)}?" if near
+                        else f"it takes {', '.join(names)}")
+                raise KeywordError(f"{label} takes no keyword {key!r}; {hint}")
+        return target(*args, **kwargs)
+
+    if isinstance(obj, type):
+        obj.__init__ = wrapper
+        return obj
+    return wrapper

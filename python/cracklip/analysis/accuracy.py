@@ -753,7 +753,14 @@ def estimate_error(scene: Scene, solution, solve_once: Solver) -> dict[str, typi
     similar mesh with every size times RHO): the error estimate of every K
     of `solution`, attached to it (and every state of its load path:
     Solution.error_estimate) and returned (the summary). None without a
-    crack tip or front point; EstimateUnavailable on a 3D .msh file."""
+    crack tip or front point; EstimateUnavailable on a 3D .msh file.
+
+    scene: the Scene `solution` solved; solution: what cl.solve(scene)
+    returned; solve_once: how to solve a scene on the similar mesh, a
+    callable Scene -> Solution: cl.solve (or a lambda adding its
+    condition_number). K's error is then in every row of
+    solution.stress_intensity_factors() (K_I_error, ...): e.g.
+    cl.estimate_error(scene, sol, cl.solve)."""
     base = level_of(solution, 1.0, float(solution.timings.get("total", 0.0)))
     if not any(base.rows):
         return None

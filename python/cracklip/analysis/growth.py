@@ -41,13 +41,13 @@ import typing
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, checked_keywords
 from ..fracture.kink import equivalent_k, kink_angle
 from ..fracture.laws import walker_rate
 from ..scene.conditions import LoadStep
 from ..scene.crack import Crack
 from ..scene.growth import Growth
-from ..scene.scene import Scene
+from ..scene.scene import Scene, require_scene
 from .growth_run import GrowthResult, GrowthRun  # noqa: F401 (GrowthResult: the result of grow)
 from .tips import (Measured, TipRecord, closed_fraction, crack_length, distance_to_segments,  # noqa: F401
                    part_length, segment_hit)  # noqa: F401
@@ -276,14 +276,29 @@ class CurveGrowth(GrowthRun):
             self.life.advanced(m, {(r.crack, r.end): r.da for r in growing if (r.crack, r.end) in self.grown})
 
 
+@checked_keywords
 def grow(scene: Scene, growth: Growth, keep_solutions: bool = False,
          on_step: typing.Callable[[int, list[TipRecord], typing.Any], None] | None = None,
          beta_table: bool = False) -> GrowthResult:
-    """Grow the scene's cracks (module doc). on_step(k, records, solution) is
-    called after every step's solve (progress, a ParaView file per step; in
-    fatigue the solution at the maximum load); keep_solutions keeps each
-    step's Solution in the result; beta_table records K / (S sqrt(pi a)) of
-    every load group at every step (GrowthResult.beta)."""
+    """Grow the scene's cracks through its fixed mesh (cracklip.analysis.growth's module doc): a
+    solve and K at every tip per step, the kink, the increment; in fatigue (growth.paris_C/m or
+    growth.fatigue_material with a spectrum or a cycle) the cycles of each increment, the life.
+
+    scene: a cl.Scene (a scene file's is cl.load_scene_file(path).scene, its growth .growth);
+    growth: a cl.Growth (help(cl.Growth): criterion, da, steps, the law, the cycle, the stops).
+    on_step(k, records, solution) is called after every step's solve (progress, a ParaView file
+    per step; in fatigue the solution at the maximum load); keep_solutions keeps each step's
+    Solution in the result; beta_table records K / (S sqrt(pi a)) of every load group at every
+    step (GrowthResult.beta).
+
+    Returns a GrowthResult: .records[k] the TipRecords (x, y, length, K_I, K_II, kink_deg, da, N) of step
+    k, .rows the same as path.csv's rows, .stop_reason, .warnings, .cycles, and with a fatigue
+    material .life (blocks and cycles to failure, its criterion, the residual strength)."""
+    require_scene(scene, "grow")
+    if not isinstance(growth, Growth):
+        raise InputError(f"grow() takes its settings as a cl.Growth(...) (keywords: help(cl.Growth)), got "
+                         f"{type(growth).__name__}" + (": write cl.Growth(**settings)" if isinstance(growth, dict)
+                                                        else ""))
     if scene.mesh.gdim == 3:
         from .front_growth import SurfaceGrowth
         return SurfaceGrowth(scene, growth, keep_solutions, on_step, beta_table).run()

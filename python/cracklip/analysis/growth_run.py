@@ -47,7 +47,7 @@ def increment_cycles(da: float, rate0: float, rate1: float, m: float) -> float:
     return da / rate0 * (1.0 - q ** (1.0 - m)) / ((m - 1.0) * (q - 1.0))
 
 
-@dataclasses.dataclass
+@dataclasses.dataclass(repr=False)
 class GrowthResult:
     """What grow returns: the tip records of every step (records[k] at step
     k, the last one at the final geometry), the final cracks, why it stopped,
@@ -80,7 +80,22 @@ class GrowthResult:
 
     @property
     def rows(self) -> list[dict[str, typing.Any]]:
+        """One dict per tip and step (path.csv's rows)."""
         return [r.row() for step in self.records for r in step]
+
+    def __repr__(self) -> str:
+        """What the growth did, on one line (the dataclass's repr printed every tip record)."""
+        parts = [f"{max(len(self.records) - 1, 0)} steps", f"{len(self.cracks)} cracks",
+                 f"stopped: {self.stop_reason!r}"]
+        if self.cycles:
+            parts.append(f"{self.cycles:.6g} cycles")
+        if self.life is not None:
+            failure = self.life.get("failure")
+            parts.append(f"life {self.life.get('blocks', 0):.6g} {self.life.get('block_name', 'block')}s, failure "
+                         + (f"by {failure['criterion']} at a = {failure['a']:.6g}" if failure else "not reached"))
+        parts.append(f"{len(self.warnings)} warnings")
+        return (f"GrowthResult({'; '.join(parts)}; per step and tip: .records, .rows"
+                f"{', .life' if self.life is not None else ''}{', .beta' if self.beta else ''})")
 
 
 class GrowthRun:

@@ -13,14 +13,14 @@ import dolfinx.fem.petsc
 import ufl
 
 from ..contact.frictionless import solve_contact
-from ..errors import InputError, SolverError
+from ..errors import InputError, SolverError, checked_keywords
 from ..model.assembly import assemble_distributed_system, assemble_system, elasticity_form
 from ..model.distributed import to_local
 from ..model.model import create_model, enriched_counts
 from ..post.solution import Solution, create_solution
 from ..scene.mesh_estimate import release_memory
 from ..scene.processes import not_parallel
-from ..scene.scene import Scene
+from ..scene.scene import Scene, require_scene
 from ..solvers.checked import condition_number_1norm, record_solves, solve_checked
 from ..solvers.choice import (create_distributed_linear_solver, create_linear_solver, to_distributed_solver_basis,
                               to_solver_basis)
@@ -31,8 +31,12 @@ from .load_path import solve_path
 logger = logging.getLogger(__name__)
 
 
+@checked_keywords
 def solve(scene: Scene, condition_number: bool = False) -> Solution:
-    """Build, assemble and solve the X-FEM model of a scene.
+    """Build, assemble and solve the X-FEM model of a scene (a cl.Scene; a scene file's is
+    cl.load_scene_file(path).scene) and return its Solution: K by
+    .stress_intensity_factors(crack), the lips by .crack_opening(crack) and
+    .contact_pressure(crack), fields by .displacement(points), doubts by .warnings.
 
     condition_number: also estimate the 1-norm condition number of the
     stiffness with constraints applied, raw and Jacobi-scaled (Solution.condition).
@@ -46,6 +50,7 @@ def solve(scene: Scene, condition_number: bool = False) -> Solution:
     (cracklip.analysis.accuracy.solve_to_accuracy); the finest level's
     Solution is returned, its .error_estimate holds the levels.
     """
+    require_scene(scene, "solve")
     if scene.options.accuracy > 0.0:
         # Refinement levels around the tips until K's estimated error is below
         # the target (cracklip.analysis.accuracy); each level solved as usual,

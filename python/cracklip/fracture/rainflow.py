@@ -46,8 +46,9 @@ class Cycles:
     """Counted cycles of a reversal sequence.
 
     Attributes:
-        lo: index (into the reversals) of each cycle's minimum.
-        hi: index of each cycle's maximum.
+        lo: index into the counted history (the values given to
+            count_cycles, not its reversals) of each cycle's minimum.
+        hi: index of each cycle's maximum, likewise.
         count: 1.0 (full) or 0.5 (half) per cycle.
     The cycles are stored in the order they close (the residue's half
     cycles last).
@@ -75,7 +76,10 @@ class Cycles:
 def _history(values) -> np.ndarray:
     """The history as a flat float array; InputError for a non-finite value
     or a history with no reversal (fewer than two distinct values)."""
-    v = np.ascontiguousarray(values, dtype=float).ravel()
+    try:
+        v = np.ascontiguousarray(values, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise InputError(f"the load history must be numbers (a sequence of load values), got {values!r:.80}") from None
     if v.size and not np.all(np.isfinite(v)):
         bad = int(np.flatnonzero(~np.isfinite(v))[0])
         raise InputError(f"the load history has a non-finite value {v[bad]} at point {bad}")
@@ -93,8 +97,9 @@ def reversal_indices(values: np.ndarray) -> np.ndarray:
 
 
 def count_cycles(values, method: str = "rainflow", repeated: bool = True) -> Cycles:
-    """Count the cycles of a history (module doc). values: the history;
-    repeated: the history repeats (its residue is closed: full cycles only)
+    """Count the cycles of a history (module doc). values: the history (a
+    sequence of load values, any units); method: one of METHODS,
+    "rainflow" (ASTM E1049), "range_pair" or "valley_to_peak"; repeated: the history repeats (its residue is closed: full cycles only)
     or is counted once (ASTM: residue as half cycles; valley_to_peak has no
     residue). Indices in the result refer to the given values."""
     if method not in METHODS:

@@ -28,6 +28,7 @@ import typing
 
 import numpy as np
 
+from ..errors import InputError, checked_keywords
 from ..post.solution import Solution
 from .files import atomic_path
 from .vtu import VtuMesh, write_vtu as _write_vtu_file
@@ -202,8 +203,14 @@ def write_mesh(mesh: VtuMesh, path: str | pathlib.Path) -> pathlib.Path:
     return path
 
 
+@checked_keywords
 def write_vtu(solution: Solution, path: str | pathlib.Path) -> pathlib.Path:
-    """Write the sub-cell mesh with displacement and stress (see subcell_mesh)."""
+    """Write the sub-cell mesh with displacement and stress (see subcell_mesh) to path (a .vtu
+    file, its folder made); returns the path. solution: what cl.solve returned."""
+    if not isinstance(solution, Solution):
+        raise InputError(f"write_vtu() takes the Solution cl.solve returned, got {type(solution).__name__}"
+                         + (": solve it first, write_vtu(cl.solve(scene), path)"
+                            if type(solution).__name__ == "Scene" else ""))
     path = pathlib.Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     return write_mesh(subcell_mesh(solution), path)

@@ -20,7 +20,7 @@ import dolfinx.geometry
 
 from ..contact.friction import STICK
 from ..contact.tractions import contact_tractions, multiplier_values
-from ..errors import InputError
+from ..errors import InputError, checked_keywords
 from ..fracture.sif import compute_sifs, complete_rows
 from ..fracture.sif_3d import compute_front_sifs
 from ..model.checks import ModelWarning
@@ -45,7 +45,25 @@ def point_label(row: dict) -> int | str:
     return int(row["point"]) if row.get("point") is not None else f"s={float(row['s']):.12g}"
 
 
-@dataclasses.dataclass
+def crack_index(model, crack) -> int:
+    """The index of a crack of the model given by its index (an int) or its name (Crack.name,
+    results.json's crack_name); anything else, or an index out of range, is an InputError that
+    lists the cracks."""
+    names = [getattr(c, "name", "") for c in model.scene.cracks]
+    listing = ", ".join(f"{k} {n!r}" for k, n in enumerate(names))
+    if isinstance(crack, str):
+        if crack not in names:
+            raise InputError(f"no crack named {crack!r}: the scene's cracks are {listing}")
+        return names.index(crack)
+    if isinstance(crack, bool) or not isinstance(crack, (int, np.integer)):
+        raise InputError(f"crack must be a crack's index (an int) or its name, got {crack!r} "
+                         f"({type(crack).__name__}); the scene's cracks are {listing}")
+    if not 0 <= crack < len(names):
+        raise InputError(f"crack index {crack} out of range: the scene has {len(names)} cracks ({listing})")
+    return int(crack)
+
+
+@dataclasses.dataclass(repr=False)
 class Solution:
     """Displacement dofs of a model and what can be derived from them.
 
@@ -151,6 +169,7 @@ class Solution:
                                        gradient=True)[1]
         return reduced(out, "SUM", comm)
 
+    @checked_keywords
     def displacement(self, points: np.ndarray, side: int = 0) -> np.ndarray:
         """Displacement (n, d) at points; side +1 / -1 picks a lip of a crack
         crossing the point's cell, 0 the side the point lies on."""
@@ -174,10 +193,14 @@ class Solution:
         return (u, grad) if gradient else u
 
     # -- on the crack -------------------------------------------------------
-    def lip_samples(self, crack: int = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
+    @checked_keywords
+    def lip_samples(self, crack: int | str = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
         """Points on a crack's lips (points_per_segment Gauss points per crack
         segment, tau^2-graded toward a tip, in 2D; per direction of each lip
         facet, collapsed at the front, in 3D) with what the lips do there:
+
+        crack: its index in Scene.cracks or its name (Crack.name), here and
+        in crack_opening, opening_volume, contact_pressure.
 
         x (n, d), weight (n,) (the length or area each point stands for; a
         point-collapsed facet may give negative weights), normal (n, d) into
@@ -195,8 +218,7 @@ class Solution:
         (those of its owned cells), cell -1.
         """
         m = self.model
-        if not 0 <= crack < len(m.cracks):
-            raise InputError(f"crack index {crack} out of range: the scene has {len(m.cracks)} cracks")
+        crack = crack_index(m, crack)
         cm = m.cracks[crack]
         pts = cm.lip_samples(m, int(points_per_segment))
         if m.distributed:  # the points of this process's owned cells (each cell's once over the processes)
@@ -265,7 +287,32 @@ class Solution:
         out[stick] = "stick"
         return out
 
-    def crack_opening(self, crack: int = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
+    def __repr__(self) -> str:
+        """What the solution holds, on one line (the dataclass's repr printed the whole model)."""
+        m, sc = self.model, self.model.scene
+        names = ", ".join(repr(getattr(c, "name", "")) for c in sc.cracks) or "none"
+        dofs = f"{len(self.u)} dofs"
+        if m.distributed:  # u holds this process's part (owned and ghost dofs)
+            dofs += f" on process {m.comm.rank} of {m.comm.size}"
+        parts = [f"{sc.mesh.gdim}D", dofs, f"cracks [{names}]", f"contact {sc.options.contact!r}"]
+        if sc.options.friction > 0.0:
+            parts.append(f"friction {sc.options.friction:g}")
+        if self.step is not None:
+            parts.append(f"load step {self.step.get('name', self.step.get('index'))!r}")
+        if self.factors is not None:
+            parts.append("factors " + ", ".join(f"{g}={f:g}" for g, f in self.factors.items()))
+        if self.condition:
+            parts.append(", ".join(f"{k}={v:.3g}" for k, v in self.condition.items()
+                                   if isinstance(v, (int, float))))
+        if self.error_estimate is not None:
+            parts.append("with an error estimate")
+        if isinstance(self.timings.get("total"), (int, float)):
+            parts.append(f"solved in {self.timings['total']:.3g} s")
+        return (f"Solution({'; '.join(parts)}; K: .stress_intensity_factors(crack), lips: .crack_opening(crack)"
+                f"{', .contact_pressure(crack)' if self.contact else ''}, .displacement(points), .warnings)")
+
+    @checked_keywords
+    def crack_opening(self, crack: int | str = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
         """Jump [[u]] = u(+) - u(-) over a crack (see lip_samples): x (n, d),
         weight (n,), jump (n, d), normal (n,) = [[u]].n (n the + side
         normal, positive = opening), tangential (n,) = [[u]].t in 2D, the
@@ -279,13 +326,15 @@ class Solution:
             out["s"] = smp["s"]
         return out
 
-    def opening_volume(self, crack: int = 0) -> float:
+    @checked_keywords
+    def opening_volume(self, crack: int | str = 0) -> float:
         """int [[u]].n over a crack's lips: the area (2D, per unit thickness)
         or the volume (3D) the crack opens."""
         smp = self.lip_samples(crack)
         return float(np.sum(smp["weight"] * smp["gap"]))
 
-    def contact_pressure(self, crack: int = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
+    @checked_keywords
+    def contact_pressure(self, crack: int | str = 0, points_per_segment: int = 3) -> dict[str, np.ndarray]:
         """Contact pressure p = -lambda (>= 0 in compression) and normal gap
         [[u]].n at points on the crack (see lip_samples): x (n, d),
         pressure (n,), gap (n,), weight (n,) (for integrals over the
@@ -378,10 +427,11 @@ class Solution:
             ref2 += float(np.sum(f["weight"] * np.einsum("nij,nij->n", stress(eex, mat), eex)))
         return float(np.sqrt(err2)), float(np.sqrt(err2 / ref2))
 
-    def stress_intensity_factors(self, crack: int | None = 0, radius: float | None = None,
+    @checked_keywords
+    def stress_intensity_factors(self, crack: int | str | None = 0, radius: float | None = None,
                                  ring: tuple[float, float] | None = None) -> list[dict[str, typing.Any]]:
-        """K at every tip (2D) or front point (3D) of a crack (crack=None: of
-        every crack) by the domain interaction integral on three domains per
+        """K at every tip (2D) or front point (3D) of a crack (its index in
+        Scene.cracks or its name; crack=None: of every crack) by the domain interaction integral on three domains per
         point: one dict per point with the keys of results.json's "sifs"
         (cracklip.fracture.sif.SIF_KEYS: crack, crack_name, point, tip,
         piece, s, position, x, y, z, direction, normal, frame, K_I, K_II,
@@ -400,11 +450,10 @@ class Solution:
         Options.sif_ring); a ring that reaches an obstacle is warned about,
         domain_clear false.
         """
+        crack = None if crack is None else crack_index(self.model, crack)
         key = (crack, radius, None if ring is None else tuple(float(v) for v in ring))
         if key not in self._sif_cache:
             cracks = None if crack is None else [crack]
-            if crack is not None and not 0 <= crack < len(self.model.cracks):
-                raise InputError(f"crack index {crack} out of range: the scene has {len(self.model.cracks)} cracks")
             if self.model.crack_type.END == "front":
                 if ring is not None:
                     raise InputError("a SIF ring (options.sif_ring) is a 2D setting: 3D fronts take sif_radius")

@@ -9,7 +9,7 @@ import typing
 
 import numpy as np
 
-from ..errors import BoundaryConditionError, InputError
+from ..errors import BoundaryConditionError, InputError, checked_keywords
 from .stress_field import as_stress_field
 
 
@@ -19,6 +19,7 @@ Value = typing.Union[float, typing.Callable[[np.ndarray], np.ndarray]]
 VectorValue = typing.Union[typing.Sequence[float], typing.Callable[[np.ndarray], np.ndarray]]
 
 
+@checked_keywords
 @dataclasses.dataclass
 class Dirichlet:
     """Prescribed displacement.
@@ -50,6 +51,7 @@ class Dirichlet:
                                          f"got {self.component!r}")
 
 
+@checked_keywords
 @dataclasses.dataclass
 class Traction:
     """Surface traction (force per length) on a tagged boundary.
@@ -82,6 +84,7 @@ class Traction:
                                  f"or (t_x, t_y, t_z) in 3D, got {self.value!r}")
 
 
+@checked_keywords
 @dataclasses.dataclass
 class PointForce:
     """A concentrated force (force, in 2D per unit thickness) at the mesh node
@@ -112,6 +115,7 @@ def _check_group(group, what: str) -> None:
         raise InputError(f"{what}: a load group must be a non-empty name, got {group!r}")
 
 
+@checked_keywords
 @dataclasses.dataclass
 class LoadStep:
     """One step of a load path: the factor of each named load group at the

@@ -8,10 +8,11 @@ import typing
 
 import numpy as np
 
-from ..errors import CrackGeometryError
+from ..errors import CrackGeometryError, checked_keywords
 from .conditions import Value
 
 
+@checked_keywords
 @dataclasses.dataclass
 class Crack:
     """A crack as a polyline.
@@ -36,8 +37,12 @@ class Crack:
     pressure_group: str = "default"
 
     def __post_init__(self):
-        pts = np.asarray(self.points, dtype=np.float64)
         label = self.name or "crack"
+        try:
+            pts = np.asarray(self.points, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise CrackGeometryError(f"{label}: points must be numbers, an array of shape (k, 2) (k >= 2: the "
+                                     f"polyline's vertices), got {self.points!r:.80}") from None
         if not callable(self.pressure) and not (isinstance(self.pressure, numbers.Real)
                                                 and math.isfinite(self.pressure)):
             raise CrackGeometryError(f"{label}: the lip pressure must be a finite number or a callable "

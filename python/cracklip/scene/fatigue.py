@@ -28,7 +28,7 @@ import dataclasses
 import math
 import typing
 
-from ..errors import InputError
+from ..errors import InputError, checked_keywords
 from .units import Units
 
 
@@ -87,6 +87,7 @@ EXAMPLES: dict[str, dict[str, typing.Any]] = {
 }
 
 
+@checked_keywords
 @dataclasses.dataclass
 class FatigueMaterial:
     """The fatigue constants of the material.

@@ -5,12 +5,13 @@ import dataclasses
 import math
 import typing
 
-from ..errors import InputError
+from ..errors import InputError, checked_keywords
 
 
 CRITERIA = ("max_hoop", "max_energy_release")
 
 
+@checked_keywords
 @dataclasses.dataclass
 class Growth:
     """Growth settings.

@@ -8,12 +8,13 @@ import numbers
 
 import numpy as np
 
-from ..errors import MaterialError
+from ..errors import MaterialError, checked_keywords
 
 
 PLANES = ("strain", "stress")
 
 
+@checked_keywords
 @dataclasses.dataclass(frozen=True)
 class Material:
     """Linear elastic, isotropic; a planar part in plane strain (default) or
@@ -38,7 +39,11 @@ class Material:
     def __post_init__(self):
         if self.plane not in PLANES:
             raise MaterialError(f"plane must be 'strain' or 'stress', got {self.plane!r}")
-        if not (isinstance(self.E, numbers.Real) and math.isfinite(self.E) and self.E > 0.0):
+        for name in ("E", "nu"):
+            value = getattr(self, name)
+            if not isinstance(value, numbers.Real) or isinstance(value, bool):
+                raise MaterialError(f"Material.{name} must be a number, got {value!r} ({type(value).__name__})")
+        if not (math.isfinite(self.E) and self.E > 0.0):
             raise MaterialError(f"Young's modulus E must be positive, got {self.E}")
         ok = isinstance(self.nu, numbers.Real) and math.isfinite(self.nu) and -1.0 < self.nu <= 0.5
         if not ok or (self.plane == "strain" and self.nu == 0.5):

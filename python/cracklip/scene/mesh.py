@@ -13,12 +13,13 @@ import dataclasses
 import functools
 import logging
 import math
+import numbers
 import pathlib
 import typing
 
 import numpy as np
 
-from ..errors import BoundaryConditionError, CracklipError, MeshError
+from ..errors import BoundaryConditionError, CracklipError, MeshError, checked_keywords
 from .processes import agree, first_error, total
 from .size_field import (MAX_GROWTH, PLATEAU, refinement_expression, refinement_size,  # noqa: F401
                          size_expression, smallest_size)
@@ -324,6 +325,9 @@ def _check_cells(msh: dolfinx.mesh.Mesh, d: int, measure: str, fix: str) -> None
 
 
 def _check_box(x0: float, y0: float, x1: float, y1: float, h: float) -> None:
+    for name, value in (("x0", x0), ("y0", y0), ("x1", x1), ("y1", y1), ("h", h)):
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise MeshError(f"the rectangle's {name} must be a number, got {value!r} ({type(value).__name__})")
     if not (x1 > x0 and y1 > y0):
         raise MeshError(f"empty rectangle [{x0}, {x1}] x [{y0}, {y1}]")
     if not (0.0 < h <= max(x1 - x0, y1 - y0)):
@@ -476,9 +480,15 @@ def create_rectangle(x0: float, y0: float, x1: float, y1: float, h: float,
     return _finish(gmsh, classify, h, refine, levels, recipe)
 
 
-def create_square(h: float, half_width: float = 1.0, **kwargs) -> MeshData:
-    """The paper's square [-1, 1]^2 (tags left, right, bottom, top)."""
-    return create_rectangle(-half_width, -half_width, half_width, half_width, h, **kwargs)
+@checked_keywords
+def create_square(h: float, half_width: float = 1.0,
+                  refine: typing.Sequence[tuple[float, float, float, float]] = (),
+                  embed_lines: typing.Sequence[tuple[tuple[float, float], tuple[float, float]]] = (),
+                  embed_points: typing.Sequence[tuple[float, float]] = (), levels=()) -> MeshData:
+    """The paper's square [-1, 1]^2 ([-half_width, half_width]^2), triangles of size h (tags
+    left, right, bottom, top); refine, embed_lines, embed_points, levels as in create_rectangle."""
+    return create_rectangle(-half_width, -half_width, half_width, half_width, h, refine=refine,
+                            embed_lines=embed_lines, embed_points=embed_points, levels=levels)
 
 
 @gmsh_on_rank0

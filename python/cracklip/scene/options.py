@@ -5,7 +5,7 @@ import dataclasses
 import math
 import numbers
 
-from ..errors import InputError
+from ..errors import InputError, checked_keywords
 
 
 ENRICHMENTS = ("none", "scalar", "vector")
@@ -37,6 +37,7 @@ def check_ring(ring, what: str = "ring") -> tuple[float, float]:
     return float(ring[0]), float(ring[1])
 
 
+@checked_keywords
 @dataclasses.dataclass
 class Options:
     """Numerical options.

@@ -20,13 +20,14 @@ import typing
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, checked_keywords
 
 
 COUNTING = ("rainflow", "range_pair", "valley_to_peak")
 RESIDUE = ("close", "half")
 
 
+@checked_keywords
 @dataclasses.dataclass
 class SpectrumBlock:
     """One block (flight) of turning points.
@@ -44,6 +45,7 @@ class SpectrumBlock:
     source: str = ""
 
 
+@checked_keywords
 @dataclasses.dataclass
 class Spectrum:
     """A load spectrum (module doc).
@@ -83,7 +85,13 @@ class Spectrum:
         G = len(self.groups)
         for i, b in enumerate(self.blocks):
             where = f"spectrum.blocks[{i}]"
-            pts = np.asarray(b.points, dtype=float)
+            if not isinstance(b, SpectrumBlock):
+                raise InputError(f"{where} must be a cl.SpectrumBlock(points=[...], repeat=n), got "
+                                 f"{type(b).__name__}")
+            try:
+                pts = np.asarray(b.points, dtype=float)
+            except (TypeError, ValueError):
+                raise InputError(f"{where}.points must be load factors (numbers), got {b.points!r:.80}") from None
             if pts.ndim == 1 and G == 1:
                 pts = pts[:, None]
             if pts.ndim != 2 or pts.shape[1] != G or pts.shape[0] < 1:

@@ -13,12 +13,13 @@ import typing
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, checked_keywords
 
 
 StressLike = typing.Union["LinearStress", typing.Sequence[float], typing.Callable[[np.ndarray], np.ndarray]]
 
 
+@checked_keywords
 @dataclasses.dataclass(frozen=True)
 class LinearStress:
     """sigma(x) = value + (x - x_0) gradient[0] + (y - y_0) gradient[1], in

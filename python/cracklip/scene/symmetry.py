@@ -19,7 +19,7 @@ import typing
 
 import numpy as np
 
-from ..errors import BoundaryConditionError
+from ..errors import BoundaryConditionError, checked_keywords
 from .conditions import Dirichlet
 from .processes import reduced
 
@@ -28,6 +28,7 @@ from .processes import reduced
 PLANE_TOLERANCE = 1e-6
 
 
+@checked_keywords
 @dataclasses.dataclass
 class Symmetry:
     """A plane (line) of symmetry of the problem on a boundary tag.

@@ -22,7 +22,7 @@ import dataclasses
 import math
 import re
 
-from ..errors import InputError
+from ..errors import InputError, checked_keywords
 
 #: Lengths in metres.
 LENGTHS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "in": 0.0254, "ft": 0.3048}
@@ -43,6 +43,7 @@ def _check(name: str, value, table: dict[str, float]) -> None:
         raise InputError(f"units.{name} must be one of {sorted(table)}, got {value!r}")
 
 
+@checked_keywords
 @dataclasses.dataclass(frozen=True)
 class Units:
     """The units a scene's numbers are in.

@@ -9,7 +9,7 @@ import pathlib
 import time
 import typing
 
-from ...errors import InputError, MeshError
+from ...errors import InputError, MeshError, checked_keywords
 from ...scene.options import Options
 from ...scene.processes import replicated
 from ...scene.scene import Scene
@@ -22,7 +22,7 @@ from .mesh import build_mesh, scene_path
 from .reader import apply_override, parse_settings, read_document
 
 
-@dataclasses.dataclass
+@dataclasses.dataclass(repr=False)
 class SceneFile:
     """A scene file read and built.
 
@@ -45,9 +45,24 @@ class SceneFile:
     timings: dict[str, float]
     growth: typing.Any = None
 
+    def __repr__(self) -> str:
+        """The file and what it built, on one line (the dataclass's repr printed every setting)."""
+        sc = self.scene
+        names = ", ".join(repr(getattr(c, "name", "")) for c in sc.cracks) or "none"
+        return (f"SceneFile({self.title!r}; {self.path}; {sc.mesh.gdim}D mesh, {sc.mesh.mesh.topology.index_map(0).size_global}"
+                f" nodes; cracks [{names}]; {len(sc.dirichlet)} Dirichlet, {len(sc.tractions)} tractions; growth "
+                f"{'yes' if self.growth is not None else 'none'}; .scene for cl.solve, .growth for cl.grow, .settings, "
+                f".notes)")
 
+
+@checked_keywords
 def load_scene_file(path: str | pathlib.Path, overrides: typing.Sequence[str] = ()) -> SceneFile:
-    """Read, validate and build a scene file; overrides are ``KEY=VALUE`` strings."""
+    """Read, validate and build a scene file (TOML, keys: docs/scene_reference.md, or
+    ``python3 -m cracklip reference``); returns a SceneFile: .scene for cl.solve, .growth (the
+    [growth] table, or None) for cl.grow. overrides: ``KEY=VALUE`` strings (one, or a list) that
+    replace the file's values, as ``--set`` does on the command line (e.g. "mesh.h=0.05")."""
+    if isinstance(overrides, str):  # one override: not its characters one by one
+        overrides = [overrides]
     path = pathlib.Path(path)
     doc = read_document(path)
     for o in overrides:
