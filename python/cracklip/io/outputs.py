@@ -15,8 +15,9 @@ timings and the files written. What differs is the crack's geometry:
   per crack its length in the part, closed / open extent, pressure;
 - a 3D crack (a surface): crack_opening.csv and crack_opening.png (the
   normal opening at the vertices of the lip facets, each split in
-  OPENING_SUBDIVISION^2 triangles, the same samples in both), front.csv,
-  front_sifs.png and front_sifs.vtu (K along the fronts: FRONT_COLUMNS),
+  OPENING_SUBDIVISION^2 triangles, the same samples in both), front.csv
+  (K along the fronts: FRONT_COLUMNS, per load step as sif.csv),
+  front_sifs.png (every step) and front_sifs.vtu (the last step),
   crack_surface.vtu, crack_front.vtu; per crack its area in the part,
   opened volume, opening and slip, and its front.
 
@@ -65,7 +66,9 @@ OPENING_SUBDIVISION = 2
 
 
 #: front.csv's columns (keys of the SIF rows): one line per front point and
-#: per position asked for (the parametric angle only for elliptical fronts:
+#: per position asked for, per load step (step 0 alone without a load path;
+#: a load path's last step is the run's results.json sifs, the earlier ones
+#: its steps[].sifs; as sif.csv's step) (the parametric angle only for elliptical fronts:
 #: parametric_angle in radians as the rows hold it, parametric_angle_deg in
 #: degrees as options.sif_angles and sif_angle_step ask for it,
 #: the errors empty without an error estimate,
@@ -73,7 +76,7 @@ OPENING_SUBDIVISION = 2
 #: the front meets the part's boundary off a symmetry plane: K there is the
 #: documented end value, K_source end_extrapolation; K_source and the
 #: other flags: cracklip.fracture.front_sampling, docs/sifs.md).
-FRONT_COLUMNS = ["crack", "crack_name", "point", "piece", "s", "x", "y", "z", "parametric_angle",
+FRONT_COLUMNS = ["step", "crack", "crack_name", "point", "piece", "s", "x", "y", "z", "parametric_angle",
                  "parametric_angle_deg", "K_I", "K_II",
                  "K_III", "K_I_error", "K_II_error", "K_III_error", "K_I_spread", "K_II_spread", "K_III_spread", "G", "mode_mix_deg", "radius", "radius_min",
                  "element_size", "hat", "curvature", "limited_by", "free_surface", "domain_clear", "K_source",
@@ -382,9 +385,11 @@ def opening_rows(cracks: typing.Sequence, facets: typing.Sequence[dict]) -> list
     return rows
 
 
-def front_csv_rows(rows: typing.Sequence[dict]) -> list[list]:
-    """front.csv's rows (FRONT_COLUMNS; flags as 0 / 1)."""
+def front_csv_rows(rows: typing.Sequence[dict], step: int = 0) -> list[list]:
+    """front.csv's rows of one load step (FRONT_COLUMNS; flags as 0 / 1)."""
     def value(r: dict, k: str):
+        if k == "step":
+            return step
         if k == "parametric_angle_deg":
             return None if r.get("parametric_angle") is None else math.degrees(r["parametric_angle"])
         return r.get(k)
@@ -414,17 +419,22 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
     timings["crack_post"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
+    step_sifs = surface_step_sifs(solution, sifs)
+    timings["step_sifs"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
     cracks = [cm.crack for cm in m.cracks]
     gathered = gathered_subcell_fields(solution) if m.distributed and cfg["vtu"] else None
     if not writes_files(m):  # under mpirun rank 0 writes the files (every process computed their content)
         files += m.V.mesh.comm.bcast(None, root=0)
-        return {"cracks": crack_stats, "steps": _surface_steps(solution, samples, facets, sifs, cfg, law, gap_tol)}
+        return {"cracks": crack_stats,
+                "steps": _surface_steps(solution, samples, facets, step_sifs, cfg, law, gap_tol)}
     written = len(files)
     write_csv(out / "crack_opening.csv", ["crack", "facet", "vertex", "x", "y", "z", "p1", "p2", "weight", "gap",
                                            "slip", "jump_x", "jump_y", "jump_z"], opening_rows(cracks, fine))
     files.append("crack_opening.csv")
     if sifs:
-        write_csv(out / "front.csv", FRONT_COLUMNS, front_csv_rows(sifs))
+        write_csv(out / "front.csv", FRONT_COLUMNS, [row for k, rows in enumerate(step_sifs)
+                                                     for row in front_csv_rows(rows, k)])
         files.append("front.csv")
     timings["write_csv"] = time.perf_counter() - t0
     if cfg["vtu"]:
@@ -456,32 +466,48 @@ def _surface_outputs(scene_file, solution: Solution, out: pathlib.Path, sifs: li
             files.append("crack_contact.png")
         if sifs:
             write_front_png(sifs, out / "front_sifs.png", scene_file.title,
-                            None if m.scene.units is None else m.scene.units.name("K"), m.scene.units)
+                            None if m.scene.units is None else m.scene.units.name("K"), m.scene.units,
+                            [(st.step["name"], rows) for st, rows in zip(solution.steps, step_sifs)]
+                            if solution.steps else None)
             files.append("front_sifs.png")
         timings["write_png"] = time.perf_counter() - t0
         logger.info("wrote crack_opening.png" + (", crack_contact.png" if solution.contact else "")
                     + (", front_sifs.png" if sifs else ""))
     if m.distributed:  # the others' list of files
         m.V.mesh.comm.bcast(files[written:], root=0)
-    return {"cracks": crack_stats, "steps": _surface_steps(solution, samples, facets, sifs, cfg, law, gap_tol)}
+    return {"cracks": crack_stats, "steps": _surface_steps(solution, samples, facets, step_sifs, cfg, law, gap_tol)}
 
 
-def _surface_steps(solution: Solution, samples: list, facets: list, sifs: list, cfg: dict, law: str,
+#: The keys of results.json's steps[].sifs rows of a 3D load path: which
+#: point (crack, point) and where (piece, s, x, y, z, the parametric angle
+#: of an elliptical front), as front.csv's rows of that step have them.
+STEP_SIF_KEYS_3D = ("crack", "point", "piece", "s", "x", "y", "z", "parametric_angle", "K_I", "K_II", "K_III",
+                    "K_I_spread", "K_II_spread", "K_III_spread", "G", "mode_mix_deg", "K_source", "domain_clear")
+
+
+def surface_step_sifs(solution: Solution, sifs: list[dict]) -> list[list[dict]]:
+    """The SIF rows of every load step of a 3D solution, first to last (the
+    last step's: sifs, the run's rows); without a load path [sifs]."""
+    if not solution.steps:
+        return [sifs]
+    return [sifs if st is solution else st.stress_intensity_factors(None) for st in solution.steps]
+
+
+def _surface_steps(solution: Solution, samples: list, facets: list, step_sifs: list, cfg: dict, law: str,
                    gap_tol: float) -> list | None:
-    """results.json's steps of a 3D load path (None without one)."""
+    """results.json's steps of a 3D load path (None without one); step_sifs:
+    surface_step_sifs."""
     m = solution.model
     steps = None
     if solution.steps:
         steps = []
-        for k, st in enumerate(solution.steps):
-            rows = sifs if st is solution else st.stress_intensity_factors(None)
+        for k, (st, rows) in enumerate(zip(solution.steps, step_sifs)):
             smps = samples if st is solution else [st.lip_samples(i, cfg["crack_points"]) for i in range(len(m.cracks))]
             stats = [crack_statistics_3d(facets[i] if st is solution else None, smp, closed_points(smp, law, gap_tol),
                                          law) for i, smp in enumerate(smps)]
             steps.append({"step": k, "name": st.step["name"], "factors": st.step["factors"],
                           "increments": st.step["increments"], "contact": contact_summary(st),
-                          "sifs": [{key: r[key] for key in ("crack", "point", "K_I", "K_II", "K_III", "K_I_spread",
-                                                            "K_II_spread", "K_III_spread")} for r in rows],
+                          "sifs": [{key: r.get(key) for key in STEP_SIF_KEYS_3D} for r in rows],
                           "cracks": [{"crack": i, **{key: v for key, v in st_.items()
                                                      if key in ("closed_fraction", "closed_area", "stick_area",
                                                                 "slip_area", "open_area", "slip_max",

@@ -23,7 +23,9 @@ are functions here side by side.
   (when the run made the estimate; else half the spread of the three
   domains) and marked: free-surface points (their end values, K_source
   end_extrapolation, as open diamonds) and positions asked for between
-  front points (interpolated, open circles).
+  front points (interpolated, open circles); on a load path the last
+  step so, each earlier step's K a dotted line with a marker of its own,
+  labelled with the step's number and name.
 """
 from __future__ import annotations
 
@@ -621,12 +623,33 @@ def write_crack_contact_png(cracks: typing.Sequence, facets: typing.Sequence[dic
     return path
 
 
+#: front_sifs.png: the markers of a load path's earlier steps.
+STEP_MARKERS = ("^", "v", "s", "<", ">", "d")
+
+
+def _earlier_step(ax, rows: list[dict], angle: bool, mode: str, colour: str, marker: str) -> None:
+    """One earlier load step's K (mode) along a front, each piece a thin
+    dotted line (write_front_png)."""
+    if not rows:
+        return
+    t = np.array([math.degrees(r["parametric_angle"]) if angle else r["s"] for r in rows])
+    k = np.array([r[mode] for r in rows])
+    piece = np.array([int(r.get("piece") or 0) for r in rows])
+    for p in sorted(set(piece.tolist())):
+        on = np.flatnonzero(piece == p)
+        o = on[np.argsort(t[on])]
+        ax.plot(t[o], k[o], ls=":", lw=0.6, marker=marker, ms=4, color=colour, alpha=0.7)
+
+
 def write_front_png(rows: typing.Sequence[dict], path: pathlib.Path, title: str = "", k_unit: str | None = None,
-                    units=None) -> None:
+                    units=None, steps: typing.Sequence[tuple[str, typing.Sequence[dict]]] | None = None) -> None:
     """front_sifs.png: K_I, K_II, K_III along each crack's front (module doc);
     each front piece a line of its own (a crack with two fronts: solid,
     dashed, ...), the free-surface end values, flagged free-surface points,
-    interpolated positions and points whose K is NOT reliable marked."""
+    interpolated positions and points whose K is NOT reliable marked.
+    steps: a load path's (name, rows) per step, the last one's rows those
+    drawn as above; each earlier step's K a thin line of its own marker,
+    labelled with the step's number and name."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -662,6 +685,15 @@ def write_front_png(rows: typing.Sequence[dict], path: pathlib.Path, title: str 
             for mask, style, _ in marks:
                 if mask.any():
                     ax.plot(t[mask], k[mask], ls="none", **style)
+            for j, (_, srows) in enumerate((steps or [])[:-1]):
+                _earlier_step(ax, [r for r in srows if int(r["crack"]) == c], angle, name, col, STEP_MARKERS[j % 6])
+        for j, (sname, _) in enumerate((steps or [])[:-1]):
+            ax.plot([], [], color="0.4", lw=0.6, ls=":", marker=STEP_MARKERS[j % 6], ms=4,
+                    label=f"step {j} ({sname})" if sname else f"step {j}")
+        if steps:
+            ax.plot([], [], color="0.4", lw=1, marker="o", ms=3,
+                    label=f"step {len(steps) - 1} ({steps[-1][0]}), last" if steps[-1][0] else
+                    f"step {len(steps) - 1}, last")
         for mask, style, label in marks:
             if mask.any():
                 ax.plot([], [], ls="none", label=label, **style)
