@@ -697,6 +697,10 @@ def test_run_symmetry_cell_loads_load_path_rescale_same_on_one_and_two_processes
         k_i = sorted(r["K_I"] for r in a["sifs"])
         for got, want in zip((k_i[0], k_i[-1]) if len(exact[0]) > 1 else (k_i[0],), exact[0]):
             assert abs(got / want - 1.0) < exact[1], (got, want)
+    if (out / "front.csv").exists():  # 3D: a row per front point per step, the same rows as the serial run's
+        rows = [(d / "front.csv").read_text().splitlines() for d in (serial, out)]
+        assert rows[0][0] == rows[1][0] and len(rows[0]) == len(rows[1]) == 1 + len(a["sifs"]) * max(
+            len(a["steps"] or []), 1)
     if scene == "quarter_ellipse.toml":  # both ends on the planes: their K from the mirrored domains
         ends = [r for r in b["sifs"] if r.get("K_source") == "mirrored_domain"]
         assert len(ends) == 2 and all(abs(r["K_III"]) <= 1e-12 for r in ends), b["sifs"]
