@@ -455,3 +455,107 @@ def test_dcb_path_turns_away_from_the_axis():
     assert np.all(np.diff(path[:, 0]) > 0) and np.all(slope > 0)
     assert slope[-1] > 10 * slope[1]
     assert 0.4 < path[-1, 1] < 1.0
+
+
+RESIDUAL_EDGE_CRACK = """
+title = "edge crack, weld residual stress + service tension"
+[mesh]
+domain = [0.0, -3.0, 1.0, 3.0]
+h = 0.05
+tip_h = 0.01
+[material]
+E = 1.0
+nu = 0.3
+[[cracks]]
+points = [[-0.1, 0.0], [0.2, 0.0]]
+[[dirichlet]]
+point = [0.0, -3.0]
+[[dirichlet]]
+point = [1.0, -3.0]
+component = "y"
+[loads.initial_stress]
+value = [0.0, 0.6, 0.0]
+gradient = [[0.0, -1.2, 0.0], [0.0, 0.0, 0.0]]
+group = "residual"
+[[loads.tractions]]
+tag = "top"
+stress = [0.0, 0.6, 0.0]
+stress_gradient = [[0.0, -1.2, 0.0], [0.0, 0.0, 0.0]]
+group = "residual"
+[[loads.tractions]]
+tag = "bottom"
+stress = [0.0, 0.6, 0.0]
+stress_gradient = [[0.0, -1.2, 0.0], [0.0, 0.0, 0.0]]
+group = "residual"
+[[loads.tractions]]
+tag = "top"
+value = [0.0, 1.0]
+group = "service"
+[[loads.tractions]]
+tag = "bottom"
+value = [0.0, -1.0]
+group = "service"
+[options]
+radius = 0.06
+"""
+
+
+def test_growth_R_leaves_a_residual_stress_steady(tmp_path, caplog):
+    """growth.R on a residual stress in a load group of its own: the residual
+    stress does not cycle, K_min = K_res + R K_service. An edge crack a = 0.2
+    in a strip of width 1 under the weld-like residual sigma_0,yy = 0.6 - 1.2 x
+    (its end tractions in the same group) and a service tension 1: K_res =
+    0.4994 (Tada's bending 0.6 F_b(0.2) sqrt(pi 0.2) = 0.5008), K_service =
+    1.0783; R = 0.1 gives K_min 0.6073. Before, R scaled the residual stress
+    too: K_min = R K_max = 0.1578."""
+    path = tmp_path / "residual.toml"
+    path.write_text(RESIDUAL_EDGE_CRACK)
+    scene = cl.load_scene_file(path).scene
+    basis = {}
+    for group in ("residual", "service"):
+        scene.load_path = [cl.LoadStep({"residual": float(group == "residual"), "service": float(group == "service")})]
+        (basis[group],) = cl.solve(scene).stress_intensity_factors(0)
+    scene.load_path = None
+    k_res, k_s = basis["residual"]["K_I"], basis["service"]["K_I"]
+    F_b = 1.122 - 1.40 * 0.2 + 7.33 * 0.2 ** 2 - 13.08 * 0.2 ** 3 + 14.0 * 0.2 ** 4
+    assert k_res == pytest.approx(0.6 * F_b * math.sqrt(math.pi * 0.2), rel=0.01)
+    rec = grow(scene, Growth(da=0.02, steps=1, paris_C=1e-3, paris_m=3.0, R=0.1)).records[0][0]
+    assert rec.K_I == pytest.approx(k_res + k_s, rel=1e-9)
+    assert rec.K_I_min == pytest.approx(k_res + 0.1 * k_s, rel=1e-9)  # was 0.1 (k_res + k_s)
+    assert rec.delta_K == pytest.approx(0.9 * k_s, rel=1e-6)
+    # One group for the residual stress and the load: R scales both, and says so.
+    one = cl.load_scene_file(path).scene
+    one.initial_stress_group = "service"
+    for t in one.tractions:
+        t.group = "service"
+    with caplog.at_level("WARNING"):
+        rec = grow(one, Growth(da=0.02, steps=1, paris_C=1e-3, paris_m=3.0, R=0.1)).records[0][0]
+    assert rec.K_I_min == pytest.approx(0.1 * rec.K_I, rel=1e-9)
+    assert any("scales the initial (residual) stress" in r.getMessage() for r in caplog.records)
+
+
+def test_fatigue_life_R_leaves_a_residual_stress_steady(tmp_path):
+    """The same through the fatigue life ([material.fatigue] with growth.R,
+    the one-block spectrum of the cycle): K_min = K_res + R K_service =
+    0.6073, R = K_min / K_max = 0.385 (before: R K_max = 0.1578, R = 0.1, and
+    6.27 cycles for the first increment instead of 19.41)."""
+    path = tmp_path / "residual_life.toml"
+    path.write_text(RESIDUAL_EDGE_CRACK + """
+[material.fatigue]
+law = "paris"
+C = 1e-3
+m = 3.0
+closure = "none"
+[growth]
+da = 0.02
+steps = 1
+R = 0.1
+""")
+    sf = cl.load_scene_file(path)
+    sf.scene.load_path = [cl.LoadStep({"residual": 1.0, "service": 0.0})]
+    (k_res,) = cl.solve(sf.scene).stress_intensity_factors(0)
+    sf.scene.load_path = None
+    res = grow(sf.scene, sf.growth)
+    rec = res.records[0][0]
+    assert rec.K_I_min == pytest.approx(k_res["K_I"] + 0.1 * (rec.K_I - k_res["K_I"]), rel=1e-8)
+    assert rec.K_I_min / rec.K_I == pytest.approx(0.385, abs=1e-3)

@@ -46,7 +46,7 @@ from ..fracture.kink import equivalent_k, kink_angle
 from ..fracture.laws import walker_rate
 from ..scene.conditions import LoadStep
 from ..scene.crack import Crack
-from ..scene.growth import Growth
+from ..scene.growth import Growth, load_cycle
 from ..scene.scene import Scene, require_scene
 from .growth_run import GrowthResult, GrowthRun  # noqa: F401 (GrowthResult: the result of grow)
 from .tips import (Measured, TipRecord, closed_fraction, crack_length, distance_to_segments,  # noqa: F401
@@ -62,9 +62,15 @@ def _cycle_scene(scene: Scene, growth: Growth) -> tuple[Scene, bool]:
     if not growth.fatigue:
         return scene, False
     from ..scene.scene import load_groups
-    groups = sorted(load_groups(scene) | {"default"})
-    high = dict(growth.cycle_max) if growth.cycle_max is not None else {g: 1.0 for g in groups}
-    low = dict(growth.cycle_min) if growth.cycle_min is not None else {g: growth.R * f for g, f in high.items()}
+    groups = load_groups(scene) or {"default"}
+    high, low, warning = load_cycle(growth, groups,
+                                    scene.initial_stress_group if scene.initial_stress is not None else None)
+    if warning is not None:
+        logger.warning(warning)
+    if growth.cycle_max is None and "default" not in high:  # (as before: every group and "default" at 1)
+        high["default"] = 1.0
+        if growth.cycle_min is None:
+            low["default"] = growth.R
     low = {g: low.get(g, 0.0) for g in set(high) | set(low)}
     path = [LoadStep(high, "maximum load"), LoadStep(low, "minimum load")]
     return dataclasses.replace(scene, load_path=path), True

@@ -68,7 +68,7 @@ from ..fracture.life_kernels import KTable, integrate_cycles, new_run
 from ..fracture.rainflow import count_cycles
 from ..fracture.retardation import OverloadState, Retardation, constraint_beta
 from ..scene.fatigue import FatigueMaterial
-from ..scene.growth import Growth
+from ..scene.growth import Growth, load_cycle
 from ..scene.processes import reduced
 from ..scene.scene import Scene, load_groups
 from ..scene.spectrum import Spectrum, SpectrumBlock
@@ -142,8 +142,10 @@ def critical_k(fm: FatigueMaterial, law: LifeLaw) -> float | None:
 def constant_amplitude_spectrum(scene: Scene, growth: Growth) -> Spectrum:
     """The cycle of growth.cycle_max / cycle_min / R as a one-block spectrum."""
     groups = sorted(load_groups(scene)) or ["default"]
-    high = dict(growth.cycle_max) if growth.cycle_max is not None else {g: 1.0 for g in groups}
-    low = dict(growth.cycle_min) if growth.cycle_min is not None else {g: growth.R * f for g, f in high.items()}
+    high, low, warning = load_cycle(growth, groups,
+                                    scene.initial_stress_group if scene.initial_stress is not None else None)
+    if warning is not None:
+        logger.warning(warning)
     names = sorted(set(high) | set(low))
     pts = np.array([[high.get(g, 0.0) for g in names], [low.get(g, 0.0) for g in names]])
     steady = {g: 0.0 for g in groups if g not in names}

@@ -45,9 +45,12 @@ class Growth:
         cycle_max: factors per load group at the maximum of the load cycle
             (unset: every group at 1).
         cycle_min: factors per load group at the minimum of the load cycle
-            (unset: R times cycle_max).
-        R: load ratio min / max of a proportional cycle (when cycle_min is
-            unset).
+            (unset: R times cycle_max, except an initial stress's own load
+            group, which keeps its cycle_max factor: a residual stress does
+            not cycle).
+        R: load ratio min / max of a proportional cycle of the applied loads
+            (when cycle_min is unset): K_min = K_res + R K_applied with a
+            residual stress in a load group of its own.
         max_length: stop when a crack's length in the part reaches this
             (3D: a surface or corner crack's depth a, an embedded crack's
             mean radius; unset: no limit); in fatigue the life is the one to
@@ -182,3 +185,34 @@ class Growth:
         """The fatigue life of cracklip.analysis.life: a growth law of
         cracklip.fracture.laws over a spectrum or a constant-amplitude cycle."""
         return self.fatigue_material is not None
+
+
+def load_cycle(growth: Growth, groups: typing.Iterable[str],
+               initial_stress_group: str | None = None) -> tuple[dict[str, float], dict[str, float], str | None]:
+    """The factors per load group at the maximum and the minimum of the load
+    cycle of growth.cycle_max / cycle_min / R, and a warning (or None).
+
+    cycle_min unset: R times cycle_max, except the load group of an initial
+    (residual) stress when other groups carry the applied load: a residual
+    stress does not cycle, so that group (the initial stress and the
+    tractions that hold it) keeps its cycle_max factor and K_min = K_res +
+    R K_applied. (Scaling it by R too made K_min = R K_max: an edge crack
+    with the residual K 0.499 and the applied 1.078 at R = 0.1 had K_min
+    0.158 instead of 0.607.) When the initial stress shares its group with every load, nothing
+    tells the residual part from the applied one: R scales both, and the
+    warning says so."""
+    groups = sorted(set(groups)) or ["default"]
+    high = dict(growth.cycle_max) if growth.cycle_max is not None else {g: 1.0 for g in groups}
+    if growth.cycle_min is not None:
+        return high, dict(growth.cycle_min), None
+    low = {g: growth.R * f for g, f in high.items()}
+    if initial_stress_group is None:
+        return high, low, None
+    if any(g != initial_stress_group for g in groups):
+        if initial_stress_group in high:
+            low[initial_stress_group] = high[initial_stress_group]
+        return high, low, None
+    return high, low, (f"growth.R = {growth.R:g} scales the initial (residual) stress with the applied load: they "
+                       f"share the load group {initial_stress_group!r}, so K_min = R K_max, the residual K cycling "
+                       f"with the load; give the residual stress (and the tractions holding it) a load group of its "
+                       f"own, which R leaves at its cycle_max factor, or set growth.cycle_min")
