@@ -476,6 +476,20 @@ def _cracklip_sections(path: pathlib.Path) -> list[tuple[int, tuple, str]]:
     return out
 
 
+def _chosen_tip(path, tips: list[tuple[int, int]], tip, where: str) -> tuple[int, int]:
+    """The (crack, end) of a grow table's tips a life reads: life.tip, or the
+    only one; an error naming life.tip where it is needed or not there."""
+    if tip is None:
+        if len(tips) > 1:
+            raise InputError(f"{where}: {path} holds the tips {[list(t) for t in tips]} (crack, end): choose one "
+                             "with life.tip = [crack, end]")
+        tip = tips[0]
+    tip = (int(tip[0]), int(tip[1]))
+    if tip not in tips:
+        raise InputError(f"{where}: life.tip = {list(tip)} is not in {path}; its tips: {[list(t) for t in tips]}")
+    return tip
+
+
 def _sectioned_table(path, rows: list[Row], sections, where: str, tip, scale: float) -> KTableData:
     """cracklip grow's beta_afgrow.txt holding several tables (tips, load
     cases, beta at contact levels): the tables of one tip (life.tip when it
@@ -501,15 +515,7 @@ def _sectioned_table(path, rows: list[Row], sections, where: str, tip, scale: fl
         picked = keys[0]
         what = f"{picked[1]}"
     else:
-        tips = sorted((int(k[1]), int(k[2])) for k in keys)
-        if tip is None:
-            if len(tips) > 1:
-                raise InputError(f"{where}: {path} holds the tips {[list(t) for t in tips]} (crack, end): choose one "
-                                 "with life.tip = [crack, end]")
-            tip = tips[0]
-        tip = (int(tip[0]), int(tip[1]))
-        if tip not in tips:
-            raise InputError(f"{where}: life.tip = {list(tip)} is not in {path}; its tips: {[list(t) for t in tips]}")
+        tip = _chosen_tip(path, sorted((int(k[1]), int(k[2])) for k in keys), tip, where)
         picked = next(k for k in keys if (int(k[1]), int(k[2])) == tip)
         what = f"crack {tip[0]} end {tip[1]}"
     cases = {c: rs for c, rs in tables[picked].items() if not _LEVEL_CASE.fullmatch(c)}
@@ -545,15 +551,7 @@ def _grow_table(path, head: Row, data: list[Row], col: dict[str, int], where: st
     """cracklip grow's beta.csv: the rows of one tip, K_I per load group."""
     keys = [(int(number(path, r, col["crack"], where, "crack")), int(number(path, r, col["end"], where, "end")))
             for r in data]
-    tips = sorted(set(keys))
-    if tip is None:
-        if len(tips) > 1:
-            raise InputError(f"{where}: {path} holds the tips {[list(t) for t in tips]} (crack, end): choose one "
-                             "with life.tip = [crack, end]")
-        tip = tips[0]
-    tip = (int(tip[0]), int(tip[1]))
-    if tip not in tips:
-        raise InputError(f"{where}: life.tip = {list(tip)} is not in {path}; its tips: {[list(t) for t in tips]}")
+    tip = _chosen_tip(path, sorted(set(keys)), tip, where)
     rows = [r for r, k in zip(data, keys) if k == tip]
     groups = {n[4:]: j for n, j in col.items() if n.startswith("K_I_")}
     if not groups:
