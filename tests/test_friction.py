@@ -233,6 +233,15 @@ load_steps = 2
         rows = list(csv.DictReader(f))
     assert {r["step"] for r in rows} == {"0", "1", "2"}
     assert {r["state"] for r in rows if r["step"] == "1"} <= {"slip", "stick"}
+    # each step's K where sif.csv has it: the tip's position with it (steps[].sifs had no x, y)
+    with (out / "sif.csv").open() as f:
+        sif = list(csv.DictReader(f))
+    for k, st in enumerate(results["steps"]):
+        mine = [r for r in sif if r["step"] == str(k)]
+        assert len(mine) == len(st["sifs"]) > 0
+        for a, b in zip(mine, st["sifs"]):
+            assert (float(a["x"]), float(a["y"]), float(a["K_II"])) == pytest.approx((b["x"], b["y"], b["K_II"]),
+                                                                                    rel=1e-9, abs=1e-12)
     assert (out / "crack_pressure.png").stat().st_size > 20_000
     bad = tmp_path / "bad.toml"
     bad.write_text(scene.read_text().replace("factors = { shear = 0.0 }", "factors = { sheer = 0.0 }"))

@@ -295,14 +295,18 @@ def _write_fields(scene_file, solution: Solution, out: pathlib.Path, samples: li
         logger.info("wrote PNGs")
 
 
+#: The keys of results.json's steps[].sifs rows of a 2D load path: which tip
+#: (crack, tip) and where (x, y), as sif.csv's rows of that step have them.
+STEP_SIF_KEYS_2D = ("crack", "tip", "x", "y", "K_I", "K_II", "K_I_spread", "K_II_spread", "G", "mode_mix_deg")
+
+
 def _curve_steps(solution: Solution, per_step: list, step_sifs: list, gap_tol: float, law: str) -> list | None:
     """results.json's load-path steps of 2D cracks (None without a load path)."""
     steps = None
     if solution.steps:
         steps = [{"step": k, "name": st.step["name"], "factors": st.step["factors"],
                   "increments": st.step["increments"], "contact": contact_summary(st),
-                  "sifs": [{key: r[key] for key in ("crack", "tip", "K_I", "K_II", "K_I_spread", "K_II_spread")}
-                           for r in rows],
+                  "sifs": [{key: r.get(key) for key in STEP_SIF_KEYS_2D} for r in rows],
                   "cracks": [{"crack": i, **{key: v for key, v in crack_statistics(smp, shut[i], gap_tol, law).items()
                                               if key in ("closed_fraction", "stick_length", "slip_length",
                                                          "open_length", "slip_max_abs")}}
