@@ -166,3 +166,46 @@ def test_point_supports_of_unbalanced_pins():
         "+1000 and -1e+05)" in w.message
     bending = cl.solve(load_scene_file(SCENES / "three_point_bending.toml", ["mesh.h=0.1", "mesh.tip_h=0.02"]).scene)
     assert not [w for w in bending.warnings if w.code == "point_supports"]
+
+
+def _unbalanced(scene):
+    from cracklip.post.checks import initial_stress_unbalanced
+    return initial_stress_unbalanced(cl.solve(scene))
+
+
+def test_unbalanced_initial_stress_is_warned():
+    """The audit: sigma_0,yy = 1 in a plate with free edges relaxes entirely
+    (K_I = -1e-13, "closed 100 %") and nothing was said. By hand, on the
+    plate [-1, 1] x [-3, 3]: |sigma_0 n| = 1 on top and bottom (length 2
+    each), 0 on the sides: 100 % of it free. With sigma_xx = 1 too and
+    sigma_0 n applied on top and bottom only, the sides carry |sigma_0 n| = 1
+    over 2 x 6 against 2 x 2 held: 12 / 16 = 75 % unbalanced. Old code: no
+    warning in either case."""
+    from handbook import plate_scene
+    scene = plate_scene([[-0.5, 0.0], [0.5, 0.0]], stress=0.0, h=0.2, tip_h=0.05)
+    scene.initial_stress = cl.LinearStress((0.0, 1.0, 0.0))
+    scene.tractions = []
+    [(code, msg)] = _unbalanced(scene)
+    assert code == "initial_stress_unbalanced"
+    assert "100 % of its traction" in msg and "loads.initial_stress" in msg and "loads.tractions" in msg
+    assert "'top'" in msg and "'bottom'" in msg and "relaxes" in msg
+    scene.initial_stress = cl.LinearStress((1.0, 1.0, 0.0))
+    scene.tractions = [cl.Traction(t, stress=scene.initial_stress) for t in ("top", "bottom")]
+    [(code, msg)] = _unbalanced(scene)
+    assert "75 % of its traction" in msg and "'left'" in msg and "'right'" in msg and "'top'" not in msg
+
+
+def test_balanced_initial_stress_is_silent():
+    """sigma_0 n applied where it does not vanish: a uniform sigma_0,yy = 1
+    with its tractions on top and bottom, and the self-equilibrated bending
+    field sigma_0,yy = x (zero resultant and, on the sides, sigma_0 n = 0)
+    with its end tractions: the free sides carry nothing, fraction 0 (the
+    warning's threshold is UNBALANCED_FRACTION = 2 %). The demo
+    residual_stress.toml (its ends carry sigma_0 n plus a service load) too."""
+    from handbook import plate_scene
+    scene = plate_scene([[-0.5, 0.0], [0.5, 0.0]], stress=0.0, h=0.2, tip_h=0.05)
+    for field in (cl.LinearStress((0.0, 1.0, 0.0)), cl.LinearStress((0.0, 0.0, 0.0), ((0.0, 1.0, 0.0), (0.0, 0.0, 0.0)))):
+        scene.initial_stress = field
+        scene.tractions = [cl.Traction(t, stress=field) for t in ("top", "bottom")]
+        assert _unbalanced(scene) == []
+    assert _unbalanced(load_scene_file(SCENES / "residual_stress.toml").scene) == []

@@ -52,6 +52,15 @@ def _boundary_facets(msh) -> np.ndarray:
     return one[f2c.array[f2c.offsets[one]] < owned].astype(np.int32)
 
 
+def owned_boundary_facets(mesh: MeshData) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The part's boundary facets this process counts (all in serial; under
+    mpirun those of its owned cells, each facet on one process): facet
+    indices (n,) and, as tag_facets, vertices (n, d, d), lengths or areas
+    (n,), outward unit normals (n, d)."""
+    facets = _boundary_facets(mesh.mesh)
+    return (facets, *_facet_geometry(mesh, facets))
+
+
 def boundary_normals(mesh: MeshData, where: str | int) -> typing.Callable[[np.ndarray], np.ndarray]:
     """Outward unit normal of a tagged boundary of a planar part as a
     function of points (n, 2) -> (n, 2).

@@ -22,6 +22,16 @@ collects them with the model's and the SIFs' warnings.
   other, as a self-equilibrated set does (the pins of a C(T), both ends of
   a pulled plate), yet point supports carry more than SUPPORT_FRACTION of
   the load: the loads do not balance and the supports act as loading points.
+- ``initial_stress_unbalanced``: an initial stress sigma_0 whose traction
+  sigma_0 n on the part's free boundary (facets with no Dirichlet condition,
+  symmetry plane or applied traction at the state's factors; a constrained
+  component does not count) is not zero: that part of sigma_0 is not held
+  and relaxes (a uniform sigma_0 in a plate with free edges relaxes
+  entirely: K = 0, "closed"). Measured as int |sigma_0 n| over those facets
+  against int |sigma_0 n| over every facet without a Dirichlet condition,
+  warned above UNBALANCED_FRACTION. A traction given on a facet is taken to
+  hold sigma_0 n there with whatever service load it adds (the two cannot
+  be told apart).
 - ``discretisation`` and ``accuracy``: from an error estimate
   (cracklip.analysis.accuracy), a K whose estimated error exceeds
   ERROR_WARNING of the K scale, or an accuracy target not reached.
@@ -32,7 +42,10 @@ import math
 
 import numpy as np
 
+from ..model.boundary import owned_boundary_facets
 from ..scene.processes import reduced
+from ..scene.stress_field import evaluate_stress
+from ..scene.symmetry import SymmetryCondition
 from ..scene.scene import load_groups
 
 
@@ -63,6 +76,84 @@ SUPPORT_FRACTION = 0.01
 #: exceeds this fraction of the applied load (a pin at 1/100 of the other
 #: is 1 % of their sum).
 OPPOSING_FRACTION = 1e-3
+
+
+#: An initial stress whose traction sigma_0 n on the free boundary exceeds
+#: this fraction of its traction on every boundary without a Dirichlet
+#: condition is warned about. A balanced field gives 0 up to the rounding of
+#: the facet normals (~1e-16); a measured field whose free edges carry a few
+#: % of its boundary traction (its noise) relaxes by as little, below the
+#: K accuracy of the method (docs/sifs.md: 0.1-1 %) times the field's share.
+UNBALANCED_FRACTION = 0.02
+
+#: 3-point Gauss rule on a facet (parameter in [0, 1], weights summing to 1).
+_GAUSS = (np.array([0.5 - 0.5 * np.sqrt(0.6), 0.5, 0.5 + 0.5 * np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 18.0)
+
+
+def initial_stress_unbalanced(solution) -> list[tuple[str, str]]:
+    """sigma_0 n not held on the free boundary (module doc): the worst state
+    of a load path. Under mpirun each process sums its owned facets and the
+    sums are reduced: every process gets the same answer."""
+    m = solution.model
+    scene = m.scene
+    if scene.initial_stress is None or m.gdim != 2:
+        return []
+    mesh = scene.mesh
+    facets, verts, size, n = owned_boundary_facets(mesh)
+    s, w = _GAUSS
+    pts = verts[:, :1] + s[None, :, None] * (verts[:, 1:2] - verts[:, :1])  # (f, 3, 2)
+    sig = evaluate_stress(scene.initial_stress, pts.reshape(-1, 2), "initial stress").reshape(len(facets), 3, 2, 2)
+    t0 = np.einsum("fqij,fj->fqi", sig, n)  # sigma_0 n (f, 3, 2)
+    # Components held by a Dirichlet condition or symmetry plane (on a tag).
+    held = np.ones((len(facets), 2))
+    for dc in scene.dirichlet:
+        if isinstance(dc.where, tuple) or not isinstance(dc.where, (str, int)):
+            continue
+        on = np.isin(facets, mesh.facets(dc.where))
+        if isinstance(dc, SymmetryCondition):  # u . n = 0: the normal component
+            t0[on] -= np.einsum("fqi,fi->fq", t0[on], n[on])[..., None] * n[on][:, None, :]
+        elif dc.component is None:
+            held[on] = 0.0
+        else:
+            held[on, dc.component] = 0.0
+    t0 = t0 * held[:, None, :]
+    mag = np.linalg.norm(t0, axis=2) @ w * size  # int |sigma_0 n| per facet
+    tags = sorted({tr.where for tr in scene.tractions}, key=str)
+    tag_of = {t: np.isin(facets, mesh.facets(t)) for t in tags}
+    names = [str(k) for k in mesh.tags]
+    named = {k: np.isin(facets, mesh.facets(k)) for k in mesh.tags}
+    worst = None
+    for st in _states(solution):
+        if st.factor(scene.initial_stress_group) == 0.0:
+            continue
+        loaded = np.zeros(len(facets), dtype=bool)
+        for tr in scene.tractions:
+            if st.factor(tr.group) != 0.0:
+                loaded |= tag_of[tr.where]
+        free = mag * ~loaded
+        per_tag = [float(free[named[k]].sum()) for k in mesh.tags]
+        sums = np.array([float(free.sum()), float(mag.sum())] + per_tag)
+        if mesh.mesh.comm.size > 1:
+            sums = reduced(sums, "SUM", mesh.mesh.comm)
+        if sums[1] > 0.0 and (worst is None or sums[0] / sums[1] > worst[0]):
+            worst = (sums[0] / sums[1], st, sums[2:])
+    if worst is None or worst[0] <= UNBALANCED_FRACTION:
+        return []
+    frac, st, per_tag = worst
+    order = [k for k in np.argsort(-per_tag) if per_tag[k] > 1e-6 * per_tag.sum()]
+    where = ", ".join(f"{names[k]!r} ({100 * per_tag[k] / per_tag.sum():.3g} %)" for k in order)
+    tag = " / ".join(repr(names[k]) for k in order) or "... (tag the free edges)"
+    at = f" at {st.step['name']!r}" if getattr(st, "step", None) and len(_states(solution)) > 1 else ""
+    return [("initial_stress_unbalanced", (
+        f"the initial stress (loads.initial_stress) is not balanced on the part's boundary{at}: "
+        f"{100 * frac:.3g} % of its traction sigma_0 n (integral of |sigma_0 n| over the boundary without a "
+        "Dirichlet condition) falls on free edges, where no traction (loads.tractions) holds it"
+        + (f" (on the tags {where})" if where else " (on untagged facets)")
+        + ": that part of sigma_0 relaxes, and K and the opening see only the rest. Apply sigma_0 n there: "
+        f"[[loads.tractions]] with tag = {tag} and stress / stress_gradient equal to loads.initial_stress's "
+        "value / gradient (plus any service load), in a load group with a factor wherever the initial "
+        "stress's has one; or accept that this part of the field relaxes (a field measured in a part cut "
+        "from a larger one)"))]
 
 
 #: A K whose estimated discretisation error exceeds this fraction of the K scale is warned about.
@@ -302,4 +393,4 @@ def estimate(solution) -> list[tuple[str, str]]:
 def solution_warnings(solution) -> list[tuple[str, str]]:
     """Every check of this module that needs no reactions (those are in the outputs)."""
     return (interpenetration(solution) + bilateral_tension(solution) + no_load(solution)
-            + unused_load_groups(solution) + estimate(solution))
+            + unused_load_groups(solution) + initial_stress_unbalanced(solution) + estimate(solution))
