@@ -123,7 +123,8 @@ def initial_stress_unbalanced(solution) -> list[tuple[str, str]]:
     names = [str(k) for k in mesh.tags]
     named = {k: np.isin(facets, mesh.facets(k)) for k in mesh.tags}
     worst = None
-    for st in _states(solution):
+    states = _states(solution)
+    for st in states:
         if st.factor(scene.initial_stress_group) == 0.0:
             continue
         loaded = np.zeros(len(facets), dtype=bool)
@@ -143,7 +144,7 @@ def initial_stress_unbalanced(solution) -> list[tuple[str, str]]:
     order = [k for k in np.argsort(-per_tag) if per_tag[k] > 1e-6 * per_tag.sum()]
     where = ", ".join(f"{names[k]!r} ({100 * per_tag[k] / per_tag.sum():.3g} %)" for k in order)
     tag = " / ".join(repr(names[k]) for k in order) or "... (tag the free edges)"
-    at = f" at {st.step['name']!r}" if getattr(st, "step", None) and len(_states(solution)) > 1 else ""
+    at = _at_step(st, states)
     return [("initial_stress_unbalanced", (
         f"the initial stress (loads.initial_stress) is not balanced on the part's boundary{at}: "
         f"{100 * frac:.3g} % of its traction sigma_0 n (integral of |sigma_0 n| over the boundary without a "
@@ -162,6 +163,12 @@ ERROR_WARNING = 0.01
 
 def _states(solution) -> list:
     return getattr(solution, "path", None) or [solution]
+
+
+def _at_step(st, states: list) -> str:
+    """' at <step name>' for a warning of one state of a load path ('' for a
+    single solve)."""
+    return f" at {st.step['name']!r}" if getattr(st, "step", None) and len(states) > 1 else ""
 
 
 def interpenetration(solution) -> list[tuple[str, str]]:
@@ -192,7 +199,7 @@ def interpenetration(solution) -> list[tuple[str, str]]:
         st, overlap, frac = worst
         rows = st.stress_intensity_factors(ci)
         unit = "" if m.scene.units is None else f" {m.scene.units.name('length')}"
-        at = f" at {st.step['name']!r}" if getattr(st, "step", None) and len(states) > 1 else ""
+        at = _at_step(st, states)
         out.append(("interpenetration", (
             f"crack {cm.crack.name!r}{at}: the lips pass through each other over {100 * frac:.0f} % of its "
             f"{cm.EXTENT} (largest overlap {overlap:.3g}{unit}{_negative_k(rows, cm.END)}): contact is off "
@@ -226,7 +233,7 @@ def bilateral_tension(solution) -> list[tuple[str, str]]:
         if worst is None:
             continue
         st, lowest, frac = worst
-        at = f" at {st.step['name']!r}" if getattr(st, "step", None) and len(states) > 1 else ""
+        at = _at_step(st, states)
         out.append(("bilateral_tension", (
             f"crack {cm.crack.name!r}{at}: bilateral contact holds its lips together against tension over "
             f"{100 * frac:.0f} % of its {cm.EXTENT} (contact pressure down to {lowest:.4g}): bilateral lips cannot "
