@@ -249,19 +249,9 @@ def test_closed_penny_demo_slip_and_stick(tmp_path):
     assert (tmp_path / "c" / "beta30_mu0.3.png").stat().st_size > 10000
 
 
-def test_slipping_penny_lips_report_slip_everywhere(tmp_path):
-    """A closed penny (a = 1, box of half-width 10, h = 5, tip_h = 0.25,
-    1.3e4 dofs) under p = 1 and tau = 0.5 > mu p (mu = 0.3): every friction
-    multiplier slips (20 of 20), and so must the lips' states that
-    results.json's stick / slip areas, crack_contact.png and
-    crack_surface.vtu show. Their directions spread by 0.22 degrees, so the
-    interpolated shear between two multipliers is below mu p by up to 3e-6
-    of it: the old pointwise test |shear| < mu p (1 - 1e-6) called 0.632 of
-    the area 3.103 (20 %) "stick"; the states now follow the multipliers'
-    (stick_area 0)."""
-    import json
-    from cracklip import cli
-    text = """
+#: A penny of radius 1 in a box of side 20 (1.3e4 dofs at tip_h 0.25), held by
+#: point supports: the two scene-file tests below add their loads and options.
+CLOSED_PENNY_SCENE = """
 [mesh]
 kind = "box"
 box = [-10.0, -10.0, -10.0, 10.0, 10.0, 10.0]
@@ -284,6 +274,21 @@ component = "z"
 point = [-10.0, 10.0, -10.0]
 component = "z"
 """
+
+
+def test_slipping_penny_lips_report_slip_everywhere(tmp_path):
+    """A closed penny (a = 1, box of half-width 10, h = 5, tip_h = 0.25,
+    1.3e4 dofs) under p = 1 and tau = 0.5 > mu p (mu = 0.3): every friction
+    multiplier slips (20 of 20), and so must the lips' states that
+    results.json's stick / slip areas, crack_contact.png and
+    crack_surface.vtu show. Their directions spread by 0.22 degrees, so the
+    interpolated shear between two multipliers is below mu p by up to 3e-6
+    of it: the old pointwise test |shear| < mu p (1 - 1e-6) called 0.632 of
+    the area 3.103 (20 %) "stick"; the states now follow the multipliers'
+    (stick_area 0)."""
+    import json
+    from cracklip import cli
+    text = CLOSED_PENNY_SCENE
     for tag in FACES:
         text += f'[[loads.tractions]]\ntag = "{tag}"\nstress = [0.0, 0.0, -1.0, 0.0, 0.5, 0.0]\n'
     text += """[options]
@@ -325,29 +330,7 @@ def test_front_csv_has_every_load_step(tmp_path):
     import json
     from cracklip import cli
     from cracklip.io.outputs import FRONT_COLUMNS
-    text = """
-[mesh]
-kind = "box"
-box = [-10.0, -10.0, -10.0, 10.0, 10.0, 10.0]
-h = 5.0
-tip_h = 0.25
-[material]
-E = 1.0
-nu = 0.3
-[[cracks]]
-ellipse = { center = [0.0, 0.0, 0.0], normal = [0.0, 0.0, 1.0], a = 1.0, a_direction = [1.0, 0.0, 0.0] }
-[[dirichlet]]
-point = [-10.0, -10.0, -10.0]
-[[dirichlet]]
-point = [10.0, -10.0, -10.0]
-component = "y"
-[[dirichlet]]
-point = [10.0, -10.0, -10.0]
-component = "z"
-[[dirichlet]]
-point = [-10.0, 10.0, -10.0]
-component = "z"
-"""
+    text = CLOSED_PENNY_SCENE
     for tag in FACES:
         text += f'[[loads.tractions]]\ntag = "{tag}"\nstress = [0.0, 0.0, -1.0, 0.0, 0.0, 0.0]\ngroup = "clamp"\n'
         text += f'[[loads.tractions]]\ntag = "{tag}"\nstress = [0.0, 0.0, 0.0, 0.0, 0.7, 0.0]\ngroup = "shear"\n'
