@@ -76,6 +76,7 @@ def _xfem(scene) -> dict:
             "t_krylov_setup": [float(s["t_setup"]) for s in solves], "t_solves": [float(s["t_total"]) for s in solves],
             "t_band_setup": [float(s.get("t_band_setup") or 0.0) for s in solves],
             "t_amg_setup": float(solves[0].get("t_amg_setup") or 0.0),
+            "band_stale": [bool(s.get("band_stale")) for s in solves],
             "max_pressure": float(-c["lambda"].min())}
 
 

@@ -121,3 +121,55 @@ def test_large_change_other_dofs_or_symmetry_factor_again(monkeypatch):
     kept.factor(dofs + 1000, petsc_from_scipy(A0), True).destroy()  # (A0 is symmetric: LDL^T)
     assert kept.factorisations == 4
     kept.free()
+
+
+def test_small_change_of_many_multiplier_rows_is_preconditioned_by_the_kept_factorisation(monkeypatch):
+    """Friction's last solves turn every slip direction a little: all M
+    multiplier rows change (beyond the rank limit) by at most STALE_CHANGE
+    of each row's largest entry, nothing else: the kept factorisation is
+    used as it is (stale, no factorisation; GMRES needs no exact block), so
+    its solve is A0's. A change of 5 % in them, a change of 1e-6 in one
+    stiffness row or another pattern is factored again; a symmetric band
+    (CG, whose sweep needs the exact block) never goes stale."""
+    monkeypatch.setattr(band_update, "MIN_RANK", 4)
+    dofs = np.arange(N + M)
+    rng = np.random.default_rng(11)
+    A0 = _band()
+    rhs = rng.standard_normal(N + M)
+
+    def turned(A: sp.csr_matrix, by: float) -> sp.csr_matrix:
+        A = A.tocsr(copy=True)
+        for i in range(N, N + M):
+            lo, hi = A.indptr[i], A.indptr[i + 1]
+            A.data[lo:hi] *= 1.0 + by * rng.choice([-1.0, 1.0], hi - lo)
+        return A
+
+    kept = _kept()
+    kept.factor(dofs, petsc_from_scipy(A0), False).destroy()
+    A1 = turned(A0, 0.5 * band_update.STALE_CHANGE)
+    bs = kept.factor(dofs, petsc_from_scipy(A1), False)
+    assert (kept.factorisations, kept.updates, bs.stale, bs.rank) == (1, 1, True, 0)
+    exact0 = sp.linalg.spsolve(A0.tocsc(), rhs)
+    assert np.abs(_solve(bs, rhs) - exact0).max() <= 1e-12 * np.abs(exact0).max()
+    exact1 = sp.linalg.spsolve(A1.tocsc(), rhs)
+    assert np.abs(exact1 - exact0).max() > 1e-6 * np.abs(exact0).max()  # (a preconditioner, not A1's solve)
+    bs.destroy()
+    bs = kept.factor(dofs, petsc_from_scipy(turned(A0, 5.0 * band_update.STALE_CHANGE)), False)
+    assert kept.factorisations == 2 and not bs.stale
+    bs.destroy()
+    # Measured against the band factored last (now the 5 % one): the small
+    # turn again, and a change in a stiffness row.
+    A2 = turned(kept._A0_csr(), 0.5 * band_update.STALE_CHANGE)
+    A2.data[A2.indptr[3]] *= 1.0 + 1e-6
+    assert not kept.factor(dofs, petsc_from_scipy(A2), False).stale
+    assert kept.factorisations == 3
+    kept.free()
+    sym = _kept()
+    sym.factor(dofs, petsc_from_scipy(A0), True).destroy()
+    A3 = A0.tolil()
+    for i in range(M):  # (rows and columns alike, as a symmetric saddle point's)
+        A3[N + i, N + i] *= 1.0 + 0.5 * band_update.STALE_CHANGE
+    bs = sym.factor(dofs, petsc_from_scipy(A3.tocsr()), True)
+    assert not bs.stale and sym.factorisations == 2
+    bs.destroy()
+    sym.free()

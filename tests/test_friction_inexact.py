@@ -73,6 +73,11 @@ def test_inexact_friction_iteration_keeps_the_answer(monkeypatch, n, cycles, sta
         scale = np.abs(other["K"]).max()
         assert np.abs(loose["K"] - other["K"]).max() <= 1e-8 * scale
         assert np.abs(loose["lambda"] - other["lambda"]).max() <= 1e-8 * np.abs(other["lambda"]).max()
+    # The last Newton turns of the slip directions (every multiplier's rows
+    # change by < STALE_CHANGE) are preconditioned by the kept band's
+    # factorisation (solvers/band_update.py), and the answer is still the
+    # direct path's (above).
+    assert cycles or any(s.get("band_stale") for s in loose["solves"]), [s.get("band_stale") for s in loose["solves"]]
     # Fewer Krylov iterations in all where it settles (the reason for the loose solves).
     its = lambda a: sum(s["iterations"] for s in a["solves"])  # noqa: E731
     assert cycles or its(loose) < its(exact), (its(loose), its(exact))

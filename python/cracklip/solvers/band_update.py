@@ -21,7 +21,12 @@ columns there, V = unit rows): for friction the rows alone (the bordered
 matrix's columns C^T do not change), for a symmetric saddle point the
 changed multipliers' rows and columns. A band that changed in more than
 MAX_RANK_FRACTION of its rows, or whose S is ill-conditioned, is factored
-again and becomes the new A0. Serial only: under mpirun every band is
+again and becomes the new A0, unless it is unsymmetric (friction, solved
+by GMRES, which needs no exact block) and changed only in its multiplier
+rows by at most STALE_CHANGE of each row's largest entry: A0's
+factorisation then preconditions it as it is (stale; the friction
+iteration's last Newton turns of the slip directions, where every slipping
+multiplier's rows change a little). Serial only: under mpirun every band is
 factored afresh (the band is distributed there).
 
 Measured on the corner crack of demos/scenes/corner_crack_closure.toml at
@@ -48,6 +53,13 @@ MIN_RANK = 16
 #: S's condition number above which the band is factored again (the
 #: update's rounding grows with it).
 MAX_CONDITION = 1e8
+#: An unsymmetric band (friction; solved inside GMRES, which needs no exact
+#: block) whose multiplier rows changed by at most this fraction of each
+#: row's largest entry, and nothing else, is not factored again: the kept
+#: factorisation of the earlier band preconditions it as it is (stale).
+#: The closed penny's last Newton turns of the slip directions: see
+#: docs/contact.md.
+STALE_CHANGE = 0.01
 
 logger = logging.getLogger(__name__)
 
@@ -82,10 +94,12 @@ class BandSolve:
     factorisation of this band); rank: the update's k."""
 
     def __init__(self, ksp: PETSc.KSP, owned: bool, G: np.ndarray | None = None,
-                 S: tuple | None = None, V: sp.csr_matrix | None = None, updated: bool = False):
+                 S: tuple | None = None, V: sp.csr_matrix | None = None, updated: bool = False,
+                 stale: bool = False):
         self.ksp = ksp
         self.owned = owned
         self.updated = updated
+        self.stale = stale
         self.G, self.S, self.V = G, S, V
         self.rank = 0 if G is None else G.shape[1]
 
@@ -161,6 +175,11 @@ class KeptBand:
         Em.eliminate_zeros()
         k_rows = np.count_nonzero(np.diff(Em.indptr))
         if k_rows * (2 if self.symmetric else 1) > limit:
+            if not self.symmetric and self._close(A, A0, multipliers, Em):
+                logger.debug("band: %d multiplier rows changed by at most %g of their size: the kept "
+                             "factorisation preconditions it", k_rows, STALE_CHANGE)
+                self.updates += 1
+                return BandSolve(self.ksp, owned=False, updated=True, stale=True)
             logger.debug("band: %d multiplier rows changed (limit %d): factored again", k_rows, limit)
             return None
         E = (A - A0).tocsr()
@@ -189,6 +208,23 @@ class KeptBand:
             return None
         self.updates += 1
         return BandSolve(self.ksp, owned=False, G=G, S=scipy.linalg.lu_factor(S), V=V, updated=True)
+
+    @staticmethod
+    def _close(A: sp.csr_matrix, A0: sp.csr_matrix, multipliers: np.ndarray, Em: sp.csr_matrix) -> bool:
+        """Whether A has A0's entries, the same everywhere but in the
+        multiplier rows (Em: A - A0 there), and there no entry changed by
+        more than STALE_CHANGE of its row's largest in A0 (the slip
+        directions turned a little: the friction iteration's last solves)."""
+        if not (np.array_equal(A.indptr, A0.indptr) and np.array_equal(A.indices, A0.indices)):
+            return False
+        in_multiplier_row = np.zeros(A.shape[0], dtype=bool)
+        in_multiplier_row[multipliers] = True
+        elsewhere = ~np.repeat(in_multiplier_row, np.diff(A.indptr))
+        if not np.array_equal(A.data[elsewhere], A0.data[elsewhere]):
+            return False
+        change = abs(Em).max(axis=1).toarray().ravel()
+        size = abs(A0[multipliers]).max(axis=1).toarray().ravel()
+        return bool(np.all(change <= STALE_CHANGE * size))
 
     def _solve_block(self, U: np.ndarray) -> np.ndarray:
         """F^-1 U, all columns in one solve."""

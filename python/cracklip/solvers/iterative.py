@@ -380,6 +380,7 @@ class IterativeSolver(LinearSolver):
                       # (the band solved from the kept factorisation of an earlier one: band_update.py)
                       "band_updated": bool(shell is not None and shell.band.updated),
                       "band_update_rank": int(shell.band.rank if shell is not None else 0),
+                      "band_stale": bool(shell is not None and shell.band.stale),
                       "amg_dofs": self._n_amg, "setup_reused": reused, "rtol": KRYLOV_RTOL if rtol is None else rtol,
                       "t_setup": t_setup, "t_amg_setup": t_amg, "t_band_setup": t_band,
                       "t_total": time.perf_counter() - t0})
