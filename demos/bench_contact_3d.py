@@ -24,7 +24,8 @@ space, B and M built once, counted in t_contact_setup, not in t_solve;
 ratio_solve_with_setup counts them too). Per solve of the last pair:
 krylov_iterations, t_krylov_setup (the preconditioner's set-up: GAMG's
 on the first, t_amg_setup, and each solve's band blocks and
-factorisation, t_band_setup), t_solves. Plain: GAMG
+factorisation, t_band_setup; band_stale: the band preconditioned by the
+kept factorisation of an earlier one, solvers/band_update.py), t_solves. Plain: GAMG
 set-up (t_setup_plain) and CG. t_total: X-FEM model, assembly, contact system and solve;
 plain: DOLFINx assembly and solve (the mesh is made once, outside both).
 
@@ -138,7 +139,7 @@ def worker(spec: dict) -> dict:
             "contact_iterations": x_last["iterations_contact"], "krylov_iterations": x_last["krylov_iterations"],
             "krylov_rtols": x_last["krylov_rtols"], "t_krylov_setup": x_last["t_krylov_setup"],
             "t_solves": x_last["t_solves"], "t_band_setup": x_last["t_band_setup"],
-            "t_amg_setup": x_last["t_amg_setup"],
+            "t_amg_setup": x_last["t_amg_setup"], "band_stale": x_last["band_stale"],
             "iterations_plain": p_last["iterations"], "method": x_last["method"],
             "relative_residual": x_last["relative_residual"], "max_pressure": x_last["max_pressure"],
             "repeats": spec["repeats"], "xfem_first": bool(spec.get("xfem_first")), "load_average": [load0, os.getloadavg()[0]],
