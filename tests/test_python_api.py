@@ -180,3 +180,18 @@ def test_create_square_says_what_it_takes():
     with pytest.raises(cl.KeywordError, match=r"create_square\(\) takes no keyword 'embed_point'; did you mean "
                                               "'embed_points'"):
         cl.create_square(0.5, embed_point=[(0.0, 0.0)])
+
+
+@pytest.mark.parametrize("value, says", [
+    # before: accepted, and read as 0.01 at the solve (float('0.01'))
+    ("0.01", "got '0.01' (a string: write the number itself, value=0.01)"),
+    # before: accepted, and a TypeError from float() at the solve
+    ((0.0, 0.01), "one Dirichlet per component"),
+    (None, "value must be a finite number or a callable f(x), got None"),
+    (float("nan"), "got nan"),
+])
+def test_a_dirichlet_value_of_the_wrong_type_says_so(value, says):
+    with pytest.raises(cl.InputError) as err:
+        cl.Dirichlet("left", 0, value=value)
+    assert says in str(err.value)
+    assert cl.Dirichlet("left", 0, value=0.01).value == 0.01 and callable(cl.Dirichlet("left", None, value=abs).value)

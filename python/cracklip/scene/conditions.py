@@ -49,6 +49,16 @@ class Dirichlet:
         if self.component not in (None, 0, 1, 2):
             raise BoundaryConditionError(f"Dirichlet component must be 0 (x), 1 (y), 2 (z, in 3D) or None (all), "
                                          f"got {self.component!r}")
+        v = self.value
+        if not callable(v) and (isinstance(v, bool) or not isinstance(v, numbers.Real) or not math.isfinite(v)):
+            # (a string was read as its number at the solve, a vector failed
+            # there with a TypeError from float())
+            raise InputError(f"Dirichlet condition on {self.where!r}: value must be a finite number or a callable "
+                             f"f(x), got {v!r}" + (f" (a string: write the number itself, value={_number(v)})"
+                                                   if isinstance(v, str) and _number(v) is not None else
+                                                   "; for a vector give one Dirichlet per component (component = "
+                                                   "0, 1, 2), or a callable returning (n, d) with component None"
+                                                   if np.ndim(v) == 1 else ""))
 
 
 @checked_keywords
@@ -108,6 +118,14 @@ class PointForce:
             raise InputError(f"a point force needs a point (x, y) and a value (F_x, F_y) of finite numbers (in 3D "
                              f"(x, y, z) and (F_x, F_y, F_z)), got point {self.point!r}, value {self.value!r}")
         self.point, self.value = tuple(p.tolist()), tuple(v.tolist())
+
+
+def _number(text: str) -> float | None:
+    """The number a string spells, or None."""
+    try:
+        return float(text)
+    except ValueError:
+        return None
 
 
 def _check_group(group, what: str) -> None:
