@@ -514,3 +514,41 @@ value = [0.0, -1.0]
     row = json.loads((tmp_path / "off" / "results.json").read_text())["sifs"][0]
     assert row["K_I"] > 1.0 and abs(row["K_II"]) < 1e-3 * row["K_I"]
 
+
+
+def test_a_point_support_on_a_crack_line_is_an_error(tmp_path, capsys):
+    """A point Dirichlet condition on a node of the crack's line holds that
+    node's standard dofs, which are one lip's by the level set's sign there:
+    the edge crack (-1 .. 3, 0) of the strip pulled along x, held at (1, 0),
+    gave K_II -4.726 (as held on the upper lip at (1, 0.01): -4.721; on the
+    lower lip at (1, -0.01): +4.703) with exit 0. Now exit 2 and one line
+    naming dirichlet[0]; held off the crack on a lip's side it runs."""
+    from cracklip import cli
+    text = """
+[mesh]
+domain = [0.0, -5.0, 10.0, 5.0]
+h = 0.5
+tip_h = 0.1
+[material]
+E = 1.0
+nu = 0.3
+[[cracks]]
+points = [[-1.0, 0.0], [3.0, 0.0]]
+[[dirichlet]]
+point = [1.0, {y}]
+[[dirichlet]]
+point = [10.0, 5.0]
+component = "x"
+[[loads.tractions]]
+tag = "right"
+value = [1.0, 0.0]
+"""
+    (tmp_path / "on.toml").write_text(text.format(y=0.0))
+    assert cli.main(["run", str(tmp_path / "on.toml"), "--out", str(tmp_path / "on"), "--quiet",
+                     "--no-estimate"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("cracklip: error: dirichlet[0] at [1.0, 0.0] holds the mesh node")
+    assert "which lies on crack 'crack 0'" in err[0]
+    (tmp_path / "off.toml").write_text(text.format(y=-0.01))
+    assert cli.main(["run", str(tmp_path / "off.toml"), "--out", str(tmp_path / "off"), "--quiet",
+                     "--no-estimate"]) == 0

@@ -9,11 +9,13 @@ import numpy as np
 import dolfinx.fem
 import dolfinx.mesh
 
-from ..errors import BoundaryConditionError
+from ..errors import BoundaryConditionError, InputError
+from ..scene.cell_size import edge_pairs
 from ..scene.scene import Scene
 from ..scene.symmetry import SymmetryCondition
 from .symmetry import symmetry_enriched_dofs
-from ..scene.processes import mark_collective, total
+from ..scene.processes import agree, mark_collective, reduced, total
+from .loads import crack_through_node
 
 
 def _accepts_side(f) -> bool:
@@ -262,3 +264,39 @@ def check_rigid_motion(x: np.ndarray, bc_dofs: np.ndarray, comm=None) -> None:
         raise BoundaryConditionError(
             f"the Dirichlet conditions leave rigid motion free ({', '.join(free)}); "
             f"{bc_dofs.size} constrained dofs fix only {rank} of the {need} rigid motions")
+
+
+def check_point_supports(model) -> None:
+    """A point Dirichlet condition on a node of a crack's line (2D, not at a
+    tip) fixes the node's standard dofs, which are one lip's or the other's
+    by the level set's sign there, not the one meant: an error naming the
+    condition (collective under mpirun), as for a point force there."""
+    scene = model.scene
+    points = [(k, bc) for k, bc in enumerate(scene.dirichlet) if is_point_condition(bc)]
+    if not points or model.gdim != 2 or not model.cracks:
+        return
+    comm = model.comm
+    scale = float(np.ptp(model.x, axis=0).max()) if len(model.x) else 0.0
+    if comm is not None:
+        scale = float(reduced(scale, "MAX", comm))
+    ea, eb = edge_pairs(model.cells.shape[1])
+    for k, bc in points:
+        nodes = condition_nodes(scene, model.V, model.x, bc)
+        error = None
+        if nodes.size:
+            node = int(nodes[0])
+            cells = model.cells[np.any(model.cells == node, axis=1)]
+            edge = float(np.linalg.norm(model.x[cells[:, eb]] - model.x[cells[:, ea]], axis=2).max())
+            lip = crack_through_node(model, node, edge, scale)
+            if lip is not None:
+                name = bc.label.split(":")[0] if bc.label else f"Dirichlet condition {k}"
+                error = InputError(
+                    f"{name} at {[float(v) for v in bc.where]} holds the mesh node {model.x[node].tolist()}, which "
+                    f"lies on {lip}: a support there holds one lip or the other depending on the mesh, not the one "
+                    "meant, and leaves the other free; support a point off the crack on that lip's side by a "
+                    f"fraction of an element ({edge:.3g}) with a mesh node there (a refinement point, or "
+                    "mesh.kind = \"geometry\"), or a boundary tag")
+        if comm is not None:
+            agree(error, comm)
+        elif error is not None:
+            raise error

@@ -122,7 +122,7 @@ def assemble_point_forces(model, group: str | None = None) -> np.ndarray:
         if mine:
             cells = model.cells[np.any(model.cells == node, axis=1)]
             edge = float(np.linalg.norm(model.x[cells[:, eb]] - model.x[cells[:, ea]], axis=2).max())
-            lip = _on_a_crack(model, node, edge, scale)
+            lip = crack_through_node(model, node, edge, scale)
             if dist[node] > max(edge, 1e-12 * scale):
                 error = InputError(f"point force {k} (loads.point_forces[{k}]) at {list(pf.point)}: the nearest "
                                    f"mesh node {model.x[node].tolist()} is {dist[node]:.3g} away, more than an "
@@ -144,7 +144,7 @@ def assemble_point_forces(model, group: str | None = None) -> np.ndarray:
     return b
 
 
-def _on_a_crack(model, node: int, edge: float, scale: float) -> str | None:
+def crack_through_node(model, node: int, edge: float, scale: float) -> str | None:
     """The crack (as messages name it) whose lips meet at `node` (2D: a node
     on the crack's polyline, snapped onto it or lying on it, other than at a
     tip), else None."""

@@ -22,7 +22,7 @@ from ..scene.mesh import check_mesh
 from ..scene.processes import total
 from ..scene.scene import Scene
 from .checks import check_units
-from .constraints import check_rigid_motion, compute_dirichlet
+from .constraints import check_point_supports, check_rigid_motion, compute_dirichlet
 from .cracks import CrackModel, crack_model_type
 from .distributed import create_dof_map
 from .symmetry import check_symmetry
@@ -92,6 +92,7 @@ def create_model(scene: Scene) -> XfemModel:
     logger.info("%d cracks, %d enriched pseudo-nodes on %d enriched cells", len(cracks), *enriched_counts(model))
     t0 = time.perf_counter()
     check_symmetry(model)
+    check_point_supports(model)
     model.warnings = kind.check_model(model) + check_units(model)  # raises on what makes the model unusable
     for w in model.warnings:
         logger.warning("%s", w.message)

@@ -26,7 +26,8 @@ class Dirichlet:
 
     Attributes:
         where: a boundary tag name or number, or a point (x, y) (in 3D
-            (x, y, z)) that is a mesh node.
+            (x, y, z)) that is a mesh node (in 2D not on a crack's line:
+            its node would be one lip's or the other's by the mesh).
         component: 0 (x), 1 (y), 2 (z, in 3D) or None (every component).
         value: a number, or a callable f(x) with x of shape (n, d) (d the
             space dimension) returning (n,) for one component or (n, d) for

@@ -40,7 +40,8 @@ DIRICHLET_KEYS: list[Key] = [
         "line); standard dofs only, like a point (3D: [x0, y0, z0, x1, y1, z1])", p_region),
     Key("dirichlet[].point", "[x, y] or [x, y, z]", UNSET,
         "the mesh node nearest to the point (within one mean edge length); a generated rectangle, "
-        "plate or box has a node at its corners", p_point_any),
+        "plate or box has a node at its corners; 2D: not on a crack (to hold a lip, a point just off it on "
+        "that side)", p_point_any),
     Key("dirichlet[].component", "string", "all", "`x`, `y`, `z` (3D) or `all` (`both` in 2D means all)",
         p_choice("x", "y", "z", "all", "both")),
     Key("dirichlet[].value", "float or [x, y]", 0.0,
