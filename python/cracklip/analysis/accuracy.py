@@ -104,6 +104,7 @@ from ..scene.scene import Scene
 from ..scene.processes import mark_collective, reduced
 from ..post.solution import point_label
 from ..fracture.front_fit import fit_spread, loo_fit, piece_basis
+from ..fracture.sif import K_ZERO
 from .front_match import FrontPiece, carry_over
 
 
@@ -644,15 +645,21 @@ def between_points(rows: list[dict], est: list[dict], between: list[dict], level
     return out
 
 
-def _scale(solution, rows: list[dict]) -> float:
-    """The K scale of a state: the largest |K| over its points, at least 1e-3
-    of a K its loads could make (cracks held closed: K = 0)."""
+def _floor(solution) -> float:
+    """The K scale's floor of a state: K_ZERO of a K its loads could make
+    (below it K counts as zero: cracks held closed)."""
     if _front(solution):
         from ..fracture.sif_3d import natural_k
     else:
         from ..fracture.sif import natural_k
+    return K_ZERO * natural_k(solution)
+
+
+def _scale(solution, rows: list[dict]) -> float:
+    """The K scale of a state: the largest |K| over its points, at least its
+    floor (_floor)."""
     ks = [math.hypot(*(float(r[m]) for m in _modes(rows))) for r in rows]
-    return max(ks + [1e-3 * natural_k(solution), 1e-300])
+    return max(ks + [_floor(solution), 1e-300])
 
 
 def _attach(solution, levels: list[Level], est, target: float | None, method: str, of: int = -1
@@ -678,6 +685,7 @@ def _attach(solution, levels: list[Level], est, target: float | None, method: st
                "size_factors": [lv.size_factor for lv in levels], "dofs": [lv.dofs for lv in levels],
                "seconds": [lv.seconds for lv in levels],
                "refinement_levels": sum(1 for lv in levels if lv.size_factor < 1.0), "K_scale": scale,
+               "K_floor": max(_floor(st) for st in states),
                "largest_error": worst,
                "largest_relative_error": worst / scale if scale > 0 else 0.0, "largest_at": where,
                "target": target, "reached": None if target is None else bool(worst <= target * scale)}

@@ -337,9 +337,12 @@ def estimate_lines(estimate) -> list[str]:
     if not estimate:
         return []
     if estimate["target"] is None:
+        floor = estimate.get("K_floor", 0.0)
+        largest = (f"every K below {floor:.3g}, 1e-3 of a K the loads could make (K is zero to that), the "
+                   f"largest error {estimate['largest_error']:.2g}" if estimate["K_scale"] <= floor else
+                   f"largest {100 * estimate['largest_relative_error']:.2g} % of the K scale")
         return [f"  K +- its estimated discretisation error (from one more solve, {estimate['meshes']}; the error is "
-                "at most that if K converges at least like h): largest "
-                f"{100 * estimate['largest_relative_error']:.2g} % of the K scale"]
+                f"at most that if K converges at least like h): {largest}"]
     return [f"  accuracy target {100 * estimate['target']:.3g} %: refinement levels 0..{estimate['refinement_levels']} "
             f"({estimate['meshes']}; {estimate['dofs'][0]} -> {estimate['dofs'][-1]} dofs), "
             + ("reached" if estimate["reached"] else "NOT reached")

@@ -42,6 +42,7 @@ import math
 
 import numpy as np
 
+from ..fracture.sif import warned_above
 from ..model.boundary import owned_boundary_facets
 from ..scene.processes import reduced
 from ..scene.stress_field import evaluate_stress
@@ -359,6 +360,7 @@ def estimate(solution) -> list[tuple[str, str]]:
         return []
     out = []
     scale = est["K_scale"]
+    warned = warned_above(ERROR_WARNING, scale, est.get("K_floor", 0.0))
     names = [cm.crack.name for cm in solution.model.cracks]
     if est["target"] is None:
         rows = [r for r in solution.stress_intensity_factors(None)
@@ -367,7 +369,7 @@ def estimate(solution) -> list[tuple[str, str]]:
             mine = [r for r in rows if r["crack"] == crack]
             modes = [m for m in ("K_I", "K_II", "K_III") if mine[0].get(f"{m}_error") is not None]
             over = [(r, max(modes, key=lambda m: r[f"{m}_error"])) for r in mine]
-            over = [(r, m) for r, m in over if r[f"{m}_error"] > ERROR_WARNING * scale]
+            over = [(r, m) for r, m in over if r[f"{m}_error"] > warned]
             if not over:
                 continue
             front = mine[0]["tip"] is None
