@@ -472,14 +472,8 @@ def test_contact_error_is_exported():
     assert cl.ContactError is ContactError and issubclass(cl.ContactError, cl.CracklipError)
 
 
-def test_point_force_on_a_crack_names_the_key(tmp_path, capsys):
-    """A point force at a point of a crack went to the standard dofs of the
-    node there, which is one lip or the other by the mesh: one force gave
-    K_I 0.752 and K_II -0.436 where a wedge force on one lip was meant, and
-    a pair of opposite forces (a wedge) cancelled: 'no_load', K = 0."""
-    import json
-    from cracklip import cli
-    text = """
+#: A 10 x 10 strip with an edge crack (-1 .. 3, 0) (the point-load tests' head).
+EDGE_CRACK_STRIP = """
 [mesh]
 domain = [0.0, -5.0, 10.0, 5.0]
 h = 0.5
@@ -489,7 +483,17 @@ E = 1.0
 nu = 0.3
 [[cracks]]
 points = [[-1.0, 0.0], [3.0, 0.0]]
-[[dirichlet]]
+"""
+
+
+def test_point_force_on_a_crack_names_the_key(tmp_path, capsys):
+    """A point force at a point of a crack went to the standard dofs of the
+    node there, which is one lip or the other by the mesh: one force gave
+    K_I 0.752 and K_II -0.436 where a wedge force on one lip was meant, and
+    a pair of opposite forces (a wedge) cancelled: 'no_load', K = 0."""
+    import json
+    from cracklip import cli
+    text = EDGE_CRACK_STRIP + """[[dirichlet]]
 point = [10.0, -5.0]
 [[dirichlet]]
 point = [10.0, 5.0]
@@ -524,17 +528,7 @@ def test_a_point_support_on_a_crack_line_is_an_error(tmp_path, capsys):
     lower lip at (1, -0.01): +4.703) with exit 0. Now exit 2 and one line
     naming dirichlet[0]; held off the crack on a lip's side it runs."""
     from cracklip import cli
-    text = """
-[mesh]
-domain = [0.0, -5.0, 10.0, 5.0]
-h = 0.5
-tip_h = 0.1
-[material]
-E = 1.0
-nu = 0.3
-[[cracks]]
-points = [[-1.0, 0.0], [3.0, 0.0]]
-[[dirichlet]]
+    text = EDGE_CRACK_STRIP + """[[dirichlet]]
 point = [1.0, {y}]
 [[dirichlet]]
 point = [10.0, 5.0]
