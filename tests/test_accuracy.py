@@ -225,7 +225,8 @@ def test_a_closed_crack_is_zero_to_the_floor_not_a_mesh_too_coarse(tmp_path, cap
     itself: K_I = 8.0e-6 +- 9.1e-6 with a natural K of 0.041 was warned as
     "the mesh is too coarse for this crack" (22 % of the floor) and as a
     1.2 % domain spread. Now neither (the estimate and the spread are below
-    the floor) and the run says K is zero to the floor. (The error is not
+    the floor) and the run says K is zero to the floor, and an accuracy
+    target is reached once K is zero to the floor. (The error is not
     negligible against the floor, 22 % of it: the floor decides.)"""
     from cracklip import cli
     from cracklip.fracture.sif import K_ZERO, natural_k
@@ -242,3 +243,9 @@ def test_a_closed_crack_is_zero_to_the_floor_not_a_mesh_too_coarse(tmp_path, cap
     out = capsys.readouterr()
     assert "too coarse" not in out.err and "K varies with the SIF domain" not in out.err
     assert f"every K below {floor:.3g}, 1e-3 of a K the loads could make (K is zero to that)" in out.out
+    # An accuracy target: zero to the floor is reached on the first level (it refined 3 levels to 2.8e5
+    # dofs and warned "the accuracy target 1 % was not reached": 3.5 % of the floor).
+    assert cli.main(["run", str(SCENES / "hole_crack.toml"), "--accuracy", "0.01", "--out", str(tmp_path / "a")]) == 0
+    out = capsys.readouterr()
+    assert "refinement levels 0..1" in out.out and "reached: every K below" in out.out
+    assert "not reached" not in out.err

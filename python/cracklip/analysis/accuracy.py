@@ -104,7 +104,7 @@ from ..scene.scene import Scene
 from ..scene.processes import mark_collective, reduced
 from ..post.solution import point_label
 from ..fracture.front_fit import fit_spread, loo_fit, piece_basis
-from ..fracture.sif import K_ZERO
+from ..fracture.sif import K_ZERO, warned_above
 from .front_match import FrontPiece, carry_over
 
 
@@ -681,14 +681,17 @@ def _attach(solution, levels: list[Level], est, target: float | None, method: st
                 if e[f"{mode}_error"] > worst:
                     worst, where = e[f"{mode}_error"], {"state": s, "crack": r["crack"], "point": r["point"],
                                                         "mode": mode}
+    floor = max(_floor(st) for st in states)
     summary = {"method": method, "meshes": _meshes(levels), "of_size_factor": mine.size_factor,
                "size_factors": [lv.size_factor for lv in levels], "dofs": [lv.dofs for lv in levels],
                "seconds": [lv.seconds for lv in levels],
                "refinement_levels": sum(1 for lv in levels if lv.size_factor < 1.0), "K_scale": scale,
-               "K_floor": max(_floor(st) for st in states),
+               "K_floor": floor,
                "largest_error": worst,
                "largest_relative_error": worst / scale if scale > 0 else 0.0, "largest_at": where,
-               "target": target, "reached": None if target is None else bool(worst <= target * scale)}
+               # (every K below the floor: zero to the floor is the answer, as for the warnings)
+               "target": target,
+               "reached": None if target is None else bool(worst <= warned_above(target, scale, floor))}
     for i, st in enumerate(states):
         st.error_estimate = {**summary, "points": {f"{c}:{p}": v for (s, c, p), v in est.items() if s == i}}
     return summary

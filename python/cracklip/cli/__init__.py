@@ -336,17 +336,18 @@ def estimate_lines(estimate) -> list[str]:
     """What the run's error estimate is, as printed (none without one)."""
     if not estimate:
         return []
+    floor = estimate.get("K_floor", 0.0)
+    zero = estimate["K_scale"] <= floor
+    largest = (f"every K below {floor:.3g}, 1e-3 of a K the loads could make (K is zero to that), the largest "
+               f"error {estimate['largest_error']:.2g}" if zero else
+               f"largest {100 * estimate['largest_relative_error']:.2g} % of the K scale")
     if estimate["target"] is None:
-        floor = estimate.get("K_floor", 0.0)
-        largest = (f"every K below {floor:.3g}, 1e-3 of a K the loads could make (K is zero to that), the "
-                   f"largest error {estimate['largest_error']:.2g}" if estimate["K_scale"] <= floor else
-                   f"largest {100 * estimate['largest_relative_error']:.2g} % of the K scale")
         return [f"  K +- its estimated discretisation error (from one more solve, {estimate['meshes']}; the error is "
                 f"at most that if K converges at least like h): {largest}"]
     return [f"  accuracy target {100 * estimate['target']:.3g} %: refinement levels 0..{estimate['refinement_levels']} "
             f"({estimate['meshes']}; {estimate['dofs'][0]} -> {estimate['dofs'][-1]} dofs), "
             + ("reached" if estimate["reached"] else "NOT reached")
-            + f", largest estimated error {100 * estimate['largest_relative_error']:.2g} %"]
+            + (f": {largest}" if zero else f", largest estimated error {100 * estimate['largest_relative_error']:.2g} %")]
 
 
 def sif_summary(rows, estimate, units, no_estimate: str = "outputs.error_estimate = false") -> list[str]:
