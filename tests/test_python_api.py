@@ -195,3 +195,21 @@ def test_a_dirichlet_value_of_the_wrong_type_says_so(value, says):
         cl.Dirichlet("left", 0, value=value)
     assert says in str(err.value)
     assert cl.Dirichlet("left", 0, value=0.01).value == 0.01 and callable(cl.Dirichlet("left", None, value=abs).value)
+
+
+def test_a_life_from_python_is_the_command_lines(tmp_path):
+    """cl.life(cl.load_life_file(path)) integrates the life `cracklip life`
+    does (the same set-up and integration, analysis/table_life.life_of):
+    the same cycles to the last bit, its a-N rows; a path instead of the
+    read file says how to read it. (Before: no Python entry point.)"""
+    import json
+    import pathlib
+    from cracklip import cli
+    path = str(pathlib.Path(__file__).resolve().parents[1] / "demos" / "scenes" / "life_hole_crack.toml")
+    life = cl.life(cl.load_life_file(path, ["life.a_final=20.0"]))
+    assert cli.main(["life", path, "--set", "life.a_final=20.0", "--out", str(tmp_path), "--quiet", "--no-png"]) == 0
+    ref = json.loads((tmp_path / "results.json").read_text())["life"]
+    assert life["cycles"] == ref["cycles"] and life["stop"] == ref["stop"] == "a_final"
+    assert life["rows"][0]["a"] == 1.5 and life["rows"][-1]["a"] == 20.0 and life["rows"][-1]["cycles"] == ref["cycles"]
+    with pytest.raises(cl.InputError, match=r"life\(cl.load_life_file\(path\)\)"):
+        cl.life(path)

@@ -77,6 +77,7 @@ _EXPORTS = {
     "write_vtu": "io.paraview",
     "OutputError": "io.outputs",
     "SceneFile": "io.scene_file", "load_scene_file": "io.scene_file",
+    "life": "analysis.table_life", "LifeFile": "io.life_file", "load_life_file": "io.life_file",
 }
 
 __all__ = sorted(_EXPORTS)

@@ -46,6 +46,7 @@ from __future__ import annotations
 import dataclasses
 import logging
 import math
+import os
 import time
 import typing
 
@@ -845,5 +846,37 @@ def summary(tl: TableLife, out: LifeResult) -> dict[str, typing.Any]:
     }
 
 
+def life_of(life_file, progress: typing.Callable[[str], None] | None = None
+            ) -> tuple[TableLife, LifeResult, dict[str, typing.Any]]:
+    """Set up and integrate the life of a life scene read by
+    cl.load_life_file (its life, material, spectrum, units and table):
+    (the set-up, the result, its summary); `cracklip life` and cl.life."""
+    setup = create_table_life(life_file.life, life_file.material, life_file.spectrum, life_file.units,
+                              life_file.table)
+    logger.info("life: %s; K from %s; %.6g cycles and %d %ss per pass, %d load states; integration %s",
+                life_file.life.describe(), setup.source, setup.cycles_per_pass, setup.blocks_per_pass,
+                setup.spectrum.block_name, len(setup.load.states), setup.method)
+    result = run_life(setup, progress=progress)
+    return setup, result, summary(setup, result)
+
+
+def life(life_file, progress: typing.Callable[[str], None] | None = None) -> dict[str, typing.Any]:
+    """The fatigue life of a life scene without a mesh, as `cracklip life`
+    integrates it (docs/life.md): life_file is cl.load_life_file(path,
+    overrides)'s; progress, if given, receives a line of text now and then
+    on a long cycle-by-cycle life. Returns what results.json holds under
+    "life": cycles, passes, blocks, a_end, stop, stop_reason, critical,
+    inspection, warnings, the law, closure and K source, ... and "rows",
+    the a-N history (a, and c for a two-size crack, cycles, passes, blocks,
+    K_max)."""
+    if not all(hasattr(life_file, k) for k in ("life", "material", "spectrum", "units", "table")):
+        raise InputError(f"life() takes a life scene read by cl.load_life_file(path), got {life_file!r}"
+                         + (": life(cl.load_life_file(path))" if isinstance(life_file, (str, os.PathLike)) else ""))
+    _, result, out = life_of(life_file, progress)
+    out["rows"] = [dict(r) for r in result.rows]
+    return out
+
+
 __all__ = ["LoadCases", "load_cases", "TableLife", "create_table_life", "LifeResult", "critical_size", "run_life",
-           "rate_table_warnings", "summary", "net_section_factor", "handbook_table", "tabulation_error"]
+           "rate_table_warnings", "summary", "net_section_factor", "handbook_table", "tabulation_error", "life_of",
+           "life"]

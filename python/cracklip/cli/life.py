@@ -40,19 +40,14 @@ def read_doc(args) -> dict:
 
 
 def cmd_life(args) -> int:
-    from ..analysis.table_life import create_table_life, run_life, summary
+    from ..analysis.table_life import life_of
     from ..io.life_file import build_life
     from ..io.life_outputs import write_life_outputs
     from ..io.outputs import ensure_output_dir
     t_start = time.perf_counter()
     lf = build_life(read_doc(args), args.scene.parent, args.scene)
     out = ensure_output_dir(args.out)
-    setup = create_table_life(lf.life, lf.material, lf.spectrum, lf.units, lf.table)
-    logger.info("life: %s; K from %s; %.6g cycles and %d %ss per pass, %d load states; integration %s",
-                lf.life.describe(), setup.source, setup.cycles_per_pass, setup.blocks_per_pass,
-                setup.spectrum.block_name, len(setup.load.states), setup.method)
-    result = run_life(setup, progress=lambda text: logger.info("life: %s", text))
-    s = summary(setup, result)
+    setup, result, s = life_of(lf, progress=lambda text: logger.info("life: %s", text))
     results = write_life_outputs(lf, setup, result, s, out, {"total": time.perf_counter() - t_start},
                                  png=not args.no_png)
     from . import print_warnings
