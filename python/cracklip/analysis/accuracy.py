@@ -104,7 +104,7 @@ from ..scene.scene import Scene
 from ..scene.processes import mark_collective, reduced
 from ..post.solution import point_label
 from ..fracture.front_fit import fit_spread, loo_fit, piece_basis
-from ..fracture.sif import K_ZERO, warned_above
+from ..fracture.sif import K_ZERO, k_scale, warned_above
 from .front_match import FrontPiece, carry_over
 
 
@@ -645,21 +645,20 @@ def between_points(rows: list[dict], est: list[dict], between: list[dict], level
     return out
 
 
-def _floor(solution) -> float:
-    """The K scale's floor of a state: K_ZERO of a K its loads could make
-    (below it K counts as zero: cracks held closed)."""
+def _natural(solution) -> float:
+    """A K the loads of a state could make (natural_k, 2D or 3D): its K
+    scale's floor is K_ZERO of it (below it K counts as zero)."""
     if _front(solution):
         from ..fracture.sif_3d import natural_k
     else:
         from ..fracture.sif import natural_k
-    return K_ZERO * natural_k(solution)
+    return natural_k(solution)
 
 
-def _scale(solution, rows: list[dict]) -> float:
+def _scale(rows: list[dict], natural: float) -> float:
     """The K scale of a state: the largest |K| over its points, at least its
-    floor (_floor)."""
-    ks = [math.hypot(*(float(r[m]) for m in _modes(rows))) for r in rows]
-    return max(ks + [_floor(solution), 1e-300])
+    floor (k_scale)."""
+    return k_scale([math.hypot(*(float(r[m]) for m in _modes(rows))) for r in rows], natural)
 
 
 def _attach(solution, levels: list[Level], est, target: float | None, method: str, of: int = -1
@@ -670,7 +669,8 @@ def _attach(solution, levels: list[Level], est, target: float | None, method: st
     left out) relative to the largest K scale, and where."""
     states = _states(solution)
     mine = levels[of]
-    scale = max(_scale(st, rows) for st, rows in zip(states, mine.rows))
+    naturals = [_natural(st) for st in states]  # (collective under mpirun: once per state)
+    scale = max(_scale(rows, nat) for rows, nat in zip(mine.rows, naturals))
     worst, where = 0.0, None
     for s, rows in enumerate(mine.rows):
         for r in rows:
@@ -681,7 +681,7 @@ def _attach(solution, levels: list[Level], est, target: float | None, method: st
                 if e[f"{mode}_error"] > worst:
                     worst, where = e[f"{mode}_error"], {"state": s, "crack": r["crack"], "point": r["point"],
                                                         "mode": mode}
-    floor = max(_floor(st) for st in states)
+    floor = K_ZERO * max(naturals)
     summary = {"method": method, "meshes": _meshes(levels), "of_size_factor": mine.size_factor,
                "size_factors": [lv.size_factor for lv in levels], "dofs": [lv.dofs for lv in levels],
                "seconds": [lv.seconds for lv in levels],

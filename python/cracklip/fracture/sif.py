@@ -221,12 +221,12 @@ def warned_above(fraction: float, scale: float, floor: float) -> float:
     return floor if scale <= floor else fraction * scale
 
 
-def k_scale(solution, ks: list[tuple[float, float]], natural: float | None = None) -> float:
-    """The scale against which a spread of K is judged: the largest |K| of
-    the scene's tips, at least K_ZERO natural_k (a floor for scenes whose
-    cracks are all closed, K = 0). natural: natural_k(solution) if known."""
-    natural = natural_k(solution) if natural is None else natural
-    return max([math.hypot(*k) for k in ks] + [K_ZERO * natural, 1e-300])
+def k_scale(sizes: typing.Iterable[float], natural: float) -> float:
+    """The scale against which a spread or error of K is judged (2D and 3D):
+    the largest |K| (sizes: |K| at each tip or front point), at least
+    K_ZERO times the natural K (natural_k; a floor for scenes whose cracks
+    are all closed, K = 0)."""
+    return max([*sizes, K_ZERO * natural, 1e-300])
 
 
 def compute_sifs(solution, radius: float | None = None, cracks: typing.Sequence[int] | None = None,
@@ -259,7 +259,7 @@ def compute_sifs(solution, radius: float | None = None, cracks: typing.Sequence[
             K = np.array([0.5 * mat.E_star * interaction_integrals(solution, dom, r) for r in dom.radii])
             raw.append((dom, K))
     natural = natural_k(solution)
-    scale = k_scale(solution, [tuple(K[-1]) for _, K in raw], natural)
+    scale = k_scale([math.hypot(*K[-1]) for _, K in raw], natural)
     spread_warned = warned_above(SPREAD_WARNING, scale, K_ZERO * natural)
     negligible = 1e-6 * natural
     for dom, K in raw:

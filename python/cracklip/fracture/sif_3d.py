@@ -65,7 +65,7 @@ from .front import (Front, cells_of_nodes, crack_front, lip_points, model_cache,
                     project, wrap)
 from .front_points import DOMAIN_FRACTIONS, REFINE_AT_FRONT, FrontPoint, front_points, point_at, stations
 from .lip_tractions import has_lip_traction, lip_traction
-from .sif import K_ZERO, complete_rows, warned_above
+from .sif import K_ZERO, complete_rows, k_scale, warned_above
 
 logger = logging.getLogger(__name__)
 
@@ -637,7 +637,7 @@ def compute_front_sifs(solution, radius: float | None = None, cracks: typing.Seq
         raw.append((ci, *_with_asked_positions(m, ci, fps, K)))
     norms = [float(np.linalg.norm(K[:, -1], axis=1).max()) for _, _, K in raw if len(K)]
     nat = natural_k(solution)
-    scale = max(norms + [K_ZERO * nat, 1e-300])
+    scale = k_scale(norms, nat)
     spread_warned = warned_above(SPREAD_WARNING, scale, K_ZERO * nat)
     rows, warnings = [], []
     for ci, fps, K in raw:

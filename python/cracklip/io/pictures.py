@@ -686,9 +686,10 @@ def write_front_png(rows: typing.Sequence[dict], path: pathlib.Path, title: str 
                 if mask.any():
                     ax.plot(t[mask], k[mask], ls="none", **style)
             for j, (_, srows) in enumerate((steps or [])[:-1]):
-                _earlier_step(ax, [r for r in srows if int(r["crack"]) == c], angle, name, col, STEP_MARKERS[j % 6])
+                _earlier_step(ax, [r for r in srows if int(r["crack"]) == c], angle, name, col,
+                              STEP_MARKERS[j % len(STEP_MARKERS)])
         for j, (sname, _) in enumerate((steps or [])[:-1]):
-            ax.plot([], [], color="0.4", lw=0.6, ls=":", marker=STEP_MARKERS[j % 6], ms=4,
+            ax.plot([], [], color="0.4", lw=0.6, ls=":", marker=STEP_MARKERS[j % len(STEP_MARKERS)], ms=4,
                     label=f"step {j} ({sname})" if sname else f"step {j}")
         if steps:
             ax.plot([], [], color="0.4", lw=1, marker="o", ms=3,

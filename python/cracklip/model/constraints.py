@@ -10,12 +10,11 @@ import dolfinx.fem
 import dolfinx.mesh
 
 from ..errors import BoundaryConditionError, InputError
-from ..scene.cell_size import edge_pairs
 from ..scene.scene import Scene
 from ..scene.symmetry import SymmetryCondition
 from .symmetry import symmetry_enriched_dofs
 from ..scene.processes import agree, mark_collective, reduced, total
-from .loads import crack_through_node
+from .loads import crack_through_node, largest_edge_at
 
 
 def _accepts_side(f) -> bool:
@@ -279,14 +278,12 @@ def check_point_supports(model) -> None:
     scale = float(np.ptp(model.x, axis=0).max()) if len(model.x) else 0.0
     if comm is not None:
         scale = float(reduced(scale, "MAX", comm))
-    ea, eb = edge_pairs(model.cells.shape[1])
     for k, bc in points:
         nodes = condition_nodes(scene, model.V, model.x, bc)
         error = None
         if nodes.size:
             node = int(nodes[0])
-            cells = model.cells[np.any(model.cells == node, axis=1)]
-            edge = float(np.linalg.norm(model.x[cells[:, eb]] - model.x[cells[:, ea]], axis=2).max())
+            edge = largest_edge_at(model, node)
             lip = crack_through_node(model, node, edge, scale)
             if lip is not None:
                 name = bc.label.split(":")[0] if bc.label else f"Dirichlet condition {k}"

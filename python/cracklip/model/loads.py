@@ -111,7 +111,6 @@ def assemble_point_forces(model, group: str | None = None) -> np.ndarray:
     scale = float(np.ptp(x, axis=0).max()) if n_own else 0.0
     if comm is not None:
         scale = float(reduced(scale, "MAX", comm))
-    ea, eb = edge_pairs(model.cells.shape[1])
     for k, pf in enumerate(model.scene.point_forces):
         if group is not None and pf.group != group:
             continue
@@ -120,8 +119,7 @@ def assemble_point_forces(model, group: str | None = None) -> np.ndarray:
         mine = comm is None or min(comm.allgather((float(dist[node]) if n_own else np.inf, comm.rank)))[1] == comm.rank
         error = None
         if mine:
-            cells = model.cells[np.any(model.cells == node, axis=1)]
-            edge = float(np.linalg.norm(model.x[cells[:, eb]] - model.x[cells[:, ea]], axis=2).max())
+            edge = largest_edge_at(model, node)
             lip = crack_through_node(model, node, edge, scale)
             if dist[node] > max(edge, 1e-12 * scale):
                 error = InputError(f"point force {k} (loads.point_forces[{k}]) at {list(pf.point)}: the nearest "
@@ -142,6 +140,14 @@ def assemble_point_forces(model, group: str | None = None) -> np.ndarray:
         elif error is not None:
             raise error
     return b
+
+
+def largest_edge_at(model, node: int) -> float:
+    """The longest edge of the cells around a node (the element size a point
+    load or support there is measured against)."""
+    ea, eb = edge_pairs(model.cells.shape[1])
+    cells = model.cells[np.any(model.cells == node, axis=1)]
+    return float(np.linalg.norm(model.x[cells[:, eb]] - model.x[cells[:, ea]], axis=2).max())
 
 
 def crack_through_node(model, node: int, edge: float, scale: float) -> str | None:

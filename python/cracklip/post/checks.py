@@ -44,6 +44,7 @@ import numpy as np
 
 from ..fracture.sif import warned_above
 from ..model.boundary import owned_boundary_facets
+from ..model.constraints import is_point_condition
 from ..scene.processes import reduced
 from ..scene.stress_field import evaluate_stress
 from ..scene.symmetry import SymmetryCondition
@@ -108,7 +109,7 @@ def initial_stress_unbalanced(solution) -> list[tuple[str, str]]:
     # Components held by a Dirichlet condition or symmetry plane (on a tag).
     held = np.ones((len(facets), 2))
     for dc in scene.dirichlet:
-        if isinstance(dc.where, tuple) or not isinstance(dc.where, (str, int)):
+        if is_point_condition(dc):  # (a point holds no facet)
             continue
         on = np.isin(facets, mesh.facets(dc.where))
         if isinstance(dc, SymmetryCondition):  # u . n = 0: the normal component

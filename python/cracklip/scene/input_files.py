@@ -68,6 +68,7 @@ the same S) and a `# units: length = mm, stress = MPa` line
 """
 from __future__ import annotations
 
+import bisect
 import dataclasses
 import math
 import pathlib
@@ -357,21 +358,29 @@ def read_k_table(path: str | pathlib.Path, where: str, tip: tuple[int, int] | No
     multiplies the crack sizes (easigrow's a/d tables: d). A beta table
     cracklip grow wrote gives S of each group on its '# reference_stress:'
     line (KTableData.reference_stress)."""
-    data = _read_k_table(path, where, tip, scale)
+    comments = _comment_lines(pathlib.Path(path))
+    data = _read_k_table(path, where, tip, scale, comments)
     if data.kind == "beta":
-        data.reference_stress = _file_reference_stress(pathlib.Path(path), where)
-    data.units = _file_units(pathlib.Path(path))
+        data.reference_stress = _file_reference_stress(pathlib.Path(path), where, comments)
+    data.units = _file_units(comments)
     return data
+
+
+def _comment_lines(path: pathlib.Path) -> list[tuple[int, str]]:
+    """The comment lines of a table file, (line number, text stripped): the
+    '# tip', '# reference_stress' and '# units' lines cracklip grow writes."""
+    return [(k, t) for k, line in enumerate(path.read_text(errors="replace").splitlines(), start=1)
+            if (t := line.strip()).startswith("#")]
 
 
 _UNITS_LINE = re.compile(r"#\s*units:\s*length\s*=\s*([^,\s]+)\s*,\s*stress\s*=\s*([^(]*?)\s*(?:\(|$)")
 
 
-def _file_units(path: pathlib.Path) -> dict[str, str] | None:
+def _file_units(comments: list[tuple[int, str]]) -> dict[str, str] | None:
     """{length, stress} from the '# units: length = mm, stress = MPa' line of
     a table cracklip grow wrote (None without one)."""
-    for line in path.read_text(errors="replace").splitlines():
-        m = _UNITS_LINE.match(line.strip())
+    for _, line in comments:
+        m = _UNITS_LINE.match(line)
         if m:
             return {"length": m.group(1), "stress": m.group(2)}
     return None
@@ -380,32 +389,31 @@ def _file_units(path: pathlib.Path) -> dict[str, str] | None:
 _REFERENCE_LINE = re.compile(r"#\s*reference_stress:\s*([^(]*)")
 
 
-def _file_reference_stress(path: pathlib.Path, where: str) -> dict[str, float] | None:
+def _file_reference_stress(path: pathlib.Path, where: str, comments: list[tuple[int, str]]
+                           ) -> dict[str, float] | None:
     """S per group from the '# reference_stress: g = S, ...' line of a beta
     table cracklip grow wrote (None without one)."""
-    for k, line in enumerate(path.read_text(errors="replace").splitlines(), start=1):
-        m = _REFERENCE_LINE.match(line.strip())
+    for k, line in comments:
+        m = _REFERENCE_LINE.match(line)
         if not m:
             continue
         out = {}
         for pair in m.group(1).split(","):
             name, eq, value = pair.partition("=")
-            try:
-                out[name.strip()] = float(value)
-            except ValueError:
+            S = float(value) if _is_number(value) else math.nan
+            if not eq or not name.strip() or not math.isfinite(S):
                 raise InputFileError(f"{where}: {path}, line {k}: the reference stress line must read "
-                                     f"'# reference_stress: group = S, ...', got {line.strip()!r}", path, k) from None
-            if not eq or not name.strip() or not math.isfinite(out[name.strip()]):
-                raise InputFileError(f"{where}: {path}, line {k}: the reference stress line must read "
-                                     f"'# reference_stress: group = S, ...', got {line.strip()!r}", path, k)
+                                     f"'# reference_stress: group = S, ...', got {line!r}", path, k)
+            out[name.strip()] = S
         return out
     return None
 
 
-def _read_k_table(path: str | pathlib.Path, where: str, tip: tuple[int, int] | None, scale: float) -> KTableData:
+def _read_k_table(path: str | pathlib.Path, where: str, tip: tuple[int, int] | None, scale: float,
+                  comments: list[tuple[int, str]]) -> KTableData:
     path, rows, head, numeric = _head(path, where)
     if numeric:
-        sections = _cracklip_sections(path)
+        sections = _cracklip_sections(comments)
         if len(sections) > 1:
             return _sectioned_table(path, rows, sections, where, tip, scale)
         if len(head) != 2:
@@ -460,17 +468,17 @@ _ROLE_MARK = re.compile(r"#\s*table:\s*(.+?);\s*case:\s*(\S+)\s*$")
 _LEVEL_CASE = re.compile(r".+_at_[-+0-9.eE]+$")
 
 
-def _cracklip_sections(path: pathlib.Path) -> list[tuple[int, tuple, str]]:
+def _cracklip_sections(comments: list[tuple[int, str]]) -> list[tuple[int, tuple, str]]:
     """The tables of a two-column file cracklip grow wrote with several of
     them: (line of the marker, the table's key -- ("tip", crack, end) or
     ("point", role) --, its load case), in file order; [] for other files."""
     out = []
-    for k, line in enumerate(path.read_text(errors="replace").splitlines(), start=1):
-        m = _TIP_MARK.match(line.strip())
+    for k, line in comments:
+        m = _TIP_MARK.match(line)
         if m:
             out.append((k, ("tip", m.group(1), m.group(2)), m.group(3)))
             continue
-        m = _ROLE_MARK.match(line.strip())
+        m = _ROLE_MARK.match(line)
         if m:
             out.append((k, ("point", m.group(1)), m.group(2)))
     return out
@@ -498,12 +506,13 @@ def _sectioned_table(path, rows: list[Row], sections, where: str, tip, scale: fl
     beta_tables.txt (3D: the deepest and the surface point) is refused with
     the one-size tables to use instead."""
     tables: dict[tuple, dict[str, list[Row]]] = {}
+    marks = [s[0] for s in sections]  # (in file order: rising)
     for r in rows:
-        owner = [s for s in sections if s[0] < r.line]
-        if not owner:
+        i = bisect.bisect_left(marks, r.line) - 1  # (the last marker above the row)
+        if i < 0:
             raise InputFileError(f"{where}: {path}, line {r.line}: a data line before the first table's "
                                  "'# tip: ...' line", path, r.line)
-        _, key, case = owner[-1]
+        _, key, case = sections[i]
         tables.setdefault(key, {}).setdefault(case, []).append(r)
     keys = list(tables)
     if any(k[0] == "point" for k in keys):
