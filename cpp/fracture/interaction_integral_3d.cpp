@@ -214,6 +214,13 @@ void auxiliary_fields_3d(double E, double nu, std::span<const double> frames, st
 
 namespace
 {
+/// The body force at point p: the constant one (3), or point p's of a body
+/// force per point (n, 3) (an initial stress's divergence varies), or none.
+std::span<const double> body_at(std::span<const double> body, std::size_t p)
+{
+  return body.size() <= 3 ? body : body.subspan(3 * p, 3);
+}
+
 /// T (mode, j, l) and D (mode, l) of one point (header of
 /// interaction_integrand_3d) from its auxiliary fields and g = grad u.
 void integrand_point(const Elasticity& el, const AuxPoint& a, const double g[3][3], std::span<const double> body,
@@ -294,16 +301,17 @@ void interaction_integrand_3d(double E, double nu, std::span<const double> frame
 {
   const std::size_t n = sides.size();
   if (frames.size() != 12 * n or curvatures.size() != 4 * n or x.size() != 3 * n or grad_u.size() != 9 * n
-      or T.size() != 27 * n or D.size() != 9 * n or (!body.empty() and body.size() != 3))
+      or T.size() != 27 * n or D.size() != 9 * n
+      or (!body.empty() and body.size() != 3 and body.size() != 3 * n))
     throw std::invalid_argument("interaction_integrand_3d: expected frames (n, 12), curvatures (n, 4), x (n, 3), "
-                                "grad_u (n, 3, 3), sides (n), body (3) or empty, T (n, 3, 3, 3), D (n, 3, 3)");
+                                "grad_u (n, 3, 3), sides (n), body (3), (n, 3) or empty, T (n, 3, 3, 3), D (n, 3, 3)");
   const Elasticity el(E, nu, "interaction_integrand_3d");
   for_each_aux_point(el, frames, curvatures, x, sides,
                      [&](std::size_t p, const AuxPoint& a)
                      {
                        double g[3][3];
                        load_gradient(grad_u, p, g);
-                       integrand_point(el, a, g, body, &T[27 * p], &D[9 * p]);
+                       integrand_point(el, a, g, body_at(body, p), &T[27 * p], &D[9 * p]);
                      });
 }
 
@@ -318,10 +326,11 @@ void front_domain_integrals_3d(double E, double nu, std::span<const double> fram
   const std::size_t n = sides.size(), nc = cell_gradients.size() / 12, K = directions.size() / 3;
   if (frames.size() != 12 * n or curvatures.size() != 4 * n or x.size() != 3 * n or grad_u.size() != 9 * n
       or weights.size() != n or point_cell.size() != n or shape.size() != 4 * n or cell_gradients.size() != 12 * nc
-      or directions.size() != 3 * K or (!body.empty() and body.size() != 3))
+      or directions.size() != 3 * K
+      or (!body.empty() and body.size() != 3 and body.size() != 3 * n))
     throw std::invalid_argument("front_domain_integrals_3d: expected frames (n, 12), curvatures (n, 4), x (n, 3), "
                                 "grad_u (n, 3, 3), sides (n), weights (n), point_cell (n), shape (n, 4), "
-                                "cell_gradients (c, 4, 3), directions (K, 3), body (3) or empty");
+                                "cell_gradients (c, 4, 3), directions (K, 3), body (3), (n, 3) or empty");
   check_table(table, nc, K, I, "front_domain_integrals_3d");
   const int nd = table.num_domains;
   const Elasticity el(E, nu, "front_domain_integrals_3d");
@@ -336,7 +345,7 @@ void front_domain_integrals_3d(double E, double nu, std::span<const double> fram
                          return;
                        double g[3][3];
                        load_gradient(grad_u, p, g);
-                       integrand_point(el, a, g, body, T, D);
+                       integrand_point(el, a, g, body_at(body, p), T, D);
                        const double* N = &shape[4 * p];
                        const double* dN = &cell_gradients[12 * c];
                        for_each_entry(table, c,

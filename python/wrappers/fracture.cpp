@@ -184,13 +184,13 @@ void declare_fracture(py::module& m)
   m.def(
       "interaction_integrand_3d",
       [](double E, double nu, const carray<double>& frames, const carray<double>& curvature, const carray<double>& x,
-         const carray<double>& grad_u, const carray<std::int8_t>& sides, std::optional<std::array<double, 3>> body)
+         const carray<double>& grad_u, const carray<std::int8_t>& sides, const std::optional<carray<double>>& body)
       {
         const py::ssize_t n = sides.size();
         std::vector<double> T(27 * n), D(9 * n);
         std::vector<double> b;
         if (body)
-          b.assign(body->begin(), body->end());
+          b.assign(body->data(), body->data() + body->size());
         interaction_integrand_3d(E, nu, as_span(frames), front_curvatures(curvature, n), as_span(x),
                                  as_span(grad_u), as_span(sides), b, T, D);
         return py::make_tuple(as_pyarray(std::move(T), {n, 3, 3, 3}), as_pyarray(std::move(D), {n, 3, 3}));
@@ -225,7 +225,7 @@ void declare_fracture(py::module& m)
   m.def(
       "front_domain_integrals_3d",
       [](double E, double nu, const carray<double>& frames, const carray<double>& curvature, const carray<double>& x,
-         const carray<double>& grad_u, const carray<std::int8_t>& sides, std::optional<std::array<double, 3>> body,
+         const carray<double>& grad_u, const carray<std::int8_t>& sides, const std::optional<carray<double>>& body,
          const carray<double>& weights, const carray<std::int32_t>& point_cell, const carray<double>& shape,
          const carray<double>& cell_gradients, const carray<std::int32_t>& offsets,
          const carray<std::int32_t>& point, const carray<double>& q, const carray<double>& directions,
@@ -234,7 +234,7 @@ void declare_fracture(py::module& m)
         const py::ssize_t n = sides.size();
         std::vector<double> b;
         if (body)
-          b.assign(body->begin(), body->end());
+          b.assign(body->data(), body->data() + body->size());
         const auto k = front_curvatures(curvature, n);
         std::span<double> out(I.mutable_data(), static_cast<std::size_t>(I.size()));
         py::gil_scoped_release release;

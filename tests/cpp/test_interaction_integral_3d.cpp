@@ -798,3 +798,40 @@ TEST(InteractionIntegral3D, EachCurvedSurfaceTermMatters)
     }
   }
 }
+
+TEST(InteractionIntegral3D, BodyForcePerPointIsEachPointsOwn)
+{
+  // A body force per point (n, 3) (an initial stress's divergence) gives
+  // each point the D of its own body force, as a constant body force on
+  // that point alone does; T does not see the body force.
+  const std::vector<double> frame = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  std::vector<double> frames, x = {0.3, 0.2, 0.1, -0.2, 0.4, -0.1}, g(18), kk(8, 0.0);
+  for (int p = 0; p < 2; ++p)
+    frames.insert(frames.end(), frame.begin(), frame.end());
+  for (int k = 0; k < 18; ++k)
+    g[k] = 0.01 * (k + 1) * (k % 3 == 0 ? -1.0 : 1.0);
+  const std::vector<std::int8_t> sides = {0, 0};
+  const std::vector<double> body = {1.0, -2.0, 0.5, -0.3, 0.7, 2.0};
+  std::vector<double> T(54), D(18);
+  interaction_integrand_3d(2.0, 0.3, frames, kk, x, g, sides, body, T, D);
+  for (int p = 0; p < 2; ++p)
+  {
+    std::vector<double> T1(27), D1(9), D0(9), T0(27);
+    const auto at = [p](const std::vector<double>& v, std::size_t k)
+    { return std::vector<double>(v.begin() + k * p, v.begin() + k * (p + 1)); };
+    const std::vector<std::int8_t> one = {0};
+    interaction_integrand_3d(2.0, 0.3, at(frames, 12), std::vector<double>(4, 0.0), at(x, 3), at(g, 9), one,
+                             at(body, 3), T1, D1);
+    interaction_integrand_3d(2.0, 0.3, at(frames, 12), std::vector<double>(4, 0.0), at(x, 3), at(g, 9), one, {}, T0,
+                             D0);
+    double change = 0.0;
+    for (int k = 0; k < 9; ++k)
+    {
+      EXPECT_DOUBLE_EQ(D[9 * p + k], D1[k]);
+      change = std::max(change, std::abs(D1[k] - D0[k]));
+    }
+    for (int k = 0; k < 27; ++k)
+      EXPECT_DOUBLE_EQ(T[27 * p + k], T1[k]);
+    EXPECT_GT(change, 1e-3); // (the body force is in D)
+  }
+}

@@ -120,7 +120,7 @@ def interaction_integrals(solution, domain: TipDomain, radius: float) -> np.ndar
     mat = m.scene.material
     q_opts = m.scene.options.quadrature_options()
     q_opts.degree = max(q_opts.degree, SIF_DEGREE)
-    body = _body_force(solution)
+    body = body_force(solution)
     d = _cracklip.compute_domain_points(m.x, m.cells, m.layout, m.geometries, domain.position,
                                         domain.direction, radius, q_opts, body is not None, domain.inner_radius)
     distributed = m.distributed
@@ -158,9 +158,10 @@ def interaction_integrals(solution, domain: TipDomain, radius: float) -> np.ndar
     return I
 
 
-def _body_force(solution) -> typing.Callable[[np.ndarray], np.ndarray] | None:
-    """b(x) (n, 2) = body force + div sigma_0 (at their load factors), or
-    None if both vanish."""
+def body_force(solution) -> typing.Callable[[np.ndarray], np.ndarray] | None:
+    """b(x) (n, d) at points (n, d) = body force + div sigma_0 (at their load
+    factors), the body force of the interaction integral (2D tips and 3D
+    fronts), or None if both vanish."""
     model = solution.model
     scene = model.scene
     f = None if scene.body_force is None else solution.factor(scene.body_force_group) * np.asarray(
@@ -176,7 +177,8 @@ def _body_force(solution) -> typing.Callable[[np.ndarray], np.ndarray] | None:
     size = part_size(model)  # (alike on every process)
 
     def b(x):
-        out = np.zeros((len(x), 2)) if f is None else np.broadcast_to(f, (len(x), 2)).copy()
+        d = model.gdim
+        out = np.zeros((len(x), d)) if f is None else np.broadcast_to(f, (len(x), d)).copy()
         if s0 is not None:
             out += k0 * divergence(s0, x, size, "initial stress")
         return out

@@ -65,7 +65,7 @@ from .front import (Front, cells_of_nodes, crack_front, lip_points, model_cache,
                     project, wrap)
 from .front_points import DOMAIN_FRACTIONS, REFINE_AT_FRONT, FrontPoint, front_points, point_at, stations
 from .lip_tractions import has_lip_traction, lip_traction
-from .sif import K_ZERO, complete_rows, k_scale, warned_above
+from .sif import K_ZERO, body_force, complete_rows, k_scale, warned_above
 
 logger = logging.getLogger(__name__)
 
@@ -163,14 +163,6 @@ def _shape_gradients(model, cells: np.ndarray) -> np.ndarray:
     J = np.transpose(xv[:, 1:] - xv[:, :1], (0, 2, 1))
     dN = np.array([[-1.0, -1.0, -1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
     return np.einsum("ab,cbi->cai", dN, np.linalg.inv(J))
-
-
-def _body_force(solution) -> np.ndarray | None:
-    scene = solution.model.scene
-    if scene.body_force is None or not np.any(scene.body_force):
-        return None
-    f = solution.factor(scene.body_force_group) * np.asarray(scene.body_force, dtype=float).reshape(3)
-    return f if np.any(f) else None
 
 
 def _node_q(nd: dict, fp: FrontPoint, radius: float) -> np.ndarray:
@@ -312,7 +304,7 @@ def _crack_front_sifs(solution, crack: int, radius: float | None = None) -> tupl
     nd_ = {"s": npr["s"], "piece": npr["piece"], "r": npr["distance"]}
     node_r = np.full(m.x.shape[0], np.inf)
     node_r[nodes] = npr["distance"]
-    body = _body_force(solution)
+    body = body_force(solution)
     crk = m.cracks[crack].crack
     pressure = has_lip_traction(solution, crack)
     # Per front point: its nodal q (one column per domain) and its cells.
@@ -338,7 +330,7 @@ def _crack_front_sifs(solution, crack: int, radius: float | None = None) -> tupl
         _cracklip.front_domain_integrals_3d(
             E, nu, _frames12(pr), np.ascontiguousarray(pr["curvatures"]), np.ascontiguousarray(qp["x"]),
             np.ascontiguousarray(grad), np.ascontiguousarray(qp["side"], dtype=np.int8),
-            None if body is None else tuple(body), np.ascontiguousarray(qp["weight"]),
+            None if body is None else np.ascontiguousarray(body(qp["x"])), np.ascontiguousarray(qp["weight"]),
             np.searchsorted(cells, qp["cell"]).astype(np.int32),
             np.ascontiguousarray(np.column_stack([1.0 - qp["ref"].sum(axis=1), qp["ref"]])),
             np.ascontiguousarray(_shape_gradients(m, cells)), offsets, point, q, directions, I)

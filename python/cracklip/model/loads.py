@@ -3,7 +3,7 @@ function, on triangles and tetrahedra alike (the kernels of the cells
 through model.crack_type, cracklip.model.cracks).
 
 - ``assemble_load(model)``: boundary tractions (constant, f(x), or sigma n
-  of a stress field), point forces, a body force, an initial stress (2D)
+  of a stress field), point forces, a body force, an initial stress
   and pressures on the crack lips, on standard and enriched dofs.
 - Tractions: one facet quadrature for standard and enriched dofs, the
   facets split where a crack crosses them; a stress field's traction is
@@ -11,12 +11,11 @@ through model.crack_type, cracklip.model.cracks).
   nearest boundary facet, ``boundary_normals``; 3D: of the facet itself).
 - ``assemble_body_force(model, force)`` and ``assemble_initial_stress(model,
   field)``: int f . phi_j and -int sigma_0 : eps(phi_j) over the cracked
-  part. Standard dofs: per cell, exactly for a linear sigma_0 (a 6-point
-  degree-4 rule for a callable); enriched dofs: the stiffness's quadrature
-  in the enriched cells, at least degree 4 (C++ assemble_cell_load). The lips need no term of
+  part. Standard dofs: per cell, exactly for a linear sigma_0 (a degree-4
+  rule for a callable, model.crack_type.cell_rule); enriched dofs: the stiffness's quadrature
+  in the enriched cells, raised to degree 4 in 2D (C++ assemble_cell_load). The lips need no term of
   their own: the enriched functions jump there, so -int sigma_0 : eps(phi_j)
-  already holds the lip traction sigma_0 n. An initial stress is not
-  supported on 3D parts yet (the scene refuses it).
+  already holds the lip traction sigma_0 n.
 - ``lip_pressure(crack, x)`` and ``assemble_lip_pressure(model, crack)``: a
   pressure p on both lips, the load int p [[phi_j]] . n over the lips.
 - Under mpirun (a distributed model) each process integrates its owned
@@ -171,32 +170,14 @@ def crack_through_node(model, node: int, edge: float, scale: float) -> str | Non
     return None
 
 
-def _cell_rule(degree: int) -> tuple[np.ndarray, np.ndarray]:
-    """Barycentric points (k, 3) and weights (k,) summing to 1 on a triangle."""
-    if degree <= 1:
-        return np.full((1, 3), 1.0 / 3.0), np.ones(1)
-    # Strang-Fix / Dunavant 6-point rule, degree 4.
-    a, b = 0.445948490915965, 0.091576213509771
-    wa, wb = 0.223381589678011, 0.109951743655322
-    pts = np.array([[a, a, 1 - 2 * a], [a, 1 - 2 * a, a], [1 - 2 * a, a, a],
-                    [b, b, 1 - 2 * b], [b, 1 - 2 * b, b], [1 - 2 * b, b, b]])
-    return pts, np.array([wa, wa, wa, wb, wb, wb])
-
-
-#: Gauss degree of the cell loads in enriched cells without tip functions:
-#: exact for a body force and an initial stress up to degree 4 (a P1 x
-#: Heaviside gradient is piecewise constant).
-LOAD_DEGREE = 4
-
-
 def _enriched_points(model) -> dict:
     """Quadrature points of the enriched cells (cell, ref, x, weight, side):
-    the stiffness's rules, at least degree LOAD_DEGREE."""
+    the stiffness's rules, at least the crack type's LOAD_DEGREE."""
     cache = model.__dict__.get("_enriched_points_cache")
     if cache is None:
         cells = np.asarray(model.layout.cells, dtype=np.int32)
         cells = cells[model.owned_cells_only(cells)]  # under MPI each cell once: on its owner
-        cache = model.crack_type.enriched_cell_points(model, cells, LOAD_DEGREE)
+        cache = model.crack_type.enriched_cell_points(model, cells, model.crack_type.LOAD_DEGREE)
         model._enriched_points_cache = cache
     return cache
 
@@ -213,7 +194,7 @@ def _cell_loads(model, force: np.ndarray | None, stress_field) -> np.ndarray:
         for c in range(d):
             np.add.at(b, d * cells.ravel() + c, np.repeat(force[c] * measure / nv, nv))
     if stress_field is not None:
-        _add_initial_stress_standard(b, model.x, cells, stress_field)
+        _add_initial_stress_standard(b, model, cells, stress_field)
     if model.layout.num_enriched == 0:
         return b
     fp = _enriched_points(model)
@@ -226,30 +207,21 @@ def _cell_loads(model, force: np.ndarray | None, stress_field) -> np.ndarray:
     return b
 
 
-def _add_initial_stress_standard(b: np.ndarray, x: np.ndarray, cells: np.ndarray, stress_field) -> None:
-    """Add -int sigma_0 : eps(N_a e_d) over triangles (cells: node indices
-    into x) on their standard dofs to b: the mean of sigma_0 per cell
-    (exact for a LinearStress, a degree-4 rule else) against the P1
-    gradients (initial stresses are 2D only)."""
-    xv = x[cells]
-    e1, e2 = xv[:, 1] - xv[:, 0], xv[:, 2] - xv[:, 0]
-    det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
-    area = 0.5 * np.abs(det)
-    bary, w = _cell_rule(1 if isinstance(stress_field, LinearStress) else 4)
-    mean = np.zeros((len(area), 3))
+def _add_initial_stress_standard(b: np.ndarray, model, cells: np.ndarray, stress_field) -> None:
+    """Add -int sigma_0 : eps(N_a e_i) over the cells (triangles or
+    tetrahedra: node indices into model.x) on their standard dofs to b: the
+    mean of sigma_0 per cell (exact for a LinearStress, a degree-4 rule
+    else) against the P1 gradients, -|cell| sum_j sigma_ij dN_a / dx_j."""
+    kind = model.crack_type
+    xv = model.x[cells]
+    bary, w = kind.cell_rule(1 if isinstance(stress_field, LinearStress) else 4)
+    mean = 0.0
     for k in range(len(w)):
-        pts = np.einsum("a,cai->ci", bary[k], xv)
-        mean += w[k] * tensor_to_voigt(evaluate_stress(stress_field, pts, "initial stress"))
-    # grad N_a per cell: rows of J^-T.
-    inv = np.stack([np.stack([e2[:, 1], -e2[:, 0]], axis=1), np.stack([-e1[:, 1], e1[:, 0]], axis=1)],
-                   axis=1) / det[:, None, None]  # (c, 2 (xi, eta), 2 (x, y))
-    grads = np.stack([-inv[:, 0] - inv[:, 1], inv[:, 0], inv[:, 1]], axis=1)  # (c, 3, 2)
-    # -int sigma : eps(N_a e_d) = -area (sigma_dx dN_a/dx + sigma_dy dN_a/dy)
-    sxx, syy, sxy = mean[:, 0], mean[:, 1], mean[:, 2]
-    fx = -(sxx[:, None] * grads[:, :, 0] + sxy[:, None] * grads[:, :, 1]) * area[:, None]
-    fy = -(sxy[:, None] * grads[:, :, 0] + syy[:, None] * grads[:, :, 1]) * area[:, None]
-    np.add.at(b, 2 * cells.ravel(), fx.ravel())
-    np.add.at(b, 2 * cells.ravel() + 1, fy.ravel())
+        mean = mean + w[k] * evaluate_stress(stress_field, np.einsum("a,cai->ci", bary[k], xv), "initial stress")
+    f = -np.einsum("cij,caj->cai", mean, kind.shape_gradients(model.x, cells)) \
+        * kind.cell_measures(model.x, cells)[:, None, None]
+    d = model.gdim
+    np.add.at(b, (d * cells[:, :, None] + np.arange(d)).ravel(), f.ravel())
 
 
 def assemble_body_force(model, force: typing.Sequence[float]) -> np.ndarray:

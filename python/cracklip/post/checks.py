@@ -88,8 +88,13 @@ OPPOSING_FRACTION = 1e-3
 #: K accuracy of the method (docs/sifs.md: 0.1-1 %) times the field's share.
 UNBALANCED_FRACTION = 0.02
 
-#: 3-point Gauss rule on a facet (parameter in [0, 1], weights summing to 1).
-_GAUSS = (np.array([0.5 - 0.5 * np.sqrt(0.6), 0.5, 0.5 + 0.5 * np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 18.0)
+#: A 3-point rule on a facet (barycentric points, weights summing to 1):
+#: Gauss on an edge (degree 5), the interior rule of degree 2 on a triangle.
+_GAUSS = np.array([0.5 - 0.5 * np.sqrt(0.6), 0.5, 0.5 + 0.5 * np.sqrt(0.6)])
+_FACET_RULE = {
+    2: (np.stack([1.0 - _GAUSS, _GAUSS], axis=1), np.array([5.0, 8.0, 5.0]) / 18.0),
+    3: (np.array([[2 / 3, 1 / 6, 1 / 6], [1 / 6, 2 / 3, 1 / 6], [1 / 6, 1 / 6, 2 / 3]]), np.full(3, 1 / 3)),
+}
 
 
 def initial_stress_unbalanced(solution) -> list[tuple[str, str]]:
@@ -98,16 +103,18 @@ def initial_stress_unbalanced(solution) -> list[tuple[str, str]]:
     sums are reduced: every process gets the same answer."""
     m = solution.model
     scene = m.scene
-    if scene.initial_stress is None or m.gdim != 2:
+    if scene.initial_stress is None:
         return []
     mesh = scene.mesh
+    d = m.gdim
     facets, verts, size, n = owned_boundary_facets(mesh)
-    s, w = _GAUSS
-    pts = verts[:, :1] + s[None, :, None] * (verts[:, 1:2] - verts[:, :1])  # (f, 3, 2)
-    sig = evaluate_stress(scene.initial_stress, pts.reshape(-1, 2), "initial stress").reshape(len(facets), 3, 2, 2)
-    t0 = np.einsum("fqij,fj->fqi", sig, n)  # sigma_0 n (f, 3, 2)
+    bary, w = _FACET_RULE[d]
+    pts = np.einsum("qa,fai->fqi", bary, verts)  # (f, q, d)
+    sig = evaluate_stress(scene.initial_stress, pts.reshape(-1, d), "initial stress").reshape(
+        len(facets), len(w), d, d)
+    t0 = np.einsum("fqij,fj->fqi", sig, n)  # sigma_0 n (f, q, d)
     # Components held by a Dirichlet condition or symmetry plane (on a tag).
-    held = np.ones((len(facets), 2))
+    held = np.ones((len(facets), d))
     for dc in scene.dirichlet:
         if is_point_condition(dc):  # (a point holds no facet)
             continue
@@ -150,7 +157,7 @@ def initial_stress_unbalanced(solution) -> list[tuple[str, str]]:
     return [("initial_stress_unbalanced", (
         f"the initial stress (loads.initial_stress) is not balanced on the part's boundary{at}: "
         f"{100 * frac:.3g} % of its traction sigma_0 n (integral of |sigma_0 n| over the boundary without a "
-        "Dirichlet condition) falls on free edges, where no traction (loads.tractions) holds it"
+        "Dirichlet condition) falls on free edges (3D: faces), where no traction (loads.tractions) holds it"
         + (f" (on the tags {where})" if where else " (on untagged facets)")
         + ": that part of sigma_0 relaxes, and K and the opening see only the rest. Apply sigma_0 n there: "
         f"[[loads.tractions]] with tag = {tag} and stress / stress_gradient equal to loads.initial_stress's "

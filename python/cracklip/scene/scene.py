@@ -60,7 +60,9 @@ class Scene:
     #: Initial (residual) stress sigma_0 of the part, or None: the stress is
     #: sigma = C eps(u) + sigma_0, so sigma_0 acts through its equivalent
     #: loads (-div sigma_0 inside, sigma_0 n on the boundary and the lips).
-    #: (sxx, syy, sxy), a stress_field.LinearStress or a callable sigma_0(x).
+    #: 2D (sxx, syy, sxy), 3D (sxx, syy, szz, syz, sxz, sxy), a
+    #: stress_field.LinearStress of the part's dimension or a callable
+    #: sigma_0(x) (points (n, d) -> (n, d, d) or Voigt components).
     initial_stress: typing.Any = None
     #: Load groups of the body force and the initial stress.
     body_force_group: str = "default"
@@ -87,9 +89,7 @@ class Scene:
                 raise InputError("load_path is empty: give at least one step, or None for one step at factor 1")
         gdim = getattr(self.mesh, "gdim", 2)
         if self.initial_stress is not None:
-            if gdim == 3:
-                raise InputError("an initial stress is not supported on 3D parts yet")
-            self.initial_stress = as_stress_field(self.initial_stress, "initial stress")
+            self.initial_stress = as_stress_field(self.initial_stress, "initial stress", gdim)
         for i, c in enumerate(self.cracks):
             if gdim == 3:
                 if not isinstance(c, (EllipticalCrack, PolygonCrack, SurfaceCrack)):

@@ -21,7 +21,7 @@ from ...scene.processes import mark_collective, reduced
 from ...scene.symmetry import Symmetry
 from .mesh import check_tag, nearest_node
 from .schema import (REQUIRED, UNSET, Key, p_choice, p_factors, p_float, p_gradient, p_group, p_point, p_point_any,
-                     p_region, p_str, p_stress, p_stress_any, p_tag, p_value, p_vector_any)
+                     p_region, p_str, p_stress_any, p_tag, p_value, p_vector_any)
 
 
 _WILLIAMS = [
@@ -69,14 +69,14 @@ LOAD_KEYS: list[Key] = [
     Key("loads.tractions[].group", "string", "default", "load group (see load_path)", p_group),
     Key("loads.tractions[].value", "[x, y] or [x, y, z]", UNSET, "constant traction, force per unit length "
         "(3D: per unit area) (one of value, stress, williams, kirsch)", p_vector_any),
-    Key("loads.tractions[].stress", "[sxx, syy, sxy]", UNSET,
-        "stress at `origin`: the traction is sigma n on the tag (n the outward facet normal); 3D: a uniform "
-        "[sxx, syy, szz, syz, sxz, sxy]", p_stress_any),
-    Key("loads.tractions[].stress_gradient", "[[3 numbers], [3 numbers]]", UNSET,
-        "with stress: d(sxx, syy, sxy)/dx and d(sxx, syy, sxy)/dy of a linear stress field "
-        "sigma(x) = stress + (x - origin) gradient (bending: sxx varying with y)", p_gradient),
-    Key("loads.tractions[].origin", "[x, y]", [0.0, 0.0], "with stress_gradient: where sigma = stress",
-        p_point),
+    Key("loads.tractions[].stress", "[sxx, syy, sxy] or [sxx, syy, szz, syz, sxz, sxy]", UNSET,
+        "stress at `origin`: the traction is sigma n on the tag (n the outward facet normal)", p_stress_any),
+    Key("loads.tractions[].stress_gradient", "[[3 numbers], [3 numbers]] or 3 rows of 6", UNSET,
+        "with stress: d sigma/dx, d sigma/dy (3D: and d sigma/dz) of a linear stress field "
+        "sigma(x) = stress + (x - origin) gradient, each row in the order of stress (bending: sxx varying "
+        "with y)", p_gradient),
+    Key("loads.tractions[].origin", "[x, y] or [x, y, z]", UNSET, "with stress_gradient: where sigma = stress "
+        "(default: 0)", p_point_any),
 ] + [Key(f"loads.tractions[].williams.{n}", t, d, m + " (traction sigma n)", p) for n, t, d, m, p in _WILLIAMS] + [
     Key("loads.tractions[].kirsch.remote_stress", "float", REQUIRED,
         "Kirsch field of a hole under remote stress along x (< 0: compression); traction sigma n",
@@ -95,12 +95,14 @@ LOAD_KEYS: list[Key] = [
     Key("loads.point_forces[].value", "[x, y] or [x, y, z]", REQUIRED, "the force (per unit thickness in 2D)",
         p_vector_any),
     Key("loads.point_forces[].group", "string", "default", "load group (see load_path)", p_group),
-    Key("loads.initial_stress.value", "[sxx, syy, sxy]", REQUIRED,
+    Key("loads.initial_stress.value", "[sxx, syy, sxy] or [sxx, syy, szz, syz, sxz, sxy]", REQUIRED,
         "initial (residual) stress sigma_0 at `origin`: the stress is C eps(u) + sigma_0, its "
-        "equivalent loads open or close the cracks", p_stress),
-    Key("loads.initial_stress.gradient", "[[3 numbers], [3 numbers]]", [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0]],
-        "d sigma_0 / dx and d sigma_0 / dy of a linear initial stress", p_gradient),
-    Key("loads.initial_stress.origin", "[x, y]", [0.0, 0.0], "where sigma_0 = value", p_point),
+        "equivalent loads open or close the cracks", p_stress_any),
+    Key("loads.initial_stress.gradient", "[[3 numbers], [3 numbers]] or 3 rows of 6", UNSET,
+        "d sigma_0 / dx, d sigma_0 / dy (3D: and d sigma_0 / dz) of a linear initial stress, each row in the "
+        "order of value (default: uniform)", p_gradient),
+    Key("loads.initial_stress.origin", "[x, y] or [x, y, z]", UNSET, "where sigma_0 = value (default: 0)",
+        p_point_any),
     Key("loads.initial_stress.group", "string", "default", "load group of the initial stress (see load_path)",
         p_group),
     Key("load_path[].name", "string", "", "label of the step in outputs (default: step k)", p_str),
@@ -190,12 +192,7 @@ def build_traction(tr: dict, i: int, mesh: MeshData, material: Material, cracks:
         notes.append(f"{where}: tag {tag!r} ({nf} facets), traction {tr['value']}")
         return Traction(tag, tuple(tr["value"]), group=tr["group"])
     if "stress" in tr:
-        field = LinearStress(tuple(tr["stress"]), tuple(map(tuple, tr.get("stress_gradient", [[0.0] * 3] * 2))),
-                             tuple(tr["origin"]))
-        what = (f"sigma = {tr['stress']}" if field.is_uniform else
-                f"linear sigma = {tr['stress']} at {tr['origin']}, gradient {tr['stress_gradient']}")
-        notes.append(f"{where}: tag {tag!r} ({nf} facets), traction sigma n, {what}")
-        return Traction(tag, stress=field, group=tr["group"])
+        return stress_traction(tr, where, nf, notes)
     # A field's traction sigma n is a stress traction: its normals are those
     # of the mesh it is integrated on (the model's, each process's own
     # facets), not this mesh's, which an error estimate's or an accuracy
@@ -233,6 +230,29 @@ def build_pressure(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Tracti
 
 
 
+def linear_stress(st: dict, value: str, gradient: str) -> LinearStress:
+    """The LinearStress of a table's value, gradient and origin keys (the
+    scene's dimension already checked: dimension.check_dimension)."""
+    g = st.get(gradient)
+    return LinearStress(tuple(st[value]), None if g is None else tuple(map(tuple, g)),
+                        None if st.get("origin") is None else tuple(st["origin"]))
+
+
+def describe_stress(field: LinearStress) -> str:
+    names = "xx, yy, xy" if field.dim == 2 else "xx, yy, zz, yz, xz, xy"
+    if field.is_uniform:
+        return f"uniform sigma = {list(field.value)} ({names})"
+    return (f"linear sigma = {list(field.value)} ({names}) at {list(field.origin)}, gradient "
+            f"{[list(r) for r in field.gradient]}")
+
+
+def stress_traction(tr: dict, where: str, nf: int, notes: list[str]) -> Traction:
+    """The traction sigma n of a [[loads.tractions]] stress (and gradient)."""
+    field = linear_stress(tr, "stress", "stress_gradient")
+    notes.append(f"{where}: tag {tr['tag']!r} ({nf} facets), traction sigma n, {describe_stress(field)}")
+    return Traction(tr["tag"], stress=field, group=tr["group"])
+
+
 def traction_3d(tr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
     where = f"loads.tractions[{i}]"
     tag = tr["tag"]
@@ -240,9 +260,7 @@ def traction_3d(tr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
     if "value" in tr:
         notes.append(f"{where}: tag {tag!r} ({nf} facets), traction {tr['value']}")
         return Traction(tag, tuple(tr["value"]), group=tr["group"])
-    notes.append(f"{where}: tag {tag!r} ({nf} facets), traction sigma n, uniform sigma = {tr['stress']} "
-                 "(xx, yy, zz, yz, xz, xy)")
-    return Traction(tag, stress=UniformStress3D(tuple(tr["stress"])), group=tr["group"])
+    return stress_traction(tr, where, nf, notes)
 
 
 def pressure_3d(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
@@ -276,7 +294,7 @@ def build_loads(s: dict, mesh: MeshData, material: Material, cracks: list, notes
     """The loads of the [loads] settings: tractions (pressures among them),
     body_force (None if zero), point_forces, initial_stress (or None), and
     the lip pressures' notes. A 2D part takes the 2D tractions (value,
-    stress, Williams, Kirsch), a 3D one a value or a uniform stress."""
+    stress, Williams, Kirsch), a 3D one a value or a stress."""
     gdim = mesh.gdim
     tractions = []
     for i, tr in enumerate(s["loads"]["tractions"]):
@@ -302,9 +320,8 @@ def build_loads(s: dict, mesh: MeshData, material: Material, cracks: list, notes
     initial_stress = None
     if "initial_stress" in s["loads"]:
         st = s["loads"]["initial_stress"]
-        initial_stress = LinearStress(tuple(st["value"]), tuple(map(tuple, st["gradient"])), tuple(st["origin"]))
-        notes.append(f"loads.initial_stress: sigma_0 = {st['value']} at {st['origin']}"
-                     + (f", gradient {st['gradient']}" if not initial_stress.is_uniform else " (uniform)"))
+        initial_stress = linear_stress(st, "value", "gradient")
+        notes.append(f"loads.initial_stress: {describe_stress(initial_stress).replace('sigma', 'sigma_0', 1)}")
     for c, cs in zip(cracks, s["cracks"]):
         if cs["pressure"] != 0.0:
             notes.append(f"{c.name}: lip pressure {cs['pressure']:g}")

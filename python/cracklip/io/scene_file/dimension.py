@@ -25,11 +25,6 @@ KIND_DIMENSION = {"rectangle": 2, "plate_with_hole": 2, "plate_with_holes": 2, "
                   "cylinder": 3}
 
 
-#: What a 3D scene cannot have yet (key -> why), checked when given.
-NOT_YET_3D = {
-    "loads.initial_stress": "an initial (residual) stress is not supported on 3D parts yet",
-}
-
 #: [growth] keys a 3D front does not take (key -> why).
 GROWTH_2D_ONLY = {
     "growth.corrections": "the corrector turns a 2D tip's last increment; 3D fronts advance by the explicit kink "
@@ -123,9 +118,20 @@ def check_dimension(doc: dict, settings: dict, dim: int, why: str) -> None:
     for where, v in _parts(doc, "dirichlet.box"):
         if _length(v) != 2 * dim:
             raise wrong(where, v, "[x0, y0, x1, y1]", "[x0, y0, z0, x1, y1, z1]")
-    for where, v in _parts(doc, "loads.tractions.stress"):
-        if _length(v) != (6 if dim == 3 else 3):
-            raise wrong(where, v, "[sxx, syy, sxy]", "the uniform stress [sxx, syy, szz, syz, sxz, sxy]")
+    for key in ("loads.tractions.stress", "loads.initial_stress.value"):
+        for where, v in _parts(doc, key):
+            if _length(v) != (6 if dim == 3 else 3):
+                raise wrong(where, v, "[sxx, syy, sxy]", "[sxx, syy, szz, syz, sxz, sxy]")
+    for key in ("loads.tractions.stress_gradient", "loads.initial_stress.gradient"):
+        for where, v in _parts(doc, key):
+            if _length(v) != dim or any(_length(r) != 3 * dim - 3 for r in v):
+                raise InputError(f"{where} = {v}: {part}: give {dim} rows (d/dx, d/dy{', d/dz' if dim == 3 else ''}) "
+                                 f"of {3 * dim - 3} numbers each, in the order of the stress "
+                                 f"({'sxx, syy, szz, syz, sxz, sxy' if dim == 3 else 'sxx, syy, sxy'})")
+    for key in ("loads.tractions.origin", "loads.initial_stress.origin"):
+        for where, v in _parts(doc, key):
+            if _length(v) != dim:
+                raise wrong(where, v, "[x, y]", "[x, y, z]")
     for where, v in _parts(doc, "dirichlet.component"):
         if dim == 3 and v == "both":
             raise InputError(f"{where} = 'both' names the two components of a 2D part but {part}: give 'all' (x, "
@@ -148,8 +154,6 @@ def check_dimension(doc: dict, settings: dict, dim: int, why: str) -> None:
                               "2D part",
         "loads.tractions.williams": "the Williams field is the 2D field of a straight tip",
         "loads.tractions.kirsch": "the Kirsch field is the 2D field of a hole in a plate",
-        "loads.tractions.stress_gradient": "a 3D traction takes a uniform stress only",
-        "loads.tractions.origin": "a 3D traction takes a uniform stress only (no origin)",
         "outputs.magnification": "deformed.png is a 2D picture; in 3D warp solution.vtu by `displacement` in "
                                  "ParaView (Warp By Vector)",
         "outputs.stress_component": "stress.png is a 2D picture; in 3D color solution.vtu by a stress_* array "
@@ -158,9 +162,6 @@ def check_dimension(doc: dict, settings: dict, dim: int, why: str) -> None:
     for key, text in two_d.items():
         for where, _ in _parts(doc, key):
             raise InputError(f"{where} is a 2D setting but {part}: {text}")
-    for key, text in NOT_YET_3D.items():
-        for where, _ in _parts(doc, key):
-            raise InputError(f"{where}: {text} ({part})")
     for key, text in GROWTH_2D_ONLY.items():
         for where, _ in _parts(doc, key):
             raise InputError(f"{where} is a 2D growth setting but {part}: {text}")

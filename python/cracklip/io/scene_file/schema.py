@@ -114,9 +114,6 @@ p_point = p_numbers(2, "a point [x, y]")
 p_vector = p_numbers(2, "a vector [x, y]")
 
 
-p_stress = p_numbers(3, "a stress [sigma_xx, sigma_yy, sigma_xy]")
-
-
 p_point3 = p_numbers(3, "a point [x, y, z]")
 
 
@@ -159,11 +156,16 @@ p_angles = p_numbers(2, "two angles [start, end] in degrees")
 
 
 def p_gradient(value, path):
-    """[[d sxx/dx, d syy/dx, d sxy/dx], [d sxx/dy, d syy/dy, d sxy/dy]]."""
-    what = "a stress gradient [[dsxx/dx, dsyy/dx, dsxy/dx], [dsxx/dy, dsyy/dy, dsxy/dy]]"
-    if not isinstance(value, list) or len(value) != 2:
+    """A linear stress field's gradient, one row per coordinate: 2D
+    [[d sxx/dx, d syy/dx, d sxy/dx], [d sxx/dy, d syy/dy, d sxy/dy]], 3D
+    three rows (d/dx, d/dy, d/dz) of the six components (sxx, syy, szz,
+    syz, sxz, sxy) (the scene's dimension is checked once it is known:
+    dimension.check_dimension)."""
+    what = ("a stress gradient [[dsxx/dx, dsyy/dx, dsxy/dx], [dsxx/dy, dsyy/dy, dsxy/dy]] (3D: three rows d/dx, "
+            "d/dy, d/dz of [sxx, syy, szz, syz, sxz, sxy])")
+    if not isinstance(value, list) or len(value) not in (2, 3):
         raise _type_error(path, what, value)
-    return [p_numbers(3, what)(v, f"{path}[{i}]") for i, v in enumerate(value)]
+    return [p_numbers(3 if len(value) == 2 else 6, what)(v, f"{path}[{i}]") for i, v in enumerate(value)]
 
 
 def p_box(value, path):

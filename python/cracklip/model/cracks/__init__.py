@@ -38,6 +38,7 @@ import typing
 import numpy as np
 
 from ... import _cracklip
+from ...scene.stress_field import evaluate_stress, tensor_to_voigt
 
 
 class CrackModel(abc.ABC):
@@ -71,6 +72,9 @@ class CrackModel(abc.ABC):
     #: The scene Options method giving the C++ quadrature options of these
     #: cells (QuadratureOptions: tip rules; QuadratureOptions3D: front rules).
     QUADRATURE: typing.ClassVar[typing.Callable]
+    #: The Gauss degree the body force and initial stress loads of enriched
+    #: cells are raised to (None: the stiffness's own rules, loads.py).
+    LOAD_DEGREE: typing.ClassVar[int | None]
 
     def __init__(self, crack, tips: tuple[bool, ...], geometry):
         self.crack = crack
@@ -165,6 +169,12 @@ class CrackModel(abc.ABC):
         """Gradients (c, d + 1, d) of the P1 shape functions of cells (c, d + 1)."""
 
     @classmethod
+    @abc.abstractmethod
+    def cell_rule(cls, degree: int) -> tuple[np.ndarray, np.ndarray]:
+        """A rule on the cell exact to `degree` (1 or 4): barycentric points
+        (k, d + 1) and weights (k,) summing to 1."""
+
+    @classmethod
     def quadrature_options(cls, options, degree: int | None = None):
         """The C++ quadrature options of scene Options (the stiffness's), the
         Gauss degree raised to `degree` if given."""
@@ -251,4 +261,15 @@ def crack_model_type(gdim: int) -> type[CrackModel]:
     return {2: CurveCrackModel, 3: SurfaceCrackModel}[gdim]
 
 
-__all__ = ["CrackModel", "crack_model_type"]
+def with_initial_stress(solution, stress: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """The total stress (n, Voigt) C eps(u) + sigma_0 at points (n, d) from
+    C eps(u) there (stress), the scene's initial stress at its load factor
+    added (stress itself if it has none)."""
+    scene = solution.model.scene
+    if scene.initial_stress is None or solution.factor(scene.initial_stress_group) == 0.0 or not len(points):
+        return stress
+    return stress + solution.factor(scene.initial_stress_group) * tensor_to_voigt(
+        evaluate_stress(scene.initial_stress, points, "initial stress"))
+
+
+__all__ = ["with_initial_stress", "CrackModel", "crack_model_type"]

@@ -19,10 +19,9 @@ import numpy as np
 from ... import _cracklip
 from ...errors import CrackGeometryError
 from ...scene.options import Options
-from ...scene.stress_field import evaluate_stress, tensor_to_voigt
 from ...scene.processes import agree, first_error, mark_collective, reduced, total, world
 from ..boundary import boundary_normals, boundary_segments, inside_segments, on_boundary
-from . import CrackModel
+from . import CrackModel, with_initial_stress
 
 logger = logging.getLogger(__name__)
 
@@ -39,6 +38,10 @@ class CurveCrackModel(CrackModel):
     EXTENT = "length"
     #: Triangles' quadrature options: the tip rules.
     QUADRATURE = Options.quadrature_options
+    #: Exact for a body force and an initial stress up to degree 4 in cells
+    #: without tip functions (a P1 x Heaviside gradient is piecewise
+    #: constant); tip cells keep their own rules.
+    LOAD_DEGREE = 4
     VOIGT = ("xx", "yy", "xy")
     #: Gauss points per crack segment of the lip loads and the SIFs' lip terms.
     LIP_POINTS = 8
@@ -126,6 +129,17 @@ class CurveCrackModel(CrackModel):
         return np.stack([-inv[:, 0] - inv[:, 1], inv[:, 0], inv[:, 1]], axis=1)
 
     @classmethod
+    def cell_rule(cls, degree: int) -> tuple[np.ndarray, np.ndarray]:
+        if degree <= 1:
+            return np.full((1, 3), 1.0 / 3.0), np.ones(1)
+        # Strang-Fix / Dunavant 6-point rule, degree 4.
+        a, b = 0.445948490915965, 0.091576213509771
+        wa, wb = 0.223381589678011, 0.109951743655322
+        pts = np.array([[a, a, 1 - 2 * a], [a, 1 - 2 * a, a], [1 - 2 * a, a, a],
+                        [b, b, 1 - 2 * b], [b, 1 - 2 * b, b], [1 - 2 * b, b, b]])
+        return pts, np.array([wa, wa, wa, wb, wb, wb])
+
+    @classmethod
     def facet_normals(cls, model, where, basis: dict) -> np.ndarray:
         """Outward unit normals at a facet basis' points of a tag (the
         nearest facet's: model.boundary.boundary_normals)."""
@@ -159,10 +173,7 @@ class CurveCrackModel(CrackModel):
         mat = m.scene.material
         f = _cracklip.compute_subcell_fields(m.x, m.cells, m.layout, m.geometries, solution.u,
                                              mat.E_strain, mat.nu_strain)
-        if m.scene.initial_stress is not None and solution.factor(m.scene.initial_stress_group) != 0.0:
-            centroids = f["points"].reshape(-1, 3, 2).mean(axis=1)
-            f["stress"] = f["stress"] + solution.factor(m.scene.initial_stress_group) * tensor_to_voigt(
-                evaluate_stress(m.scene.initial_stress, centroids, "initial stress"))
+        f["stress"] = with_initial_stress(solution, f["stress"], f["points"].reshape(-1, 3, 2).mean(axis=1))
         f["cells"] = np.arange(f["points"].shape[0], dtype=np.int64).reshape(-1, 3)
         f["von_mises"] = von_mises(f["stress"], mat.sigma_zz_ratio)
         return f
