@@ -59,3 +59,28 @@ def test_newman_raju():
     assert surface_crack_F(1e-4, 1e2, 1.0, 1e4, np.array([math.pi / 2]))[0] == pytest.approx(1.13, abs=2e-3)
     with pytest.raises(ValueError, match="range"):
         surface_crack_F(0.9, 1.0, 1.0, 10.0, np.array([0.0]))
+
+
+def test_newman_raju_bending():
+    """The bending multiplier H (module doc of cracklip.fracture.handbook),
+    by hand at a/c = 0.6, a/t = 0.3 (the plate of
+    demos/scenes/residual_stress_3d.toml): H1 = 1 - 0.34 (0.3) - 0.11 (0.6)
+    (0.3) = 0.8782 at the surface, G1 = -1.292, G2 = 0.55 - 1.05 (0.68173) +
+    0.47 (0.46476) = 0.052618, H2 = 1 - 0.3876 + 0.0047356 = 0.61714 at the
+    deepest point. A shallow crack (a/t -> 0) sees the face's bending stress
+    as a tension: H = 1. The two branches meet at a/c = 1 (H1 = 1 - 0.45
+    a/t, G1 = -1.34, G2 = -0.03 from either side). K = (S + H S_b) ..."""
+    from cracklip.exact.newman_raju import surface_H
+    assert surface_H(3.0, 5.0, 10.0, 0.0) == pytest.approx(0.8782, abs=1e-12)
+    assert surface_H(3.0, 5.0, 10.0, math.pi / 2) == pytest.approx(0.6171356, abs=1e-7)
+    assert np.allclose(surface_H(1e-6, 1e-5, 1.0, np.linspace(0, math.pi / 2, 5)), 1.0, atol=1e-5)
+    for at in (0.1, 0.3, 0.6):
+        for phi in (0.0, 0.7, math.pi / 2):
+            assert surface_H(at, at * (1 - 1e-12), 1.0, phi) == pytest.approx(surface_H(at, at * (1 + 1e-12), 1.0, phi),
+                                                                              abs=1e-9)
+    phi = np.array([0.0, 0.6, math.pi / 2])
+    k = surface_crack_k(100.0, 3.0, 5.0, 10.0, 20.0, phi, bending=-150.0)
+    kt = surface_crack_k(100.0, 3.0, 5.0, 10.0, 20.0, phi)
+    assert np.allclose(k, kt * (1.0 - 1.5 * surface_H(3.0, 5.0, 10.0, phi)), rtol=1e-14)
+    with pytest.raises(ValueError, match="corner crack's bending"):
+        surface_crack_k(1.0, 1.0, 2.0, 5.0, 20.0, phi, corner=True, bending=1.0)

@@ -653,6 +653,10 @@ HALF_GRIFFITH = ["--set", "mesh.domain=[0.0,-10.0,10.0,10.0]", "--set", "mesh.ti
     # a body force, 2D and 3D
     ("pressurised_crack.toml", ["--set", "mesh.tip_h=0.1", "--set", "loads.body_force=[0.3,-0.5]"], None),
     ("penny_crack.toml", [*SMALL_3D, "--set", "loads.body_force=[0.05,0.02,-0.1]"], None),
+    # an initial stress, 3D: linear, its divergence (0, 0, 0.2) the interaction integral's body force per point
+    ("penny_crack.toml", [*SMALL_3D, "--set", "loads.initial_stress={value=[0.0,0.0,1.0,0.0,0.0,0.1],gradient=["
+                                               "[0.0,0.0,0.5,0.0,0.0,0.0],[0.0,0.0,0.0,0.0,0.0,0.0],"
+                                               "[0.0,0.0,0.2,0.0,0.0,0.0]]}"], None),
     # a load path without contact: three steps of two load groups on one matrix
     ("frictional_crack.toml", ["--set", "mesh.h=0.2", "--set", "mesh.tip_h=0.05", "--set", "options.contact=none",
                                "--set", "options.friction=0"], None),
@@ -675,7 +679,7 @@ def test_run_symmetry_cell_loads_load_path_rescale_same_on_one_and_two_processes
     its owner). K per point (per step) to 1e-10 of the K scale, the energy
     to 1e-10, the dofs and front points exactly, each condition's reaction
     to 1e-10 of the loads. Measured: quarter ellipse 8e-15, half Griffith
-    5e-15, residual stress 1.5e-12, body force 2D 1.8e-13, 3D 2.8e-13, load
+    5e-15, residual stress 1.5e-12 (3D: ...), body force 2D 1.8e-13, 3D 2.8e-13, load
     path 1.6e-14 (2D, its worst step), 2.3e-14 (3D), nodal rescaling 7e-16 (2D), 1.3e-14
     (quarter ellipse)."""
     out, serial, a, b = _run_both(scene, [*settings, "--no-estimate"], tmp_path)

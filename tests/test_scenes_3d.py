@@ -33,6 +33,8 @@ SMALL_3D = {
                              "mesh.refine[0].h=0.1"],
     # run as shipped (its size meets the 1 % overlap) by tests/test_contact_3d_bending.py
     "bending_crack_closure": [],
+    # run as shipped by tests/test_residual_stress_3d.py
+    "residual_stress_3d": ["mesh.h=8.0", "mesh.tip_h=0.6", "mesh.crack_h=0.0", "options.radius=1.2"],
 }
 
 FILES_3D = {"results.json", "solution.vtu", "crack_surface.vtu", "crack_front.vtu", "crack_opening.png",
