@@ -679,7 +679,7 @@ def test_run_symmetry_cell_loads_load_path_rescale_same_on_one_and_two_processes
     its owner). K per point (per step) to 1e-10 of the K scale, the energy
     to 1e-10, the dofs and front points exactly, each condition's reaction
     to 1e-10 of the loads. Measured: quarter ellipse 8e-15, half Griffith
-    5e-15, residual stress 1.5e-12 (3D: ...), body force 2D 1.8e-13, 3D 2.8e-13, load
+    5e-15, residual stress 1.5e-12 (3D, linear with a divergence: 2.9e-14), body force 2D 1.8e-13, 3D 2.8e-13, load
     path 1.6e-14 (2D, its worst step), 2.3e-14 (3D), nodal rescaling 7e-16 (2D), 1.3e-14
     (quarter ellipse)."""
     out, serial, a, b = _run_both(scene, [*settings, "--no-estimate"], tmp_path)

@@ -212,5 +212,5 @@ def surface_crack_beta(a, c, t: float, b: float, corner: bool = False) -> tuple[
     return F(a, c, t, b, math.pi / 2) / q, F(a, c, t, b, 0.0) / q
 
 
-__all__ = ["SOURCES", "centre_crack", "edge_crack", "hole_crack", "newman_raju_range", "surface_F", "surface_H", "corner_F",
-           "surface_crack_F", "corner_crack_F", "surface_crack_k", "surface_crack_beta"]
+__all__ = ["SOURCES", "centre_crack", "edge_crack", "hole_crack", "newman_raju_range", "surface_F", "surface_H",
+           "corner_F", "surface_crack_F", "corner_crack_F", "surface_crack_k", "surface_crack_beta"]
