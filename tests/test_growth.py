@@ -240,6 +240,25 @@ def test_tip_reaching_another_crack_stops_there():
     assert all(r.status == "growing" for st in others[1:] for r in st)
 
 
+def test_a_crack_pressed_shut_says_so():
+    """The edge crack pressed shut (the strip under compression, the lips
+    free to overlap): its K_I is negative at every load, its rate 0, and
+    the stop named it "below threshold" (no threshold was set): now "shut at
+    every load (K_I <= 0)", through the Paris path and the fatigue life's
+    (a constant-amplitude [material.fatigue] run of the same cycle)."""
+    compressed = strip_scene([cl.Crack([[-0.1, 0.0], [0.4, 0.0]])], tractions=((0.0, -1.0), (0.0, 1.0)))
+    res = grow(compressed, Growth(da=0.05, steps=2, paris_C=1e-3, paris_m=3.0, R=0.1))
+    (rec,) = res.records[0]
+    assert rec.K_I < 0.0 and rec.status == "shut at every load (K_I <= 0)"
+    assert res.stop_reason.startswith("no tip grows any more (step 0") and "shut at every load" in res.stop_reason
+    fm = cl.FatigueMaterial("paris", {"C": 1e-3, "m": 3.0}, closure="none")
+    res = grow(compressed, Growth(da=0.05, steps=2, R=0.1, fatigue_material=fm))
+    assert res.records[0][0].status == "shut at every load (K_I <= 0)" and "shut at every load" in res.stop_reason
+    # In tension the same crack grows: the status is the cycle's, not the law's.
+    assert grow(strip_scene([cl.Crack([[-0.1, 0.0], [0.4, 0.0]])]),
+                Growth(da=0.05, steps=1, paris_C=1e-3, paris_m=3.0, R=0.1)).records[0][0].status == "growing"
+
+
 def test_final_failure_length_threshold_and_instability_stops():
     scene = lambda: strip_scene([cl.Crack([[-0.1, 0.0], [0.4, 0.0]])])  # noqa: E731
     res = grow(scene(), Growth(da=0.05, steps=6, K_Ic=3.0))

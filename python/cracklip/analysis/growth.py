@@ -50,7 +50,7 @@ from ..scene.growth import Growth, load_cycle
 from ..scene.scene import Scene, require_scene
 from .growth_run import GrowthResult, GrowthRun  # noqa: F401 (GrowthResult: the result of grow)
 from .tips import (Measured, TipRecord, closed_fraction, crack_length, distance_to_segments,  # noqa: F401
-                   part_length, segment_hit)  # noqa: F401
+                   no_growth_status, part_length, segment_hit)  # noqa: F401
 
 
 logger = logging.getLogger(__name__)
@@ -116,12 +116,12 @@ def _measure(scene: Scene, cracks: list[Crack], growth: Growth, k: int, N: float
             ratio = keq_min / keq_max if keq_max > 0 else 0.0
             if rec.status == "growing":
                 if rec.delta_K <= growth.threshold:
-                    rec.status = "below threshold"
+                    rec.status = no_growth_status(max(r["K_I"], rm["K_I"]))
                 else:  # Walker's form (gamma = 1: Paris), cracklip.fracture.laws
                     rates[key] = float(walker_rate(rec.delta_K, ratio, growth.paris_C, growth.paris_m,
                                                    growth.walker_gamma))
         elif rec.status == "growing" and keq < growth.threshold:
-            rec.status = "below threshold"
+            rec.status = no_growth_status(r["K_I"])
         step.append(rec)
     return Measured(step, rates, lengths, sol_max, model)
 

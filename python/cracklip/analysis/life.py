@@ -72,6 +72,7 @@ from ..scene.growth import Growth, load_cycle
 from ..scene.processes import reduced
 from ..scene.scene import Scene, load_groups
 from ..scene.spectrum import Spectrum, SpectrumBlock
+from .tips import no_growth_status
 
 
 logger = logging.getLogger(__name__)
@@ -590,7 +591,7 @@ class LifeRun:
             rec.residual_strength = self._residual_strength(lv)
             if rec.status == "growing":
                 if not growth_per_pass > 0.0:
-                    rec.status = "below threshold"
+                    rec.status = no_growth_status(float(np.max(KI_use[:, j])))
                 else:
                     rates[key] = growth_per_pass
             records.append(rec)

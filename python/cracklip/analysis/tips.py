@@ -9,6 +9,18 @@ import typing
 import numpy as np
 
 
+#: The status of a tip whose growth rate is 0 this step: below the law's
+#: threshold, or shut at every load of the cycle or pass (K_I <= 0 at its
+#: largest: a crack pressed closed, where "below threshold" hid the cause).
+BELOW_THRESHOLD = "below threshold"
+SHUT = "shut at every load (K_I <= 0)"
+
+
+def no_growth_status(K_I_max: float) -> str:
+    """BELOW_THRESHOLD, or SHUT where the largest K_I of the cycle is <= 0."""
+    return SHUT if K_I_max <= 0.0 else BELOW_THRESHOLD
+
+
 @dataclasses.dataclass
 class TipRecord:
     """One tip at one step: where it is, its K (at the maximum load in
