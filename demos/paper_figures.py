@@ -57,6 +57,7 @@ import contact_3d  # noqa: E402
 import hole_crack  # noqa: E402
 import patch_test  # noqa: E402
 import penny_crack  # noqa: E402
+import residual_stress_3d  # noqa: E402
 import ring_study  # noqa: E402
 import sliding_crack  # noqa: E402
 import tip_quadrature  # noqa: E402
@@ -248,6 +249,11 @@ def step_18(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
     summary["contact_3d"] = contact_3d.main(["--json", str(out / "contact_3d" / "contact_3d.json"), "--quiet",
                                              "--sizes", "6", "--cases", "beta30_mu0", "beta45_mu0.3",
                                              "beta30_stick"])
+    if not args.quick:
+        clock.start("[18/20] 3D: a surface crack shut at its mouth by a residual stress (Newman-Raju in bending "
+                    "without contact; demos/residual_stress_3d.py)")
+        summary["residual_stress_3d"] = residual_stress_3d.main(
+            ["--json", str(out / "residual_stress_3d" / "residual_stress_3d.json"), "--quiet"])
 
 
 def step_19(args, out: pathlib.Path, summary: dict, clock: "StepClock") -> None:
@@ -347,7 +353,8 @@ def _die_with_parent() -> None:
 SUMMARY_ORDER = ("patch_test", "westergaard", "conditioning", "conditioning_spectrum", "tip_quadrature",
                  "block_rules", "inf_sup", "block", "hole", "sliding", "bench_core", "handbook", "error_estimate",
                  "friction", "bench_friction", "growth", "growth_paths", "ring_study", "bench_growth", "fatigue",
-                 "life_inputs", "penny_crack", "front_sifs", "contact_3d", "growth_3d", "hard_cases")
+                 "life_inputs", "penny_crack", "front_sifs", "contact_3d", "residual_stress_3d", "growth_3d",
+                 "hard_cases")
 
 
 def _summary_order(key: str) -> int:
@@ -488,6 +495,10 @@ def markdown(s: dict) -> str:
         lines += ["", "## 3D: closed penny under inclined compression, lip contact and friction "
                   "(`demos/contact_3d.py`; errors relative to the frictionless K_II amplitude A0)", "",
                   contact_3d.markdown(s["contact_3d"]).rstrip("\n")]
+    if s.get("residual_stress_3d"):
+        lines += ["", "## 3D: a surface crack shut at its mouth by a residual stress (`demos/residual_stress_3d.py`)",
+                  "", residual_stress_3d.markdown(s["residual_stress_3d"]).rstrip("\n"), "",
+                  "![K along the front](residual_stress_3d/residual_stress_3d/residual_stress_3d.png)"]
     if s.get("growth_3d"):
         p = s["growth_3d"]["penny"]
         lines += ["", "## 3D: penny grown under Paris' law (`demos/growth_3d.py --small`)", "",
