@@ -15,7 +15,9 @@ crack growth (first kinks, straight growth, Paris law, closure, published
 paths and the SIF rings of their peers, the cost of a step; issue 17), the fatigue life under load histories
 (rainflow, block life, NASGRO, Wheeler, a flight spectrum with contact, beta
 tables; issue 29), the life without a mesh from beta and da/dN table files
-and its compiled speed (issue 38) and the hard-case suite (not with --quick).
+and its compiled speed (issue 38), a 3D surface crack shut at its mouth by a
+residual stress (Newman-Raju in tension and bending without contact; not with --quick)
+and the hard-case suite (not with --quick).
 
 The 3D penny, front and contact steps and the hard cases run in a second process beside the 2D steps
 (the machine's second core; --serial for one process), and the three steps
