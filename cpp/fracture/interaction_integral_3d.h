@@ -118,7 +118,8 @@ void auxiliary_fields_3d(double E, double nu, std::span<const double> frames, st
 /// The integrands of the curved-front interaction integral (header) at
 /// points x (n, 3): frames (n, 12), curvatures (n, 4), grad_u (n, 3, 3) of
 /// the field whose K is sought, sides (n), body (3) a constant body force,
-/// (n, 3) one per point (an initial stress's divergence), or empty: none. Output T (n, mode, j, l) and D (n, mode, l), so that
+/// (n, 3) one per point (an initial stress's divergence), or empty: none.
+/// Output T (n, mode, j, l) and D (n, mode, l), so that
 /// for a virtual extension d and a weight q
 ///   I_m int q_s (e1 . d) ds = sum_p w_p (grad q_p . T_m,p d + q_p D_m,p . d)
 /// (plus the lip terms). Work O(n), no allocation per point.

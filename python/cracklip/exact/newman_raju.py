@@ -1,6 +1,7 @@
 """Newman and Raju's stress intensity factors of surface and corner cracks
-under remote tension, and of surface cracks under bending (NASA TM-85793, 1984): a handbook fit to finite
-element results, stated accurate to +-5 %, not an exact solution. The
+under remote tension, and of surface cracks under bending (NASA TM-85793,
+1984): a handbook fit to finite element results, stated accurate to +-5 %,
+not an exact solution. The
 formulas live with the other handbook geometry factors in
 cracklip.fracture.handbook (its docstring has them); the 3D checks import
 them from here.

@@ -157,14 +157,6 @@ def _frames12(pr: dict) -> np.ndarray:
     return np.ascontiguousarray(np.concatenate([pr["x"], pr["frame"].reshape(-1, 9)], axis=1))
 
 
-def _shape_gradients(model, cells: np.ndarray) -> np.ndarray:
-    """(c, 4, 3) gradients of the P1 shape functions of cells."""
-    xv = model.x[model.cells[cells]]
-    J = np.transpose(xv[:, 1:] - xv[:, :1], (0, 2, 1))
-    dN = np.array([[-1.0, -1.0, -1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
-    return np.einsum("ab,cbi->cai", dN, np.linalg.inv(J))
-
-
 def _node_q(nd: dict, fp: FrontPoint, radius: float) -> np.ndarray:
     """q of a front point's domain of one radius at the tube's nodes."""
     ds = wrap(nd["s"] - fp.s, fp.length, fp.closed)
@@ -333,7 +325,8 @@ def _crack_front_sifs(solution, crack: int, radius: float | None = None) -> tupl
             None if body is None else np.ascontiguousarray(body(qp["x"])), np.ascontiguousarray(qp["weight"]),
             np.searchsorted(cells, qp["cell"]).astype(np.int32),
             np.ascontiguousarray(np.column_stack([1.0 - qp["ref"].sum(axis=1), qp["ref"]])),
-            np.ascontiguousarray(_shape_gradients(m, cells)), offsets, point, q, directions, I)
+            np.ascontiguousarray(m.crack_type.shape_gradients(m.x, m.cells[cells])), offsets, point, q,
+            directions, I)
     # The lip terms (subtracted): per unit q and extension (lip point, mode, l).
     lips = lip_points(m, crack)
     on = np.isin(lips["cell"], cells_all)

@@ -12,8 +12,9 @@ through model.crack_type, cracklip.model.cracks).
 - ``assemble_body_force(model, force)`` and ``assemble_initial_stress(model,
   field)``: int f . phi_j and -int sigma_0 : eps(phi_j) over the cracked
   part. Standard dofs: per cell, exactly for a linear sigma_0 (a degree-4
-  rule for a callable, model.crack_type.cell_rule); enriched dofs: the stiffness's quadrature
-  in the enriched cells, raised to degree 4 in 2D (C++ assemble_cell_load). The lips need no term of
+  rule for a callable, model.crack_type.cell_rule); enriched dofs: the
+  stiffness's quadrature in the enriched cells, raised to the crack type's
+  LOAD_DEGREE (2D: 4; C++ assemble_cell_load). The lips need no term of
   their own: the enriched functions jump there, so -int sigma_0 : eps(phi_j)
   already holds the lip traction sigma_0 n.
 - ``lip_pressure(crack, x)`` and ``assemble_lip_pressure(model, crack)``: a

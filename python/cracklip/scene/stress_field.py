@@ -87,34 +87,6 @@ class LinearStress:
         return not np.any(np.asarray(self.gradient))
 
 
-@dataclasses.dataclass(frozen=True)
-class UniformStress3D:
-    """A uniform stress in 3D as a callable sigma(x): points (n, 3) ->
-    (n, 3, 3); value (sxx, syy, szz, syz, sxz, sxy). A traction
-    Traction(tag, stress=UniformStress3D(...)) loads a face with sigma n, a
-    pressure p is UniformStress3D.pressure(p) (sigma = -p I)."""
-    value: tuple[float, float, float, float, float, float]
-
-    def __post_init__(self):
-        v = np.asarray(self.value, dtype=float)
-        if v.shape != (6,) or not np.all(np.isfinite(v)):
-            raise InputError(f"a 3D stress needs 6 finite components (sxx, syy, szz, syz, sxz, sxy), got {self.value!r}")
-        object.__setattr__(self, "value", tuple(float(c) for c in v))
-
-    @classmethod
-    def pressure(cls, p: float) -> "UniformStress3D":
-        return cls((-p, -p, -p, 0.0, 0.0, 0.0))
-
-    @property
-    def tensor(self) -> np.ndarray:
-        sxx, syy, szz, syz, sxz, sxy = self.value
-        return np.array([[sxx, sxy, sxz], [sxy, syy, syz], [sxz, syz, szz]])
-
-    def __call__(self, x: np.ndarray) -> np.ndarray:
-        n = len(np.asarray(x).reshape(-1, 3))
-        return np.broadcast_to(self.tensor, (n, 3, 3)).copy()
-
-
 #: The (i, j) of each Voigt component: 2D xx, yy, xy; 3D xx, yy, zz, yz, xz, xy.
 VOIGT_PAIRS = {2: ((0, 0), (1, 1), (0, 1)), 3: ((0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1))}
 

@@ -16,7 +16,7 @@ from ...scene.conditions import Dirichlet, LoadStep, PointForce, Traction
 from ...scene.crack import Crack
 from ...scene.material import Material
 from ...scene.mesh import MeshData
-from ...scene.stress_field import LinearStress, UniformStress3D
+from ...scene.stress_field import LinearStress
 from ...scene.processes import mark_collective, reduced
 from ...scene.symmetry import Symmetry
 from .mesh import check_tag, nearest_node
@@ -191,8 +191,10 @@ def build_traction(tr: dict, i: int, mesh: MeshData, material: Material, cracks:
     if "value" in tr:
         notes.append(f"{where}: tag {tag!r} ({nf} facets), traction {tr['value']}")
         return Traction(tag, tuple(tr["value"]), group=tr["group"])
-    if "stress" in tr:
-        return stress_traction(tr, where, nf, notes)
+    if "stress" in tr:  # (3D too: a uniform or linear stress of six components)
+        field = linear_stress(tr, "stress", "stress_gradient")
+        notes.append(f"{where}: tag {tag!r} ({nf} facets), traction sigma n, {describe_stress(field)}")
+        return Traction(tag, stress=field, group=tr["group"])
     # A field's traction sigma n is a stress traction: its normals are those
     # of the mesh it is integrated on (the model's, each process's own
     # facets), not this mesh's, which an error estimate's or an accuracy
@@ -224,10 +226,10 @@ def build_pressure(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Tracti
     check_tag(mesh, pr["tag"], where)
     p = pr["value"]
     notes.append(f"{where}: tag {pr['tag']!r} ({mesh.num_facets(pr['tag'])} facets), pressure {p:g}")
-    # -p n as the traction of the stress -p I: the normals of the mesh it is
-    # integrated on (as a field's traction, build_traction)
-    return Traction(pr["tag"], stress=LinearStress((-p, -p, 0.0)), group=pr["group"])
-
+    # -p n as the traction of the stress -p I (2D or 3D): the normals of the
+    # mesh it is integrated on (as a field's traction, build_traction)
+    d = mesh.gdim
+    return Traction(pr["tag"], stress=LinearStress((-p,) * d + (0.0,) * (2 * d - 3)), group=pr["group"])
 
 
 def linear_stress(st: dict, value: str, gradient: str) -> LinearStress:
@@ -238,36 +240,13 @@ def linear_stress(st: dict, value: str, gradient: str) -> LinearStress:
                         None if st.get("origin") is None else tuple(st["origin"]))
 
 
-def describe_stress(field: LinearStress) -> str:
+def describe_stress(field: LinearStress, name: str = "sigma") -> str:
+    """A note's words for a uniform or linear stress field called `name`."""
     names = "xx, yy, xy" if field.dim == 2 else "xx, yy, zz, yz, xz, xy"
     if field.is_uniform:
-        return f"uniform sigma = {list(field.value)} ({names})"
-    return (f"linear sigma = {list(field.value)} ({names}) at {list(field.origin)}, gradient "
+        return f"uniform {name} = {list(field.value)} ({names})"
+    return (f"linear {name} = {list(field.value)} ({names}) at {list(field.origin)}, gradient "
             f"{[list(r) for r in field.gradient]}")
-
-
-def stress_traction(tr: dict, where: str, nf: int, notes: list[str]) -> Traction:
-    """The traction sigma n of a [[loads.tractions]] stress (and gradient)."""
-    field = linear_stress(tr, "stress", "stress_gradient")
-    notes.append(f"{where}: tag {tr['tag']!r} ({nf} facets), traction sigma n, {describe_stress(field)}")
-    return Traction(tr["tag"], stress=field, group=tr["group"])
-
-
-def traction_3d(tr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
-    where = f"loads.tractions[{i}]"
-    tag = tr["tag"]
-    nf = mesh.num_facets(tag)
-    if "value" in tr:
-        notes.append(f"{where}: tag {tag!r} ({nf} facets), traction {tr['value']}")
-        return Traction(tag, tuple(tr["value"]), group=tr["group"])
-    return stress_traction(tr, where, nf, notes)
-
-
-def pressure_3d(pr: dict, i: int, mesh: MeshData, notes: list[str]) -> Traction:
-    """-p n on a tag (the facets' own normals: sigma = -p I)."""
-    p = pr["value"]
-    notes.append(f"loads.pressures[{i}]: tag {pr['tag']!r} ({mesh.num_facets(pr['tag'])} facets), pressure {p:g}")
-    return Traction(pr["tag"], stress=UniformStress3D.pressure(p), group=pr["group"])
 
 
 def build_conditions(s: dict, mesh: MeshData, material: Material, cracks: list, notes: list[str]) -> list[Dirichlet]:
@@ -293,22 +272,12 @@ def build_symmetry(s: dict, mesh: MeshData, notes: list[str]) -> list[Symmetry]:
 def build_loads(s: dict, mesh: MeshData, material: Material, cracks: list, notes: list[str]) -> dict:
     """The loads of the [loads] settings: tractions (pressures among them),
     body_force (None if zero), point_forces, initial_stress (or None), and
-    the lip pressures' notes. A 2D part takes the 2D tractions (value,
-    stress, Williams, Kirsch), a 3D one a value or a stress."""
+    the lip pressures' notes. A 2D part takes a value, a stress, a Williams
+    or a Kirsch field as a traction, a 3D one a value or a stress."""
     gdim = mesh.gdim
-    tractions = []
-    for i, tr in enumerate(s["loads"]["tractions"]):
-        if gdim == 3:
-            check_tag(mesh, tr["tag"], f"loads.tractions[{i}]")
-            tractions.append(traction_3d(tr, i, mesh, notes))
-        else:
-            tractions.append(build_traction(tr, i, mesh, material, cracks, notes))
-    for i, p in enumerate(s["loads"]["pressures"]):
-        if gdim == 3:
-            check_tag(mesh, p["tag"], f"loads.pressures[{i}]")
-            tractions.append(pressure_3d(p, i, mesh, notes))
-        else:
-            tractions.append(build_pressure(p, i, mesh, notes))
+    # (A 3D scene has no Williams or Kirsch traction: check_dimension refused them.)
+    tractions = [build_traction(tr, i, mesh, material, cracks, notes) for i, tr in enumerate(s["loads"]["tractions"])]
+    tractions += [build_pressure(p, i, mesh, notes) for i, p in enumerate(s["loads"]["pressures"])]
     body_force = s["loads"]["body_force"]
     if any(body_force):
         notes.append(f"loads.body_force: {body_force} per unit {'volume' if gdim == 3 else 'area'}")
@@ -321,7 +290,7 @@ def build_loads(s: dict, mesh: MeshData, material: Material, cracks: list, notes
     if "initial_stress" in s["loads"]:
         st = s["loads"]["initial_stress"]
         initial_stress = linear_stress(st, "value", "gradient")
-        notes.append(f"loads.initial_stress: {describe_stress(initial_stress).replace('sigma', 'sigma_0', 1)}")
+        notes.append(f"loads.initial_stress: {describe_stress(initial_stress, 'sigma_0')}")
     for c, cs in zip(cracks, s["cracks"]):
         if cs["pressure"] != 0.0:
             notes.append(f"{c.name}: lip pressure {cs['pressure']:g}")

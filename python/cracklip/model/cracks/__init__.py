@@ -261,15 +261,16 @@ def crack_model_type(gdim: int) -> type[CrackModel]:
     return {2: CurveCrackModel, 3: SurfaceCrackModel}[gdim]
 
 
-def with_initial_stress(solution, stress: np.ndarray, points: np.ndarray) -> np.ndarray:
-    """The total stress (n, Voigt) C eps(u) + sigma_0 at points (n, d) from
-    C eps(u) there (stress), the scene's initial stress at its load factor
-    added (stress itself if it has none)."""
+def with_initial_stress(solution, stress: np.ndarray, points: typing.Callable[[], np.ndarray]) -> np.ndarray:
+    """The total stress (n, Voigt) C eps(u) + sigma_0 from C eps(u) at n
+    points (stress), the scene's initial stress at its load factor added
+    (stress itself if it has none); points() gives the points (n, d), asked
+    only then."""
     scene = solution.model.scene
-    if scene.initial_stress is None or solution.factor(scene.initial_stress_group) == 0.0 or not len(points):
+    if scene.initial_stress is None or solution.factor(scene.initial_stress_group) == 0.0 or not len(stress):
         return stress
     return stress + solution.factor(scene.initial_stress_group) * tensor_to_voigt(
-        evaluate_stress(scene.initial_stress, points, "initial stress"))
+        evaluate_stress(scene.initial_stress, points(), "initial stress"))
 
 
 __all__ = ["with_initial_stress", "CrackModel", "crack_model_type"]

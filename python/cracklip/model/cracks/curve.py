@@ -173,7 +173,7 @@ class CurveCrackModel(CrackModel):
         mat = m.scene.material
         f = _cracklip.compute_subcell_fields(m.x, m.cells, m.layout, m.geometries, solution.u,
                                              mat.E_strain, mat.nu_strain)
-        f["stress"] = with_initial_stress(solution, f["stress"], f["points"].reshape(-1, 3, 2).mean(axis=1))
+        f["stress"] = with_initial_stress(solution, f["stress"], lambda: f["points"].reshape(-1, 3, 2).mean(axis=1))
         f["cells"] = np.arange(f["points"].shape[0], dtype=np.int64).reshape(-1, 3)
         f["von_mises"] = von_mises(f["stress"], mat.sigma_zz_ratio)
         return f

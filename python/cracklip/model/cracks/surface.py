@@ -246,7 +246,7 @@ class SurfaceCrackModel(CrackModel):
         st = np.concatenate([plain_stress,
                              tensor_to_voigt(stress(strain(w_grad), mat)) if whole.size else np.zeros((0, 6)),
                              tensor_to_voigt(stress(strain(s_grad), mat)) if nsub else np.zeros((0, 6))])
-        st = with_initial_stress(solution, st, points[conn].mean(axis=1))  # (the total stress, at the centroids)
+        st = with_initial_stress(solution, st, lambda: points[conn].mean(axis=1))  # (total: at the centroids)
         return {"points": points, "displacement": displacement, "cells": conn, "stress": st,
                 "von_mises": von_mises_3d(st),
                 "side": np.concatenate([np.zeros(plain.size + whole.size, np.int8), sub["side"]]),
